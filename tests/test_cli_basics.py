@@ -1,0 +1,16 @@
+"""The command line's own behaviour: help, version, and the one-line error contract."""
+
+from __future__ import annotations
+
+
+def test_help_and_version(run_cli):
+    status, out, _ = run_cli("--help")
+    assert status == 0 and "Usage" in out
+    status, out, _ = run_cli("--version")
+    assert status == 0 and "axiscal" in out
+
+
+def test_unknown_command_is_a_usage_error(run_cli):
+    status, _, err = run_cli("no-such-command")
+    assert status == 2
+    assert "Traceback" not in err
