@@ -6,14 +6,17 @@ J. H. Zimmerman, "Index of Refraction of Air", Appendix A and B):
 - ``"ciddor"``: Ciddor, Appl. Opt. 35 (1996) 1566, with the BIPM 1981/91 compressibility
   (NIST Appendix A-III);
 - ``"edlen"``: the updated Edlen equation of Birch and Downs, Metrologia 30 (1993) 155 and
-  31 (1994) 315, with NIST's modified water-vapour term (Appendix A-IV);
-- ``"edlen1966"``: Edlen, Metrologia 2 (1966) 71, in SI units (dry air at 300 ppm CO2 with
-  Edlen's CO2 correction);
+  31 (1994) 315, with NIST's modified water-vapour term (Appendix A-IV); standard air holds
+  450 ppm CO2, other contents take Edlen's factor ``1 + 0.540 (x - 0.00045)`` (NIST's calculator
+  has no CO2 input for Edlen: at the default 450 ppm the factor is 1);
+- ``"edlen1966"``: Edlen, Metrologia 2 (1966) 71, in his units (pressures in torr; standard
+  air with 300 ppm CO2, corrected by ``1 + 0.540 (x - 0.0003)``);
 - ``"shopfloor"``: NIST's simple shop-floor formula (Appendix B), for 633 nm only.
 
-The saturation vapour pressure is IAPWS (Wagner and Pruss, IAPWS-IF97 region 4) over water and
-IAPWS (Wagner, Saul and Pruss 1994) over ice, switched at 0 degC as NIST does (Appendix A-I);
-relative humidity turns into a mole fraction with the enhancement factor of Appendix A-II.
+The saturation vapour pressure is the IAPWS-IF97 saturation equation over water and the IAPWS
+sublimation equation of Wagner, Saul and Pruss (1994) over ice, switched at 0 degC as NIST does
+(Appendix A-I); relative humidity becomes a mole fraction with the enhancement factor of
+Appendix A-II.
 
 Units at the boundary are spelled in names: temperature in degC, pressure in Pa, relative
 humidity in percent, vacuum wavelength in nm, CO2 mole fraction in ppm (umol/mol).
@@ -28,14 +31,21 @@ from axiscal.errors import AxiscalError
 #: names accepted by :func:`refractive_index`
 METHODS = ("ciddor", "edlen", "edlen1966", "shopfloor")
 
-#: vacuum wavelength range (nm) over which each equation is stated to be valid (NIST section VI;
-#: Birch and Downs and Edlen fitted 350-650 nm data; the shop-floor formula is for He-Ne light)
+#: vacuum wavelengths (nm) each equation accepts: 300-1700 nm is the range of NIST's calculator and
+#: check table for both Ciddor and Edlen; the shop-floor formula is for He-Ne light (633 nm), and
+#: over 628-638 nm dispersion changes n by less than 1e-7
 WAVELENGTH_RANGE_NM: dict[str, tuple[float, float]] = {
     "ciddor": (300.0, 1700.0),
-    "edlen": (350.0, 650.0),
-    "edlen1966": (350.0, 650.0),
-    "shopfloor": (632.0, 634.0),
+    "edlen": (300.0, 1700.0),
+    "edlen1966": (300.0, 1700.0),
+    "shopfloor": (628.0, 638.0),
 }
+#: air temperatures (degC) and pressures (Pa) accepted: the conditions of NIST's check table with
+#: margin; outside them a value is far more likely a unit slip (K for degC, hPa or kPa for Pa)
+TEMPERATURE_RANGE_C = (-40.0, 100.0)
+PRESSURE_RANGE_PA = (10e3, 140e3)
+#: CO2 mole fractions (umol/mol) accepted
+CO2_RANGE_PPM = (0.0, 2000.0)
 
 _KELVIN = 273.15
 _TORR = 101325.0 / 760.0
@@ -141,7 +151,7 @@ def _ciddor(t, p, h, wavelength_nm, co2_ppm):
 def _edlen_birch_downs(t, p, h, wavelength_nm, co2_ppm):
     s = (1e3 / wavelength_nm) ** 2
     standard = 1e-8 * (8342.54 + 2406147.0 / (130.0 - s) + 15998.0 / (38.9 - s))
-    standard = standard * (1.0 + 0.5327e-6 * (co2_ppm - 450.0))
+    standard = standard * (1.0 + 0.540e-6 * (co2_ppm - 450.0))
     x = (1.0 + 1e-8 * (0.601 - 0.00972 * t) * p) / (1.0 + 0.003661 * t)
     n_tp = 1.0 + p * standard * x / 96095.43
     p_v = h / 100.0 * saturation_vapour_pressure(t)
@@ -161,6 +171,13 @@ def _edlen_1966(t, p, h, wavelength_nm, co2_ppm):
 
 def _shopfloor(t, p, h, wavelength_nm, co2_ppm):
     return 1.0 + 7.86e-4 * (p / 1e3) / (273.0 + t) - 1.5e-11 * h * (t**2 + 160.0)
+
+
+def _check_range(values: np.ndarray, bounds: tuple[float, float], what: str, unit: str, whose: str = "") -> None:
+    low, high = bounds
+    outside = (values < low) | (values > high)
+    if np.any(outside):
+        raise AxiscalError(f"{what} {float(values[outside].flat[0]):g} {unit} is outside the range {low:g} to {high:g} {unit}{whose}")
 
 
 _EQUATIONS = {"ciddor": _ciddor, "edlen": _edlen_birch_downs, "edlen1966": _edlen_1966, "shopfloor": _shopfloor}
@@ -194,8 +211,10 @@ def refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, *,
     Raises
     ------
     AxiscalError
-        For an unknown method, humidity outside 0-100 %, a pressure that is not positive,
-        a temperature below -273.15 degC, a wavelength outside the method's range, or NaN.
+        For an unknown method, NaN, humidity outside 0-100 %, a pressure that is not positive or
+        outside :data:`PRESSURE_RANGE_PA`, a temperature outside :data:`TEMPERATURE_RANGE_C`, CO2
+        outside :data:`CO2_RANGE_PPM`, a wavelength outside the method's range
+        (:data:`WAVELENGTH_RANGE_NM`), or a water vapour pressure not below the air pressure.
     """
     if method not in _EQUATIONS:
         raise AxiscalError(f"unknown refractive-index method '{method}'; use one of {', '.join(METHODS)}")
@@ -208,18 +227,18 @@ def refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, *,
     for name, values in (("temperature", t), ("pressure", p), ("humidity", h), ("wavelength", wavelength), ("CO2", co2)):
         if not np.all(np.isfinite(values)):
             raise AxiscalError(f"{name} for the refractive index of air is not a finite number")
-    if np.any((h < 0.0) | (h > 100.0)):
-        raise AxiscalError(f"relative humidity must be within 0-100 %, got {float(h[(h < 0) | (h > 100)].flat[0]):g} %")
+    _check_range(h, (0.0, 100.0), "relative humidity", "%")
     if np.any(p <= 0.0):
         raise AxiscalError(f"air pressure must be positive, got {float(p[p <= 0].flat[0]):g} Pa")
-    if np.any(t <= -_KELVIN):
-        raise AxiscalError(f"air temperature must be above -273.15 degC, got {float(t[t <= -_KELVIN].flat[0]):g} degC")
-    if np.any(co2 < 0.0):
-        raise AxiscalError(f"CO2 mole fraction must not be negative, got {float(co2[co2 < 0].flat[0]):g} ppm")
-    low, high = WAVELENGTH_RANGE_NM[method]
-    outside = (wavelength < low) | (wavelength > high)
-    if np.any(outside):
+    _check_range(p, PRESSURE_RANGE_PA, "air pressure", "Pa")
+    _check_range(t, TEMPERATURE_RANGE_C, "air temperature", "degC")
+    _check_range(co2, CO2_RANGE_PPM, "CO2 mole fraction", "ppm")
+    _check_range(wavelength, WAVELENGTH_RANGE_NM[method], "vacuum wavelength", "nm", f" of the '{method}' equation")
+    vapour = h / 100.0 * saturation_vapour_pressure(t)
+    if np.any(vapour >= p):
+        where = np.argmax((vapour >= p).ravel())
         raise AxiscalError(
-            f"wavelength {float(wavelength[outside].flat[0]):g} nm is outside the {low:g}-{high:g} nm range of the '{method}' equation"
+            f"water vapour pressure {vapour.flat[where]:.0f} Pa at {h.flat[where]:g} % and {t.flat[where]:g} degC "
+            f"is not below the air pressure {p.flat[where]:g} Pa"
         )
     return _as_float(_EQUATIONS[method](t, p, h, wavelength, co2))
