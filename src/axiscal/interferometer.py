@@ -227,6 +227,23 @@ def cosine_error(length_m, misalignment_rad) -> np.ndarray:
     return _finite("length", length_m) * 2.0 * np.sin(angle / 2.0) ** 2
 
 
+def misalignment_for_cosine_error(relative_error) -> np.ndarray:
+    """Beam misalignment that gives a relative cosine error ``e = 1 - cos a``, radians.
+
+    The inverse of :func:`cosine_error` per unit length: ``a = 2 asin(sqrt(e / 2))``. Use it to set
+    an alignment tolerance from an error budget (0.1 ppm: 1.54 arc minutes).
+
+    Parameters
+    ----------
+    relative_error : float or array_like, dimensionless
+        Cosine error as a fraction of the length (1e-6 for 1 ppm), 0 to 2.
+    """
+    error = _finite("relative cosine error", relative_error)
+    if np.any((error < 0.0) | (error > 2.0)):
+        raise AxiscalError("a relative cosine error lies between 0 and 2")
+    return 2.0 * np.arcsin(np.sqrt(error / 2.0))
+
+
 def abbe_error(arm_m, angle_rad) -> np.ndarray:
     """Abbe error, paper 003 eq (6) with k = 1: offset of the measuring line times the rotation, metres.
 
