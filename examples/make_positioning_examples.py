@@ -1,0 +1,71 @@
+"""Write examples/positioning_run.csv and examples/laser_raw_run.csv (run: python examples/make_positioning_examples.py).
+
+A plausible 800 mm ball-screw axis, not a measurement: a scale error of +12 um/m, a periodic screw
+error of 1.2 um amplitude over the 10 mm lead, a reversal of about 3.5 um that grows slightly along
+the travel, a slow thermal drift of 0.15 um per run and 0.5 um of random scatter. Targets are those
+of `axiscal plan --start-mm 0 --end-mm 800 --targets 17 --seed 1`, 5 runs each way.
+
+laser_raw_run.csv holds the same test as raw laser readings (computed with the vacuum wavelength)
+of an axis in air at about 21.4 degC and 100.9 kPa with the steel at 21.0 degC: reading =
+position_at_20C * (1 + alpha (t_material - 20)) * n_air. `axiscal positioning` must turn it back
+into the deviations of positioning_run.csv (to the rounding of the files).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.air import refractive_index
+from axiscal.plan import plan_targets
+
+HERE = Path(__file__).resolve().parent
+RUNS = 5
+ALPHA = 11.5e-6
+WAVELENGTH_NM = 632.991
+
+
+def deviations_um(rng: np.random.Generator, targets_mm: np.ndarray) -> dict[tuple[int, str], np.ndarray]:
+    systematic = 0.012 * targets_mm + 1.2 * np.sin(2 * np.pi * targets_mm / 10.0 + 0.6) - 2.0
+    half_reversal = 0.5 * (3.5 + 0.0015 * targets_mm)
+    out = {}
+    for run in range(1, RUNS + 1):
+        drift = 0.15 * (run - 1)
+        for direction, sign in (("+", -1.0), ("-", 1.0)):
+            noise = rng.normal(0.0, 0.5, targets_mm.size)
+            out[(run, direction)] = systematic + sign * half_reversal + drift + noise
+    return out
+
+
+def main() -> None:
+    targets_mm = plan_targets(0.0, 0.8, 17, seed=1) * 1e3
+    rng = np.random.default_rng(3441)
+    devs = deviations_um(rng, targets_mm)
+    plain = ["target_mm,run,direction,deviation_um"]
+    raw = ["target_mm,run,direction,actual_mm,air_temperature_c,pressure_pa,humidity_pct,material_temperature_c"]
+    for run in range(1, RUNS + 1):
+        for direction in ("+", "-"):
+            order = range(targets_mm.size) if direction == "+" else range(targets_mm.size - 1, -1, -1)
+            for i in order:
+                t = targets_mm[i]
+                d = round(float(devs[(run, direction)][i]), 3)
+                plain.append(f"{t:.3f},{run},{direction},{d:.3f}")
+                air_t = 21.4 + 0.05 * (run - 1) + 0.1 * t / 800.0
+                pressure = 100900.0 - 8.0 * (run - 1)
+                humidity = 43.0
+                material = 21.0 + 0.03 * (run - 1)
+                n = float(refractive_index(air_t, pressure, humidity, WAVELENGTH_NM))
+                position_20c_mm = t + d * 1e-3
+                reading_mm = position_20c_mm * (1 + ALPHA * (material - 20.0)) * n
+                raw.append(
+                    f"{t:.3f},{run},{direction},{reading_mm:.7f},{air_t:.3f},{pressure:.1f},{humidity:.1f},{material:.3f}"
+                )
+    header = "# bidirectional ISO 230-2 test of an 800 mm axis (synthetic, see make_positioning_examples.py)"
+    (HERE / "positioning_run.csv").write_text(header + "\n" + "\n".join(plain) + "\n")
+    raw_header = "# the same test as raw laser readings with air and material temperatures (synthetic)"
+    (HERE / "laser_raw_run.csv").write_text(raw_header + "\n" + "\n".join(raw) + "\n")
+
+
+if __name__ == "__main__":
+    main()

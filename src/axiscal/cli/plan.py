@@ -1,0 +1,41 @@
+"""``axiscal plan``: uneven ISO 230-2 targets and the test cycle as CSV and G-code."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from axiscal.cli.common import ensure_parent
+from axiscal.plan import CYCLES, cycle_csv, gcode_program, plan_test
+from axiscal.units import MM
+
+
+@click.command("plan")
+@click.option("--start-mm", type=float, required=True, help="First target position.")
+@click.option("--end-mm", type=float, required=True, help="Last target position.")
+@click.option("--targets", "count", type=int, required=True, help="Number of targets (ISO 230-2: >= 5 per metre, >= 5).")
+@click.option("--runs", type=int, default=5, show_default=True, help="Runs in each direction.")
+@click.option("--overrun-mm", type=float, default=5.0, show_default=True, help="Travel beyond a target before approaching it.")
+@click.option("--seed", type=int, default=None, help="Seed of the random target offsets (same seed, same targets).")
+@click.option("--cycle", type=click.Choice(CYCLES), default="linear", show_default=True, help="Test cycle.")
+@click.option("--gcode", "gcode_path", type=click.Path(dir_okay=False), help="Also write the cycle as a G-code program.")
+@click.option("--axis", default="X", show_default=True, help="Axis letter in the G-code program.")
+@click.option("--dwell-s", type=float, default=2.0, show_default=True, help="Dwell at each target in the G-code (G4 P, seconds).")
+@click.option("--feed-mm-min", type=float, default=2000.0, show_default=True, help="Feed of the G-code moves.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the cycle CSV here instead of stdout.")
+def plan_command(start_mm, end_mm, count, runs, overrun_mm, seed, cycle, gcode_path, axis, dwell_s, feed_mm_min, output):
+    """Plan an ISO 230-2 positioning test: uneven targets and the test cycle (CSV; G-code with --gcode)."""
+    plan = plan_test(start_mm * MM, end_mm * MM, count, runs=runs, overrun_m=overrun_mm * MM, seed=seed, cycle=cycle)
+    program = gcode_program(plan, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_min) if gcode_path else None
+    text = cycle_csv(plan)
+    if output:
+        ensure_parent(output).write_text(text, encoding="utf-8")
+    else:
+        click.echo(text, nl=False)
+    if program is not None:
+        Path(ensure_parent(gcode_path)).write_text(program, encoding="utf-8")
+
+
+def register(group: click.Group) -> None:
+    group.add_command(plan_command)
