@@ -173,11 +173,11 @@ def _shopfloor(t, p, h, wavelength_nm, co2_ppm):
     return 1.0 + 7.86e-4 * (p / 1e3) / (273.0 + t) - 1.5e-11 * h * (t**2 + 160.0)
 
 
-def _check_range(values: np.ndarray, bounds: tuple[float, float], what: str, unit: str, whose: str = "") -> None:
+def _check_range(values: np.ndarray, bounds: tuple[float, float], what: str, unit: str, hint: str = "") -> None:
     low, high = bounds
     outside = (values < low) | (values > high)
     if np.any(outside):
-        raise AxiscalError(f"{what} {float(values[outside].flat[0]):g} {unit} is outside the range {low:g} to {high:g} {unit}{whose}")
+        raise AxiscalError(f"{what} {float(values[outside].flat[0]):g} {unit} is outside the range {low:g} to {high:g} {unit}{hint}")
 
 
 _EQUATIONS = {"ciddor": _ciddor, "edlen": _edlen_birch_downs, "edlen1966": _edlen_1966, "shopfloor": _shopfloor}
@@ -230,8 +230,8 @@ def refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, *,
     _check_range(h, (0.0, 100.0), "relative humidity", "%")
     if np.any(p <= 0.0):
         raise AxiscalError(f"air pressure must be positive, got {float(p[p <= 0].flat[0]):g} Pa")
-    _check_range(p, PRESSURE_RANGE_PA, "air pressure", "Pa")
-    _check_range(t, TEMPERATURE_RANGE_C, "air temperature", "degC")
+    _check_range(p, PRESSURE_RANGE_PA, "air pressure", "Pa", " (in pascals: 1013.25 hPa is 101325 Pa)")
+    _check_range(t, TEMPERATURE_RANGE_C, "air temperature", "degC", " (in degrees Celsius, not kelvin)")
     _check_range(co2, CO2_RANGE_PPM, "CO2 mole fraction", "ppm")
     _check_range(wavelength, WAVELENGTH_RANGE_NM[method], "vacuum wavelength", "nm", f" of the '{method}' equation")
     vapour = h / 100.0 * saturation_vapour_pressure(t)
