@@ -249,7 +249,10 @@ def abbe_error(arm_m, angle_rad) -> np.ndarray:
 
     A carriage that turns by ``angle`` (pitch or yaw) moves a point at perpendicular distance
     ``arm`` from the measuring line by ``arm * sin(angle)`` along the line; to first order that is
-    ``arm * angle`` (1 arcsec at 100 mm: 0.485 um).
+    ``arm * angle`` (1 arcsec at 100 mm: 0.485 um). The sign is that of the product; which way the
+    point moves depends on the geometry (a rotation eps about +Z moves a point at +h on Y by
+    ``-h sin(eps)`` along X). For three-dimensional offsets use the vector form in
+    :mod:`axiscal.abbe`.
 
     Parameters
     ----------
