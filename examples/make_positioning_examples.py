@@ -51,10 +51,10 @@ def main() -> None:
                 t = targets_mm[i]
                 d = round(float(devs[(run, direction)][i]), 3)
                 plain.append(f"{t:.3f},{run},{direction},{d:.3f}")
-                air_t = 21.4 + 0.05 * (run - 1) + 0.1 * t / 800.0
+                air_t = round(21.4 + 0.05 * (run - 1) + 0.1 * t / 800.0, 3)
                 pressure = 100900.0 - 8.0 * (run - 1)
                 humidity = 43.0
-                material = 21.0 + 0.03 * (run - 1)
+                material = round(21.0 + 0.03 * (run - 1), 3)
                 n = float(refractive_index(air_t, pressure, humidity, WAVELENGTH_NM))
                 position_20c_mm = t + d * 1e-3
                 reading_mm = position_20c_mm * (1 + ALPHA * (material - 20.0)) * n
