@@ -112,9 +112,9 @@ def test_sensitivities_near_standard_conditions(method):
 
 
 def test_edlen_1966_reduces_to_its_dispersion_formula_for_standard_air():
-    # Edlen 1966 eq (1): (n - 1)_s 1e8 = 8342.13 + 2406030/(130 - s^2) + 15997/(38.9 - s^2) for dry air
-    # at 15 degC, 101325 Pa (760 torr) and 300 ppm CO2; the pressure factor of eq (12) is then
-    # (1 + 760 (0.817 - 0.0133*15) 1e-6) / (720.775 (1 + 0.003661*15)) * 760
+    # Edlen 1966, dispersion of standard air: (n - 1)_s 1e8 = 8342.13 + 2406030/(130 - s^2)
+    # + 15997/(38.9 - s^2) for dry air at 15 degC, 760 torr and 300 ppm CO2; his density factor
+    # p (1 + p (0.817 - 0.0133 t) 1e-6) / (720.775 (1 + 0.003661 t)) is then 1 within 2e-5
     s2 = (1e3 / 546.227) ** 2
     standard = (8342.13 + 2406030 / (130 - s2) + 15997 / (38.9 - s2)) * 1e-8
     factor = 760 * (1 + 760 * (0.817 - 0.0133 * 15) * 1e-6) / (720.775 * (1 + 0.003661 * 15))
@@ -138,7 +138,7 @@ def test_methods_agree_where_they_should():
 
 
 def test_co2_raises_the_index_as_ciddor_says():
-    # Ciddor 1996 eq (7): (n - 1) scales by 1 + 0.534e-6 (x_c - 450) for dry air at 15 degC
+    # Ciddor 1996 as NIST A-III (e) gives it: r_axs = r_as (1 + 5.34e-7 (x_c - 450)), plus the molar mass
     low = refractive_index(15.0, 101325.0, 0.0, 633.0, co2_ppm=350.0) - 1
     high = refractive_index(15.0, 101325.0, 0.0, 633.0, co2_ppm=550.0) - 1
     assert high / low - 1 == pytest.approx(200 * 0.534e-6, rel=0.05)

@@ -191,3 +191,20 @@ def test_compensated_length_rejects_bad_input():
         compensated_length(np.array([0.1, np.nan]), air_temperature_c=20.0, pressure_pa=101325.0, humidity_pct=50.0)
     with pytest.raises(AxiscalError):
         compensated_length(0.1, air_temperature_c=20.0, pressure_pa=1013.25, humidity_pct=50.0)
+
+
+@settings(max_examples=50, deadline=None)
+@given(
+    reading=st.floats(-2.0, 2.0),
+    scale=st.floats(0.1, 10.0),
+    t=st.floats(10.0, 30.0),
+    p=st.floats(90e3, 110e3),
+    h=st.floats(0.0, 90.0),
+)
+def test_compensation_is_linear_and_neutral_at_20c(reading, scale, t, p, h):
+    environment = dict(air_temperature_c=t, pressure_pa=p, humidity_pct=h)
+    once = compensated_length(reading, **environment)
+    assert compensated_length(reading * scale, **environment) == pytest.approx(once * scale, rel=1e-12, abs=1e-15)
+    assert compensated_length(reading, material_temperature_c=20.0, **environment) == pytest.approx(once, rel=1e-15, abs=1e-18)
+    # the air always shortens a reading taken with index 1
+    assert abs(once) <= abs(reading)
