@@ -191,7 +191,7 @@ def refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, *,
     temperature_c : float or array_like, degC
         Air temperature.
     pressure_pa : float or array_like, Pa
-        Total air pressure; must be positive.
+        Total air pressure, 10 to 140 kPa (:data:`PRESSURE_RANGE_PA`).
     humidity_pct : float or array_like, percent
         Relative humidity, 0 to 100.
     wavelength_nm : float or array_like, nm
@@ -231,7 +231,7 @@ def refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, *,
     if np.any(p <= 0.0):
         raise AxiscalError(f"air pressure must be positive, got {float(p[p <= 0].flat[0]):g} Pa")
     _check_range(p, PRESSURE_RANGE_PA, "air pressure", "Pa", " (in pascals: 1013.25 hPa is 101325 Pa)")
-    _check_range(t, TEMPERATURE_RANGE_C, "air temperature", "degC", " (in degrees Celsius, not kelvin)")
+    _check_range(t, TEMPERATURE_RANGE_C, "air temperature", "degC", " (degrees Celsius, not kelvin)")
     _check_range(co2, CO2_RANGE_PPM, "CO2 mole fraction", "ppm")
     _check_range(wavelength, WAVELENGTH_RANGE_NM[method], "vacuum wavelength", "nm", f" of the '{method}' equation")
     vapour = h / 100.0 * saturation_vapour_pressure(t)
