@@ -8,6 +8,7 @@ carries Y and Z. The volumetric error is the tool point relative to the workpiec
 
 from __future__ import annotations
 
+import re
 import tomllib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -314,7 +315,8 @@ def load_machine(path: str | Path) -> Machine:
     except FileNotFoundError:
         raise AxiscalError("file not found", path=path) from None
     except tomllib.TOMLDecodeError as exc:
-        line = getattr(exc, "lineno", None)
+        found = re.search(r"\(at line (\d+)", str(exc))
+        line = int(found.group(1)) if found else None
         message = str(exc).split(" (at line")[0]
         raise AxiscalError(f"malformed TOML: {message}", path=path, line=line) from None
     except (OSError, UnicodeDecodeError) as exc:
