@@ -205,3 +205,19 @@ def test_bad_machine_descriptions():
         machine.volumetric_error({"X": [0.0], "Z": [0.0, 1.0]})
     with pytest.raises(AxiscalError, match="non-finite"):
         machine.volumetric_error({"X": [np.nan], "Z": [0.0]})
+
+
+def test_chunked_and_threaded_evaluation_equals_one_pass():
+    from axiscal.kinematics import volumetric_error
+
+    rng = np.random.default_rng(6)
+    machine = random_machine("XFYZ", rng)
+    q = random_positions(machine, rng, 200_000)
+    one_pass = volumetric_error(
+        machine._tool_links, machine._workpiece_links, np.array(machine.tool_m), np.array(machine.workpiece_m), q
+    )
+    np.testing.assert_array_equal(machine.volumetric_error(q, workers=2), one_pass)
+    np.testing.assert_array_equal(machine.volumetric_error(q, workers=1), one_pass)
+    q["Y"][150_000] = 9.0
+    with pytest.raises(AxiscalError, match="Y = 9000 mm is outside"):
+        machine.volumetric_error(q)

@@ -8,9 +8,11 @@ carries Y and Z. The volumetric error is the tool point relative to the workpiec
 
 from __future__ import annotations
 
+import os
 import re
 import tomllib
 from collections.abc import Mapping, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -22,6 +24,7 @@ from axiscal.tables import ErrorTable, read_error_table
 from axiscal.units import angle_factor, split_unit
 
 SQUARENESS_TERMS = ("EC0Y", "EB0Z", "EA0Z")
+_CHUNK = 65536
 #: squareness term -> (axis whose guideway it turns, index of the rotation vector component)
 _SQUARENESS_PLACE = {"EC0Y": ("Y", 2), "EB0Z": ("Z", 1), "EA0Z": ("Z", 0)}
 
@@ -175,13 +178,16 @@ class Machine:
             p[:, link.index] -= q[link.letter]
         return p
 
-    def volumetric_error(self, positions: Mapping[str, np.ndarray]) -> np.ndarray:
+    def volumetric_error(self, positions: Mapping[str, np.ndarray], *, workers: int | None = None) -> np.ndarray:
         """Volumetric error of the functional point at the given axis positions.
 
         Parameters
         ----------
         positions : mapping of str to ndarray, shape (N,)
             Position of every axis of the chain, metres.
+        workers : int, optional
+            Threads for large N (default: the number of cores). Work is split into chunks of
+            65536 points, which also keeps the temporaries in cache.
 
         Returns
         -------
@@ -189,9 +195,26 @@ class Machine:
             Actual minus nominal tool point relative to the workpiece, in the workpiece frame, m.
         """
         q = self._positions(positions)
-        return volumetric_error(
-            self._tool_links, self._workpiece_links, np.array(self.tool_m), np.array(self.workpiece_m), q
-        )
+        n = len(next(iter(q.values())))
+        tool, workpiece = np.array(self.tool_m), np.array(self.workpiece_m)
+        if n <= _CHUNK:
+            return volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, q)
+        for letter in self.letters:
+            self.table(letter).check_range(q[letter])
+        out = np.empty((n, 3))
+
+        def run(start: int) -> None:
+            part = {k: v[start : start + _CHUNK] for k, v in q.items()}
+            out[start : start + _CHUNK] = volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, part)
+
+        workers = workers or os.cpu_count() or 1
+        if workers == 1:
+            for start in range(0, n, _CHUNK):
+                run(start)
+        else:
+            with ThreadPoolExecutor(workers) as pool:
+                list(pool.map(run, range(0, n, _CHUNK)))
+        return out
 
     def reference_volumetric_error(self, positions: Mapping[str, np.ndarray]) -> np.ndarray:
         """The same by a plain per-point loop of 4x4 matrix products (slow; for checks)."""

@@ -63,6 +63,8 @@ class ErrorTable:
     hold_ends: bool = False
     _slopes: np.ndarray = field(init=False, repr=False, compare=False)
     _uniform_step: float | None = field(init=False, repr=False, compare=False)
+    _bin_width: float = field(init=False, repr=False, compare=False)
+    _bin_rows: np.ndarray | None = field(init=False, repr=False, compare=False)
     _spline: object = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -86,6 +88,15 @@ class ErrorTable:
         object.__setattr__(self, "_slopes", np.diff(values, axis=1) / steps)
         uniform = bool(np.allclose(steps, steps[0], rtol=1e-9, atol=0.0))
         object.__setattr__(self, "_uniform_step", float(steps[0]) if uniform else None)
+        # Uneven tables: a lookup of the row at the start of bins narrower than the smallest step,
+        # so each bin holds at most one row boundary and one comparison finds the row.
+        bins = int(np.ceil(2.0 * (position[-1] - position[0]) / steps.min())) + 1
+        bin_rows = None
+        if not uniform and bins <= 1 << 22:
+            edges = position[0] + np.arange(bins) * (0.5 * steps.min())
+            bin_rows = np.clip(np.searchsorted(position, edges, side="right") - 1, 0, position.size - 2)
+        object.__setattr__(self, "_bin_width", 0.5 * float(steps.min()))
+        object.__setattr__(self, "_bin_rows", bin_rows)
         spline = None
         if self.interpolation == "cubic":
             from scipy.interpolate import CubicSpline
@@ -151,6 +162,10 @@ class ErrorTable:
             return self._spline(q)
         if self._uniform_step is not None:
             index = ((q - self.start_m) * (1.0 / self._uniform_step)).astype(np.intp)
+            np.minimum(index, self.position_m.size - 2, out=index)
+        elif self._bin_rows is not None:
+            index = self._bin_rows[((q - self.start_m) * (1.0 / self._bin_width)).astype(np.intp)]
+            index += q >= self.position_m[index + 1]
             np.minimum(index, self.position_m.size - 2, out=index)
         else:
             index = np.searchsorted(self.position_m, q, side="right") - 1
