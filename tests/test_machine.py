@@ -221,3 +221,16 @@ def test_chunked_and_threaded_evaluation_equals_one_pass():
     q["Y"][150_000] = 9.0
     with pytest.raises(AxiscalError, match="Y = 9000 mm is outside"):
         machine.volumetric_error(q)
+
+
+def test_worked_example_of_docs_conventions():
+    # docs/conventions.md, "Worked two-axis example": ex = -44.1 um at X = 100 mm, Z = 190 mm
+    machine = Machine(
+        "FXZ",
+        {"X": Axis("X", constant_table("X", [0, 0, 0, 0, 20e-6, 10e-6])), "Z": Axis("Z", origin_m=(0, 0, 0.05))},
+        squareness_rad={"EB0Z": -42.4 * ARCSEC},
+        tool_m=(0.0, -0.04, 0.0),
+    )
+    error_um = machine.volumetric_error({"X": [0.1], "Z": [0.19]})[0] * 1e6
+    assert round(error_um[0], 1) == -44.1
+    assert abs(error_um[1]) < 1e-3 and abs(error_um[2]) < 1e-2
