@@ -1,0 +1,178 @@
+"""The live loop: frames from a source through ``MeasurementSystem.process`` to the record and the dashboard.
+
+One batch at a time (whatever the source has, at most its batch limit): process, flag faults
+(``MeasurementSystem`` bits plus :data:`~axiscal.live.protocol.FAULT_MALFORMED`), append frames and
+results to the :class:`~axiscal.live.recorder.Recorder`, fold them into the
+:class:`~axiscal.live.state.LiveState`. A faulty frame is kept in the record with NaN results; it
+never stops the run. The loop is bounded: it ends when ``stop`` is set, ``duration_s`` has passed
+or a finite source is exhausted.
+
+Latency: for sources that know their clock (``clock_offset_s``), the delay of each frame from
+its time stamp to the moment its result was written to the record is kept in a fixed ring
+(:meth:`Pipeline.latencies_s`).
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from axiscal.live.protocol import FAULT_MALFORMED, FrameBatch
+from axiscal.live.recorder import Recorder
+from axiscal.live.state import LiveState, result_columns
+
+
+@dataclass(frozen=True)
+class RunSummary:
+    """What a run did: frames, faulty frames, batches, wall time (s), record counts and delays (ms)."""
+
+    frames: int
+    faults: int
+    batches: int
+    elapsed_s: float
+    frames_written: int
+    frames_acknowledged: int
+    latency_p50_ms: float
+    latency_p99_ms: float
+    latency_max_ms: float
+    source_state: str
+
+
+class Pipeline:
+    """Run frames from ``source`` through ``system`` into ``recorder`` and ``state``.
+
+    Parameters
+    ----------
+    system : MeasurementSystem
+        The measurement chain (:mod:`axiscal.measurement`).
+    source : source object
+        See :mod:`axiscal.live.sources`.
+    recorder : Recorder, optional
+        Where frames and results are appended.
+    state : LiveState, optional
+        What a dashboard reads.
+    latency_capacity : int
+        Frames whose delay is kept (the most recent ones).
+    """
+
+    def __init__(self, system, source, *, recorder: Recorder | None = None, state: LiveState | None = None, latency_capacity: int = 1 << 20):
+        self.system = system
+        self.source = source
+        self.recorder = recorder
+        self.state = state
+        self.channels = tuple(system.channels)
+        self.result_columns = result_columns(tuple(system.axes))
+        self.frames = 0
+        self.faults = 0
+        self.batches = 0
+        self._latency = np.empty(latency_capacity)
+        self._latency_count = 0
+
+    def process(self, batch: FrameBatch) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+        """Process one batch: fault bits (N,) int64 and the result columns (NaN where faulty)."""
+        results = self.system.process(batch.frames(self.channels))
+        fault = np.asarray(results["fault"], dtype=np.int64) | np.where(batch.malformed, FAULT_MALFORMED, 0)
+        if batch.malformed.any():
+            results = {name: np.where(batch.malformed, np.nan, value) if name not in ("t_s", "fault") else value for name, value in results.items()}
+        return fault, results
+
+    def step(self, timeout_s: float = 0.02) -> int:
+        """Read what the source has (waiting at most ``timeout_s``), process and record it; return the frame count."""
+        batch = self.source.read(timeout_s)
+        n = len(batch)
+        if n == 0:
+            return 0
+        fault, results = self.process(batch)
+        if self.recorder is not None:
+            self.recorder.append(batch.t_s, batch.values, fault, results)
+        offset = self.source.clock_offset_s
+        if offset is not None:
+            self._keep_latency(time.monotonic() - (batch.t_s + offset))
+        if self.state is not None:
+            self.state.update(batch, fault, results)
+        self.frames += n
+        self.faults += int(np.count_nonzero(fault))
+        self.batches += 1
+        return n
+
+    def _keep_latency(self, delays: np.ndarray) -> None:
+        delays = delays[np.isfinite(delays)]
+        size = len(self._latency)
+        delays = delays[-size:]
+        start = self._latency_count % size
+        first = min(len(delays), size - start)
+        self._latency[start : start + first] = delays[:first]
+        self._latency[: len(delays) - first] = delays[first:]
+        self._latency_count += len(delays)
+
+    def latencies_s(self) -> np.ndarray:
+        """Delays (s) from time stamp to record of the most recent frames, oldest first."""
+        size = len(self._latency)
+        if self._latency_count <= size:
+            return self._latency[: self._latency_count].copy()
+        start = self._latency_count % size
+        return np.concatenate([self._latency[start:], self._latency[:start]])
+
+    def summary(self, elapsed_s: float) -> RunSummary:
+        delays = self.latencies_s() * 1e3
+        p50, p99, worst = (np.percentile(delays, [50, 99, 100]) if len(delays) else (np.nan, np.nan, np.nan))
+        return RunSummary(
+            frames=self.frames,
+            faults=self.faults,
+            batches=self.batches,
+            elapsed_s=elapsed_s,
+            frames_written=self.recorder.frames_written if self.recorder else 0,
+            frames_acknowledged=self.recorder.frames_acknowledged if self.recorder else 0,
+            latency_p50_ms=float(p50),
+            latency_p99_ms=float(p99),
+            latency_max_ms=float(worst),
+            source_state=self.source.status.state,
+        )
+
+    def publish_status(self) -> None:
+        """Put source, record and delay figures into the state's snapshot (the dashboard's header)."""
+        if self.state is None:
+            return
+        status = self.source.status
+        delays = self.latencies_s()[-20000:] * 1e3
+        self.state.extra = {
+            "source": {"description": status.description, "state": status.state, "connections": status.connections, "retries": status.retries, "message": status.message},
+            "record": None
+            if self.recorder is None
+            else {"path": str(self.recorder.path), "written": self.recorder.frames_written, "acknowledged": self.recorder.frames_acknowledged},
+            "latency_ms": None if not len(delays) else {"p50": round(float(np.percentile(delays, 50)), 3), "p99": round(float(np.percentile(delays, 99)), 3)},
+        }
+
+    def run(
+        self,
+        *,
+        stop: threading.Event | None = None,
+        duration_s: float | None = None,
+        progress: Callable[[RunSummary], None] | None = None,
+        progress_interval_s: float = 0.5,
+    ) -> RunSummary:
+        """Loop until ``stop`` is set, ``duration_s`` has passed or the source is finished; return the summary.
+
+        ``progress`` is called with the running summary every ``progress_interval_s`` (from this thread).
+        """
+        start = time.monotonic()
+        deadline = np.inf if duration_s is None else start + duration_s
+        next_report = start + progress_interval_s
+        stop = stop or threading.Event()
+        self.publish_status()
+        while not stop.is_set() and not self.source.finished:
+            now = time.monotonic()
+            if now >= deadline:
+                break
+            self.step(min(0.02, max(deadline - now, 0.0)))
+            if now >= next_report:
+                next_report = now + progress_interval_s
+                self.publish_status()
+                if progress is not None:
+                    progress(self.summary(now - start))
+        self.publish_status()
+        return self.summary(time.monotonic() - start)

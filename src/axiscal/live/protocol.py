@@ -1,0 +1,179 @@
+"""The frame batch and the line protocol of the TCP and serial sources (docs/live.md, "Line protocol").
+
+One frame per line, UTF-8, fields separated by commas, ``\\n`` (or ``\\r\\n``) at the end::
+
+    t_s,x_scale_mm,x_psd_y_um,...          <- optional header: names the columns of the lines after it
+    0.000100,12.500031,0.8123,...          <- t_s, then the channels of MeasurementSystem.channels
+
+Without a header the columns are ``t_s`` and then the channels in ``MeasurementSystem.channels``
+order. A header may give the columns in any order and may leave channels out (they are then
+missing in every frame); a column it names that the system does not know is ignored. Lines
+starting with ``#`` and empty lines are skipped. An empty cell, ``nan`` or a cell that is not a
+number is a missing channel; a frame whose ``t_s`` cannot be read is kept but marked malformed.
+Nothing a sender writes can stop the stream: bad lines become faulty frames, never errors.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+#: fault bit the live pipeline adds to MeasurementSystem's bits: the line or row could not be read
+#: as a frame (no readable time stamp).
+FAULT_MALFORMED = 1 << 8
+
+
+@dataclass(frozen=True)
+class FrameBatch:
+    """Frames as they arrive from a source, before processing.
+
+    Attributes
+    ----------
+    t_s : ndarray, shape (N,)
+        Time stamp of each frame, seconds (NaN when it could not be read).
+    values : ndarray, shape (N, C)
+        Raw channel readings in ``channels`` order, each in its own unit; NaN = missing.
+    malformed : ndarray of bool, shape (N,)
+        Frames whose line or row could not be read as a frame.
+    """
+
+    t_s: np.ndarray
+    values: np.ndarray
+    malformed: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.t_s)
+
+    def frames(self, channels: Sequence[str]) -> dict[str, np.ndarray]:
+        """The mapping ``MeasurementSystem.process`` takes: ``"t_s"`` and every channel, shape (N,)."""
+        out = {"t_s": self.t_s}
+        out.update({name: self.values[:, i] for i, name in enumerate(channels)})
+        return out
+
+    @classmethod
+    def from_frames(cls, frames: dict[str, np.ndarray], channels: Sequence[str]) -> "FrameBatch":
+        """Build a batch from a mapping of ``"t_s"`` and channel arrays (a missing key is a missing channel)."""
+        t = np.asarray(frames["t_s"], dtype=float)
+        values = np.full((len(t), len(channels)), np.nan)
+        for i, name in enumerate(channels):
+            if name in frames:
+                values[:, i] = frames[name]
+        return cls(t, values, ~np.isfinite(t))
+
+    @classmethod
+    def concatenate(cls, batches: Sequence["FrameBatch"], width: int) -> "FrameBatch":
+        if not batches:
+            return cls(np.empty(0), np.empty((0, width)), np.zeros(0, dtype=bool))
+        return cls(
+            np.concatenate([b.t_s for b in batches]),
+            np.concatenate([b.values for b in batches]),
+            np.concatenate([b.malformed for b in batches]),
+        )
+
+
+def _cell(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        return np.nan
+
+
+class LineDecoder:
+    """Turns the bytes of the line protocol into :class:`FrameBatch` es, keeping a partial last line.
+
+    Parameters
+    ----------
+    channels : sequence of str
+        The channel names of the measurement system, in frame order.
+    """
+
+    def __init__(self, channels: Sequence[str]):
+        self.channels = tuple(channels)
+        self._pending = b""
+        self._columns: tuple[str, ...] = ("t_s",) + self.channels
+        self._order = np.arange(len(self._columns))
+        self.lines = 0
+        self.malformed_lines = 0
+        self.ignored_columns: tuple[str, ...] = ()
+
+    def reset(self) -> None:
+        """Forget a partial line and any header (a new connection starts afresh)."""
+        self._pending = b""
+        self._set_columns(("t_s",) + self.channels)
+
+    def _set_columns(self, columns: Sequence[str]) -> None:
+        self._columns = tuple(columns)
+        position = {name: i for i, name in enumerate(self._columns)}
+        wanted = ("t_s",) + self.channels
+        self._order = np.array([position.get(name, -1) for name in wanted])
+        self.ignored_columns = tuple(name for name in self._columns if name not in wanted)
+
+    def feed(self, data: bytes) -> FrameBatch:
+        """Decode the complete lines in ``data`` (plus what was pending); keep the incomplete tail."""
+        data = self._pending + data
+        cut = data.rfind(b"\n")
+        if cut < 0:
+            self._pending = data
+            return self.decode_lines(())
+        self._pending = data[cut + 1 :]
+        return self.decode_lines(data[:cut].decode("utf-8", errors="replace").split("\n"))
+
+    def flush(self) -> FrameBatch:
+        """Decode a last line that had no newline (at the end of a stream)."""
+        tail, self._pending = self._pending, b""
+        return self.decode_lines([tail.decode("utf-8", errors="replace")] if tail.strip() else [])
+
+    def decode_lines(self, lines: Iterable[str]) -> FrameBatch:
+        """Decode text lines (without their newline) into frames; a header applies to the lines after it."""
+        segments: list[FrameBatch] = []
+        rows: list[list[str]] = []
+        for line in lines:
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            cells = line.split(",")
+            if cells[0].strip() == "t_s":
+                segments.append(self._decode_rows(rows))
+                rows = []
+                self._set_columns([c.strip() for c in cells])
+                continue
+            rows.append(cells)
+        segments.append(self._decode_rows(rows))
+        batches = [b for b in segments if len(b)]
+        return batches[0] if len(batches) == 1 else FrameBatch.concatenate(batches, len(self.channels))
+
+    def _decode_rows(self, rows: list[list[str]]) -> FrameBatch:
+        width = len(self._columns)
+        self.lines += len(rows)
+        if not rows:
+            return FrameBatch.concatenate([], len(self.channels))
+        try:
+            parsed = np.array(rows, dtype=float)
+            if parsed.shape[1] != width:
+                raise ValueError("wrong number of cells")
+        except ValueError:
+            parsed = np.full((len(rows), width), np.nan)
+            for k, cells in enumerate(rows):
+                cells = cells[:width]
+                parsed[k, : len(cells)] = [_cell(c) for c in cells]
+        full = np.concatenate([parsed, np.full((len(rows), 1), np.nan)], axis=1)
+        ordered = full[:, self._order]
+        ordered[~np.isfinite(ordered)] = np.nan
+        t = ordered[:, 0]
+        malformed = np.isnan(t)
+        self.malformed_lines += int(malformed.sum())
+        return FrameBatch(np.ascontiguousarray(t), np.ascontiguousarray(ordered[:, 1:]), malformed)
+
+
+def encode_lines(t_s: np.ndarray, values: np.ndarray) -> bytes:
+    """Frames as protocol lines (no header): what an acquisition box sends; used by tests and benchmarks."""
+    table = np.column_stack([t_s, values])
+    text = "".join(",".join(repr(v) for v in row) + "\n" for row in table.tolist())
+    return text.encode("utf-8")
+
+
+def header_line(channels: Sequence[str]) -> bytes:
+    """The optional header line naming the columns."""
+    return (",".join(("t_s",) + tuple(channels)) + "\n").encode("utf-8")

@@ -1,0 +1,231 @@
+"""The crash-safe live record: every frame received and every result computed, appended as CSV.
+
+Format (docs/live.md, "Record format"): ``#`` comment lines, a header, then one line per frame::
+
+    t_s,<raw channels...>,fault,ex_um,ey_um,ez_um,e_um,px_mm,py_mm,pz_mm,<positions>,<six errors per axis>
+
+Durability: each batch is written with one ``os.write`` on a file opened ``O_APPEND`` (no buffer in
+the process, so a crash of the process loses nothing that was written); a background thread
+``fsync`` s the file every ``sync_interval_s`` and only then counts the frames as *acknowledged*
+(:attr:`Recorder.frames_acknowledged`): those survive even a crash of the operating system. After a
+kill the last line may be cut short; :func:`read_record` drops it, and pandas reads it as a row with
+missing cells at its end.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import threading
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+
+FORMAT_LINE = "# axiscal live record, format 1 (docs/live.md)"
+
+
+class Recorder:
+    """Append frames and results to a CSV file that survives a crash of the process.
+
+    Parameters
+    ----------
+    path : str or Path
+        The record file; created (or emptied) when the recorder opens.
+    channels : sequence of str
+        Raw channel names, in frame order.
+    result_columns : sequence of str
+        Result columns to write after ``fault`` (names as ``MeasurementSystem.process`` returns them).
+    sync_interval_s : float
+        How often the background thread makes the written frames durable (``fsync``), seconds.
+    comments : sequence of str
+        Lines written as ``# ...`` after the format line (source, machine, start time).
+    """
+
+    def __init__(
+        self,
+        path: str | Path,
+        channels: Sequence[str],
+        result_columns: Sequence[str],
+        *,
+        sync_interval_s: float = 0.1,
+        comments: Sequence[str] = (),
+    ):
+        if not sync_interval_s > 0:
+            raise AxiscalError(f"sync interval must be positive, got {sync_interval_s}")
+        self.path = Path(path)
+        self.channels = tuple(channels)
+        self.result_columns = tuple(result_columns)
+        self.columns = ("t_s",) + self.channels + ("fault",) + self.result_columns
+        self.sync_interval_s = float(sync_interval_s)
+        self._row_format = ",".join(["%.6f"] + ["%.9g"] * len(self.channels) + ["%d"] + ["%.9g"] * len(self.result_columns)) + "\n"
+        try:
+            self._fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_APPEND, 0o644)
+        except OSError as exc:
+            raise AxiscalError(f"cannot open the record file ({exc.strerror})", path=self.path) from None
+        head = [FORMAT_LINE] + [f"# {c}" for c in comments] + [",".join(self.columns)]
+        os.write(self._fd, ("\n".join(head) + "\n").encode("utf-8"))
+        os.fsync(self._fd)
+        self._lock = threading.Lock()
+        self._written = 0
+        self._acknowledged = 0
+        self._closed = threading.Event()
+        self._syncer = threading.Thread(target=self._sync_loop, name="axiscal-record-sync", daemon=True)
+        self._syncer.start()
+
+    @property
+    def frames_written(self) -> int:
+        """Frames handed to the operating system (survive a crash of this process)."""
+        return self._written
+
+    @property
+    def frames_acknowledged(self) -> int:
+        """Frames made durable by ``fsync`` (survive a crash of the operating system too)."""
+        return self._acknowledged
+
+    def append(self, t_s: np.ndarray, values: np.ndarray, fault: np.ndarray, results: Mapping[str, np.ndarray]) -> None:
+        """Append N frames: times (N,), raw values (N, C), fault bits (N,) and result columns (N,) each.
+
+        A result column missing from ``results`` is written as ``nan``.
+        """
+        n = len(t_s)
+        if n == 0:
+            return
+        nan = np.full(n, np.nan)
+        table = np.column_stack([t_s, values, fault] + [results.get(name, nan) for name in self.result_columns])
+        fmt = self._row_format
+        text = "".join([fmt % row for row in map(tuple, table.tolist())])
+        data = text.encode("ascii")
+        with self._lock:
+            if self._closed.is_set():
+                raise AxiscalError("the record file is closed", path=self.path)
+            view = memoryview(data)
+            while view:
+                done = os.write(self._fd, view)
+                view = view[done:]
+            self._written += n
+
+    def sync(self) -> int:
+        """Make everything written so far durable now; return the acknowledged frame count."""
+        with self._lock:
+            if self._closed.is_set():
+                return self._acknowledged
+            written = self._written
+            fd = self._fd
+        os.fsync(fd)
+        with self._lock:
+            self._acknowledged = max(self._acknowledged, written)
+        return self._acknowledged
+
+    def _sync_loop(self) -> None:
+        while not self._closed.wait(self.sync_interval_s):
+            if self._written != self._acknowledged:
+                try:
+                    self.sync()
+                except OSError:
+                    return
+
+    def close(self) -> None:
+        """Sync and close; every frame written is acknowledged afterwards."""
+        if self._closed.is_set():
+            return
+        self.sync()
+        with self._lock:
+            self._closed.set()
+            os.close(self._fd)
+        self._syncer.join(timeout=5.0)
+
+    def __enter__(self) -> "Recorder":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+@dataclass(frozen=True)
+class Record:
+    """A record read back: its comment lines, columns as float arrays, and whether a cut last line was dropped."""
+
+    path: str
+    comments: tuple[str, ...]
+    columns: dict[str, np.ndarray]
+    truncated: bool
+
+    def __len__(self) -> int:
+        return len(self.columns["t_s"])
+
+
+def read_record(path: str | Path) -> Record:
+    """Read a live record (or any CSV with a ``t_s`` column): empty cells and ``nan`` are NaN.
+
+    A last line without its newline (the process was killed while writing it) is dropped and
+    :attr:`Record.truncated` is set; every complete line is returned.
+
+    Raises
+    ------
+    AxiscalError
+        If the file is missing, has no header with ``t_s``, or a complete line has a wrong number of
+        cells or a cell that is not a number (naming the file and line).
+    """
+    path = Path(path)
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        raise AxiscalError("file not found", path=path) from None
+    except OSError as exc:
+        raise AxiscalError(f"cannot read file ({exc.strerror})", path=path) from None
+    truncated = bool(data) and not data.endswith(b"\n")
+    if truncated:
+        data = data[: data.rfind(b"\n") + 1]
+    lines = data.decode("utf-8-sig", errors="replace").split("\n")
+    comments: list[str] = []
+    header: list[str] | None = None
+    rows: list[list[str]] = []
+    numbers: list[int] = []
+    for lineno, line in enumerate(lines, start=1):
+        stripped = line.strip()
+        if not stripped:
+            continue
+        if stripped.startswith("#"):
+            comments.append(stripped[1:].strip())
+            continue
+        cells = [c.strip() for c in stripped.split(",")]
+        if header is None:
+            header = cells
+            if "t_s" not in header:
+                raise AxiscalError(f"no 't_s' column (columns are: {', '.join(header)})", path=path, line=lineno)
+            if len(set(header)) != len(header):
+                raise AxiscalError("a column name appears twice in the header", path=path, line=lineno)
+            continue
+        if len(cells) != len(header):
+            raise AxiscalError(f"{len(cells)} cells where the header has {len(header)}", path=path, line=lineno)
+        rows.append(cells)
+        numbers.append(lineno)
+    if header is None:
+        raise AxiscalError("empty file: expected a header row with 't_s'", path=path)
+    try:
+        table = np.array(rows, dtype=float).reshape(len(rows), len(header))
+    except ValueError:
+        table = _parse_cells(rows, header, numbers, path)
+    table[~np.isfinite(table)] = np.nan
+    columns = {name: np.ascontiguousarray(table[:, i]) for i, name in enumerate(header)}
+    return Record(str(path), tuple(comments), columns, truncated)
+
+
+def _parse_cells(rows: list[list[str]], header: list[str], numbers: list[int], path: Path) -> np.ndarray:
+    """The slow path of :func:`read_record`: empty cells allowed, a bad cell named by file and line."""
+    table = np.full((len(rows), len(header)), np.nan)
+    for k, cells in enumerate(rows):
+        for i, cell in enumerate(cells):
+            if cell == "" or cell.lower() == "nan":
+                continue
+            try:
+                value = float(cell)
+            except ValueError:
+                raise AxiscalError(f"column '{header[i]}': '{cell}' is not a number", path=path, line=numbers[k]) from None
+            table[k, i] = value if math.isfinite(value) else np.nan
+    return table
+

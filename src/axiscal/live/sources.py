@@ -1,0 +1,432 @@
+"""Where live frames come from: the virtual instrument, a recorded file, TCP, a serial port.
+
+Every source has the same small interface, used by :class:`axiscal.live.pipeline.Pipeline` from
+one thread:
+
+- ``read(timeout_s) -> FrameBatch`` -- the frames that arrived (possibly none), waiting at most
+  ``timeout_s``;
+- ``finished`` -- True once a finite source (a replay) has delivered its last frame;
+- ``status`` -- a :class:`SourceStatus` for the dashboard (state, reconnections, last message);
+- ``clock_offset_s`` -- monotonic clock minus frame time stamp when the source knows it (the sim
+  and a paced replay do), else None; the pipeline measures latency with it;
+- ``close()``.
+
+Sources that can lose their connection (TCP, serial) reconnect with exponential back-off
+(:class:`Backoff`); a connection that drops is never an error of the run.
+"""
+
+from __future__ import annotations
+
+import errno
+import os
+import select
+import socket
+import time
+from abc import ABC, abstractmethod
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.live.protocol import FrameBatch, LineDecoder
+from axiscal.live.recorder import read_record
+
+
+@dataclass
+class SourceStatus:
+    """What a source is doing, for the dashboard and the progress line.
+
+    ``state`` is one of ``"connecting"``, ``"streaming"``, ``"retrying"``, ``"finished"``.
+    """
+
+    description: str
+    state: str = "connecting"
+    connections: int = 0
+    retries: int = 0
+    message: str = ""
+    attempt_times: list[float] = field(default_factory=list)
+
+
+class Backoff:
+    """Exponential back-off between reconnection attempts: initial, initial*factor, ... capped at maximum.
+
+    Parameters
+    ----------
+    initial_s, factor, maximum_s : float
+        First delay (s), growth factor per failed attempt, longest delay (s).
+    """
+
+    def __init__(self, *, initial_s: float = 0.05, factor: float = 2.0, maximum_s: float = 2.0):
+        if not (initial_s > 0 and factor >= 1 and maximum_s >= initial_s):
+            raise AxiscalError("back-off needs initial > 0, factor >= 1 and maximum >= initial")
+        self.initial_s = initial_s
+        self.factor = factor
+        self.maximum_s = maximum_s
+        self.delay_s = initial_s
+
+    def failed(self) -> float:
+        """Record a failed attempt; return how long to wait before the next one."""
+        delay = self.delay_s
+        self.delay_s = min(self.delay_s * self.factor, self.maximum_s)
+        return delay
+
+    def succeeded(self) -> None:
+        self.delay_s = self.initial_s
+
+
+def _empty(width: int) -> FrameBatch:
+    return FrameBatch.concatenate([], width)
+
+
+class SimSource:
+    """The virtual instrument streamed in real time: ``VirtualModule.frames(t)`` at ``rate_hz``.
+
+    Frame k has time stamp k / rate_hz and is delivered once that time has passed on the monotonic
+    clock (so its delay to the record is measurable); at most ``max_batch_s`` of frames per read.
+
+    Parameters
+    ----------
+    module : VirtualModule
+        The instrument (:mod:`axiscal.virtual`).
+    channels : sequence of str
+        Channel order of the measurement system.
+    rate_hz : float
+        Frames per second.
+    path : str
+        Motion of the module (``"diagonal"``, ``"raster"``, ``"back-and-forth"``).
+    """
+
+    def __init__(self, module, channels: Sequence[str], *, rate_hz: float = 1000.0, path: str = "diagonal", max_batch_s: float = 0.05):
+        if not (rate_hz > 0 and np.isfinite(rate_hz)):
+            raise AxiscalError(f"rate must be a positive number of frames per second, got {rate_hz}")
+        self.module = module
+        self.channels = tuple(channels)
+        self.rate_hz = float(rate_hz)
+        self.path = path
+        self.max_batch = max(1, int(round(max_batch_s * rate_hz)))
+        self.status = SourceStatus(f"sim ({rate_hz:g} Hz, {path})", state="streaming", connections=1)
+        self.finished = False
+        self.clock_offset_s: float | None = None
+        self._next = 0
+
+    def read(self, timeout_s: float) -> FrameBatch:
+        now = time.monotonic()
+        if self.clock_offset_s is None:
+            self.clock_offset_s = now
+        due = int(np.floor((now - self.clock_offset_s) * self.rate_hz)) + 1 - self._next
+        if due <= 0:
+            wait = (self._next / self.rate_hz + self.clock_offset_s) - now
+            if wait > timeout_s:
+                time.sleep(max(timeout_s, 0.0))
+                return _empty(len(self.channels))
+            time.sleep(max(wait, 0.0))
+            due = 1
+        due = min(due, self.max_batch)
+        t = (self._next + np.arange(due)) / self.rate_hz
+        self._next += due
+        frames, _truth = self.module.frames(t, path=self.path)
+        return FrameBatch.from_frames(frames, self.channels)
+
+    def close(self) -> None:
+        self.status.state = "finished"
+
+
+class ReplaySource:
+    """A recorded CSV (a live record, or any file with ``t_s`` and every channel) played back.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file; read with :func:`axiscal.live.recorder.read_record` (a cut last line is dropped).
+    channels : sequence of str
+        Channel order of the measurement system; each must be a column of the file.
+    pace : bool
+        True: frames are delivered when their ``t_s`` (relative to the first) has passed;
+        False: as fast as the pipeline takes them.
+    """
+
+    def __init__(self, path: str | Path, channels: Sequence[str], *, pace: bool = True, max_batch: int = 2000):
+        record = read_record(path)
+        missing = [name for name in channels if name not in record.columns]
+        if missing:
+            raise AxiscalError(f"replay file lacks channel column(s) {', '.join(missing)}", path=path)
+        self.channels = tuple(channels)
+        self._t = record.columns["t_s"]
+        self._values = np.column_stack([record.columns[name] for name in channels]) if channels else np.empty((len(self._t), 0))
+        self.pace = pace
+        self.max_batch = max_batch
+        self.status = SourceStatus(f"replay {path}" + ("" if pace else " (as fast as possible)"), state="streaming", connections=1)
+        self.finished = len(self._t) == 0
+        self.clock_offset_s: float | None = None
+        self._start: float | None = None
+        self._next = 0
+        self._t0 = float(self._t[np.isfinite(self._t)][0]) if np.isfinite(self._t).any() else 0.0
+
+    def read(self, timeout_s: float) -> FrameBatch:
+        if self.finished:
+            return _empty(len(self.channels))
+        stop = min(self._next + self.max_batch, len(self._t))
+        if self.pace:
+            now = time.monotonic()
+            if self._start is None:
+                self._start = now
+                self.clock_offset_s = now - self._t0
+            elapsed = now - self._start
+            times = self._t[self._next : stop] - self._t0
+            ready = int(np.searchsorted(np.where(np.isfinite(times), times, -np.inf), elapsed, side="right"))
+            if ready == 0:
+                wait = min(float(times[0]) - elapsed, timeout_s)
+                time.sleep(max(wait, 0.0))
+                return _empty(len(self.channels))
+            stop = self._next + ready
+        t = self._t[self._next : stop]
+        batch = FrameBatch(t.copy(), self._values[self._next : stop].copy(), ~np.isfinite(t))
+        self._next = stop
+        if self._next >= len(self._t):
+            self.finished = True
+            self.status.state = "finished"
+        return batch
+
+    def close(self) -> None:
+        self.status.state = "finished"
+
+
+class _LineStreamSource(ABC):
+    """Common part of the TCP and serial sources: connect, read lines, reconnect with back-off."""
+
+    def __init__(self, channels: Sequence[str], description: str, backoff: Backoff | None, clock_offset_s: float | None):
+        self.channels = tuple(channels)
+        self.decoder = LineDecoder(self.channels)
+        self.backoff = backoff or Backoff()
+        self.status = SourceStatus(description)
+        self.finished = False
+        self.clock_offset_s = clock_offset_s
+        self._next_attempt = 0.0
+
+    @property
+    @abstractmethod
+    def _connected(self) -> bool:
+        """Whether a connection is open."""
+
+    @abstractmethod
+    def _connect(self) -> None:
+        """Open the connection; raise OSError when that fails."""
+
+    @abstractmethod
+    def _disconnect(self) -> None:
+        """Close the connection."""
+
+    @abstractmethod
+    def _receive(self, timeout_s: float) -> bytes | None:
+        """Bytes received within the timeout (b"" if none); None when the peer has gone."""
+
+    def _lost(self, message: str) -> FrameBatch:
+        tail = self.decoder.flush()
+        self._disconnect()
+        self.decoder.reset()
+        self.status.state = "retrying"
+        self.status.message = message
+        self._next_attempt = time.monotonic() + self.backoff.failed()
+        return tail
+
+    def read(self, timeout_s: float) -> FrameBatch:
+        if not self._connected:
+            now = time.monotonic()
+            if now < self._next_attempt:
+                time.sleep(min(self._next_attempt - now, timeout_s))
+                return _empty(len(self.channels))
+            self.status.attempt_times.append(time.monotonic())
+            try:
+                self._connect()
+            except OSError as exc:
+                self.status.retries += 1
+                self.status.state = "retrying"
+                self.status.message = f"cannot connect: {exc.strerror or exc}"
+                self._next_attempt = time.monotonic() + self.backoff.failed()
+                return _empty(len(self.channels))
+            self.status.connections += 1
+            self.status.state = "streaming"
+            self.status.message = ""
+        try:
+            data = self._receive(timeout_s)
+        except OSError as exc:
+            self.status.retries += 1
+            return self._lost(f"connection lost: {exc.strerror or exc}")
+        if data is None:
+            self.status.retries += 1
+            return self._lost("connection closed by the sender")
+        batch = self.decoder.feed(data)
+        if len(batch):
+            self.backoff.succeeded()
+        return batch
+
+    def close(self) -> None:
+        if self._connected:
+            self._disconnect()
+        self.status.state = "finished"
+
+
+class TcpSource(_LineStreamSource):
+    """Frames from a TCP server speaking the line protocol (:mod:`axiscal.live.protocol`).
+
+    axiscal connects as the client (the acquisition box listens); a refused or dropped connection
+    is retried with :class:`Backoff` until the run ends.
+
+    Parameters
+    ----------
+    host, port : str, int
+        Where the acquisition box listens.
+    channels : sequence of str
+        Channel order of the measurement system.
+    clock_offset_s : float, optional
+        Monotonic clock minus the sender's ``t_s``, when the sender stamps frames from a clock
+        this machine shares (used to measure latency; see benchmarks/realtime_live.py).
+    """
+
+    def __init__(
+        self,
+        host: str,
+        port: int,
+        channels: Sequence[str],
+        *,
+        backoff: Backoff | None = None,
+        clock_offset_s: float | None = None,
+        connect_timeout_s: float = 1.0,
+    ):
+        super().__init__(channels, f"tcp {host}:{port}", backoff, clock_offset_s)
+        self.host = host
+        self.port = int(port)
+        self.connect_timeout_s = connect_timeout_s
+        self._socket: socket.socket | None = None
+
+    @property
+    def _connected(self) -> bool:
+        return self._socket is not None
+
+    def _connect(self) -> None:
+        sock = socket.create_connection((self.host, self.port), timeout=self.connect_timeout_s)
+        sock.setblocking(False)
+        self._socket = sock
+
+    def _disconnect(self) -> None:
+        if self._socket is not None:
+            self._socket.close()
+            self._socket = None
+
+    def _receive(self, timeout_s: float) -> bytes | None:
+        assert self._socket is not None
+        ready, _, _ = select.select([self._socket], [], [], max(timeout_s, 0.0))
+        if not ready:
+            return b""
+        chunks = []
+        for _ in range(64):
+            try:
+                chunk = self._socket.recv(1 << 16)
+            except BlockingIOError:
+                break
+            if not chunk:
+                if chunks:
+                    break
+                return None
+            chunks.append(chunk)
+            if len(chunk) < 1 << 16:
+                break
+        return b"".join(chunks)
+
+
+class SerialSource(_LineStreamSource):
+    """Frames in the line protocol from a serial port (needs the optional ``pyserial`` package).
+
+    Parameters
+    ----------
+    device : str
+        The port, e.g. ``/dev/ttyUSB0``.
+    baud : int
+        Baud rate (default 115200).
+    """
+
+    def __init__(self, device: str, channels: Sequence[str], *, baud: int = 115200, backoff: Backoff | None = None):
+        try:
+            import serial
+        except ImportError:
+            raise AxiscalError("the serial source needs the optional package pyserial (pip install pyserial)") from None
+        if not os.path.exists(device):
+            raise AxiscalError(f"serial device {device} does not exist")
+        super().__init__(channels, f"serial {device} at {baud} baud", backoff, None)
+        self._serial_module = serial
+        self.device = device
+        self.baud = int(baud)
+        self._port = None
+
+    @property
+    def _connected(self) -> bool:
+        return self._port is not None
+
+    def _connect(self) -> None:
+        try:
+            self._port = self._serial_module.Serial(self.device, self.baud, timeout=0)
+        except self._serial_module.SerialException as exc:
+            raise OSError(errno.EIO, str(exc)) from None
+
+    def _disconnect(self) -> None:
+        if self._port is not None:
+            self._port.close()
+            self._port = None
+
+    def _receive(self, timeout_s: float) -> bytes | None:
+        assert self._port is not None
+        try:
+            ready, _, _ = select.select([self._port.fileno()], [], [], max(timeout_s, 0.0))
+            if not ready:
+                return b""
+            return bytes(self._port.read(self._port.in_waiting or 1))
+        except self._serial_module.SerialException as exc:
+            raise OSError(errno.EIO, str(exc)) from None
+
+
+def parse_source(spec: str) -> tuple[str, str]:
+    """Split a ``--source`` value into (kind, argument): ``sim``, ``replay:FILE``, ``tcp:HOST:PORT``, ``serial:DEVICE[:BAUD]``."""
+    kind, sep, argument = spec.partition(":")
+    kind = kind.strip().lower()
+    if kind == "sim" and not sep:
+        return "sim", ""
+    if kind in ("replay", "tcp", "serial") and argument:
+        if kind == "tcp":
+            host, _, port = argument.rpartition(":")
+            if not host or not port.isdigit() or not 0 < int(port) < 65536:
+                raise AxiscalError(f"source '{spec}': expected tcp:HOST:PORT with a port 1-65535, e.g. tcp:127.0.0.1:9000")
+        return kind, argument
+    raise AxiscalError(f"unknown source '{spec}'; use sim, replay:FILE, tcp:HOST:PORT or serial:DEVICE[:BAUD]")
+
+
+def open_source(
+    spec: str,
+    channels: Sequence[str],
+    *,
+    virtual_module: Callable[[], object] | None = None,
+    rate_hz: float = 1000.0,
+    path: str = "diagonal",
+    pace: bool = True,
+):
+    """Build the source a ``--source`` value names (see :func:`parse_source`).
+
+    ``virtual_module`` makes the :class:`~axiscal.virtual.VirtualModule` for ``sim`` when called.
+    """
+    kind, argument = parse_source(spec)
+    if kind == "sim":
+        if virtual_module is None:
+            raise AxiscalError("the sim source needs the virtual module")
+        return SimSource(virtual_module(), channels, rate_hz=rate_hz, path=path)
+    if kind == "replay":
+        if not Path(argument).is_file():
+            raise AxiscalError("replay file not found", path=argument)
+        return ReplaySource(argument, channels, pace=pace)
+    if kind == "tcp":
+        host, _, port = argument.rpartition(":")
+        return TcpSource(host.strip("[]"), int(port), channels)
+    device, _, baud = argument.rpartition(":")
+    if not (device and baud.isdigit()):
+        device, baud = argument, "115200"
+    return SerialSource(device, channels, baud=int(baud))

@@ -1,0 +1,203 @@
+"""The dashboard's view of a live run: bounded summaries the pipeline updates and a server reads.
+
+The pipeline calls :meth:`LiveState.update` once per batch (vectorised, a few microseconds); a
+server calls :meth:`LiveState.snapshot` at its own pace. Memory is fixed at construction: the
+error profiles hold ``bins`` cells per axis (the latest mean in each cell of the travel), the
+spatial-error history ``history_points`` samples over the last ``history_s`` seconds, and the
+sensor table one entry per channel. Nothing is queued per frame or per client.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from axiscal.live.protocol import FAULT_MALFORMED, FrameBatch
+
+SPATIAL = ("ex_um", "ey_um", "ez_um", "e_um")
+CORRECTED = ("px_mm", "py_mm", "pz_mm")
+
+
+def axis_error_columns(letter: str) -> tuple[str, ...]:
+    """The six ISO 230-1 error columns of axis ``letter`` as ``MeasurementSystem.process`` names them."""
+    return tuple(f"E{d}{letter}_um" for d in "XYZ") + tuple(f"E{r}{letter}_urad" for r in "ABC")
+
+
+def result_columns(axes: tuple[str, ...]) -> tuple[str, ...]:
+    """Result columns of a live record, in order: spatial error, corrected point, positions, six errors per axis."""
+    positions = tuple(f"{letter.lower()}_mm" for letter in axes)
+    errors = tuple(name for letter in axes for name in axis_error_columns(letter))
+    return SPATIAL + CORRECTED + positions + errors
+
+
+def _plain(values: np.ndarray, digits: int = 6) -> list[float | None]:
+    return [None if v != v else round(v, digits) for v in np.asarray(values, dtype=float).tolist()]
+
+
+def _number(value: float) -> float | None:
+    return None if not math.isfinite(value) else float(value)
+
+
+class LiveState:
+    """Latest values, error profiles, spatial-error history and sensor status of a live run.
+
+    Parameters
+    ----------
+    system : MeasurementSystem
+        Gives the channels, their limits, the axes and (through ``system.machine``) the travels.
+    bins : int
+        Cells of each axis's error profile along its travel.
+    history_s : float
+        Length of the spatial-error history, seconds of stream time.
+    history_points : int
+        Samples kept in that history.
+    """
+
+    def __init__(self, system, *, bins: int = 96, history_s: float = 20.0, history_points: int = 400):
+        self.channels = tuple(system.channels)
+        self.axes = tuple(system.axes)
+        limits = [system.channel_limits.get(name, (-np.inf, np.inf)) for name in self.channels]
+        self._low = np.array([lo for lo, _ in limits], dtype=float)
+        self._high = np.array([hi for _, hi in limits], dtype=float)
+        self._fault_text = system.fault_text
+        self.bins = bins
+        self._edges: dict[str, np.ndarray] = {}
+        for letter in self.axes:
+            start, end = system.machine.travel_m(letter)
+            self._edges[letter] = np.linspace(start * 1e3, end * 1e3, bins + 1)
+        self._profiles = {letter: np.full((6, bins), np.nan) for letter in self.axes}
+        self._history_dt = history_s / history_points
+        self._history = np.full((history_points, 1 + len(SPATIAL)), np.nan)
+        self._history_next = 0
+        self._history_bucket = -np.inf
+        self._lock = threading.Lock()
+        self.frames = 0
+        self.faults = 0
+        self._channel_value = np.full(len(self.channels), np.nan)
+        self._channel_missing = np.zeros(len(self.channels), dtype=np.int64)
+        self._channel_range = np.zeros(len(self.channels), dtype=np.int64)
+        self._channel_state = ["waiting"] * len(self.channels)
+        self._latest: dict[str, Any] = {}
+        self._last_t = math.nan
+        self._last_fault = 0
+        self._rate_mark = (time.monotonic(), 0)
+        self.rate_hz = 0.0
+        self.extra: dict[str, Any] = {}
+
+    def update(self, batch: FrameBatch, fault: np.ndarray, results: Mapping[str, np.ndarray]) -> None:
+        """Fold one processed batch in (called by the pipeline thread)."""
+        n = len(batch)
+        if n == 0:
+            return
+        values = batch.values
+        missing = np.isnan(values)
+        out_of_range = ~missing & ((values < self._low) | (values > self._high))
+        good = fault == 0
+        with self._lock:
+            self.frames += n
+            self.faults += int(np.count_nonzero(~good))
+            self._last_t = float(batch.t_s[-1])
+            self._last_fault = int(fault[-1])
+            self._channel_value = values[-1].copy()
+            self._channel_missing += missing.sum(axis=0)
+            self._channel_range += out_of_range.sum(axis=0)
+            self._channel_state = [
+                "missing" if m else ("out of range" if r else "ok") for m, r in zip(missing[-1].tolist(), out_of_range[-1].tolist())
+            ]
+            if not good.any():
+                return
+            last = int(np.flatnonzero(good)[-1])
+            self._latest = {"t_s": float(batch.t_s[last])}
+            self._latest.update({name: float(results[name][last]) for name in results if name != "t_s"})
+            self._update_profiles(good, results)
+            self._update_history(batch.t_s[good], {name: results[name][good] for name in SPATIAL})
+
+    def _update_profiles(self, good: np.ndarray, results: Mapping[str, np.ndarray]) -> None:
+        for letter in self.axes:
+            position = results[f"{letter.lower()}_mm"][good]
+            cell = np.searchsorted(self._edges[letter], position, side="right") - 1
+            inside = (cell >= 0) & (cell < self.bins) & np.isfinite(position)
+            if not inside.any():
+                continue
+            cell = cell[inside]
+            count = np.bincount(cell, minlength=self.bins)
+            touched = count > 0
+            for row, name in enumerate(axis_error_columns(letter)):
+                sums = np.bincount(cell, weights=results[name][good][inside], minlength=self.bins)
+                self._profiles[letter][row, touched] = sums[touched] / count[touched]
+
+    def _update_history(self, t: np.ndarray, spatial: Mapping[str, np.ndarray]) -> None:
+        bucket = np.floor(t / self._history_dt)
+        new, first = np.unique(bucket, return_index=True)
+        keep = new > self._history_bucket
+        if not keep.any():
+            return
+        self._history_bucket = float(new[keep][-1])
+        size = len(self._history)
+        for index in first[keep][-size:]:
+            self._history[self._history_next % size] = [t[index]] + [spatial[name][index] for name in SPATIAL]
+            self._history_next += 1
+
+    def describe_fault(self, fault: int) -> str:
+        """The fault bits in words: the measurement system's bits and the live pipeline's own."""
+        parts = []
+        if fault & FAULT_MALFORMED:
+            parts.append("malformed frame (no readable time stamp)")
+        if fault & ~FAULT_MALFORMED:
+            parts.append(self._fault_text(fault & ~FAULT_MALFORMED))
+        return "; ".join(parts)
+
+    def measure_rate(self) -> float:
+        """Frames per second since the previous call (the progress line and snapshots use it)."""
+        now = time.monotonic()
+        then, frames = self._rate_mark
+        if now - then >= 0.2:
+            self.rate_hz = (self.frames - frames) / (now - then)
+            self._rate_mark = (now, self.frames)
+        return self.rate_hz
+
+    def snapshot(self) -> dict[str, Any]:
+        """Everything the dashboard draws, as plain JSON-ready values (NaN -> None)."""
+        rate = self.measure_rate()
+        with self._lock:
+            size = len(self._history)
+            count = min(self._history_next, size)
+            order = (np.arange(self._history_next - count, self._history_next)) % size
+            history = self._history[order]
+            axes = {}
+            for letter in self.axes:
+                edges = self._edges[letter]
+                axes[letter] = {
+                    "position_mm": _plain(0.5 * (edges[1:] + edges[:-1]), 3),
+                    "errors": {name: _plain(self._profiles[letter][row]) for row, name in enumerate(axis_error_columns(letter))},
+                }
+            sensors = [
+                {
+                    "name": name,
+                    "value": _number(float(self._channel_value[i])),
+                    "state": self._channel_state[i],
+                    "low": _number(float(self._low[i])),
+                    "high": _number(float(self._high[i])),
+                    "missing": int(self._channel_missing[i]),
+                    "out_of_range": int(self._channel_range[i]),
+                }
+                for i, name in enumerate(self.channels)
+            ]
+            latest = {name: _number(value) for name, value in self._latest.items()}
+            return {
+                "t_s": _number(self._last_t),
+                "frames": self.frames,
+                "faults": self.faults,
+                "rate_hz": round(rate, 1),
+                "last_fault": self._last_fault,
+                "last_fault_text": self.describe_fault(self._last_fault),
+                "latest": latest,
+                "axes": axes,
+                "history": {"t_s": _plain(history[:, 0])} | {name: _plain(history[:, k + 1]) for k, name in enumerate(SPATIAL)},
+                "sensors": sensors,
+            } | dict(self.extra)
