@@ -214,7 +214,8 @@ class FanucTable:
     Attributes
     ----------
     points : ndarray of int, shape (k,)
-        Compensation point numbers 3621 .. 3622.
+        Compensation point numbers 3621 .. 3622 (for a rotary axis 3621 is the reference point,
+        which repeats the value of 3622; ``points`` then starts one after it).
     values : ndarray of int, shape (k,)
         Incremental values for travel in the + direction (or both directions when not bidirectional).
     values_down : ndarray of int, shape (k,) or None
@@ -276,7 +277,7 @@ class FanucTable:
         lines = [
             "%",
             f"N03620A{a}P{self.reference_point}",
-            f"N03621A{a}P{int(self.points[0])}",
+            f"N03621A{a}P{self.reference_point if self.rotary else int(self.points[0])}",
             f"N03622A{a}P{int(self.points[-1])}",
             f"N03623A{a}P{self.magnification}",
             f"N03624A{a}P{round(self.interval_m / self.input_increment_m)}",
