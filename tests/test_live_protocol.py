@@ -1,0 +1,75 @@
+"""The line protocol of the live TCP/serial sources (docs/live.md): decoding, headers, faults, round trips."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from axiscal.live.protocol import FrameBatch, LineDecoder, encode_lines, header_line
+
+CHANNELS = ("a_mm", "b_um", "c_um")
+
+
+def test_lines_without_header_are_t_s_then_the_channels_in_order():
+    batch = LineDecoder(CHANNELS).feed(b"0.1,1,2,3\n0.2,4,5,6\n")
+    np.testing.assert_array_equal(batch.t_s, [0.1, 0.2])
+    np.testing.assert_array_equal(batch.values, [[1, 2, 3], [4, 5, 6]])
+    assert not batch.malformed.any()
+
+
+def test_a_line_split_across_reads_is_decoded_once_complete():
+    decoder = LineDecoder(CHANNELS)
+    assert len(decoder.feed(b"0.1,1,2")) == 0
+    batch = decoder.feed(b",3\n0.2,4")
+    np.testing.assert_array_equal(batch.values, [[1, 2, 3]])
+    assert len(decoder.flush()) == 1
+
+
+def test_header_reorders_columns_leaves_channels_out_and_ignores_unknown_ones():
+    decoder = LineDecoder(CHANNELS)
+    batch = decoder.feed(b"0.1,1,2,3\nt_s,c_um,a_mm,other\n0.2,30,10,99\n")
+    np.testing.assert_array_equal(batch.values[0], [1, 2, 3])
+    np.testing.assert_array_equal(batch.values[1], [10, np.nan, 30])
+    assert decoder.ignored_columns == ("other",)
+    decoder.reset()
+    np.testing.assert_array_equal(decoder.feed(b"0.3,1,2,3\n").values, [[1, 2, 3]])
+
+
+def test_bad_cells_are_missing_channels_and_a_bad_time_marks_the_frame_malformed():
+    decoder = LineDecoder(CHANNELS)
+    text = b"# a comment\n\n0.1,1,,3\n0.2,x,2,inf\n0.3,1\nnot-a-time,1,2,3\n0.5,1,2,3,4,5\r\n"
+    batch = decoder.feed(text)
+    assert len(batch) == 5
+    np.testing.assert_array_equal(batch.values[0], [1, np.nan, 3])
+    np.testing.assert_array_equal(batch.values[1], [np.nan, 2, np.nan])
+    np.testing.assert_array_equal(batch.values[2], [1, np.nan, np.nan])
+    np.testing.assert_array_equal(batch.malformed, [False, False, False, True, False])
+    np.testing.assert_array_equal(batch.values[4], [1, 2, 3])
+    assert decoder.malformed_lines == 1 and decoder.lines == 5
+
+
+def test_frames_mapping_has_t_s_and_every_channel():
+    batch = FrameBatch.from_frames({"t_s": np.array([0.0, 1.0]), "a_mm": np.array([1.0, 2.0])}, CHANNELS)
+    frames = batch.frames(CHANNELS)
+    assert set(frames) == {"t_s", *CHANNELS}
+    assert np.isnan(frames["b_um"]).all()
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    table=st.lists(
+        st.lists(st.floats(allow_nan=False, allow_infinity=False, width=64), min_size=4, max_size=4), min_size=1, max_size=30
+    ),
+    cuts=st.lists(st.integers(min_value=0, max_value=4000), max_size=6),
+    with_header=st.booleans(),
+)
+def test_encode_then_decode_in_any_chunking_gives_the_frames_back(table, cuts, with_header):
+    values = np.array(table)
+    data = (header_line(CHANNELS) if with_header else b"") + encode_lines(values[:, 0], values[:, 1:])
+    decoder = LineDecoder(CHANNELS)
+    edges = sorted({min(c, len(data)) for c in cuts} | {0, len(data)})
+    batches = [decoder.feed(data[a:b]) for a, b in zip(edges[:-1], edges[1:])]
+    batch = FrameBatch.concatenate([b for b in batches if len(b)], len(CHANNELS))
+    np.testing.assert_array_equal(batch.t_s, values[:, 0])
+    np.testing.assert_array_equal(batch.values, values[:, 1:])
