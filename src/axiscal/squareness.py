@@ -32,7 +32,7 @@ towards the first axis, so the second run sees the axis ``D`` too far open and e
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -223,7 +223,7 @@ def squareness(
     result = squareness_from_slopes(
         lines[0].slope, lines[1].slope, plane=plane, prism_deviation_rad=prism_deviation_rad, convention=convention
     )
-    return SquarenessResult(**{**result.__dict__, "first_line": lines[0], "second_line": lines[1]})
+    return replace(result, first_line=lines[0], second_line=lines[1])
 
 
 @dataclass(frozen=True)
