@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from axiscal.errors import AxiscalError
@@ -386,3 +386,39 @@ def test_one_run_file_is_read_and_flagged(tmp_path):
     data = read_positioning_run(write(tmp_path, "\n".join(rows(runs=(1,)))))
     r = iso230_2(data.run)
     assert data.run.runs == 1 and math.isnan(r.R) and r.warnings
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 17))
+def test_dropping_any_row_is_an_error_with_file_and_line(tmp_path_factory, k):
+    lines = rows()
+    del lines[1 + k]
+    path = write(tmp_path_factory.mktemp("drop"), "\n".join(lines))
+    with pytest.raises(AxiscalError, match="unequal run counts|direction only") as info:
+        read_positioning_run(path)
+    assert info.value.path == str(path) and info.value.line is not None
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 17), st.sampled_from(["nan", "inf", "-inf", "", "1.2.3", "x", "1e400"]))
+def test_a_bad_number_anywhere_names_its_line(tmp_path_factory, k, cell):
+    lines = rows()
+    target, run, direction, _ = lines[1 + k].split(",")
+    lines[1 + k] = f"{target},{run},{direction},{cell}"
+    path = write(tmp_path_factory.mktemp("cell"), "\n".join(lines))
+    with pytest.raises(AxiscalError, match="number") as info:
+        read_positioning_run(path)
+    assert info.value.line == 2 + k
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 17), st.text(alphabet="abcxyz+-<>0", min_size=1, max_size=4))
+def test_an_unknown_direction_anywhere_names_its_line(tmp_path_factory, k, word):
+    assume(word.lower() not in ("+", "-", "up", "down"))
+    lines = rows()
+    target, run, _, value = lines[1 + k].split(",")
+    lines[1 + k] = f"{target},{run},{word},{value}"
+    path = write(tmp_path_factory.mktemp("dir"), "\n".join(lines))
+    with pytest.raises(AxiscalError, match="not a direction") as info:
+        read_positioning_run(path)
+    assert info.value.line == 2 + k
