@@ -153,3 +153,8 @@ def test_deviation_means_match_api(run_cli, examples):
     body = json.loads(out)
     api = iso230_2(read_positioning_run(examples / "positioning_run.csv").run)
     assert np.array(body["targets"]["mean_up_um"]) == pytest.approx(api.stats.mean_up / 1e-6)
+
+
+def test_plot_with_an_unknown_format_is_a_one_line_error(run_cli, examples, tmp_path):
+    status, _, err = run_cli("positioning", examples / "positioning_run.csv", "--plot", tmp_path / "plot.xyz")
+    assert status == 2 and "cannot write a plot as '.xyz'" in err and err.count("\n") == 1

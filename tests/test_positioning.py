@@ -422,3 +422,22 @@ def test_an_unknown_direction_anywhere_names_its_line(tmp_path_factory, k, word)
     with pytest.raises(AxiscalError, match="not a direction") as info:
         read_positioning_run(path)
     assert info.value.line == 2 + k
+
+
+def test_several_material_sensors_are_averaged(examples, tmp_path):
+    # split the one material column into two sensors 0.4 K apart around the same mean
+    lines = (examples / "laser_raw_run.csv").read_text().splitlines()
+    out = []
+    for line in lines:
+        if line.startswith("#"):
+            continue
+        cells = line.split(",")
+        if cells[0] == "target_mm":
+            out.append(",".join(cells[:7] + ["material_temperature_1_c", "material_temperature_2_c"]))
+        else:
+            t = float(cells[7])
+            out.append(",".join(cells[:7] + [f"{t - 0.2:.3f}", f"{t + 0.2:.3f}"]))
+    two = read_positioning_run(write(tmp_path, "\n".join(out)))
+    one = read_positioning_run(examples / "laser_raw_run.csv")
+    assert two.compensated
+    assert np.abs(two.run.deviations_up - one.run.deviations_up).max() < 1e-10

@@ -6,7 +6,8 @@ Columns (see docs/positioning.md): ``target_<unit>``, ``run``, ``direction`` (``
 ``pressure_pa`` and ``humidity_pct`` (and optionally ``material_temperature_c``) are present,
 ``actual_<unit>`` is a raw laser reading computed with the vacuum wavelength; it is compensated
 with :func:`axiscal.interferometer.compensated_length` (paper 003 eq 1, ISO 1 normalisation to
-20 degC) before the deviations are formed.
+20 degC) before the deviations are formed. Several material sensors (``material_temperature_1_c``,
+``material_temperature_2_c``, ...: every column named ``material_temperature*_c``) are averaged.
 """
 
 from __future__ import annotations
@@ -23,7 +24,6 @@ from axiscal.units import LENGTH_UNITS
 
 DIRECTIONS = {"+": "+", "up": "+", "-": "-", "down": "-"}
 ENVIRONMENT_REQUIRED = ("air_temperature_c", "pressure_pa", "humidity_pct")
-MATERIAL_COLUMN = "material_temperature_c"
 ALLOWED_UNITS = ("nm", "um", "mm")
 
 
@@ -124,7 +124,8 @@ def read_positioning_run(
     table.require("run", "direction")
     target_name, target_factor = _one_column(table, ("target",), "target position")[1:]
     stem, value_name, value_factor = _one_column(table, ("deviation", "actual"), "deviation or actual position")
-    env_present = [c for c in (*ENVIRONMENT_REQUIRED, MATERIAL_COLUMN) if table.has(c)]
+    material_columns = [c for c in table.header if c.startswith("material_temperature") and c.endswith("_c")]
+    env_present = [c for c in ENVIRONMENT_REQUIRED if table.has(c)] + material_columns
     compensate = bool(env_present)
     if compensate:
         missing = [c for c in ENVIRONMENT_REQUIRED if not table.has(c)]
@@ -155,7 +156,9 @@ def read_positioning_run(
                 air_temperature_c=table.numeric("air_temperature_c"),
                 pressure_pa=table.numeric("pressure_pa"),
                 humidity_pct=table.numeric("humidity_pct"),
-                material_temperature_c=table.numeric(MATERIAL_COLUMN) if table.has(MATERIAL_COLUMN) else None,
+                material_temperature_c=(
+                    np.column_stack([table.numeric(c) for c in material_columns]) if material_columns else None
+                ),
                 expansion_per_k=expansion_per_k,
                 co2_ppm=co2_ppm,
                 method=method,

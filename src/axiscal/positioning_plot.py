@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.errors import AxiscalError
 from axiscal.positioning import Iso230Result, PositioningRun, Vdi3441Result
 from axiscal.units import MM, UM
 
@@ -28,6 +29,11 @@ def plot_positioning(run: PositioningRun, result: Iso230Result | Vdi3441Result, 
     from axiscal.cli.common import ensure_parent, pyplot
 
     plt = pyplot()
+    suffix = Path(path).suffix.lstrip(".").lower()
+    supported = plt.figure().canvas.get_supported_filetypes()
+    plt.close("all")
+    if suffix not in supported:
+        raise AxiscalError(f"cannot write a plot as '.{suffix}'; use one of .{', .'.join(sorted(supported))}", path=path)
     st = result.stats
     k = result.coverage if isinstance(result, Iso230Result) else 3
     x = run.targets / MM
