@@ -1,0 +1,204 @@
+"""Paper 001's simulation, every separation method, with and without noise, offsets and yaw; 10^6-point timing.
+
+Run from the repository root::
+
+    .venv/bin/python benchmarks/separation.py [PLOT.png]
+
+Prints a Markdown table of each method's separation error (P-V and RMS of the separated profile
+minus the true one, after removing their least-squares line), then the time each method takes on
+10^6 readings, and writes a plot of truth vs separated profiles (default ``separation.png``).
+
+Set-up (paper 001, Fig. 4 and section 4): R and S as printed under Fig. 4 with n the position in
+mm, N = 300 (a 300 mm workpiece), the step G = 0.4 um on N/2.7 <= n <= N/1.5; three probes 15 mm
+apart, carriage steps of 1 mm, probe A over 0..269 mm. FSTRP uses spacings 7 and 4 mm, the
+unequal three-point frequency method 15 and 2 mm. Scenarios: clean; zero offsets xi_b = 0.05 um,
+xi_c = 0.02 um; probe noise 0.01 um (seed 0); yaw 2 arcsec + 1 arcsec sin(2 pi x / 50 mm); all
+three together.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+from axiscal.separation import (
+    ProbeReadings,
+    Separation,
+    combined,
+    fine_sequential_three_point,
+    frequency_domain,
+    generalized_two_point,
+    reversal,
+    sequential_three_point,
+    sequential_two_point,
+    simulate_readings,
+)
+from axiscal.straightness import reference_line
+from axiscal.units import ARCSEC, MM, UM
+
+N = 300
+STEP = 1 * MM
+SPACING = 15 * MM
+OFFSETS = (0.0, 0.05 * UM, 0.02 * UM)
+NOISE = 0.01 * UM
+
+
+def profile(x: np.ndarray) -> np.ndarray:
+    n = x / MM
+    return UM * (np.sin(np.pi * n / (2.5 * N)) + 0.02 * np.sin(2 * np.pi * n / 54) + 0.02 * np.sin(2 * np.pi * n / 34))
+
+
+def motion(x: np.ndarray) -> np.ndarray:
+    n = x / MM
+    return UM * (np.sin(0.75 * np.pi * n / (2.5 * N)) + 0.4 * ((n >= N / 2.7) & (n <= N / 1.5)))
+
+
+def yaw(x: np.ndarray) -> np.ndarray:
+    return ARCSEC * (2.0 + np.sin(2 * np.pi * x / (50 * MM)))
+
+
+SCENARIOS: dict[str, dict] = {
+    "clean": {},
+    "offsets": {"offsets_m": OFFSETS},
+    "noise": {"noise_m": NOISE},
+    "yaw": {"yaw": yaw},
+    "all": {"offsets_m": OFFSETS, "noise_m": NOISE, "yaw": yaw},
+}
+
+
+def readings(spacing_bc: float, scenario: dict, spacing_ab: float = SPACING) -> ProbeReadings:
+    x = np.arange(0.0, N * MM - 2 * SPACING + 1e-12, STEP)
+    options = dict(scenario)
+    g = options.pop("yaw", None)
+    return simulate_readings(
+        x, profile, motion, g, spacing_ab_m=spacing_ab, spacing_bc_m=spacing_bc, rng=np.random.default_rng(0), **options
+    )
+
+
+def reversal_run(scenario: dict) -> Separation:
+    x = np.arange(0.0, N * MM + 1e-12, STEP)
+    rng = np.random.default_rng(0)
+    noise = scenario.get("noise_m", 0.0)
+    offset = scenario.get("offsets_m", (0.0, 0.0, 0.0))
+    normal = profile(x) - motion(x) - offset[0] + noise * rng.standard_normal(x.size)
+    turned = profile(x) + motion(x) - offset[1] + noise * rng.standard_normal(x.size)
+    return reversal(x, normal, turned)
+
+
+METHODS: dict[str, Callable[[dict], Separation]] = {
+    "reversal (1 probe, 2 runs)": reversal_run,
+    "STP (eq 3-4)": lambda sc: sequential_two_point(readings(SPACING, sc)),
+    "STRP (eq 1-2)": lambda sc: sequential_three_point(readings(SPACING, sc)),
+    "FSTRP 7+4 mm (eq 5-6)": lambda sc: fine_sequential_three_point(readings(4 * MM, sc, 7 * MM)),
+    "GTP (eq 7)": lambda sc: generalized_two_point(readings(SPACING, sc)),
+    "frequency 2-point": lambda sc: frequency_domain(readings(SPACING, sc), probes=2),
+    "frequency 3-point 15+15 mm": lambda sc: frequency_domain(readings(SPACING, sc), probes=3),
+    "frequency 3-point 15+2 mm": lambda sc: frequency_domain(readings(2 * MM, sc), probes=3),
+    "combined (section 4)": lambda sc: combined(readings(SPACING, sc)),
+}
+
+
+def separation_error(result: Separation) -> tuple[float, float]:
+    """P-V and RMS (um) of separated minus true profile after removing their least-squares line."""
+    diff = result.profile_m - profile(result.position_m)
+    residual = reference_line(result.position_m, diff).residuals(result.position_m, diff)
+    return float(np.ptp(residual) / UM), float(np.sqrt(np.mean(residual**2)) / UM)
+
+
+def error_table() -> dict[str, dict[str, Separation]]:
+    results = {name: {sc: method(SCENARIOS[sc]) for sc in SCENARIOS} for name, method in METHODS.items()}
+    head = "| method | points | " + " | ".join(f"{sc} P-V / RMS" for sc in SCENARIOS) + " |"
+    print(head)
+    print("|" + "---|" * (len(SCENARIOS) + 2))
+    for name, per in results.items():
+        cells = [f"{separation_error(r)[0]:.4f} / {separation_error(r)[1]:.4f}" for r in per.values()]
+        print(f"| {name} | {per['clean'].position_m.size} | " + " | ".join(cells) + " |")
+    print()
+    x = np.arange(0.0, N * MM + 1e-12, STEP)
+    truth = reference_line(x, profile(x))
+    print(
+        f"errors in um; the true profile spans {np.ptp(profile(x)) / UM:.2f} um "
+        f"({truth.straightness_m / UM:.2f} um about its least-squares line)"
+    )
+    lost = results["frequency 3-point 15+15 mm"]["clean"].lost_wavelength_m
+    print("frequency 3-point 15+15 mm leaves out wavelengths (mm): " + ", ".join(f"{w / MM:.3g}" for w in np.sort(lost)[::-1]))
+    lost2 = results["frequency 3-point 15+2 mm"]["clean"].lost_wavelength_m
+    print(f"frequency 3-point 15+2 mm leaves out {lost2.size} harmonics")
+    return results
+
+
+def timing() -> None:
+    n = 10**6
+    rng = np.random.default_rng(0)
+    x = np.arange(n) * 1e-6
+    a, b, c = 1e-8 * rng.standard_normal((3, n))
+    cases = {
+        "STP": lambda: sequential_two_point(ProbeReadings(x, a, b, c, 15e-6, 15e-6)),
+        "STRP": lambda: sequential_three_point(ProbeReadings(x, a, b, c, 1e-6, 1e-6)),
+        "FSTRP": lambda: fine_sequential_three_point(ProbeReadings(x, a, b, c, 7e-6, 4e-6)),
+        "GTP": lambda: generalized_two_point(ProbeReadings(x, a, b, c, 15e-6, 15e-6)),
+        "frequency 3-point": lambda: frequency_domain(ProbeReadings(x, a, b, c, 15e-6, 2e-6), probes=3),
+        "combined": lambda: combined(ProbeReadings(x, a, b, c, 15e-6, 15e-6)),
+    }
+    print()
+    print("| method (10^6 readings) | seconds |")
+    print("|---|---|")
+    for name, run in cases.items():
+        start = time.perf_counter()
+        run()
+        print(f"| {name} | {time.perf_counter() - start:.3f} |")
+    print("(STRP at a step equal to the spacing, so it uses all 10^6 readings)")
+
+
+def plot(path: str, results: dict[str, dict[str, Separation]]) -> None:
+    """Top row: true R and separated profiles; bottom row: true S (with the step G) and separated motions.
+
+    Separated curves are brought onto the truth by the straight line they are undetermined by
+    (fitted to their difference from the truth); the y range is the truth's +- 0.3 um, so
+    methods that fail by microns run off the panel.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    scenarios = ("clean", "noise", "all")
+    shown = ("STP (eq 3-4)", "STRP (eq 1-2)", "GTP (eq 7)", "frequency 3-point 15+2 mm", "combined (section 4)")
+    fig, axes = plt.subplots(2, len(scenarios), figsize=(15, 8), sharex=True)
+    x = np.arange(0.0, N * MM + 1e-12, STEP)
+    for column, scenario in enumerate(scenarios):
+        for row, (truth, field) in enumerate(((profile, "profile_m"), (motion, "motion_m"))):
+            ax = axes[row, column]
+            ax.plot(x / MM, truth(x) / UM, "k-", lw=3, alpha=0.5, label="truth")
+            for name in shown:
+                r = results[name][scenario]
+                pos = r.position_m[np.isfinite(getattr(r, field))]
+                values = getattr(r, field)[np.isfinite(getattr(r, field))]
+                line = reference_line(pos, values - truth(pos))
+                ax.plot(pos / MM, (values - line.slope * pos - line.intercept_m) / UM, lw=1, label=name)
+            ax.set_ylim(truth(x).min() / UM - 0.3, truth(x).max() / UM + 0.3)
+            ax.set_title(f"{'profile R' if row == 0 else 'motion S'}, scenario: {scenario}")
+            if row == 1:
+                ax.set_xlabel("position / mm")
+            if column == 0:
+                ax.set_ylabel("um")
+    axes[0, 0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    print(f"\nplot written to {path}")
+
+
+def main(argv: list[str]) -> int:
+    path = argv[0] if argv else "separation.png"
+    results = error_table()
+    timing()
+    plot(path, results)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
