@@ -441,3 +441,10 @@ def test_several_material_sensors_are_averaged(examples, tmp_path):
     one = read_positioning_run(examples / "laser_raw_run.csv")
     assert two.compensated
     assert np.abs(two.run.deviations_up - one.run.deviations_up).max() < 1e-10
+
+
+def test_the_callers_arrays_stay_writable():
+    up, down = np.zeros((2, 2)), np.ones((2, 2))
+    PositioningRun(np.array([0.0, 0.1]), up, down)
+    up[0, 0] = 1.0
+    assert up.flags.writeable

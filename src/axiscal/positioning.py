@@ -1,9 +1,9 @@
 """Positioning accuracy and repeatability of a numerically controlled axis from a bidirectional test.
 
 Implements the estimators ISO 230-2:2014 defines for a test of 5 runs each way (adopted
-unchanged as GB/T 17421.2-2016), with the coverage factor k = 2 of the 1997, 2006 and 2014 editions or k = 3 of
-the 1988 edition (``edition="1988"``, the "3 sigma" figures JIS B 0182 term 346 also uses), and
-VDI/DGQ 3441 (1977) positional uncertainty. Paper 003 Table 4 applies these estimators to three
+unchanged as GB/T 17421.2-2016), with the coverage factor k = 2 of the 1997, 2006 and 2014
+editions or k = 3 of the 1988 edition (``edition="1988"``, the "3 sigma" figures JIS B 0182
+term 346 also uses), and VDI/DGQ 3441 (1977) positional uncertainty. Paper 003 Table 4 applies these estimators to three
 runs. See docs/positioning.md for every symbol, the sign convention and how the editions differ.
 
 Deviation convention (ISO 230-2): ``x_ij = P_ij - P_i``, actual position reached minus target.
@@ -52,9 +52,9 @@ class PositioningRun:
     source: str = "<data>"
 
     def __post_init__(self) -> None:
-        targets = np.asarray(self.targets, dtype=float)
-        up = np.asarray(self.deviations_up, dtype=float)
-        down = np.asarray(self.deviations_down, dtype=float)
+        targets = np.array(self.targets, dtype=float)
+        up = np.array(self.deviations_up, dtype=float)
+        down = np.array(self.deviations_down, dtype=float)
         if targets.ndim != 1 or targets.size < 2:
             raise AxiscalError(f"{self.source}: at least 2 target positions are needed, got {targets.size}")
         if up.ndim != 2 or down.ndim != 2 or up.shape[0] != targets.size or down.shape[0] != targets.size:
@@ -171,7 +171,9 @@ class Vdi3441Result:
     U_mean: float
     warnings: tuple[str, ...] = field(default=())
 
-    standard = "vdi3441"
+    @property
+    def standard(self) -> str:
+        return "vdi3441"
 
     def figures(self) -> dict[str, float]:
         """The axis figures by their symbol, metres."""
