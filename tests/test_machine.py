@@ -234,3 +234,37 @@ def test_worked_example_of_docs_conventions():
     error_um = machine.volumetric_error({"X": [0.1], "Z": [0.19]})[0] * 1e6
     assert round(error_um[0], 1) == -44.1
     assert abs(error_um[1]) < 1e-3 and abs(error_um[2]) < 1e-2
+
+
+@pytest.mark.parametrize(
+    "term, chain, reference_chain",
+    [("EC0Y", "FYXZ", "FXYZ"), ("EC0Y", "XYFZ", "YXFZ"), ("EB0Z", "FZXY", "FXZY"), ("EA0Z", "FZYX", "FYZX")],
+)
+def test_relative_squareness_placement_keeps_the_included_angle(term, chain, reference_chain):
+    # With the contract's "guideway" placement, a term on an axis that carries its reference axis
+    # turns both (a rigid rotation); "relative" puts it on the carried axis with the opposite sign
+    # so the two axes' included angle is as named. Direction of each axis' motion is what counts:
+    # compare the error of unit moves along each axis with the chain where the reference is inner.
+    value = 1e-3
+    axes = {k: Axis(k) for k in "XYZ"}
+    guideway = Machine(chain, axes, squareness_rad={term: value})
+    relative = Machine(chain, axes, squareness_rad={term: value}, squareness_placement="relative")
+    plain = Machine(reference_chain, axes, squareness_rad={term: value})
+
+    def directions(machine):
+        out = []
+        for letter in "XYZ":
+            q = {k: np.array([0.1 if k == letter else 0.0]) for k in "XYZ"}
+            out.append(machine.actual_point(q)[0] - machine.actual_point({k: np.zeros(1) for k in "XYZ"})[0])
+        return np.array(out)
+
+    def included(d, a, b):
+        i, j = "XYZ".index(a), "XYZ".index(b)
+        return np.degrees(np.arccos(d[i] @ d[j] / np.linalg.norm(d[i]) / np.linalg.norm(d[j])))
+
+    pair = {"EC0Y": ("X", "Y"), "EB0Z": ("X", "Z"), "EA0Z": ("Y", "Z")}[term]
+    assert included(directions(guideway), *pair) == pytest.approx(90.0, abs=1e-9)
+    assert included(directions(relative), *pair) == pytest.approx(included(directions(plain), *pair), abs=1e-9)
+    assert abs(included(directions(relative), *pair) - 90.0) > 0.05
+    with pytest.raises(AxiscalError, match="unknown squareness placement"):
+        Machine(chain, axes, squareness_placement="sideways")

@@ -25,8 +25,9 @@ from axiscal.units import angle_factor, split_unit
 
 SQUARENESS_TERMS = ("EC0Y", "EB0Z", "EA0Z")
 _CHUNK = 65536
-#: squareness term -> (axis whose guideway it turns, index of the rotation vector component)
-_SQUARENESS_PLACE = {"EC0Y": ("Y", 2), "EB0Z": ("Z", 1), "EA0Z": ("Z", 0)}
+#: squareness term -> (axis whose guideway it turns, reference axis, index of the rotation vector component)
+_SQUARENESS_PLACE = {"EC0Y": ("Y", "X", 2), "EB0Z": ("Z", "X", 1), "EA0Z": ("Z", "Y", 0)}
+SQUARENESS_PLACEMENTS = ("guideway", "relative")
 
 
 @dataclass(frozen=True)
@@ -75,6 +76,14 @@ class Machine:
         Functional point in the frame of the last tool-side carriage, metres.
     workpiece_m : sequence of 3 floats
         Point of the workpiece frame the error is measured from, metres.
+    squareness_placement : {"guideway", "relative"}
+        ``"guideway"`` (default, the contract of :mod:`axiscal.kinematics`): each term turns the
+        guideway of the axis it names (EC0Y: Y; EB0Z, EA0Z: Z). When that axis carries its reference
+        axis in the same branch (chains such as ``"FYXZ"`` or ``"XYFZ"``, where Y carries X), the
+        reference axis turns with it and the term becomes a rigid rotation of both.
+        ``"relative"``: in that case the term is put on the carried reference axis with the
+        opposite sign instead, so that the included angle between the two axes is the one the
+        term names (docs/conventions.md); other chains are unchanged.
     """
 
     chain: str
@@ -83,6 +92,7 @@ class Machine:
     tool_m: tuple[float, float, float] = (0.0, 0.0, 0.0)
     workpiece_m: tuple[float, float, float] = (0.0, 0.0, 0.0)
     name: str = ""
+    squareness_placement: str = "guideway"
 
     def __post_init__(self) -> None:
         workpiece_side, tool_side = parse_chain(self.chain)
@@ -96,12 +106,21 @@ class Machine:
         unknown = sorted(set(self.squareness_rad) - set(SQUARENESS_TERMS))
         if unknown:
             raise AxiscalError(f"unknown squareness term {', '.join(unknown)}; use {', '.join(SQUARENESS_TERMS)}")
+        if self.squareness_placement not in SQUARENESS_PLACEMENTS:
+            raise AxiscalError(
+                f"unknown squareness placement '{self.squareness_placement}'; use {' or '.join(SQUARENESS_PLACEMENTS)}"
+            )
         rotation = {letter: np.zeros(3) for letter in AXIS_INDEX}
         for term, value in self.squareness_rad.items():
             if not np.isfinite(value):
                 raise AxiscalError(f"squareness {term} is not finite")
-            letter, component = _SQUARENESS_PLACE[term]
-            rotation[letter][component] = float(value)
+            letter, reference, component = _SQUARENESS_PLACE[term]
+            sign = 1.0
+            if self.squareness_placement == "relative":
+                for branch in (workpiece_side, tool_side):
+                    if letter in branch and reference in branch and branch.index(reference) > branch.index(letter):
+                        letter, sign = reference, -1.0
+            rotation[letter][component] += sign * float(value)
 
         def link(letter: str) -> ChainLink:
             axis = self.axes[letter]
@@ -263,7 +282,9 @@ class Machine:
         raise AxiscalError(f"inverse kinematics did not converge (miss {worst * 1e9:.3g} nm)")
 
 
-_MACHINE_KEYS = {"name", "chain", "tool_mm", "workpiece_mm", "axes", "squareness", "interpolation", "hold_ends"}
+_MACHINE_KEYS = {
+    "name", "chain", "tool_mm", "workpiece_mm", "axes", "squareness", "squareness_placement", "interpolation", "hold_ends"
+}
 _AXIS_KEYS = {"errors", "origin_mm", "interpolation", "hold_ends", "sensors"}
 
 
@@ -325,6 +346,7 @@ def machine_from_dict(data: Mapping, *, base_dir: Path = Path("."), source: str 
             tool_m=_vector_mm(data.get("tool_mm", [0.0, 0.0, 0.0]), "tool_mm"),
             workpiece_m=_vector_mm(data.get("workpiece_mm", [0.0, 0.0, 0.0]), "workpiece_mm"),
             name=str(data.get("name", "")),
+            squareness_placement=str(data.get("squareness_placement", "guideway")),
         )
     except AxiscalError as exc:
         raise exc.located(path=source) from None
