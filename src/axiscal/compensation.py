@@ -368,11 +368,11 @@ def fanuc_table(
         n_minus = int(math.ceil((reference_position_m - lo) / interval_m - 1e-9))
         n_plus = int(math.ceil((hi - reference_position_m) / interval_m - 1e-9))
     if reference_point is None:
-        reference_point = max(n_minus, 0) if not rotary else 0
-    first = reference_point - n_minus + (0 if rotary else 1)
+        reference_point = n_minus
+    # point N holds the section ending at node N; the first section starts n_minus intervals
+    # below the reference (for a rotary axis: at the reference, which then repeats the last value)
+    first = reference_point - n_minus + 1
     last = reference_point + n_plus
-    if rotary:
-        first = reference_point + 1
     if first < 0 or last > max_point:
         raise AxiscalError(f"compensation points {first}..{last} do not fit in 0..{max_point}; choose another reference point")
 
