@@ -130,3 +130,161 @@ def test_channel_faults(exact):
     bits = system.channel_faults(frames)
     assert list(bits["x_roll_um"]) == [0, 1, 2, 0]
     assert not np.any(bits["x_psd_y_um"])
+
+
+# --- the shipped example, the TOML reader and the command line ---------------------------------
+
+def test_example_machine_is_the_virtual_module(examples):
+    from axiscal.measurement import MeasurementSystem
+
+    system = MeasurementSystem.from_toml(examples / "xz_module" / "sensors_machine.toml")
+    module = VirtualModule(seed=0)
+    assert system.channels == module.measurement_system().channels
+    for letter, head in module.heads.items():
+        read = system.heads[letter]
+        np.testing.assert_allclose(read.offsets_m(), head.offsets_m(), atol=1e-15)
+        assert (read.qd_u, read.qd_v, read.roll) == (head.qd_u, head.qd_v, head.roll)
+        assert read.qd_focal_m == pytest.approx(head.qd_focal_m) and read.roll_focal_m == pytest.approx(head.roll_focal_m)
+        assert read.psd_range_m == pytest.approx(head.psd_range_m)
+    assert system.calibration.channel("x_psd_y_um").gain == pytest.approx(module.calibration.channel("x_psd_y_um").gain)
+    frames, truth = module.frames(np.linspace(0.0, 4.0, 300), path="raster")
+    out = system.process(frames)
+    good = out["fault"] == 0
+    assert np.max(np.abs(out["ex_um"] - truth["ex_um"])[good]) < 2.0
+
+
+def test_measure_command_matches_the_pipeline(examples, run_cli, tmp_path):
+    from axiscal.cli.measure import read_frames
+    from axiscal.io import read_csv
+
+    frames_path = examples / "xz_module" / "sensors_frames.csv"
+    output = tmp_path / "out.csv"
+    status, out, err = run_cli("measure", frames_path, "--machine", examples / "xz_module" / "sensors_machine.toml", "-o", output)
+    assert status == 0, err
+    assert "200 frames, 2 faulty" in out
+    system = VirtualModule(seed=0).measurement_system()
+    expected = system.process(read_frames(frames_path, system.channels))
+    table = read_csv(output)
+    fault = table.numeric("fault")
+    assert list(np.flatnonzero(fault)) == [50, 120]
+    assert fault[50] == 1 and fault[120] == 2
+    good = fault == 0
+    written = np.array([float(c) for c in table.text("ex_um")])
+    np.testing.assert_allclose(written[good], expected["ex_um"][good], rtol=1e-8)
+    assert table.text("ex_um")[50] == "nan"
+
+
+def test_measure_command_default_system_and_json(examples, run_cli):
+    status, out, err = run_cli("measure", examples / "xz_module" / "sensors_frames.csv", "--json")
+    assert status == 0, err
+    assert '"faulty_frames": 2' in out
+    status, out, _ = run_cli("measure", examples / "xz_module" / "sensors_frames.csv")
+    assert status == 0 and out.startswith("# axiscal measure") and "ex_um" in out.splitlines()[1]
+
+
+def test_measure_command_bad_input(examples, run_cli, tmp_path):
+    bad = tmp_path / "frames.csv"
+    bad.write_text("t_s,x_cmd_mm\n0,1\n")
+    status, _, err = run_cli("measure", bad)
+    assert status == 2
+    assert err.startswith("axiscal: error:") and "missing column 'x_scale_mm'" in err and err.count("\n") == 1
+    status, _, err = run_cli("measure", tmp_path / "none.csv")
+    assert status == 2 and "file not found" in err
+    text = (examples / "xz_module" / "sensors_frames.csv").read_text().splitlines()
+    header = next(i for i, line in enumerate(text) if not line.startswith("#"))
+    text[header + 3] = "abc" + text[header + 3][text[header + 3].index(","):]
+    bad.write_text("\n".join(text) + "\n")
+    status, _, err = run_cli("measure", bad)
+    assert status == 2 and "column 't_s': 'abc' is not a number" in err and f"frames.csv:{header + 4}:" in err
+
+
+def test_simulate_frames_then_measure(run_cli, tmp_path):
+    frames = tmp_path / "sim.csv"
+    status, out, err = run_cli("simulate", "frames", "--path", "raster", "--rate", "200", "--duration", "2", "--truth", "-o", frames)
+    assert status == 0, err
+    status, out, err = run_cli("measure", frames, "-o", tmp_path / "r.csv")
+    assert status == 0, err
+    from axiscal.io import read_csv
+
+    results, truth = read_csv(tmp_path / "r.csv"), read_csv(frames)
+    good = results.numeric("fault") == 0
+    for key in ("ex_um", "ez_um"):
+        measured = np.array([float(c) for c in results.text(key)])[good]
+        assert np.max(np.abs(measured - truth.numeric(f"truth_{key}")[good])) < 2.0
+    status, _, err = run_cli("simulate", "frames", "--rate", "1e9", "--duration", "1")
+    assert status == 2 and "frames; allowed" in err
+
+
+def test_calibrate_commands_on_the_examples(examples, run_cli, tmp_path):
+    folder = examples / "xz_module"
+    output = tmp_path / "cal.json"
+    status, out, err = run_cli("calibrate", "sensitivity", folder / "sensors_psd_run.csv", "--channel", "x_psd_y_um", "-o", output, "--json")
+    assert status == 0, err
+    module = VirtualModule(seed=0)
+    truth = module.sensor_truth["x_psd_y_um"]
+    from axiscal.calibration import load_calibration
+
+    fit = load_calibration(output).channel("x_psd_y_um")
+    assert abs(fit.gain - truth.gain) < 0.003 and abs(fit.offset - truth.offset) < 0.2
+    # the interferometer's beam is 45 mm above and 20 mm beside the read head: transferring it (section 4.2) matters
+    status, out, err = run_cli(
+        "calibrate", "sensitivity", folder / "sensors_scale_run.csv", "--channel", "x_scale_mm", "--reference-offset-mm", "0,-45,-20", "-o", output, "--json"
+    )
+    assert status == 0, err
+    import json
+
+    transferred = json.loads(out)
+    status, out, _ = run_cli("calibrate", "sensitivity", folder / "sensors_scale_run.csv", "--channel", "x_scale_mm", "--json")
+    plain = json.loads(out)
+    assert transferred["residual_max_mm"] < 0.5e-3 < plain["residual_max_mm"]
+    status, out, err = run_cli("calibrate", "sensitivity", folder / "sensors_qd_run.csv", "--channel", "x_qd_u_um", "--json")
+    assert status == 0 and json.loads(out)["residual_max_arcsec"] < 1.0
+    status, out, err = run_cli("calibrate", "mirror", folder / "sensors_mirror_run.csv", "--axis", "x", "-o", output, "--json")
+    assert status == 0, err
+    saved = load_calibration(output)
+    assert set(saved.channels) == {"x_psd_y_um", "x_scale_mm"} and "X" in saved.mirrors
+    q = np.linspace(0.0, 0.19, 50)
+    assert np.max(np.abs(saved.mirrors["X"].evaluate(q) - module.mirror_error("X", q))) < 1.5e-6
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (("calibrate", "sensitivity", "sensors_psd_run.csv", "--channel", "x_nope_um"), "unknown channel 'x_nope_um'"),
+        (("calibrate", "sensitivity", "sensors_qd_run.csv", "--channel", "x_psd_y_um"), "missing column 'x_psd_y_um'"),
+        (("calibrate", "sensitivity", "sensors_psd_run.csv", "--channel", "x_psd_y_um", "--reference-offset-mm", "1,2"), "expected three numbers"),
+        (("calibrate", "sensitivity", "sensors_psd_run.csv", "--channel", "x_psd_y_um", "--reference-offset-mm", "1,2,3"), "missing column 'EAX_urad'"),
+        (("calibrate", "sensitivity", "sensors_qd_run.csv", "--channel", "x_qd_u_um", "--reference-offset-mm", "1,2,3"), "translation channels"),
+        (("calibrate", "mirror", "sensors_psd_run.csv", "--axis", "X"), "missing column 'position_mm'"),
+        (("calibrate", "mirror", "sensors_mirror_run.csv", "--axis", "Y"), "axis Y has no sensors"),
+        (("experiment", "diagonal", "--load-kg", "-1"), "load-kg"),
+        (("measure", "sensors_frames.csv", "--machine", "machine.toml"), "no sensors section"),
+    ],
+)
+def test_bad_command_lines(examples, run_cli, monkeypatch, args, message):
+    monkeypatch.chdir(examples / "xz_module")
+    status, _, err = run_cli(*args)
+    assert status == 2
+    assert message in err
+
+
+def test_calibrate_psd_with_angle_reference_is_refused(examples, run_cli, tmp_path):
+    run = tmp_path / "run.csv"
+    run.write_text("x_psd_y_um,reference_arcsec\n1,1\n2,2\n3,3\n")
+    status, _, err = run_cli("calibrate", "sensitivity", run, "--channel", "x_psd_y_um")
+    assert status == 2 and "reference unit must be one of nm, um, mm" in err
+
+
+def test_experiment_diagonal_command(run_cli, tmp_path):
+    import json
+
+    plot = tmp_path / "diagonal.png"
+    status, out, err = run_cli("experiment", "diagonal", "--json", "--plot", plot)
+    assert status == 0, err
+    result = json.loads(out)
+    assert 60.0 < result["before_max_um"] < 75.0
+    assert result["after_max_um"] < 2.0
+    assert len(result["points"]) == 20
+    assert plot.stat().st_size > 10_000
+    status, out, err = run_cli("experiment", "diagonal", "--load-kg", "2")
+    assert status == 0 and "paper 000: 56 -> 14 um" in out

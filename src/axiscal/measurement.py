@@ -308,3 +308,33 @@ def _abbe_bryan(errors: np.ndarray, offsets: np.ndarray) -> None:
     rx, ry, rz = offsets[2]
     if rx or ry:
         errors[2] += ea * ry - eb * rx
+
+
+def diagonal_errors(
+    x_m: np.ndarray, z_m: np.ndarray, error_m: np.ndarray, laser_m: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Paper 000 eq (13): the XZ diagonal's error before and after the error model.
+
+    ``E_BD = sqrt(xm^2 + zm^2) - P_MCV`` and
+    ``E_AD = sqrt((xm + xe)^2 + ye^2 + (zm + ze)^2) - P_MCV``.
+
+    Parameters
+    ----------
+    x_m, z_m : ndarray, shape (n,)
+        Nominal axis moves from the diagonal's start, metres.
+    error_m : ndarray, shape (n, 3)
+        Spatial error (xe, ye, ze) of the functional point relative to its value at the start
+        (where the interferometer was zeroed), metres.
+    laser_m : ndarray, shape (n,)
+        Interferometer reading P_MCV along the diagonal, metres.
+
+    Returns
+    -------
+    before, after : ndarray, shape (n,)
+        E_BD and E_AD, metres.
+    """
+    x, z, laser = (np.asarray(a, dtype=float) for a in (x_m, z_m, laser_m))
+    e = np.asarray(error_m, dtype=float)
+    before = np.hypot(x, z) - laser
+    after = np.sqrt((x + e[:, 0]) ** 2 + e[:, 1] ** 2 + (z + e[:, 2]) ** 2) - laser
+    return before, after

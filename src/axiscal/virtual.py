@@ -17,14 +17,14 @@ interferometer on the XZ diagonal.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
 
 from axiscal.calibration import Calibration, fit_mirror, fit_sensitivity, transfer_reference
 from axiscal.machine import Axis, Machine
-from axiscal.measurement import MeasurementSystem, spatial_error
+from axiscal.measurement import MeasurementSystem, diagonal_errors, spatial_error
 from axiscal.sensors import SensorHead, SignedComponent, roll_from_autocollimation
 from axiscal.tables import ErrorTable, component_names
 from axiscal.units import ARCSEC
@@ -38,7 +38,7 @@ PATHS = ("diagonal", "raster", "back-and-forth")
 #: (amplitude, cycles over the stroke, phase) of the smooth error curves, um or urad
 _CURVES = {
     "X": {
-        "EXX": (-0.165, [(2.0, 1.5, 0.3), (0.6, 4.0, 1.0)]),
+        "EXX": (-0.175, [(2.0, 1.5, 0.3), (0.6, 4.0, 1.0)]),
         "EYX": (0.0, [(2.5, 0.5, 0.0), (0.5, 2.0, 1.0)]),
         "EZX": (0.0, [(-3.0, 0.5, 0.0), (0.4, 1.5, 0.7)]),
         "EAX": (0.0, [(14.0, 0.5, 0.3), (3.0, 2.0, 0.0)]),
@@ -55,13 +55,15 @@ _CURVES = {
     },
 }
 #: change of the angular errors per kg on the Z slide, urad/kg: (constant, slope over the stroke)
-_LOAD = {"EBX": (-9.0, -18.0), "EAX": (3.0, 2.0), "EAZ": (-4.0, -3.0), "EBZ": (5.0, 6.0)}
+_LOAD = {"EBX": (12.0, 23.0), "EAX": (3.0, 2.0), "EAZ": (-4.0, -3.0), "EBZ": (5.0, 6.0)}
 
 #: the sensor heads of the module (mm): read heads beside and below the carriages, PSDs above
 _GEOMETRY = {
     "X": {"scale_point": (0.0, -25.0, -30.0), "psd_point": (0.0, 20.0, 15.0)},
     "Z": {"scale_point": (20.0, -25.0, 0.0), "psd_point": (-15.0, 20.0, 0.0)},
 }
+#: where the interferometer's beam meets the carriage, relative to the scale's read head (m)
+INTERFEROMETER_BEAM_M = np.array([0.0, 0.045, 0.020])
 QD_FOCAL_M = 0.100
 ROLL_FOCAL_M = 0.080
 
@@ -282,12 +284,13 @@ class VirtualModule:
     def calibration_runs(self) -> dict[str, dict[str, np.ndarray]]:
         """Simulated calibration data of every channel (section 4.1 of paper 000).
 
-        Returns one data set per channel (``"raw"``, ``"reference"``, both in the channel's unit)
-        and per axis mirror map (``"<L>_mirror"``: ``"position_m"``, ``"module_roll_rad"`` read by the
-        sensitivity-calibrated roll detector, ``"level_roll_rad"``). PSDs are displaced and angle
-        detectors tilted by a reference over their range (+-100 um, +-100 arcsec); the scale is
-        compared with an interferometer along the travel whose beam is off the read head, the
-        reading moved to the read head with the autocollimator's angles (section 4.2).
+        One data set per PSD and angle channel (``"raw"`` and ``"reference"``, both in the
+        channel's unit: PSDs displaced against an inductive probe over +-90 um, detectors tilted
+        against an autocollimator over +-100 arcsec); per scale ``"raw"``, ``"position_m"``,
+        ``"interferometer_m"`` (beam off the read head), the autocollimator's ``"eps_rad"`` (n, 3)
+        and ``"offset_m"`` (read head minus beam), so the reading can be moved to the read head
+        first (section 4.2); per axis ``"<L>_mirror"``: ``"position_m"``, ``"raw"`` readings of the
+        roll detector and ``"level_rad"`` along the travel (eq 11).
         """
         rng = np.random.default_rng([self.seed, 2])
         runs: dict[str, dict[str, np.ndarray]] = {}
@@ -306,17 +309,15 @@ class VirtualModule:
             q = np.linspace(0.0, STROKE_M, 39)
             e = self.true_errors(letter, q)
             values = self.sensor_values(letter, q, e)
-            beam = np.asarray(head.scale_point_m) + np.array([0.0, 45.0e-3, 20.0e-3])
+            beam = np.asarray(head.scale_point_m) + INTERFEROMETER_BEAM_M
             eps_true = e[3:].T
             at_beam = e[:3].T + np.cross(eps_true, beam)
-            interferometer = q + at_beam[:, head.index] + self._noise("interferometer", q.shape, rng)
-            eps_measured = eps_true + self._noise("autocollimator", eps_true.shape, rng)
-            reference = transfer_reference(interferometer, eps_measured, np.asarray(head.scale_point_m) - beam, head.index)
             runs[names["scale"]] = {
                 "raw": self.raw({names["scale"]: values[names["scale"]]}, rng)[names["scale"]],
-                "reference": reference * 1e3,
                 "position_m": q,
-                "beam_offset_m": beam - np.asarray(head.scale_point_m),
+                "interferometer_m": q + at_beam[:, head.index] + self._noise("interferometer", q.shape, rng),
+                "eps_rad": eps_true + self._noise("autocollimator", eps_true.shape, rng),
+                "offset_m": -INTERFEROMETER_BEAM_M,
             }
             roll = e[head.roll.index]
             runs[f"{letter}_mirror"] = {
@@ -331,8 +332,14 @@ class VirtualModule:
         """The calibration the module's simulated calibration runs give (fits, not the truth)."""
         runs = self.calibration_runs()
         channels = {}
-        for name in (n for head in self.heads.values() for role, n in head.channels.items() if role != "cmd"):
-            channels[name] = fit_sensitivity(name, runs[name]["raw"], runs[name]["reference"])
+        for head in self.heads.values():
+            for role, name in head.channels.items():
+                run = runs.get(name)
+                if role == "scale":
+                    at_head = transfer_reference(run["interferometer_m"], run["eps_rad"], run["offset_m"], head.index)
+                    channels[name] = fit_sensitivity(name, run["raw"], at_head * 1e3)
+                elif run is not None:
+                    channels[name] = fit_sensitivity(name, run["raw"], run["reference"])
         mirrors = {}
         for letter, head in self.heads.items():
             run = runs[f"{letter}_mirror"]
@@ -344,3 +351,96 @@ class VirtualModule:
     def measurement_system(self) -> MeasurementSystem:
         """The module's measurement system, calibrated by its simulated calibration runs."""
         return MeasurementSystem(self.machine, self.heads, self.calibration)
+
+
+@dataclass(frozen=True)
+class DiagonalExperiment:
+    """Paper 000 section 5 in simulation: the XZ diagonal against a laser interferometer (eq 13).
+
+    Arrays have shape (n,), one entry per point (the start, where the interferometer is zeroed,
+    is the first).
+    """
+
+    load_kg: float
+    x_mm: np.ndarray
+    z_mm: np.ndarray
+    laser_mm: np.ndarray
+    before_um: np.ndarray
+    after_um: np.ndarray
+    scales_only_um: np.ndarray
+    true_after_um: np.ndarray
+
+    @property
+    def before_max_um(self) -> float:
+        """Largest |E_BD|: the diagonal error without the model."""
+        return float(np.max(np.abs(self.before_um)))
+
+    @property
+    def after_max_um(self) -> float:
+        """Largest |E_AD|: the diagonal error left with the measured errors in the model."""
+        return float(np.max(np.abs(self.after_um)))
+
+    @property
+    def scales_only_max_um(self) -> float:
+        """Largest error when only the scale readings are used (the traditional way of section 3)."""
+        return float(np.max(np.abs(self.scales_only_um)))
+
+
+def diagonal_experiment(
+    module: VirtualModule,
+    *,
+    points: int = 19,
+    step_m: float = 0.010,
+    samples: int = 1,
+    squareness_error_rad: float = 0.0,
+) -> DiagonalExperiment:
+    """Simulate paper 000's diagonal comparison (section 5, eq 13) on a virtual module.
+
+    Both axes step ``step_m`` at a time from 0 for ``points`` steps; at each stop the module's
+    measurement system averages ``samples`` frames and a laser interferometer, aligned with the
+    nominal diagonal and zeroed at the start, reads the functional point's move along it.
+    ``squareness_error_rad`` is added to the squareness the measuring system's model uses (the
+    module keeps its true one): e.g. the 8.18 arcsec of the paper's marble square, to see what a
+    squareness measured against an uncorrected reference leaves behind.
+
+    Returns
+    -------
+    DiagonalExperiment
+        E_BD (nominal moves), E_AD (moves plus measured spatial error, relative to the start),
+        the same with only the scales' positions, and E_AD with the true spatial error (what a
+        perfect measuring system would leave: the interferometer's own noise).
+    """
+    system = module.measurement_system()
+    if squareness_error_rad:
+        squareness = {"EB0Z": SQUARENESS_EB0Z_RAD + squareness_error_rad}
+        system = MeasurementSystem(replace(module.machine, squareness_rad=squareness), module.heads, module.calibration)
+    q = np.arange(points + 1) * step_m
+    repeated = {"X": np.repeat(q, samples), "Z": np.repeat(q, samples)}
+    frames, _ = module.frames_at(repeated)
+    out = system.process(frames)
+    mean = {k: np.nanmean(out[k].reshape(points + 1, samples), axis=1) for k in ("ex_um", "ey_um", "ez_um", "x_mm", "z_mm")}
+    measured = np.column_stack([mean["ex_um"], mean["ey_um"], mean["ez_um"]]) * 1e-6
+    positions = {"X": q, "Z": q.copy()}
+    actual = module.true_point(positions)
+    direction = np.array([1.0, 0.0, 1.0]) / np.sqrt(2.0)
+    rng = np.random.default_rng([module.seed, 4])
+    laser = (actual - actual[0]) @ direction
+    if module.noise:
+        laser = laser + rng.normal(0.0, REFERENCE_NOISE["interferometer"], laser.shape)
+    laser[0] = 0.0
+    before, after = diagonal_errors(q, q, measured - measured[0], laser)
+    true_error = actual - module.machine.nominal_point(positions)
+    _, true_after = diagonal_errors(q, q, true_error - true_error[0], laser)
+    xs = (mean["x_mm"] - mean["x_mm"][0]) * 1e-3
+    zs = (mean["z_mm"] - mean["z_mm"][0]) * 1e-3
+    scales_only = np.hypot(xs, zs) - laser
+    return DiagonalExperiment(
+        load_kg=module.load_kg,
+        x_mm=q * 1e3,
+        z_mm=q * 1e3,
+        laser_mm=laser * 1e3,
+        before_um=before * 1e6,
+        after_um=after * 1e6,
+        scales_only_um=scales_only * 1e6,
+        true_after_um=true_after * 1e6,
+    )
