@@ -16,6 +16,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import json
+import logging
 import socket
 import threading
 from dataclasses import dataclass
@@ -37,10 +38,12 @@ HOST = "127.0.0.1"
 
 @dataclass
 class ClientStats:
-    """Per-client counters: states sent and states skipped because the client was still busy."""
+    """Per-client counters: states sent, states skipped because the client was still busy, and the
+    version of the last state sent (the newest is ``Broadcaster.version``)."""
 
     sent: int = 0
     skipped: int = 0
+    version: int = 0
 
 
 class Broadcaster:
@@ -103,15 +106,14 @@ def create_app(state: LiveState, *, update_hz: float = 10.0, title: str = "axisc
         await websocket.accept()
         stats = ClientStats()
         broadcaster.clients.append(stats)
-        sent_version = 0
         try:
             while True:
-                version, text = await broadcaster.newer_than(sent_version)
-                if sent_version:
-                    stats.skipped += version - sent_version - 1
+                version, text = await broadcaster.newer_than(stats.version)
+                if stats.version:
+                    stats.skipped += version - stats.version - 1
                 await websocket.send_text(text)
                 stats.sent += 1
-                sent_version = version
+                stats.version = version
         except (WebSocketDisconnect, RuntimeError, OSError):
             return
 
@@ -178,6 +180,9 @@ class LiveServer:
         return self
 
     def stop(self, *, timeout_s: float = 5.0) -> None:
+        """Stop serving. A client that stopped reading cannot be closed politely: after the graceful
+        period (1 s) its connection is dropped; uvicorn's error lines about that are not shown."""
+        logging.getLogger("uvicorn.error").setLevel(logging.CRITICAL)
         self._server.should_exit = True
         if self._thread.is_alive():
             self._thread.join(timeout_s)
@@ -186,3 +191,9 @@ class LiveServer:
             self._thread.join(timeout_s)
         if self._socket is not None:
             self._socket.close()
+
+    def __enter__(self) -> "LiveServer":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.stop()
