@@ -26,7 +26,7 @@ TARGETS_PER_METRE = 5
 
 
 @dataclass(frozen=True)
-class TestPlan:
+class PositioningTestPlan:
     """A planned positioning test.
 
     Attributes
@@ -112,7 +112,7 @@ def plan_test(
     overrun_m: float = 5e-3,
     seed: int | None = None,
     cycle: str = "linear",
-) -> TestPlan:
+) -> PositioningTestPlan:
     """Targets and test cycle of an ISO 230-2 bidirectional positioning test.
 
     Parameters
@@ -131,7 +131,7 @@ def plan_test(
 
     Returns
     -------
-    TestPlan
+    PositioningTestPlan
     """
     if cycle not in CYCLES:
         raise AxiscalError(f"unknown cycle '{cycle}'; use one of {', '.join(CYCLES)}")
@@ -158,7 +158,7 @@ def plan_test(
                 moves.append((t + overrun_m, run, "+", nan))
                 moves.append((t, run, "-", t))
     pos = np.array([m[0] for m in moves])
-    return TestPlan(
+    return PositioningTestPlan(
         targets=targets,
         moves=pos,
         move_run=np.array([m[1] for m in moves], dtype=int),
@@ -171,7 +171,7 @@ def plan_test(
     )
 
 
-def cycle_csv(plan: TestPlan) -> str:
+def cycle_csv(plan: PositioningTestPlan) -> str:
     """The test cycle as CSV: ``step, run, direction, target_mm, move_to_mm``.
 
     One row per move; ``target_mm`` is empty for overrun moves (no reading is taken there).
@@ -188,7 +188,7 @@ def cycle_csv(plan: TestPlan) -> str:
     return "\n".join(lines) + "\n"
 
 
-def gcode_program(plan: TestPlan, *, axis: str = "X", dwell_s: float = 2.0, feed_mm_per_min: float = 2000.0) -> str:
+def gcode_program(plan: PositioningTestPlan, *, axis: str = "X", dwell_s: float = 2.0, feed_mm_per_min: float = 2000.0) -> str:
     """The test cycle as an RS-274 (G-code) program with a dwell at each target.
 
     Metric, absolute (``G21 G90``), feed moves ``G1 <axis>... F...``, and after every move that
