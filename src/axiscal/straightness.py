@@ -142,11 +142,22 @@ def _end_points(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
 
 
 def _upper_chain(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Upper convex hull (Andrew's monotone chain) of points with one highest point per position."""
-    order = np.lexsort((y, x))
-    xs, ys = x[order], y[order]
-    last_of_group = np.r_[xs[1:] != xs[:-1], True]
-    xs, ys = xs[last_of_group], ys[last_of_group]
+    """Upper convex hull (Andrew's monotone chain) of points with one highest point per position.
+
+    Points lower than some point on each side are dropped first (vectorised); the chain then
+    loops over the few left, typically O(log n) for measured profiles.
+    """
+    xs, ys = x, y
+    if np.any(np.diff(x) < 0):
+        order = np.argsort(x, kind="stable")
+        xs, ys = x[order], y[order]
+    starts = np.r_[0, np.flatnonzero(xs[1:] != xs[:-1]) + 1]
+    xs, ys = xs[starts], np.maximum.reduceat(ys, starts)
+    # a point with a higher point on each side lies below their chord: never on the upper hull
+    higher_left = np.r_[-np.inf, np.maximum.accumulate(ys)[:-1]]
+    higher_right = np.r_[np.maximum.accumulate(ys[::-1])[::-1][1:], -np.inf]
+    keep = ys >= np.minimum(higher_left, higher_right)
+    xs, ys = xs[keep], ys[keep]
     hx: list[float] = []
     hy: list[float] = []
     for px, py in zip(xs.tolist(), ys.tolist()):
