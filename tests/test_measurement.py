@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from axiscal.errors import AxiscalError
 from axiscal.measurement import FAULT_MISSING, FAULT_POSITION, FAULT_RANGE, spatial_error
@@ -16,10 +18,13 @@ def exact():
     return module, module.measurement_system()
 
 
+_NOISY_MODULE = VirtualModule(seed=4)
+_NOISY = (_NOISY_MODULE, _NOISY_MODULE.measurement_system())
+
+
 @pytest.fixture(scope="module")
 def noisy():
-    module = VirtualModule(seed=4)
-    return module, module.measurement_system()
+    return _NOISY
 
 
 def test_contract_attributes(exact):
@@ -288,3 +293,73 @@ def test_experiment_diagonal_command(run_cli, tmp_path):
     assert plot.stat().st_size > 10_000
     status, out, err = run_cli("experiment", "diagonal", "--load-kg", "2")
     assert status == 0 and "paper 000: 56 -> 14 um" in out
+
+
+# --- the fast pipeline against a plain per-frame reference, and batching invariance ------------
+
+def _reference_frame(system, frame: dict[str, float]) -> np.ndarray:
+    """One frame by hand: calibration, eqs 1-3, eq 12, the vector Abbe-Bryan transfer and the
+    4x4 product of paper 000 eq (9), P'_0 = T01 dT01 Cxz T12 dT12 P2, minus the nominal point."""
+    from axiscal.kinematics import error_matrix, translation_matrix
+
+    errors = {}
+    for letter in ("X", "Z"):
+        head = system.heads[letter]
+        names = head.channels
+        value = {role: system.calibration.channel(name).apply(frame[name]) for role, name in names.items()}
+        cmd = value["cmd"] * 1e-3
+        eps = np.zeros(3)
+        eps[head.qd_u.index - 3] = head.qd_u.sign * value["qd_u"] * 1e-6 / head.qd_focal_m
+        eps[head.qd_v.index - 3] = head.qd_v.sign * value["qd_v"] * 1e-6 / head.qd_focal_m
+        roll = head.roll.sign * value["roll"] * 1e-6 / (2 * head.roll_focal_m)
+        eps[head.roll.index - 3] = roll - head.roll.sign * system.calibration.mirrors[letter].evaluate(np.array([cmd]))[0]
+        at_scale = np.zeros(3)
+        at_scale[head.index] = value["scale"] * 1e-3 - cmd
+        at_psd = np.zeros(3)
+        for d in head.cross_directions:
+            at_psd["xyz".index(d)] = value[f"psd_{d}"] * 1e-6
+        delta = at_psd + np.cross(eps, -np.asarray(head.psd_point_m))
+        delta[head.index] = (at_scale + np.cross(eps, -np.asarray(head.scale_point_m)))[head.index]
+        errors[letter] = (cmd, np.concatenate([delta, eps]))
+    (xm, ex), (zm, ez) = errors["X"], errors["Z"]
+    alpha = system.machine.squareness_rad["EB0Z"]
+    c_xz = np.eye(4)
+    c_xz[0, 2], c_xz[2, 0] = alpha, -alpha
+    p2 = np.array([*system.machine.tool_m, 1.0])
+    t01, t12 = translation_matrix([xm, 0, 0]), translation_matrix([0, 0, zm + 0.05])
+    actual = t01 @ error_matrix(*ex) @ c_xz @ t12 @ error_matrix(*ez) @ p2
+    nominal = t01 @ t12 @ p2
+    return (actual - nominal)[:3]
+
+
+def test_pipeline_against_plain_reference(noisy):
+    module, system = noisy
+    frames, _ = module.frames(np.random.default_rng(0).uniform(0.0, 60.0, 40), path="raster")
+    out = system.process(frames)
+    for k in range(40):
+        expected = _reference_frame(system, {name: frames[name][k] for name in system.channels})
+        np.testing.assert_allclose([out["ex_um"][k], out["ey_um"][k], out["ez_um"][k]], expected * 1e6, atol=1e-6)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.lists(st.integers(1, 299), max_size=6))
+def test_splitting_a_stream_into_batches_changes_nothing(cuts):
+    # the same code path serves a file (one batch) and a stream (many small ones)
+    module, system = _NOISY
+    frames, _ = module.frames(np.linspace(0.0, 9.0, 300), path="back-and-forth")
+    frames["x_psd_z_um"][17] = np.nan
+    whole = system.process(frames)
+    edges = [0, *sorted(set(cuts)), 300]
+    parts = [system.process({k: v[a:b] for k, v in frames.items()}) for a, b in zip(edges[:-1], edges[1:]) if b > a]
+    for key, value in whole.items():
+        np.testing.assert_array_equal(np.concatenate([p[key] for p in parts]), value)
+
+
+def test_large_batches_are_chunked_transparently(exact):
+    module, system = exact
+    frames, _ = module.frames(np.linspace(0.0, 30.0, 40_000), path="raster")
+    whole = system.process(frames)
+    small = system.process({k: v[30_000:30_100] for k, v in frames.items()})
+    for key in ("ex_um", "fault", "EBZ_urad", "t_s"):
+        np.testing.assert_array_equal(whole[key][30_000:30_100], small[key])
+    assert whole["ex_um"].shape == (40_000,)

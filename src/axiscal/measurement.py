@@ -21,18 +21,22 @@ A faulty frame keeps its time stamp and fault bits; every other result of it is 
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import dataclass
 import tomllib
 from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
 
-from axiscal.calibration import Calibration, load_calibration
+from axiscal.calibration import Calibration, MirrorCorrection, load_calibration
 from axiscal.errors import AxiscalError
 from axiscal.kinematics import volumetric_error
 from axiscal.machine import Machine, machine_from_dict
 from axiscal.sensors import SensorHead, sensor_head_from_dict
 from axiscal.tables import component_names
+
+#: frames processed at once: big enough to amortise the Python overhead, small enough for the cache
+_CHUNK = 16384
 
 FAULT_MISSING = 1
 FAULT_RANGE = 2
@@ -52,6 +56,25 @@ class _MeasuredErrors:
 
     def evaluate(self, q_m: np.ndarray) -> np.ndarray:
         return self.values
+
+
+@dataclass(frozen=True)
+class _AxisPlan:
+    """What :meth:`MeasurementSystem.process` does for one axis, worked out once."""
+
+    letter: str
+    index: int
+    cmd_row: int
+    scale_row: int
+    error_rows: np.ndarray
+    offsets_m: np.ndarray
+    roll_index: int
+    roll_sign: float
+    mirror: MirrorCorrection | None
+    start_m: float
+    end_m: float
+    error_names: tuple[str, ...]
+    position_name: str
 
 
 def _error_names(letter: str) -> tuple[str, ...]:
@@ -113,6 +136,50 @@ class MeasurementSystem:
                     limits[name] = (-head.qd_range_m * 1e6, head.qd_range_m * 1e6)
         self.channels = tuple(channels)
         self.channel_limits = limits
+        self._prepare()
+
+    def _prepare(self) -> None:
+        """Per-channel factors to SI (calibration and sensor equations folded in) and per-axis plans."""
+        row = {name: k for k, name in enumerate(self.channels)}
+        self._low = np.array([[self.channel_limits[c][0]] for c in self.channels])
+        self._high = np.array([[self.channel_limits[c][1]] for c in self.channels])
+        factor = np.ones(len(self.channels))
+        plans = []
+        for letter in self.axes:
+            head = self.heads[letter]
+            names = head.channels
+            factor[row[names["cmd"]]] = factor[row[names["scale"]]] = 1e-3
+            error_rows = [0] * 6
+            error_rows[head.index] = row[names["scale"]]
+            for d in head.cross_directions:
+                factor[row[names[f"psd_{d}"]]] = 1e-6
+                error_rows["xyz".index(d)] = row[names[f"psd_{d}"]]
+            for role, focal in (("qd_u", head.qd_focal_m), ("qd_v", head.qd_focal_m), ("roll", 2.0 * head.roll_focal_m)):
+                component = getattr(head, role)
+                factor[row[names[role]]] = component.sign * 1e-6 / focal
+                error_rows[component.index] = row[names[role]]
+            start, end = self._travel[letter]
+            plans.append(
+                _AxisPlan(
+                    letter=letter,
+                    index=head.index,
+                    cmd_row=row[names["cmd"]],
+                    scale_row=row[names["scale"]],
+                    error_rows=np.array(error_rows),
+                    offsets_m=head.offsets_m(),
+                    roll_index=head.roll.index,
+                    roll_sign=head.roll.sign,
+                    mirror=self.calibration.mirrors.get(letter),
+                    start_m=start,
+                    end_m=end,
+                    error_names=_error_names(letter),
+                    position_name=f"{letter.lower()}_mm",
+                )
+            )
+        calibrations = [self.calibration.channel(c) for c in self.channels]
+        self._scale_si = np.array([[c.gain * f] for c, f in zip(calibrations, factor)])
+        self._offset_si = np.array([[c.offset * f] for c, f in zip(calibrations, factor)])
+        self._plans = tuple(plans)
 
     @classmethod
     def from_toml(cls, path: str | Path, *, calibration: Calibration | None = None) -> "MeasurementSystem":
@@ -198,55 +265,53 @@ class MeasurementSystem:
             Results of a faulty frame are NaN.
         """
         n = _batch_size(frames)
-        fault = np.zeros(n, dtype=np.int64)
-        values: dict[str, np.ndarray] = {}
-        for name in self.channels:
-            raw = frames.get(name)
-            value = np.full(n, np.nan) if raw is None else np.asarray(raw, dtype=float)
-            low, high = self.channel_limits[name]
-            fault |= np.isnan(value)
-            fault |= ((value < low) | (value > high)).astype(np.int64) << 1
-            values[name] = self.calibration.channel(name).apply(value)
+        if n <= _CHUNK:
+            return self._process(frames, n)
+        pieces = [
+            self._process({k: v[start : start + _CHUNK] for k, v in frames.items()}, min(_CHUNK, n - start))
+            for start in range(0, n, _CHUNK)
+        ]
+        return {k: np.concatenate([p[k] for p in pieces]) for k in pieces[0]}
+
+    def _process(self, frames: Mapping[str, np.ndarray], n: int) -> dict[str, np.ndarray]:
+        raw = np.empty((len(self.channels), n))
+        for row, name in enumerate(self.channels):
+            column = frames.get(name)
+            raw[row] = np.nan if column is None else column
+        fault = np.any(np.isnan(raw), axis=0).astype(np.int64)
+        outside = np.any((raw < self._low) | (raw > self._high), axis=0)
+        fault |= outside.astype(np.int64) << 1
+        si = raw * self._scale_si
+        si += self._offset_si
         out: dict[str, np.ndarray] = {"t_s": np.asarray(frames.get("t_s", np.full(n, np.nan)), dtype=float)}
         command: dict[str, np.ndarray] = {}
         measured: dict[str, np.ndarray] = {}
-        for letter in self.axes:
-            head = self.heads[letter]
-            names = head.channels
-            cmd = values[names["cmd"]] * 1e-3
-            scale = values[names["scale"]] * 1e-3
-            start, end = self._travel[letter]
-            fault |= ((cmd < start) | (cmd > end)).astype(np.int64) << 2
-            errors = np.empty((6, n))
-            i = head.index
-            errors[i] = scale - cmd
-            for d in head.cross_directions:
-                errors["xyz".index(d)] = values[names[f"psd_{d}"]] * 1e-6
-            for component, shift, kind in (
-                (head.qd_u, values[names["qd_u"]], "qd"),
-                (head.qd_v, values[names["qd_v"]], "qd"),
-                (head.roll, values[names["roll"]], "roll"),
-            ):
-                focal = head.qd_focal_m if kind == "qd" else 2.0 * head.roll_focal_m
-                errors[component.index] = shift * (component.sign * 1e-6 / focal)
-            mirror = self.calibration.mirrors.get(letter)
-            if mirror is not None:
-                errors[head.roll.index] -= head.roll.sign * mirror.evaluate(cmd)
-            _abbe_bryan(errors, head.offsets_m())
-            command[letter] = cmd
-            measured[letter] = errors
-            for name, row in zip(_error_names(letter), errors):
-                out[name] = row * 1e6
-            out[f"{letter.lower()}_mm"] = scale * 1e3
+        for plan in self._plans:
+            cmd = si[plan.cmd_row]
+            fault |= ((cmd < plan.start_m) | (cmd > plan.end_m)).astype(np.int64) << 2
+            errors = si[plan.error_rows]
+            errors[plan.index] -= cmd
+            if plan.mirror is not None:
+                errors[plan.roll_index] -= plan.roll_sign * plan.mirror.evaluate(cmd)
+            _abbe_bryan(errors, plan.offsets_m)
+            command[plan.letter] = cmd
+            measured[plan.letter] = errors
+            scaled = errors * 1e6
+            for name, row in zip(plan.error_names, scaled):
+                out[name] = row
+            out[plan.position_name] = si[plan.scale_row] * 1e3
         bad = fault != 0
-        safe = {k: np.where(bad, self._travel[k][0], q) for k, q in command.items()}
-        error = spatial_error(self.machine, safe, measured)
-        actual = self.machine.nominal_point(safe) + error
+        if np.any(bad):
+            command = {k: np.where(bad, self._travel[k][0], q) for k, q in command.items()}
+        error = spatial_error(self.machine, command, measured)
+        actual = self.machine.nominal_point(command) + error
+        error_um = error.T * 1e6
+        actual_mm = actual.T * 1e3
         for k, axis in enumerate("xyz"):
-            out[f"e{axis}_um"] = error[:, k] * 1e6
-        out["e_um"] = np.sqrt(np.einsum("ij,ij->i", error, error)) * 1e6
+            out[f"e{axis}_um"] = error_um[k]
+        out["e_um"] = np.sqrt(np.einsum("ij,ij->j", error_um, error_um))
         for k, axis in enumerate("xyz"):
-            out[f"p{axis}_mm"] = actual[:, k] * 1e3
+            out[f"p{axis}_mm"] = actual_mm[k]
         if np.any(bad):
             for name, value in out.items():
                 if name != "t_s":
