@@ -154,3 +154,22 @@ def write_csv(
     if path is not None:
         Path(path).write_text(text, encoding="utf-8")
     return text
+
+
+def read_toml(path: str | Path) -> dict:
+    """Parse a TOML file; a missing, unreadable or malformed file raises AxiscalError naming the line."""
+    import re
+    import tomllib
+
+    path = Path(path)
+    try:
+        return tomllib.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise AxiscalError("file not found", path=path) from None
+    except tomllib.TOMLDecodeError as exc:
+        # Python 3.11 has no lineno attribute: the line is only in the message
+        found = re.search(r"\(at line (\d+)", str(exc))
+        message = str(exc).split(" (at line")[0]
+        raise AxiscalError(f"malformed TOML: {message}", path=path, line=int(found.group(1)) if found else None) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise AxiscalError(f"cannot read file ({exc})", path=path) from None

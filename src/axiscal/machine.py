@@ -9,8 +9,6 @@ carries Y and Z. The volumetric error is the tool point relative to the workpiec
 from __future__ import annotations
 
 import os
-import re
-import tomllib
 from collections.abc import Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
@@ -19,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io import read_toml
 from axiscal.kinematics import AXIS_INDEX, ChainLink, reference_volumetric_error, volumetric_error
 from axiscal.tables import ErrorTable, read_error_table
 from axiscal.units import angle_factor, split_unit
@@ -355,17 +354,7 @@ def machine_from_dict(data: Mapping, *, base_dir: Path = Path("."), source: str 
 def load_machine(path: str | Path) -> Machine:
     """Read a machine description (TOML, docs/formats.md); error tables are relative to the file."""
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise AxiscalError("file not found", path=path) from None
-    except tomllib.TOMLDecodeError as exc:
-        found = re.search(r"\(at line (\d+)", str(exc))
-        line = int(found.group(1)) if found else None
-        message = str(exc).split(" (at line")[0]
-        raise AxiscalError(f"malformed TOML: {message}", path=path, line=line) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise AxiscalError(f"cannot read file ({exc})", path=path) from None
+    data = read_toml(path)
     return machine_from_dict(data, base_dir=path.parent, source=str(path))
 
 

@@ -10,7 +10,7 @@ rotations); missing columns are zero; positions strictly increasing.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -141,16 +141,23 @@ class ErrorTable:
         """The sampled values of one component by ISO name, SI."""
         return self.values[self.names.index(name)]
 
-    def check_range(self, q_m: np.ndarray) -> None:
-        """Raise naming the first position outside the table (unless ``hold_ends``)."""
+    def first_outside(self, q_m: np.ndarray) -> int | None:
+        """Index of the first position outside the table, or None (always None with ``hold_ends``)."""
         if self.hold_ends:
-            return
+            return None
         outside = (q_m < self.start_m) | (q_m > self.end_m)
-        if np.any(outside):
-            k = int(np.argmax(outside))
+        return int(np.argmax(outside)) if np.any(outside) else None
+
+    def check_range(self, q_m: np.ndarray, *, path: str | None = None, lines: Sequence[int] | None = None) -> None:
+        """Raise naming the first position outside the table (unless ``hold_ends``), and its line
+        when the positions came from a file (``lines[k]`` is the line of position k)."""
+        k = self.first_outside(q_m)
+        if k is not None:
             raise AxiscalError(
-                f"{self.letter} = {q_m[k] * 1e3:.6g} mm is outside the error table "
+                f"{self.letter} = {q_m[k] * 1e3:.6g} mm is outside the error table of axis {self.letter} "
                 f"({self.start_m * 1e3:.6g} to {self.end_m * 1e3:.6g} mm)",
+                path=path,
+                line=lines[k] if lines else None,
             )
 
     def evaluate(self, q_m: np.ndarray) -> np.ndarray:

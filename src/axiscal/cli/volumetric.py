@@ -32,19 +32,7 @@ def read_points(path: str | Path, machine: Machine) -> tuple[dict[str, np.ndarra
 def check_travel(machine: Machine, positions: dict[str, np.ndarray], *, path: str, lines: tuple[int, ...] | None = None) -> None:
     """Name the first point outside an axis' error table (and its line when the points came from a file)."""
     for letter in machine.letters:
-        table = machine.table(letter)
-        if table.hold_ends:
-            continue
-        q = positions[letter]
-        outside = (q < table.start_m) | (q > table.end_m)
-        if np.any(outside):
-            k = int(np.argmax(outside))
-            raise AxiscalError(
-                f"{letter} = {q[k] * 1e3:.6g} mm is outside the error table of axis {letter} "
-                f"({table.start_m * 1e3:.6g} to {table.end_m * 1e3:.6g} mm)",
-                path=path,
-                line=lines[k] if lines else None,
-            )
+        machine.table(letter).check_range(positions[letter], path=path, lines=lines)
 
 
 def parse_point(text: str, option: str) -> dict[str, float]:
