@@ -40,7 +40,8 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 
-METHODS = ("reversal", "stp", "strp", "fstrp", "gtp", "frequency", "combined")
+#: names accepted by :func:`separate` (reversal takes two runs: :func:`reversal`)
+METHODS = ("stp", "strp", "fstrp", "gtp", "frequency", "combined")
 
 _EMPTY = np.empty(0)
 
@@ -535,11 +536,24 @@ def combined(
     return _finish("combined", position, profile, readings, yaw_out[np.isfinite(yaw_out)])
 
 
-def separate(readings: ProbeReadings, *, method: str, **options: object) -> Separation:
-    """Dispatch to a separation method by name: stp, strp, fstrp, gtp, frequency, combined.
+def separate(
+    readings: ProbeReadings,
+    *,
+    method: str,
+    probes: int | None = None,
+    min_gain: float = 0.05,
+    calibration_m: tuple[float, float] | None = None,
+) -> Separation:
+    """Run a separation method by name: ``stp``, ``strp``, ``fstrp``, ``gtp``, ``frequency``, ``combined``.
 
-    ``frequency`` uses three probes when probe C is present, else two; other keyword options are
-    passed to the method (``min_gain``, ``calibration_m``).
+    Parameters
+    ----------
+    probes : {2, 3}, optional, keyword-only
+        Frequency method only: probes used (default: 3 when probe C is present, else 2).
+    min_gain : float, keyword-only
+        Frequency method only, see :func:`frequency_domain`.
+    calibration_m : (float, float), optional, keyword-only
+        Combined method only, see :func:`combined`.
     """
     if method == "stp":
         return sequential_two_point(readings)
@@ -550,11 +564,11 @@ def separate(readings: ProbeReadings, *, method: str, **options: object) -> Sepa
     if method == "gtp":
         return generalized_two_point(readings)
     if method == "frequency":
-        probes = 3 if readings.c_m is not None else 2
-        return frequency_domain(readings, probes=probes, min_gain=float(options.get("min_gain", 0.05)))
+        chosen = probes if probes is not None else (3 if readings.c_m is not None else 2)
+        return frequency_domain(readings, probes=chosen, min_gain=min_gain)
     if method == "combined":
-        return combined(readings, calibration_m=options.get("calibration_m"))  # type: ignore[arg-type]
-    raise AxiscalError(f"unknown separation method '{method}'; use one of {', '.join(m for m in METHODS if m != 'reversal')}")
+        return combined(readings, calibration_m=calibration_m)
+    raise AxiscalError(f"unknown separation method '{method}'; use one of {', '.join(METHODS)}")
 
 
 # ---------------------------------------------------------------------------------------------

@@ -8,21 +8,10 @@ import numpy as np
 from axiscal.cli.common import ensure_parent, pyplot
 from axiscal.errors import AxiscalError
 from axiscal.io import read_csv, write_csv
-from axiscal.separation import (
-    ProbeReadings,
-    Separation,
-    combined,
-    fine_sequential_three_point,
-    frequency_domain,
-    generalized_two_point,
-    reversal,
-    sequential_three_point,
-    sequential_two_point,
-    simulate_readings,
-)
+from axiscal.separation import METHODS, ProbeReadings, Separation, reversal, separate, simulate_readings
 from axiscal.units import MM, UM
 
-CLI_METHODS = ("stp", "strp", "fstrp", "gtp", "frequency", "combined", "reversal")
+CLI_METHODS = (*METHODS, "reversal")
 
 
 def read_readings(path: str, *, spacing_mm: float, spacing_bc_mm: float | None) -> ProbeReadings:
@@ -72,7 +61,7 @@ def plot_separation(path: str, result: Separation) -> None:
 @click.option("--spacing-mm", type=float, help="Probe spacing A-B, mm (every method but reversal).")
 @click.option("--spacing-bc-mm", type=float, help="Probe spacing B-C, mm (default: the A-B spacing).")
 @click.option("--reversed", "reversed_run", type=click.Path(dir_okay=False), help="Reversal: the run with the workpiece turned over (position_mm, a_um).")
-@click.option("--two-probe", is_flag=True, help="Frequency method: use probes A and B only.")
+@click.option("--two-probe", is_flag=True, help="Frequency method: use probes A and B only (default: all probes in the file).")
 @click.option("--min-gain", type=float, default=0.05, show_default=True, help="Frequency method: harmonics below this fraction of the gain envelope are left out.")
 @click.option("--calibration-mm", type=float, nargs=2, help="Combined method: START END of the smooth region joining the groups.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV here instead of standard output.")
@@ -100,8 +89,11 @@ def separate_command(
         if spacing_mm is None or not spacing_mm > 0:
             raise AxiscalError(f"--spacing-mm (a positive probe spacing A-B in mm) is needed for the {method} method")
         data = read_readings(readings, spacing_mm=spacing_mm, spacing_bc_mm=spacing_bc_mm)
+        calibration = None if calibration_mm is None else (calibration_mm[0] * MM, calibration_mm[1] * MM)
         try:
-            result = _run(method, data, two_probe=two_probe, min_gain=min_gain, calibration_mm=calibration_mm)
+            result = separate(
+                data, method=method, probes=2 if two_probe else None, min_gain=min_gain, calibration_m=calibration
+            )
         except AxiscalError as exc:
             raise exc.located(path=readings) from None
     comments = [f"method {result.method}; profile and motion up to a common straight line"]
@@ -113,24 +105,6 @@ def separate_command(
         click.echo(text, nl=False)
     if plot_path:
         plot_separation(plot_path, result)
-
-
-def _run(
-    method: str, data: ProbeReadings, *, two_probe: bool, min_gain: float, calibration_mm: tuple[float, float] | None
-) -> Separation:
-    if method == "stp":
-        return sequential_two_point(data)
-    if method == "strp":
-        return sequential_three_point(data)
-    if method == "fstrp":
-        return fine_sequential_three_point(data)
-    if method == "gtp":
-        return generalized_two_point(data)
-    if method == "frequency":
-        probes = 2 if two_probe else 3
-        return frequency_domain(data, probes=probes, min_gain=min_gain)
-    calibration = None if calibration_mm is None else (calibration_mm[0] * MM, calibration_mm[1] * MM)
-    return combined(data, calibration_m=calibration)
 
 
 def _reversal(normal_path: str, reversed_path: str | None) -> Separation:
