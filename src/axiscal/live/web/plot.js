@@ -74,17 +74,21 @@ function drawChart(canvas, xs, series, options) {
     ctx.fillText(options.ylabel, 0, 0); ctx.restore();
   }
   ctx.lineWidth = 1.6;
+  const present = (values, i) => i >= 0 && i < xs.length && xs[i] !== null && values[i] !== null && isFinite(xs[i]) && isFinite(values[i]);
   for (const s of series) {
     ctx.strokeStyle = s.color;
+    ctx.fillStyle = s.color;
     ctx.beginPath();
-    let open = false;
     for (let i = 0; i < xs.length; i++) {
-      const x = xs[i], y = s.values[i];
-      if (x === null || y === null || !isFinite(x) || !isFinite(y)) { open = false; continue; }
-      if (open) ctx.lineTo(px(x), py(y)); else ctx.moveTo(px(x), py(y));
-      open = true;
+      if (!present(s.values, i)) continue;
+      if (present(s.values, i - 1)) ctx.lineTo(px(xs[i]), py(s.values[i])); else ctx.moveTo(px(xs[i]), py(s.values[i]));
     }
     ctx.stroke();
+    for (let i = 0; i < xs.length; i++) {
+      if (present(s.values, i) && !present(s.values, i - 1) && !present(s.values, i + 1)) {
+        ctx.fillRect(px(xs[i]) - 2.5, py(s.values[i]) - 2.5, 5, 5);
+      }
+    }
   }
   return true;
 }
