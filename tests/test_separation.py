@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import cmath
+import math
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -417,6 +420,36 @@ def test_frequency_domain_takes_a_bow_out_exactly(probes):
     assert separation_error(frequency_domain(rd, probes=probes, parabola=False), bow) > 0.05 * UM
 
 
+def loop_frequency(signal, weights, offsets, min_gain):
+    """Plain DFT sums: R_k = T_k / H_k where |H_k| is not suppressed, then the inverse sum."""
+    n = len(signal)
+    moment_order = 1 if len(weights) == 2 else 2
+    moment = abs(sum(w * o**moment_order for w, o in zip(weights, offsets))) / math.factorial(moment_order)
+    gains = [sum(w * cmath.exp(2j * math.pi * k * o / n) for w, o in zip(weights, offsets)) for k in range(n)]
+    top = max(abs(g) for g in gains[: n // 2 + 1])
+    spectrum = []
+    for k in range(n):
+        t_k = sum(signal[j] * cmath.exp(-2j * math.pi * k * j / n) for j in range(n))
+        f = min(k, n - k)
+        envelope = min(moment * (2 * math.pi * f / n) ** moment_order, top)
+        spectrum.append(t_k / gains[k] if k and abs(gains[k]) >= min_gain * envelope else 0.0)
+    r = [sum(spectrum[k] * cmath.exp(2j * math.pi * k * j / n) for k in range(n)).real / n for j in range(n)]
+    return np.array(r) - r[0]
+
+
+@pytest.mark.parametrize(("probes", "n"), [(2, 48), (3, 49)])
+def test_frequency_domain_matches_plain_dft_sums(probes, n):
+    rng = np.random.default_rng(probes)
+    rd = random_readings(rng, n, 4 * STEP, 3 * STEP)
+    sep = frequency_domain(rd, probes=probes, parabola=False)
+    if probes == 2:
+        expected = loop_frequency(rd.b_m - rd.a_m, [-1.0, 1.0], [0, 4], 0.05)
+    else:
+        w = [-3 / 7, 1.0, -4 / 7]
+        expected = loop_frequency(w[0] * rd.a_m + w[1] * rd.b_m + w[2] * rd.c_m, w, [0, 4, 7], 0.05)
+    np.testing.assert_allclose(sep.profile_m, expected, atol=1e-12 * np.abs(expected).max())
+
+
 # --- combined method ---------------------------------------------------------------------------------
 
 
@@ -475,3 +508,15 @@ def test_bad_input_gives_one_line_errors():
         reversal([0.0, 1.0], [0.0, 1.0], [0.0])
     with pytest.raises(AxiscalError, match="at least 2"):
         sequential_two_point(ProbeReadings(rd.position_m[:1], rd.a_m[:1], rd.b_m[:1], None, 3 * STEP))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(2, 30), st.floats(0.01, 0.99), st.sampled_from(["stp", "strp", "fstrp", "gtp", "frequency", "combined"]))
+def test_any_uneven_step_is_refused_by_every_method(n, jitter, method):
+    rng = np.random.default_rng(n)
+    d1, d2 = (2 * STEP, 3 * STEP) if method == "fstrp" else (3 * STEP, 3 * STEP)
+    rd = random_readings(rng, 40, d1, d2)
+    position = rd.position_m.copy()
+    position[n:] += jitter * STEP  # one step of 1 + jitter steps
+    with pytest.raises(AxiscalError, match="evenly stepped"):
+        separate(ProbeReadings(position, rd.a_m, rd.b_m, rd.c_m, d1, d2), method=method)

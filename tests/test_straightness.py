@@ -141,6 +141,16 @@ def test_returns_a_frozen_dataclass():
         line.slope = 2.0  # type: ignore[misc]
 
 
+@settings(max_examples=40, deadline=None)
+@given(profiles(), st.sampled_from([np.nan, np.inf, -np.inf]), st.booleans(), st.sampled_from(REFERENCES), st.data())
+def test_any_non_finite_value_is_refused(profile, bad, in_position, reference, data):
+    x, y = (a.copy() for a in profile)
+    k = data.draw(st.integers(0, x.size - 1))
+    (x if in_position else y)[k] = bad
+    with pytest.raises(AxiscalError, match="finite"):
+        reference_line(x, y, reference=reference)
+
+
 @pytest.mark.parametrize(
     ("position", "deviation", "reference", "needle"),
     [
