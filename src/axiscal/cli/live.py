@@ -53,7 +53,17 @@ def _build_system(machine: str | None, source_kind: str, seed: int, load_kg: flo
     return system, module
 
 
-@click.command("live")
+class _OneLineCommand(click.Command):
+    """A command whose usage errors (bad option, bad value) are one ``axiscal: error:`` line, exit 2."""
+
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        try:
+            return super().parse_args(ctx, args)
+        except click.UsageError as exc:
+            raise AxiscalError(f"live: {exc.format_message()}") from None
+
+
+@click.command("live", cls=_OneLineCommand)
 @click.option("--machine", type=str, default=None, help="Machine TOML with [axes.<L>.sensors] (default: the built-in virtual module).")
 @click.option("--source", "source_spec", default="sim", show_default=True, help="sim | replay:FILE | tcp:HOST:PORT | serial:DEVICE[:BAUD].")
 @click.option("--rate", "rate_hz", type=float, default=1000.0, show_default=True, help="Frames per second of the sim source (Hz).")

@@ -4,6 +4,10 @@ Format (docs/live.md, "Record format"): ``#`` comment lines, a header, then one 
 
     t_s,<raw channels...>,fault,ex_um,ey_um,ez_um,e_um,px_mm,py_mm,pz_mm,<positions>,<six errors per axis>
 
+``t_s`` to the nanosecond, raw channels to 15 significant digits (a replay reproduces the results
+to about 1e-12 relative), results to 9 significant digits, ``fault`` as an integer, ``nan`` where
+a value is missing.
+
 Durability: each batch is written with one ``os.write`` on a file opened ``O_APPEND`` (no buffer in
 the process, so a crash of the process loses nothing that was written); a background thread
 ``fsync`` s the file every ``sync_interval_s`` and only then counts the frames as *acknowledged*
@@ -61,7 +65,7 @@ class Recorder:
         self.result_columns = tuple(result_columns)
         self.columns = ("t_s",) + self.channels + ("fault",) + self.result_columns
         self.sync_interval_s = float(sync_interval_s)
-        self._row_format = ",".join(["%.6f"] + ["%.9g"] * len(self.channels) + ["%d"] + ["%.9g"] * len(self.result_columns)) + "\n"
+        self._row_format = ",".join(["%.9f"] + ["%.15g"] * len(self.channels) + ["%d"] + ["%.9g"] * len(self.result_columns)) + "\n"
         try:
             self._fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_APPEND, 0o644)
         except OSError as exc:
