@@ -19,6 +19,7 @@ from axiscal.separation import (
     generalized_two_point,
     gtp_amplitude_response,
     gtp_noise_std,
+    noise_propagation,
     reversal,
     separate,
     sequential_three_point,
@@ -368,6 +369,27 @@ def test_noise_propagation_matches_the_closed_forms():
     np.testing.assert_allclose(strp[2:], strp_noise_std(np.arange(2, n + 2), 1.0), rtol=0.08)
     gtp = monte_carlo_std(generalized_two_point, n, 3000, spacing_steps=5)
     np.testing.assert_allclose(gtp[1:], gtp_noise_std(np.arange(1, n + 1), 1.0, steps_per_spacing=5), rtol=0.08)
+
+
+def test_noise_propagation_per_method():
+    x = STEP * np.arange(60)
+    template = ProbeReadings(x, x, x, x, 3 * STEP, 3 * STEP)
+    # reversal halves the variance: sigma / sqrt(2) at every point (before the line, which the
+    # Monte Carlo removes: its residual std is a little lower)
+    rev = noise_propagation(template, method="reversal", noise_m=1.0, trials=2000)
+    assert np.median(rev.std_m) == pytest.approx(1 / np.sqrt(2), rel=0.06)
+    figures = {m: noise_propagation(template, method=m, noise_m=1.0, trials=300) for m in ("stp", "strp", "gtp", "combined")}
+    # summing twice (STRP, and the combined method through its STRP yaw) is louder than once
+    assert figures["strp"].mean_pv_m > figures["stp"].mean_pv_m > figures["gtp"].mean_pv_m
+    assert figures["combined"].mean_pv_m > figures["gtp"].mean_pv_m
+    assert figures["stp"].position_m.size == 21 and figures["gtp"].position_m.size == 61
+    # the STP figure agrees with the closed form: a random walk about its least-squares line
+    walk = np.cumsum(np.sqrt(2.0) * np.random.default_rng(1).standard_normal((4000, 20)), axis=1)
+    walk = np.hstack([np.zeros((4000, 1)), walk])
+    j = np.arange(21.0)
+    fit = np.polynomial.polynomial.polyfit(j, walk.T, 1)
+    expected = np.ptp(walk - (fit[0][:, None] + fit[1][:, None] * j), axis=1).mean()
+    assert figures["stp"].mean_pv_m == pytest.approx(expected, rel=0.08)
 
 
 # --- frequency domain ---------------------------------------------------------------------------
