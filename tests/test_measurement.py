@@ -363,3 +363,15 @@ def test_large_batches_are_chunked_transparently(exact):
     for key in ("ex_um", "fault", "EBZ_urad", "t_s"):
         np.testing.assert_array_equal(whole[key][30_000:30_100], small[key])
     assert whole["ex_um"].shape == (40_000,)
+
+
+def test_simulate_laser_command(run_cli, tmp_path):
+    output = tmp_path / "laser.csv"
+    status, out, err = run_cli("simulate", "laser", "-o", output)
+    assert status == 0 and "20 readings" in out, err
+    from axiscal.io import read_csv
+
+    table = read_csv(output)
+    assert table.numeric("nominal_mm")[-1] == pytest.approx(268.7005768, abs=1e-6)
+    status, _, err = run_cli("simulate", "laser", "--steps", "20")
+    assert status == 2 and "leave the 190 mm travel" in err

@@ -281,6 +281,23 @@ class VirtualModule:
         errors = {k: self.true_errors(k, positions_m[k]) for k in ("X", "Z")}
         return self.machine.nominal_point(positions_m) + spatial_error(self.machine, positions_m, errors)
 
+    def laser_diagonal(self, positions_m: dict[str, np.ndarray]) -> np.ndarray:
+        """Readings of a laser interferometer along the diagonal through the given stops (m).
+
+        The beam is aligned with the nominal line from the first stop to the last, the reflector
+        sits on the functional point, and the reading is zeroed at the first stop: the functional
+        point's true displacement along the beam, plus the interferometer's noise.
+        """
+        nominal = self.machine.nominal_point(positions_m)
+        direction = nominal[-1] - nominal[0]
+        direction = direction / np.linalg.norm(direction)
+        actual = self.true_point(positions_m)
+        reading = (actual - actual[0]) @ direction
+        if self.noise:
+            reading = reading + self._rng.normal(0.0, REFERENCE_NOISE["interferometer"], reading.shape)
+        reading[0] = 0.0
+        return reading
+
     def calibration_runs(self) -> dict[str, dict[str, np.ndarray]]:
         """Simulated calibration data of every channel (section 4.1 of paper 000).
 
@@ -422,12 +439,7 @@ def diagonal_experiment(
     measured = np.column_stack([mean["ex_um"], mean["ey_um"], mean["ez_um"]]) * 1e-6
     positions = {"X": q, "Z": q.copy()}
     actual = module.true_point(positions)
-    direction = np.array([1.0, 0.0, 1.0]) / np.sqrt(2.0)
-    rng = np.random.default_rng([module.seed, 4])
-    laser = (actual - actual[0]) @ direction
-    if module.noise:
-        laser = laser + rng.normal(0.0, REFERENCE_NOISE["interferometer"], laser.shape)
-    laser[0] = 0.0
+    laser = module.laser_diagonal(positions)
     before, after = diagonal_errors(q, q, measured - measured[0], laser)
     true_error = actual - module.machine.nominal_point(positions)
     _, true_after = diagonal_errors(q, q, true_error - true_error[0], laser)

@@ -311,6 +311,34 @@ def simulate_frames_command(motion, rate_hz, duration_s, load_kg, seed, truth, o
         click.echo(f"{count} frames -> {output}")
 
 
+@simulate_group.command("laser")
+@click.option("--steps", type=click.IntRange(min=1), default=19, show_default=True, help="Steps from the start (0, 0).")
+@click.option("--step-mm", type=click.FloatRange(min=0, min_open=True), default=10.0, show_default=True, help="Move of each axis per step (mm).")
+@click.option("--load-kg", type=click.FloatRange(min=0), default=0.0, show_default=True, help="Mass on the Z slide (kg).")
+@click.option("--seed", type=int, default=0, show_default=True, help="Seed of the noise.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV here (default: standard output).")
+def simulate_laser_command(steps, step_mm, load_kg, seed, output):
+    """Laser interferometer readings on the XZ diagonal of the virtual module.
+
+    Columns nominal_mm, measured_mm (the format `axiscal diagonal --interferometer` reads): the
+    nominal displacement along the diagonal and the reading, zeroed at the start.
+    """
+    from axiscal.virtual import STROKE_M, VirtualModule
+
+    if steps * step_mm * 1e-3 > STROKE_M + 1e-12:
+        raise AxiscalError(f"{steps} steps of {step_mm:g} mm leave the 190 mm travel")
+    module = VirtualModule(seed=seed, load_kg=load_kg)
+    q = np.arange(steps + 1) * step_mm * 1e-3
+    positions = {"X": q, "Z": q.copy()}
+    reading = module.laser_diagonal(positions)
+    comment = f"simulated interferometer on the XZ diagonal of the virtual module, seed {seed}, load {load_kg:g} kg"
+    text = write_columns(output, {"nominal_mm": np.hypot(q, q) * 1e3, "measured_mm": reading * 1e3}, comments=(comment,))
+    if output is None:
+        click.echo(text, nl=False)
+    else:
+        click.echo(f"{steps + 1} readings -> {output}")
+
+
 @click.group("experiment")
 def experiment_group():
     """Paper experiments reproduced in simulation."""
