@@ -6,8 +6,9 @@ Run from the repository root::
 
 Prints a Markdown table of each method's separation error (P-V and RMS of the separated profile
 minus the true one, after removing their least-squares line), then the time each method takes on
-10^6 readings and how much probe noise each method lets through, and writes a plot of truth vs separated profiles and motions (default
-``separation.png``). Errors with noise are means over 20 noise draws.
+10^6 readings and how much probe noise each method lets through, and writes a plot of truth vs
+separated profiles and motions (default ``separation.png``). Errors with noise are means over 20
+noise draws.
 
 Set-up (paper 001, Fig. 4 and section 4): R and S as printed under Fig. 4 with n the position in
 mm, N = 300 (a 300 mm workpiece), the step G = 0.4 um on N/2.7 <= n <= N/1.5; three probes 15 mm

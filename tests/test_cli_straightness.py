@@ -78,7 +78,9 @@ def test_simulate_then_separate_round_trip_with_fstrp(run_cli, examples, tmp_pat
         "--spacing-mm", "7", "--spacing-bc-mm", "4", "--step-mm", "1", "-o", readings,
     )
     assert status == 0, err
-    status, out, err = run_cli("separate", readings, "--method", "fstrp", "--spacing-mm", "7", "--spacing-bc-mm", "4", "--plot", tmp_path / "f.png")
+    status, out, err = run_cli(
+        "separate", readings, "--method", "fstrp", "--spacing-mm", "7", "--spacing-bc-mm", "4", "--plot", tmp_path / "f.png"
+    )
     assert status == 0, err
     assert (tmp_path / "f.png").exists()
     assert len(table(out)) == len(table(readings.read_text())) + 11  # every step, up to probe C's reach

@@ -308,7 +308,8 @@ def test_residual_yaw_error_eq17_by_simulation():
     sep = sequential_two_point(rd, yaw_rad=yaw(x) - mu - eta * np.arange(x.size))  # eq (15)-(16)
     error = sep.profile_m - (paper_profile(sep.position_m) - paper_profile(x[0]))
     n = np.arange(error.size)
-    np.testing.assert_allclose(error, stp_residual_yaw_error(n, spacing_m=SPACING, mean_rad=mu, slope_rad_per_step=eta), atol=1e-15)
+    expected = stp_residual_yaw_error(n, spacing_m=SPACING, mean_rad=mu, slope_rad_per_step=eta)
+    np.testing.assert_allclose(error, expected, atol=1e-15)
 
 
 def test_eq17_worked_number_and_its_slip():
@@ -418,7 +419,9 @@ def test_frequency_three_point_with_unequal_spacings_keeps_them_and_cancels_yaw(
     def yaw(p):
         return 3 * ARCSEC * np.sin(2 * np.pi * p / 0.05)
 
-    equal = simulate_readings(x, lambda p: periodic_profile(p, n * STEP), paper_motion, yaw, spacing_ab_m=SPACING, spacing_bc_m=SPACING)
+    equal = simulate_readings(
+        x, lambda p: periodic_profile(p, n * STEP), paper_motion, yaw, spacing_ab_m=SPACING, spacing_bc_m=SPACING
+    )
     assert frequency_domain(equal, probes=3, parabola=False).lost_wavelength_m.size > 0
     unequal = simulate_readings(
         x, lambda p: periodic_profile(p, n * STEP), paper_motion, yaw, spacing_ab_m=SPACING, spacing_bc_m=2 * STEP

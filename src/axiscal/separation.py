@@ -216,6 +216,18 @@ def _finish(
     return Separation(method, position, profile, motion, yaw, lost)
 
 
+def _yaw_from_profile(readings: ProbeReadings, position: np.ndarray, profile: np.ndarray) -> np.ndarray:
+    """Yaw at the readings whose probe B is on the profile: eq (2) with S = R - a.
+
+    ``gamma(x) = (R(x + d1) - R(x) + a(x) - b(x)) / d1``; returns the leading readings for which
+    x + d1 is within the profile's positions.
+    """
+    x, d = readings.position_m, readings.spacing_ab_m
+    ahead = np.interp(x + d, position, profile, right=np.nan)
+    yaw = (ahead - np.interp(x, position, profile) + readings.a_m - readings.b_m) / d
+    return yaw[np.isfinite(yaw)]
+
+
 # ---------------------------------------------------------------------------------------------
 # methods
 
@@ -468,8 +480,7 @@ def frequency_domain(
     name = f"frequency-{'two' if probes == 2 else 'three'}-point"
     if probes == 2:
         return _finish(name, x.copy(), profile, readings, lost=lost)
-    yaw = (np.interp(x + readings.spacing_ab_m, x, profile, right=np.nan) - profile + readings.a_m - readings.b_m) / readings.spacing_ab_m
-    return _finish(name, x.copy(), profile, readings, yaw[np.isfinite(yaw)], lost)
+    return _finish(name, x.copy(), profile, readings, _yaw_from_profile(readings, x, profile), lost)
 
 
 def combined(
@@ -536,8 +547,7 @@ def combined(
     lift = np.bincount(group_of[in_z], weights=z[index[in_z]] - flat[in_z], minlength=k) / counts
     profile = flat + lift[group_of]
     position = x[0] + step * index
-    yaw_out = (np.interp(x + d, position, profile, right=np.nan) - np.interp(x, position, profile) + readings.a_m - readings.b_m) / d
-    return _finish("combined", position, profile, readings, yaw_out[np.isfinite(yaw_out)])
+    return _finish("combined", position, profile, readings, _yaw_from_profile(readings, position, profile))
 
 
 def separate(

@@ -60,9 +60,20 @@ def plot_separation(path: str, result: Separation) -> None:
 @click.option("--method", type=click.Choice(CLI_METHODS), default="combined", show_default=True, help="Separation method.")
 @click.option("--spacing-mm", type=float, help="Probe spacing A-B, mm (every method but reversal).")
 @click.option("--spacing-bc-mm", type=float, help="Probe spacing B-C, mm (default: the A-B spacing).")
-@click.option("--reversed", "reversed_run", type=click.Path(dir_okay=False), help="Reversal: the run with the workpiece turned over (position_mm, a_um).")
+@click.option(
+    "--reversed",
+    "reversed_run",
+    type=click.Path(dir_okay=False),
+    help="Reversal: the run with the workpiece turned over (position_mm, a_um).",
+)
 @click.option("--two-probe", is_flag=True, help="Frequency method: use probes A and B only (default: all probes in the file).")
-@click.option("--min-gain", type=float, default=0.05, show_default=True, help="Frequency method: harmonics below this fraction of the gain envelope are left out.")
+@click.option(
+    "--min-gain",
+    type=float,
+    default=0.05,
+    show_default=True,
+    help="Frequency method: harmonics below this fraction of the gain envelope are left out.",
+)
 @click.option("--calibration-mm", type=float, nargs=2, help="Combined method: START END of the smooth region joining the groups.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV here instead of standard output.")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write a plot of the separated profile and motion.")
@@ -116,7 +127,9 @@ def _reversal(normal_path: str, reversed_path: str | None) -> Separation:
     turned.require("position_mm", "a_um")
     x1, x2 = normal.numeric("position_mm"), turned.numeric("position_mm")
     if x1.shape != x2.shape:
-        raise AxiscalError(f"{len(x2)} readings where the normal run has {len(x1)}: reversal needs the same positions", path=reversed_path)
+        raise AxiscalError(
+            f"{len(x2)} readings where the normal run has {len(x1)}: reversal needs the same positions", path=reversed_path
+        )
     bad = np.flatnonzero(np.abs(x1 - x2) > 1e-9 * max(1.0, float(np.max(np.abs(x1)))))
     if bad.size:
         k = int(bad[0])
@@ -149,14 +162,25 @@ def _curve(path: str, column: str, unit: float, what: str):
 
 
 @click.command("simulate-probes")
-@click.option("--profile", "profile_path", required=True, type=click.Path(dir_okay=False), help="Workpiece profile R: position_mm, deviation_um.")
-@click.option("--motion", "motion_path", required=True, type=click.Path(dir_okay=False), help="Slide motion S: position_mm, deviation_um[, yaw_urad].")
+@click.option(
+    "--profile", "profile_path", required=True, type=click.Path(dir_okay=False), help="Workpiece profile R: position_mm, deviation_um."
+)
+@click.option(
+    "--motion", "motion_path", required=True, type=click.Path(dir_okay=False), help="Slide motion S: position_mm, deviation_um[, yaw_urad]."
+)
 @click.option("--spacing-mm", type=float, required=True, help="Probe spacing A-B, mm.")
 @click.option("--spacing-bc-mm", type=float, help="Probe spacing B-C, mm (default: the A-B spacing).")
 @click.option("--probes", type=click.IntRange(2, 3), default=3, show_default=True, help="Number of probes.")
 @click.option("--step-mm", type=float, required=True, help="Sampling step of the carriage, mm.")
 @click.option("--noise-um", type=float, default=0.0, show_default=True, help="Standard deviation of the probe noise, um.")
-@click.option("--offsets-um", type=float, nargs=3, default=(0.0, 0.0, 0.0), show_default=True, help="Zero offsets of probes A B C, um (paper 001 eq 8).")
+@click.option(
+    "--offsets-um",
+    type=float,
+    nargs=3,
+    default=(0.0, 0.0, 0.0),
+    show_default=True,
+    help="Zero offsets of probes A B C, um (paper 001 eq 8).",
+)
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the noise.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV here instead of standard output.")
 def simulate_probes_command(
@@ -188,7 +212,9 @@ def simulate_probes_command(
     reach = d1 + (d2 or 0.0)
     count = int(np.floor((px[-1] - px[0] - reach) / (step_mm * MM) + 1e-9)) + 1
     if count < 2:
-        raise AxiscalError(f"the profile ({(px[-1] - px[0]) / MM:g} mm) is too short for probes {reach / MM:g} mm apart", path=profile_path)
+        raise AxiscalError(
+            f"the profile ({(px[-1] - px[0]) / MM:g} mm) is too short for probes {reach / MM:g} mm apart", path=profile_path
+        )
     x = px[0] + step_mm * MM * np.arange(count)
     data = simulate_readings(
         x,
@@ -206,7 +232,8 @@ def simulate_probes_command(
         columns["c_um"] = data.c_m / UM
     spacing_note = f"spacing A-B {spacing_mm:g} mm" + (f", B-C {d2 / MM:g} mm" if d2 is not None else "")
     comments = [f"simulated readings, paper 001 eq (1); {spacing_note}; step {step_mm:g} mm; noise {noise_um:g} um"]
-    text = write_csv(output, columns, fmt={"position_mm": "{:.4f}", "a_um": "{:.6f}", "b_um": "{:.6f}", "c_um": "{:.6f}"}, comments=comments)
+    formats = {"position_mm": "{:.4f}", "a_um": "{:.6f}", "b_um": "{:.6f}", "c_um": "{:.6f}"}
+    text = write_csv(output, columns, fmt=formats, comments=comments)
     if output is None:
         click.echo(text, nl=False)
 
