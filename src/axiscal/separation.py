@@ -531,7 +531,7 @@ def combined(
     yaw = (strp[1:-1] - strp[:-2] + a - b) / d
     j = np.arange(groups, dtype=float)
     jc = j - j.mean()
-    yaw_slope = (jc @ (yaw - yaw.mean(axis=0))) / float(jc @ jc) if groups > 1 else np.zeros(k)
+    yaw_slope = (jc @ (yaw - yaw.mean(axis=0))) / float(jc @ jc)
     yaw_flat = yaw - yaw.mean(axis=0) - np.outer(jc, yaw_slope)
     group_profile = np.vstack([np.zeros(k), np.cumsum(b - a + d * yaw_flat, axis=0)])
     index = (np.arange(groups + 1)[:, None] * k + np.arange(k)[None, :]).ravel()

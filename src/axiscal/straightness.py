@@ -1,8 +1,8 @@
 """Straightness of a measured profile about a reference line: least squares, end points, minimum zone.
 
-ISO 230-1:2012, 3.4.8-3.4.10 (straightness deviation, reference straight line) and 8.2.2: the
-straightness is the width, measured across the motion, of the zone that contains the deviations
-about a reference straight line. Three reference lines are offered:
+ISO 230-1 (straightness of a line: the width, across the motion, of the zone that holds the
+deviations about a reference straight line, fitted by least squares or through the end points)
+and the minimum-zone line of ISO 12780-1 (MZLI). Three reference lines are offered:
 
 * ``"least-squares"``: the line minimising the sum of squared deviations;
 * ``"end-points"``: the line through the points at the smallest and the largest position;
