@@ -462,7 +462,7 @@ def frequency_domain(
         curvature = float(np.mean(signal)) / second_moment if parabola else 0.0
     else:
         raise AxiscalError(f"the frequency-domain method uses 2 or 3 probes, not {probes}")
-    parabola = curvature * n**2
+    bow = curvature * n**2
     residual = signal - sum(w * curvature * (n + o) ** 2 for w, o in zip(weights, offsets))
     freq = np.arange(n_pts // 2 + 1)
     gain = (weights[None, :] * np.exp(2j * np.pi * np.outer(freq, offsets) / n_pts)).sum(axis=1)
@@ -474,7 +474,7 @@ def frequency_domain(
     usable[0] = False
     solved = np.zeros_like(spectrum)
     solved[usable] = spectrum[usable] / gain[usable]
-    profile = np.fft.irfft(solved, n=n_pts) + parabola
+    profile = np.fft.irfft(solved, n=n_pts) + bow
     profile -= profile[0]
     lost = n_pts * step / freq[1:][~usable[1:]]
     name = f"frequency-{'two' if probes == 2 else 'three'}-point"
