@@ -375,3 +375,139 @@ def test_simulate_laser_command(run_cli, tmp_path):
     assert table.numeric("nominal_mm")[-1] == pytest.approx(268.7005768, abs=1e-6)
     status, _, err = run_cli("simulate", "laser", "--steps", "20")
     assert status == 2 and "leave the 190 mm travel" in err
+
+
+# --- any chain: a 3-axis XFYZ machine read from TOML ---------------------------------------------
+
+def _xfyz_system(tmp_path, examples, extra: str = ""):
+    from axiscal.measurement import MeasurementSystem
+
+    folder = examples / "xfyz_machine"
+    text = f"""
+chain = "XFYZ"
+tool_mm = [0.0, 0.0, -150.0]
+[axes.X]
+errors = "{folder / 'x_errors.csv'}"
+[axes.X.sensors]
+scale_point_mm = [0.0, -40.0, -60.0]
+psd_point_mm = [10.0, 30.0, 20.0]
+[axes.Y]
+errors = "{folder / 'y_errors.csv'}"
+[axes.Y.sensors]
+scale_point_mm = [25.0, 0.0, -30.0]
+psd_point_mm = [-20.0, 5.0, 40.0]
+qd_focal_mm = 150.0
+[axes.Z]
+errors = "{folder / 'z_errors.csv'}"
+[axes.Z.sensors]
+scale_point_mm = [30.0, 15.0, 0.0]
+psd_point_mm = [-10.0, 25.0, 5.0]
+roll_focal_mm = 60.0
+{extra}
+[squareness]
+EC0Y_arcsec = 4.0
+EB0Z_arcsec = -6.5
+EA0Z_arcsec = 3.2
+"""
+    path = tmp_path / "xfyz_sensors.toml"
+    path.write_text(text)
+    return MeasurementSystem.from_toml(path), path
+
+
+def test_any_chain_matches_the_table_model(tmp_path, examples):
+    # readings made from known constant error motions at P must give Machine.volumetric_error of a
+    # machine whose tables hold those constants, workpiece-side axis included
+    from axiscal.machine import Axis, Machine
+    from axiscal.tables import ErrorTable
+
+    system, _ = _xfyz_system(tmp_path, examples)
+    assert system.axes == ("X", "Y", "Z") and len(system.channels) == 21
+    rng = np.random.default_rng(0)
+    n = 50
+    positions = {k: rng.uniform(*system.machine.travel_m(k), n) for k in system.axes}
+    frames = {"t_s": np.arange(n) * 1e-3}
+    axes = {}
+    for letter in system.axes:
+        head = system.heads[letter]
+        errors = np.concatenate([rng.normal(0, 5e-6, 3), rng.normal(0, 30e-6, 3)])
+        start, end = system.machine.travel_m(letter)
+        table = ErrorTable(letter, np.array([start, end]), np.tile(errors[:, None], (1, 2)))
+        axes[letter] = Axis(letter, table, system.machine.axes[letter].origin_m)
+        eps = errors[3:]
+        at_scale = errors[:3] + np.cross(eps, head.scale_point_m)
+        at_psd = errors[:3] + np.cross(eps, head.psd_point_m)
+        names = head.channels
+        q = positions[letter]
+        frames[names["cmd"]] = q * 1e3
+        frames[names["scale"]] = (q + at_scale[head.index]) * 1e3
+        for d in head.cross_directions:
+            frames[names[f"psd_{d}"]] = np.full(n, at_psd["xyz".index(d)] * 1e6)
+        for role, focal in (("qd_u", head.qd_focal_m), ("qd_v", head.qd_focal_m), ("roll", 2 * head.roll_focal_m)):
+            component = getattr(head, role)
+            frames[names[role]] = np.full(n, component.sign * errors[component.index] * focal * 1e6)
+    machine = Machine(chain="XFYZ", axes=axes, squareness_rad=system.machine.squareness_rad, tool_m=system.machine.tool_m)
+    out = system.process(frames)
+    assert np.all(out["fault"] == 0)
+    expected = machine.volumetric_error(positions) * 1e6
+    np.testing.assert_allclose(np.column_stack([out["ex_um"], out["ey_um"], out["ez_um"]]), expected, atol=1e-9)
+    np.testing.assert_allclose(np.column_stack([out["px_mm"], out["py_mm"], out["pz_mm"]]), machine.actual_point(positions) * 1e3, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("extra", "message"),
+    [
+        ("[axes.Y.sensors.extra]\nfoo = 1", "unknown key extra"),
+        ("[axes.Z.sensors.more]\nprefix = 1", "unknown key more"),
+    ],
+)
+def test_bad_sensor_section_names_the_file(tmp_path, examples, extra, message):
+    with pytest.raises(AxiscalError, match=message) as info:
+        _xfyz_system(tmp_path, examples, extra)
+    assert "xfyz_sensors.toml" in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        (("[axes.Z.sensors]\n", '[axes.Z.sensors]\nprefix = "x"\n'), "channel name 'x_cmd_mm' is used twice"),
+        (("[axes.Z.sensors]\n", '[axes.Z.sensors]\ncalibration = "none.json"\n'), "file not found"),
+        (("[axes.Z.sensors]\n", "[axes.Z.sensors\n"), "malformed TOML"),
+        (("[axes.Z.sensors]\n", "[axes.Z.nothing]\n"), "unknown key nothing"),
+    ],
+)
+def test_bad_machine_files(tmp_path, examples, change, message):
+    from axiscal.measurement import MeasurementSystem
+
+    _, path = _xfyz_system(tmp_path, examples)
+    path.write_text(path.read_text().replace(*change))
+    with pytest.raises(AxiscalError, match=message) as info:
+        MeasurementSystem.from_toml(path)
+    assert str(path) in str(info.value) or "none.json" in str(info.value)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    st.lists(st.tuples(st.integers(0, 19), st.integers(0, 13), st.sampled_from(["nan", "high", "low"])), max_size=8),
+)
+def test_injected_faults_are_flagged_exactly(injections):
+    module, system = _NOISY
+    frames, _ = module.frames(np.linspace(0.0, 3.0, 20), path="diagonal")
+    frames = {k: v.copy() for k, v in frames.items()}
+    expected = np.zeros(20, dtype=np.int64)
+    for frame, channel_index, kind in injections:
+        name = system.channels[channel_index]
+        low, high = system.channel_limits[name]
+        frames[name][frame] = {"nan": np.nan, "high": high + 1.0, "low": low - 1.0}[kind]
+    for name in system.channels:
+        value = frames[name]
+        low, high = system.channel_limits[name]
+        expected |= np.isnan(value).astype(np.int64)
+        expected |= ((value < low) | (value > high)).astype(np.int64) << 1
+        if name.endswith("_cmd_mm"):
+            letter = name[0].upper()
+            start, end = (v * 1e3 for v in system.machine.travel_m(letter))
+            expected |= ((value < start) | (value > end)).astype(np.int64) << 2
+    out = system.process(frames)
+    np.testing.assert_array_equal(out["fault"], expected)
+    assert np.all(np.isnan(out["ex_um"][expected != 0]))
+    assert np.all(np.isfinite(out["ex_um"][expected == 0]))
