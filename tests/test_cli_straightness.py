@@ -54,6 +54,16 @@ def test_separate_writes_the_output_columns(run_cli, examples, tmp_path, method,
     assert np.all(np.diff(result.numeric("position_mm")) > 0)
 
 
+def test_frequency_options_reach_the_method(run_cli, examples):
+    status, bowed, _ = run_cli("separate", examples / "probe_readings.csv", "--method", "frequency", "--spacing-mm", "15")
+    assert status == 0 and "harmonics left out" in bowed
+    status, periodic, _ = run_cli(
+        "separate", examples / "probe_readings.csv", "--method", "frequency", "--spacing-mm", "15", "--periodic", "--two-probe"
+    )
+    assert status == 0 and "yaw_urad" not in periodic
+    assert table(bowed).numeric("profile_um")[-1] != table(periodic).numeric("profile_um")[-1]
+
+
 def test_combined_recovers_the_shipped_profile(run_cli, examples):
     status, out, _ = run_cli("separate", examples / "probe_readings.csv", "--spacing-mm", "15", "--calibration-mm", "0", "255")
     assert status == 0

@@ -556,6 +556,7 @@ def separate(
     method: str,
     probes: int | None = None,
     min_gain: float = 0.05,
+    parabola: bool = True,
     calibration_m: tuple[float, float] | None = None,
 ) -> Separation:
     """Run a separation method by name: ``stp``, ``strp``, ``fstrp``, ``gtp``, ``frequency``, ``combined``.
@@ -564,7 +565,7 @@ def separate(
     ----------
     probes : {2, 3}, optional, keyword-only
         Frequency method only: probes used (default: 3 when probe C is present, else 2).
-    min_gain : float, keyword-only
+    min_gain, parabola : keyword-only
         Frequency method only, see :func:`frequency_domain`.
     calibration_m : (float, float), optional, keyword-only
         Combined method only, see :func:`combined`.
@@ -579,7 +580,7 @@ def separate(
         return generalized_two_point(readings)
     if method == "frequency":
         chosen = probes if probes is not None else (3 if readings.c_m is not None else 2)
-        return frequency_domain(readings, probes=chosen, min_gain=min_gain)
+        return frequency_domain(readings, probes=chosen, min_gain=min_gain, parabola=parabola)
     if method == "combined":
         return combined(readings, calibration_m=calibration_m)
     raise AxiscalError(f"unknown separation method '{method}'; use one of {', '.join(METHODS)}")

@@ -74,6 +74,9 @@ def plot_separation(path: str, result: Separation) -> None:
     show_default=True,
     help="Frequency method: harmonics below this fraction of the gain envelope are left out.",
 )
+@click.option(
+    "--periodic", is_flag=True, help="Frequency method: treat the profile as periodic over the record (no bow taken out)."
+)
 @click.option("--calibration-mm", type=float, nargs=2, help="Combined method: START END of the smooth region joining the groups.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV here instead of standard output.")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write a plot of the separated profile and motion.")
@@ -85,6 +88,7 @@ def separate_command(
     reversed_run: str | None,
     two_probe: bool,
     min_gain: float,
+    periodic: bool,
     calibration_mm: tuple[float, float] | None,
     output: str | None,
     plot_path: str | None,
@@ -103,7 +107,12 @@ def separate_command(
         calibration = None if calibration_mm is None else (calibration_mm[0] * MM, calibration_mm[1] * MM)
         try:
             result = separate(
-                data, method=method, probes=2 if two_probe else None, min_gain=min_gain, calibration_m=calibration
+                data,
+                method=method,
+                probes=2 if two_probe else None,
+                min_gain=min_gain,
+                parabola=not periodic,
+                calibration_m=calibration,
             )
         except AxiscalError as exc:
             raise exc.located(path=readings) from None
@@ -163,10 +172,18 @@ def _curve(path: str, column: str, unit: float, what: str):
 
 @click.command("simulate-probes")
 @click.option(
-    "--profile", "profile_path", required=True, type=click.Path(dir_okay=False), help="Workpiece profile R: position_mm, deviation_um."
+    "--profile",
+    "profile_path",
+    required=True,
+    type=click.Path(dir_okay=False),
+    help="Workpiece profile R: position_mm, deviation_um.",
 )
 @click.option(
-    "--motion", "motion_path", required=True, type=click.Path(dir_okay=False), help="Slide motion S: position_mm, deviation_um[, yaw_urad]."
+    "--motion",
+    "motion_path",
+    required=True,
+    type=click.Path(dir_okay=False),
+    help="Slide motion S: position_mm, deviation_um[, yaw_urad].",
 )
 @click.option("--spacing-mm", type=float, required=True, help="Probe spacing A-B, mm.")
 @click.option("--spacing-bc-mm", type=float, help="Probe spacing B-C, mm (default: the A-B spacing).")
