@@ -82,6 +82,13 @@ def _curve(q_m: np.ndarray, slope: float, terms: list[tuple[float, float, float]
     return value
 
 
+def _moved(errors: np.ndarray, point_m) -> np.ndarray:
+    """Translation (3, N) of the carriage point ``point_m`` from the errors (6, N) at its origin: delta + eps x r."""
+    ea, eb, ec = errors[3], errors[4], errors[5]
+    rx, ry, rz = point_m
+    return np.array([errors[0] + eb * rz - ec * ry, errors[1] + ec * rx - ea * rz, errors[2] + ea * ry - eb * rx])
+
+
 @dataclass(frozen=True)
 class Truth:
     """Gain and offset a raw channel really has: ``true value = gain * raw + offset`` (channel unit)."""
@@ -128,6 +135,18 @@ class VirtualModule:
                 roll=SignedComponent(names.index(roll[0]), float(roll[1])),
             )
         self.heads = heads
+        self._curve_arrays = {}
+        for letter in ("X", "Z"):
+            names = component_names(letter)
+            curves = [_CURVES[letter][n] for n in names]
+            self._curve_arrays[letter] = (
+                np.array([c[0] for c in curves]),
+                np.array([[a for a, _, _ in c[1]] for c in curves]),
+                np.array([[f for _, f, _ in c[1]] for c in curves]),
+                np.array([[p for _, _, p in c[1]] for c in curves]),
+                np.array([_LOAD.get(n, (0.0, 0.0))[0] for n in names]),
+                np.array([_LOAD.get(n, (0.0, 0.0))[1] for n in names]),
+            )
         grid = np.linspace(0.0, STROKE_M, 39)
         self.machine = Machine(
             chain="FXZ",
@@ -164,16 +183,14 @@ class VirtualModule:
 
     def true_errors(self, letter: str, q_m: np.ndarray) -> np.ndarray:
         """The six error motions of axis ``letter`` at positions ``q_m`` (with the load): (6, N), SI."""
-        q = np.asarray(q_m, dtype=float)
-        out = np.empty((6, q.size))
-        for row, name in enumerate(component_names(letter)):
-            slope, terms = _CURVES[letter][name]
-            value = _curve(q, slope, terms)
-            if name in _LOAD and self.load_kg:
-                constant, ramp = _LOAD[name]
-                value = value + self.load_kg * (constant + ramp * q / STROKE_M)
-            out[row] = value * 1e-6
-        return out
+        q = np.asarray(q_m, dtype=float).reshape(-1)
+        slope, amplitude, cycles, phase, constant, ramp = self._curve_arrays[letter]
+        s = q / STROKE_M
+        waves = amplitude[:, :, None] * (np.sin(2 * np.pi * cycles[:, :, None] * s + phase[:, :, None]) - np.sin(phase)[:, :, None])
+        value = slope[:, None] * (q * 1e3) + waves.sum(axis=1)
+        if self.load_kg:
+            value += self.load_kg * (constant[:, None] + ramp[:, None] * s)
+        return value * 1e-6
 
     def mirror_error(self, letter: str, q_m: np.ndarray) -> np.ndarray:
         """The apparent roll the plane mirror's form adds at ``q_m``, radians."""
@@ -210,13 +227,12 @@ class VirtualModule:
     def sensor_values(self, letter: str, q_m: np.ndarray, errors: np.ndarray) -> dict[str, np.ndarray]:
         """What each channel of axis ``letter`` should read (true physical value, channel unit)."""
         head = self.heads[letter]
-        eps = errors[3:].T
-        at_scale = errors[:3].T + np.cross(eps, np.asarray(head.scale_point_m))
-        at_psd = errors[:3].T + np.cross(eps, np.asarray(head.psd_point_m))
+        at_scale = _moved(errors, head.scale_point_m)
+        at_psd = _moved(errors, head.psd_point_m)
         names = head.channels
-        out = {names["cmd"]: q_m * 1e3, names["scale"]: (q_m + at_scale[:, head.index]) * 1e3}
+        out = {names["cmd"]: q_m * 1e3, names["scale"]: (q_m + at_scale[head.index]) * 1e3}
         for d in head.cross_directions:
-            out[names[f"psd_{d}"]] = at_psd[:, "xyz".index(d)] * 1e6
+            out[names[f"psd_{d}"]] = at_psd["xyz".index(d)] * 1e6
         out[names["qd_u"]] = head.qd_u.sign * errors[head.qd_u.index] * head.qd_focal_m * 1e6
         out[names["qd_v"]] = head.qd_v.sign * errors[head.qd_v.index] * head.qd_focal_m * 1e6
         roll = errors[head.roll.index] + self.mirror_error(letter, q_m)
