@@ -511,3 +511,12 @@ def test_injected_faults_are_flagged_exactly(injections):
     np.testing.assert_array_equal(out["fault"], expected)
     assert np.all(np.isnan(out["ex_um"][expected != 0]))
     assert np.all(np.isfinite(out["ex_um"][expected == 0]))
+
+
+def test_measure_drops_a_line_cut_by_a_crash(examples, run_cli, tmp_path):
+    text = (examples / "xz_module" / "sensors_frames.csv").read_text()
+    cut = tmp_path / "cut.csv"
+    cut.write_text(text[: text.rindex("\n") - 40])
+    status, out, err = run_cli("measure", cut, "--json")
+    assert status == 0, err
+    assert '"frames": 199' in out

@@ -16,7 +16,7 @@ import numpy as np
 
 from axiscal.cli.common import echo_json, ensure_parent, pyplot
 from axiscal.errors import AxiscalError
-from axiscal.io import CsvTable, read_csv
+from axiscal.io import CsvTable, parse_csv, read_csv
 
 PATHS = ("diagonal", "raster", "back-and-forth")
 
@@ -49,9 +49,20 @@ def read_frames(path: str | Path, channels: tuple[str, ...]) -> dict[str, np.nda
     """Raw frames from a CSV with ``t_s`` and every channel (other columns are ignored).
 
     A cell that is empty, ``nan`` or not a number is a missing reading: the frame is flagged by the
-    pipeline, not refused. A missing column or a bad time stamp is an error naming the file.
+    pipeline, not refused. A last line without its newline (a record cut short by a crash) is
+    dropped. A missing column or a bad time stamp is an error naming the file.
     """
-    table = read_csv(path)
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except FileNotFoundError:
+        raise AxiscalError("file not found", path=path) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise AxiscalError(f"cannot read file ({exc})", path=path) from None
+    lines = text.split("\n")
+    if not text.endswith("\n"):
+        lines = lines[:-1]
+    table = parse_csv(lines, path=str(path))
     table.require("t_s", *channels)
     frames = {"t_s": table.numeric("t_s")}
     for name in channels:
