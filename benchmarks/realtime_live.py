@@ -1,0 +1,176 @@
+"""Live latency: delay from a frame's time stamp to its result being in the record, at a 10 kHz source.
+
+    .venv/bin/python benchmarks/realtime_live.py [--rate 10000] [--seconds 5]
+
+Three runs, each printing frames sent and recorded, whether any frame was lost (the record's t_s
+must be exactly k / rate, k = 0, 1, 2, ...) and the delay percentiles:
+
+1. ``tcp``: a separate sender process plays the virtual module's frames over the TCP line protocol
+   on 127.0.0.1, each frame sent once its time stamp has passed on the shared monotonic clock
+   (CLOCK_MONOTONIC is one clock for all processes on Linux);
+2. ``tcp + dashboard``: the same with the dashboard server running and one WebSocket client reading;
+3. ``sim``: the in-process virtual instrument at the same rate.
+
+The delay is measured by the pipeline right after the batch's ``os.write`` to the record returned
+(the frame then survives a crash of the process; ``fsync`` follows within the record's sync interval).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.live.pipeline import Pipeline
+from axiscal.live.recorder import Recorder, read_record
+from axiscal.live.sources import Backoff, SimSource, TcpSource
+from axiscal.live.state import LiveState, result_columns
+from axiscal.virtual import VirtualModule
+
+
+def sender(rate: float, seconds: float) -> None:
+    """Child process: listen on a free loopback port, print 'port t0', send frames on time, close."""
+    from axiscal.live.protocol import encode_lines
+
+    module = VirtualModule(seed=0)
+    system = module.measurement_system()
+    n = int(rate * seconds)
+    t = np.arange(n) / rate
+    frames, _ = module.frames(t)
+    lines = encode_lines(t, np.column_stack([frames[name] for name in system.channels])).splitlines(keepends=True)
+    listener = socket.create_server(("127.0.0.1", 0))
+    listener.settimeout(30.0)
+    print(listener.getsockname()[1], flush=True)
+    connection, _ = listener.accept()
+    connection.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+    t0 = time.monotonic() + 0.2
+    print(repr(t0), flush=True)
+    sent = 0
+    deadline = t0 + seconds + 10.0
+    while sent < n and time.monotonic() < deadline:
+        due = min(n, int((time.monotonic() - t0) * rate) + 1)
+        if due > sent:
+            connection.sendall(b"".join(lines[sent:due]))
+            sent = due
+        else:
+            time.sleep(max(0.0, t0 + sent / rate - time.monotonic()))
+    time.sleep(0.2)
+    connection.close()
+    listener.close()
+
+
+def reader(port: int, seconds: float) -> None:
+    """Child process: a dashboard client reading every state it is sent; prints how many it got."""
+    from websockets.exceptions import ConnectionClosed
+    from websockets.sync.client import connect
+
+    received = 0
+    deadline = time.monotonic() + seconds
+    with connect(f"ws://127.0.0.1:{port}/ws", max_size=None) as client:
+        while time.monotonic() < deadline:
+            try:
+                json.loads(client.recv(timeout=0.5))
+                received += 1
+            except TimeoutError:
+                continue
+            except ConnectionClosed:
+                break
+    print(received, flush=True)
+
+
+def run(kind: str, rate: float, seconds: float, *, dashboard: bool = False) -> dict:
+    module = VirtualModule(seed=0)
+    system = module.measurement_system()
+    expected = int(rate * seconds)
+    child = None
+    if kind == "tcp":
+        child = subprocess.Popen(
+            [sys.executable, __file__, "--sender", "--rate", str(rate), "--seconds", str(seconds)], stdout=subprocess.PIPE, text=True
+        )
+        port = int(child.stdout.readline())
+        source = TcpSource("127.0.0.1", port, system.channels, backoff=Backoff(initial_s=0.01, maximum_s=0.1))
+    else:
+        source = SimSource(module, system.channels, rate_hz=rate)
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "record.csv"
+        recorder = Recorder(path, system.channels, result_columns(system.axes))
+        state = LiveState(system)
+        pipeline = Pipeline(system, source, recorder=recorder, state=state)
+        server = client = None
+        if dashboard:
+            from axiscal.live.server import LiveServer, create_app
+
+            server = LiveServer(create_app(state, update_hz=10.0), port=0).start()
+            client = subprocess.Popen(
+                [sys.executable, __file__, "--reader", str(server.port), "--seconds", str(seconds + 1.0)], stdout=subprocess.PIPE, text=True
+            )
+        if child is not None:
+            while len(source.read(0.05)) == 0 and source.status.connections == 0:
+                pass
+            source.clock_offset_s = float(child.stdout.readline())
+        deadline = time.monotonic() + seconds + 10.0
+        while pipeline.frames < expected and time.monotonic() < deadline:
+            pipeline.step(0.02)
+        summary = pipeline.summary(seconds)
+        delays = pipeline.latencies_s() * 1e3
+        received = 0
+        if server is not None:
+            received = int(client.stdout.readline() or 0)
+            client.wait(timeout=10)
+            server.stop()
+        recorder.close()
+        source.close()
+        if child is not None:
+            child.wait(timeout=30)
+        record = read_record(path)
+    t = record.columns["t_s"][:expected]
+    lost = expected - len(t)
+    in_order = len(t) == expected and np.allclose(t, np.arange(expected) / rate, atol=1e-9)
+    return {
+        "run": kind + (" + dashboard" if dashboard else ""),
+        "sent": expected,
+        "recorded": len(t),
+        "lost": lost,
+        "exact": bool(in_order),
+        "batches": summary.batches,
+        "p50": np.percentile(delays, 50),
+        "p99": np.percentile(delays, 99),
+        "p999": np.percentile(delays, 99.9),
+        "max": delays.max(),
+        "dashboard_states": received,
+    }
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--rate", type=float, default=10000.0)
+    parser.add_argument("--seconds", type=float, default=5.0)
+    parser.add_argument("--sender", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--reader", type=int, help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.sender:
+        sender(args.rate, args.seconds)
+        return
+    if args.reader:
+        reader(args.reader, args.seconds)
+        return
+    print(f"live latency at {args.rate:.0f} Hz for {args.seconds:g} s per run (delay: time stamp -> written to the record)")
+    print(f"{'run':<18} {'sent':>7} {'recorded':>8} {'lost':>5} {'t_s exact':>9} {'batches':>7} {'p50 ms':>7} {'p99 ms':>7} {'p99.9 ms':>8} {'max ms':>7}")
+    for kind, dashboard in (("tcp", False), ("tcp", True), ("sim", False)):
+        r = run(kind, args.rate, args.seconds, dashboard=dashboard)
+        print(
+            f"{r['run']:<18} {r['sent']:>7} {r['recorded']:>8} {r['lost']:>5} {str(r['exact']):>9} {r['batches']:>7} "
+            f"{r['p50']:>7.2f} {r['p99']:>7.2f} {r['p999']:>8.2f} {r['max']:>7.2f}"
+            + (f"   (dashboard client got {r['dashboard_states']} states)" if dashboard else "")
+        )
+
+
+if __name__ == "__main__":
+    main()
