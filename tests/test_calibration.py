@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -133,4 +131,3 @@ def test_bad_calibration_files(tmp_path, text, message):
     with pytest.raises(AxiscalError, match=message) as info:
         load_calibration(path)
     assert str(path) in str(info.value)
-    json.dumps({})

@@ -21,9 +21,9 @@ A faulty frame keeps its time stamp and fault bits; every other result of it is 
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 import tomllib
 from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np

@@ -29,10 +29,6 @@ from axiscal.errors import AxiscalError
 from axiscal.kinematics import AXIS_INDEX
 from axiscal.tables import component_names
 
-#: kinds of raw channel and the unit each carries
-CHANNEL_UNITS = {"cmd": "mm", "scale": "mm", "psd": "um", "qd": "um", "roll": "um"}
-
-
 def straightness_from_psd(shift_m: np.ndarray) -> np.ndarray:
     """Paper 000 eq (1): the straightness error is the PSD spot shift (metres in, metres out)."""
     return np.asarray(shift_m, dtype=float)
