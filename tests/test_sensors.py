@@ -77,3 +77,37 @@ def test_sensor_head_defaults_and_channels():
 def test_bad_sensor_sections(section, message):
     with pytest.raises(AxiscalError, match=message):
         sensor_head_from_dict("X", section)
+
+
+def test_abbe_bryan_in_the_pipeline_is_paper_eqs_4_and_5():
+    # paper 000 eq (5), Z axis, term by term; eq (4), X axis, with its slip fixed (second line
+    # L_bz where the paper prints L_bx twice, docs/papers.md). L = P - M: the functional point
+    # minus the read head (L_a) or the PSD spot (L_b). For X the paper's Abbe offsets are named
+    # L_ax, L_ay, but an offset along the motion does nothing: its "L_ax" multiplies the pitch in
+    # the x line, so it is the offset along z (docs/measurement.md).
+    from axiscal.measurement import _abbe_bryan
+
+    rng = np.random.default_rng(0)
+    for letter in ("X", "Z"):
+        head = sensor_head_from_dict(
+            letter, {"scale_point_mm": list(rng.uniform(-50, 50, 3)), "psd_point_mm": list(rng.uniform(-50, 50, 3))}
+        )
+        la = -np.asarray(head.scale_point_m)
+        lb = -np.asarray(head.psd_point_m)
+        d = rng.normal(0, 5e-6, (3, 7))
+        ex, ey, ez = rng.normal(0, 50e-6, (3, 7))
+        errors = np.vstack([d, ex, ey, ez])
+        _abbe_bryan(errors, head.offsets_m())
+        if letter == "Z":
+            expected = [
+                d[0] - ez * lb[1] + ey * lb[2],
+                d[1] + ez * lb[0] - ex * lb[2],
+                d[2] - ey * la[0] + ex * la[1],
+            ]
+        else:
+            expected = [
+                d[0] + ey * la[2] - ez * la[1],
+                d[1] - ex * lb[2] + ez * lb[0],
+                d[2] + ex * lb[1] - ey * lb[0],
+            ]
+        np.testing.assert_allclose(errors[:3], expected, atol=1e-18)
