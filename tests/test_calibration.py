@@ -131,3 +131,15 @@ def test_bad_calibration_files(tmp_path, text, message):
     with pytest.raises(AxiscalError, match=message) as info:
         load_calibration(path)
     assert str(path) in str(info.value)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.floats(1e-3, 10.0), st.floats(-1.0, 1.0))
+def test_mirror_fit_does_not_depend_on_where_the_travel_starts_or_its_unit(scale, shift):
+    rng = np.random.default_rng(3)
+    s = np.linspace(0.0, 1.0, 30)
+    eps = 2e-6 * np.sin(2 * np.pi * 1.3 * s) + rng.normal(0.0, 0.3e-6, s.size)
+    base = fit_mirror("X", s, eps, np.zeros(s.size))
+    moved = fit_mirror("X", shift + scale * s, eps, np.zeros(s.size))
+    assert moved.order == base.order
+    np.testing.assert_allclose(moved.evaluate(shift + scale * s), base.evaluate(s), atol=1e-12)
