@@ -127,3 +127,24 @@ def test_replay_of_a_file_without_the_channels_is_refused(run_cli, tmp_path):
 def test_a_machine_without_sensors_is_refused(run_cli, examples):
     status, out, err = run_cli("live", "--no-server", "--machine", str(examples / "xfyz_machine" / "machine.toml"))
     assert status == 2 and "sensors" in err and err.count("\n") == 1
+
+
+def test_shipped_frames_replayed_with_the_shipped_machine_keep_their_two_faults(run_cli, examples, tmp_path):
+    from axiscal.measurement import MeasurementSystem
+
+    machine = examples / "xz_module" / "sensors_machine.toml"
+    frames_path = examples / "xz_module" / "sensors_frames.csv"
+    path = tmp_path / "replayed.csv"
+    status, out, err = run_cli(
+        "live", "--machine", str(machine), "--source", f"replay:{frames_path}", "--no-pace", "--no-server", "--record", str(path)
+    )
+    assert status == 0, err
+    assert "frames 200" in out and "faults 2" in out
+    record = read_record(path)
+    system = MeasurementSystem.from_toml(machine)
+    source = read_record(frames_path)
+    direct = system.process({name: source.columns[name] for name in ("t_s", *system.channels)})
+    np.testing.assert_array_equal(record.columns["fault"], direct["fault"])
+    assert np.flatnonzero(record.columns["fault"]).tolist() == [50, 120]
+    np.testing.assert_allclose(record.columns["ex_um"], direct["ex_um"], rtol=1e-8, atol=1e-9)
+    assert np.isnan(record.columns["ex_um"][[50, 120]]).all()

@@ -10,6 +10,7 @@ from datetime import datetime, timezone
 
 import click
 
+from axiscal.cli.common import ensure_parent
 from axiscal.errors import AxiscalError
 from axiscal.live.pipeline import Pipeline, RunSummary
 from axiscal.live.protocol import FAULT_MALFORMED
@@ -117,7 +118,7 @@ def live(
         if record_path is not None:
             bits = ", ".join(f"{1 << b} {system.fault_text(1 << b)}" for b in range(3)) + f", {FAULT_MALFORMED} malformed frame"
             recorder = Recorder(
-                record_path,
+                ensure_parent(record_path),
                 system.channels,
                 result_columns(tuple(system.axes)),
                 comments=(
