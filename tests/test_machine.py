@@ -268,3 +268,14 @@ def test_relative_squareness_placement_keeps_the_included_angle(term, chain, ref
     assert abs(included(directions(relative), *pair) - 90.0) > 0.05
     with pytest.raises(AxiscalError, match="unknown squareness placement"):
         Machine(chain, axes, squareness_placement="sideways")
+
+
+def test_error_motions_given_per_point_equal_the_tables():
+    rng = np.random.default_rng(7)
+    machine = random_machine("YFXZ", rng)
+    for n in (50, 150_000):
+        q = random_positions(machine, rng, n)
+        given = {k: machine.table(k).evaluate(q[k]) for k in machine.letters}
+        np.testing.assert_array_equal(machine.volumetric_error(q, errors=given), machine.volumetric_error(q))
+    with pytest.raises(AxiscalError, match=r"errors of axis Z must have shape \(6, 150000\)"):
+        machine.volumetric_error(q, errors={k: v for k, v in given.items() if k != "Z"})

@@ -24,7 +24,7 @@ and benchmarks.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -73,6 +73,7 @@ def volumetric_error(
     tool_m: np.ndarray,
     workpiece_m: np.ndarray,
     positions_m: dict[str, np.ndarray],
+    errors: Mapping[str, np.ndarray] | None = None,
 ) -> np.ndarray:
     """Error of the tool point relative to the workpiece, in the workpiece frame.
 
@@ -85,6 +86,9 @@ def volumetric_error(
         workpiece-side carriage, metres.
     positions_m : dict of str to ndarray, shape (N,)
         Axis positions, metres, one entry per axis of the chain.
+    errors : mapping of str to ndarray, shape (6, N), optional
+        Error motions of the axes given per point (rows tx, ty, tz in m, ea, eb, ec in rad), e.g.
+        measured live, instead of read from the links' tables.
 
     Returns
     -------
@@ -98,9 +102,12 @@ def volumetric_error(
     # T_wp⁻¹ ends with Trans(-workpiece), which shifts actual and nominal alike: it cancels.
     nominal = np.array(tool_m, dtype=float)
     nominal_q = [np.zeros(n), np.zeros(n), np.zeros(n)]
+    def motions(link: ChainLink, q: np.ndarray) -> np.ndarray:
+        return link.table.evaluate(q) if errors is None else errors[link.letter]
+
     for link in reversed(tool_links):
         q = positions_m[link.letter]
-        v = link.table.evaluate(q)
+        v = motions(link, q)
         px, py, pz = _rotate(v[3], v[4], v[5], px, py, pz)
         p = [px + v[0], py + v[1], pz + v[2]]
         p[link.index] = p[link.index] + q
@@ -111,7 +118,7 @@ def volumetric_error(
             px, py, pz = _rotate(*link.squareness_rad, px, py, pz)
     for link in workpiece_links:
         q = positions_m[link.letter]
-        v = link.table.evaluate(q)
+        v = motions(link, q)
         if np.any(link.squareness_rad):
             px, py, pz = _unrotate(*link.squareness_rad, px, py, pz)
         p = [px - link.origin_m[0] - v[0], py - link.origin_m[1] - v[1], pz - link.origin_m[2] - v[2]]

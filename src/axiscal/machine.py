@@ -196,13 +196,22 @@ class Machine:
             p[:, link.index] -= q[link.letter]
         return p
 
-    def volumetric_error(self, positions: Mapping[str, np.ndarray], *, workers: int | None = None) -> np.ndarray:
+    def volumetric_error(
+        self,
+        positions: Mapping[str, np.ndarray],
+        *,
+        errors: Mapping[str, np.ndarray] | None = None,
+        workers: int | None = None,
+    ) -> np.ndarray:
         """Volumetric error of the functional point at the given axis positions.
 
         Parameters
         ----------
         positions : mapping of str to ndarray, shape (N,)
             Position of every axis of the chain, metres.
+        errors : mapping of str to ndarray, shape (6, N), optional
+            The axes' error motions given per point (rows tx, ty, tz in m; ea, eb, ec in rad),
+            e.g. measured live; default: read from the error tables at ``positions``.
         workers : int, optional
             Threads for large N (default: the number of cores). Work is split into chunks of
             65536 points, which also keeps the temporaries in cache.
@@ -214,24 +223,35 @@ class Machine:
         """
         q = self._positions(positions)
         n = len(next(iter(q.values())))
+        if errors is not None:
+            errors = {k: np.asarray(errors[k], dtype=float) for k in self.letters if k in errors}
+            wrong = [k for k in self.letters if errors.get(k, np.empty(0)).shape != (6, n)]
+            if wrong:
+                raise AxiscalError(f"errors of axis {', '.join(wrong)} must have shape (6, {n})")
         tool, workpiece = np.array(self.tool_m), np.array(self.workpiece_m)
+
+        def run(start: int, stop: int) -> np.ndarray:
+            part = {k: v[start:stop] for k, v in q.items()}
+            given = None if errors is None else {k: v[:, start:stop] for k, v in errors.items()}
+            return volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, part, given)
+
         if n <= _CHUNK:
-            return volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, q)
-        for letter in self.letters:
-            self.table(letter).check_range(q[letter])
+            return run(0, n)
+        if errors is None:
+            for letter in self.letters:
+                self.table(letter).check_range(q[letter])
         out = np.empty((n, 3))
 
-        def run(start: int) -> None:
-            part = {k: v[start : start + _CHUNK] for k, v in q.items()}
-            out[start : start + _CHUNK] = volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, part)
+        def fill(start: int) -> None:
+            out[start : start + _CHUNK] = run(start, start + _CHUNK)
 
         workers = workers or os.cpu_count() or 1
         if workers == 1:
             for start in range(0, n, _CHUNK):
-                run(start)
+                fill(start)
         else:
             with ThreadPoolExecutor(workers) as pool:
-                list(pool.map(run, range(0, n, _CHUNK)))
+                list(pool.map(fill, range(0, n, _CHUNK)))
         return out
 
     def reference_volumetric_error(self, positions: Mapping[str, np.ndarray]) -> np.ndarray:

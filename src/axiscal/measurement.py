@@ -20,8 +20,6 @@ A faulty frame keeps its time stamp and fault bits; every other result of it is 
 
 from __future__ import annotations
 
-import dataclasses
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -30,7 +28,7 @@ import numpy as np
 
 from axiscal.calibration import Calibration, MirrorCorrection, load_calibration
 from axiscal.errors import AxiscalError
-from axiscal.kinematics import volumetric_error
+from axiscal.io import read_toml
 from axiscal.machine import Machine, machine_from_dict
 from axiscal.sensors import SensorHead, sensor_head_from_dict
 from axiscal.tables import component_names
@@ -46,16 +44,6 @@ FAULT_NAMES = {
     FAULT_RANGE: "channel out of range",
     FAULT_POSITION: "position outside the error model",
 }
-
-
-class _MeasuredErrors:
-    """Error motions measured frame by frame, in the place of an error table in the HTM chain."""
-
-    def __init__(self, values: np.ndarray):
-        self.values = values
-
-    def evaluate(self, q_m: np.ndarray) -> np.ndarray:
-        return self.values
 
 
 @dataclass(frozen=True)
@@ -189,15 +177,7 @@ class MeasurementSystem:
         the TOML file) are loaded and applied; ``calibration`` given here is merged on top.
         """
         path = Path(path)
-        try:
-            data = tomllib.loads(path.read_text(encoding="utf-8"))
-        except FileNotFoundError:
-            raise AxiscalError("file not found", path=path) from None
-        except tomllib.TOMLDecodeError as exc:
-            message = str(exc).split(" (at line")[0]
-            raise AxiscalError(f"malformed TOML: {message}", path=path, line=getattr(exc, "lineno", None)) from None
-        except (OSError, UnicodeDecodeError) as exc:
-            raise AxiscalError(f"cannot read file ({exc})", path=path) from None
+        data = read_toml(path)
         machine = machine_from_dict(data, base_dir=path.parent, source=str(path))
         heads: dict[str, SensorHead] = {}
         loaded = Calibration()
@@ -340,16 +320,7 @@ def spatial_error(machine: Machine, positions_m: Mapping[str, np.ndarray], error
     ndarray, shape (N, 3)
         Actual minus nominal functional point, in the workpiece frame, metres.
     """
-    links = {}
-    for link in machine._tool_links + machine._workpiece_links:
-        links[link.letter] = dataclasses.replace(link, table=_MeasuredErrors(np.asarray(errors[link.letter], dtype=float)))
-    return volumetric_error(
-        tuple(links[k] for k in machine.tool_side),
-        tuple(links[k] for k in machine.workpiece_side),
-        np.array(machine.tool_m),
-        np.array(machine.workpiece_m),
-        {k: np.asarray(positions_m[k], dtype=float) for k in machine.letters},
-    )
+    return machine.volumetric_error(positions_m, errors=errors, workers=1)
 
 
 def _batch_size(frames: Mapping[str, np.ndarray]) -> int:
