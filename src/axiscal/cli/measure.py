@@ -377,7 +377,9 @@ def diagonal_command(load_kg, seed, samples, squareness_error_arcsec, plot, as_j
         VirtualModule(seed=seed, load_kg=load_kg), samples=samples, squareness_error_rad=squareness_error_arcsec * ARCSEC
     )
     if plot:
-        _plot_diagonal(result, plot)
+        from axiscal.volumetric_report import plot_diagonal_experiment
+
+        plot_diagonal_experiment(result, ensure_parent(plot))
     if as_json:
         echo_json(
             {
@@ -403,24 +405,6 @@ def diagonal_command(load_kg, seed, samples, squareness_error_arcsec, plot, as_j
         click.echo(f"paper 000: {paper} um")
     if plot:
         click.echo(f"figure -> {plot}")
-
-
-def _plot_diagonal(result, path: str) -> None:
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(7.0, 4.2))
-    diagonal_mm = np.hypot(result.x_mm, result.z_mm)
-    ax.plot(diagonal_mm, result.before_um, "o-", label=f"before the model, E_BD (max {result.before_max_um:.1f} um)")
-    ax.plot(diagonal_mm, result.scales_only_um, "^--", label=f"scales only (max {result.scales_only_max_um:.1f} um)")
-    ax.plot(diagonal_mm, result.after_um, "s-", label=f"after the model, E_AD (max {result.after_max_um:.2f} um)")
-    ax.axhline(0.0, color="0.6", lw=0.8)
-    ax.set_xlabel("position along the XZ diagonal (mm)")
-    ax.set_ylabel("diagonal error (um)")
-    ax.set_title(f"Virtual XZ module, {result.load_kg:g} kg on Z: diagonal vs laser (paper 000 eq 13)")
-    ax.legend(loc="best", fontsize=8)
-    ax.grid(True, alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(ensure_parent(path), dpi=120)
-    plt.close(fig)
 
 
 def register(group: click.Group) -> None:
