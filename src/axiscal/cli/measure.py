@@ -14,7 +14,7 @@ from pathlib import Path
 import click
 import numpy as np
 
-from axiscal.cli.common import echo_json, ensure_parent, pyplot
+from axiscal.cli.common import echo_json, ensure_parent
 from axiscal.errors import AxiscalError
 from axiscal.io import CsvTable, parse_csv, read_csv
 
