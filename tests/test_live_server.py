@@ -115,21 +115,26 @@ def test_a_client_that_does_not_read_neither_slows_the_pipeline_nor_queues_state
             while time.monotonic() - start < 2.5:
                 latest = json.loads(reader.recv(timeout=2.0))
                 received += 1
+            clients = list(app.state.broadcaster.clients)
         elapsed = time.monotonic() - start
         frames = pipeline.frames
         newest = app.state.broadcaster.version
+        deadline = time.monotonic() + 2.0
+        while len(app.state.broadcaster.clients) > 1 and time.monotonic() < deadline:
+            time.sleep(0.01)
+        remaining = list(app.state.broadcaster.clients)
     finally:
         stop.set()
         runner.join(timeout=5)
         server.stop()
         silent.close()
-    broadcaster = app.state.broadcaster
-    slow, fast = broadcaster.clients
+    slow, fast = sorted(clients, key=lambda c: c.sent)
     assert frames >= 0.9 * rate * elapsed
     assert received >= 0.5 * 50 * elapsed
     assert newest - latest["version"] <= 3
     assert slow.sent < fast.sent / 2
     assert newest - slow.version > 20
+    assert remaining == [slow]  # a client that left is forgotten
 
 
 def test_server_refuses_a_port_in_use(module, system):

@@ -213,3 +213,20 @@ def test_serial_source_without_pyserial_is_a_clear_error(monkeypatch, system):
     monkeypatch.setitem(__import__("sys").modules, "serial", None)
     with pytest.raises(AxiscalError, match="needs the optional package pyserial"):
         SerialSource("/dev/null", system.channels)
+
+
+def test_latency_ring_keeps_the_most_recent_delays_in_order():
+    class Channels:
+        channels = ("a_um",)
+        axes = ("X",)
+
+    pipeline = Pipeline(Channels(), None, latency_capacity=7)
+    rng = np.random.default_rng(0)
+    kept: list[float] = []
+    for _ in range(40):
+        delays = rng.normal(size=int(rng.integers(0, 12)))
+        pipeline._keep_latency(delays)
+        kept.extend(delays.tolist())
+        for last in (None, 1, 3, 7, 50):
+            window = min(len(kept), 7 if last is None else min(last, 7))
+            np.testing.assert_array_equal(pipeline.latencies_s(last), kept[len(kept) - window :])

@@ -109,16 +109,18 @@ class Pipeline:
         self._latency[: len(delays) - first] = delays[first:]
         self._latency_count += len(delays)
 
-    def latencies_s(self) -> np.ndarray:
-        """Delays (s) from time stamp to record of the most recent frames, oldest first."""
+    def latencies_s(self, last: int | None = None) -> np.ndarray:
+        """Delays (s) from time stamp to record of the most recent frames (at most ``last``), oldest first."""
         size = len(self._latency)
-        if self._latency_count <= size:
-            return self._latency[: self._latency_count].copy()
-        start = self._latency_count % size
-        return np.concatenate([self._latency[start:], self._latency[:start]])
+        count = min(self._latency_count, size if last is None else min(last, size))
+        end = self._latency_count % size
+        if count <= end:
+            return self._latency[end - count : end].copy()
+        return np.concatenate([self._latency[size - (count - end) :], self._latency[:end]])
 
-    def summary(self, elapsed_s: float) -> RunSummary:
-        delays = self.latencies_s() * 1e3
+    def summary(self, elapsed_s: float, *, recent: int | None = None) -> RunSummary:
+        """The run so far; delay percentiles over the last ``recent`` frames (None: all kept)."""
+        delays = self.latencies_s(recent) * 1e3
         p50, p99, worst = (np.percentile(delays, [50, 99, 100]) if len(delays) else (np.nan, np.nan, np.nan))
         return RunSummary(
             frames=self.frames,
@@ -138,7 +140,7 @@ class Pipeline:
         if self.state is None:
             return
         status = self.source.status
-        delays = self.latencies_s()[-20000:] * 1e3
+        delays = self.latencies_s(20000) * 1e3
         self.state.extra = {
             "source": {"description": status.description, "state": status.state, "connections": status.connections, "retries": status.retries, "message": status.message},
             "record": None
@@ -173,6 +175,6 @@ class Pipeline:
                 next_report = now + progress_interval_s
                 self.publish_status()
                 if progress is not None:
-                    progress(self.summary(now - start))
+                    progress(self.summary(now - start, recent=20000))
         self.publish_status()
         return self.summary(time.monotonic() - start)

@@ -47,7 +47,11 @@ class ClientStats:
 
 
 class Broadcaster:
-    """Holds the newest state as JSON text; clients wait for a newer version than the one they have."""
+    """Holds the newest state as JSON text; clients wait for a newer version than the one they have.
+
+    The state is turned into JSON only while a client is connected (or ``/api/state`` asks), so a
+    dashboard nobody watches costs the pipeline nothing.
+    """
 
     def __init__(self, state: LiveState, *, update_hz: float = 10.0, title: str = "axiscal live"):
         if not update_hz > 0:
@@ -58,22 +62,21 @@ class Broadcaster:
         self.version = 0
         self.text = "{}"
         self.clients: list[ClientStats] = []
-        self._changed: asyncio.Condition | None = None
+        self._changed = asyncio.Condition()
 
     def refresh(self) -> None:
         self.text = json.dumps(self.state.snapshot() | {"version": self.version + 1, "title": self.title}, allow_nan=False)
         self.version += 1
 
     async def run(self) -> None:
-        self._changed = asyncio.Condition()
         while True:
-            self.refresh()
-            async with self._changed:
-                self._changed.notify_all()
+            if self.clients:
+                self.refresh()
+                async with self._changed:
+                    self._changed.notify_all()
             await asyncio.sleep(self.interval_s)
 
     async def newer_than(self, version: int) -> tuple[int, str]:
-        assert self._changed is not None
         async with self._changed:
             await self._changed.wait_for(lambda: self.version > version)
         return self.version, self.text
@@ -100,12 +103,15 @@ def create_app(state: LiveState, *, update_hz: float = 10.0, title: str = "axisc
         return JSONResponse({"title": title, "channels": list(state.channels), "axes": list(state.axes), "update_hz": update_hz})
 
     async def latest(request) -> Response:
+        if not broadcaster.clients:
+            broadcaster.refresh()
         return Response(broadcaster.text, media_type="application/json")
 
     async def stream(websocket: WebSocket) -> None:
         await websocket.accept()
         stats = ClientStats()
         broadcaster.clients.append(stats)
+        broadcaster.refresh()
         try:
             while True:
                 version, text = await broadcaster.newer_than(stats.version)
@@ -116,6 +122,8 @@ def create_app(state: LiveState, *, update_hz: float = 10.0, title: str = "axisc
                 stats.version = version
         except (WebSocketDisconnect, RuntimeError, OSError):
             return
+        finally:
+            broadcaster.clients.remove(stats)
 
     app = Starlette(
         routes=[

@@ -175,9 +175,11 @@ class ReplaySource:
                 self.clock_offset_s = now - self._t0
             elapsed = now - self._start
             times = self._t[self._next : stop] - self._t0
-            ready = int(np.searchsorted(np.where(np.isfinite(times), times, -np.inf), elapsed, side="right"))
+            # a row is due when its t_s and every t_s before it has passed (NaN times never hold a row back)
+            due_at = np.maximum.accumulate(np.where(np.isfinite(times), times, -np.inf))
+            ready = int(np.searchsorted(due_at, elapsed, side="right"))
             if ready == 0:
-                wait = min(float(times[0]) - elapsed, timeout_s)
+                wait = min(float(due_at[0]) - elapsed, timeout_s)
                 time.sleep(max(wait, 0.0))
                 return _empty(len(self.channels))
             stop = self._next + ready

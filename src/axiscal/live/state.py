@@ -134,6 +134,10 @@ class LiveState:
     def _update_history(self, t: np.ndarray, spatial: Mapping[str, np.ndarray]) -> None:
         bucket = np.floor(t / self._history_dt)
         new, first = np.unique(bucket, return_index=True)
+        if new[-1] < self._history_bucket:  # the stream's clock went back (a new connection or replay): start afresh
+            self._history[:] = np.nan
+            self._history_next = 0
+            self._history_bucket = -np.inf
         keep = new > self._history_bucket
         if not keep.any():
             return
