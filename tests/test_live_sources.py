@@ -2,9 +2,15 @@
 
 from __future__ import annotations
 
+import fcntl
+import os
 import socket
+import struct
+import sys
+import termios
 import threading
 import time
+import tty
 
 import numpy as np
 import pytest
@@ -134,7 +140,7 @@ def test_back_off_doubles_between_failed_connects_up_to_the_cap_and_then_connect
     expected = [0.02, 0.04, 0.08, 0.16, 0.16]
     assert len(gaps) >= len(expected)
     np.testing.assert_array_less(np.array(expected) - 0.002, gaps[: len(expected)])
-    np.testing.assert_array_less(gaps[: len(expected)], np.array(expected) + 0.05)
+    np.testing.assert_array_less(gaps[: len(expected)], np.array(expected) + 0.08)
     batch = _frames(module, system, 20)
     server = LineServer([encode_lines(batch.t_s, batch.values)], port=port)
     got = _drain(source, frames=20, timeout_s=3.0)
@@ -210,7 +216,7 @@ def test_source_specs_and_their_errors(tmp_path, system):
 
 
 def test_serial_source_without_pyserial_is_a_clear_error(monkeypatch, system):
-    monkeypatch.setitem(__import__("sys").modules, "serial", None)
+    monkeypatch.setitem(sys.modules, "serial", None)
     with pytest.raises(AxiscalError, match="needs the optional package pyserial"):
         SerialSource("/dev/null", system.channels)
 
@@ -230,3 +236,61 @@ def test_latency_ring_keeps_the_most_recent_delays_in_order():
         for last in (None, 1, 3, 7, 50):
             window = min(len(kept), 7 if last is None else min(last, 7))
             np.testing.assert_array_equal(pipeline.latencies_s(last), kept[len(kept) - window :])
+
+
+class _PtySerial:
+    """Stands in for pyserial's ``serial`` module: a ``Serial`` that opens a pseudo-terminal."""
+
+    class SerialException(OSError):
+        pass
+
+    class Serial:
+        def __init__(self, device, baud, timeout=0):
+            self.fd = os.open(device, os.O_RDWR | os.O_NOCTTY | os.O_NONBLOCK)
+            tty.setraw(self.fd)
+
+        def fileno(self):
+            return self.fd
+
+        @property
+        def in_waiting(self):
+            return struct.unpack("i", fcntl.ioctl(self.fd, termios.FIONREAD, b"\0\0\0\0"))[0]
+
+        def read(self, size):
+            try:
+                return os.read(self.fd, size)
+            except BlockingIOError:
+                return b""
+
+        def close(self):
+            os.close(self.fd)
+
+
+def test_serial_source_reads_the_line_protocol_and_retries_when_the_port_fails(monkeypatch, module, system):
+    monkeypatch.setitem(sys.modules, "serial", _PtySerial)
+    controller, device = os.openpty()
+    tty.setraw(device)
+    path = os.ttyname(device)
+    source = SerialSource(path, system.channels, baud=115200, backoff=Backoff(initial_s=0.01, maximum_s=0.05))
+    assert len(source.read(0.01)) == 0 and source.status.state == "streaming"
+    batch = _frames(module, system, 40)
+    data = encode_lines(batch.t_s, batch.values)
+
+    def write_all():
+        view = memoryview(data)
+        while view:
+            view = view[os.write(controller, view[:512]) :]
+
+    writer = threading.Thread(target=write_all, daemon=True)
+    writer.start()
+    got = _drain(source, frames=40)
+    writer.join(timeout=5)
+    np.testing.assert_array_equal(got.values, batch.values)
+    assert source.status.state == "streaming"
+    os.close(controller)
+    os.close(device)
+    deadline = time.monotonic() + 2.0
+    while source.status.retries == 0 and time.monotonic() < deadline:
+        source.read(0.02)
+    source.close()
+    assert source.status.retries >= 1 and "serial" in source.status.description
