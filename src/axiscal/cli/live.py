@@ -31,11 +31,15 @@ def _progress_text(summary: RunSummary, rate_hz: float) -> str:
 
 
 def _build_system(machine: str | None, source_kind: str, seed: int, load_kg: float):
-    """The measurement system and, for the sim source, a maker of the virtual module."""
+    """The measurement system and, for the sim source, a maker of the virtual module (built once)."""
     from axiscal.virtual import VirtualModule
 
-    def module():
-        return VirtualModule(seed=seed, load_kg=load_kg)
+    built: list[VirtualModule] = []
+
+    def module() -> VirtualModule:
+        if not built:
+            built.append(VirtualModule(seed=seed, load_kg=load_kg))
+        return built[0]
 
     if machine is None:
         return module().measurement_system(), module
