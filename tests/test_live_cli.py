@@ -148,3 +148,10 @@ def test_shipped_frames_replayed_with_the_shipped_machine_keep_their_two_faults(
     assert np.flatnonzero(record.columns["fault"]).tolist() == [50, 120]
     np.testing.assert_allclose(record.columns["ex_um"], direct["ex_um"], rtol=1e-8, atol=1e-9)
     assert np.isnan(record.columns["ex_um"][[50, 120]]).all()
+
+
+def test_recording_over_the_file_being_replayed_is_refused(run_cli, recorded):
+    before = recorded.read_bytes()
+    status, out, err = run_cli("live", "--no-server", "--source", f"replay:{recorded}", "--record", str(recorded))
+    assert status == 2 and "names the file being replayed" in err and err.count("\n") == 1
+    assert recorded.read_bytes() == before

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import errno
 import os
 import re
 import signal
@@ -122,3 +123,22 @@ def test_acknowledged_frames_survive_sigkill_of_the_live_process(tmp_path):
     frame = pd.read_csv(path, comment="#")
     assert len(frame) >= acknowledged
     np.testing.assert_allclose(frame["ex_um"].to_numpy()[:acknowledged], record.columns["ex_um"][:acknowledged])
+
+
+def test_a_failing_write_is_one_error_naming_the_file_and_what_was_kept(tmp_path, monkeypatch):
+    assert Path("/dev/full").exists(), "/dev/full (Linux) gives every write 'no space left on device'"
+    with pytest.raises(AxiscalError, match=r"/dev/full: cannot write the record file \(No space left on device\)"):
+        Recorder("/dev/full", CHANNELS, RESULTS)
+    recorder = Recorder(tmp_path / "r.csv", CHANNELS, RESULTS)
+    recorder.append(np.zeros(3), np.zeros((3, 2)), np.zeros(3, dtype=np.int64), {})
+    recorder.sync()
+
+    def disk_full(fd, data):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(os, "write", disk_full)
+    with pytest.raises(AxiscalError, match=r"r.csv: cannot write the record file \(No space left on device\); 3 frames were acknowledged"):
+        recorder.append(np.ones(1), np.zeros((1, 2)), np.zeros(1, dtype=np.int64), {})
+    monkeypatch.undo()
+    recorder.close()
+    assert len(read_record(tmp_path / "r.csv")) == 3

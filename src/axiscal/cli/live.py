@@ -7,6 +7,7 @@ import sys
 import threading
 import time
 from datetime import datetime, timezone
+from pathlib import Path
 
 import click
 
@@ -110,7 +111,9 @@ def live(
         raise AxiscalError(f"--update-hz must be positive, got {update_hz:g}")
     if load_kg < 0:
         raise AxiscalError(f"--load-kg must not be negative, got {load_kg:g}")
-    kind, _ = parse_source(source_spec)
+    kind, argument = parse_source(source_spec)
+    if kind == "replay" and record_path is not None and Path(record_path).resolve() == Path(argument).resolve():
+        raise AxiscalError("--record names the file being replayed; record to another file", path=record_path)
     system, module = _build_system(machine, kind, seed, load_kg)
     source = open_source(source_spec, system.channels, virtual_module=module, rate_hz=rate_hz, path=motion, pace=not no_pace)
     state = LiveState(system)

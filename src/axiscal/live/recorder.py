@@ -71,8 +71,12 @@ class Recorder:
         except OSError as exc:
             raise AxiscalError(f"cannot open the record file ({exc.strerror})", path=self.path) from None
         head = [FORMAT_LINE] + [f"# {c}" for c in comments] + [",".join(self.columns)]
-        os.write(self._fd, ("\n".join(head) + "\n").encode("utf-8"))
-        os.fsync(self._fd)
+        try:
+            os.write(self._fd, ("\n".join(head) + "\n").encode("utf-8"))
+            os.fsync(self._fd)
+        except OSError as exc:
+            os.close(self._fd)
+            raise AxiscalError(f"cannot write the record file ({exc.strerror})", path=self.path) from None
         self._lock = threading.Lock()
         self._written = 0
         self._acknowledged = 0
@@ -107,9 +111,13 @@ class Recorder:
             if self._closed.is_set():
                 raise AxiscalError("the record file is closed", path=self.path)
             view = memoryview(data)
-            while view:
-                done = os.write(self._fd, view)
-                view = view[done:]
+            try:
+                while view:
+                    view = view[os.write(self._fd, view) :]
+            except OSError as exc:
+                raise AxiscalError(
+                    f"cannot write the record file ({exc.strerror}); {self._acknowledged} frames were acknowledged", path=self.path
+                ) from None
             self._written += n
 
     def sync(self) -> int:
