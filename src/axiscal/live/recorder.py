@@ -18,6 +18,7 @@ missing cells at its end.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import threading
@@ -141,10 +142,11 @@ class Recorder:
                     return
 
     def close(self) -> None:
-        """Sync and close; every frame written is acknowledged afterwards."""
+        """Sync and close; every frame written is acknowledged afterwards (unless the disk refuses the sync)."""
         if self._closed.is_set():
             return
-        self.sync()
+        with contextlib.suppress(OSError):
+            self.sync()
         with self._lock:
             self._closed.set()
             os.close(self._fd)
