@@ -16,20 +16,11 @@ import cProfile
 import os
 import platform
 import pstats
-import time
 
 import numpy as np
+from timing import best_time
 
 from axiscal.virtual import VirtualModule
-
-
-def best_time(function, repeat: int) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        start = time.perf_counter()
-        function()
-        best = min(best, time.perf_counter() - start)
-    return best
 
 
 def main() -> None:

@@ -25,3 +25,17 @@ def run_cli(capsys):
         return status, captured.out, captured.err
 
     return run
+
+
+@pytest.fixture(scope="module")
+def module():
+    """The virtual XZ module of paper 000 (seed 0); test files may define their own ``module``."""
+    from axiscal.virtual import VirtualModule
+
+    return VirtualModule(seed=0)
+
+
+@pytest.fixture(scope="module")
+def system(module):
+    """The calibrated measurement system of :func:`module`."""
+    return module.measurement_system()

@@ -20,17 +20,6 @@ from axiscal.live.server import LiveServer, create_app
 from axiscal.live.sources import SimSource
 from axiscal.live.recorder import Recorder, read_record
 from axiscal.live.state import LiveState, axis_error_columns, result_columns
-from axiscal.virtual import VirtualModule
-
-
-@pytest.fixture(scope="module")
-def module():
-    return VirtualModule(seed=0)
-
-
-@pytest.fixture(scope="module")
-def system(module):
-    return module.measurement_system()
 
 
 def _fed_state(module, system, recorder=None):

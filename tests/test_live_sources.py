@@ -21,17 +21,6 @@ from axiscal.live.protocol import FAULT_MALFORMED, FrameBatch, encode_lines, hea
 from axiscal.live.recorder import Recorder, read_record
 from axiscal.live.sources import Backoff, ReplaySource, SerialSource, SimSource, TcpSource, open_source, parse_source
 from axiscal.live.state import LiveState, result_columns
-from axiscal.virtual import VirtualModule
-
-
-@pytest.fixture(scope="module")
-def module():
-    return VirtualModule(seed=0)
-
-
-@pytest.fixture(scope="module")
-def system(module):
-    return module.measurement_system()
 
 
 class LineServer:

@@ -30,6 +30,7 @@ import numpy as np
 from numpy.polynomial import legendre
 
 from axiscal.errors import AxiscalError
+from axiscal.io import read_text
 
 FORMAT = "axiscal-sensor-calibration"
 VERSION = 1
@@ -333,14 +334,11 @@ def calibration_from_dict(data: Mapping) -> Calibration:
 def load_calibration(path: str | Path) -> Calibration:
     """Read a calibration JSON file; errors name the file."""
     path = Path(path)
+    text = read_text(path)
     try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise AxiscalError("file not found", path=path) from None
+        data = json.loads(text)
     except json.JSONDecodeError as exc:
         raise AxiscalError(f"malformed JSON: {exc.msg}", path=path, line=exc.lineno) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise AxiscalError(f"cannot read file ({exc})", path=path) from None
     try:
         return calibration_from_dict(data)
     except AxiscalError as exc:

@@ -85,14 +85,20 @@ def read_csv(path: str | Path, *, min_rows: int = 1) -> CsvTable:
         If the file is missing or unreadable, has no header, has a row with a different number of
         cells than the header, a repeated column name, or fewer than ``min_rows`` data rows.
     """
+    text = read_text(path)
+    return parse_csv(text.splitlines(), path=str(path), min_rows=min_rows)
+
+
+def read_text(path: str | Path) -> str:
+    """The text of a UTF-8 file (a byte-order mark is dropped); a missing or unreadable file raises
+    AxiscalError naming it."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8-sig")
+        return path.read_text(encoding="utf-8-sig")
     except FileNotFoundError:
         raise AxiscalError("file not found", path=path) from None
     except (OSError, UnicodeDecodeError) as exc:
         raise AxiscalError(f"cannot read file ({exc})", path=path) from None
-    return parse_csv(text.splitlines(), path=str(path), min_rows=min_rows)
 
 
 def parse_csv(lines: Iterable[str], *, path: str = "<input>", min_rows: int = 1) -> CsvTable:
@@ -161,15 +167,11 @@ def read_toml(path: str | Path) -> dict:
     import re
     import tomllib
 
-    path = Path(path)
+    text = read_text(path)
     try:
-        return tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise AxiscalError("file not found", path=path) from None
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         # Python 3.11 has no lineno attribute: the line is only in the message
         found = re.search(r"\(at line (\d+)", str(exc))
         message = str(exc).split(" (at line")[0]
         raise AxiscalError(f"malformed TOML: {message}", path=path, line=int(found.group(1)) if found else None) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise AxiscalError(f"cannot read file ({exc})", path=path) from None

@@ -16,7 +16,7 @@ import numpy as np
 
 from axiscal.cli.common import echo_json, ensure_parent
 from axiscal.errors import AxiscalError
-from axiscal.io import CsvTable, parse_csv, read_csv
+from axiscal.io import CsvTable, parse_csv, read_csv, read_text
 
 PATHS = ("diagonal", "raster", "back-and-forth")
 
@@ -52,13 +52,7 @@ def read_frames(path: str | Path, channels: tuple[str, ...]) -> dict[str, np.nda
     pipeline, not refused. A last line without its newline (a record cut short by a crash) is
     dropped. A missing column or a bad time stamp is an error naming the file.
     """
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except FileNotFoundError:
-        raise AxiscalError("file not found", path=path) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise AxiscalError(f"cannot read file ({exc})", path=path) from None
+    text = read_text(path)
     lines = text.split("\n")
     if not text.endswith("\n"):
         lines = lines[:-1]
