@@ -1,9 +1,9 @@
 """Write the example error tables in examples/ (run from the repository root: python examples/make_examples.py).
 
 The XZ module is paper 000's 2-axis linear module: 190 mm strokes, squareness EB0Z = -42.4 arcsec,
-functional point 40 mm below the Z carriage. Its error motions are plausible smooth curves of the
-sizes such modules show (positioning and straightness a few um, angles some tens of urad), not
-measurements. The XFYZ machine is a small 3-axis machine tool used by the benchmark and tests.
+functional point 40 mm below the Z carriage. Its error tables are the true error motions of the
+virtual module (axiscal.virtual), plausible smooth curves, not measurements. The XFYZ machine is a
+small 3-axis machine tool used by the benchmark and tests.
 """
 
 from __future__ import annotations
@@ -32,26 +32,20 @@ def write_table(path: Path, position_mm: np.ndarray, columns: dict[str, np.ndarr
 
 
 def xz_module() -> None:
+    """Error tables of the XZ module: the true error motions of the virtual module of
+    :mod:`axiscal.virtual` (seed 0, no load) sampled every 10 mm, so that the demo's offline model
+    and its simulated live measurement describe one and the same module."""
+    from axiscal.tables import component_names
+    from axiscal.virtual import VirtualModule
+
+    module = VirtualModule(seed=0, noise=False)
     q = np.arange(0.0, 191.0, 10.0)
-    stroke = 190.0
-    x = {
-        "EXX_um": 0.021 * q + smooth(q, stroke, [(0.8, 3.0, 0.4)]),
-        "EYX_um": smooth(q, stroke, [(1.6, 0.5, 0.0), (0.4, 2.0, 1.0)]),
-        "EZX_um": smooth(q, stroke, [(-2.2, 0.5, 0.0), (0.3, 1.5, 0.7)]),
-        "EAX_urad": smooth(q, stroke, [(12.0, 0.5, 0.3), (3.0, 2.0, 0.0)]),
-        "EBX_urad": 18.0 + smooth(q, stroke, [(25.0, 0.5, 0.0), (5.0, 1.5, 1.2)]),
-        "ECX_urad": smooth(q, stroke, [(-20.0, 0.5, 0.6), (4.0, 2.5, 0.0)]),
-    }
-    z = {
-        "EXZ_um": smooth(q, stroke, [(2.8, 0.5, 0.0), (0.5, 2.0, 0.3)]),
-        "EYZ_um": smooth(q, stroke, [(-1.3, 0.5, 0.2), (0.3, 1.5, 0.0)]),
-        "EZZ_um": -0.015 * q + smooth(q, stroke, [(0.6, 2.5, 1.0)]),
-        "EAZ_urad": smooth(q, stroke, [(15.0, 0.5, 0.0), (4.0, 1.5, 0.5)]),
-        "EBZ_urad": smooth(q, stroke, [(-22.0, 0.5, 0.4), (3.0, 2.0, 0.0)]),
-        "ECZ_urad": smooth(q, stroke, [(9.0, 0.5, 1.0), (2.0, 3.0, 0.0)]),
-    }
-    write_table(DATA / "xz_module" / "x_errors.csv", q, x)
-    write_table(DATA / "xz_module" / "z_errors.csv", q, z)
+    for letter in ("X", "Z"):
+        values = module.true_errors(letter, q * 1e-3)
+        names = component_names(letter)
+        columns = {f"{n}_um": values[k] * 1e6 for k, n in enumerate(names[:3])}
+        columns |= {f"{n}_urad": values[3 + k] * 1e6 for k, n in enumerate(names[3:])}
+        write_table(DATA / "xz_module" / f"{letter.lower()}_errors.csv", q, columns)
 
 
 def xfyz_machine() -> None:
@@ -71,25 +65,19 @@ def xfyz_machine() -> None:
 
 
 def xz_diagonal_readings() -> None:
-    """Simulated interferometer readings on the XZ diagonal (19 steps of 10 mm per axis).
+    """Laser interferometer readings on the XZ diagonal (19 steps of 10 mm per axis) of the same
+    virtual module carrying 2 kg on its Z slide, with the interferometer's noise. The error tables
+    were taken without the load, so the offline model misses what the load does to the angular
+    errors: the gap that paper 000's live measurement closes."""
+    from axiscal.virtual import VirtualModule
 
-    The 'true' machine differs from the model by a smooth unmodelled error along the diagonal
-    (about 3 um) plus 0.2 um of reading noise, so the model removes most but not all of the error,
-    as in paper 000 section 5.
-    """
-    import axiscal
-    from axiscal.diagonal import diagonal_check
-
-    machine = axiscal.load_machine(DATA / "xz_module" / "machine.toml")
-    result = diagonal_check(machine, {"X": 0.0, "Z": 0.0}, {"X": 0.19, "Z": 0.19}, 19)
-    rng = np.random.default_rng(3)
-    s = result.nominal_m / result.nominal_m[-1]
-    unmodelled = 1.5e-6 * np.sin(2 * np.pi * 1.2 * s) + 1.0e-6 * s
-    measured = result.predicted_m + unmodelled + rng.normal(0.0, 0.2e-6, s.size)
-    measured[0] = 0.0
-    lines = ["# Simulated laser interferometer on the XZ diagonal of examples/xz_module (see make_examples.py)"]
+    module = VirtualModule(seed=0, load_kg=2.0)
+    q = np.arange(20) * 0.010
+    measured = module.laser_diagonal({"X": q, "Z": q})
+    nominal = np.hypot(q, q)
+    lines = ["# Simulated laser interferometer on the XZ diagonal of the virtual module with 2 kg on Z (examples/make_examples.py)"]
     lines.append("nominal_mm,measured_mm")
-    lines += [f"{n * 1e3:.6f},{m * 1e3:.6f}" for n, m in zip(result.nominal_m, measured)]
+    lines += [f"{n * 1e3:.6f},{m * 1e3:.6f}" for n, m in zip(nominal, measured)]
     (DATA / "xz_module" / "diagonal_laser.csv").write_text("\n".join(lines) + "\n")
 
 
