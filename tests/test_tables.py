@@ -87,3 +87,29 @@ def test_component_names():
     assert component_names("Z") == ("EXZ", "EYZ", "EZZ", "EAZ", "EBZ", "ECZ")
     with pytest.raises(AxiscalError):
         component_names("A")
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    st.integers(0, 2**31 - 1),
+    st.sampled_from(["nm", "um", "mm"]),
+    st.sampled_from(["urad", "mrad", "arcsec"]),
+)
+def test_written_tables_read_back_in_si_whatever_the_units(tmp_path_factory, seed, length_unit, angle_unit):
+    from axiscal.units import ANGLE_UNITS, LENGTH_UNITS
+
+    rng = np.random.default_rng(seed)
+    rows = int(rng.integers(2, 30))
+    position_mm = np.cumsum(rng.uniform(0.5, 20.0, rows))
+    values = rng.normal(size=(6, rows)) * np.array([1e-5] * 3 + [1e-4] * 3)[:, None]
+    names = component_names("Y")
+    header = ["position_mm"] + [f"{n}_{length_unit if k < 3 else angle_unit}" for k, n in enumerate(names)]
+    factors = [LENGTH_UNITS[length_unit]] * 3 + [ANGLE_UNITS[angle_unit]] * 3
+    lines = [",".join(header)]
+    for j in range(rows):
+        lines.append(",".join([repr(position_mm[j])] + [repr(values[k, j] / factors[k]) for k in range(6)]))
+    path = tmp_path_factory.mktemp("t") / "y.csv"
+    path.write_text("\n".join(lines) + "\n")
+    table = read_error_table(path, "Y")
+    np.testing.assert_allclose(table.position_m, position_mm * 1e-3, rtol=1e-15)
+    np.testing.assert_allclose(table.values, values, rtol=1e-12, atol=1e-24)
