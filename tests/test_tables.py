@@ -107,7 +107,7 @@ def test_written_tables_read_back_in_si_whatever_the_units(tmp_path_factory, see
     factors = [LENGTH_UNITS[length_unit]] * 3 + [ANGLE_UNITS[angle_unit]] * 3
     lines = [",".join(header)]
     for j in range(rows):
-        lines.append(",".join([repr(position_mm[j])] + [repr(values[k, j] / factors[k]) for k in range(6)]))
+        lines.append(",".join([repr(float(position_mm[j]))] + [repr(float(values[k, j] / factors[k])) for k in range(6)]))
     path = tmp_path_factory.mktemp("t") / "y.csv"
     path.write_text("\n".join(lines) + "\n")
     table = read_error_table(path, "Y")
