@@ -366,6 +366,19 @@ BAD_FILES = {
         "give actual_<unit>",
         1,
     ),
+    # an environment value the refractive index refuses names the row it is on
+    "pressure in hPa on one row": (
+        ["target_mm,run,direction,actual_mm,air_temperature_c,pressure_pa,humidity_pct"]
+        + [r + (",20,1013.2,50" if k == 6 else ",20,101320,50") for k, r in enumerate(rows()[1:])],
+        "air pressure 1013.2 Pa is outside",
+        8,
+    ),
+    "temperature in kelvin on one row": (
+        ["target_mm,run,direction,actual_mm,air_temperature_c,pressure_pa,humidity_pct,material_temperature_c"]
+        + [r + (",293.4,101320,50,20" if k == 11 else ",20,101320,50,20") for k, r in enumerate(rows()[1:])],
+        "not kelvin",
+        13,
+    ),
 }
 
 

@@ -88,6 +88,26 @@ def _sort_key(label: str) -> tuple[int, float, str]:
         return (1, 0.0, label)
 
 
+def _first_refused_line(table: CsvTable, readings_m: np.ndarray, environment: dict, settings: dict) -> int | None:
+    """Line of the first row whose environment values the compensation refuses (None: not row-specific).
+
+    Only called after the whole-column call failed, so the per-row loop costs nothing on good files.
+    """
+    from axiscal.interferometer import compensated_length
+
+    try:  # a refused setting (wavelength, CO2, method) is no row's fault
+        compensated_length(0.0, air_temperature_c=20.0, pressure_pa=101325.0, humidity_pct=50.0, **settings)
+    except AxiscalError:
+        return None
+    for k in range(len(table)):
+        row = {name: (None if values is None else values[k : k + 1]) for name, values in environment.items()}
+        try:
+            compensated_length(readings_m[k : k + 1], **row, **settings)
+        except AxiscalError:
+            return table.lines[k]
+    return None
+
+
 def read_positioning_run(
     path: str | Path,
     *,
@@ -150,22 +170,19 @@ def read_positioning_run(
         from axiscal.interferometer import compensated_length
 
         options = {} if wavelength_nm is None else {"wavelength_nm": wavelength_nm}
+        environment = {
+            "air_temperature_c": table.numeric("air_temperature_c"),
+            "pressure_pa": table.numeric("pressure_pa"),
+            "humidity_pct": table.numeric("humidity_pct"),
+            "material_temperature_c": (
+                np.column_stack([table.numeric(c) for c in material_columns]) if material_columns else None
+            ),
+        }
+        settings = {"expansion_per_k": expansion_per_k, "co2_ppm": co2_ppm, "method": method, **options}
         try:
-            values_m = compensated_length(
-                values_m,
-                air_temperature_c=table.numeric("air_temperature_c"),
-                pressure_pa=table.numeric("pressure_pa"),
-                humidity_pct=table.numeric("humidity_pct"),
-                material_temperature_c=(
-                    np.column_stack([table.numeric(c) for c in material_columns]) if material_columns else None
-                ),
-                expansion_per_k=expansion_per_k,
-                co2_ppm=co2_ppm,
-                method=method,
-                **options,
-            )
+            values_m = compensated_length(values_m, **environment, **settings)
         except AxiscalError as exc:
-            raise exc.located(path=table.path) from None
+            raise exc.located(path=table.path, line=_first_refused_line(table, values_m, environment, settings)) from None
     deviations_m = values_m - targets_m if stem == "actual" else values_m
 
     runs = [r.strip() for r in table.text("run")]
