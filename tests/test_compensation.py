@@ -326,3 +326,82 @@ def test_compensate_bad_input(run_cli, examples, tmp_path):
     bad.write_text("target_mm,run,direction,deviation_um\n0,1,+,1\n0,1,-,x\n")
     status, _, err = run_cli("compensate", bad, "--format", "linuxcnc")
     assert status == 2 and err.startswith(f"axiscal: error: {bad}:3:")
+
+
+# ------------------------------------------------------------ each file read back as its control reads it
+# The residual tests above use the table objects; these read the written text alone (nothing of the
+# object), rebuild the correction the control applies from it, and apply it to the measured means.
+
+
+def fanuc_control(text: str, *, reference_position_m: float, unit_m: float, increment_m: float = 1e-6):
+    """FANUC pitch error compensation from the parameter tape: returns correction(x, direction) in metres.
+
+    Point N sits at reference + (N - 3620) * 3624; its value is the change of the correction over
+    the section N-1 .. N; the correction is 0 at the reference (3627 for - travel, bidirectional)."""
+    params, data = tape(text)
+    ref, first, last = params[3620], params[3621], params[3622]
+    unit = params[3623] * unit_m
+    numbers = np.arange(first - 1, last + 1)
+    nodes = reference_position_m + (numbers - ref) * params[3624] * increment_m
+
+    def absolute(point_value, at_reference):
+        steps = np.array([point_value(n) for n in numbers[1:]])
+        cumulative = np.concatenate([[0], np.cumsum(steps)])
+        return (cumulative - cumulative[ref - (first - 1)] + at_reference) * unit
+
+    plus = absolute(lambda n: data[n], 0)
+    minus = absolute(lambda n: data[params[3626] + n - first], params[3627]) if 3626 in params else plus
+    return lambda x, d: np.interp(x, nodes, plus if d == "+" else minus), nodes
+
+
+@pytest.mark.parametrize("bidirectional", [False, True])
+@pytest.mark.parametrize("seed", [None, 1, 2])
+def test_fanuc_tape_applied_as_the_control_does(curve, bidirectional, seed):
+    c = curve if seed is None else random_curve(np.random.default_rng(seed))
+    reference = float(c.positions[0]) + 0.2
+    table = fanuc_table(c, interval_m=0.025, reference_position_m=reference, bidirectional=bidirectional)
+    correction, nodes = fanuc_control(table.text(), reference_position_m=reference, unit_m=1e-6)
+    for d in "+-":
+        e = c.at(nodes, d if bidirectional else "mean")
+        # the table is zero at the reference (3627 relative to it): a deviation there is the reference setting's
+        e_ref = float(c.at(reference, "+" if bidirectional else "mean"))
+        assert np.abs(e - e_ref + correction(nodes, d)).max() <= 0.5e-6 + EPS
+    assert table.correction(nodes, "-") == pytest.approx(correction(nodes, "-"), abs=1e-15)
+
+
+def siemens_control(text: str):
+    """SINUMERIK MSEC from the INI text: correction(x) = -(value interpolated over MIN + i STEP), mm -> m."""
+    values, params = siemens_parse(text)
+    nodes = params["MIN"] + params["STEP"] * np.arange(len(values))
+    assert nodes[-1] == pytest.approx(params["MAX"])
+    return lambda x: -np.interp(x / MM, nodes, values) * MM, nodes * MM
+
+
+@pytest.mark.parametrize("seed", [None, 1, 2])
+def test_siemens_file_applied_as_the_control_does(curve, seed):
+    c = curve if seed is None else random_curve(np.random.default_rng(seed))
+    table = siemens_table(c, step_m=0.005)
+    correction, nodes = siemens_control(table.text())
+    # a positive value moves the axis negative (K3): what is left is e + correction, within 0.05 um
+    assert np.abs(c.at(nodes, "mean") + correction(nodes)).max() <= 0.05e-6 + EPS
+
+
+def heidenhain_control(text: str):
+    """HEIDENHAIN .COM from its text: the control subtracts the error column (plus BACKLASH in -)."""
+    lines = text.splitlines()
+    header = lines[1].split()
+    rows = np.array([[float(cell) for cell in line.split()] for line in lines[2:-1]])
+    position, error = rows[:, 1], rows[:, 2]
+    extra = rows[:, 3] if "BACKLASH" in header else np.zeros_like(error)
+    return lambda x, d: -np.interp(x / MM, position, error + (extra if d == "-" else 0.0)) * MM
+
+
+@pytest.mark.parametrize("backlash", [True, False])
+@pytest.mark.parametrize("seed", [None, 1, 2])
+def test_heidenhain_file_applied_as_the_control_does(curve, backlash, seed):
+    c = curve if seed is None else random_curve(np.random.default_rng(seed))
+    correction = heidenhain_control(heidenhain_table(c, backlash=backlash).text())
+    for d in "+-":
+        e = c.at(c.positions, d if backlash else "mean")
+        # + reads one rounded value, - the sum of two: within one step of 0.1 um
+        assert np.abs(e + correction(c.positions, d)).max() <= (0.05e-6 if d == "+" or not backlash else 0.1e-6) + EPS
