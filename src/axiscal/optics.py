@@ -143,10 +143,13 @@ def refract(directions: np.ndarray, normal: np.ndarray, index_ratio: float) -> n
     cos_in = np.sum(directions * n, axis=-1, keepdims=True)
     n = np.where(cos_in > 0.0, -n, n)
     cos_in = -np.abs(cos_in)
-    radicand = 1.0 - index_ratio**2 + index_ratio**2 * cos_in**2
+    tangential = directions - n * cos_in
+    # 1 - mu^2 + mu^2 (x.N)^2 written as 1 - mu^2 |x - N (x.N)|^2: the same for a unit x, without
+    # the cancellation of two terms of size mu^2 (digits lost near normal incidence or for large mu)
+    radicand = 1.0 - index_ratio**2 * np.sum(tangential * tangential, axis=-1, keepdims=True)
     if np.any(radicand < 0.0):
         raise AxiscalError("total internal reflection at a refracting face: no refracted ray")
-    return index_ratio * (directions - n * cos_in) - n * np.sqrt(radicand)
+    return index_ratio * tangential - n * np.sqrt(radicand)
 
 
 @dataclass(frozen=True)
