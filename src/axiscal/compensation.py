@@ -23,8 +23,8 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.positioning import TargetStatistics
+from axiscal.units import MM
 
-MM = 1e-3
 LINUXCNC_MAX_ENTRIES = 256
 HEIDENHAIN_MAX_ENTRIES = 256
 DIRECTIONS = ("+", "-")
@@ -263,7 +263,12 @@ class FanucTable:
         return cumulative - cumulative[k_ref] + at_reference
 
     def correction(self, x, direction: str) -> np.ndarray:
-        """The correction the control applies at commanded positions ``x`` (metres), interpolated between points."""
+        """The correction at commanded positions ``x`` (metres), interpolated linearly between points.
+
+        Exact at the compensation points. A control without interpolated pitch error compensation
+        outputs each section's increment as a step at the compensation point, so between points it
+        may differ from this by up to one increment (see docs/compensation.md).
+        """
         _check_direction(direction)
         if direction == "-" and self.values_down is not None:
             absolute = self._absolute(self.values_down, self.reference_value_down)

@@ -68,9 +68,13 @@ def compensate_command(run_csv, fmt, output, comp_type, interval_mm, magnificati
     else:
         click.echo(text, nl=False)
     left = max(float(np.abs(residuals(table, curve, targets, d, offset=offset)).max()) for d in directions)
+    zero_point = (
+        f"; the table is zero at the reference position, whose own deviation {offset / UM:+.3f} um is left"
+        f" to the reference position setting" if offset else ""
+    )
     click.echo(
         f"axiscal: note: {what}; largest error left at the measured targets {left / UM:.3f} um"
-        f" (table resolution {table.resolution / UM:g} um)",
+        f" (table resolution {table.resolution / UM:g} um){zero_point}",
         err=True,
     )
 
