@@ -66,6 +66,13 @@ def test_plot_is_written(run_cli, examples, tmp_path):
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+@pytest.mark.parametrize("standard", ["iso230-2:1988", "vdi3441"])
+def test_plot_of_raw_readings_and_other_standards(run_cli, examples, tmp_path, standard):
+    out = tmp_path / "raw.svg"
+    status, _, _ = run_cli("positioning", examples / "laser_raw_run.csv", "--standard", standard, "--plot", out)
+    assert status == 0 and out.read_text().lstrip().startswith("<?xml")
+
+
 def test_one_run_is_flagged_not_invented(run_cli, tmp_path):
     lines = ["target_mm,run,direction,deviation_um"]
     for d, v in (("+", 1.0), ("-", -1.0)):
@@ -81,6 +88,8 @@ def test_one_run_is_flagged_not_invented(run_cli, tmp_path):
     assert "warning" in err and "cannot be estimated" in err
     status, out, err = run_cli("positioning", path)
     assert "n/a" in out and "warning" in err
+    status, _, _ = run_cli("positioning", path, "--plot", tmp_path / "one.png")  # no bands, a note instead
+    assert status == 0 and (tmp_path / "one.png").stat().st_size > 10_000
 
 
 BAD = {

@@ -96,7 +96,7 @@ def positioning_command(run_csv, standard, as_json, plot_path, wavelength_nm, ex
     if plot_path:
         from axiscal.positioning_plot import plot_positioning
 
-        plot_positioning(data.run, result, plot_path)
+        plot_positioning(data.run, result, plot_path, compensated=data.compensated)
     if as_json:
         echo_json(payload(data, result))
     else:
