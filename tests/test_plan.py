@@ -109,3 +109,10 @@ def test_targets_always_increase_and_stay_in_the_travel(start, length, extra, se
     t = plan_targets(start, start + length, count, seed=seed)
     assert t.size == count and t[0] == start and t[-1] == start + length
     assert np.all(np.diff(t) > 0)
+
+
+def test_a_plan_without_a_seed_records_the_one_it_used():
+    plan = plan_test(0.0, 0.4, 5, runs=2)
+    assert isinstance(plan.seed, int)
+    assert np.array_equal(plan.targets, plan_test(0.0, 0.4, 5, runs=2, seed=plan.seed).targets)
+    assert f"seed {plan.seed}" in cycle_csv(plan).splitlines()[0]

@@ -44,7 +44,8 @@ class PositioningTestPlan:
     cycle : str
         "linear" or "pilgrim".
     runs, overrun, seed :
-        The request the plan was made from (overrun in metres).
+        The request the plan was made from (overrun in metres); ``seed`` is the one actually used
+        (drawn from the operating system's entropy when none was given), so the plan can be made again.
     """
 
     targets: np.ndarray
@@ -55,7 +56,7 @@ class PositioningTestPlan:
     cycle: str
     runs: int
     overrun: float
-    seed: int | None
+    seed: int
 
     @property
     def readings(self) -> int:
@@ -117,8 +118,11 @@ def plan_test(
 
     Parameters
     ----------
-    start_m, end_m, count, seed :
+    start_m, end_m, count :
         See :func:`plan_targets`.
+    seed : int, optional, keyword-only
+        Seed of the target offsets (see :func:`plan_targets`). Default: a fresh seed, drawn from the
+        operating system's entropy and recorded in the plan (and in the CSV and G-code headers).
     runs : int, keyword-only
         Runs in each direction (default 5, as ISO 230-2 asks; 1 is accepted for axes over 2 m).
     overrun_m : float, metres, keyword-only
@@ -139,6 +143,8 @@ def plan_test(
         raise AxiscalError(f"runs must be at least 1, got {runs}")
     if not math.isfinite(overrun_m) or overrun_m <= 0:
         raise AxiscalError(f"the overrun must be positive, got {overrun_m / MM:g} mm")
+    if seed is None:
+        seed = int(np.random.SeedSequence().generate_state(1)[0])
     targets = plan_targets(start_m, end_m, count, seed=seed)
     moves: list[tuple[float, int, str, float]] = []
     nan = math.nan

@@ -17,7 +17,7 @@ from axiscal.units import MM
 @click.option("--targets", "count", type=int, required=True, help="Number of targets (ISO 230-2: >= 5 per metre, >= 5).")
 @click.option("--runs", type=int, default=5, show_default=True, help="Runs in each direction.")
 @click.option("--overrun-mm", type=float, default=5.0, show_default=True, help="Travel beyond a target before approaching it.")
-@click.option("--seed", type=int, default=None, help="Seed of the random target offsets (same seed, same targets).")
+@click.option("--seed", type=int, default=None, help="Seed of the random target offsets (same seed, same targets) [a fresh one, printed in the header].")
 @click.option("--cycle", type=click.Choice(CYCLES), default="linear", show_default=True, help="Test cycle.")
 @click.option("--gcode", "gcode_path", type=click.Path(dir_okay=False), help="Also write the cycle as a G-code program.")
 @click.option("--axis", default="X", show_default=True, help="Axis letter in the G-code program.")
