@@ -21,6 +21,7 @@ def test_squareness_reproduces_paper_002(run_cli, examples):
     assert status == 0, err
     body = json.loads(out)
     assert math.floor(body["squareness_arcsec"] * 10) / 10 == 20.9
+    assert body["convention"] == "included-angle"  # the default: eq 21's value
     assert body["iso_term"] == "EC0Y" and body["iso_value_arcsec"] == body["squareness_arcsec"]
     assert body["included_angle_deg"] == pytest.approx(90 + body["squareness_arcsec"] / 3600, abs=1e-12)
     assert body["slope_first"] == pytest.approx(-0.00044783, abs=1e-11)
@@ -30,13 +31,15 @@ def test_squareness_reproduces_paper_002(run_cli, examples):
 def test_squareness_text_conventions_and_planes(run_cli, examples, tmp_path):
     status, out, _ = run_cli(*_sq(examples))
     assert status == 0 and "EC0Y" in out and "+23.65 arcsec" in out
-    status, out, _ = run_cli(*_sq(examples, "--plane", "XZ", "--json"))
+    status, out, _ = run_cli(*_sq(examples, "--plane", "XZ", "--json", "--convention", "iso"))
     iso = json.loads(out)
-    status, out, _ = run_cli(*_sq(examples, "--plane", "xz", "--json", "--convention", "included-angle"))
+    status, out, _ = run_cli(*_sq(examples, "--plane", "xz", "--json"))
     included = json.loads(out)
-    assert iso["iso_term"] == "EB0Z"
+    assert iso["iso_term"] == "EB0Z" and included["convention"] == "included-angle"
+    # XZ: the same axes, opposite signs (EB0Z = -(included angle - 90 deg))
+    assert included["squareness_arcsec"] == pytest.approx(23.654, abs=1e-3)
     assert iso["squareness_arcsec"] == pytest.approx(-included["squareness_arcsec"])
-    assert iso["iso_value_arcsec"] == included["iso_value_arcsec"]
+    assert iso["iso_value_arcsec"] == included["iso_value_arcsec"] == iso["squareness_arcsec"]
     status, out, _ = run_cli(*_sq(examples, "--reference", "end-points", "--json"))
     assert json.loads(out)["reference"] == "end-points"
     plot = tmp_path / "plots" / "squareness.png"
@@ -51,6 +54,7 @@ def test_optics_pentaprism(run_cli, tmp_path):
     assert status == 0, err
     body = json.loads(out)
     assert len(body["rotation_arcmin"]) == 11
+    assert body["translation_mm"] == [-2.0, -1.0, 0.0, 1.0, 2.0]
     assert max(abs(v) for v in body["deviation_change_arcsec"]["X"]) < 1e-9
     assert max(abs(v) for v in body["deviation_change_arcsec"]["Y"]) < 1e-9
     assert all(abs(v) < 1e-9 for axis in "XYZ" for v in body["translation_deviation_change_arcsec"][axis])
@@ -108,6 +112,8 @@ def test_cmm_gauge_blocks(run_cli):
         (("--reference", "best"), "--reference"),
         (("--convention", "degrees"), "convention"),
         (("--prism-deviation-arcsec", "nan"), "finite"),
+        (("--prism-deviation-arcsec", "3600"), "not a pentaprism"),
+        (("--plot", "/proc/no-such-folder/plot.png"), "cannot write"),
     ],
 )
 def test_squareness_bad_options(run_cli, examples, args, message):
@@ -134,7 +140,7 @@ def test_squareness_bad_files(run_cli, examples, tmp_path):
     assert status == 2 and "parallel" in err and len(err.strip().splitlines()) == 1
 
 
-@pytest.mark.parametrize("value", ["8.05,27.1", "a,b,c", "1,2,inf"])
+@pytest.mark.parametrize("value", ["8.05,27.1", "a,b,c", "1,2,inf", "8.05,27.1,-996"])
 def test_cmm_bad_squareness(run_cli, examples, value):
     status, _, err = run_cli("cmm", "compensate", "--squareness-arcmin", value, examples / "cmm_points.csv")
     assert status == 2 and "--squareness-arcmin" in err and len(err.strip().splitlines()) == 1
@@ -154,3 +160,10 @@ def test_cmm_bad_points_and_options(run_cli, tmp_path):
     assert status == 2 and "at least 1" in err and len(err.strip().splitlines()) == 1
     status, _, err = run_cli("optics", "pentaprism", "--steps", "1")
     assert status == 2 and "--steps" in err
+    status, _, err = run_cli("optics", "pentaprism", "--plot", "/proc/no-such-folder/fig5.png")
+    assert status == 2 and "cannot write" in err and len(err.strip().splitlines()) == 1
+    points.write_text("x_mm,y_mm,z_mm\n1,2,3\n")
+    status, _, err = run_cli(
+        "cmm", "compensate", "--squareness-arcmin", "1,2,3", points, "-o", "/proc/no-such-folder/out.csv"
+    )
+    assert status == 2 and "cannot write" in err and len(err.strip().splitlines()) == 1

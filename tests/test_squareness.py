@@ -43,6 +43,7 @@ def test_paper_002_worked_case():
     expected = (_angle_between_common_lines(K_FIRST, K_SECOND_COMMON) - math.pi / 2) / ARCSEC - 2.7
     assert value == pytest.approx(expected, abs=1e-6)
     assert value == pytest.approx(20.9538, abs=1e-4)
+    assert result.convention == "included-angle"
     assert result.iso_term == "EC0Y" and result.iso_value_rad == result.squareness_rad
     assert math.degrees(result.included_angle_rad) == pytest.approx(90 + 20.9538 / 3600, abs=1e-8)
 
@@ -155,6 +156,10 @@ def test_bad_input():
         squareness_from_slopes(0.0, 0.0, plane="XW")
     with pytest.raises(AxiscalError, match="convention"):
         squareness_from_slopes(0.0, 0.0, convention="degrees")
+    with pytest.raises(AxiscalError, match="not a pentaprism"):
+        squareness_from_slopes(0.0, 0.0, prism_deviation_rad=math.radians(1.0))
+    with pytest.raises(AxiscalError, match="finite"):
+        squareness_from_slopes(0.0, float("nan"))
     with pytest.raises(AxiscalError, match="unknown reference"):
         squareness(x, 0 * x, x, 0 * x, reference="best")
 
@@ -188,8 +193,9 @@ def test_read_run_and_its_errors(tmp_path):
     st.sampled_from(["XY", "XZ", "YZ"]),
 )
 def test_conventions_agree_property(k1, k2, d, plane):
-    iso = squareness_from_slopes(k1, k2, plane=plane, prism_deviation_rad=d)
-    incl = squareness_from_slopes(k1, k2, plane=plane, prism_deviation_rad=d, convention="included-angle")
+    iso = squareness_from_slopes(k1, k2, plane=plane, prism_deviation_rad=d, convention="iso")
+    incl = squareness_from_slopes(k1, k2, plane=plane, prism_deviation_rad=d)  # the default
+    assert incl.convention == "included-angle"
     assert incl.squareness_rad == pytest.approx(incl.included_angle_rad - math.pi / 2, abs=1e-15)
     assert iso.squareness_rad == iso_from_included_angle(incl.squareness_rad, plane=plane)
     assert iso.iso_value_rad == incl.iso_value_rad
@@ -197,3 +203,38 @@ def test_conventions_agree_property(k1, k2, d, plane):
     assert squareness_from_slopes(k2, k1, plane=plane).included_angle_rad == pytest.approx(
         squareness_from_slopes(k1, k2, plane=plane).included_angle_rad, abs=1e-15
     )
+
+
+# every 3-axis chain: workpiece-side axes, F, tool-side axes
+ALL_CHAINS = [
+    "".join(order[:cut]) + "F" + "".join(order[cut:])
+    for order in ("XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX")
+    for cut in range(4)
+]
+
+
+@pytest.mark.parametrize("chain", ALL_CHAINS)
+@pytest.mark.parametrize("plane,term", [("XY", "EC0Y"), ("XZ", "EB0Z"), ("YZ", "EA0Z")])
+def test_squareness_of_the_htm_model_is_its_iso_term(chain, plane, term):
+    # docs/conventions.md: the HTM machine with one ISO term, two straightness runs read off it (tool
+    # relative to workpiece, in the workpiece frame), and the squareness they give is that term.
+    # "relative" placement keeps the named included angle in every chain; see test_cmm.py for
+    # the default placement.
+    from axiscal.machine import Axis, Machine
+
+    value = 25 * ARCSEC
+    machine = Machine(chain, {k: Axis(k) for k in "XYZ"}, squareness_rad={term: value}, squareness_placement="relative")
+    first, second = ("XYZ".index(plane[0]), "XYZ".index(plane[1]))
+    travel = np.linspace(-0.3, 0.5, 9)
+    runs = []
+    for moving, across in ((first, second), (second, first)):
+        q = np.zeros((3, travel.size))
+        q[moving] = travel
+        positions = {k: q[i] for i, k in enumerate("XYZ")}
+        nominal = machine.nominal_point(positions)
+        actual = machine.actual_point(positions)
+        runs.append((nominal[:, moving], actual[:, across] - nominal[:, across]))
+    result = squareness(*runs[0], *runs[1], plane=plane, convention="iso")
+    assert result.iso_term == term
+    assert result.iso_value_rad == pytest.approx(value, rel=1e-6)
+    assert result.included_angle_rad - math.pi / 2 == pytest.approx(included_angle_from_iso(value, plane=plane), rel=1e-6)

@@ -9,8 +9,9 @@ EB0Z (XZ), EA0Z (YZ).
 
 Sign conventions (docs/squareness.md has the picture)
 -------------------------------------------------------
-* ``"included-angle"``: squareness = included angle between the positive directions of the two
-  axes minus 90 degrees; positive when the axes open wider than a right angle (papers 002, 004).
+* ``"included-angle"`` (the default): squareness = included angle between the positive directions
+  of the two axes minus 90 degrees; positive when the axes open wider than a right angle (paper
+  002 eqs 1 and 21; paper 004's values read the same way, see :mod:`axiscal.cmm`).
 * ``"iso"``: the ISO 230-1 rotation of the second axis about the third axis by the right-hand rule:
   ``EC0Y = +s`` (XY), ``EB0Z = -s`` (XZ), ``EA0Z = +s`` (YZ), with ``s`` the included-angle value.
   The XZ sign flips because turning +Z about +Y moves it towards +X, closing the angle.
@@ -24,9 +25,12 @@ machine's right-handed frame. A fitted line ``deviation = k position + b`` gives
 so the included angle is ``theta = 90 deg - atan(k1) - atan(k2)``.
 
 The prism deviation ``D`` is that of eq (13): the prism turns the beam by ``90 deg + D`` between the
-incident beam and the exit beam, with the beam arriving against the first axis as in paper 002
-(incident ``[-1, 0, 0]``). The exit beam is then the second axis' reference and leans ``D``
-towards the first axis, so the second run sees the axis ``D`` too far open and eq (21) subtracts it.
+incident beam and the exit beam. With the beam arriving against the first axis as in paper 002
+(incident ``[-1, 0, 0]``) and leaving along the positive second axis, the exit beam, the second
+axis' reference, makes ``90 deg - D`` with the positive first axis, so the second run sees the
+axis ``D`` too far open and eq (21) subtracts it. If only one of the two beams is reversed (the
+beam arrives along the positive first axis, or leaves along the negative second axis, e.g. turned
+down to -Z), the reference makes ``90 deg + D`` and ``-D`` must be given instead.
 """
 
 from __future__ import annotations
@@ -48,9 +52,11 @@ PLANES: dict[str, tuple[str, str, str, int]] = {
     "XZ": ("X", "Z", "EB0Z", -1),
     "YZ": ("Y", "Z", "EA0Z", 1),
 }
-CONVENTIONS = ("iso", "included-angle")
+CONVENTIONS = ("included-angle", "iso")
 #: Beyond this the two "axes" are not two crossing axes (lines parallel or nearly so), rad.
 _MAX_SQUARENESS = math.pi / 4.0
+#: A pentaprism off 90 degrees by this much or more is not a pentaprism (a unit slip, most likely), rad.
+_MAX_PRISM_DEVIATION = math.pi / 180.0
 
 
 def _plane(plane: str) -> tuple[str, str, str, int]:
@@ -127,7 +133,7 @@ def squareness_from_slopes(
     *,
     plane: str = "XY",
     prism_deviation_rad: float = 0.0,
-    convention: str = "iso",
+    convention: str = "included-angle",
 ) -> SquarenessResult:
     """Squareness from the slopes of the two runs' fitted lines (paper 002 eqs 1 and 21).
 
@@ -141,21 +147,29 @@ def squareness_from_slopes(
         ``slope_second = 1 / k'``.
     plane : {"XY", "XZ", "YZ"}, keyword-only
     prism_deviation_rad : float, keyword-only
-        ``D`` of eq (13), radians (0 when no prism turned the beam).
-    convention : {"iso", "included-angle"}, keyword-only
-        Sign convention of ``squareness_rad`` (default ``"iso"``); both values are in the result.
+        ``D`` of eq (13), radians (0 when no prism turned the beam); its sign as in the module
+        docstring (beam arriving against the first axis, leaving along the second).
+    convention : {"included-angle", "iso"}, keyword-only
+        Sign convention of ``squareness_rad``: ``"included-angle"`` (default, eq 21: included
+        angle - 90 deg - D) or ``"iso"`` (the ISO 230-1 term's sign); both values are in the result.
 
     Raises
     ------
     AxiscalError
-        Unknown plane or convention, non-finite slopes, or lines that are (nearly) parallel: an
-        included angle more than 45 degrees off a right angle is not the squareness of two axes.
+        Unknown plane or convention, non-finite slopes, a prism deviation of 1 degree or more, or
+        lines that are (nearly) parallel: an included angle more than 45 degrees off a right angle
+        is not the squareness of two axes.
     """
     first, second, term, _ = _plane(plane)
     if convention not in CONVENTIONS:
         raise AxiscalError(f"unknown sign convention '{convention}'; use one of {', '.join(CONVENTIONS)}")
     if not all(math.isfinite(v) for v in (slope_first, slope_second, prism_deviation_rad)):
         raise AxiscalError("slopes and prism deviation must be finite numbers")
+    if abs(prism_deviation_rad) >= _MAX_PRISM_DEVIATION:
+        raise AxiscalError(
+            f"a prism deviation of {math.degrees(prism_deviation_rad) * 3600:.6g} arcsec is 1 degree or more off 90 degrees: "
+            "not a pentaprism (check the unit: arc seconds)"
+        )
     measured = math.pi / 2.0 - math.atan(slope_first) - math.atan(slope_second)
     if abs(measured - math.pi / 2.0) >= _MAX_SQUARENESS:
         raise AxiscalError(
@@ -188,7 +202,7 @@ def squareness(
     plane: str = "XY",
     prism_deviation_rad: float = 0.0,
     reference: str = "least-squares",
-    convention: str = "iso",
+    convention: str = "included-angle",
 ) -> SquarenessResult:
     """Squareness from two straightness runs (paper 002 eqs 1, 15 and 21).
 

@@ -9,6 +9,8 @@ the units their flags name; the computing is done in SI by :mod:`axiscal.squaren
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from pathlib import Path
 
 import click
 import numpy as np
@@ -23,6 +25,16 @@ from axiscal.units import ARCMIN, ARCSEC, MM, UM
 
 #: paper 004, Table 2 as its text gives it: error reductions by compensation, um
 PAPER_004_IMPROVEMENT_UM = {"X": 11.0, "Y": 5.0}
+#: Largest CMM squareness accepted on the command line, arc minutes: eq (6) is a small-angle model.
+MAX_CMM_SQUARENESS_ARCMIN = 60.0
+
+
+def _write_output(path: str, write: Callable[[Path], None]) -> None:
+    """Run ``write`` on ``path`` (parent folders made); a file that cannot be written is one error line."""
+    try:
+        write(ensure_parent(path))
+    except OSError as exc:
+        raise AxiscalError(f"cannot write this file: {exc.strerror or exc}", path=path) from None
 
 
 def squareness_payload(result: SquarenessResult, *, reference: str) -> dict:
@@ -49,16 +61,17 @@ def squareness_report(result: SquarenessResult, first_path: str, second_path: st
     """The readable summary of ``axiscal squareness``."""
     a, b = PLANES[result.plane][:2]
     name = "ISO 230-1 sign" if result.convention == "iso" else "included angle - 90 deg"
-    lines = [
-        f"squareness of {a}{b}: first run {first_path} (moves {a}), second run {second_path} (moves {b})",
-        f"  slope of the first run      {result.slope_first:+.8f}  ({math.atan(result.slope_first) / ARCSEC:+.2f} arcsec)",
-        f"  slope of the second run     {result.slope_second:+.8f}  ({math.atan(result.slope_second) / ARCSEC:+.2f} arcsec)",
-        f"  included angle of the lines {math.degrees(result.measured_included_angle_rad):.6f} deg",
-        f"  prism deviation removed     {result.prism_deviation_rad / ARCSEC:+.2f} arcsec (paper 002 eq 21)",
-        f"  included angle of the axes  {math.degrees(result.included_angle_rad):.6f} deg",
-        f"  squareness ({name})  {result.squareness_rad / ARCSEC:+.2f} arcsec",
-        f"  {result.iso_term}                        {result.iso_value_rad / ARCSEC:+.2f} arcsec",
+    rows = [
+        ("slope of the first run", f"{result.slope_first:+.8f}  ({math.atan(result.slope_first) / ARCSEC:+.2f} arcsec)"),
+        ("slope of the second run", f"{result.slope_second:+.8f}  ({math.atan(result.slope_second) / ARCSEC:+.2f} arcsec)"),
+        ("included angle of the lines", f"{math.degrees(result.measured_included_angle_rad):.6f} deg"),
+        ("prism deviation removed", f"{result.prism_deviation_rad / ARCSEC:+.2f} arcsec (paper 002 eq 21)"),
+        ("included angle of the axes", f"{math.degrees(result.included_angle_rad):.6f} deg"),
+        (f"squareness ({name})", f"{result.squareness_rad / ARCSEC:+.2f} arcsec"),
+        (f"{result.iso_term} (ISO 230-1)", f"{result.iso_value_rad / ARCSEC:+.2f} arcsec"),
     ]
+    lines = [f"squareness of {a}{b}: first run {first_path} (moves {a}), second run {second_path} (moves {b})"]
+    lines += [f"  {label:<36}  {value}" for label, value in rows]
     return "\n".join(lines)
 
 
@@ -75,12 +88,17 @@ def plot_squareness(result: SquarenessResult, runs: tuple[tuple[np.ndarray, np.n
         ax.plot(ends / MM, (line.slope * ends + line.intercept_m) / UM, "-", label=f"{line.reference} line")
         ax.set_xlabel(f"{moving} position / mm")
         ax.set_ylabel(f"deviation along {across} / um")
-        ax.set_title(f"{moving} run: slope {line.slope:+.3e}")
+        ax.set_title(f"{moving} run: slope {line.slope:+.3e} ({math.atan(line.slope) / ARCSEC:+.2f} arcsec)")
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
-    fig.suptitle(f"{a}{b} squareness {result.squareness_rad / ARCSEC:+.2f} arcsec ({result.iso_term} {result.iso_value_rad / ARCSEC:+.2f} arcsec)")
-    fig.savefig(ensure_parent(path), dpi=110)
-    plt.close(fig)
+    fig.suptitle(
+        f"{a}{b}: included angle - 90 deg - D = {(result.included_angle_rad - math.pi / 2) / ARCSEC:+.2f} arcsec"
+        f"  ({result.iso_term} {result.iso_value_rad / ARCSEC:+.2f} arcsec)"
+    )
+    try:
+        _write_output(path, lambda target: fig.savefig(target, dpi=110))
+    finally:
+        plt.close(fig)
 
 
 @click.command("squareness")
@@ -92,8 +110,9 @@ def plot_squareness(result: SquarenessResult, runs: tuple[tuple[np.ndarray, np.n
 @click.option("--prism-deviation-arcsec", type=float, default=0.0, show_default=True,
               help="D: the prism turns the beam by 90 deg + D (paper 002 eq 13); subtracted per eq 21.")
 @click.option("--reference", default="least-squares", show_default=True, help="least-squares or end-points line per run.")
-@click.option("--convention", default="iso", show_default=True,
-              help="Sign of squareness_arcsec: iso (ISO 230-1 right-hand rule) or included-angle (angle - 90 deg).")
+@click.option("--convention", default="included-angle", show_default=True,
+              help="Sign of squareness_arcsec: included-angle (included angle - 90 deg - D, paper 002 eq 21) "
+              "or iso (the ISO 230-1 term's right-hand-rule sign).")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write both runs and their lines to this image.")
 def squareness_command(first_csv, second_csv, plane, prism_deviation_arcsec, reference, convention, as_json, plot_path):
@@ -161,18 +180,32 @@ def pentaprism_report(table: PentaprismSensitivity) -> str:
 
 
 def plot_pentaprism(table: PentaprismSensitivity, path: str) -> None:
-    """Three panels as paper 002 Fig. 5: the change of the deviation against each rotation."""
+    """Paper 002 Fig. 5: the change of the deviation against rotation about X, Y, Z, and against shifts."""
     plt = pyplot()
-    fig, axes = plt.subplots(1, 3, figsize=(10, 3.4), sharey=True, constrained_layout=True)
-    for k, ax in enumerate(axes):
-        ax.plot(table.rotation_rad / ARCMIN, table.change_rad[k] / ARCSEC, "-o", ms=3)
+    fig, axes = plt.subplots(1, 4, figsize=(13, 3.6), sharey=True, constrained_layout=True)
+    rotation_arcmin = table.rotation_rad / ARCMIN
+    for k, ax in enumerate(axes[:3]):
+        ax.plot(rotation_arcmin, table.change_rad[k] / ARCSEC, "-o", ms=3, label="ray trace")
         ax.set_title(f"({'abc'[k]}) rotation about {'XYZ'[k]}")
         ax.set_xlabel("rotation / arcmin")
         ax.grid(True, alpha=0.3)
+    fine = np.linspace(table.rotation_rad.min(), table.rotation_rad.max(), 200)
+    axes[2].plot(fine / ARCMIN, -(fine**2) / ARCSEC, "--", color="tab:red", label="eq (12): -gamma^2 (rad)")
+    axes[2].legend(fontsize=8, loc="lower center")
+    for k, marker in enumerate("os^"):
+        # falling marker sizes keep all three visible where they coincide (all zero)
+        axes[3].plot(table.translation_m / MM, table.translation_change_rad[k] / ARCSEC, marker + "-", ms=8 - 2 * k,
+                     label=f"along {'XYZ'[k]}")
+    axes[3].set_title("(d) translation: no effect")
+    axes[3].set_xlabel("shift / mm")
+    axes[3].grid(True, alpha=0.3)
+    axes[3].legend(fontsize=8, loc="lower center")
     axes[0].set_ylabel("angle between beams - 90 deg / arcsec")
-    fig.suptitle(f"pentaprism, index {table.index:g}")
-    fig.savefig(ensure_parent(path), dpi=110)
-    plt.close(fig)
+    fig.suptitle(f"pentaprism of paper 002, index {table.index:g}: incident beam [-1, 0, 0]")
+    try:
+        _write_output(path, lambda target: fig.savefig(target, dpi=110))
+    finally:
+        plt.close(fig)
 
 
 @click.group("optics")
@@ -185,7 +218,8 @@ def optics_group() -> None:
 @click.option("--range-arcmin", type=float, default=10.0, show_default=True, help="Sweep rotations from -R to +R.")
 @click.option("--steps", type=int, default=21, show_default=True, help="Number of rotation angles in the sweep.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
-@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write the three panels of Fig. 5 to this image.")
+@click.option("--plot", "plot_path", type=click.Path(dir_okay=False),
+              help="Write Fig. 5 (rotation about X, Y, Z; translation) to this image.")
 def pentaprism_command(index, range_arcmin, steps, as_json, plot_path):
     """Deviation of the pentaprism against its rotation about X, Y, Z and its translation (Fig. 5)."""
     if not (math.isfinite(range_arcmin) and 0 < range_arcmin <= 600):
@@ -193,7 +227,7 @@ def pentaprism_command(index, range_arcmin, steps, as_json, plot_path):
     if not 2 <= steps <= 2001:
         raise AxiscalError(f"--steps must be 2 to 2001, got {steps}")
     angles = np.linspace(-range_arcmin, range_arcmin, steps) * ARCMIN
-    table = pentaprism_sensitivity(angles, np.array([-1.0, 1.0]) * MM, index=index)
+    table = pentaprism_sensitivity(angles, np.linspace(-2.0, 2.0, 5) * MM, index=index)
     if plot_path:
         plot_pentaprism(table, plot_path)
     if as_json:
@@ -211,6 +245,11 @@ def parse_squareness_arcmin(text: str) -> CmmSquareness:
         values = []
     if len(values) != 3 or not all(math.isfinite(v) for v in values):
         raise AxiscalError(f"--squareness-arcmin needs three numbers a_xy,a_xz,a_yz (e.g. 8.05,27.1,-16.6), got '{text}'")
+    if any(abs(v) > MAX_CMM_SQUARENESS_ARCMIN for v in values):
+        raise AxiscalError(
+            f"--squareness-arcmin values must be within +-{MAX_CMM_SQUARENESS_ARCMIN:g} arc minutes "
+            f"(eq 6 is a small-angle model; check the unit), got '{text}'"
+        )
     return CmmSquareness(*(v * ARCMIN for v in values))
 
 
@@ -248,7 +287,7 @@ def compensate_command(points_csv, squareness_arcmin, output, inverse):
     ]
     text = write_csv(None, columns, fmt="{:.6f}", comments=comments)
     if output:
-        ensure_parent(output).write_text(text, encoding="utf-8")
+        _write_output(output, lambda target: target.write_text(text, encoding="utf-8"))
     else:
         click.echo(text, nl=False)
 
