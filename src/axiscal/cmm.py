@@ -11,10 +11,15 @@ with (x, y, z) the CMM's scale readings and (x', y', z') the corrected coordinat
 (the plane's normal); the point-to-point length between one point on each face, projected on that
 axis, is the measured length.
 
-Signs. Paper 004 counts a squareness positive when the angle is larger than 90 degrees; eq (6)
-then says the second axis leans towards the negative first axis, which is the included-angle
+Signs. Paper 004's text only says an error angle above 0 is positive; the sign comes from its
+section 4.1 and eq (6): moving Y to y gives a position error ``-y a_xy`` along X (Z to z:
+``-z a_xz`` along X, ``-z a_yz`` along Y), so a positive value leans the second axis towards the
+negative first axis and opens the included angle beyond 90 degrees. That is the included-angle
 convention of :mod:`axiscal.squareness`: ``a_xy, a_xz, a_yz`` are the included angles of X-Y, X-Z,
 Y-Z minus 90 degrees. As ISO 230-1 terms: ``EC0Y = a_xy``, ``EB0Z = -a_xz``, ``EA0Z = a_yz``.
+Eq (6) keeps X fixed (and Y in the XY plane); an HTM chain (:class:`axiscal.machine.Machine`,
+``squareness_placement="relative"``) has the same included angles in every chain, but may turn the
+whole point set by a small rigid rotation when the axis nearest the frame is not X.
 A PSD run's reading is the position of the beam on the detector along the positive first axis of
 the plane (X for XY and XZ, Y for YZ); a second axis leaning towards the negative first axis
 carries the detector away from the beam, so the reading grows with travel and the slope is the
