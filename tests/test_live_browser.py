@@ -63,11 +63,17 @@ READ_PAGE = """(() => {
     frames: text("frames"),
     connection: text("connection"),
     sensors: Array.from(document.querySelectorAll("#sensors tr")).map(r => [r.cells[0].textContent, r.dataset.state]),
+    sensorSummary: text("sensor-summary"),
+    stale: text("stale"),
     historyInk: inked("history", [214, 39, 40]),
     profileInk: inked("profile-EXX_um", [31, 119, 180]),
     profiles: document.querySelectorAll("canvas[id^=profile-]").length,
   });
 })()"""
+
+
+ERROR_KINDS = """JSON.stringify(Object.fromEntries(
+  ["EXX", "EYX", "EZX", "EAX", "EBX", "ECX", "EXZ", "EYZ", "EZZ", "EAZ", "EBZ", "ECZ"].map(s => [s, errorKind(s, s[2])])))"""
 
 
 class DevTools:
@@ -156,6 +162,7 @@ def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, mod
                     if len(seen) >= 2 and seen[-1]["values"]["t_s"] != seen[0]["values"]["t_s"]:
                         break
                 time.sleep(0.2)
+            kinds = json.loads(tools.evaluate(ERROR_KINDS))
         errors = [e for e in tools.events if e.get("method") == "Runtime.exceptionThrown"]
     finally:
         _stop_chromium(browser)
@@ -171,6 +178,13 @@ def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, mod
     assert int(shown["frames"]) > 0
     assert shown["profiles"] == 12
     assert shown["sensors"] == [[name, "ok"] for name in system.channels]
+    assert shown["sensorSummary"] == f"all {len(system.channels)} ok" and shown["stale"] == ""
+    # the charts' titles name each ISO 230-1 error motion by what it is (docs/conventions.md)
+    assert kinds == {
+        "EXX": "positioning", "EYX": "straightness", "EZX": "straightness", "EAX": "roll", "EBX": "pitch", "ECX": "yaw",
+        "EXZ": "straightness", "EYZ": "straightness", "EZZ": "positioning",
+        "EAZ": "tilt about X", "EBZ": "tilt about Y", "ECZ": "roll",
+    }
     record = read_record(record_path)
     for values, texts in ((s["values"], s["texts"]) for s in seen):
         rows = np.flatnonzero(np.abs(record.columns["t_s"] - float(values["t_s"])) < 1e-7)

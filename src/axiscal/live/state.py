@@ -3,8 +3,9 @@
 The pipeline calls :meth:`LiveState.update` once per batch (vectorised, a few microseconds); a
 server calls :meth:`LiveState.snapshot` at its own pace. Memory is fixed at construction: the
 error profiles hold ``bins`` cells per axis (the latest mean in each cell of the travel), the
-spatial-error history ``history_points`` samples over the last ``history_s`` seconds, and the
-sensor table one entry per channel. Nothing is queued per frame or per client.
+spatial-error history ``history_points`` samples over the last ``history_s`` seconds (NaN where
+the frame was faulty, so the curve has a gap), and the sensor table one entry per channel.
+Nothing is queued per frame or per client.
 """
 
 from __future__ import annotations
@@ -109,13 +110,15 @@ class LiveState:
             self._channel_state = [
                 "missing" if m else ("out of range" if r else "ok") for m, r in zip(missing[-1].tolist(), out_of_range[-1].tolist())
             ]
+            stamped = np.isfinite(batch.t_s)
+            if stamped.any():  # faulty frames go in too (NaN results): the curve shows a gap while they last
+                self._update_history(batch.t_s[stamped], {name: results[name][stamped] for name in SPATIAL})
             if not good.any():
                 return
             last = int(np.flatnonzero(good)[-1])
             self._latest = {"t_s": float(batch.t_s[last])}
             self._latest.update({name: float(results[name][last]) for name in results if name != "t_s"})
             self._update_profiles(good, results)
-            self._update_history(batch.t_s[good], {name: results[name][good] for name in SPATIAL})
 
     def _update_profiles(self, good: np.ndarray, results: Mapping[str, np.ndarray]) -> None:
         for letter in self.axes:

@@ -3,9 +3,9 @@
 
 const COLORS = { ex_um: "#d62728", ey_um: "#2ca02c", ez_um: "#1f77b4", e_um: "#1d2430" };
 const LABELS = { ex_um: "ex", ey_um: "ey", ez_um: "ez", e_um: "|e|" };
-const ERROR_TITLES = {
-  X: "positioning", Y: "straightness", Z: "straightness", A: "roll", B: "pitch", C: "yaw",
-};
+const ROTATION_AXIS = { A: "X", B: "Y", C: "Z" };
+// A good frame older than this (stream time) makes the functional point's values stale.
+const STALE_S = 0.5;
 const DIGITS = { t_s: 4, px_mm: 4, py_mm: 4, pz_mm: 4, ex_um: 3, ey_um: 3, ez_um: 3, e_um: 3 };
 
 let built = "";
@@ -16,6 +16,23 @@ function $(id) { return document.getElementById(id); }
 function setText(id, text) {
   const el = $(id);
   if (el && el.textContent !== text) el.textContent = text;
+}
+
+// What an ISO 230-1 error motion of an axis is: "EXX" positioning, "EYX" straightness, "EAX" roll,
+// "EBX" pitch, "ECX" yaw (horizontal axes: rotation about vertical Z is yaw); a vertical Z axis tilts.
+function errorKind(stem, letter) {
+  const direction = stem[1];
+  if (direction in ROTATION_AXIS) {
+    const about = ROTATION_AXIS[direction];
+    if (about === letter) return "roll";
+    if (letter === "Z") return `tilt about ${about}`;
+    return about === "Z" ? "yaw" : "pitch";
+  }
+  return direction === letter ? "positioning" : "straightness";
+}
+
+function limit(value) {
+  return value === null || value === undefined ? "-" : String(Number(Number(value).toFixed(3)));
 }
 
 function show(value, digits) {
@@ -52,7 +69,7 @@ function drawAxes(state) {
       const unit = name.endsWith("_urad") ? "\u00b5rad" : "\u00b5m";
       const stem = name.split("_")[0];
       drawChart($("profile-" + name), axis.position_mm, [{ values: values, color: "#1f77b4" }], {
-        title: `${stem} (${ERROR_TITLES[stem[1]]}, ${unit})`,
+        title: `${stem} (${errorKind(stem, letter)}, ${unit})`,
         xlabel: `${letter} position (mm)`,
       });
     }
@@ -85,6 +102,10 @@ function drawLatest(state) {
   const positions = Object.keys(state.axes).map(l => `${l} = ${show(latest[l.toLowerCase() + "_mm"], 4)} mm`);
   setText("positions", "axis positions (scales): " + positions.join(", "));
   setText("last-fault", state.last_fault ? `last frame faulty: ${state.last_fault_text}` : "");
+  const age = latest.t_s === null || latest.t_s === undefined || state.t_s === null ? null : state.t_s - latest.t_s;
+  const stale = age !== null && age > STALE_S;
+  $("point").classList.toggle("stale", stale);
+  setText("stale", stale ? `no good frame for ${age.toFixed(1)} s: values are from t = ${show(latest.t_s, 3)} s` : "");
 }
 
 function drawSensors(state) {
@@ -99,13 +120,25 @@ function drawSensors(state) {
       body.appendChild(row);
     }
   }
+  const faulty = state.sensors.filter(s => s.state === "missing" || s.state === "out of range");
+  const summary = $("sensor-summary");
+  if (!state.sensors.some(s => s.state !== "waiting")) {
+    setText("sensor-summary", "waiting for frames");
+    summary.className = "summary waiting";
+  } else if (faulty.length) {
+    setText("sensor-summary", `${faulty.length} of ${state.sensors.length} faulty: ` + faulty.map(s => `${s.name} ${s.state}`).join(", "));
+    summary.className = "summary bad";
+  } else {
+    setText("sensor-summary", `all ${state.sensors.length} ok`);
+    summary.className = "summary ok";
+  }
   state.sensors.forEach((s, i) => {
     const cells = body.rows[i].cells;
     cells[1].textContent = show(s.value, 4);
     cells[2].textContent = s.state;
     cells[2].className = "state-" + s.state.replace(/ /g, "-");
     body.rows[i].dataset.state = s.state;
-    cells[3].textContent = `${show(s.low, 3)} \u2026 ${show(s.high, 3)}`;
+    cells[3].textContent = `${limit(s.low)} \u2026 ${limit(s.high)}`;
     cells[4].textContent = String(s.missing);
     cells[5].textContent = String(s.out_of_range);
   });
