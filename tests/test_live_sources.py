@@ -76,7 +76,7 @@ def test_sim_source_delivers_frames_at_the_rate_in_real_time(module, system):
     batch = _drain(source, frames=400)
     elapsed = time.monotonic() - start
     np.testing.assert_allclose(batch.t_s[:400], np.arange(400) / 2000.0)
-    assert 0.15 < elapsed < 1.0
+    assert 0.19 < elapsed < 5.0  # never ahead of the clock; the upper bound only catches a hang
     assert source.clock_offset_s is not None and not source.finished
 
 
@@ -91,9 +91,8 @@ def test_replay_paced_follows_t_s_and_fast_replay_does_not_wait(tmp_path, module
     assert time.monotonic() - start > 0.25 and paced.finished
     np.testing.assert_allclose(got.values, batch.values, rtol=1e-8)
     fast = ReplaySource(path, system.channels, pace=False, max_batch=128)
-    start = time.monotonic()
-    got = _drain(fast, frames=300)
-    assert time.monotonic() - start < 0.2 and fast.finished and len(got) == 300
+    reads = [len(fast.read(10.0)) for _ in range(3)]  # no read waits for the file's clock: 128, 128, 44
+    assert reads == [128, 128, 44] and fast.finished
 
 
 def test_replay_needs_every_channel(tmp_path, system):
@@ -121,15 +120,16 @@ def test_back_off_doubles_between_failed_connects_up_to_the_cap_and_then_connect
     port = probe.getsockname()[1]
     probe.close()
     source = TcpSource("127.0.0.1", port, system.channels, backoff=Backoff(initial_s=0.02, factor=2.0, maximum_s=0.16))
-    deadline = time.monotonic() + 0.75
-    while time.monotonic() < deadline:
+    expected = [0.02, 0.04, 0.08, 0.16, 0.16]
+    deadline = time.monotonic() + 10.0
+    while len(source.status.attempt_times) <= len(expected) and time.monotonic() < deadline:
         assert len(source.read(0.01)) == 0
     assert source.status.state == "retrying"
     gaps = np.diff(source.status.attempt_times)
-    expected = [0.02, 0.04, 0.08, 0.16, 0.16]
     assert len(gaps) >= len(expected)
     np.testing.assert_array_less(np.array(expected) - 0.002, gaps[: len(expected)])
-    np.testing.assert_array_less(gaps[: len(expected)], np.array(expected) + 0.08)
+    # a late wake-up on a busy machine only lengthens a gap; the cap still shows (uncapped, the last would be 0.32 s)
+    np.testing.assert_array_less(gaps[: len(expected)], np.array(expected) + 0.15)
     batch = _frames(module, system, 20)
     server = LineServer([encode_lines(batch.t_s, batch.values)], port=port)
     got = _drain(source, frames=20, timeout_s=3.0)
