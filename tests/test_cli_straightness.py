@@ -165,3 +165,49 @@ def test_bad_input(run_cli, examples, tmp_path):
     assert "bad.csv:3" in one_line_error(run_cli, "straightness", bad)
     status, _, _ = run_cli("straightness", examples / "straightness_profile.csv", "--reference", "chebyshev")
     assert status == 2
+
+
+@pytest.mark.parametrize(
+    ("argv", "needle"),
+    [
+        (["--method", "stp", "--spacing-mm", "inf"], "--spacing-mm must be a positive number"),
+        (["--method", "strp", "--spacing-mm", "15", "--spacing-bc-mm", "nan"], "--spacing-bc-mm must be a positive number"),
+        (["--method", "frequency", "--spacing-mm", "1000"], "more readings than the probes span"),
+        (["--method", "frequency", "--spacing-mm", "15", "--min-gain", "-1"], "--min-gain"),
+        (["--method", "frequency", "--spacing-mm", "15", "--min-gain", "nan"], "--min-gain"),
+        (["--method", "fstrp", "--spacing-mm", "1000", "--spacing-bc-mm", "1"], "families to meet"),
+        (["--method", "combined", "--spacing-mm", "15", "--calibration-mm", "100", "50"], "START < END"),
+        (["--method", "combined", "--spacing-mm", "300"], "two readings per group"),
+    ],
+)
+def test_bad_separation_options(run_cli, examples, argv, needle):
+    assert needle in one_line_error(run_cli, "separate", examples / "probe_readings.csv", *argv)
+
+
+def test_uneven_positions_are_named_by_their_line(run_cli, tmp_path):
+    repeated = tmp_path / "repeated.csv"
+    repeated.write_text("# comment\nposition_mm,a_um,b_um\n0,0,0\n1,0.1,0.1\n1,0.2,0.1\n3,0.1,0.1\n")
+    message = one_line_error(run_cli, "separate", repeated, "--method", "gtp", "--spacing-mm", "1")
+    assert "repeated.csv:5:" in message and "evenly stepped" in message
+    falling = tmp_path / "falling.csv"
+    falling.write_text("position_mm,a_um,b_um\n3,0,0\n2,0.1,0.1\n1,0.2,0.1\n")
+    assert "falling.csv:3:" in one_line_error(run_cli, "separate", falling, "--method", "stp", "--spacing-mm", "1")
+
+
+@pytest.mark.parametrize(
+    ("argv", "needle"),
+    [
+        (["--step-mm", "1", "--noise-um", "nan"], "--noise-um"),
+        (["--step-mm", "1", "--noise-um", "-0.1"], "--noise-um"),
+        (["--step-mm", "1", "--offsets-um", "nan", "0", "0"], "--offsets-um"),
+        (["--step-mm", "-1"], "--step-mm must be a positive number"),
+        (["--step-mm", "1e-9"], "at most"),
+        (["--step-mm", "1", "--spacing-bc-mm", "inf"], "--spacing-bc-mm"),
+    ],
+)
+def test_bad_simulation_options(run_cli, examples, argv, needle):
+    line = one_line_error(
+        run_cli, "simulate-probes", "--profile", examples / "separation_profile.csv",
+        "--motion", examples / "separation_motion.csv", "--spacing-mm", "15", *argv,
+    )
+    assert needle in line

@@ -533,6 +533,29 @@ def test_bad_input_gives_one_line_errors():
         reversal([0.0, 1.0], [0.0, 1.0], [0.0])
     with pytest.raises(AxiscalError, match="at least 2"):
         sequential_two_point(ProbeReadings(rd.position_m[:1], rd.a_m[:1], rd.b_m[:1], None, 3 * STEP))
+    for spacing in (np.inf, np.nan, -STEP, 0.0):
+        with pytest.raises(AxiscalError, match="positive, finite"):
+            sequential_two_point(ProbeReadings(rd.position_m, rd.a_m, rd.b_m, None, spacing))
+    with pytest.raises(AxiscalError, match="equal spacings"):
+        sequential_three_point(ProbeReadings(rd.position_m, rd.a_m, rd.b_m, rd.c_m, 3 * STEP, np.nan))
+    with pytest.raises(AxiscalError, match="families to meet"):
+        fine_sequential_three_point(ProbeReadings(rd.position_m, rd.a_m, rd.b_m, rd.c_m, 30 * STEP, 11 * STEP))
+    with pytest.raises(AxiscalError, match="more readings than the probes span"):
+        frequency_domain(ProbeReadings(rd.position_m, rd.a_m, rd.b_m, rd.c_m, 20 * STEP, 20 * STEP))
+    for min_gain in (-0.1, 1.0, np.nan):
+        with pytest.raises(AxiscalError, match="min_gain"):
+            frequency_domain(rd, min_gain=min_gain)
+
+
+@pytest.mark.parametrize(("p", "q"), [(2, 3), (3, 5), (7, 11)])
+def test_fstrp_needs_just_q_readings(p, q):
+    # the common points n < N + p tie the p + q chains and the tilt together from N = q readings on
+    x = np.arange(0.0, 0.1, STEP)
+    rd = simulate_readings(x[:q], paper_profile, paper_motion, spacing_ab_m=p * STEP, spacing_bc_m=(q - p) * STEP)
+    assert separation_error(fine_sequential_three_point(rd)) < 1e-9 * UM
+    short = ProbeReadings(rd.position_m[:-1], rd.a_m[:-1], rd.b_m[:-1], rd.c_m[:-1], p * STEP, (q - p) * STEP)
+    with pytest.raises(AxiscalError, match="families to meet"):
+        fine_sequential_three_point(short)
 
 
 @settings(max_examples=40, deadline=None)

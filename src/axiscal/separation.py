@@ -158,24 +158,42 @@ def simulate_readings(
 # checks at the boundary of each method
 
 
+def uneven_step(position_m: np.ndarray) -> int | None:
+    """Index k of the first reading whose step to reading k + 1 is not the first step, or None.
+
+    A first step that is not positive counts as uneven at k = 0. Steps agree within 1e-6 of
+    the first step (positions read from files carry rounding).
+
+    Parameters
+    ----------
+    position_m : ndarray, shape (n,), n >= 2
+        Positions of probe A, metres.
+    """
+    steps = np.diff(position_m)
+    if not steps[0] > 0:
+        return 0
+    bad = np.flatnonzero(~(np.abs(steps - steps[0]) <= 1e-6 * steps[0]))
+    return int(bad[0]) if bad.size else None
+
+
 def _step(position: np.ndarray, method: str) -> float:
     if position.size < 2:
         raise AxiscalError(f"{method} needs at least 2 readings, got {position.size}")
-    steps = np.diff(position)
-    step = float(steps[0])
-    if not step > 0:
-        raise AxiscalError(f"{method} needs increasing positions (the first step is {step * 1e3:g} mm)")
-    bad = np.flatnonzero(np.abs(steps - step) > 1e-6 * step)
-    if bad.size:
-        k = int(bad[0])
+    step = float(position[1] - position[0])
+    k = uneven_step(position)
+    if k is not None:
+        if not step > 0:
+            raise AxiscalError(f"{method} needs increasing positions (the first step is {step * 1e3:g} mm)")
         raise AxiscalError(
             f"{method} needs evenly stepped positions: the step after {position[k] * 1e3:g} mm is "
-            f"{steps[k] * 1e3:g} mm, the first step is {step * 1e3:g} mm"
+            f"{(position[k + 1] - position[k]) * 1e3:g} mm, the first step is {step * 1e3:g} mm"
         )
     return step
 
 
 def _steps_in(spacing: float, step: float, method: str, what: str = "probe spacing") -> int:
+    if not (math.isfinite(spacing) and spacing > 0):
+        raise AxiscalError(f"{method} needs a positive, finite {what}, got {spacing * 1e3:g} mm")
     ratio = spacing / step
     m = int(round(ratio))
     if m < 1 or abs(ratio - m) > 1e-6 * max(1.0, ratio):
@@ -210,7 +228,7 @@ def _finish(
     motion = np.full(position.shape, np.nan)
     motion[inside] = profile[inside] - np.interp(position[inside], xa, readings.a_m)
     yaw = np.full(position.shape, np.nan)
-    if yaw_at_a is not None:
+    if yaw_at_a is not None and yaw_at_a.size:
         known = inside & (position <= xa[yaw_at_a.size - 1] + 1e-12)
         yaw[known] = np.interp(position[known], xa[: yaw_at_a.size], yaw_at_a)
     return Separation(method, position, profile, motion, yaw, lost)
@@ -306,7 +324,7 @@ def sequential_three_point(readings: ProbeReadings) -> Separation:
     x = readings.position_m
     c, d2 = _third_probe(readings, "STRP")
     d = readings.spacing_ab_m
-    if abs(d2 - d) > 1e-9 * d:
+    if not abs(d2 - d) <= 1e-9 * d:
         raise AxiscalError(f"STRP needs equal spacings (A-B {d * 1e3:g} mm, B-C {d2 * 1e3:g} mm); use FSTRP for unequal ones")
     m = _steps_in(d, _step(x, "STRP"), "STRP")
     profile, yaw = _strp_chain(readings.a_m[::m], readings.b_m[::m], c[::m], d)
@@ -342,6 +360,11 @@ def fine_sequential_three_point(readings: ProbeReadings) -> Separation:
     if math.gcd(p, q) != 1:
         raise AxiscalError(
             f"FSTRP needs the spacings in steps to be coprime (A-B {p}, A-C {q} steps): otherwise the chains never meet"
+        )
+    if x.size < q:
+        # the common points n < N + p tie the p + q chains and the tilt together exactly when N >= q
+        raise AxiscalError(
+            f"FSTRP needs at least as many readings as the A-C spacing has steps ({q}) for the two families to meet, got {x.size}"
         )
     first = _chains(readings.b_m - readings.a_m, p)
     second = _chains(c - readings.a_m, q)
@@ -441,7 +464,21 @@ def frequency_domain(
     not a loss. A harmonic whose |H| is below ``min_gain`` times that envelope (capped at
     max |H|) sits at or near a zero of H; inverting it would amplify noise by 1/|H|, so it is left
     out and its wavelength is returned in ``lost_wavelength_m``.
+
+    Parameters
+    ----------
+    readings : ProbeReadings
+        Evenly stepped, spacings whole numbers of steps, more readings than the probes span steps.
+    probes : {2, 3}, keyword-only
+        Probes used (default 3).
+    min_gain : float, keyword-only
+        Fraction of the gain envelope below which a harmonic is left out, 0 <= min_gain < 1
+        (default 0.05). Harmonics where H is exactly zero are always left out.
+    parabola : bool, keyword-only
+        Take the parabola out in closed form first (default True).
     """
+    if not 0.0 <= min_gain < 1.0:
+        raise AxiscalError(f"the frequency-domain method needs 0 <= min_gain < 1, got {min_gain:g}")
     x = readings.position_m
     step = _step(x, "the frequency-domain method")
     p = _steps_in(readings.spacing_ab_m, step, "the frequency-domain method", "A-B spacing")
@@ -462,6 +499,11 @@ def frequency_domain(
         curvature = float(np.mean(signal)) / second_moment if parabola else 0.0
     else:
         raise AxiscalError(f"the frequency-domain method uses 2 or 3 probes, not {probes}")
+    if offsets[-1] >= n_pts:
+        raise AxiscalError(
+            f"the frequency-domain method needs more readings than the probes span steps: the probes span "
+            f"{offsets[-1]} steps of {step * 1e3:g} mm, the record has {n_pts} readings"
+        )
     bow = curvature * n**2
     residual = signal - sum(w * curvature * (n + o) ** 2 for w, o in zip(weights, offsets))
     freq = np.arange(n_pts // 2 + 1)
@@ -470,7 +512,7 @@ def frequency_domain(
     order = 1 if probes == 2 else 2
     moment = abs(float(np.dot(weights, offsets.astype(float) ** order))) / math.factorial(order)
     envelope = np.minimum(moment * (2.0 * np.pi * freq / n_pts) ** order, np.abs(gain).max())
-    usable = np.abs(gain) >= min_gain * envelope
+    usable = (np.abs(gain) >= min_gain * envelope) & (np.abs(gain) > 0.0)
     usable[0] = False
     solved = np.zeros_like(spectrum)
     solved[usable] = spectrum[usable] / gain[usable]
@@ -511,7 +553,7 @@ def combined(
     x = readings.position_m
     c, d2 = _third_probe(readings, "the combined method")
     d = readings.spacing_ab_m
-    if abs(d2 - d) > 1e-9 * d:
+    if not abs(d2 - d) <= 1e-9 * d:
         raise AxiscalError(f"the combined method needs equal spacings (A-B {d * 1e3:g} mm, B-C {d2 * 1e3:g} mm)")
     step = _step(x, "the combined method")
     k = _steps_in(d, step, "the combined method")

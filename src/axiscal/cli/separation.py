@@ -2,27 +2,51 @@
 
 from __future__ import annotations
 
+import math
+
 import click
 import numpy as np
 
 from axiscal.cli.common import ensure_parent, pyplot
 from axiscal.errors import AxiscalError
 from axiscal.io import read_csv, write_csv
-from axiscal.separation import METHODS, ProbeReadings, Separation, reversal, separate, simulate_readings
+from axiscal.separation import METHODS, ProbeReadings, Separation, reversal, separate, simulate_readings, uneven_step
 from axiscal.units import MM, UM
 
 CLI_METHODS = (*METHODS, "reversal")
+MAX_READINGS = 10**7
+
+
+def _positive(**flags: float | None) -> None:
+    """Refuse a flag that is given but not a positive, finite number (``spacing_mm=...`` names ``--spacing-mm``)."""
+    for name, value in flags.items():
+        if value is not None and not (math.isfinite(value) and value > 0):
+            raise AxiscalError(f"--{name.replace('_', '-')} must be a positive number, got {value:g}")
 
 
 def read_readings(path: str, *, spacing_mm: float, spacing_bc_mm: float | None) -> ProbeReadings:
-    """A readings file (``position_mm, a_um, b_um[, c_um]``, position of probe A) in SI units."""
+    """A readings file (``position_mm, a_um, b_um[, c_um]``, position of probe A) in SI units.
+
+    Every method but reversal needs evenly stepped, increasing positions: the first row that
+    breaks the step is named by its line.
+    """
     table = read_csv(path, min_rows=2)
     table.require("position_mm", "a_um", "b_um")
+    position = table.numeric("position_mm")
+    k = uneven_step(position)
+    if k is not None:
+        first = position[1] - position[0]
+        problem = (
+            f"positions must increase (the first step is {first:g} mm)"
+            if not first > 0
+            else f"the step from {position[k]:g} mm is {position[k + 1] - position[k]:g} mm where the first step is {first:g} mm"
+        )
+        raise AxiscalError(
+            f"error separation needs evenly stepped positions: {problem}", path=path, line=table.lines[k + 1]
+        )
     c = table.numeric("c_um") * UM if table.has("c_um") else None
     spacing_bc = None if c is None else (spacing_mm if spacing_bc_mm is None else spacing_bc_mm) * MM
-    return ProbeReadings(
-        table.numeric("position_mm") * MM, table.numeric("a_um") * UM, table.numeric("b_um") * UM, c, spacing_mm * MM, spacing_bc
-    )
+    return ProbeReadings(position * MM, table.numeric("a_um") * UM, table.numeric("b_um") * UM, c, spacing_mm * MM, spacing_bc)
 
 
 def _cells(values: np.ndarray, scale: float, fmt: str) -> list[str]:
@@ -101,8 +125,13 @@ def separate_command(
     if method == "reversal":
         result = _reversal(readings, reversed_run)
     else:
-        if spacing_mm is None or not spacing_mm > 0:
+        if spacing_mm is None:
             raise AxiscalError(f"--spacing-mm (a positive probe spacing A-B in mm) is needed for the {method} method")
+        _positive(spacing_mm=spacing_mm, spacing_bc_mm=spacing_bc_mm)
+        if not 0.0 <= min_gain < 1.0:
+            raise AxiscalError(f"--min-gain must be at least 0 and below 1, got {min_gain:g}")
+        if calibration_mm is not None and not calibration_mm[0] < calibration_mm[1]:
+            raise AxiscalError(f"--calibration-mm needs START < END, got {calibration_mm[0]:g} {calibration_mm[1]:g}")
         data = read_readings(readings, spacing_mm=spacing_mm, spacing_bc_mm=spacing_bc_mm)
         calibration = None if calibration_mm is None else (calibration_mm[0] * MM, calibration_mm[1] * MM)
         try:
@@ -219,15 +248,21 @@ def simulate_probes_command(
     Probe A runs from the profile's first position in steps of --step-mm as far as the last
     probe stays on the profile.
     """
-    if not spacing_mm > 0 or not step_mm > 0 or noise_um < 0 or (spacing_bc_mm is not None and not spacing_bc_mm > 0):
-        raise AxiscalError("--spacing-mm, --spacing-bc-mm and --step-mm must be positive and --noise-um not negative")
+    _positive(spacing_mm=spacing_mm, spacing_bc_mm=spacing_bc_mm, step_mm=step_mm)
+    if not (math.isfinite(noise_um) and noise_um >= 0):
+        raise AxiscalError(f"--noise-um must be a number >= 0, got {noise_um:g}")
+    if not all(math.isfinite(o) for o in offsets_um):
+        raise AxiscalError("--offsets-um must be three finite numbers")
     profile, px, _ = _curve(profile_path, "deviation_um", UM, "the profile")
     motion, _, motion_table = _curve(motion_path, "deviation_um", UM, "the motion")
     yaw = _curve(motion_path, "yaw_urad", 1e-6, "the yaw")[0] if motion_table.has("yaw_urad") else None
     d1 = spacing_mm * MM
     d2 = (spacing_mm if spacing_bc_mm is None else spacing_bc_mm) * MM if probes == 3 else None
     reach = d1 + (d2 or 0.0)
-    count = int(np.floor((px[-1] - px[0] - reach) / (step_mm * MM) + 1e-9)) + 1
+    steps = (px[-1] - px[0] - reach) / (step_mm * MM)
+    if steps >= MAX_READINGS:
+        raise AxiscalError(f"--step-mm {step_mm:g} gives {steps:.3g} readings; at most {MAX_READINGS} are simulated")
+    count = int(np.floor(steps + 1e-9)) + 1
     if count < 2:
         raise AxiscalError(
             f"the profile ({(px[-1] - px[0]) / MM:g} mm) is too short for probes {reach / MM:g} mm apart", path=profile_path
