@@ -129,6 +129,18 @@ def test_quadratic_law_of_eq_12_for_rotation_about_z():
     assert pentaprism_deviation(0.0, 0.0, -gamma) == pytest.approx(pentaprism_deviation(0.0, 0.0, gamma), abs=1e-15)
 
 
+def test_printed_coefficient_of_eq_12_from_a_fit_over_30_arcmin():
+    # paper 002 eq (12) prints 4.84803e-6, while the law's limit for small gamma is 1" in radians,
+    # 4.84814e-6. The quartic term (change = gamma^2 - gamma^4 / 3 + ...) lowers a least-squares fit
+    # of c gamma^2 over a wide sweep: over +-30' in 6' steps it gives the printed six digits. Our
+    # reading of the slip; the paper does not say which range Fig. 5 and its fit covered.
+    assert f"{ARCSEC:.5e}" == "4.84814e-06"
+    table = pentaprism_sensitivity(np.linspace(-30, 30, 11) * ARCMIN)
+    assert f"{table.quadratic_coefficient * ARCSEC:.5e}" == "4.84803e-06"
+    small = pentaprism_sensitivity(np.linspace(-1, 1, 11) * ARCMIN)
+    assert f"{small.quadratic_coefficient * ARCSEC:.5e}" == "4.84814e-06"
+
+
 @pytest.mark.parametrize("index,atol", [(1.0, 1e-13), (1.4585, 1e-13), (1.5168, 1e-13), (1.7847, 1e-13), (2.0, 1e-13), (4.0, 1e-13), (1e3, 2e-12)])
 def test_tracer_matches_closed_form_for_any_index(index, atol):
     # the ideal prism turns every direction by 90 deg about Y: cos(omega) = (cos b sin c)^2; a very
