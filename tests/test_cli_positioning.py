@@ -167,3 +167,22 @@ def test_deviation_means_match_api(run_cli, examples):
 def test_plot_with_an_unknown_format_is_a_one_line_error(run_cli, examples, tmp_path):
     status, _, err = run_cli("positioning", examples / "positioning_run.csv", "--plot", tmp_path / "plot.xyz")
     assert status == 2 and "cannot write a plot as '.xyz'" in err and err.count("\n") == 1
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ("positioning", "{run}", "--plot", "{bad}/plot.png"),
+        ("compensate", "{run}", "--format", "linuxcnc", "-o", "{bad}/x.comp"),
+        ("plan", "--start-mm", "0", "--end-mm", "400", "--targets", "5", "-o", "{bad}/plan.csv"),
+        ("plan", "--start-mm", "0", "--end-mm", "400", "--targets", "5", "--gcode", "{bad}/plan.ngc"),
+    ],
+    ids=["plot", "compensate", "plan-csv", "plan-gcode"],
+)
+def test_an_output_that_cannot_be_written_is_one_error_line(run_cli, examples, tmp_path, args):
+    blocker = tmp_path / "a-file"  # a file where a folder would have to be
+    blocker.write_text("")
+    argv = [a.format(run=examples / "positioning_run.csv", bad=blocker) for a in args]
+    status, _, err = run_cli(*argv)
+    assert status == 2 and err.startswith(f"axiscal: error: {blocker}/") and "cannot write" in err
+    assert err.count("\n") == 1

@@ -38,7 +38,7 @@ def plot_positioning(
     cannot be estimated (one run). ``compensated`` notes that raw laser readings were
     compensated for the air and the material temperature.
     """
-    from axiscal.cli.common import ensure_parent, pyplot
+    from axiscal.cli.common import pyplot, write_output
 
     plt = pyplot()
     suffix = Path(path).suffix.lstrip(".").lower()
@@ -87,7 +87,7 @@ def plot_positioning(
             cell.set_text_props(ha="left")
             cell.PAD = 0.08
     fig.tight_layout()
-    out = ensure_parent(path)
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
-    return out
+    try:
+        return write_output(path, lambda target: fig.savefig(target, dpi=120))
+    finally:
+        plt.close(fig)

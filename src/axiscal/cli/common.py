@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -47,3 +48,16 @@ def ensure_parent(path: str | Path) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     return path
+
+
+def write_output(path: str | Path, write: Callable[[Path], Any]) -> Path:
+    """Run ``write`` on ``path`` with its parent folders made; a file that cannot be written (no
+    permission, no such device, disk full) is an AxiscalError naming it, so one error line."""
+    from axiscal.errors import AxiscalError
+
+    try:
+        target = ensure_parent(path)
+        write(target)
+    except OSError as exc:
+        raise AxiscalError(f"cannot write this file: {exc.strerror or exc}", path=path) from None
+    return target

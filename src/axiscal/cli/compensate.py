@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 import numpy as np
 
-from axiscal.cli.common import ensure_parent
+from axiscal.cli.common import write_output
 from axiscal.compensation import error_curve, fanuc_table, heidenhain_table, linuxcnc_table, residuals, siemens_table
 from axiscal.positioning import target_statistics
 from axiscal.positioning_io import read_positioning_run
@@ -64,7 +64,7 @@ def compensate_command(run_csv, fmt, output, comp_type, interval_mm, magnificati
         what = f"HEIDENHAIN {table.axis}.COM, {table.positions_mm.size} rows"
     text = table.text()
     if output:
-        ensure_parent(output).write_text(text, encoding="utf-8")
+        write_output(output, lambda target: target.write_text(text, encoding="utf-8"))
     else:
         click.echo(text, nl=False)
     left = max(float(np.abs(residuals(table, curve, targets, d, offset=offset)).max()) for d in directions)

@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import click
 
-from axiscal.cli.common import ensure_parent
+from axiscal.cli.common import write_output
 from axiscal.plan import CYCLES, cycle_csv, gcode_program, plan_test
 from axiscal.units import MM
 
@@ -30,11 +28,11 @@ def plan_command(start_mm, end_mm, count, runs, overrun_mm, seed, cycle, gcode_p
     program = gcode_program(plan, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_min) if gcode_path else None
     text = cycle_csv(plan)
     if output:
-        ensure_parent(output).write_text(text, encoding="utf-8")
+        write_output(output, lambda target: target.write_text(text, encoding="utf-8"))
     else:
         click.echo(text, nl=False)
     if program is not None:
-        Path(ensure_parent(gcode_path)).write_text(program, encoding="utf-8")
+        write_output(gcode_path, lambda target: target.write_text(program, encoding="utf-8"))
 
 
 def register(group: click.Group) -> None:
