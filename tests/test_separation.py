@@ -268,6 +268,34 @@ def test_strp_offset_accumulates_quadratically_and_the_printed_eq10_slips():
     assert not np.allclose(printed_yaw, yaw_err, rtol=0.1)
 
 
+def test_printed_eq10_eq11_hold_for_delta2_and_slip_for_delta1():
+    # paper 001 eq (10)-(11) number the points from 1 (R(1) = R(2) = 0) and carry the signs of offsets
+    # ADDED to the readings (eq 8 subtracts them, as eq 9's +n Delta1 also shows). Read that way their
+    # Delta2 terms are exact; their Delta1 terms are not: -n (n + 1) Delta1 in eq (10) (printed
+    # -(n^2 - 1) Delta1) and -(2n - 1) Delta1 / dL in eq (11) (printed +(2n - 3) Delta1, and no 1 / dL).
+    def printed_eq10(n, d1, d2):
+        return -(n**2 - 1) * d1 + n * (n + 1) / 2 * d2
+
+    def printed_eq11(n, d1, d2):
+        return (n - 1) * d2 + (2 * n - 3) * d1
+
+    delta = 0.04 * UM
+    for d1, d2 in ((0.0, delta), (delta, 0.0)):
+        clean, shifted = offset_error(sequential_three_point, (0.0, d1, d2))
+        profile_err = -(shifted.profile_m - clean.profile_m)  # sign of offsets added, as the paper
+        n = np.arange(profile_err.size - 2) + 1.0  # profile_err[j] is the paper's R(n + 2) with n = j - 1
+        yaw_err = -(shifted.yaw_rad - clean.yaw_rad)[np.isfinite(clean.yaw_rad)] * SPACING
+        m = np.arange(yaw_err.size) + 1.0  # paper's gamma(n) with n = k + 1, times dL
+        if d1 == 0.0:
+            np.testing.assert_allclose(profile_err[2:], printed_eq10(n, d1, d2), rtol=1e-9, atol=1e-20)
+            np.testing.assert_allclose(yaw_err, printed_eq11(m, d1, d2), rtol=1e-9, atol=1e-20)
+        else:
+            np.testing.assert_allclose(profile_err[2:], -n * (n + 1) * d1, rtol=1e-9, atol=1e-20)
+            np.testing.assert_allclose(yaw_err, -(2 * m - 1) * d1, rtol=1e-9, atol=1e-20)
+            assert not np.allclose(profile_err[2:], printed_eq10(n, d1, d2), rtol=0.05)
+            assert not np.allclose(yaw_err, printed_eq11(m, d1, d2), rtol=0.05)
+
+
 # --- neglected yaw (eq 12-17) --------------------------------------------------------------------
 
 
