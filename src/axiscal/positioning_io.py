@@ -216,9 +216,12 @@ def read_positioning_run(
     targets = sorted(target_line)
     run_labels = sorted(set(runs), key=_sort_key)
     expected = set(run_labels)
+    runs_at: dict[tuple[float, str], set[str]] = {}
+    for t, r, d in cells:
+        runs_at.setdefault((t, d), set()).add(r)
     for target in targets:
         for d, other in (("+", "-"), ("-", "+")):
-            present = {r for (t, r, dd) in cells if t == target and dd == d}
+            present = runs_at.get((target, d), set())
             label = f"target {target / target_factor:g} {target_name.rpartition('_')[2]}"
             if not present:
                 raise AxiscalError(
