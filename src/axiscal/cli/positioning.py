@@ -63,7 +63,8 @@ def _cell(value: float, width: int = 9) -> str:
 
 def report(data, result: Iso230Result | Vdi3441Result) -> str:
     """The readable table of ``axiscal positioning``."""
-    lines = [f"{data.run.source}: {result.standard}, {data.run.targets.size} targets, {data.run.runs} runs each way"]
+    runs = f"{data.run.runs} run{'s' if data.run.runs != 1 else ''} each way"
+    lines = [f"{data.run.source}: {result.standard}, {data.run.targets.size} targets, {runs}"]
     if data.compensated:
         lines.append("raw laser readings compensated for air index and material temperature")
     lines.append("")
