@@ -74,6 +74,13 @@ def test_a_cut_last_line_is_dropped_by_read_record_and_readable_by_pandas(tmp_pa
     np.testing.assert_allclose(frame["t_s"].to_numpy()[:49], record.columns["t_s"])
 
 
+def test_only_a_live_record_loses_a_last_line_without_newline(tmp_path):
+    path = tmp_path / "plain.csv"
+    path.write_text("t_s,a\n0.1,1\n0.2,2")  # not written by the recorder: the last line is a frame
+    record = read_record(path)
+    assert not record.truncated and record.columns["t_s"].tolist() == [0.1, 0.2]
+
+
 def test_bad_record_files_name_file_and_line(tmp_path):
     path = tmp_path / "bad.csv"
     path.write_text("t_s,a\n0.1,1\n0.2,oops\n")

@@ -513,10 +513,26 @@ def test_injected_faults_are_flagged_exactly(injections):
     assert np.all(np.isfinite(out["ex_um"][expected == 0]))
 
 
-def test_measure_drops_a_line_cut_by_a_crash(examples, run_cli, tmp_path):
-    text = (examples / "xz_module" / "sensors_frames.csv").read_text()
+def test_measure_drops_a_line_cut_by_a_crash(run_cli, tmp_path):
+    record = tmp_path / "live.csv"
+    status, out, err = run_cli("live", "--no-server", "--duration", "0.2", "--rate", "500", "--record", record)
+    assert status == 0, err
+    text = record.read_text()
+    frames = len([line for line in text.splitlines() if line[:1].isdigit()])
     cut = tmp_path / "cut.csv"
-    cut.write_text(text[: text.rindex("\n") - 40])
+    cut.write_text(text[: text.rindex("\n") - 40])  # killed while writing the last line
     status, out, err = run_cli("measure", cut, "--json")
     assert status == 0, err
-    assert '"frames": 199' in out
+    assert f'"frames": {frames - 1}' in out
+
+
+def test_measure_keeps_the_last_frame_of_a_file_without_a_final_newline(examples, run_cli, tmp_path):
+    text = (examples / "xz_module" / "sensors_frames.csv").read_text()
+    bare = tmp_path / "bare.csv"
+    bare.write_text(text.rstrip("\n"))  # written by a tool that does not end the last line
+    status, out, err = run_cli("measure", bare, "--json")
+    assert status == 0, err
+    assert '"frames": 200' in out
+    bare.write_text(text[: text.rindex("\n") - 40])  # a short last line in a file that is not a live record is an error
+    status, out, err = run_cli("measure", bare, "--json")
+    assert status == 2 and "bare.csv:" in err and err.count("\n") == 1

@@ -49,14 +49,14 @@ def read_frames(path: str | Path, channels: tuple[str, ...]) -> dict[str, np.nda
     """Raw frames from a CSV with ``t_s`` and every channel (other columns are ignored).
 
     A cell that is empty, ``nan`` or not a number is a missing reading: the frame is flagged by the
-    pipeline, not refused. A last line without its newline (a record cut short by a crash) is
-    dropped. A missing column or a bad time stamp is an error naming the file.
+    pipeline, not refused. In a live record, a last line without its newline (cut short by a
+    crash) is dropped; in any other file it is a frame. A missing column or a bad time stamp is an
+    error naming the file.
     """
-    text = read_text(path)
-    lines = text.split("\n")
-    if not text.endswith("\n"):
-        lines = lines[:-1]
-    table = parse_csv(lines, path=str(path))
+    from axiscal.live.recorder import drop_cut_line
+
+    text, _ = drop_cut_line(read_text(path))
+    table = parse_csv(text.split("\n"), path=str(path))
     table.require("t_s", *channels)
     frames = {"t_s": table.numeric("t_s")}
     for name in channels:

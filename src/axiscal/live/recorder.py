@@ -12,7 +12,8 @@ Durability: each batch is written with one ``os.write`` on a file opened ``O_APP
 the process, so a crash of the process loses nothing that was written); a background thread
 ``fsync`` s the file every ``sync_interval_s`` and only then counts the frames as *acknowledged*
 (:attr:`Recorder.frames_acknowledged`): those survive even a crash of the operating system. After a
-kill the last line may be cut short; :func:`read_record` drops it, and pandas reads it as a row with
+kill the last line may be cut short; :func:`read_record` drops it (in a live record only: in any
+other CSV a last line without its newline is a complete frame), and pandas reads it as a row with
 missing cells at its end.
 """
 
@@ -172,11 +173,24 @@ class Record:
         return len(self.columns["t_s"])
 
 
+def drop_cut_line(text: str) -> tuple[str, bool]:
+    """A live record's text without a last line cut short by a crash, and whether one was dropped.
+
+    The recorder ends every line with a newline, so in a live record (first line
+    :data:`FORMAT_LINE`) a last line without one was being written when the process died. Any other
+    CSV keeps a last line that merely lacks its newline: it is a frame like the others.
+    """
+    if text and not text.endswith("\n") and text.startswith(FORMAT_LINE):
+        return text[: text.rfind("\n") + 1], True
+    return text, False
+
+
 def read_record(path: str | Path) -> Record:
     """Read a live record (or any CSV with a ``t_s`` column): empty cells and ``nan`` are NaN.
 
-    A last line without its newline (the process was killed while writing it) is dropped and
-    :attr:`Record.truncated` is set; every complete line is returned.
+    In a live record, a last line without its newline (the process was killed while writing it)
+    is dropped and :attr:`Record.truncated` is set (:func:`drop_cut_line`); every complete line is
+    returned.
 
     Raises
     ------
@@ -191,10 +205,8 @@ def read_record(path: str | Path) -> Record:
         raise AxiscalError("file not found", path=path) from None
     except OSError as exc:
         raise AxiscalError(f"cannot read file ({exc.strerror})", path=path) from None
-    truncated = bool(data) and not data.endswith(b"\n")
-    if truncated:
-        data = data[: data.rfind(b"\n") + 1]
-    lines = data.decode("utf-8-sig", errors="replace").split("\n")
+    text, truncated = drop_cut_line(data.decode("utf-8-sig", errors="replace"))
+    lines = text.split("\n")
     comments: list[str] = []
     header: list[str] | None = None
     rows: list[list[str]] = []
