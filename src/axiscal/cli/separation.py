@@ -11,6 +11,7 @@ from axiscal.cli.common import ensure_parent, pyplot
 from axiscal.errors import AxiscalError
 from axiscal.io import read_csv, write_csv
 from axiscal.separation import METHODS, ProbeReadings, Separation, reversal, separate, simulate_readings, uneven_step
+from axiscal.straightness import reference_line
 from axiscal.units import MM, UM
 
 CLI_METHODS = (*METHODS, "reversal")
@@ -66,14 +67,33 @@ def separation_columns(result: Separation) -> dict[str, list[str]]:
 
 
 def plot_separation(path: str, result: Separation) -> None:
+    """Profile R and motion S about the profile's least-squares line (top) and the yaw when resolved (bottom).
+
+    R and S share an undetermined straight line, so the same line (the profile's least-squares
+    line) is taken from both: what is left is their shape, and S keeps its place relative to R.
+    """
     plt = pyplot()
-    fig, ax = plt.subplots(figsize=(7, 4))
-    ax.plot(result.position_m / MM, result.profile_m / UM, label="profile R")
-    ax.plot(result.position_m / MM, result.motion_m / UM, label="motion S")
-    ax.set_xlabel("position / mm")
-    ax.set_ylabel("deviation / um (up to a common line)")
-    ax.set_title(f"error separation: {result.method}")
-    ax.legend()
+    x = result.position_m
+    line = reference_line(x, result.profile_m)
+    profile = line.residuals(x, result.profile_m)
+    motion = line.residuals(x, result.motion_m)
+    has_yaw = bool(np.any(np.isfinite(result.yaw_rad)))
+    marker = "o-" if x.size <= 60 else "-"
+    fig, axes = plt.subplots(2 if has_yaw else 1, 1, figsize=(8, 6 if has_yaw else 4), sharex=True, squeeze=False)
+    ax = axes[0, 0]
+    finite = np.isfinite(motion)
+    motion_zone = np.ptp(motion[finite]) if finite.any() else np.nan
+    ax.plot(x / MM, profile / UM, marker, ms=3, label=f"profile R (P-V {np.ptp(profile) / UM:.3f} um)")
+    ax.plot(x / MM, motion / UM, marker, ms=3, label=f"motion S (P-V {motion_zone / UM:.3f} um)")
+    ax.set_ylabel("deviation / um")
+    ax.set_title(f"error separation: {result.method} (R and S less R's least-squares line)")
+    ax.legend(fontsize=8)
+    if has_yaw:
+        yaw = axes[1, 0]
+        yaw.plot(x / MM, result.yaw_rad / 1e-6, marker, ms=3, color="C2", label="yaw (up to a constant)")
+        yaw.set_ylabel("yaw / urad")
+        yaw.legend(fontsize=8)
+    axes[-1, 0].set_xlabel("position along the workpiece / mm")
     fig.tight_layout()
     fig.savefig(ensure_parent(path), dpi=120)
     plt.close(fig)
