@@ -108,7 +108,9 @@ def plot_squareness(result: SquarenessResult, runs: tuple[tuple[np.ndarray, np.n
               help="Run of the plane's second axis: position_mm, deviation_um (deviation along the first axis).")
 @click.option("--plane", default="XY", show_default=True, help="XY (EC0Y), XZ (EB0Z) or YZ (EA0Z).")
 @click.option("--prism-deviation-arcsec", type=float, default=0.0, show_default=True,
-              help="D: the prism turns the beam by 90 deg + D (paper 002 eq 13); subtracted per eq 21.")
+              help="D: the prism turns the beam by 90 deg + D (paper 002 eq 13); subtracted per eq 21. "
+              "Sign for a beam arriving against the first axis and leaving along the second; "
+              "give -D if one of the two runs the other way (docs/squareness.md).")
 @click.option("--reference", default="least-squares", show_default=True, help="least-squares or end-points line per run.")
 @click.option("--convention", default="included-angle", show_default=True,
               help="Sign of squareness_arcsec: included-angle (included angle - 90 deg - D, paper 002 eq 21) "
