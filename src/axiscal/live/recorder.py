@@ -79,6 +79,7 @@ class Recorder:
         except OSError as exc:
             os.close(self._fd)
             raise AxiscalError(f"cannot write the record file ({exc.strerror})", path=self.path) from None
+        _sync_folder(self.path)
         self._lock = threading.Lock()
         self._written = 0
         self._acknowledged = 0
@@ -158,6 +159,17 @@ class Recorder:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+def _sync_folder(path: Path) -> None:
+    """Make the file's entry in its folder durable (a new file's name is not covered by fsync of the file)."""
+    try:
+        folder = os.open(path.parent, os.O_RDONLY)
+    except OSError:
+        return
+    with contextlib.suppress(OSError):
+        os.fsync(folder)
+    os.close(folder)
 
 
 @dataclass(frozen=True)
