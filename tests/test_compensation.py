@@ -405,3 +405,13 @@ def test_heidenhain_file_applied_as_the_control_does(curve, backlash, seed):
         e = c.at(c.positions, d if backlash else "mean")
         # + reads one rounded value, - the sum of two: within one step of 0.1 um
         assert np.abs(e + correction(c.positions, d)).max() <= (0.05e-6 if d == "+" or not backlash else 0.1e-6) + EPS
+
+
+@pytest.mark.parametrize(
+    "fmt,option",
+    [("linuxcnc", ["--bidirectional"]), ("heidenhain", ["--interval-mm", "10"]), ("fanuc", ["--no-backlash"]),
+     ("siemens", ["--comp-type", "0"]), ("linuxcnc", ["--axis", "X"])],
+)
+def test_an_option_of_another_format_is_refused_not_ignored(run_cli, examples, fmt, option):
+    status, out, err = run_cli("compensate", examples / "positioning_run.csv", "--format", fmt, *option)
+    assert status == 2 and out == "" and f"{option[0]} applies to --format" in err and err.count("\n") == 1

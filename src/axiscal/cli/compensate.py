@@ -7,11 +7,33 @@ import numpy as np
 
 from axiscal.cli.common import write_output
 from axiscal.compensation import error_curve, fanuc_table, heidenhain_table, linuxcnc_table, residuals, siemens_table
+from axiscal.errors import AxiscalError
 from axiscal.positioning import target_statistics
 from axiscal.positioning_io import read_positioning_run
 from axiscal.units import MM, UM
 
 FORMATS = ("linuxcnc", "fanuc", "siemens", "heidenhain")
+#: the format-specific options each format reads; giving another format's option is an error, not ignored
+FORMAT_OPTIONS = {
+    "comp_type": ("linuxcnc",),
+    "interval_mm": ("fanuc", "siemens"),
+    "magnification": ("fanuc",),
+    "detection_unit_um": ("fanuc",),
+    "reference_position_mm": ("fanuc", "siemens"),
+    "reference_point": ("fanuc",),
+    "bidirectional": ("fanuc",),
+    "axis": ("siemens", "heidenhain"),
+    "axis_number": ("fanuc",),
+    "no_backlash": ("heidenhain",),
+}
+
+
+def _refuse_options_of_other_formats(fmt: str) -> None:
+    ctx = click.get_current_context()
+    for name, formats in FORMAT_OPTIONS.items():
+        if fmt not in formats and ctx.get_parameter_source(name) == click.core.ParameterSource.COMMANDLINE:
+            flag = "--" + name.replace("_", "-")
+            raise AxiscalError(f"{flag} applies to --format {' or '.join(formats)}, not {fmt}")
 
 
 @click.command("compensate")
@@ -34,6 +56,7 @@ FORMATS = ("linuxcnc", "fanuc", "siemens", "heidenhain")
 def compensate_command(run_csv, fmt, output, comp_type, interval_mm, magnification, detection_unit_um,
                        reference_position_mm, reference_point, bidirectional, axis, axis_number, no_backlash):
     """Write a compensation table for the controller from the mean deviations of RUN_CSV."""
+    _refuse_options_of_other_formats(fmt)
     data = read_positioning_run(run_csv)
     curve = error_curve(target_statistics(data.run))
     targets = data.run.targets
