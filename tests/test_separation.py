@@ -134,7 +134,9 @@ def loop_combined(a, b, c, d, s):
         flat = gamma - (slope * j + mean)
         p = loop_stp(a[idx], b[idx], d, flat)
         pts = [i + j * k for j in range(groups + 1)]
-        lift = np.mean([z[n] - p[jj] for jj, n in enumerate(pts) if n <= len(a)])  # eq (19)
+        z_centre = (k - 1) / 2 + np.arange(len(z))  # z(n) averages R over n..n + k - 1
+        known = [(jj, n) for jj, n in enumerate(pts) if z_centre[0] <= n <= z_centre[-1]]
+        lift = np.mean([np.interp(n, z_centre, z) - p[jj] for jj, n in known])  # eq (19)
         for jj, n in enumerate(pts):
             profile[n] = p[jj] + lift
     return profile

@@ -531,7 +531,9 @@ def combined(
     """The combined method of paper 001, section 4, steps 1-5.
 
     1. Three probes with d1 = d2 = d = K s, sampled at the step s.
-    2. GTP (eq 7) over all readings gives the shape z(n) at full resolution (smoothed).
+    2. GTP (eq 7) over all readings gives the shape z(n) at full resolution (smoothed), placed at
+       the centre of the window it averages (``generalized_two_point``), not at x_n as the paper
+       indexes it: that would compare the groups with a shape shifted by (d - s) / 2.
     3. The readings are split into K groups one spacing apart (group i starts at reading i); STRP
        (eq 2) on each group gives its yaw, whose mean and slope are removed (eq 15) because zero
        offsets corrupt exactly those (eq 11).
@@ -560,7 +562,7 @@ def combined(
     n_read = x.size
     if n_read < 2 * k:
         raise AxiscalError(f"the combined method needs at least two readings per group: {2 * k} readings, got {n_read}")
-    z = np.concatenate([[0.0], np.cumsum(readings.b_m - readings.a_m) * (step / d)])
+    shape = generalized_two_point(readings)
     groups = n_read // k
     used = groups * k
     # reading n = i + j K belongs to group i, chain point j: reshape to (groups, K), columns are groups
@@ -578,17 +580,17 @@ def combined(
     group_profile = np.vstack([np.zeros(k), np.cumsum(b - a + d * yaw_flat, axis=0)])
     index = (np.arange(groups + 1)[:, None] * k + np.arange(k)[None, :]).ravel()
     flat = group_profile.ravel()
-    in_z = index <= n_read
+    position = x[0] + step * index
+    in_z = (position >= shape.position_m[0] - 1e-12) & (position <= shape.position_m[-1] + 1e-12)
     if calibration_m is not None:
-        pos = x[0] + step * index
-        in_z &= (pos >= calibration_m[0] - 1e-12) & (pos <= calibration_m[1] + 1e-12)
+        in_z &= (position >= calibration_m[0] - 1e-12) & (position <= calibration_m[1] + 1e-12)
     group_of = np.tile(np.arange(k), groups + 1)
     counts = np.bincount(group_of[in_z], minlength=k)
     if np.any(counts == 0):
         raise AxiscalError("the combined method's calibration region must hold at least one point of every group")
-    lift = np.bincount(group_of[in_z], weights=z[index[in_z]] - flat[in_z], minlength=k) / counts
+    z = np.interp(position[in_z], shape.position_m, shape.profile_m)
+    lift = np.bincount(group_of[in_z], weights=z - flat[in_z], minlength=k) / counts
     profile = flat + lift[group_of]
-    position = x[0] + step * index
     return _finish("combined", position, profile, readings, _yaw_from_profile(readings, position, profile))
 
 
