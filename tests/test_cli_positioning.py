@@ -186,3 +186,11 @@ def test_an_output_that_cannot_be_written_is_one_error_line(run_cli, examples, t
     status, _, err = run_cli(*argv)
     assert status == 2 and err.startswith(f"axiscal: error: {blocker}/") and "cannot write" in err
     assert err.count("\n") == 1
+
+
+@pytest.mark.parametrize("option", [["--wavelength-nm", "632.99"], ["--expansion-per-k", "23e-6"]])
+def test_raw_reading_options_on_a_deviation_file_are_refused_not_ignored(run_cli, examples, option):
+    status, out, err = run_cli("positioning", examples / "positioning_run.csv", *option)
+    assert status == 2 and out == "" and f"{option[0]} applies to raw laser readings" in err and err.count("\n") == 1
+    status, _, _ = run_cli("positioning", examples / "laser_raw_run.csv", *option)
+    assert status == 0

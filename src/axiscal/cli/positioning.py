@@ -6,6 +6,7 @@ import click
 import numpy as np
 
 from axiscal.cli.common import echo_json
+from axiscal.errors import AxiscalError
 from axiscal.positioning import STANDARDS, Iso230Result, Vdi3441Result, iso230_2, iso_edition, vdi3441
 from axiscal.positioning_io import read_positioning_run
 from axiscal.units import MM, UM
@@ -92,6 +93,14 @@ def report(data, result: Iso230Result | Vdi3441Result) -> str:
 def positioning_command(run_csv, standard, as_json, plot_path, wavelength_nm, expansion_per_k):
     """Evaluate a bidirectional positioning test (RUN_CSV: target_mm, run, direction, deviation_um or actual_mm)."""
     data, result = evaluate_file(run_csv, standard, wavelength_nm=wavelength_nm, expansion_per_k=expansion_per_k)
+    ctx = click.get_current_context()
+    for name in ("wavelength_nm", "expansion_per_k"):
+        if not data.compensated and ctx.get_parameter_source(name) == click.core.ParameterSource.COMMANDLINE:
+            raise AxiscalError(
+                f"--{name.replace('_', '-')} applies to raw laser readings (actual_<unit> with the environment"
+                " columns); this file holds none",
+                path=data.run.source,
+            )
     for warning in result.warnings:
         click.echo(f"axiscal: warning: {data.run.source}: {warning}", err=True)
     if plot_path:
