@@ -9,13 +9,11 @@ the units their flags name; the computing is done in SI by :mod:`axiscal.squaren
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from pathlib import Path
 
 import click
 import numpy as np
 
-from axiscal.cli.common import echo_json, ensure_parent, pyplot
+from axiscal.cli.common import echo_json, pyplot, write_output
 from axiscal.cmm import CmmSquareness, compensate, readings_for, simulate_gauge_block
 from axiscal.errors import AxiscalError
 from axiscal.io import read_csv, write_csv
@@ -27,14 +25,6 @@ from axiscal.units import ARCMIN, ARCSEC, MM, UM
 PAPER_004_IMPROVEMENT_UM = {"X": 11.0, "Y": 5.0}
 #: Largest CMM squareness accepted on the command line, arc minutes: eq (6) is a small-angle model.
 MAX_CMM_SQUARENESS_ARCMIN = 60.0
-
-
-def _write_output(path: str, write: Callable[[Path], None]) -> None:
-    """Run ``write`` on ``path`` (parent folders made); a file that cannot be written is one error line."""
-    try:
-        write(ensure_parent(path))
-    except OSError as exc:
-        raise AxiscalError(f"cannot write this file: {exc.strerror or exc}", path=path) from None
 
 
 def squareness_payload(result: SquarenessResult, *, reference: str) -> dict:
@@ -96,7 +86,7 @@ def plot_squareness(result: SquarenessResult, runs: tuple[tuple[np.ndarray, np.n
         f"  ({result.iso_term} {result.iso_value_rad / ARCSEC:+.2f} arcsec)"
     )
     try:
-        _write_output(path, lambda target: fig.savefig(target, dpi=110))
+        write_output(path, lambda target: fig.savefig(target, dpi=110))
     finally:
         plt.close(fig)
 
@@ -205,7 +195,7 @@ def plot_pentaprism(table: PentaprismSensitivity, path: str) -> None:
     axes[0].set_ylabel("angle between beams - 90 deg / arcsec")
     fig.suptitle(f"pentaprism of paper 002, index {table.index:g}: incident beam [-1, 0, 0]")
     try:
-        _write_output(path, lambda target: fig.savefig(target, dpi=110))
+        write_output(path, lambda target: fig.savefig(target, dpi=110))
     finally:
         plt.close(fig)
 
@@ -289,7 +279,7 @@ def compensate_command(points_csv, squareness_arcmin, output, inverse):
     ]
     text = write_csv(None, columns, fmt="{:.6f}", comments=comments)
     if output:
-        _write_output(output, lambda target: target.write_text(text, encoding="utf-8"))
+        write_output(output, lambda target: target.write_text(text, encoding="utf-8"))
     else:
         click.echo(text, nl=False)
 
