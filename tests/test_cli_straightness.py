@@ -54,6 +54,14 @@ def test_separate_writes_the_output_columns(run_cli, examples, tmp_path, method,
     assert np.all(np.diff(result.numeric("position_mm")) > 0)
 
 
+@pytest.mark.parametrize("method", ["strp", "combined"])
+def test_separation_plot_with_yaw(run_cli, examples, tmp_path, method):
+    plot = tmp_path / f"{method}.png"
+    status, _, err = run_cli("separate", examples / "probe_readings.csv", "--method", method, "--spacing-mm", "15", "--plot", plot)
+    assert status == 0, err
+    assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
 def test_frequency_options_reach_the_method(run_cli, examples):
     status, bowed, _ = run_cli("separate", examples / "probe_readings.csv", "--method", "frequency", "--spacing-mm", "15")
     assert status == 0 and "harmonics left out" in bowed
