@@ -117,7 +117,7 @@ def test_cmm_gauge_blocks(run_cli):
     ],
 )
 def test_squareness_bad_options(run_cli, examples, args, message):
-    status, out, err = run_cli(*_sq(examples, *args))
+    status, _, err = run_cli(*_sq(examples, *args))
     assert status == 2 and message in err
     assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
 

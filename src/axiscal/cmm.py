@@ -58,7 +58,7 @@ class CmmSquareness:
             raise AxiscalError("squareness values must be finite numbers")
 
     @classmethod
-    def from_iso(cls, terms: Mapping[str, float]) -> "CmmSquareness":
+    def from_iso(cls, terms: Mapping[str, float]) -> CmmSquareness:
         """From ISO 230-1 terms ``EC0Y``, ``EB0Z``, ``EA0Z`` (radians; a missing term is 0)."""
         unknown = sorted(set(terms) - {"EC0Y", "EB0Z", "EA0Z"})
         if unknown:

@@ -207,14 +207,14 @@ class Prism:
         object.__setattr__(self, "faces", tuple(self.faces))
         object.__setattr__(self, "pivot_m", np.asarray(self.pivot_m, dtype=float).reshape(3))
 
-    def rotated(self, rotation: np.ndarray) -> "Prism":
+    def rotated(self, rotation: np.ndarray) -> Prism:
         """The prism turned by the 3x3 rotation matrix ``rotation`` about :attr:`pivot_m` (eq 9)."""
         r = np.asarray(rotation, dtype=float)
         c = self.pivot_m
         faces = tuple(Face(r @ f.normal, r @ (f.point_m - c) + c, f.kind) for f in self.faces)
         return Prism(faces, self.index, c)
 
-    def translated(self, offset_m: np.ndarray | Sequence[float]) -> "Prism":
+    def translated(self, offset_m: np.ndarray | Sequence[float]) -> Prism:
         """The prism moved by ``offset_m`` (shape (3,), metres)."""
         t = np.asarray(offset_m, dtype=float).reshape(3)
         return Prism(tuple(Face(f.normal, f.point_m + t, f.kind) for f in self.faces), self.index, self.pivot_m + t)

@@ -18,7 +18,12 @@ from axiscal.cmm import CmmSquareness, compensate, readings_for, simulate_gauge_
 from axiscal.errors import AxiscalError
 from axiscal.io import read_csv, write_csv
 from axiscal.optics import BK7_INDEX, PentaprismSensitivity, pentaprism_sensitivity
-from axiscal.squareness import PLANES, SquarenessResult, read_straightness_run, squareness
+from axiscal.squareness import (
+    PLANES,
+    SquarenessResult,
+    read_straightness_run,
+    squareness,
+)
 from axiscal.units import ARCMIN, ARCSEC, MM, UM
 
 #: paper 004, Table 2 as its text gives it: error reductions by compensation, um
