@@ -155,3 +155,10 @@ def test_recording_over_the_file_being_replayed_is_refused(run_cli, recorded):
     status, out, err = run_cli("live", "--no-server", "--source", f"replay:{recorded}", "--record", str(recorded))
     assert status == 2 and "names the file being replayed" in err and err.count("\n") == 1
     assert recorded.read_bytes() == before
+
+
+def test_a_record_folder_that_cannot_be_made_is_one_error_line(run_cli, tmp_path):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("not a folder\n")
+    status, out, err = run_cli("live", "--no-server", "--duration", "0.1", "--record", str(blocker / "run.csv"))
+    assert status == 2 and err.count("\n") == 1 and "cannot create the record's folder" in err

@@ -536,3 +536,20 @@ def test_measure_keeps_the_last_frame_of_a_file_without_a_final_newline(examples
     bare.write_text(text[: text.rindex("\n") - 40])  # a short last line in a file that is not a live record is an error
     status, out, err = run_cli("measure", bare, "--json")
     assert status == 2 and "bare.csv:" in err and err.count("\n") == 1
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ("measure", "{frames}", "-o", "{bad}/out.csv"),
+        ("simulate", "laser", "-o", "{bad}/laser.csv"),
+        ("calibrate", "sensitivity", "{psd}", "--channel", "x_psd_y_um", "-o", "{bad}/cal.json"),
+        ("experiment", "diagonal", "--plot", "{bad}/figure.png"),
+    ],
+)
+def test_an_output_that_cannot_be_written_is_one_error_line(run_cli, examples, tmp_path, args):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("not a folder\n")
+    names = {"frames": examples / "xz_module" / "sensors_frames.csv", "psd": examples / "xz_module" / "sensors_psd_run.csv", "bad": blocker}
+    status, out, err = run_cli(*(a.format(**names) for a in args))
+    assert status == 2 and err.count("\n") == 1 and err.startswith(f"axiscal: error: {blocker}/")

@@ -124,8 +124,12 @@ def live(
     try:
         if record_path is not None:
             bits = ", ".join(f"{1 << b} {system.fault_text(1 << b)}" for b in range(3)) + f", {FAULT_MALFORMED} malformed frame"
+            try:
+                record_file = ensure_parent(record_path)
+            except OSError as exc:
+                raise AxiscalError(f"cannot create the record's folder ({exc.strerror or exc})", path=record_path) from None
             recorder = Recorder(
-                ensure_parent(record_path),
+                record_file,
                 system.channels,
                 result_columns(tuple(system.axes)),
                 comments=(

@@ -14,7 +14,7 @@ from pathlib import Path
 import click
 import numpy as np
 
-from axiscal.cli.common import echo_json, ensure_parent
+from axiscal.cli.common import echo_json, write_output
 from axiscal.errors import AxiscalError
 from axiscal.io import CsvTable, parse_csv, read_csv, read_text
 
@@ -75,7 +75,7 @@ def write_columns(path: str | Path | None, columns: dict[str, np.ndarray], *, co
     lines += [row_format % tuple(col[k] for col in stacked) for k in range(n)]
     text = "\n".join(lines) + "\n"
     if path is not None:
-        ensure_parent(path).write_text(text, encoding="utf-8")
+        write_output(path, lambda target: target.write_text(text, encoding="utf-8"))
     return text
 
 
@@ -150,7 +150,7 @@ def _save(calibration, output: str | None, as_json: bool, report: dict) -> None:
 
     if output is not None:
         merged = load_calibration(output).merged(calibration) if Path(output).exists() else calibration
-        save_calibration(merged, ensure_parent(output))
+        write_output(output, lambda target: save_calibration(merged, target))
         report["output"] = str(output)
     if as_json:
         echo_json(report)
@@ -373,7 +373,7 @@ def diagonal_command(load_kg, seed, samples, squareness_error_arcsec, plot, as_j
     if plot:
         from axiscal.volumetric_report import plot_diagonal_experiment
 
-        plot_diagonal_experiment(result, ensure_parent(plot))
+        write_output(plot, lambda target: plot_diagonal_experiment(result, target))
     if as_json:
         echo_json(
             {
