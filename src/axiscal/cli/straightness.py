@@ -22,21 +22,25 @@ def read_profile(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
 
 
 def plot_straightness(path: str | Path, position_m: np.ndarray, deviation_m: np.ndarray, line: ReferenceLine) -> None:
-    """Profile, reference line and the zone's two bounding lines, in mm and um."""
+    """Profile with its reference line and zone (top) and the residuals about the line (bottom), in mm and um."""
     plt = pyplot()
     residual = line.residuals(position_m, deviation_m)
-    order = np.argsort(position_m)
+    order = np.argsort(position_m, kind="stable")
     x = position_m[order]
     fit = line.slope * x + line.intercept_m
-    fig, ax = plt.subplots(figsize=(7, 4))
-    ax.plot(x * 1e3, deviation_m[order] / UM, "o-", ms=3, label="profile")
-    ax.plot(x * 1e3, fit / UM, "-", label=f"{line.reference} line")
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 6), sharex=True, height_ratios=(3, 2))
+    top.plot(x * 1e3, deviation_m[order] / UM, "o-", ms=3, label="profile")
+    top.plot(x * 1e3, fit / UM, "-", label=f"{line.reference} line")
     for bound in (residual.min(), residual.max()):
-        ax.plot(x * 1e3, (fit + bound) / UM, "--", color="gray", lw=0.8)
-    ax.set_xlabel("position / mm")
-    ax.set_ylabel("deviation / um")
-    ax.set_title(f"straightness {line.straightness_m / UM:.3f} um ({line.reference})")
-    ax.legend()
+        top.plot(x * 1e3, (fit + bound) / UM, "--", color="gray", lw=0.8)
+    top.set_ylabel("deviation / um")
+    top.set_title(f"straightness {line.straightness_m / UM:.4f} um ({line.reference})")
+    top.legend(fontsize=8)
+    bottom.plot(x * 1e3, residual[order] / UM, "o-", ms=3)
+    for bound in (residual.min(), residual.max()):
+        bottom.axhline(bound / UM, ls="--", color="gray", lw=0.8)
+    bottom.set_ylabel("about the line / um")
+    bottom.set_xlabel("position / mm")
     fig.tight_layout()
     fig.savefig(ensure_parent(path), dpi=120)
     plt.close(fig)
