@@ -219,3 +219,22 @@ def test_bad_simulation_options(run_cli, examples, argv, needle):
         "--motion", examples / "separation_motion.csv", "--spacing-mm", "15", *argv,
     )
     assert needle in line
+
+
+@pytest.mark.parametrize(
+    ("text", "needle"),
+    [
+        ("", "empty file"),
+        ("position_mm,deviation_um\n", "at least 2"),
+        ("position_mm,deviation_um\n0,1\n", "at least 2"),
+        ("position_mm,deviation_um\n0,1\n1,nan\n", "p.csv:3: column 'deviation_um': nan is not a finite number"),
+        ("position_mm,deviation_um\n0,1\n1,inf\n", "p.csv:3:"),
+        ("position_mm,deviation_nm\n0,1\n1,2\n", "p.csv:1: missing column 'deviation_um'"),
+        ("position_mm,deviation_um\n0,1\n1,2,3\n", "p.csv:3:"),
+        ("position_mm,deviation_um\n0,1\n0,2\n1,3\n", "end-point line"),
+    ],
+)
+def test_bad_profile_files(run_cli, tmp_path, text, needle):
+    path = tmp_path / "p.csv"
+    path.write_text(text)
+    assert needle in one_line_error(run_cli, "straightness", path, "--reference", "end-points")
