@@ -180,6 +180,7 @@ class LiveState:
             for letter in self.axes:
                 edges = self._edges[letter]
                 axes[letter] = {
+                    "travel_mm": [float(edges[0]), float(edges[-1])],
                     "position_mm": _plain(0.5 * (edges[1:] + edges[:-1]), 3),
                     "errors": {name: _plain(self._profiles[letter][row]) for row, name in enumerate(axis_error_columns(letter))},
                 }

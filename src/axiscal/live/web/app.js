@@ -71,6 +71,7 @@ function drawAxes(state) {
       drawChart($("profile-" + name), axis.position_mm, [{ values: values, color: "#1f77b4" }], {
         title: `${stem} (${errorKind(stem, letter)}, ${unit})`,
         xlabel: `${letter} position (mm)`,
+        xrange: axis.travel_mm,  // the whole travel, ends included
       });
     }
   }

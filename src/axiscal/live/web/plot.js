@@ -27,7 +27,7 @@ function formatTick(v, step) {
   return v.toFixed(Math.min(digits, 6));
 }
 
-// series: [{values: [...], color: "#...", label: "..."}]; options: {xlabel, ylabel, title}
+// series: [{values: [...], color: "#...", label: "..."}]; options: {xlabel, ylabel, title, xrange: [lo, hi] (default: the data's)}
 function drawChart(canvas, xs, series, options) {
   const width = canvas.width, height = canvas.height;
   const ctx = canvas.getContext("2d");
@@ -40,7 +40,7 @@ function drawChart(canvas, xs, series, options) {
     ctx.textAlign = "left";
     ctx.fillText(options.title, left, 13);
   }
-  const xr = extent([xs]);
+  const xr = options.xrange || extent([xs]);
   const yr = extent(series.map(s => s.values));
   ctx.strokeStyle = "#d9dee6";
   ctx.strokeRect(left, top, plotW, plotH);
