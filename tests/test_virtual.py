@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from axiscal.errors import AxiscalError
 from axiscal.virtual import STROKE_M, VirtualModule
 
 
@@ -21,7 +22,7 @@ def test_paths_stay_in_the_travel_and_are_periodic(path):
 
 
 def test_unknown_path():
-    with pytest.raises(ValueError, match="unknown path"):
+    with pytest.raises(AxiscalError, match="unknown path"):
         VirtualModule().positions(np.zeros(2), path="circle")
 
 

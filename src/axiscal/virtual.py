@@ -23,6 +23,7 @@ from functools import cached_property
 import numpy as np
 
 from axiscal.calibration import Calibration, fit_mirror, fit_sensitivity, transfer_reference
+from axiscal.errors import AxiscalError
 from axiscal.machine import Axis, Machine
 from axiscal.measurement import MeasurementSystem, diagonal_errors, spatial_error
 from axiscal.sensors import SensorHead, SignedComponent, roll_from_autocollimation
@@ -216,7 +217,7 @@ class VirtualModule:
             sweep_index = np.floor(np.mod(t / sweep, 2 * lines)).astype(int)
             level = np.where(sweep_index < lines, sweep_index, 2 * lines - 1 - sweep_index)
             return {"X": triangle, "Z": level * (STROKE_M / (lines - 1))}
-        raise ValueError(f"unknown path '{path}'; use one of {', '.join(PATHS)}")
+        raise AxiscalError(f"unknown path '{path}'; use one of {', '.join(PATHS)}")
 
     def _noise(self, kind: str, shape: tuple[int, ...], rng: np.random.Generator) -> np.ndarray:
         scale = NOISE.get(kind, REFERENCE_NOISE.get(kind, 0.0))
