@@ -155,6 +155,7 @@ function drawHeader(state) {
     const badge = $("source-state");
     badge.textContent = state.source.state + (state.source.retries ? ` (${state.source.retries} retries)` : "");
     badge.className = "badge " + state.source.state;
+    setText("source-message", state.source.state === "streaming" ? "" : state.source.message || "");
   }
   setText("latency", state.latency_ms ? show(state.latency_ms.p99, 2) : "-");
   setText("recorded", state.record ? `${state.record.acknowledged} / ${state.record.written}` : "off");
