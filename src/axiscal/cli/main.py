@@ -1,7 +1,8 @@
 """Entry point of the ``axiscal`` command.
 
 User mistakes (:class:`axiscal.AxiscalError`) become one line on stderr, ``axiscal: error: FILE:LINE:
-problem``, and exit status 2; no traceback. Usage errors from Click also exit with 2.
+problem``, and exit status 2; no traceback. Usage errors from Click (a missing option, a flag given a
+word where a number belongs) are one line too, naming the command's --help, with status 2.
 """
 
 from __future__ import annotations
@@ -52,8 +53,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     except click.exceptions.Abort:
         click.echo("axiscal: aborted", err=True)
         return 1
+    except click.UsageError as exc:
+        command = exc.ctx.command_path if exc.ctx is not None else "axiscal"
+        message = " ".join(exc.format_message().split())
+        click.echo(f"axiscal: error: {message} (see '{command} --help')", err=True)
+        return exc.exit_code
     except click.ClickException as exc:
-        exc.show()
+        click.echo(f"axiscal: error: {' '.join(exc.format_message().split())}", err=True)
         return exc.exit_code
     except click.exceptions.Exit as exc:
         return exc.exit_code
