@@ -130,6 +130,19 @@ def _stop_chromium(process: subprocess.Popen) -> None:
             process.wait(timeout=5)
 
 
+class PsdDropsOut:
+    """The virtual module, but the X axis' PSD (channel x_psd_y_um) reads nothing from ``from_s`` on."""
+
+    def __init__(self, module):
+        self.module = module
+        self.from_s = np.inf
+
+    def frames(self, t_s, *, path="diagonal"):
+        frames, truth = self.module.frames(t_s, path=path)
+        frames["x_psd_y_um"] = np.where(t_s >= self.from_s, np.nan, frames["x_psd_y_um"])
+        return frames, truth
+
+
 @pytest.fixture(scope="module")
 def module():
     return VirtualModule(seed=0)
@@ -140,7 +153,9 @@ def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, mod
     record_path = tmp_path / "live.csv"
     recorder = Recorder(record_path, system.channels, result_columns(system.axes))
     state = LiveState(system)
-    pipeline = Pipeline(system, SimSource(module, system.channels, rate_hz=1000.0), recorder=recorder, state=state)
+    instrument = PsdDropsOut(module)
+    source = SimSource(instrument, system.channels, rate_hz=1000.0)
+    pipeline = Pipeline(system, source, recorder=recorder, state=state)
     stop = threading.Event()
     runner = threading.Thread(target=pipeline.run, kwargs={"stop": stop, "duration_s": 30.0})
     server = LiveServer(create_app(state, update_hz=10.0), port=0).start()
@@ -163,6 +178,16 @@ def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, mod
                         break
                 time.sleep(0.2)
             kinds = json.loads(tools.evaluate(ERROR_KINDS))
+            # then a sensor drops out: the page must say so and mark the point's values as old
+            instrument.from_s = time.monotonic() - source.clock_offset_s
+            faulty = None
+            deadline = time.monotonic() + 20.0
+            while time.monotonic() < deadline:
+                shown = json.loads(tools.evaluate(READ_PAGE))
+                if shown["stale"] and shown["sensorSummary"].startswith("1 of"):
+                    faulty = shown
+                    break
+                time.sleep(0.2)
         errors = [e for e in tools.events if e.get("method") == "Runtime.exceptionThrown"]
     finally:
         _stop_chromium(browser)
@@ -179,6 +204,11 @@ def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, mod
     assert shown["profiles"] == 12
     assert shown["sensors"] == [[name, "ok"] for name in system.channels]
     assert shown["sensorSummary"] == f"all {len(system.channels)} ok" and shown["stale"] == ""
+    assert faulty is not None, "the page did not show the sensor that dropped out"
+    assert faulty["sensorSummary"] == f"1 of {len(system.channels)} faulty: x_psd_y_um missing"
+    assert faulty["sensors"] == [[name, "missing" if name == "x_psd_y_um" else "ok"] for name in system.channels]
+    assert float(faulty["values"]["t_s"]) < instrument.from_s  # the last good frame's values, shown as old
+    assert faulty["stale"].startswith("no good frame for ")
     # the charts' titles name each ISO 230-1 error motion by what it is (docs/conventions.md)
     assert kinds == {
         "EXX": "positioning", "EYX": "straightness", "EZX": "straightness", "EAX": "roll", "EBX": "pitch", "ECX": "yaw",
