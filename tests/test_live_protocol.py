@@ -36,6 +36,14 @@ def test_header_reorders_columns_leaves_channels_out_and_ignores_unknown_ones():
     np.testing.assert_array_equal(decoder.feed(b"0.3,1,2,3\n").values, [[1, 2, 3]])
 
 
+def test_a_header_with_t_s_anywhere_is_a_header_not_a_malformed_frame():
+    decoder = LineDecoder(CHANNELS)
+    batch = decoder.feed(b"b_um,t_s,a_mm,c_um\n2,0.1,1,3\n")
+    np.testing.assert_array_equal(batch.t_s, [0.1])
+    np.testing.assert_array_equal(batch.values, [[1, 2, 3]])
+    assert not batch.malformed.any() and decoder.lines == 1
+
+
 def test_bad_cells_are_missing_channels_and_a_bad_time_marks_the_frame_malformed():
     decoder = LineDecoder(CHANNELS)
     text = b"# a comment\n\n0.1,1,,3\n0.2,x,2,inf\n0.3,1\nnot-a-time,1,2,3\n0.5,1,2,3,4,5\r\n"

@@ -2,7 +2,7 @@
 
 One frame per line, UTF-8, fields separated by commas, ``\\n`` (or ``\\r\\n``) at the end::
 
-    t_s,x_scale_mm,x_psd_y_um,...          <- optional header: names the columns of the lines after it
+    t_s,x_scale_mm,x_psd_y_um,...          <- optional header (any line naming t_s): the columns of the lines after it
     0.000100,12.500031,0.8123,...          <- t_s, then the channels of MeasurementSystem.channels
 
 Without a header the columns are ``t_s`` and then the channels in ``MeasurementSystem.channels``
@@ -134,10 +134,10 @@ class LineDecoder:
             if not line or line.startswith("#"):
                 continue
             cells = line.split(",")
-            if cells[0].strip() == "t_s":
+            if "t_s" in line and "t_s" in (names := [c.strip() for c in cells]):
                 segments.append(self._decode_rows(rows))
                 rows = []
-                self._set_columns([c.strip() for c in cells])
+                self._set_columns(names)
                 continue
             rows.append(cells)
         segments.append(self._decode_rows(rows))
