@@ -36,6 +36,14 @@ def test_header_reorders_columns_leaves_channels_out_and_ignores_unknown_ones():
     np.testing.assert_array_equal(decoder.feed(b"0.3,1,2,3\n").values, [[1, 2, 3]])
 
 
+def test_a_line_with_more_fields_than_columns_is_kept_as_a_malformed_frame():
+    decoder = LineDecoder(CHANNELS)
+    batch = decoder.feed(b"0.1,1,2,3\n7,0.2,4,5,6\n0.3,1,2\n")  # a counter in front shifts every field
+    np.testing.assert_array_equal(batch.t_s, [0.1, 7.0, 0.3])
+    np.testing.assert_array_equal(batch.malformed, [False, True, False])
+    np.testing.assert_array_equal(batch.values[2], [1, 2, np.nan])  # too few fields: the last channel is missing
+
+
 def test_a_header_with_t_s_anywhere_is_a_header_not_a_malformed_frame():
     decoder = LineDecoder(CHANNELS)
     batch = decoder.feed(b"b_um,t_s,a_mm,c_um\n2,0.1,1,3\n")
@@ -52,9 +60,9 @@ def test_bad_cells_are_missing_channels_and_a_bad_time_marks_the_frame_malformed
     np.testing.assert_array_equal(batch.values[0], [1, np.nan, 3])
     np.testing.assert_array_equal(batch.values[1], [np.nan, 2, np.nan])
     np.testing.assert_array_equal(batch.values[2], [1, np.nan, np.nan])
-    np.testing.assert_array_equal(batch.malformed, [False, False, False, True, False])
+    np.testing.assert_array_equal(batch.malformed, [False, False, False, True, True])  # the last has two fields too many
     np.testing.assert_array_equal(batch.values[4], [1, 2, 3])
-    assert decoder.malformed_lines == 1 and decoder.lines == 5
+    assert decoder.malformed_lines == 2 and decoder.lines == 5
 
 
 def test_frames_mapping_has_t_s_and_every_channel():

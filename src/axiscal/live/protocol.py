@@ -9,7 +9,9 @@ Without a header the columns are ``t_s`` and then the channels in ``MeasurementS
 order. A header may give the columns in any order and may leave channels out (they are then
 missing in every frame); a column it names that the system does not know is ignored. Lines
 starting with ``#`` and empty lines are skipped. An empty cell, ``nan`` or a cell that is not a
-number is a missing channel; a frame whose ``t_s`` cannot be read is kept but marked malformed.
+number is a missing channel; a frame whose ``t_s`` cannot be read, or whose line has more fields
+than there are columns (the sender's columns are not the ones assumed: send a header), is kept but
+marked malformed.
 Nothing a sender writes can stop the stream: bad lines become faulty frames, never errors.
 """
 
@@ -149,6 +151,7 @@ class LineDecoder:
         self.lines += len(rows)
         if not rows:
             return FrameBatch.concatenate([], len(self.channels))
+        too_long = np.zeros(len(rows), dtype=bool)
         try:
             parsed = np.array(rows, dtype=float)
             if parsed.shape[1] != width:
@@ -156,13 +159,14 @@ class LineDecoder:
         except ValueError:
             parsed = np.full((len(rows), width), np.nan)
             for k, cells in enumerate(rows):
+                too_long[k] = len(cells) > width
                 cells = cells[:width]
                 parsed[k, : len(cells)] = [_cell(c) for c in cells]
         full = np.concatenate([parsed, np.full((len(rows), 1), np.nan)], axis=1)
         ordered = full[:, self._order]
         ordered[~np.isfinite(ordered)] = np.nan
         t = ordered[:, 0]
-        malformed = np.isnan(t)
+        malformed = np.isnan(t) | too_long
         self.malformed_lines += int(malformed.sum())
         return FrameBatch(np.ascontiguousarray(t), np.ascontiguousarray(ordered[:, 1:]), malformed)
 

@@ -154,7 +154,7 @@ class LiveState:
         """The fault bits in words: the measurement system's bits and the live pipeline's own."""
         parts = []
         if fault & FAULT_MALFORMED:
-            parts.append("malformed frame (no readable time stamp)")
+            parts.append("malformed frame (no readable time stamp, or more fields than columns)")
         if fault & ~FAULT_MALFORMED:
             parts.append(self._fault_text(fault & ~FAULT_MALFORMED))
         return "; ".join(parts)
