@@ -75,7 +75,7 @@ def test_tcp_source_through_the_command(run_cli, tmp_path, system):
     sender.start()
     path = tmp_path / "tcp.csv"
     port = listener.getsockname()[1]
-    status, out, err = run_cli("live", "--no-server", "--source", f"tcp:127.0.0.1:{port}", "--duration", "1.0", "--record", str(path))
+    status, out, err = run_cli("live", "--no-server", "--source", f"tcp:127.0.0.1:{port}", "--duration", "2.0", "--record", str(path))
     sender.join(timeout=5)
     listener.close()
     assert status == 0, err
