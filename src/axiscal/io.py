@@ -107,11 +107,10 @@ def parse_csv(lines: Iterable[str], *, path: str = "<input>", min_rows: int = 1)
     rows: list[tuple[str, ...]] = []
     numbers: list[int] = []
     header_line = 1
-    for lineno, line in enumerate(lines, start=1):
-        stripped = line.strip()
-        if not stripped or stripped.startswith("#"):
-            continue
-        cells = tuple(c.strip() for c in next(csv.reader([line])))
+    kept = [(n, line) for n, line in enumerate(lines, start=1) if line.strip() and not line.strip().startswith("#")]
+    # one reader over all kept lines (a line holds one record: quoted newlines are not supported)
+    for (lineno, _), raw in zip(kept, csv.reader(line for _, line in kept)):
+        cells = tuple(c.strip() for c in raw)
         if header is None:
             header, header_line = cells, lineno
             seen: set[str] = set()

@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io import parse_csv
 
 FORMAT_LINE = "# axiscal live record, format 1 (docs/live.md)"
 
@@ -219,33 +220,13 @@ def read_record(path: str | Path) -> Record:
         raise AxiscalError(f"cannot read file ({exc.strerror})", path=path) from None
     text, truncated = drop_cut_line(data.decode("utf-8-sig", errors="replace"))
     lines = text.split("\n")
-    comments: list[str] = []
-    header: list[str] | None = None
-    rows: list[list[str]] = []
-    numbers: list[int] = []
-    for lineno, line in enumerate(lines, start=1):
-        stripped = line.strip()
-        if not stripped:
-            continue
-        if stripped.startswith("#"):
-            comments.append(stripped[1:].strip())
-            continue
-        cells = [c.strip() for c in stripped.split(",")]
-        if header is None:
-            header = cells
-            if "t_s" not in header:
-                raise AxiscalError(f"no 't_s' column (columns are: {', '.join(header)})", path=path, line=lineno)
-            if len(set(header)) != len(header):
-                raise AxiscalError("a column name appears twice in the header", path=path, line=lineno)
-            continue
-        if len(cells) != len(header):
-            raise AxiscalError(f"{len(cells)} cells where the header has {len(header)}", path=path, line=lineno)
-        rows.append(cells)
-        numbers.append(lineno)
-    if header is None:
-        raise AxiscalError("empty file: expected a header row with 't_s'", path=path)
+    comments = [line.strip()[1:].strip() for line in lines if line.strip().startswith("#")]
+    parsed = parse_csv(lines, path=str(path), min_rows=0)
+    header, rows, numbers = list(parsed.header), parsed.rows, parsed.lines
+    if "t_s" not in header:
+        raise AxiscalError(f"no 't_s' column (columns are: {', '.join(header)})", path=path, line=parsed.header_line)
     try:
-        table = np.array(rows, dtype=float).reshape(len(rows), len(header))
+        table = np.array(rows, dtype=float).reshape(len(rows), len(header))  # fast path: all cells numbers
     except ValueError:
         table = _parse_cells(rows, header, numbers, path)
     table[~np.isfinite(table)] = np.nan
@@ -253,7 +234,7 @@ def read_record(path: str | Path) -> Record:
     return Record(str(path), tuple(comments), columns, truncated)
 
 
-def _parse_cells(rows: list[list[str]], header: list[str], numbers: list[int], path: Path) -> np.ndarray:
+def _parse_cells(rows: Sequence[Sequence[str]], header: list[str], numbers: Sequence[int], path: Path) -> np.ndarray:
     """The slow path of :func:`read_record`: empty cells allowed, a bad cell named by file and line."""
     table = np.full((len(rows), len(header)), np.nan)
     for k, cells in enumerate(rows):
