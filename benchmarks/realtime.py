@@ -20,7 +20,7 @@ import pstats
 import numpy as np
 from timing import best_time
 
-from axiscal.virtual import VirtualModule
+from axiscal.measurement.virtual import VirtualModule
 
 
 def main() -> None:

@@ -32,7 +32,7 @@ from axiscal.live.pipeline import Pipeline
 from axiscal.live.recorder import Recorder, read_record
 from axiscal.live.sources import Backoff, SimSource, TcpSource
 from axiscal.live.state import LiveState, result_columns
-from axiscal.virtual import VirtualModule
+from axiscal.measurement.virtual import VirtualModule
 
 
 def sender(rate: float, seconds: float) -> None:

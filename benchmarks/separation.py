@@ -24,9 +24,11 @@ import sys
 from collections.abc import Callable
 
 import numpy as np
+from timing import best_time
 
 from axiscal.cli.common import pyplot
-from axiscal.separation import (
+from axiscal.straightness.reference import reference_line
+from axiscal.straightness.separation import (
     ProbeReadings,
     Separation,
     combined,
@@ -39,9 +41,7 @@ from axiscal.separation import (
     sequential_two_point,
     simulate_readings,
 )
-from axiscal.straightness import reference_line
 from axiscal.units import ARCSEC, MM, UM
-from timing import best_time
 
 N = 300
 STEP = 1 * MM

@@ -2,7 +2,7 @@
 
 The XZ module is paper 000's 2-axis linear module: 190 mm strokes, squareness EB0Z = -42.4 arcsec,
 functional point 40 mm below the Z carriage. Its error tables are the true error motions of the
-virtual module (axiscal.virtual), plausible smooth curves, not measurements. The XFYZ machine is a
+virtual module (axiscal.measurement.virtual), plausible smooth curves, not measurements. The XFYZ machine is a
 small 3-axis machine tool used by the benchmark and tests.
 """
 
@@ -33,10 +33,10 @@ def write_table(path: Path, position_mm: np.ndarray, columns: dict[str, np.ndarr
 
 def xz_module() -> None:
     """Error tables of the XZ module: the true error motions of the virtual module of
-    :mod:`axiscal.virtual` (seed 0, no load) sampled every 10 mm, so that the demo's offline model
+    :mod:`axiscal.measurement.virtual` (seed 0, no load) sampled every 10 mm, so that the demo's offline model
     and its simulated live measurement describe one and the same module."""
-    from axiscal.tables import component_names
-    from axiscal.virtual import VirtualModule
+    from axiscal.measurement.virtual import VirtualModule
+    from axiscal.model.tables import component_names
 
     module = VirtualModule(seed=0, noise=False)
     q = np.arange(0.0, 191.0, 10.0)
@@ -69,7 +69,7 @@ def xz_diagonal_readings() -> None:
     virtual module carrying 2 kg on its Z slide, with the interferometer's noise. The error tables
     were taken without the load, so the offline model misses what the load does to the angular
     errors: the gap that paper 000's live measurement closes."""
-    from axiscal.virtual import VirtualModule
+    from axiscal.measurement.virtual import VirtualModule
 
     module = VirtualModule(seed=0, load_kg=2.0)
     q = np.arange(20) * 0.010

@@ -17,8 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
-from axiscal.air import refractive_index
-from axiscal.plan import plan_targets
+from axiscal.instruments.air import refractive_index
+from axiscal.positioning.plan import plan_targets
 
 HERE = Path(__file__).resolve().parent
 RUNS = 5

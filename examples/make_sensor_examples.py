@@ -2,7 +2,7 @@
 
     python examples/make_sensor_examples.py
 
-Everything comes from the virtual XZ module of paper 000 (axiscal.virtual, seed 0, no load):
+Everything comes from the virtual XZ module of paper 000 (axiscal.measurement.virtual, seed 0, no load):
 its machine description with the sensor geometry, its error tables (the truth, no load), the
 calibration its simulated calibration runs give, the runs themselves (so `axiscal calibrate` can be
 tried on them), and a short recording of raw frames along the diagonal with two faulty frames.
@@ -14,10 +14,10 @@ from pathlib import Path
 
 import numpy as np
 
-from axiscal.calibration import save_calibration
 from axiscal.cli.measure import write_columns
+from axiscal.instruments.calibration import save_calibration
+from axiscal.measurement.virtual import INTERFEROMETER_BEAM_M, STROKE_M, VirtualModule
 from axiscal.units import ARCSEC
-from axiscal.virtual import INTERFEROMETER_BEAM_M, STROKE_M, VirtualModule
 
 OUT = Path(__file__).resolve().parent.parent / "src" / "axiscal" / "data" / "xz_module"
 

@@ -30,7 +30,7 @@ def run_cli(capsys):
 @pytest.fixture(scope="module")
 def module():
     """The virtual XZ module of paper 000 (seed 0); test files may define their own ``module``."""
-    from axiscal.virtual import VirtualModule
+    from axiscal.measurement.virtual import VirtualModule
 
     return VirtualModule(seed=0)
 

@@ -13,7 +13,7 @@ __version__ = "0.1.0"
 def __getattr__(name: str):
     # Lazy so that `import axiscal` stays cheap and the submodules import in any order.
     if name in ("load_machine", "Machine"):
-        from axiscal import machine
+        from axiscal.model import machine
 
         return getattr(machine, name)
     raise AttributeError(name)

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+__all__ = ["AxiscalError"]
+
 
 class AxiscalError(ValueError):
     """A user-facing error: bad input, or a request the method cannot honour.

@@ -10,6 +10,18 @@ import math
 
 from axiscal.errors import AxiscalError
 
+__all__ = [
+    "LENGTH_UNITS",
+    "ANGLE_UNITS",
+    "ARCSEC",
+    "ARCMIN",
+    "UM",
+    "MM",
+    "split_unit",
+    "length_factor",
+    "angle_factor",
+]
+
 #: metres per unit, for translations
 LENGTH_UNITS: dict[str, float] = {"nm": 1e-9, "um": 1e-6, "mm": 1e-3, "m": 1.0}
 #: radians per unit, for rotations

@@ -1,6 +1,6 @@
 """``axiscal air`` and ``axiscal fringes``: refractive index of air, and lengths from fringe counts.
 
-Thin wrappers over :func:`axiscal.air.refractive_index` and :mod:`axiscal.interferometer`;
+Thin wrappers over :func:`axiscal.instruments.air.refractive_index` and :mod:`axiscal.instruments.interferometer`;
 flags carry their units in their names.
 """
 
@@ -8,10 +8,16 @@ from __future__ import annotations
 
 import click
 
-from axiscal.air import METHODS, refractive_index
 from axiscal.cli.common import echo_json
-from axiscal.interferometer import HENE_WAVELENGTH_NM, compensated_length, length_from_fringes
+from axiscal.instruments.air import METHODS, refractive_index
+from axiscal.instruments.interferometer import (
+    HENE_WAVELENGTH_NM,
+    compensated_length,
+    length_from_fringes,
+)
 from axiscal.units import MM
+
+__all__ = ["air_command", "fringes_command", "register"]
 
 _AIR_OPTIONS = [
     click.option("--temperature-c", type=float, required=True, help="Air temperature, degC."),

@@ -11,6 +11,8 @@ from typing import Any
 import click
 import numpy as np
 
+__all__ = ["echo_json", "pyplot", "ensure_parent", "write_output"]
+
 
 def _plain(value: Any) -> Any:
     if isinstance(value, dict):

@@ -6,11 +6,20 @@ import click
 import numpy as np
 
 from axiscal.cli.common import write_output
-from axiscal.compensation import error_curve, fanuc_table, heidenhain_table, linuxcnc_table, residuals, siemens_table
+from axiscal.compensation import (
+    error_curve,
+    fanuc_table,
+    heidenhain_table,
+    linuxcnc_table,
+    residuals,
+    siemens_table,
+)
 from axiscal.errors import AxiscalError
-from axiscal.positioning import target_statistics
-from axiscal.positioning_io import read_positioning_run
+from axiscal.positioning.evaluation import target_statistics
+from axiscal.positioning.reader import read_positioning_run
 from axiscal.units import MM, UM
+
+__all__ = ["FORMATS", "FORMAT_OPTIONS", "compensate_command", "register"]
 
 FORMATS = ("linuxcnc", "fanuc", "siemens", "heidenhain")
 #: the format-specific options each format reads; giving another format's option is an error, not ignored

@@ -15,10 +15,12 @@ from pathlib import Path
 import click
 import numpy as np
 
-from axiscal.diagonal import diagonal_check
-from axiscal.io import read_csv, write_csv
-from axiscal.machine import axis_positions_from_grid, load_machine
+from axiscal.io.tabular import read_csv, write_csv
+from axiscal.model.diagonal import diagonal_check
+from axiscal.model.machine import axis_positions_from_grid, load_machine
 from axiscal.units import ARCSEC
+
+__all__ = ["builtin_example", "demo_command", "register"]
 
 
 def builtin_example() -> Path:
@@ -30,7 +32,7 @@ def builtin_example() -> Path:
 @click.option("--output", type=click.Path(file_okay=False), default="axiscal-demo", show_default=True, help="Folder to write to.")
 def demo_command(output):
     """Run the volumetric model of paper 000's XZ module and write a report."""
-    from axiscal.volumetric_report import plot_diagonal, plot_error_tables, plot_volumetric
+    from axiscal.model.plot import plot_diagonal, plot_error_tables, plot_volumetric
 
     folder = Path(output)
     folder.mkdir(parents=True, exist_ok=True)
@@ -64,8 +66,8 @@ def demo_command(output):
     )
     plot_diagonal(diagonal, folder / "diagonal.png", title="Offline model vs interferometer, 2 kg on Z (paper 000 eq 13)")
 
-    from axiscal.virtual import VirtualModule, diagonal_experiment
-    from axiscal.volumetric_report import plot_diagonal_experiment
+    from axiscal.measurement.virtual import VirtualModule, diagonal_experiment
+    from axiscal.model.plot import plot_diagonal_experiment
 
     experiments = {}
     for load_kg in (0.0, 2.0):
@@ -119,7 +121,7 @@ the angular errors. Per point: `diagonal.csv`.
 
 ## Paper 000's experiment in simulation (section 5): the live measurement
 
-The same virtual XZ module (`axiscal.virtual`, whose true error motions are the tables above)
+The same virtual XZ module (`axiscal.measurement.virtual`, whose true error motions are the tables above)
 measured live by its 6-DOF sensors, calibrated, against a simulated interferometer on the
 diagonal (19 steps of 10 mm). Measuring the errors while the machine runs follows the load too. Largest diagonal error, before the model
 (E_BD) -> after it (E_AD); paper 000: 68 -> 13 um without load, 56 -> 14 um with 2 kg.

@@ -19,6 +19,8 @@ from axiscal.live.recorder import Recorder
 from axiscal.live.sources import open_source, parse_source
 from axiscal.live.state import LiveState, result_columns
 
+__all__ = ["PATHS", "live", "register"]
+
 PATHS = ("diagonal", "raster", "back-and-forth")
 
 
@@ -33,7 +35,7 @@ def _progress_text(summary: RunSummary, rate_hz: float) -> str:
 
 def _build_system(machine: str | None, source_kind: str, seed: int, load_kg: float):
     """The measurement system and, for the sim source, a maker of the virtual module (built once)."""
-    from axiscal.virtual import VirtualModule
+    from axiscal.measurement.virtual import VirtualModule
 
     built: list[VirtualModule] = []
 
@@ -44,7 +46,7 @@ def _build_system(machine: str | None, source_kind: str, seed: int, load_kg: flo
 
     if machine is None:
         return module().measurement_system(), module
-    from axiscal.measurement import MeasurementSystem
+    from axiscal.measurement.pipeline import MeasurementSystem
 
     system = MeasurementSystem.from_toml(machine)
     if source_kind == "sim":

@@ -17,6 +17,8 @@ import click
 import axiscal
 from axiscal.errors import AxiscalError
 
+__all__ = ["cli", "main"]
+
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
 @click.version_option(axiscal.__version__, prog_name="axiscal")

@@ -16,15 +16,31 @@ import numpy as np
 
 from axiscal.cli.common import echo_json, write_output
 from axiscal.errors import AxiscalError
-from axiscal.io import CsvTable, parse_csv, read_csv, read_text
+from axiscal.io.tabular import CsvTable, parse_csv, read_csv, read_text
+
+__all__ = [
+    "PATHS",
+    "read_frames",
+    "write_columns",
+    "measure_command",
+    "calibrate_group",
+    "sensitivity_command",
+    "mirror_command",
+    "simulate_group",
+    "simulate_frames_command",
+    "simulate_laser_command",
+    "experiment_group",
+    "diagonal_command",
+    "register",
+]
 
 PATHS = ("diagonal", "raster", "back-and-forth")
 
 
 def _system(machine: str | None, *, seed: int = 0, load_kg: float = 0.0):
     """The measurement system of a machine TOML, or of the built-in virtual module."""
-    from axiscal.measurement import MeasurementSystem
-    from axiscal.virtual import VirtualModule
+    from axiscal.measurement.pipeline import MeasurementSystem
+    from axiscal.measurement.virtual import VirtualModule
 
     if machine is None:
         return VirtualModule(seed=seed, load_kg=load_kg).measurement_system()
@@ -146,7 +162,7 @@ def _reference_column(table: CsvTable, kinds: tuple[str, ...]) -> tuple[str, str
 
 
 def _save(calibration, output: str | None, as_json: bool, report: dict) -> None:
-    from axiscal.calibration import load_calibration, save_calibration
+    from axiscal.instruments.calibration import load_calibration, save_calibration
 
     if output is not None:
         merged = load_calibration(output).merged(calibration) if Path(output).exists() else calibration
@@ -175,7 +191,11 @@ def sensitivity_command(run_path, channel, machine, reference_offset_mm, output,
     translation is first moved to the sensor's point (paper 000 section 4.2) with the angle
     columns E<A,B,C><axis>_urad or _arcsec of the run.
     """
-    from axiscal.calibration import Calibration, fit_sensitivity, transfer_reference
+    from axiscal.instruments.calibration import (
+        Calibration,
+        fit_sensitivity,
+        transfer_reference,
+    )
     from axiscal.units import angle_factor, length_factor
 
     system = _system(machine)
@@ -251,8 +271,12 @@ def mirror_command(run_path, letter, machine, max_order, output, as_json):
     file, then from --output if it exists) is applied first; the form error module - level is
     fitted by a Legendre polynomial whose order leave-one-out cross-validation picks.
     """
-    from axiscal.calibration import Calibration, fit_mirror, load_calibration
-    from axiscal.sensors import roll_from_autocollimation
+    from axiscal.instruments.calibration import (
+        Calibration,
+        fit_mirror,
+        load_calibration,
+    )
+    from axiscal.instruments.sensors import roll_from_autocollimation
     from axiscal.units import ARCSEC
 
     letter = letter.upper()
@@ -298,7 +322,7 @@ def simulate_group():
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV here (default: standard output).")
 def simulate_frames_command(motion, rate_hz, duration_s, load_kg, seed, truth, output):
     """Raw frames of the virtual module: t_s and every channel, ready for `axiscal measure`."""
-    from axiscal.virtual import VirtualModule
+    from axiscal.measurement.virtual import VirtualModule
 
     count = int(round(duration_s * rate_hz))
     if count < 1 or count > 10_000_000:
@@ -328,7 +352,7 @@ def simulate_laser_command(steps, step_mm, load_kg, seed, output):
     Columns nominal_mm, measured_mm (the format `axiscal diagonal --interferometer` reads): the
     nominal displacement along the diagonal and the reading, zeroed at the start.
     """
-    from axiscal.virtual import STROKE_M, VirtualModule
+    from axiscal.measurement.virtual import STROKE_M, VirtualModule
 
     if steps * step_mm * 1e-3 > STROKE_M + 1e-12:
         raise AxiscalError(f"{steps} steps of {step_mm:g} mm leave the 190 mm travel")
@@ -364,14 +388,14 @@ def diagonal_command(load_kg, seed, samples, squareness_error_arcsec, plot, as_j
     68 -> 13 um (no load) and 56 -> 14 um (2 kg); docs/measurement.md says why the simulation
     leaves less.
     """
+    from axiscal.measurement.virtual import VirtualModule, diagonal_experiment
     from axiscal.units import ARCSEC
-    from axiscal.virtual import VirtualModule, diagonal_experiment
 
     result = diagonal_experiment(
         VirtualModule(seed=seed, load_kg=load_kg), samples=samples, squareness_error_rad=squareness_error_arcsec * ARCSEC
     )
     if plot:
-        from axiscal.volumetric_report import plot_diagonal_experiment
+        from axiscal.model.plot import plot_diagonal_experiment
 
         write_output(plot, lambda target: plot_diagonal_experiment(result, target))
     if as_json:

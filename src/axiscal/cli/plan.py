@@ -5,8 +5,10 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import write_output
-from axiscal.plan import CYCLES, cycle_csv, gcode_program, plan_test
+from axiscal.positioning.plan import CYCLES, cycle_csv, gcode_program, plan_test
 from axiscal.units import MM
+
+__all__ = ["plan_command", "register"]
 
 
 @click.command("plan")

@@ -7,9 +7,18 @@ import numpy as np
 
 from axiscal.cli.common import echo_json
 from axiscal.errors import AxiscalError
-from axiscal.positioning import STANDARDS, Iso230Result, Vdi3441Result, iso230_2, iso_edition, vdi3441
-from axiscal.positioning_io import read_positioning_run
+from axiscal.positioning.evaluation import (
+    STANDARDS,
+    Iso230Result,
+    Vdi3441Result,
+    iso230_2,
+    iso_edition,
+    vdi3441,
+)
+from axiscal.positioning.reader import read_positioning_run
 from axiscal.units import MM, UM
+
+__all__ = ["evaluate_file", "payload", "report", "positioning_command", "register"]
 
 
 def evaluate_file(path: str, standard: str, *, wavelength_nm: float | None = None, expansion_per_k: float = 11.5e-6):
@@ -104,7 +113,7 @@ def positioning_command(run_csv, standard, as_json, plot_path, wavelength_nm, ex
     for warning in result.warnings:
         click.echo(f"axiscal: warning: {data.run.source}: {warning}", err=True)
     if plot_path:
-        from axiscal.positioning_plot import plot_positioning
+        from axiscal.positioning.plot import plot_positioning
 
         plot_positioning(data.run, result, plot_path, compensated=data.compensated)
     if as_json:

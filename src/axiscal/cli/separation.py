@@ -9,10 +9,29 @@ import numpy as np
 
 from axiscal.cli.common import ensure_parent, pyplot
 from axiscal.errors import AxiscalError
-from axiscal.io import read_csv, write_csv
-from axiscal.separation import METHODS, ProbeReadings, Separation, reversal, separate, simulate_readings, uneven_step
-from axiscal.straightness import reference_line
+from axiscal.io.tabular import read_csv, write_csv
+from axiscal.straightness.reference import reference_line
+from axiscal.straightness.separation import (
+    METHODS,
+    ProbeReadings,
+    Separation,
+    reversal,
+    separate,
+    simulate_readings,
+    uneven_step,
+)
 from axiscal.units import MM, UM
+
+__all__ = [
+    "CLI_METHODS",
+    "MAX_READINGS",
+    "read_readings",
+    "separation_columns",
+    "plot_separation",
+    "separate_command",
+    "simulate_probes_command",
+    "register",
+]
 
 CLI_METHODS = (*METHODS, "reversal")
 MAX_READINGS = 10**7

@@ -2,8 +2,8 @@
 
 Squareness from two straightness runs (paper 002), the pentaprism's sensitivity to its set-up
 (paper 002 Fig. 5) and the squareness compensation of a CMM (paper 004 eq 6). Values are typed in
-the units their flags name; the computing is done in SI by :mod:`axiscal.squareness`,
-:mod:`axiscal.optics` and :mod:`axiscal.cmm`.
+the units their flags name; the computing is done in SI by :mod:`axiscal.squareness.evaluation`,
+:mod:`axiscal.instruments.optics` and :mod:`axiscal.squareness.cmm`.
 """
 
 from __future__ import annotations
@@ -14,17 +14,45 @@ import click
 import numpy as np
 
 from axiscal.cli.common import echo_json, pyplot, write_output
-from axiscal.cmm import CmmSquareness, compensate, readings_for, simulate_gauge_block
 from axiscal.errors import AxiscalError
-from axiscal.io import read_csv, write_csv
-from axiscal.optics import BK7_INDEX, PentaprismSensitivity, pentaprism_sensitivity
-from axiscal.squareness import (
+from axiscal.instruments.optics import (
+    BK7_INDEX,
+    PentaprismSensitivity,
+    pentaprism_sensitivity,
+)
+from axiscal.io.tabular import read_csv, write_csv
+from axiscal.squareness.cmm import (
+    CmmSquareness,
+    compensate,
+    readings_for,
+    simulate_gauge_block,
+)
+from axiscal.squareness.evaluation import (
     PLANES,
     SquarenessResult,
     read_straightness_run,
     squareness,
 )
 from axiscal.units import ARCMIN, ARCSEC, MM, UM
+
+__all__ = [
+    "PAPER_004_IMPROVEMENT_UM",
+    "MAX_CMM_SQUARENESS_ARCMIN",
+    "squareness_payload",
+    "squareness_report",
+    "plot_squareness",
+    "squareness_command",
+    "pentaprism_payload",
+    "pentaprism_report",
+    "plot_pentaprism",
+    "optics_group",
+    "pentaprism_command",
+    "parse_squareness_arcmin",
+    "cmm_group",
+    "compensate_command",
+    "gauge_blocks_command",
+    "register",
+]
 
 #: paper 004, Table 2 as its text gives it: error reductions by compensation, um
 PAPER_004_IMPROVEMENT_UM = {"X": 11.0, "Y": 5.0}

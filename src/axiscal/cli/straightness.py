@@ -9,9 +9,11 @@ import numpy as np
 
 from axiscal.cli.common import echo_json, ensure_parent, pyplot
 from axiscal.errors import AxiscalError
-from axiscal.io import read_csv
-from axiscal.straightness import REFERENCES, ReferenceLine, reference_line
+from axiscal.io.tabular import read_csv
+from axiscal.straightness.reference import REFERENCES, ReferenceLine, reference_line
 from axiscal.units import UM
+
+__all__ = ["read_profile", "plot_straightness", "straightness_command", "register"]
 
 
 def read_profile(path: str | Path) -> tuple[np.ndarray, np.ndarray]:

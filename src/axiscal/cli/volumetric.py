@@ -8,10 +8,21 @@ import click
 import numpy as np
 
 from axiscal.cli.common import echo_json, ensure_parent
-from axiscal.diagonal import diagonal_check
 from axiscal.errors import AxiscalError
-from axiscal.io import read_csv, write_csv
-from axiscal.machine import Machine, axis_positions_from_grid, load_machine
+from axiscal.io.tabular import read_csv, write_csv
+from axiscal.model.diagonal import diagonal_check
+from axiscal.model.machine import Machine, axis_positions_from_grid, load_machine
+
+__all__ = [
+    "read_points",
+    "check_travel",
+    "parse_point",
+    "volumetric_command",
+    "read_interferometer",
+    "diagonal_command",
+    "inverse_command",
+    "register",
+]
 
 _XYZ = ("x", "y", "z")
 
@@ -86,7 +97,7 @@ def volumetric_command(machine_path, points_path, grid, output, plot):
     if output is None:
         click.echo(text, nl=False)
     if plot:
-        from axiscal.volumetric_report import plot_volumetric
+        from axiscal.model.plot import plot_volumetric
 
         plot_volumetric(positions, error, ensure_parent(plot), title=f"Volumetric error: {machine.name or machine.chain}")
 
@@ -161,7 +172,7 @@ def diagonal_command(machine_path, start, end, steps, interferometer, measure, o
             click.echo(f"  E_BD (before model): P-V {result.range_before_m * 1e6:.2f} um")
             click.echo(f"  E_AD (after model):  P-V {result.range_after_m * 1e6:.2f} um")
     if plot:
-        from axiscal.volumetric_report import plot_diagonal
+        from axiscal.model.plot import plot_diagonal
 
         plot_diagonal(result, ensure_parent(plot))
 

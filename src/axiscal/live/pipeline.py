@@ -25,6 +25,8 @@ from axiscal.live.protocol import FAULT_MALFORMED, FrameBatch
 from axiscal.live.recorder import Recorder
 from axiscal.live.state import LiveState, result_columns
 
+__all__ = ["RunSummary", "Pipeline"]
+
 
 @dataclass(frozen=True)
 class RunSummary:
@@ -48,7 +50,7 @@ class Pipeline:
     Parameters
     ----------
     system : MeasurementSystem
-        The measurement chain (:mod:`axiscal.measurement`).
+        The measurement chain (:mod:`axiscal.measurement.pipeline`).
     source : source object
         See :mod:`axiscal.live.sources`.
     recorder : Recorder, optional

@@ -30,7 +30,9 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io import parse_csv
+from axiscal.io.tabular import parse_csv
+
+__all__ = ["FORMAT_LINE", "Recorder", "Record", "drop_cut_line", "read_record"]
 
 FORMAT_LINE = "# axiscal live record, format 1 (docs/live.md)"
 

@@ -32,6 +32,8 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 from axiscal.errors import AxiscalError
 from axiscal.live.state import LiveState
 
+__all__ = ["WEB", "HOST", "ClientStats", "Broadcaster", "create_app", "LiveServer"]
+
 WEB = Path(__file__).parent / "web"
 HOST = "127.0.0.1"
 

@@ -33,6 +33,17 @@ from axiscal.errors import AxiscalError
 from axiscal.live.protocol import FrameBatch, LineDecoder
 from axiscal.live.recorder import read_record
 
+__all__ = [
+    "SourceStatus",
+    "Backoff",
+    "SimSource",
+    "ReplaySource",
+    "TcpSource",
+    "SerialSource",
+    "parse_source",
+    "open_source",
+]
+
 
 @dataclass
 class SourceStatus:
@@ -89,7 +100,7 @@ class SimSource:
     Parameters
     ----------
     module : VirtualModule
-        The instrument (:mod:`axiscal.virtual`).
+        The instrument (:mod:`axiscal.measurement.virtual`).
     channels : sequence of str
         Channel order of the measurement system.
     rate_hz : float
@@ -414,7 +425,7 @@ def open_source(
 ):
     """Build the source a ``--source`` value names (see :func:`parse_source`).
 
-    ``virtual_module`` makes the :class:`~axiscal.virtual.VirtualModule` for ``sim`` when called.
+    ``virtual_module`` makes the :class:`~axiscal.measurement.virtual.VirtualModule` for ``sim`` when called.
     """
     kind, argument = parse_source(spec)
     if kind == "sim":

@@ -20,6 +20,8 @@ import numpy as np
 
 from axiscal.live.protocol import FAULT_MALFORMED, FrameBatch
 
+__all__ = ["SPATIAL", "CORRECTED", "axis_error_columns", "result_columns", "LiveState"]
+
 SPATIAL = ("ex_um", "ey_um", "ez_um", "e_um")
 CORRECTED = ("px_mm", "py_mm", "pz_mm")
 

@@ -1,0 +1,36 @@
+"""Controller compensation tables: the shared error curve and one module per controller."""
+
+from __future__ import annotations
+
+from axiscal.compensation.curve import DIRECTIONS, ErrorCurve, error_curve, residuals
+from axiscal.compensation.fanuc import FanucTable, fanuc_table
+from axiscal.compensation.heidenhain import (
+    HEIDENHAIN_MAX_ENTRIES,
+    HeidenhainTable,
+    heidenhain_table,
+)
+from axiscal.compensation.linuxcnc import (
+    LINUXCNC_MAX_ENTRIES,
+    LinuxcncTable,
+    linuxcnc_table,
+    parse_linuxcnc,
+)
+from axiscal.compensation.siemens import SiemensTable, siemens_table
+
+__all__ = [
+    "DIRECTIONS",
+    "ErrorCurve",
+    "error_curve",
+    "residuals",
+    "LINUXCNC_MAX_ENTRIES",
+    "LinuxcncTable",
+    "linuxcnc_table",
+    "parse_linuxcnc",
+    "FanucTable",
+    "fanuc_table",
+    "SiemensTable",
+    "siemens_table",
+    "HEIDENHAIN_MAX_ENTRIES",
+    "HeidenhainTable",
+    "heidenhain_table",
+]

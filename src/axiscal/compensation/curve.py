@@ -1,0 +1,97 @@
+"""Controller compensation tables from the mean positioning deviations of an ISO 230-2 test.
+
+Writes the pitch (lead-screw) error tables of four controls: the LinuxCNC joint ``COMP_FILE``
+(types 0 and 1), FANUC pitch error compensation (parameters 3620-3627 and the incremental
+compensation data), SIEMENS SINUMERIK measuring-system error compensation (``$AA_ENC_COMP``) and
+HEIDENHAIN nonlinear axis error compensation (``*.COM``). Each table knows how its control
+applies it (:meth:`correction`: interpolate between the points, add to the command), so the
+tests check the table by applying it to the measured errors. See docs/compensation.md for the
+formats, the sources and the sign conventions.
+
+Sign convention of this module: a control *correction* ``c(x)`` is what the control adds to the
+commanded position ``x`` before it moves the axis; the error left after compensation is
+``e(x) + c(x)`` with ``e = actual - target`` (the ISO 230-2 deviation). A perfect table has
+``c = -e``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.positioning.evaluation import TargetStatistics
+from axiscal.units import MM
+
+__all__ = [
+    "DIRECTIONS",
+    "ErrorCurve",
+    "error_curve",
+    "residuals",
+]
+
+DIRECTIONS = ("+", "-")
+
+
+@dataclass(frozen=True)
+class ErrorCurve:
+    """Mean positional deviation per approach direction against nominal position (metres).
+
+    Between the measured positions the error is taken as piecewise linear; beyond the end
+    positions it is held at the end values.
+
+    Attributes
+    ----------
+    positions : ndarray, shape (m,), metres, strictly increasing
+    up, down : ndarray, shape (m,), metres
+        Mean deviation (actual - target) approaching in the + and - direction.
+    """
+
+    positions: np.ndarray
+    up: np.ndarray
+    down: np.ndarray
+
+    @property
+    def mean(self) -> np.ndarray:
+        """Bidirectional mean deviation, shape (m,), metres."""
+        return 0.5 * (self.up + self.down)
+
+    def at(self, x, direction: str) -> np.ndarray:
+        """Deviation at positions ``x`` (metres) for direction "+", "-" or "mean"."""
+        values = {"+": self.up, "-": self.down, "mean": self.mean}.get(direction)
+        if values is None:
+            raise AxiscalError(f"unknown direction '{direction}'; use +, - or mean")
+        return np.interp(np.asarray(x, dtype=float), self.positions, values)
+
+
+def error_curve(stats: TargetStatistics) -> ErrorCurve:
+    """The mean deviations of a positioning test as an :class:`ErrorCurve`."""
+    return ErrorCurve(np.asarray(stats.targets), np.asarray(stats.mean_up), np.asarray(stats.mean_down))
+
+
+def _check_direction(direction: str) -> None:
+    if direction not in DIRECTIONS:
+        raise AxiscalError(f"unknown direction '{direction}'; use + or -")
+
+
+def _grid(start: float, end: float, step: float) -> np.ndarray:
+    if not (math.isfinite(step) and step > 0):
+        raise AxiscalError(f"the table interval must be positive, got {step / MM:g} mm")
+    count = int(math.ceil((end - start) / step - 1e-9)) + 1
+    return start + step * np.arange(count)
+
+
+
+def residuals(table, curve: ErrorCurve, x, direction: str, *, offset: float = 0.0) -> np.ndarray:
+    """Error left at ``x`` (metres) after ``table`` is applied: ``e(x) - offset + c(x)``.
+
+    ``direction`` is "+", "-" or "mean"; for "mean" the table's + correction is used (tables
+    with one curve apply it in both directions). ``offset`` is the part of the error a table
+    leaves to the reference position by construction: FANUC tables are zero at the reference
+    position, so there it is the deviation at the reference position (of the + direction for a
+    bidirectional table, which assumes the reference is approached in +), see
+    :attr:`FanucTable.reference_deviation_m`.
+    """
+    return curve.at(x, direction) - offset + table.correction(x, "+" if direction == "mean" else direction)

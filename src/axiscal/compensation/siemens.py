@@ -1,0 +1,106 @@
+"""SIEMENS compensation table."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from axiscal.compensation.curve import ErrorCurve, _check_direction, _grid
+from axiscal.errors import AxiscalError
+from axiscal.units import MM
+
+__all__ = ["SiemensTable", "siemens_table"]
+
+
+@dataclass(frozen=True)
+class SiemensTable:
+    """SINUMERIK measuring-system (lead-screw) error compensation, ``%_N_AX_EEC_INI``.
+
+    ``$AA_ENC_COMP[e, i, AXIS]`` holds the compensation value of point i (mm) for encoder e,
+    from ``$AA_ENC_COMP_MIN`` in steps of ``$AA_ENC_COMP_STEP`` up to ``$AA_ENC_COMP_MAX``.
+    The control changes the axis actual value by the compensation value: a positive value
+    moves the axis in the negative direction. So the value is the deviation itself
+    (``+e``) and the correction applied to the command is its negative. Linear interpolation
+    between points, end values held beyond MIN and MAX. One curve for both directions.
+    """
+
+    axis: str
+    start_m: float
+    step_m: float
+    values_mm: np.ndarray
+    encoder: int = 0
+    decimals: int = 4
+
+    @property
+    def resolution(self) -> float:
+        return 10.0 ** (-self.decimals) * MM
+
+    @property
+    def nodes(self) -> np.ndarray:
+        return self.start_m + self.step_m * np.arange(self.values_mm.size)
+
+    @property
+    def end_m(self) -> float:
+        return float(self.nodes[-1])
+
+    def correction(self, x, direction: str) -> np.ndarray:
+        _check_direction(direction)
+        return -np.interp(np.asarray(x, dtype=float), self.nodes, self.values_mm * MM)
+
+    def text(self) -> str:
+        e, a, d = self.encoder, self.axis, self.decimals
+        lines = ["%_N_AX_EEC_INI", "CHANDATA(1)"]
+        lines += [f"$AA_ENC_COMP[{e},{i},{a}]={v:.{d}f}" for i, v in enumerate(self.values_mm)]
+        lines += [
+            f"$AA_ENC_COMP_STEP[{e},{a}]={self.step_m / MM:.4f}",
+            f"$AA_ENC_COMP_MIN[{e},{a}]={self.start_m / MM:.4f}",
+            f"$AA_ENC_COMP_MAX[{e},{a}]={self.end_m / MM:.4f}",
+            f"$AA_ENC_COMP_IS_MODULO[{e},{a}]=0",
+            "M17",
+        ]
+        return "\n".join(lines) + "\n"
+
+
+def siemens_table(
+    curve: ErrorCurve,
+    *,
+    step_m: float,
+    axis: str = "X1",
+    direction: str = "mean",
+    zero_at_m: float | None = None,
+    encoder: int = 0,
+    decimals: int = 4,
+    max_points: int = 1000,
+) -> SiemensTable:
+    """SINUMERIK ``$AA_ENC_COMP`` table on an even grid from the first measured target.
+
+    Parameters
+    ----------
+    curve : ErrorCurve
+    step_m : float, keyword-only
+        ``$AA_ENC_COMP_STEP``, metres.
+    axis : str, keyword-only
+        Machine axis name (default "X1").
+    direction : {"mean", "+", "-"}, keyword-only
+        Which mean deviation the one curve holds (default the bidirectional mean; the reversal
+        is then left to backlash compensation, MD32450).
+    zero_at_m : float, optional, keyword-only
+        Shift the curve so its value is zero here (Siemens recommends zero at the reference
+        point, so that switching the compensation on makes no jump).
+    encoder : int, keyword-only
+        Encoder index (0 = first measuring system).
+    decimals : int, keyword-only
+        Decimals of mm written (default 4: 0.1 um).
+    max_points : int, keyword-only
+        MD38000 $MA_MM_ENC_COMP_MAX_POINTS of the control (default 1000).
+    """
+    if not axis or not axis.replace("_", "").isalnum():
+        raise AxiscalError(f"'{axis}' is not a machine axis name")
+    nodes = _grid(float(curve.positions[0]), float(curve.positions[-1]), step_m)
+    if nodes.size > max_points:
+        raise AxiscalError(f"{nodes.size} compensation points exceed MD38000 = {max_points}: use a larger step")
+    e = curve.at(nodes, direction)
+    if zero_at_m is not None:
+        e = e - curve.at(zero_at_m, direction)
+    return SiemensTable(axis, float(nodes[0]), step_m, np.round(e / MM, decimals) + 0.0, encoder, decimals)

@@ -1,0 +1,359 @@
+"""Calibration of the sensor channels against reference instruments (paper 000, section 4.1, eqs 11-12).
+
+Three pieces, each a fit on simulated or recorded data with a stated residual band:
+
+- **sensitivity and offset** of a channel (PSD against an inductive probe, quadrant detector
+  against an autocollimator, scale against a laser interferometer): the reference value ``r``
+  against the raw reading ``u`` by least squares, ``r = gain * u + offset``; the residuals say how
+  well the set-up reached (paper 000: within +-1 um and +-1 arcsec);
+- the **plane mirror** of the roll detector: its form error is mapped against a level, eq (11)
+  ``eps_error(i) = eps'_x(i) - eps_level(i)``, fitted by a Legendre polynomial whose order is
+  chosen by leave-one-out cross-validation, and subtracted in use, eq (12)
+  ``eps_x = eps'_x - eps_error(q)``;
+- the **reference instrument's own offsets**: a probe or interferometer beam does not touch the
+  point the sensor measures, so its reading is moved there first (section 4.2, the Abbe-Bryan
+  transfer ``delta_M = delta_R + eps x (M - R)``) by :func:`transfer_reference`.
+
+A :class:`Calibration` gathers the results per channel and per axis and is saved to and read from
+a JSON file (format in docs/measurement.md); the measurement system applies it on load.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from numpy.polynomial import legendre
+
+from axiscal.errors import AxiscalError
+from axiscal.io.tabular import read_text
+
+__all__ = [
+    "FORMAT",
+    "VERSION",
+    "ChannelCalibration",
+    "fit_sensitivity",
+    "transfer_reference",
+    "MirrorCorrection",
+    "fit_mirror",
+    "Calibration",
+    "save_calibration",
+    "calibration_from_dict",
+    "load_calibration",
+]
+
+FORMAT = "axiscal-sensor-calibration"
+VERSION = 1
+
+
+@dataclass(frozen=True)
+class ChannelCalibration:
+    """Gain and offset of one raw channel: ``value = gain * raw + offset`` in the channel's unit.
+
+    ``residual_max`` and ``residual_rms`` are the fit's residuals in the same unit; ``points`` the
+    number of calibration points.
+    """
+
+    channel: str
+    gain: float
+    offset: float
+    residual_max: float = 0.0
+    residual_rms: float = 0.0
+    points: int = 0
+
+    def apply(self, raw: np.ndarray) -> np.ndarray:
+        return raw * self.gain + self.offset
+
+
+def fit_sensitivity(channel: str, raw: np.ndarray, reference: np.ndarray) -> ChannelCalibration:
+    """Least-squares ``reference = gain * raw + offset`` for one channel.
+
+    Parameters
+    ----------
+    channel : str
+        Name of the raw channel.
+    raw : ndarray, shape (n,)
+        Raw readings, the channel's unit.
+    reference : ndarray, shape (n,)
+        What the reference instrument says the channel should read, the same unit (already moved
+        to the sensor's measuring point with :func:`transfer_reference` where the two differ).
+
+    Returns
+    -------
+    ChannelCalibration
+        Gain, offset and the residual band (max |residual| and rms), channel unit.
+    """
+    u = np.asarray(raw, dtype=float)
+    r = np.asarray(reference, dtype=float)
+    if u.ndim != 1 or u.shape != r.shape:
+        raise AxiscalError(f"channel {channel}: raw and reference must be 1-D arrays of the same length")
+    if u.size < 3:
+        raise AxiscalError(f"channel {channel}: at least 3 calibration points are needed, got {u.size}")
+    if not (np.all(np.isfinite(u)) and np.all(np.isfinite(r))):
+        raise AxiscalError(f"channel {channel}: calibration data hold non-finite values")
+    if np.ptp(u) <= 0:
+        raise AxiscalError(f"channel {channel}: the raw readings do not vary, so no sensitivity can be fitted")
+    design = np.column_stack([u, np.ones_like(u)])
+    (gain, offset), *_ = np.linalg.lstsq(design, r, rcond=None)
+    residual = r - (gain * u + offset)
+    return ChannelCalibration(
+        channel=channel,
+        gain=float(gain),
+        offset=float(offset),
+        residual_max=float(np.max(np.abs(residual))),
+        residual_rms=float(np.sqrt(np.mean(residual**2))),
+        points=int(u.size),
+    )
+
+
+def transfer_reference(reference_m: np.ndarray, eps_rad: np.ndarray, offset_m: np.ndarray, component: int) -> np.ndarray:
+    """Move a reference instrument's translation reading from its point R to the sensor's point M.
+
+    Section 4.2 of paper 000: the interferometer beam is off the scale's read head, the probe off
+    the PSD spot; the carriage's rotations turn that offset into a difference, so the reading is
+    transferred before the comparison: ``delta_M = delta_R + (eps x (M - R))[component]``.
+
+    Parameters
+    ----------
+    reference_m : ndarray, shape (n,)
+        The reference reading of translation ``component``, metres.
+    eps_rad : ndarray, shape (n, 3)
+        Rotations EA, EB, EC of the carriage at each point (from a reference angle instrument or
+        the calibrated angle channels), radians.
+    offset_m : array_like, shape (3,)
+        ``M - R``: the sensor's measuring point minus the reference's, in the carriage frame, m.
+    component : int
+        0, 1 or 2 for the x, y or z translation.
+    """
+    eps = np.asarray(eps_rad, dtype=float)
+    offset = np.asarray(offset_m, dtype=float)
+    if eps.ndim != 2 or eps.shape[1] != 3 or offset.shape != (3,):
+        raise AxiscalError("eps_rad must have shape (n, 3) and offset_m shape (3,)")
+    if component not in (0, 1, 2):
+        raise AxiscalError(f"component must be 0, 1 or 2, got {component}")
+    return np.asarray(reference_m, dtype=float) + np.cross(eps, offset)[:, component]
+
+
+@dataclass(frozen=True)
+class MirrorCorrection:
+    """The plane mirror's form error as seen by the roll detector, against position (eq 11 fitted).
+
+    ``coefficients_rad`` are Legendre coefficients over the position normalised to [-1, 1] on
+    ``start_m..end_m``; :meth:`evaluate` returns the apparent roll the mirror adds, radians.
+    """
+
+    letter: str
+    start_m: float
+    end_m: float
+    coefficients_rad: tuple[float, ...]
+    residual_max_rad: float = 0.0
+    residual_rms_rad: float = 0.0
+    cv_rms_rad: tuple[float, ...] = ()
+    points: int = 0
+
+    @property
+    def order(self) -> int:
+        return len(self.coefficients_rad) - 1
+
+    def evaluate(self, q_m: np.ndarray) -> np.ndarray:
+        """Form error eps_error at positions ``q_m`` (shape (N,)), radians; positions are clipped to the map."""
+        scale = 2.0 / (self.end_m - self.start_m)
+        s = np.clip((np.asarray(q_m, dtype=float) - self.start_m) * scale - 1.0, -1.0, 1.0)
+        return legendre.legval(s, np.asarray(self.coefficients_rad))
+
+    def inside(self, q_m: np.ndarray) -> np.ndarray:
+        """Whether each position lies within the mapped range."""
+        return (q_m >= self.start_m) & (q_m <= self.end_m)
+
+
+def _loo_rms(design: np.ndarray, y: np.ndarray) -> float:
+    """Leave-one-out rms prediction error of a linear least-squares fit, from the hat matrix."""
+    q, _ = np.linalg.qr(design)
+    hat = np.sum(q * q, axis=1)
+    coef, *_ = np.linalg.lstsq(design, y, rcond=None)
+    residual = y - design @ coef
+    if np.any(hat >= 1.0 - 1e-9):
+        return math.inf
+    return float(np.sqrt(np.mean((residual / (1.0 - hat)) ** 2)))
+
+
+def fit_mirror(
+    letter: str,
+    position_m: np.ndarray,
+    module_roll_rad: np.ndarray,
+    level_roll_rad: np.ndarray,
+    *,
+    max_order: int = 12,
+) -> MirrorCorrection:
+    """Map the plane mirror's form error against a level and fit it (paper 000 eqs 11-12).
+
+    The points ``eps_error(i) = eps'_x(i) - eps_level(i)`` (eq 11) are fitted by Legendre
+    polynomials of order 0..``max_order`` (at most n - 2); the order with the smallest
+    leave-one-out cross-validation rms error is kept, so the order is chosen by the data.
+
+    Parameters
+    ----------
+    letter : str
+        Axis letter.
+    position_m : ndarray, shape (n,)
+        Positions of the map, metres (any order, at least 4 distinct).
+    module_roll_rad : ndarray, shape (n,)
+        Roll read by the module (after the detector's sensitivity calibration), radians.
+    level_roll_rad : ndarray, shape (n,)
+        Roll read by the level at the same positions, radians.
+    max_order : int
+        Highest polynomial order tried (default 12).
+
+    Returns
+    -------
+    MirrorCorrection
+        The fitted form error, its residuals and the cross-validation rms for every order tried.
+    """
+    q = np.asarray(position_m, dtype=float)
+    eps_error = np.asarray(module_roll_rad, dtype=float) - np.asarray(level_roll_rad, dtype=float)
+    if q.ndim != 1 or q.shape != eps_error.shape:
+        raise AxiscalError(f"axis {letter}: positions, module and level readings must be 1-D of the same length")
+    if not (np.all(np.isfinite(q)) and np.all(np.isfinite(eps_error))):
+        raise AxiscalError(f"axis {letter}: mirror map holds non-finite values")
+    if np.unique(q).size < 4:
+        raise AxiscalError(f"axis {letter}: the mirror map needs at least 4 distinct positions, got {np.unique(q).size}")
+    start, end = float(q.min()), float(q.max())
+    s = (q - start) * (2.0 / (end - start)) - 1.0
+    top = min(max_order, np.unique(q).size - 2)
+    scores = []
+    for order in range(top + 1):
+        scores.append(_loo_rms(legendre.legvander(s, order), eps_error))
+    best = int(np.argmin(scores))
+    coefficients = legendre.legfit(s, eps_error, best)
+    residual = eps_error - legendre.legval(s, coefficients)
+    return MirrorCorrection(
+        letter=letter,
+        start_m=start,
+        end_m=end,
+        coefficients_rad=tuple(float(c) for c in coefficients),
+        residual_max_rad=float(np.max(np.abs(residual))),
+        residual_rms_rad=float(np.sqrt(np.mean(residual**2))),
+        cv_rms_rad=tuple(float(v) for v in scores),
+        points=int(q.size),
+    )
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """All calibration results of a measuring system: per channel and per axis mirror."""
+
+    channels: Mapping[str, ChannelCalibration] = field(default_factory=dict)
+    mirrors: Mapping[str, MirrorCorrection] = field(default_factory=dict)
+
+    def channel(self, name: str) -> ChannelCalibration:
+        """The calibration of channel ``name`` (identity when it was never calibrated)."""
+        return self.channels.get(name, ChannelCalibration(name, 1.0, 0.0))
+
+    def merged(self, other: "Calibration") -> "Calibration":
+        """This calibration with every entry of ``other`` added or replacing the old one."""
+        return Calibration({**self.channels, **other.channels}, {**self.mirrors, **other.mirrors})
+
+    def to_dict(self) -> dict:
+        return {
+            "format": FORMAT,
+            "version": VERSION,
+            "channels": {
+                name: {
+                    "gain": c.gain,
+                    "offset": c.offset,
+                    "residual_max": c.residual_max,
+                    "residual_rms": c.residual_rms,
+                    "points": c.points,
+                }
+                for name, c in sorted(self.channels.items())
+            },
+            "mirrors": {
+                letter: {
+                    "start_mm": m.start_m * 1e3,
+                    "end_mm": m.end_m * 1e3,
+                    "legendre_urad": [c * 1e6 for c in m.coefficients_rad],
+                    "residual_max_urad": m.residual_max_rad * 1e6,
+                    "residual_rms_urad": m.residual_rms_rad * 1e6,
+                    "cv_rms_urad": [v * 1e6 if math.isfinite(v) else None for v in m.cv_rms_rad],
+                    "points": m.points,
+                }
+                for letter, m in sorted(self.mirrors.items())
+            },
+        }
+
+
+def save_calibration(calibration: Calibration, path: str | Path) -> None:
+    """Write a calibration as JSON (docs/measurement.md, "Calibration file")."""
+    Path(path).write_text(json.dumps(calibration.to_dict(), indent=2) + "\n", encoding="utf-8")
+
+
+def _number(entry: Mapping, key: str, where: str, *, default: float | None = None) -> float:
+    value = entry.get(key, default)
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise AxiscalError(f"{where}: '{key}' must be a finite number")
+    return float(value)
+
+
+def calibration_from_dict(data: Mapping) -> Calibration:
+    """Build a :class:`Calibration` from the parsed JSON (see :func:`save_calibration`)."""
+    if not isinstance(data, Mapping) or data.get("format") != FORMAT:
+        raise AxiscalError(f"not a sensor calibration file (expected \"format\": \"{FORMAT}\")")
+    if data.get("version") != VERSION:
+        raise AxiscalError(f"calibration file version {data.get('version')!r} is not supported (expected {VERSION})")
+    channels: dict[str, ChannelCalibration] = {}
+    for name, entry in dict(data.get("channels", {})).items():
+        where = f"channel '{name}'"
+        if not isinstance(entry, Mapping):
+            raise AxiscalError(f"{where}: expected an object with gain and offset")
+        gain = _number(entry, "gain", where)
+        if gain == 0.0:
+            raise AxiscalError(f"{where}: gain must not be zero")
+        channels[name] = ChannelCalibration(
+            channel=name,
+            gain=gain,
+            offset=_number(entry, "offset", where),
+            residual_max=_number(entry, "residual_max", where, default=0.0),
+            residual_rms=_number(entry, "residual_rms", where, default=0.0),
+            points=int(_number(entry, "points", where, default=0)),
+        )
+    mirrors: dict[str, MirrorCorrection] = {}
+    for letter, entry in dict(data.get("mirrors", {})).items():
+        where = f"mirror of axis '{letter}'"
+        if letter not in ("X", "Y", "Z") or not isinstance(entry, Mapping):
+            raise AxiscalError(f"{where}: expected an axis letter X, Y or Z with an object")
+        start, end = _number(entry, "start_mm", where) * 1e-3, _number(entry, "end_mm", where) * 1e-3
+        if not end > start:
+            raise AxiscalError(f"{where}: end_mm must be greater than start_mm")
+        coefficients = entry.get("legendre_urad")
+        if not (isinstance(coefficients, list) and coefficients and all(isinstance(c, (int, float)) for c in coefficients)):
+            raise AxiscalError(f"{where}: 'legendre_urad' must be a non-empty list of numbers")
+        cv = [math.inf if v is None else float(v) * 1e-6 for v in entry.get("cv_rms_urad", [])]
+        mirrors[letter] = MirrorCorrection(
+            letter=letter,
+            start_m=start,
+            end_m=end,
+            coefficients_rad=tuple(float(c) * 1e-6 for c in coefficients),
+            residual_max_rad=_number(entry, "residual_max_urad", where, default=0.0) * 1e-6,
+            residual_rms_rad=_number(entry, "residual_rms_urad", where, default=0.0) * 1e-6,
+            cv_rms_rad=tuple(cv),
+            points=int(_number(entry, "points", where, default=0)),
+        )
+    return Calibration(channels, mirrors)
+
+
+def load_calibration(path: str | Path) -> Calibration:
+    """Read a calibration JSON file; errors name the file."""
+    path = Path(path)
+    text = read_text(path)
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise AxiscalError(f"malformed JSON: {exc.msg}", path=path, line=exc.lineno) from None
+    try:
+        return calibration_from_dict(data)
+    except AxiscalError as exc:
+        raise exc.located(path=path) from None

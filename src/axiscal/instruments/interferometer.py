@@ -1,0 +1,277 @@
+"""Laser interferometer lengths: fringe counts, environmental and material compensation, set-up errors.
+
+Paper 003 (Zhang, Huang and Wang 2008, "Errors analysis of interferometry and accuracy measurement
+for NC machine tools"):
+
+- eq (1): ``L = N lambda / (2 m n)``, the displacement from the fringe count ``N``; ``lambda`` is the
+  wavelength in air, i.e. the vacuum wavelength divided by the refractive index of air
+  (:mod:`axiscal.instruments.air`); ``m`` the optical fold (passes of the measuring beam) and, in the paper's
+  notation, ``n`` the electronic interpolation of the fringe counter;
+- section 2.1, eqs (2)-(3) and Table 1: the cosine (collimation) error; the laser reads the
+  projection of the motion on the beam, short by ``L (1 - cos a)``;
+- section 2.2, eq (6) and Table 3: the Abbe error, arm times angle;
+- the dead-path error and the normalisation of a length to 20 degC (ISO 1:2016,
+  ``L20 = Lt / (1 + alpha (t - 20))``), which every laser calibration applies.
+
+The paper fits polynomials and line families to Tables 1 and 3 (eqs 4-5, 7-18); this module uses
+the exact relations instead (see docs/interferometry.md).  All lengths in metres, angles in
+radians, temperatures in degC, pressures in Pa.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.instruments.air import refractive_index
+
+__all__ = [
+    "HENE_WAVELENGTH_NM",
+    "REFERENCE_TEMPERATURE_C",
+    "length_from_fringes",
+    "fringes_from_length",
+    "normalise_to_20c",
+    "compensated_length",
+    "dead_path_error",
+    "cosine_error",
+    "misalignment_for_cosine_error",
+    "abbe_error",
+]
+
+#: nominal vacuum wavelength of a stabilised He-Ne laser, nm
+HENE_WAVELENGTH_NM = 632.991
+#: ISO 1 reference temperature, degC
+REFERENCE_TEMPERATURE_C = 20.0
+
+
+def _finite(name: str, values) -> np.ndarray:
+    array = np.asarray(values, dtype=float)
+    if not np.all(np.isfinite(array)):
+        raise AxiscalError(f"{name} is not a finite number")
+    return array
+
+
+def _mean_material_temperature(material_temperature_c) -> np.ndarray:
+    temperatures = _finite("material temperature", material_temperature_c)
+    if temperatures.ndim > 2:
+        raise AxiscalError(
+            f"material temperatures must have shape (n,) or (n, k) for k sensors, got {temperatures.ndim} dimensions"
+        )
+    if temperatures.ndim == 2:
+        if temperatures.shape[1] == 0:
+            raise AxiscalError("material temperatures need at least one sensor per reading")
+        return temperatures.mean(axis=1)
+    return temperatures
+
+
+def length_from_fringes(
+    counts,
+    *,
+    wavelength_nm=HENE_WAVELENGTH_NM,
+    index_of_air=1.0,
+    optical_fold: int = 1,
+    interpolation: int = 1,
+) -> np.ndarray:
+    """Displacement from a fringe count, paper 003 eq (1), in metres.
+
+    ``L = N lambda0 / (2 m k n_air)``: a count ``N`` of ``1/k`` fringes, measuring beam folded ``m``
+    times (1 for a linear retroreflector set-up, 2 for a plane-mirror interferometer), vacuum
+    wavelength ``lambda0`` and refractive index ``n_air``.
+
+    Parameters
+    ----------
+    counts : float or array_like
+        Counter value N (fringes times ``interpolation``).
+    wavelength_nm : float or array_like, nm, keyword-only
+        Vacuum wavelength, default 632.991 nm (He-Ne).
+    index_of_air : float or array_like, keyword-only
+        Refractive index of the air in the beam (default 1: the reading of an uncompensated
+        laser); compute it with :func:`axiscal.instruments.air.refractive_index`.
+    optical_fold : int, keyword-only
+        m, passes of the measuring beam (default 1).
+    interpolation : int, keyword-only
+        k, the counter's electronic subdivision of one fringe (the paper's ``n``; default 1).
+
+    Returns
+    -------
+    ndarray, metres
+        Broadcast shape of the inputs.
+    """
+    if optical_fold < 1 or interpolation < 1:
+        raise AxiscalError("optical fold and interpolation must be positive whole numbers")
+    index = _finite("refractive index of air", index_of_air)
+    if np.any(index < 1.0):
+        raise AxiscalError("refractive index of air below 1 is not physical")
+    wavelength = _finite("wavelength", wavelength_nm) * 1e-9
+    return _finite("fringe count", counts) * wavelength / (2.0 * optical_fold * interpolation * index)
+
+
+def fringes_from_length(
+    length_m,
+    *,
+    wavelength_nm=HENE_WAVELENGTH_NM,
+    index_of_air=1.0,
+    optical_fold: int = 1,
+    interpolation: int = 1,
+) -> np.ndarray:
+    """Inverse of :func:`length_from_fringes`: the (fractional) count that a displacement produces."""
+    unit = length_from_fringes(
+        1.0, wavelength_nm=wavelength_nm, index_of_air=index_of_air, optical_fold=optical_fold, interpolation=interpolation
+    )
+    return _finite("length", length_m) / unit
+
+
+def normalise_to_20c(length_m, material_temperature_c, *, expansion_per_k=11.5e-6) -> np.ndarray:
+    """Length of a part at the ISO 1 reference temperature of 20 degC, in metres.
+
+    ``L20 = Lt / (1 + alpha (t - 20))``.
+
+    Parameters
+    ----------
+    length_m : float or array_like, shape (n,) or broadcastable, metres
+        Length measured with the material at temperature t.
+    material_temperature_c : float or array_like, shape (n,) or (n, k), degC
+        Material temperature; with shape (n, k) the k sensor readings of each row are averaged.
+    expansion_per_k : float or array_like, 1/K, keyword-only
+        Linear expansion coefficient alpha; default 11.5e-6 (steel).
+
+    Returns
+    -------
+    ndarray, metres
+    """
+    temperature = _mean_material_temperature(material_temperature_c)
+    alpha = _finite("expansion coefficient", expansion_per_k)
+    return _finite("length", length_m) / (1.0 + alpha * (temperature - REFERENCE_TEMPERATURE_C))
+
+
+def compensated_length(
+    reading_m,
+    *,
+    air_temperature_c,
+    pressure_pa,
+    humidity_pct,
+    material_temperature_c=None,
+    expansion_per_k=11.5e-6,
+    wavelength_nm=HENE_WAVELENGTH_NM,
+    co2_ppm=450.0,
+    method: str = "ciddor",
+) -> np.ndarray:
+    """Length from a raw laser reading, corrected for the air and normalised to 20 degC.
+
+    The raw reading is what the counter gives with the vacuum wavelength (index 1). The true
+    length in air is ``reading / n`` (paper 003 eq 1 with lambda = lambda0 / n); if a material
+    temperature is given, the result is then normalised to 20 degC (ISO 1):
+    ``L20 = reading / (n (1 + alpha (t_material - 20)))``.
+
+    Parameters
+    ----------
+    reading_m : float or array_like, shape (n,), metres
+        Raw reading computed with index 1.
+    air_temperature_c, pressure_pa, humidity_pct : float or array_like, keyword-only
+        Air temperature (degC), pressure (Pa) and relative humidity (%) along the beam, scalars
+        or one value per reading.
+    material_temperature_c : None, float or array_like, shape (n,) or (n, k), degC, keyword-only
+        Temperature of the machine's scale or workpiece; rows of k sensors are averaged.
+        ``None`` (default): no material normalisation.
+    expansion_per_k : float, 1/K, keyword-only
+        Expansion coefficient of the material (default 11.5e-6, steel).
+    wavelength_nm : float, nm, keyword-only
+        Vacuum wavelength (default 632.991 nm).
+    co2_ppm : float, umol/mol, keyword-only
+        CO2 content (default 450).
+    method : str, keyword-only
+        Refractive-index equation, see :func:`axiscal.instruments.air.refractive_index` (default "ciddor").
+
+    Returns
+    -------
+    ndarray, metres
+        Broadcast shape of the inputs (the sensor axis of a 2-D material temperature removed).
+    """
+    reading = _finite("laser reading", reading_m)
+    index = refractive_index(air_temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm=co2_ppm, method=method)
+    try:
+        length = reading / np.asarray(index)
+        if material_temperature_c is not None:
+            length = normalise_to_20c(length, material_temperature_c, expansion_per_k=expansion_per_k)
+    except ValueError as exc:
+        if isinstance(exc, AxiscalError):
+            raise
+        raise AxiscalError(f"laser readings and environment values do not match in shape: {exc}") from None
+    return np.asarray(length)
+
+
+def dead_path_error(dead_path_m, *, index_at_datum, index_now) -> np.ndarray:
+    """Dead-path error: what a change of air index over the unmeasured path adds to a reading, metres.
+
+    With the reflector at distance D from the interferometer when the counter was zeroed (index
+    ``n0``) and a compensation that divides by the present index ``n1``, the reading exceeds the
+    true displacement by ``D (n1 - n0) / n1``. Subtract it from the reading to correct.
+
+    Parameters
+    ----------
+    dead_path_m : float or array_like, metres
+        Distance interferometer-reflector at the datum.
+    index_at_datum, index_now : float or array_like, keyword-only
+        Refractive index of air when the counter was zeroed and now.
+
+    Returns
+    -------
+    ndarray, metres
+    """
+    n0 = _finite("index at datum", index_at_datum)
+    n1 = _finite("present index", index_now)
+    return _finite("dead path", dead_path_m) * (n1 - n0) / n1
+
+
+def cosine_error(length_m, misalignment_rad) -> np.ndarray:
+    """Cosine (collimation) error, paper 003 eqs (2)-(3): ``L (1 - cos a)``, metres.
+
+    The beam at angle ``a`` to the motion sees the projection ``L cos a`` of a motion ``L``: the
+    laser reads short by the returned amount (positive). Add it to the reading to correct.
+
+    Parameters
+    ----------
+    length_m : float or array_like, metres
+        True displacement along the axis.
+    misalignment_rad : float or array_like, rad
+        Angle between beam and motion.
+    """
+    angle = _finite("misalignment angle", misalignment_rad)
+    return _finite("length", length_m) * 2.0 * np.sin(angle / 2.0) ** 2
+
+
+def misalignment_for_cosine_error(relative_error) -> np.ndarray:
+    """Beam misalignment that gives a relative cosine error ``e = 1 - cos a``, radians.
+
+    The inverse of :func:`cosine_error` per unit length: ``a = 2 asin(sqrt(e / 2))``. Use it to set
+    an alignment tolerance from an error budget (0.1 ppm: 1.54 arc minutes).
+
+    Parameters
+    ----------
+    relative_error : float or array_like, dimensionless
+        Cosine error as a fraction of the length (1e-6 for 1 ppm), 0 to 2.
+    """
+    error = _finite("relative cosine error", relative_error)
+    if np.any((error < 0.0) | (error > 2.0)):
+        raise AxiscalError("a relative cosine error lies between 0 and 2")
+    return 2.0 * np.arcsin(np.sqrt(error / 2.0))
+
+
+def abbe_error(arm_m, angle_rad) -> np.ndarray:
+    """Abbe error, paper 003 eq (6) with k = 1: offset of the measuring line times the rotation, metres.
+
+    A carriage that turns by ``angle`` (pitch or yaw) moves a point at perpendicular distance
+    ``arm`` from the measuring line by ``arm * sin(angle)`` along the line; to first order that is
+    ``arm * angle`` (1 arcsec at 100 mm: 0.485 um). The sign is that of the product; which way the
+    point moves depends on the geometry (a rotation eps about +Z moves a point at +h on Y by
+    ``-h sin(eps)`` along X). For three-dimensional offsets use the vector form in
+    :mod:`axiscal.instruments.abbe`.
+
+    Parameters
+    ----------
+    arm_m : float or array_like, metres
+        Abbe offset between the beam and the line of interest.
+    angle_rad : float or array_like, rad
+        Angular error motion of the carriage.
+    """
+    return _finite("Abbe arm", arm_m) * np.sin(_finite("angle", angle_rad))

@@ -1,0 +1,390 @@
+"""From raw sensor frames to the spatial error of the functional point (paper 000, sections 2-3).
+
+The pipeline of one batch of frames, vectorised over the frames:
+
+1. calibration: ``value = gain * raw + offset`` per channel (:mod:`axiscal.instruments.calibration`);
+2. sensor equations (eqs 1-3, :mod:`axiscal.instruments.sensors`): scale minus command is the positioning
+   error at the read head, the PSD shift the straightness at the PSD, the quadrant detector's shift
+   over f1 the pitch and yaw, the roll detector's shift over 2 f2 the roll, minus the plane
+   mirror's form error at that position (eq 12);
+3. Abbe-Bryan transfer (eqs 4-5): ``delta_P = delta_M + eps x (P - M)`` from the read head and the
+   PSD to the point the axis' errors refer to;
+4. HTM chain (eqs 6-10) of :mod:`axiscal.model.kinematics` with those per-frame errors: the spatial
+   error of the functional point and its actual (corrected) position.
+
+Faults are flagged per frame and never raise: bit 0 a channel is missing (NaN), bit 1 a channel
+is outside its valid range, bit 2 an axis' commanded position is outside the travel the error
+model covers (the machine's error table; the scale may read a little beyond, up to its margin).
+A faulty frame keeps its time stamp and fault bits; every other result of it is NaN.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.instruments.calibration import (
+    Calibration,
+    MirrorCorrection,
+    load_calibration,
+)
+from axiscal.instruments.sensors import SensorHead, sensor_head_from_dict
+from axiscal.io.tabular import read_toml
+from axiscal.model.machine import Machine, machine_from_dict
+from axiscal.model.tables import component_names
+
+__all__ = [
+    "FAULT_MISSING",
+    "FAULT_RANGE",
+    "FAULT_POSITION",
+    "FAULT_NAMES",
+    "MeasurementSystem",
+    "spatial_error",
+    "diagonal_errors",
+]
+
+#: frames processed at once: big enough to amortise the Python overhead, small enough for the cache
+_CHUNK = 16384
+
+FAULT_MISSING = 1
+FAULT_RANGE = 2
+FAULT_POSITION = 4
+FAULT_NAMES = {
+    FAULT_MISSING: "missing channel",
+    FAULT_RANGE: "channel out of range",
+    FAULT_POSITION: "position outside the error model",
+}
+
+
+@dataclass(frozen=True)
+class _AxisPlan:
+    """What :meth:`MeasurementSystem.process` does for one axis, worked out once."""
+
+    letter: str
+    index: int
+    cmd_row: int
+    scale_row: int
+    error_rows: np.ndarray
+    offsets_m: np.ndarray
+    roll_index: int
+    roll_sign: float
+    mirror: MirrorCorrection | None
+    start_m: float
+    end_m: float
+    error_names: tuple[str, ...]
+    position_name: str
+
+
+def _error_names(letter: str) -> tuple[str, ...]:
+    names = component_names(letter)
+    return tuple(f"{n}_um" for n in names[:3]) + tuple(f"{n}_urad" for n in names[3:])
+
+
+class MeasurementSystem:
+    """Raw sensor frames -> six errors per axis -> Abbe-Bryan -> HTM -> spatial error of the functional point.
+
+    Parameters
+    ----------
+    machine : Machine
+        The HTM model (chain, squareness, tool point); its error tables give the travel of each
+        axis (positions outside are faults), their values are not used: the errors are measured.
+    heads : mapping of str to SensorHead
+        The sensor head of every axis of the machine.
+    calibration : Calibration, optional
+        Channel gains and offsets and the plane-mirror corrections (default: none, identity).
+
+    Attributes
+    ----------
+    channels : tuple of str
+        Raw channel names in frame order; the same names serve the TCP line protocol, the
+        recordings and the dashboard.
+    channel_limits : dict of str to (float, float)
+        Valid range of each raw channel, in its own unit.
+    axes : tuple of str
+        Axis letters in chain order.
+    """
+
+    def __init__(self, machine: Machine, heads: Mapping[str, SensorHead], calibration: Calibration | None = None):
+        self.machine = machine
+        self.calibration = calibration if calibration is not None else Calibration()
+        self.axes = tuple(machine.letters)
+        missing = [k for k in self.axes if k not in heads]
+        if missing:
+            raise AxiscalError(f"axis {', '.join(missing)} has no sensors section [axes.{missing[0]}.sensors]")
+        self.heads = {k: heads[k] for k in self.axes}
+        channels: list[str] = []
+        limits: dict[str, tuple[float, float]] = {}
+        self._travel: dict[str, tuple[float, float]] = {}
+        for letter in self.axes:
+            head = self.heads[letter]
+            start, end = machine.travel_m(letter)
+            self._travel[letter] = (start, end)
+            for role, name in head.channels.items():
+                if name in limits:
+                    raise AxiscalError(f"channel name '{name}' is used twice; give the axes different sensor prefixes")
+                channels.append(name)
+                if role in ("cmd", "scale"):
+                    margin = head.scale_margin_m
+                    limits[name] = ((start - margin) * 1e3, (end + margin) * 1e3)
+                elif role.startswith("psd"):
+                    limits[name] = (-head.psd_range_m * 1e6, head.psd_range_m * 1e6)
+                elif role == "roll":
+                    limits[name] = (-head.roll_range_m * 1e6, head.roll_range_m * 1e6)
+                else:
+                    limits[name] = (-head.qd_range_m * 1e6, head.qd_range_m * 1e6)
+        self.channels = tuple(channels)
+        self.channel_limits = limits
+        self._prepare()
+
+    def _prepare(self) -> None:
+        """Per-channel factors to SI (calibration and sensor equations folded in) and per-axis plans."""
+        row = {name: k for k, name in enumerate(self.channels)}
+        self._low = np.array([[self.channel_limits[c][0]] for c in self.channels])
+        self._high = np.array([[self.channel_limits[c][1]] for c in self.channels])
+        factor = np.ones(len(self.channels))
+        plans = []
+        for letter in self.axes:
+            head = self.heads[letter]
+            names = head.channels
+            factor[row[names["cmd"]]] = factor[row[names["scale"]]] = 1e-3
+            error_rows = [0] * 6
+            error_rows[head.index] = row[names["scale"]]
+            for d in head.cross_directions:
+                factor[row[names[f"psd_{d}"]]] = 1e-6
+                error_rows["xyz".index(d)] = row[names[f"psd_{d}"]]
+            for role, focal in (("qd_u", head.qd_focal_m), ("qd_v", head.qd_focal_m), ("roll", 2.0 * head.roll_focal_m)):
+                component = getattr(head, role)
+                factor[row[names[role]]] = component.sign * 1e-6 / focal
+                error_rows[component.index] = row[names[role]]
+            start, end = self._travel[letter]
+            plans.append(
+                _AxisPlan(
+                    letter=letter,
+                    index=head.index,
+                    cmd_row=row[names["cmd"]],
+                    scale_row=row[names["scale"]],
+                    error_rows=np.array(error_rows),
+                    offsets_m=head.offsets_m(),
+                    roll_index=head.roll.index,
+                    roll_sign=head.roll.sign,
+                    mirror=self.calibration.mirrors.get(letter),
+                    start_m=start,
+                    end_m=end,
+                    error_names=_error_names(letter),
+                    position_name=f"{letter.lower()}_mm",
+                )
+            )
+        calibrations = [self.calibration.channel(c) for c in self.channels]
+        self._scale_si = np.array([[c.gain * f] for c, f in zip(calibrations, factor)])
+        self._offset_si = np.array([[c.offset * f] for c, f in zip(calibrations, factor)])
+        self._plans = tuple(plans)
+
+    @classmethod
+    def from_toml(cls, path: str | Path, *, calibration: Calibration | None = None) -> "MeasurementSystem":
+        """Read a machine TOML with ``[axes.<L>.sensors]`` sections (docs/formats.md, "Sensor geometry").
+
+        The calibration files named by ``calibration = "..."`` in the sensor sections (relative to
+        the TOML file) are loaded and applied; ``calibration`` given here is merged on top.
+        """
+        path = Path(path)
+        data = read_toml(path)
+        machine = machine_from_dict(data, base_dir=path.parent, source=str(path))
+        heads: dict[str, SensorHead] = {}
+        loaded = Calibration()
+        seen: set[Path] = set()
+        try:
+            for letter, section in dict(data.get("axes", {})).items():
+                if "sensors" not in section:
+                    continue
+                heads[letter] = sensor_head_from_dict(letter, section["sensors"])
+                name = section["sensors"].get("calibration")
+                if name is not None:
+                    file = path.parent / str(name)
+                    if file not in seen:
+                        seen.add(file)
+                        loaded = loaded.merged(load_calibration(file))
+            system = cls(machine, heads, loaded if calibration is None else loaded.merged(calibration))
+        except AxiscalError as exc:
+            raise exc.located(path=path) from None
+        return system
+
+    def with_calibration(self, calibration: Calibration) -> "MeasurementSystem":
+        """The same system with ``calibration`` merged over its own."""
+        return MeasurementSystem(self.machine, self.heads, self.calibration.merged(calibration))
+
+    def fault_text(self, fault: int) -> str:
+        """The fault bits of a frame in words (``"ok"`` for 0)."""
+        fault = int(fault)
+        if fault == 0:
+            return "ok"
+        words = [text for bit, text in FAULT_NAMES.items() if fault & bit]
+        unknown = fault & ~sum(FAULT_NAMES)
+        if unknown:
+            words.append(f"unknown fault bits {unknown:#x}")
+        return "; ".join(words)
+
+    def channel_faults(self, frames: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+        """Fault bits (missing, out of range) of every raw channel separately: name -> int64 (N,)."""
+        n = _batch_size(frames)
+        out = {}
+        for name in self.channels:
+            value = np.asarray(frames[name], dtype=float) if name in frames else np.full(n, np.nan)
+            low, high = self.channel_limits[name]
+            bits = np.isnan(value).astype(np.int64)
+            bits |= ((value < low) | (value > high)).astype(np.int64) << 1
+            out[name] = bits
+        return out
+
+    def process(self, frames: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+        """Turn a batch of raw frames into errors, spatial error and corrected position.
+
+        Parameters
+        ----------
+        frames : mapping of str to ndarray, shape (N,)
+            ``"t_s"`` and every channel of :attr:`channels`, each in its own unit (NaN or an
+            absent key: missing).
+
+        Returns
+        -------
+        dict of str to ndarray, shape (N,)
+            ``"t_s"``; per axis the six errors at the axis' functional point (``"EXX_um"``,
+            ``"EYX_um"``, ``"EZX_um"``, ``"EAX_urad"``, ``"EBX_urad"``, ``"ECX_urad"``, ...);
+            the scale positions ``"x_mm"``, ``"z_mm"``; the spatial error ``"ex_um"``,
+            ``"ey_um"``, ``"ez_um"`` and its length ``"e_um"``; the actual functional point
+            ``"px_mm"``, ``"py_mm"``, ``"pz_mm"``; and ``"fault"`` (int64 bits, 0 = good).
+            Results of a faulty frame are NaN.
+        """
+        n = _batch_size(frames)
+        if n <= _CHUNK:
+            return self._process(frames, n)
+        pieces = [
+            self._process({k: v[start : start + _CHUNK] for k, v in frames.items()}, min(_CHUNK, n - start))
+            for start in range(0, n, _CHUNK)
+        ]
+        return {k: np.concatenate([p[k] for p in pieces]) for k in pieces[0]}
+
+    def _process(self, frames: Mapping[str, np.ndarray], n: int) -> dict[str, np.ndarray]:
+        raw = np.empty((len(self.channels), n))
+        for row, name in enumerate(self.channels):
+            column = frames.get(name)
+            raw[row] = np.nan if column is None else column
+        fault = np.any(np.isnan(raw), axis=0).astype(np.int64)
+        outside = np.any((raw < self._low) | (raw > self._high), axis=0)
+        fault |= outside.astype(np.int64) << 1
+        si = raw * self._scale_si
+        si += self._offset_si
+        out: dict[str, np.ndarray] = {"t_s": np.asarray(frames.get("t_s", np.full(n, np.nan)), dtype=float)}
+        command: dict[str, np.ndarray] = {}
+        measured: dict[str, np.ndarray] = {}
+        for plan in self._plans:
+            cmd = si[plan.cmd_row]
+            fault |= ((cmd < plan.start_m) | (cmd > plan.end_m)).astype(np.int64) << 2
+            errors = si[plan.error_rows]
+            errors[plan.index] -= cmd
+            if plan.mirror is not None:
+                errors[plan.roll_index] -= plan.roll_sign * plan.mirror.evaluate(cmd)
+            _abbe_bryan(errors, plan.offsets_m)
+            command[plan.letter] = cmd
+            measured[plan.letter] = errors
+            scaled = errors * 1e6
+            for name, row in zip(plan.error_names, scaled):
+                out[name] = row
+            out[plan.position_name] = si[plan.scale_row] * 1e3
+        bad = fault != 0
+        if np.any(bad):
+            command = {k: np.where(bad, self._travel[k][0], q) for k, q in command.items()}
+        error = spatial_error(self.machine, command, measured)
+        actual = self.machine.nominal_point(command) + error
+        error_um = error.T * 1e6
+        actual_mm = actual.T * 1e3
+        for k, axis in enumerate("xyz"):
+            out[f"e{axis}_um"] = error_um[k]
+        out["e_um"] = np.sqrt(np.einsum("ij,ij->j", error_um, error_um))
+        for k, axis in enumerate("xyz"):
+            out[f"p{axis}_mm"] = actual_mm[k]
+        if np.any(bad):
+            for name, value in out.items():
+                if name != "t_s":
+                    value[bad] = np.nan
+        out["fault"] = fault
+        return out
+
+
+def spatial_error(machine: Machine, positions_m: Mapping[str, np.ndarray], errors: Mapping[str, np.ndarray]) -> np.ndarray:
+    """Spatial error of the functional point from error motions known at each point (paper 000 eq 10).
+
+    The HTM chain of ``machine`` (squareness, origins, tool point) with the error tables replaced
+    by the given per-point values, e.g. measured live.
+
+    Parameters
+    ----------
+    machine : Machine
+        The model; its tables are not used.
+    positions_m : mapping of str to ndarray, shape (N,)
+        Nominal (commanded) position of every axis, metres (finite).
+    errors : mapping of str to ndarray, shape (6, N)
+        Per axis the rows tx, ty, tz (m) and ea, eb, ec (rad) at the axis' reference point.
+
+    Returns
+    -------
+    ndarray, shape (N, 3)
+        Actual minus nominal functional point, in the workpiece frame, metres.
+    """
+    return machine.volumetric_error(positions_m, errors=errors, workers=1)
+
+
+def _batch_size(frames: Mapping[str, np.ndarray]) -> int:
+    sizes = {np.shape(v)[0] if np.ndim(v) else 1 for v in frames.values()}
+    if len(sizes) > 1:
+        raise AxiscalError(f"frame columns have different lengths: {sorted(sizes)}")
+    if not sizes:
+        raise AxiscalError("no frame columns given")
+    return sizes.pop()
+
+
+def _abbe_bryan(errors: np.ndarray, offsets: np.ndarray) -> None:
+    """In place: ``delta_i += (eps x (P - M_i))_i`` for the rows tx, ty, tz of ``errors`` (6, N)."""
+    ea, eb, ec = errors[3], errors[4], errors[5]
+    rx, ry, rz = offsets[0]
+    if ry or rz:
+        errors[0] += eb * rz - ec * ry
+    rx, ry, rz = offsets[1]
+    if rx or rz:
+        errors[1] += ec * rx - ea * rz
+    rx, ry, rz = offsets[2]
+    if rx or ry:
+        errors[2] += ea * ry - eb * rx
+
+
+def diagonal_errors(
+    x_m: np.ndarray, z_m: np.ndarray, error_m: np.ndarray, laser_m: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Paper 000 eq (13): the XZ diagonal's error before and after the error model.
+
+    ``E_BD = sqrt(xm^2 + zm^2) - P_MCV`` and
+    ``E_AD = sqrt((xm + xe)^2 + ye^2 + (zm + ze)^2) - P_MCV``.
+
+    Parameters
+    ----------
+    x_m, z_m : ndarray, shape (n,)
+        Nominal axis moves from the diagonal's start, metres.
+    error_m : ndarray, shape (n, 3)
+        Spatial error (xe, ye, ze) of the functional point relative to its value at the start
+        (where the interferometer was zeroed), metres.
+    laser_m : ndarray, shape (n,)
+        Interferometer reading P_MCV along the diagonal, metres.
+
+    Returns
+    -------
+    before, after : ndarray, shape (n,)
+        E_BD and E_AD, metres.
+    """
+    x, z, laser = (np.asarray(a, dtype=float) for a in (x_m, z_m, laser_m))
+    e = np.asarray(error_m, dtype=float)
+    before = np.hypot(x, z) - laser
+    after = np.sqrt((x + e[:, 0]) ** 2 + e[:, 1] ** 2 + (z + e[:, 2]) ** 2) - laser
+    return before, after

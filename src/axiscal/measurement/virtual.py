@@ -1,0 +1,505 @@
+"""A physically modelled 2-axis XZ module with its 6-DOF sensors: the default data source (paper 000).
+
+The module is the one of paper 000: chain ``FXZ`` (X on the frame carries Z, Z carries the tool),
+190 mm strokes, squareness EB0Z = -42.4 arcsec (section 5), the functional point 40 mm off the Z
+carriage (``y2`` of eq 9) and Z's carriage 50 mm above X's (``z0`` of eq 7). Its true error
+motions are smooth curves of the sizes lead-screw modules show (positioning tens of um,
+straightness a few um, angles tens of urad); a mass on the Z slide tilts both carriages more
+(the 2 kg experiment of section 5). The amplitudes are chosen so that the diagonal error before
+the model is of the size the paper reports; they are not the paper's (it publishes no curves).
+
+Each sensor has a true gain and offset that calibration must find, and reading noise; the roll
+detector's plane mirror has a form error that the mirror map must find. The module emits raw
+frames (the channels of :class:`axiscal.measurement.pipeline.MeasurementSystem`) along a path, the truth
+that goes with them, the data of its calibration runs, and the readings of a laser
+interferometer on the XZ diagonal.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from functools import cached_property
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.instruments.calibration import (
+    Calibration,
+    fit_mirror,
+    fit_sensitivity,
+    transfer_reference,
+)
+from axiscal.instruments.sensors import (
+    SensorHead,
+    SignedComponent,
+    roll_from_autocollimation,
+)
+from axiscal.measurement.pipeline import (
+    MeasurementSystem,
+    diagonal_errors,
+    spatial_error,
+)
+from axiscal.model.machine import Axis, Machine
+from axiscal.model.tables import ErrorTable, component_names
+from axiscal.units import ARCSEC
+
+__all__ = [
+    "STROKE_M",
+    "SQUARENESS_EB0Z_RAD",
+    "TOOL_M",
+    "Z_ORIGIN_M",
+    "PATHS",
+    "INTERFEROMETER_BEAM_M",
+    "QD_FOCAL_M",
+    "ROLL_FOCAL_M",
+    "NOISE",
+    "REFERENCE_NOISE",
+    "Truth",
+    "VirtualModule",
+    "DiagonalExperiment",
+    "diagonal_experiment",
+]
+
+STROKE_M = 0.19
+SQUARENESS_EB0Z_RAD = -42.4 * ARCSEC
+TOOL_M = (0.0, -0.040, 0.0)
+Z_ORIGIN_M = (0.0, 0.0, 0.050)
+PATHS = ("diagonal", "raster", "back-and-forth")
+
+#: (amplitude, cycles over the stroke, phase) of the smooth error curves, um or urad
+_CURVES = {
+    "X": {
+        "EXX": (-0.175, [(2.0, 1.5, 0.3), (0.6, 4.0, 1.0)]),
+        "EYX": (0.0, [(2.5, 0.5, 0.0), (0.5, 2.0, 1.0)]),
+        "EZX": (0.0, [(-3.0, 0.5, 0.0), (0.4, 1.5, 0.7)]),
+        "EAX": (0.0, [(14.0, 0.5, 0.3), (3.0, 2.0, 0.0)]),
+        "EBX": (0.12, [(22.0, 0.5, 0.0), (5.0, 1.5, 1.2)]),
+        "ECX": (0.0, [(-18.0, 0.5, 0.6), (4.0, 2.5, 0.0)]),
+    },
+    "Z": {
+        "EXZ": (0.0, [(3.5, 0.5, 0.0), (0.5, 2.0, 0.3)]),
+        "EYZ": (0.0, [(-1.8, 0.5, 0.2), (0.3, 1.5, 0.0)]),
+        "EZZ": (-0.12, [(1.5, 2.5, 1.0), (0.5, 5.0, 0.0)]),
+        "EAZ": (0.0, [(16.0, 0.5, 0.0), (4.0, 1.5, 0.5)]),
+        "EBZ": (0.0, [(-20.0, 0.5, 0.4), (3.0, 2.0, 0.0)]),
+        "ECZ": (0.0, [(10.0, 0.5, 1.0), (2.0, 3.0, 0.0)]),
+    },
+}
+#: change of the angular errors per kg on the Z slide, urad/kg: (constant, slope over the stroke)
+_LOAD = {"EBX": (12.0, 23.0), "EAX": (3.0, 2.0), "EAZ": (-4.0, -3.0), "EBZ": (5.0, 6.0)}
+
+#: the sensor heads of the module (mm): read heads beside and below the carriages, PSDs above
+_GEOMETRY = {
+    "X": {"scale_point": (0.0, -25.0, -30.0), "psd_point": (0.0, 20.0, 15.0)},
+    "Z": {"scale_point": (20.0, -25.0, 0.0), "psd_point": (-15.0, 20.0, 0.0)},
+}
+#: where the interferometer's beam meets the carriage, relative to the scale's read head (m)
+INTERFEROMETER_BEAM_M = np.array([0.0, 0.045, 0.020])
+QD_FOCAL_M = 0.100
+ROLL_FOCAL_M = 0.080
+
+#: reading noise (rms) of each kind of channel, in the channel's unit (mm for scales, um for spots)
+NOISE = {"cmd": 0.0, "scale": 0.1e-3, "psd": 0.2, "qd": 0.05, "roll": 0.08}
+#: reference instruments: inductive probe (um), autocollimator (rad), level (rad), interferometer (m)
+REFERENCE_NOISE = {"probe": 0.02, "autocollimator": 0.05 * ARCSEC, "level": 0.2 * ARCSEC, "interferometer": 5e-9}
+
+
+def _curve(q_m: np.ndarray, slope: float, terms: list[tuple[float, float, float]]) -> np.ndarray:
+    """slope * q_mm + sum a sin(2 pi c s + p) - its value at 0 (um or urad), with s = q / stroke."""
+    s = q_m / STROKE_M
+    value = slope * q_m * 1e3
+    for a, c, p in terms:
+        value = value + a * (np.sin(2 * np.pi * c * s + p) - np.sin(p))
+    return value
+
+
+def _moved(errors: np.ndarray, point_m) -> np.ndarray:
+    """Translation (3, N) of the carriage point ``point_m`` from the errors (6, N) at its origin: delta + eps x r."""
+    ea, eb, ec = errors[3], errors[4], errors[5]
+    rx, ry, rz = point_m
+    return np.array([errors[0] + eb * rz - ec * ry, errors[1] + ec * rx - ea * rz, errors[2] + ea * ry - eb * rx])
+
+
+@dataclass(frozen=True)
+class Truth:
+    """Gain and offset a raw channel really has: ``true value = gain * raw + offset`` (channel unit)."""
+
+    gain: float
+    offset: float
+    noise: float
+
+
+class VirtualModule:
+    """Physically modelled 2-axis XZ module of paper 000 (190 mm strokes), the default source.
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the sensors' true gains and offsets and of all noise (default 0).
+    load_kg : float
+        Mass on the Z slide, kg (default 0; the paper's second experiment uses 2).
+    noise : bool
+        Add reading noise to sensors and reference instruments (default True).
+    speed_mm_s : float
+        Axis speed along the paths, mm/s (default 50).
+    """
+
+    def __init__(self, *, seed: int = 0, load_kg: float = 0.0, noise: bool = True, speed_mm_s: float = 50.0):
+        self.seed = seed
+        self.load_kg = float(load_kg)
+        self.noise = bool(noise)
+        self.speed_m_s = speed_mm_s * 1e-3
+        self._rng = np.random.default_rng([seed, 1])
+        heads = {}
+        for letter in ("X", "Z"):
+            names = component_names(letter)
+            u, v, roll = {"X": (("ECX", 1), ("EBX", -1), ("EAX", 1)), "Z": (("EBZ", 1), ("EAZ", -1), ("ECZ", 1))}[letter]
+            heads[letter] = SensorHead(
+                letter=letter,
+                prefix=letter.lower(),
+                scale_point_m=tuple(c * 1e-3 for c in _GEOMETRY[letter]["scale_point"]),
+                psd_point_m=tuple(c * 1e-3 for c in _GEOMETRY[letter]["psd_point"]),
+                qd_focal_m=QD_FOCAL_M,
+                roll_focal_m=ROLL_FOCAL_M,
+                qd_u=SignedComponent(names.index(u[0]), float(u[1])),
+                qd_v=SignedComponent(names.index(v[0]), float(v[1])),
+                roll=SignedComponent(names.index(roll[0]), float(roll[1])),
+            )
+        self.heads = heads
+        self._curve_arrays = {}
+        for letter in ("X", "Z"):
+            names = component_names(letter)
+            curves = [_CURVES[letter][n] for n in names]
+            self._curve_arrays[letter] = (
+                np.array([c[0] for c in curves]),
+                np.array([[a for a, _, _ in c[1]] for c in curves]),
+                np.array([[f for _, f, _ in c[1]] for c in curves]),
+                np.array([[p for _, _, p in c[1]] for c in curves]),
+                np.array([_LOAD.get(n, (0.0, 0.0))[0] for n in names]),
+                np.array([_LOAD.get(n, (0.0, 0.0))[1] for n in names]),
+            )
+        grid = np.linspace(0.0, STROKE_M, 39)
+        self.machine = Machine(
+            chain="FXZ",
+            axes={
+                k: Axis(
+                    k,
+                    ErrorTable(k, grid, self.true_errors(k, grid), interpolation="cubic"),
+                    Z_ORIGIN_M if k == "Z" else (0.0, 0.0, 0.0),
+                )
+                for k in ("X", "Z")
+            },
+            squareness_rad={"EB0Z": SQUARENESS_EB0Z_RAD},
+            tool_m=TOOL_M,
+            name="virtual XZ module (paper 000)",
+        )
+        truth_rng = np.random.default_rng([seed, 0])
+        self.sensor_truth: dict[str, Truth] = {}
+        for letter, head in heads.items():
+            for role, name in head.channels.items():
+                kind = role.split("_")[0]
+                if kind == "cmd":
+                    self.sensor_truth[name] = Truth(1.0, 0.0, 0.0)
+                elif kind == "scale":
+                    gain = 1.0 + truth_rng.uniform(-40e-6, 40e-6)
+                    self.sensor_truth[name] = Truth(gain, truth_rng.uniform(-5e-3, 5e-3), NOISE[kind])
+                else:
+                    gain = 1.0 + truth_rng.uniform(-0.05, 0.05)
+                    self.sensor_truth[name] = Truth(gain, truth_rng.uniform(-20.0, 20.0), NOISE[kind])
+        #: plane-mirror form error seen by each roll detector: (amplitude urad, cycles, phase)
+        self.mirror_terms = {
+            k: [(truth_rng.uniform(3.0, 6.0), 0.7, truth_rng.uniform(0, np.pi)), (1.5, 1.6, truth_rng.uniform(0, np.pi))]
+            for k in ("X", "Z")
+        }
+
+    def true_errors(self, letter: str, q_m: np.ndarray) -> np.ndarray:
+        """The six error motions of axis ``letter`` at positions ``q_m`` (with the load): (6, N), SI."""
+        q = np.asarray(q_m, dtype=float).reshape(-1)
+        slope, amplitude, cycles, phase, constant, ramp = self._curve_arrays[letter]
+        s = q / STROKE_M
+        waves = amplitude[:, :, None] * (np.sin(2 * np.pi * cycles[:, :, None] * s + phase[:, :, None]) - np.sin(phase)[:, :, None])
+        value = slope[:, None] * (q * 1e3) + waves.sum(axis=1)
+        if self.load_kg:
+            value += self.load_kg * (constant[:, None] + ramp[:, None] * s)
+        return value * 1e-6
+
+    def mirror_error(self, letter: str, q_m: np.ndarray) -> np.ndarray:
+        """The apparent roll the plane mirror's form adds at ``q_m``, radians."""
+        return _curve(np.asarray(q_m, dtype=float), 0.0, self.mirror_terms[letter]) * 1e-6
+
+    def positions(self, t_s: np.ndarray, *, path: str = "diagonal") -> dict[str, np.ndarray]:
+        """Commanded positions (m) of X and Z at times ``t_s`` along a periodic path.
+
+        ``"diagonal"``: both axes 0 -> 190 mm -> 0 together; ``"back-and-forth"``: X 0 -> 190 ->
+        0 mm with Z at mid-stroke; ``"raster"``: X sweeps back and forth while Z steps 10 mm per
+        sweep, up through the square and back down.
+        """
+        t = np.asarray(t_s, dtype=float)
+        sweep = STROKE_M / self.speed_m_s
+        phase = np.mod(t / sweep, 2.0)
+        triangle = STROKE_M * np.where(phase < 1.0, phase, 2.0 - phase)
+        if path == "diagonal":
+            return {"X": triangle, "Z": triangle.copy()}
+        if path == "back-and-forth":
+            return {"X": triangle, "Z": np.full(t.shape, STROKE_M / 2)}
+        if path == "raster":
+            lines = 20
+            sweep_index = np.floor(np.mod(t / sweep, 2 * lines)).astype(int)
+            level = np.where(sweep_index < lines, sweep_index, 2 * lines - 1 - sweep_index)
+            return {"X": triangle, "Z": level * (STROKE_M / (lines - 1))}
+        raise AxiscalError(f"unknown path '{path}'; use one of {', '.join(PATHS)}")
+
+    def _noise(self, kind: str, shape: tuple[int, ...], rng: np.random.Generator) -> np.ndarray:
+        scale = NOISE.get(kind, REFERENCE_NOISE.get(kind, 0.0))
+        if not self.noise or scale == 0.0:
+            return np.zeros(shape)
+        return rng.normal(0.0, scale, shape)
+
+    def sensor_values(self, letter: str, q_m: np.ndarray, errors: np.ndarray) -> dict[str, np.ndarray]:
+        """What each channel of axis ``letter`` should read (true physical value, channel unit)."""
+        head = self.heads[letter]
+        at_scale = _moved(errors, head.scale_point_m)
+        at_psd = _moved(errors, head.psd_point_m)
+        names = head.channels
+        out = {names["cmd"]: q_m * 1e3, names["scale"]: (q_m + at_scale[head.index]) * 1e3}
+        for d in head.cross_directions:
+            out[names[f"psd_{d}"]] = at_psd["xyz".index(d)] * 1e6
+        out[names["qd_u"]] = head.qd_u.sign * errors[head.qd_u.index] * head.qd_focal_m * 1e6
+        out[names["qd_v"]] = head.qd_v.sign * errors[head.qd_v.index] * head.qd_focal_m * 1e6
+        roll = errors[head.roll.index] + self.mirror_error(letter, q_m)
+        out[names["roll"]] = head.roll.sign * roll * 2.0 * head.roll_focal_m * 1e6
+        return out
+
+    def raw(self, values: dict[str, np.ndarray], rng: np.random.Generator) -> dict[str, np.ndarray]:
+        """Raw readings from true values: ``(value - offset) / gain`` plus reading noise."""
+        out = {}
+        for name, value in values.items():
+            truth = self.sensor_truth[name]
+            noise = rng.normal(0.0, truth.noise, value.shape) if self.noise and truth.noise else 0.0
+            out[name] = (value - truth.offset) / truth.gain + noise
+        return out
+
+    def frames(self, t_s: np.ndarray, *, path: str = "diagonal") -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
+        """Raw frames and their truth at times ``t_s`` along ``path`` (see :meth:`positions`).
+
+        Returns
+        -------
+        frames : dict of str to ndarray, shape (N,)
+            ``"t_s"`` and every channel of :meth:`measurement_system`, raw.
+        truth : dict of str to ndarray, shape (N,)
+            ``"t_s"``; per axis the six true errors (``"EXX_um"`` .. ``"ECZ_urad"``); the true
+            scale positions ``"x_mm"``, ``"z_mm"`` and commands ``"x_cmd_mm"``, ``"z_cmd_mm"``;
+            the true spatial error ``"ex_um"``, ``"ey_um"``, ``"ez_um"``, ``"e_um"`` and functional
+            point ``"px_mm"``, ``"py_mm"``, ``"pz_mm"``.
+        """
+        t = np.atleast_1d(np.asarray(t_s, dtype=float))
+        q = self.positions(t, path=path)
+        return self.frames_at(q, t_s=t)
+
+    def frames_at(self, positions_m: dict[str, np.ndarray], *, t_s: np.ndarray | None = None):
+        """Raw frames and truth (as :meth:`frames`) at given commanded positions (m)."""
+        n = positions_m["X"].size
+        t = np.zeros(n) if t_s is None else np.asarray(t_s, dtype=float)
+        frames: dict[str, np.ndarray] = {"t_s": t}
+        truth: dict[str, np.ndarray] = {"t_s": t}
+        errors = {}
+        for letter in ("X", "Z"):
+            q = positions_m[letter]
+            e = self.true_errors(letter, q)
+            errors[letter] = e
+            values = self.sensor_values(letter, q, e)
+            frames.update(self.raw(values, self._rng))
+            names = component_names(letter)
+            for row, name in enumerate(names):
+                truth[f"{name}_{'um' if row < 3 else 'urad'}"] = e[row] * 1e6
+            truth[f"{letter.lower()}_mm"] = values[self.heads[letter].channels["scale"]]
+            truth[f"{letter.lower()}_cmd_mm"] = q * 1e3
+        error = spatial_error(self.machine, positions_m, errors)
+        actual = self.machine.nominal_point(positions_m) + error
+        for k, axis in enumerate("xyz"):
+            truth[f"e{axis}_um"] = error[:, k] * 1e6
+        truth["e_um"] = np.linalg.norm(error, axis=1) * 1e6
+        for k, axis in enumerate("xyz"):
+            truth[f"p{axis}_mm"] = actual[:, k] * 1e3
+        return frames, truth
+
+    def true_point(self, positions_m: dict[str, np.ndarray]) -> np.ndarray:
+        """Where the functional point really is at the commanded positions: (N, 3), m."""
+        errors = {k: self.true_errors(k, positions_m[k]) for k in ("X", "Z")}
+        return self.machine.nominal_point(positions_m) + spatial_error(self.machine, positions_m, errors)
+
+    def laser_diagonal(self, positions_m: dict[str, np.ndarray]) -> np.ndarray:
+        """Readings of a laser interferometer along the diagonal through the given stops (m).
+
+        The beam is aligned with the nominal line from the first stop to the last, the reflector
+        sits on the functional point, and the reading is zeroed at the first stop: the functional
+        point's true displacement along the beam, plus the interferometer's noise.
+        """
+        nominal = self.machine.nominal_point(positions_m)
+        direction = nominal[-1] - nominal[0]
+        direction = direction / np.linalg.norm(direction)
+        actual = self.true_point(positions_m)
+        reading = (actual - actual[0]) @ direction
+        if self.noise:
+            reading = reading + self._rng.normal(0.0, REFERENCE_NOISE["interferometer"], reading.shape)
+        reading[0] = 0.0
+        return reading
+
+    def calibration_runs(self) -> dict[str, dict[str, np.ndarray]]:
+        """Simulated calibration data of every channel (section 4.1 of paper 000).
+
+        One data set per PSD and angle channel (``"raw"`` and ``"reference"``, both in the
+        channel's unit: PSDs displaced against an inductive probe over +-90 um, detectors tilted
+        against an autocollimator over +-100 arcsec); per scale ``"raw"``, ``"position_m"``,
+        ``"interferometer_m"`` (beam off the read head), the autocollimator's ``"eps_rad"`` (n, 3)
+        and ``"offset_m"`` (read head minus beam), so the reading can be moved to the read head
+        first (section 4.2); per axis ``"<L>_mirror"``: ``"position_m"``, ``"raw"`` readings of the
+        roll detector and ``"level_rad"`` along the travel (eq 11).
+        """
+        rng = np.random.default_rng([self.seed, 2])
+        runs: dict[str, dict[str, np.ndarray]] = {}
+        steps = np.linspace(-1.0, 1.0, 21)
+        for letter, head in self.heads.items():
+            names = head.channels
+            for d in head.cross_directions:
+                shift = steps * 90.0
+                reference = shift + self._noise("probe", shift.shape, rng)
+                runs[names[f"psd_{d}"]] = {"raw": self.raw({names[f"psd_{d}"]: shift}, rng)[names[f"psd_{d}"]], "reference": reference}
+            for role, focal, factor in (("qd_u", head.qd_focal_m, 1.0), ("qd_v", head.qd_focal_m, 1.0), ("roll", head.roll_focal_m, 2.0)):
+                angle = steps * 100.0 * ARCSEC
+                shift = angle * focal * factor * 1e6
+                measured = angle + self._noise("autocollimator", angle.shape, rng)
+                runs[names[role]] = {"raw": self.raw({names[role]: shift}, rng)[names[role]], "reference": measured * focal * factor * 1e6}
+            q = np.linspace(0.0, STROKE_M, 39)
+            e = self.true_errors(letter, q)
+            values = self.sensor_values(letter, q, e)
+            beam = np.asarray(head.scale_point_m) + INTERFEROMETER_BEAM_M
+            eps_true = e[3:].T
+            at_beam = e[:3].T + np.cross(eps_true, beam)
+            runs[names["scale"]] = {
+                "raw": self.raw({names["scale"]: values[names["scale"]]}, rng)[names["scale"]],
+                "position_m": q,
+                "interferometer_m": q + at_beam[:, head.index] + self._noise("interferometer", q.shape, rng),
+                "eps_rad": eps_true + self._noise("autocollimator", eps_true.shape, rng),
+                "offset_m": -INTERFEROMETER_BEAM_M,
+            }
+            roll = e[head.roll.index]
+            runs[f"{letter}_mirror"] = {
+                "position_m": q,
+                "raw": self.raw({names["roll"]: values[names["roll"]]}, rng)[names["roll"]],
+                "level_rad": roll + self._noise("level", roll.shape, rng),
+            }
+        return runs
+
+    @cached_property
+    def calibration(self) -> Calibration:
+        """The calibration the module's simulated calibration runs give (fits, not the truth)."""
+        runs = self.calibration_runs()
+        channels = {}
+        for head in self.heads.values():
+            for role, name in head.channels.items():
+                run = runs.get(name)
+                if role == "scale":
+                    at_head = transfer_reference(run["interferometer_m"], run["eps_rad"], run["offset_m"], head.index)
+                    channels[name] = fit_sensitivity(name, run["raw"], at_head * 1e3)
+                elif run is not None:
+                    channels[name] = fit_sensitivity(name, run["raw"], run["reference"])
+        mirrors = {}
+        for letter, head in self.heads.items():
+            run = runs[f"{letter}_mirror"]
+            shift_m = channels[head.channels["roll"]].apply(run["raw"]) * 1e-6
+            module_roll = head.roll.sign * roll_from_autocollimation(shift_m, head.roll_focal_m)
+            mirrors[letter] = fit_mirror(letter, run["position_m"], module_roll, run["level_rad"])
+        return Calibration(channels, mirrors)
+
+    def measurement_system(self) -> MeasurementSystem:
+        """The module's measurement system, calibrated by its simulated calibration runs."""
+        return MeasurementSystem(self.machine, self.heads, self.calibration)
+
+
+@dataclass(frozen=True)
+class DiagonalExperiment:
+    """Paper 000 section 5 in simulation: the XZ diagonal against a laser interferometer (eq 13).
+
+    Arrays have shape (n,), one entry per point (the start, where the interferometer is zeroed,
+    is the first).
+    """
+
+    load_kg: float
+    x_mm: np.ndarray
+    z_mm: np.ndarray
+    laser_mm: np.ndarray
+    before_um: np.ndarray
+    after_um: np.ndarray
+    scales_only_um: np.ndarray
+    true_after_um: np.ndarray
+
+    @property
+    def before_max_um(self) -> float:
+        """Largest |E_BD|: the diagonal error without the model."""
+        return float(np.max(np.abs(self.before_um)))
+
+    @property
+    def after_max_um(self) -> float:
+        """Largest |E_AD|: the diagonal error left with the measured errors in the model."""
+        return float(np.max(np.abs(self.after_um)))
+
+    @property
+    def scales_only_max_um(self) -> float:
+        """Largest error when only the scale readings are used (the traditional way of section 3)."""
+        return float(np.max(np.abs(self.scales_only_um)))
+
+
+def diagonal_experiment(
+    module: VirtualModule,
+    *,
+    points: int = 19,
+    step_m: float = 0.010,
+    samples: int = 1,
+    squareness_error_rad: float = 0.0,
+) -> DiagonalExperiment:
+    """Simulate paper 000's diagonal comparison (section 5, eq 13) on a virtual module.
+
+    Both axes step ``step_m`` at a time from 0 for ``points`` steps; at each stop the module's
+    measurement system averages ``samples`` frames and a laser interferometer, aligned with the
+    nominal diagonal and zeroed at the start, reads the functional point's move along it.
+    ``squareness_error_rad`` is added to the squareness the measuring system's model uses (the
+    module keeps its true one): e.g. the 8.18 arcsec of the paper's marble square, to see what a
+    squareness measured against an uncorrected reference leaves behind.
+
+    Returns
+    -------
+    DiagonalExperiment
+        E_BD (nominal moves), E_AD (moves plus measured spatial error, relative to the start),
+        the same with only the scales' positions, and E_AD with the true spatial error (what a
+        perfect measuring system would leave: the interferometer's own noise).
+    """
+    system = module.measurement_system()
+    if squareness_error_rad:
+        squareness = {"EB0Z": SQUARENESS_EB0Z_RAD + squareness_error_rad}
+        system = MeasurementSystem(replace(module.machine, squareness_rad=squareness), module.heads, module.calibration)
+    q = np.arange(points + 1) * step_m
+    repeated = {"X": np.repeat(q, samples), "Z": np.repeat(q, samples)}
+    frames, _ = module.frames_at(repeated)
+    out = system.process(frames)
+    mean = {k: np.nanmean(out[k].reshape(points + 1, samples), axis=1) for k in ("ex_um", "ey_um", "ez_um", "x_mm", "z_mm")}
+    measured = np.column_stack([mean["ex_um"], mean["ey_um"], mean["ez_um"]]) * 1e-6
+    positions = {"X": q, "Z": q.copy()}
+    actual = module.true_point(positions)
+    laser = module.laser_diagonal(positions)
+    before, after = diagonal_errors(q, q, measured - measured[0], laser)
+    true_error = actual - module.machine.nominal_point(positions)
+    _, true_after = diagonal_errors(q, q, true_error - true_error[0], laser)
+    xs = (mean["x_mm"] - mean["x_mm"][0]) * 1e-3
+    zs = (mean["z_mm"] - mean["z_mm"][0]) * 1e-3
+    scales_only = np.hypot(xs, zs) - laser
+    return DiagonalExperiment(
+        load_kg=module.load_kg,
+        x_mm=q * 1e3,
+        z_mm=q * 1e3,
+        laser_mm=laser * 1e3,
+        before_um=before * 1e6,
+        after_um=after * 1e6,
+        scales_only_um=scales_only * 1e6,
+        true_after_um=true_after * 1e6,
+    )

@@ -1,0 +1,428 @@
+"""A machine with 1 to 3 linear axes: its kinematic chain, error tables and squareness (paper 000 §3).
+
+:class:`Machine` is the model (:mod:`axiscal.model.kinematics` has the contract); :func:`load_machine`
+reads the TOML description of docs/formats.md. Chain notation as ISO 10791 / ISO 230-1 use it:
+workpiece-side axes, ``F`` (the frame), tool-side axes; ``"XFYZ"``: the table moves X, the column
+carries Y and Z. The volumetric error is the tool point relative to the workpiece.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.io.tabular import read_toml
+from axiscal.model.kinematics import (
+    AXIS_INDEX,
+    ChainLink,
+    reference_volumetric_error,
+    volumetric_error,
+)
+from axiscal.model.tables import ErrorTable, read_error_table
+from axiscal.units import angle_factor, split_unit
+
+__all__ = [
+    "SQUARENESS_TERMS",
+    "SQUARENESS_PLACEMENTS",
+    "Axis",
+    "parse_chain",
+    "Machine",
+    "machine_from_dict",
+    "load_machine",
+    "axis_positions_from_grid",
+    "positions_from_points",
+]
+
+SQUARENESS_TERMS = ("EC0Y", "EB0Z", "EA0Z")
+_CHUNK = 65536
+#: squareness term -> (axis whose guideway it turns, reference axis, index of the rotation vector component)
+_SQUARENESS_PLACE = {"EC0Y": ("Y", "X", 2), "EB0Z": ("Z", "X", 1), "EA0Z": ("Z", "Y", 0)}
+SQUARENESS_PLACEMENTS = ("guideway", "relative")
+
+
+@dataclass(frozen=True)
+class Axis:
+    """One linear axis: its letter, error table (None: an ideal axis) and carriage origin (m)."""
+
+    letter: str
+    table: ErrorTable | None = None
+    origin_m: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+
+def parse_chain(chain: str) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """Split a chain such as ``"XFYZ"`` into (workpiece branch from F outward, tool branch from F outward).
+
+    >>> parse_chain("YXFZ")
+    (('X', 'Y'), ('Z',))
+    """
+    chain = chain.strip().upper()
+    if chain.count("F") != 1:
+        raise AxiscalError(f"chain '{chain}' must contain exactly one 'F' (the frame), e.g. 'XFYZ'")
+    left, right = chain.split("F")
+    letters = left + right
+    for letter in letters:
+        if letter not in AXIS_INDEX:
+            raise AxiscalError(f"chain '{chain}': '{letter}' is not a linear axis (X, Y or Z)")
+    if len(set(letters)) != len(letters):
+        raise AxiscalError(f"chain '{chain}' names an axis twice")
+    if not 1 <= len(letters) <= 3:
+        raise AxiscalError(f"chain '{chain}' must have 1 to 3 axes")
+    return tuple(reversed(left)), tuple(right)
+
+
+@dataclass(frozen=True)
+class Machine:
+    """The HTM model of a machine (SI units; contract in :mod:`axiscal.model.kinematics`).
+
+    Parameters
+    ----------
+    chain : str
+        Workpiece-side axes, F, tool-side axes (``"FXZ"``, ``"XFYZ"``).
+    axes : mapping of str to Axis
+        One entry per axis letter of the chain.
+    squareness_rad : mapping of str to float
+        ``EC0Y``, ``EB0Z``, ``EA0Z`` in radians (missing: zero), ISO 230-1 signs (docs/conventions.md).
+    tool_m : sequence of 3 floats
+        Functional point in the frame of the last tool-side carriage, metres.
+    workpiece_m : sequence of 3 floats
+        Point of the workpiece frame the error is measured from, metres.
+    squareness_placement : {"guideway", "relative"}
+        ``"guideway"`` (default, the contract of :mod:`axiscal.model.kinematics`): each term turns the
+        guideway of the axis it names (EC0Y: Y; EB0Z, EA0Z: Z). When that axis carries its reference
+        axis in the same branch (chains such as ``"FYXZ"`` or ``"XYFZ"``, where Y carries X), the
+        reference axis turns with it and the term becomes a rigid rotation of both.
+        ``"relative"``: in that case the term is put on the carried reference axis with the
+        opposite sign instead, so that the included angle between the two axes is the one the
+        term names (docs/conventions.md); other chains are unchanged.
+    """
+
+    chain: str
+    axes: Mapping[str, Axis]
+    squareness_rad: Mapping[str, float] = field(default_factory=dict)
+    tool_m: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    workpiece_m: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    name: str = ""
+    squareness_placement: str = "guideway"
+
+    def __post_init__(self) -> None:
+        workpiece_side, tool_side = parse_chain(self.chain)
+        letters = set(workpiece_side + tool_side)
+        missing = sorted(letters - set(self.axes))
+        if missing:
+            raise AxiscalError(f"chain '{self.chain}' has axis {', '.join(missing)} but no axis description for it")
+        extra = sorted(set(self.axes) - letters)
+        if extra:
+            raise AxiscalError(f"axis {', '.join(extra)} is described but not in chain '{self.chain}'")
+        unknown = sorted(set(self.squareness_rad) - set(SQUARENESS_TERMS))
+        if unknown:
+            raise AxiscalError(f"unknown squareness term {', '.join(unknown)}; use {', '.join(SQUARENESS_TERMS)}")
+        if self.squareness_placement not in SQUARENESS_PLACEMENTS:
+            raise AxiscalError(
+                f"unknown squareness placement '{self.squareness_placement}'; use {' or '.join(SQUARENESS_PLACEMENTS)}"
+            )
+        rotation = {letter: np.zeros(3) for letter in AXIS_INDEX}
+        for term, value in self.squareness_rad.items():
+            if not np.isfinite(value):
+                raise AxiscalError(f"squareness {term} is not finite")
+            letter, reference, component = _SQUARENESS_PLACE[term]
+            sign = 1.0
+            if self.squareness_placement == "relative":
+                for branch in (workpiece_side, tool_side):
+                    if letter in branch and reference in branch and branch.index(reference) > branch.index(letter):
+                        letter, sign = reference, -1.0
+            rotation[letter][component] += sign * float(value)
+
+        def link(letter: str) -> ChainLink:
+            axis = self.axes[letter]
+            if axis.letter != letter:
+                raise AxiscalError(f"axis description under '{letter}' is for axis '{axis.letter}'")
+            table = axis.table if axis.table is not None else ErrorTable.zeros(letter)
+            if table.letter != letter:
+                raise AxiscalError(f"axis {letter} was given the error table of axis {table.letter}")
+            origin = np.asarray(axis.origin_m, dtype=float)
+            if origin.shape != (3,) or not np.all(np.isfinite(origin)):
+                raise AxiscalError(f"axis {letter}: origin must be 3 finite numbers")
+            return ChainLink(letter, table, origin, rotation[letter])
+
+        object.__setattr__(self, "_workpiece_links", tuple(link(k) for k in workpiece_side))
+        object.__setattr__(self, "_tool_links", tuple(link(k) for k in tool_side))
+        for label in ("tool_m", "workpiece_m"):
+            value = np.asarray(getattr(self, label), dtype=float)
+            if value.shape != (3,) or not np.all(np.isfinite(value)):
+                raise AxiscalError(f"{label} must be 3 finite numbers")
+            object.__setattr__(self, label, tuple(float(v) for v in value))
+
+    @property
+    def letters(self) -> tuple[str, ...]:
+        """Axis letters in chain order (workpiece side from F outward, then tool side)."""
+        return tuple(link.letter for link in self._workpiece_links + self._tool_links)
+
+    @property
+    def tool_side(self) -> tuple[str, ...]:
+        return tuple(link.letter for link in self._tool_links)
+
+    @property
+    def workpiece_side(self) -> tuple[str, ...]:
+        return tuple(link.letter for link in self._workpiece_links)
+
+    def table(self, letter: str) -> ErrorTable:
+        """The error table used for axis ``letter`` (zeros for an ideal axis)."""
+        for link in self._workpiece_links + self._tool_links:
+            if link.letter == letter:
+                return link.table
+        raise AxiscalError(f"axis {letter} is not in chain '{self.chain}'")
+
+    def travel_m(self, letter: str) -> tuple[float, float]:
+        """(start, end) of the error table of axis ``letter``, metres."""
+        table = self.table(letter)
+        return table.start_m, table.end_m
+
+    def _positions(self, positions: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+        out: dict[str, np.ndarray] = {}
+        size = None
+        for letter in self.letters:
+            if letter not in positions:
+                raise AxiscalError(f"no positions given for axis {letter} of chain '{self.chain}'")
+            q = np.atleast_1d(np.asarray(positions[letter], dtype=float))
+            if q.ndim != 1:
+                raise AxiscalError(f"positions of axis {letter} must be one-dimensional")
+            if not np.all(np.isfinite(q)):
+                raise AxiscalError(f"positions of axis {letter} hold non-finite values")
+            if size is not None and q.size != size:
+                raise AxiscalError("all axes must be given the same number of positions")
+            size = q.size
+            out[letter] = q
+        return out
+
+    def nominal_point(self, positions: Mapping[str, np.ndarray]) -> np.ndarray:
+        """Nominal tool point relative to the workpiece point, in the workpiece frame: (N, 3), m."""
+        q = self._positions(positions)
+        n = len(next(iter(q.values())))
+        p = np.tile(np.subtract(self.tool_m, self.workpiece_m), (n, 1))
+        for link in self._tool_links:
+            p += link.origin_m
+            p[:, link.index] += q[link.letter]
+        for link in self._workpiece_links:
+            p -= link.origin_m
+            p[:, link.index] -= q[link.letter]
+        return p
+
+    def volumetric_error(
+        self,
+        positions: Mapping[str, np.ndarray],
+        *,
+        errors: Mapping[str, np.ndarray] | None = None,
+        workers: int | None = None,
+    ) -> np.ndarray:
+        """Volumetric error of the functional point at the given axis positions.
+
+        Parameters
+        ----------
+        positions : mapping of str to ndarray, shape (N,)
+            Position of every axis of the chain, metres.
+        errors : mapping of str to ndarray, shape (6, N), optional
+            The axes' error motions given per point (rows tx, ty, tz in m; ea, eb, ec in rad),
+            e.g. measured live; default: read from the error tables at ``positions``.
+        workers : int, optional
+            Threads for large N (default: the number of cores). Work is split into chunks of
+            65536 points, which also keeps the temporaries in cache.
+
+        Returns
+        -------
+        ndarray, shape (N, 3)
+            Actual minus nominal tool point relative to the workpiece, in the workpiece frame, m.
+        """
+        q = self._positions(positions)
+        n = len(next(iter(q.values())))
+        if errors is not None:
+            errors = {k: np.asarray(errors[k], dtype=float) for k in self.letters if k in errors}
+            wrong = [k for k in self.letters if errors.get(k, np.empty(0)).shape != (6, n)]
+            if wrong:
+                raise AxiscalError(f"errors of axis {', '.join(wrong)} must have shape (6, {n})")
+        tool, workpiece = np.array(self.tool_m), np.array(self.workpiece_m)
+
+        def run(start: int, stop: int) -> np.ndarray:
+            part = {k: v[start:stop] for k, v in q.items()}
+            given = None if errors is None else {k: v[:, start:stop] for k, v in errors.items()}
+            return volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, part, given)
+
+        if n <= _CHUNK:
+            return run(0, n)
+        if errors is None:
+            for letter in self.letters:
+                self.table(letter).check_range(q[letter])
+        out = np.empty((n, 3))
+
+        def fill(start: int) -> None:
+            out[start : start + _CHUNK] = run(start, start + _CHUNK)
+
+        workers = workers or os.cpu_count() or 1
+        if workers == 1:
+            for start in range(0, n, _CHUNK):
+                fill(start)
+        else:
+            with ThreadPoolExecutor(workers) as pool:
+                list(pool.map(fill, range(0, n, _CHUNK)))
+        return out
+
+    def reference_volumetric_error(self, positions: Mapping[str, np.ndarray]) -> np.ndarray:
+        """The same by a plain per-point loop of 4x4 matrix products (slow; for checks)."""
+        q = self._positions(positions)
+        return reference_volumetric_error(
+            self._tool_links, self._workpiece_links, np.array(self.tool_m), np.array(self.workpiece_m), q
+        )
+
+    def actual_point(self, positions: Mapping[str, np.ndarray]) -> np.ndarray:
+        """Where the tool point really is relative to the workpiece point: nominal + error, (N, 3), m."""
+        return self.nominal_point(positions) + self.volumetric_error(positions)
+
+    def command_for(
+        self, target_m: np.ndarray, *, tolerance_m: float = 1e-12, max_iterations: int = 50
+    ) -> dict[str, np.ndarray]:
+        """Axis commands that put the tool point on ``target_m`` (the inverse of :meth:`actual_point`).
+
+        Fixed-point iteration on the nominal (linear) kinematics: the error's change with position
+        is small (its slope is the error's gradient, of order 1e-4), so each step shrinks the miss
+        by that factor. Only the directions of the chain's axes can be reached; the remaining
+        components of ``target_m`` are ignored (with fewer than 3 axes).
+
+        Parameters
+        ----------
+        target_m : ndarray, shape (N, 3) or (3,)
+            Wanted tool points relative to the workpiece point, in the workpiece frame, metres.
+
+        Returns
+        -------
+        dict of str to ndarray, shape (N,)
+            Commanded position of every axis, metres.
+        """
+        target = np.atleast_2d(np.asarray(target_m, dtype=float))
+        if target.shape[1:] != (3,) or not np.all(np.isfinite(target)):
+            raise AxiscalError("target points must be finite, shape (N, 3)")
+        sign = {link.letter: 1.0 for link in self._tool_links} | {link.letter: -1.0 for link in self._workpiece_links}
+        zero = {letter: np.zeros(len(target)) for letter in self.letters}
+        offset = self.nominal_point(zero)
+        command = {k: sign[k] * (target[:, AXIS_INDEX[k]] - offset[:, AXIS_INDEX[k]]) for k in self.letters}
+        for _ in range(max_iterations):
+            miss = self.actual_point(command) - target
+            worst = max(float(np.max(np.abs(miss[:, AXIS_INDEX[k]]), initial=0.0)) for k in self.letters)
+            if worst <= tolerance_m:
+                return command
+            command = {k: command[k] - sign[k] * miss[:, AXIS_INDEX[k]] for k in self.letters}
+        raise AxiscalError(f"inverse kinematics did not converge (miss {worst * 1e9:.3g} nm)")
+
+
+_MACHINE_KEYS = {
+    "name", "chain", "tool_mm", "workpiece_mm", "axes", "squareness", "squareness_placement", "interpolation", "hold_ends"
+}
+_AXIS_KEYS = {"errors", "origin_mm", "interpolation", "hold_ends", "sensors"}
+
+
+def _vector_mm(value: object, what: str) -> tuple[float, float, float]:
+    if not (isinstance(value, list) and len(value) == 3 and all(isinstance(v, (int, float)) for v in value)):
+        raise AxiscalError(f"{what} must be a list of 3 numbers in mm, e.g. [0.0, -40.0, 0.0]")
+    return tuple(float(v) * 1e-3 for v in value)  # type: ignore[return-value]
+
+
+def machine_from_dict(data: Mapping, *, base_dir: Path = Path("."), source: str = "<machine>") -> Machine:
+    """Build a :class:`Machine` from the parsed TOML description (docs/formats.md)."""
+    try:
+        unknown = sorted(set(data) - _MACHINE_KEYS)
+        if unknown:
+            raise AxiscalError(f"unknown key {', '.join(unknown)}; known keys: {', '.join(sorted(_MACHINE_KEYS))}")
+        if "chain" not in data:
+            raise AxiscalError("missing 'chain' (e.g. chain = \"FXZ\")")
+        chain = str(data["chain"])
+        interpolation = data.get("interpolation", "linear")
+        hold_ends = bool(data.get("hold_ends", False))
+        axes_data = data.get("axes", {})
+        if not isinstance(axes_data, Mapping):
+            raise AxiscalError("'axes' must be a table of [axes.<letter>] sections")
+        workpiece_side, tool_side = parse_chain(chain)
+        for letter in workpiece_side + tool_side:
+            if letter not in axes_data:
+                raise AxiscalError(f"axis {letter} is in chain '{chain}' but has no [axes.{letter}] section")
+        axes: dict[str, Axis] = {}
+        for letter, section in axes_data.items():
+            if letter not in workpiece_side + tool_side:
+                raise AxiscalError(f"[axes.{letter}] is not an axis of chain '{chain}'")
+            if not isinstance(section, Mapping):
+                raise AxiscalError(f"[axes.{letter}] must be a table")
+            unknown = sorted(set(section) - _AXIS_KEYS)
+            if unknown:
+                raise AxiscalError(f"[axes.{letter}]: unknown key {', '.join(unknown)}")
+            if "errors" not in section:
+                raise AxiscalError(f"[axes.{letter}] has no 'errors' table file")
+            table = read_error_table(
+                base_dir / str(section["errors"]),
+                letter,
+                interpolation=section.get("interpolation", interpolation),
+                hold_ends=bool(section.get("hold_ends", hold_ends)),
+            )
+            origin = _vector_mm(section.get("origin_mm", [0.0, 0.0, 0.0]), f"[axes.{letter}] origin_mm")
+            axes[letter] = Axis(letter, table, origin)
+        squareness: dict[str, float] = {}
+        for key, value in dict(data.get("squareness", {})).items():
+            stem, unit = split_unit(key)
+            if stem not in SQUARENESS_TERMS:
+                raise AxiscalError(f"[squareness] unknown term '{key}'; use EC0Y, EB0Z, EA0Z with a unit, e.g. EB0Z_arcsec")
+            if not isinstance(value, (int, float)):
+                raise AxiscalError(f"[squareness] {key} must be a number")
+            squareness[stem] = float(value) * angle_factor(unit, what=key)
+        return Machine(
+            chain=chain,
+            axes=axes,
+            squareness_rad=squareness,
+            tool_m=_vector_mm(data.get("tool_mm", [0.0, 0.0, 0.0]), "tool_mm"),
+            workpiece_m=_vector_mm(data.get("workpiece_mm", [0.0, 0.0, 0.0]), "workpiece_mm"),
+            name=str(data.get("name", "")),
+            squareness_placement=str(data.get("squareness_placement", "guideway")),
+        )
+    except AxiscalError as exc:
+        raise exc.located(path=source) from None
+
+
+def load_machine(path: str | Path) -> Machine:
+    """Read a machine description (TOML, docs/formats.md); error tables are relative to the file."""
+    path = Path(path)
+    data = read_toml(path)
+    return machine_from_dict(data, base_dir=path.parent, source=str(path))
+
+
+def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
+    """Parse ``"X=0:190:10,Z=0:190:10"`` (mm, inclusive ends) into a full grid of positions in metres."""
+    ranges: dict[str, np.ndarray] = {}
+    for part in spec.split(","):
+        letter, sep, rng = part.partition("=")
+        letter = letter.strip().upper()
+        bits = rng.split(":")
+        if not sep or letter not in AXIS_INDEX or len(bits) not in (1, 3):
+            raise AxiscalError(f"grid '{spec}': expected parts like 'X=0:190:10' (start:end:step in mm) or 'Y=50'")
+        try:
+            numbers = [float(b) for b in bits]
+        except ValueError:
+            raise AxiscalError(f"grid '{spec}': '{rng}' is not numbers") from None
+        if letter in ranges:
+            raise AxiscalError(f"grid '{spec}' names axis {letter} twice")
+        if len(numbers) == 1:
+            ranges[letter] = np.array(numbers)
+            continue
+        start, end, step = numbers
+        if step <= 0 or end < start:
+            raise AxiscalError(f"grid '{spec}': need start <= end and step > 0 for axis {letter}")
+        count = int(np.floor((end - start) / step + 1e-9)) + 1
+        ranges[letter] = start + step * np.arange(count)
+    mesh = np.meshgrid(*ranges.values(), indexing="ij")
+    return {letter: grid.ravel() * 1e-3 for letter, grid in zip(ranges, mesh)}
+
+
+def positions_from_points(sequence: Sequence[Mapping[str, float]]) -> dict[str, np.ndarray]:
+    """Turn a list of ``{"X": m, ...}`` points into arrays per axis."""
+    letters = list(sequence[0]) if sequence else []
+    return {k: np.array([p[k] for p in sequence], dtype=float) for k in letters}

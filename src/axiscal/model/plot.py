@@ -1,0 +1,125 @@
+"""Plots and the written report of the volumetric model (matplotlib imported lazily, inside functions)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.model.diagonal import DiagonalResult
+from axiscal.model.machine import Machine
+
+__all__ = ["plot_error_tables", "plot_volumetric", "plot_diagonal", "plot_diagonal_experiment"]
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot_error_tables(machine: Machine, path: str | Path) -> None:
+    """The six error motions of every axis against position (um and urad)."""
+    plt = _pyplot()
+    letters = machine.letters
+    fig, axes = plt.subplots(len(letters), 2, figsize=(11, 3.2 * len(letters)), squeeze=False)
+    for row, letter in enumerate(letters):
+        table = machine.table(letter)
+        q_mm = table.position_m * 1e3
+        for k, name in enumerate(table.names):
+            target = axes[row, 0] if k < 3 else axes[row, 1]
+            scale = 1e6
+            target.plot(q_mm, table.values[k] * scale, marker=".", label=f"{name}")
+        axes[row, 0].set_ylabel("translation error / um")
+        axes[row, 1].set_ylabel("rotation error / urad")
+        for ax in axes[row]:
+            ax.set_xlabel(f"{letter} position / mm")
+            ax.grid(True, alpha=0.3)
+            ax.legend(fontsize=8, ncol=3)
+    fig.suptitle(f"Error motions: {machine.name or machine.chain}")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def plot_volumetric(positions_m: dict[str, np.ndarray], error_m: np.ndarray, path: str | Path, *, title: str = "") -> None:
+    """Map of the volumetric error: on a 2-axis grid a colour map of |e| with arrows of the in-plane
+    components; otherwise |e| and its components against point number."""
+    plt = _pyplot()
+    magnitude_um = np.linalg.norm(error_m, axis=1) * 1e6
+    moving = [k for k, q in positions_m.items() if np.ptp(q) > 0]
+    fig, ax = plt.subplots(figsize=(8, 6.5))
+    if len(moving) == 2:
+        a, b = moving
+        qa, qb = positions_m[a] * 1e3, positions_m[b] * 1e3
+        ua, ub = np.unique(qa), np.unique(qb)
+        if ua.size * ub.size == qa.size:
+            order = np.lexsort((qb, qa))
+            grid = magnitude_um[order].reshape(ua.size, ub.size)
+            mesh = ax.pcolormesh(ua, ub, grid.T, shading="auto", cmap="viridis")
+            fig.colorbar(mesh, ax=ax, label="|e| / um")
+        else:
+            sc = ax.scatter(qa, qb, c=magnitude_um, cmap="viridis")
+            fig.colorbar(sc, ax=ax, label="|e| / um")
+        ia, ib = "XYZ".index(a), "XYZ".index(b)
+        arrows = slice(None, None, max(1, qa.size // 150))
+        ax.quiver(qa[arrows], qb[arrows], error_m[arrows, ia] * 1e6, error_m[arrows, ib] * 1e6, color="white", alpha=0.8)
+        ax.set_xlabel(f"{a} / mm")
+        ax.set_ylabel(f"{b} / mm")
+        ax.set_aspect("equal")
+        ax.set_title(title or f"Volumetric error (arrows: e{a.lower()}, e{b.lower()})")
+    else:
+        for i, label in enumerate(("ex", "ey", "ez")):
+            ax.plot(error_m[:, i] * 1e6, label=label)
+        ax.plot(magnitude_um, "k", label="|e|")
+        ax.set_xlabel("point")
+        ax.set_ylabel("error / um")
+        ax.legend()
+        ax.grid(True, alpha=0.3)
+        ax.set_title(title or "Volumetric error")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def plot_diagonal(result: DiagonalResult, path: str | Path, *, title: str = "Diagonal displacement error") -> None:
+    """Paper 000 Fig. 22 style: the diagonal error before (E_BD) and after (E_AD) the model."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    nominal_mm = result.nominal_m * 1e3
+    ax.plot(nominal_mm, -result.model_error_m * 1e6, "k--", label="model prediction (nominal - predicted)")
+    if result.error_before_m is not None:
+        ax.plot(nominal_mm, result.error_before_m * 1e6, "o-", label=f"E_BD, before model (P-V {result.range_before_m * 1e6:.1f} um)")
+        ax.plot(nominal_mm, result.error_after_m * 1e6, "s-", label=f"E_AD, after model (P-V {result.range_after_m * 1e6:.1f} um)")
+    ax.axhline(0.0, color="grey", lw=0.8)
+    ax.set_xlabel("nominal displacement along the diagonal / mm")
+    ax.set_ylabel("error / um")
+    ax.set_title(title)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def plot_diagonal_experiment(result, path: str | Path) -> None:
+    """Paper 000 Fig. 22 in simulation (:class:`axiscal.measurement.virtual.DiagonalExperiment`): the diagonal
+    error before the model, with the scales only, and after the model."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(7.0, 4.2))
+    diagonal_mm = np.hypot(result.x_mm, result.z_mm)
+    ax.plot(diagonal_mm, result.before_um, "o-", label=f"before the model, E_BD (max {result.before_max_um:.1f} um)")
+    ax.plot(diagonal_mm, result.scales_only_um, "^--", label=f"scales only (max {result.scales_only_max_um:.1f} um)")
+    ax.plot(diagonal_mm, result.after_um, "s-", label=f"after the model, E_AD (max {result.after_max_um:.2f} um)")
+    ax.axhline(0.0, color="0.6", lw=0.8)
+    ax.set_xlabel("position along the XZ diagonal (mm)")
+    ax.set_ylabel("diagonal error (um)")
+    ax.set_title(f"Virtual XZ module, {result.load_kg:g} kg on Z: diagonal vs laser (paper 000 eq 13)")
+    ax.legend(loc="best", fontsize=8)
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)

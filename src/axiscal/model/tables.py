@@ -1,0 +1,227 @@
+"""Per-axis error tables: the six error motions of one linear axis against its position.
+
+An axis moving along letter ``L`` has six error motions named after ISO 230-1: ``ELL`` (positioning),
+the two straightness errors ``E<M>L`` across the motion, and the rotations ``EAL``, ``EBL``, ``ECL``
+about X, Y and Z. They are those of the moving carriage relative to the body that carries it (see
+docs/conventions.md). File format (docs/formats.md): CSV, first column ``position_mm``, then any of
+the six columns with a unit suffix (``_nm|_um|_mm`` for translations, ``_urad|_mrad|_arcsec`` for
+rotations); missing columns are zero; positions strictly increasing.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.io.tabular import CsvTable, read_csv
+from axiscal.units import angle_factor, length_factor, split_unit
+
+__all__ = ["LETTERS", "COMPONENT_KINDS", "INTERPOLATIONS", "component_names", "ErrorTable", "read_error_table"]
+
+LETTERS = ("X", "Y", "Z")
+#: order of the six components everywhere in the code: translations x, y, z, then rotations a, b, c
+COMPONENT_KINDS = ("tx", "ty", "tz", "ea", "eb", "ec")
+INTERPOLATIONS = ("linear", "cubic")
+
+
+def component_names(letter: str) -> tuple[str, ...]:
+    """ISO 230-1 names of the six error motions of axis ``letter``, in the order tx, ty, tz, a, b, c.
+
+    >>> component_names("X")
+    ('EXX', 'EYX', 'EZX', 'EAX', 'EBX', 'ECX')
+    """
+    if letter not in LETTERS:
+        raise AxiscalError(f"unknown linear axis '{letter}'; axes are X, Y, Z")
+    return tuple(f"E{d}{letter}" for d in ("X", "Y", "Z", "A", "B", "C"))
+
+
+@dataclass(frozen=True)
+class ErrorTable:
+    """Six error motions of one axis sampled at increasing positions (SI units).
+
+    Parameters
+    ----------
+    letter : str
+        The axis letter, X, Y or Z.
+    position_m : ndarray, shape (n,)
+        Strictly increasing positions, metres.
+    values : ndarray, shape (6, n)
+        Rows tx, ty, tz (metres) and ea, eb, ec (radians): e.g. for X the rows are EXX, EYX, EZX,
+        EAX, EBX, ECX.
+    interpolation : {"linear", "cubic"}
+        Between rows: linear (default) or a not-a-knot cubic spline.
+    hold_ends : bool
+        Outside the table, hold the end values instead of raising (default False).
+    """
+
+    letter: str
+    position_m: np.ndarray
+    values: np.ndarray
+    interpolation: str = "linear"
+    hold_ends: bool = False
+    _slopes: np.ndarray = field(init=False, repr=False, compare=False)
+    _uniform_step: float | None = field(init=False, repr=False, compare=False)
+    _bin_width: float = field(init=False, repr=False, compare=False)
+    _bin_rows: np.ndarray | None = field(init=False, repr=False, compare=False)
+    _spline: object = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        component_names(self.letter)
+        position = np.ascontiguousarray(self.position_m, dtype=float)
+        values = np.ascontiguousarray(self.values, dtype=float)
+        if position.ndim != 1 or values.shape != (6, position.size):
+            raise AxiscalError(f"axis {self.letter}: values must have shape (6, {position.size}), got {values.shape}")
+        if position.size < 2:
+            raise AxiscalError(f"axis {self.letter}: an error table needs at least 2 rows")
+        if not (np.all(np.isfinite(position)) and np.all(np.isfinite(values))):
+            raise AxiscalError(f"axis {self.letter}: error table holds non-finite values")
+        steps = np.diff(position)
+        if np.any(steps <= 0):
+            k = int(np.argmax(steps <= 0)) + 1
+            raise AxiscalError(f"axis {self.letter}: positions not strictly increasing at row {k + 1}")
+        if self.interpolation not in INTERPOLATIONS:
+            raise AxiscalError(f"unknown interpolation '{self.interpolation}'; use one of {', '.join(INTERPOLATIONS)}")
+        object.__setattr__(self, "position_m", position)
+        object.__setattr__(self, "values", values)
+        object.__setattr__(self, "_slopes", np.diff(values, axis=1) / steps)
+        uniform = bool(np.allclose(steps, steps[0], rtol=1e-9, atol=0.0))
+        object.__setattr__(self, "_uniform_step", float(steps[0]) if uniform else None)
+        # Uneven tables: a lookup of the row at the start of bins narrower than the smallest step,
+        # so each bin holds at most one row boundary and one comparison finds the row.
+        bins = int(np.ceil(2.0 * (position[-1] - position[0]) / steps.min())) + 1
+        bin_rows = None
+        if not uniform and bins <= 1 << 22:
+            edges = position[0] + np.arange(bins) * (0.5 * steps.min())
+            bin_rows = np.clip(np.searchsorted(position, edges, side="right") - 1, 0, position.size - 2)
+        object.__setattr__(self, "_bin_width", 0.5 * float(steps.min()))
+        object.__setattr__(self, "_bin_rows", bin_rows)
+        spline = None
+        if self.interpolation == "cubic":
+            from scipy.interpolate import CubicSpline
+
+            spline = CubicSpline(position, values, axis=1)
+        object.__setattr__(self, "_spline", spline)
+
+    @classmethod
+    def zeros(cls, letter: str, start_m: float = -1e3, end_m: float = 1e3) -> "ErrorTable":
+        """An ideal axis: all six error motions zero over ``start_m..end_m``."""
+        return cls(letter, np.array([start_m, end_m]), np.zeros((6, 2)), hold_ends=True)
+
+    @classmethod
+    def from_components(
+        cls, letter: str, position_m: np.ndarray, components: Mapping[str, np.ndarray], **options
+    ) -> "ErrorTable":
+        """Build from a mapping of ISO names (``{"EXX": ..., "ECX": ...}``, SI); missing ones are zero."""
+        names = component_names(letter)
+        unknown = set(components) - set(names)
+        if unknown:
+            raise AxiscalError(f"axis {letter}: unknown components {sorted(unknown)}; expected {', '.join(names)}")
+        position = np.asarray(position_m, dtype=float)
+        values = np.zeros((6, position.size))
+        for row, name in enumerate(names):
+            if name in components:
+                values[row] = components[name]
+        return cls(letter, position, values, **options)
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return component_names(self.letter)
+
+    @property
+    def start_m(self) -> float:
+        return float(self.position_m[0])
+
+    @property
+    def end_m(self) -> float:
+        return float(self.position_m[-1])
+
+    def component(self, name: str) -> np.ndarray:
+        """The sampled values of one component by ISO name, SI."""
+        return self.values[self.names.index(name)]
+
+    def first_outside(self, q_m: np.ndarray) -> int | None:
+        """Index of the first position outside the table, or None (always None with ``hold_ends``)."""
+        if self.hold_ends:
+            return None
+        outside = (q_m < self.start_m) | (q_m > self.end_m)
+        return int(np.argmax(outside)) if np.any(outside) else None
+
+    def check_range(self, q_m: np.ndarray, *, path: str | None = None, lines: Sequence[int] | None = None) -> None:
+        """Raise naming the first position outside the table (unless ``hold_ends``), and its line
+        when the positions came from a file (``lines[k]`` is the line of position k)."""
+        k = self.first_outside(q_m)
+        if k is not None:
+            raise AxiscalError(
+                f"{self.letter} = {q_m[k] * 1e3:.6g} mm is outside the error table of axis {self.letter} "
+                f"({self.start_m * 1e3:.6g} to {self.end_m * 1e3:.6g} mm)",
+                path=path,
+                line=lines[k] if lines else None,
+            )
+
+    def evaluate(self, q_m: np.ndarray) -> np.ndarray:
+        """The six error motions at positions ``q_m`` (shape (N,)): ndarray of shape (6, N), SI."""
+        q = np.asarray(q_m, dtype=float)
+        self.check_range(q)
+        q = np.clip(q, self.start_m, self.end_m)
+        if self._spline is not None:
+            return self._spline(q)
+        if self._uniform_step is not None:
+            index = ((q - self.start_m) * (1.0 / self._uniform_step)).astype(np.intp)
+            np.minimum(index, self.position_m.size - 2, out=index)
+        elif self._bin_rows is not None:
+            index = self._bin_rows[((q - self.start_m) * (1.0 / self._bin_width)).astype(np.intp)]
+            index += q >= self.position_m[index + 1]
+            np.minimum(index, self.position_m.size - 2, out=index)
+        else:
+            index = np.searchsorted(self.position_m, q, side="right") - 1
+            np.clip(index, 0, self.position_m.size - 2, out=index)
+        dq = q - self.position_m[index]
+        return self.values[:, index] + self._slopes[:, index] * dq
+
+
+def read_error_table(
+    path: str | Path, letter: str, *, interpolation: str = "linear", hold_ends: bool = False
+) -> ErrorTable:
+    """Read an error-table CSV for axis ``letter`` (format in the module docstring)."""
+    table = read_csv(path, min_rows=2)
+    try:
+        return _table_from_csv(table, letter, interpolation=interpolation, hold_ends=hold_ends)
+    except AxiscalError as exc:
+        raise exc.located(path=str(path)) from None
+
+
+def _table_from_csv(table: CsvTable, letter: str, *, interpolation: str, hold_ends: bool) -> ErrorTable:
+    names = component_names(letter)
+    if table.header[0] != "position_mm":
+        raise AxiscalError(f"first column must be 'position_mm', found '{table.header[0]}'", line=table.header_line)
+    position = table.numeric("position_mm") * 1e-3
+    steps = np.diff(position)
+    if np.any(steps <= 0):
+        k = int(np.argmax(steps <= 0)) + 1
+        raise AxiscalError("position_mm is not strictly increasing", line=table.lines[k])
+    values = np.zeros((6, position.size))
+    seen: dict[str, str] = {}
+    for column in table.header[1:]:
+        stem, unit = split_unit(column) if "_" in column else (column, "")
+        if stem not in names:
+            raise AxiscalError(
+                f"unknown column '{column}' for axis {letter}; expected {', '.join(n + '_<unit>' for n in names)}",
+                line=table.header_line,
+            )
+        if stem in seen:
+            raise AxiscalError(f"'{stem}' given twice ('{seen[stem]}' and '{column}')", line=table.header_line)
+        seen[stem] = column
+        row = names.index(stem)
+        try:
+            if row < 3:
+                factor = length_factor(unit, allowed=("nm", "um", "mm"), what=column)
+            else:
+                factor = angle_factor(unit, allowed=("urad", "mrad", "arcsec"), what=column)
+        except AxiscalError as exc:
+            raise exc.located(line=table.header_line) from None
+        values[row] = table.numeric(column) * factor
+    return ErrorTable(letter, position, values, interpolation=interpolation, hold_ends=hold_ends)

@@ -1,0 +1,329 @@
+"""Positioning accuracy and repeatability of a numerically controlled axis from a bidirectional test.
+
+Implements the estimators ISO 230-2:2014 defines for a test of 5 runs each way (adopted
+unchanged as GB/T 17421.2-2016), with the coverage factor k = 2 of the 1997, 2006 and 2014
+editions or k = 3 of the 1988 edition (``edition="1988"``, the "3 sigma" figures JIS B 0182
+term 346 also uses), and VDI/DGQ 3441 (1977) positional uncertainty. Paper 003 Table 4 applies these estimators to three
+runs. See docs/positioning.md for every symbol, the sign convention and how the editions differ.
+
+Deviation convention (ISO 230-2): ``x_ij = P_ij - P_i``, actual position reached minus target.
+The API is in metres; files and JSON carry micrometres in their names.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+
+__all__ = [
+    "ISO_EDITIONS",
+    "LONG_AXIS_M",
+    "NO_S_WARNING",
+    "PositioningRun",
+    "TargetStatistics",
+    "Iso230Result",
+    "ISO_SYMBOLS",
+    "VDI_SYMBOLS",
+    "Vdi3441Result",
+    "target_statistics",
+    "iso230_2",
+    "vdi3441",
+    "STANDARDS",
+    "iso_edition",
+]
+
+#: ISO 230-2 editions this module evaluates, and their coverage factor k
+ISO_EDITIONS: dict[str, int] = {"2014": 2, "2006": 2, "1997": 2, "1988": 3}
+
+#: travel above which ISO 230-2 tests with one run each way (no R, no A), metres
+LONG_AXIS_M = 2.0
+
+NO_S_WARNING = (
+    "only one run per direction: the standard uncertainty s cannot be estimated, "
+    "so s, the repeatabilities R and the accuracies A are not given (NaN / null)"
+)
+
+
+@dataclass(frozen=True)
+class PositioningRun:
+    """Deviations of a bidirectional positioning test, checked and arranged per target.
+
+    Attributes
+    ----------
+    targets : ndarray, shape (m,), metres
+        Target positions P_i, strictly increasing.
+    deviations_up : ndarray, shape (m, n), metres
+        ``x_ij`` for the approach in the positive direction (run j = 0..n-1).
+    deviations_down : ndarray, shape (m, n), metres
+        ``x_ij`` for the approach in the negative direction.
+    source : str
+        Where the data came from (a file name), for messages.
+    """
+
+    targets: np.ndarray
+    deviations_up: np.ndarray
+    deviations_down: np.ndarray
+    source: str = "<data>"
+
+    def __post_init__(self) -> None:
+        targets = np.array(self.targets, dtype=float)
+        up = np.array(self.deviations_up, dtype=float)
+        down = np.array(self.deviations_down, dtype=float)
+        if targets.ndim != 1 or targets.size < 2:
+            raise AxiscalError(f"{self.source}: at least 2 target positions are needed, got {targets.size}")
+        if up.ndim != 2 or down.ndim != 2 or up.shape[0] != targets.size or down.shape[0] != targets.size:
+            raise AxiscalError(
+                f"{self.source}: deviations must have shape (targets, runs) = ({targets.size}, n) for each direction,"
+                f" got {up.shape} and {down.shape}"
+            )
+        if up.shape[1] != down.shape[1]:
+            raise AxiscalError(
+                f"{self.source}: unequal run counts: {up.shape[1]} runs in + direction, {down.shape[1]} in - direction"
+            )
+        if up.shape[1] < 1:
+            raise AxiscalError(f"{self.source}: no runs")
+        if not (np.all(np.isfinite(targets)) and np.all(np.isfinite(up)) and np.all(np.isfinite(down))):
+            raise AxiscalError(f"{self.source}: targets and deviations must be finite numbers (found NaN or infinity)")
+        if np.any(np.diff(targets) <= 0):
+            raise AxiscalError(f"{self.source}: target positions must be strictly increasing")
+        for name, value in (("targets", targets), ("deviations_up", up), ("deviations_down", down)):
+            value.setflags(write=False)
+            object.__setattr__(self, name, value)
+
+    @property
+    def runs(self) -> int:
+        """Number of runs n in each direction."""
+        return int(self.deviations_up.shape[1])
+
+
+@dataclass(frozen=True)
+class TargetStatistics:
+    """Per-target estimators shared by every standard (ISO 230-2, 3.2-3.3), metres.
+
+    All arrays have shape (m,). ``s_up``/``s_down`` are NaN when there is one run per direction.
+    """
+
+    targets: np.ndarray
+    mean_up: np.ndarray
+    mean_down: np.ndarray
+    s_up: np.ndarray
+    s_down: np.ndarray
+    mean: np.ndarray
+    reversal: np.ndarray
+    runs: int
+
+
+@dataclass(frozen=True)
+class Iso230Result:
+    """ISO 230-2 figures of one axis (metres) and the per-target values they come from.
+
+    Per target (shape (m,)): ``stats`` holds the unidirectional means, s and the reversal value
+    B_i; ``repeatability_up``/``_down`` are R_i up/down = 2 k s_i, ``repeatability`` is
+    R_i = max(k s_up + k s_down + |B_i|, R_i up, R_i down).
+
+    Axis figures: accuracy ``A`` (and ``A_up``, ``A_down``), reversal value ``B`` = max |B_i|,
+    mean reversal value ``B_mean``, systematic positional deviation ``E`` (``E_up``, ``E_down``),
+    range of the mean bidirectional positional deviation ``M``, repeatability ``R`` (``R_up``,
+    ``R_down``), and ``S_up``/``S_down`` = the largest unidirectional s_i over the axis (so that
+    R_up = 2 k S_up). Figures that need s are NaN when there is one run; ``warnings`` says so.
+    """
+
+    edition: str
+    coverage: int
+    stats: TargetStatistics
+    repeatability_up: np.ndarray
+    repeatability_down: np.ndarray
+    repeatability: np.ndarray
+    A: float
+    A_up: float
+    A_down: float
+    B: float
+    B_mean: float
+    E: float
+    E_up: float
+    E_down: float
+    M: float
+    R: float
+    R_up: float
+    R_down: float
+    S_up: float
+    S_down: float
+    warnings: tuple[str, ...] = field(default=())
+
+    @property
+    def standard(self) -> str:
+        return f"iso230-2:{self.edition}"
+
+    def figures(self) -> dict[str, float]:
+        """The axis figures by their symbol, metres."""
+        return {name: getattr(self, name) for name in ISO_SYMBOLS}
+
+
+ISO_SYMBOLS = ("A", "A_up", "A_down", "B", "B_mean", "E", "E_up", "E_down", "M", "R", "R_up", "R_down", "S_up", "S_down")
+VDI_SYMBOLS = ("P", "Pa", "Ps_max", "Ps_mean", "U_max", "U_mean")
+
+
+@dataclass(frozen=True)
+class Vdi3441Result:
+    """VDI/DGQ 3441 figures of one axis (metres) and the per-target values they come from.
+
+    Per target (shape (m,)): reversal span ``U_j = |mean_up - mean_down|``, mean standard
+    deviation ``s_mean_j = (s_up + s_down) / 2`` and positional scatter ``Ps_j = 6 s_mean_j``.
+    Axis: ``Pa`` = range of the bidirectional means, ``P`` = max(mean + (U + Ps)/2) -
+    min(mean - (U + Ps)/2), ``Ps_max``, ``Ps_mean``, ``U_max``, ``U_mean``.
+    """
+
+    stats: TargetStatistics
+    reversal_span: np.ndarray
+    s_mean: np.ndarray
+    scatter: np.ndarray
+    P: float
+    Pa: float
+    Ps_max: float
+    Ps_mean: float
+    U_max: float
+    U_mean: float
+    warnings: tuple[str, ...] = field(default=())
+
+    @property
+    def standard(self) -> str:
+        return "vdi3441"
+
+    def figures(self) -> dict[str, float]:
+        """The axis figures by their symbol, metres."""
+        return {name: getattr(self, name) for name in VDI_SYMBOLS}
+
+
+def _readonly(*arrays: np.ndarray) -> None:
+    for a in arrays:
+        a.setflags(write=False)
+
+
+def target_statistics(run: PositioningRun) -> TargetStatistics:
+    """Unidirectional means, s (n - 1 in the denominator), bidirectional mean and B_i per target.
+
+    ISO 230-2 mean unidirectional and bidirectional positional deviations, reversal value
+    ``B_i = mean_up - mean_down`` and the estimator of the unidirectional standard uncertainty
+    ``s_i`` (n - 1 in the denominator). With one run s is NaN.
+    """
+    up, down = run.deviations_up, run.deviations_down
+    mean_up = up.mean(axis=1)
+    mean_down = down.mean(axis=1)
+    if run.runs >= 2:
+        s_up = up.std(axis=1, ddof=1)
+        s_down = down.std(axis=1, ddof=1)
+    else:
+        s_up = np.full(run.targets.size, np.nan)
+        s_down = np.full(run.targets.size, np.nan)
+    mean = 0.5 * (mean_up + mean_down)
+    reversal = mean_up - mean_down
+    _readonly(mean_up, mean_down, s_up, s_down, mean, reversal)
+    return TargetStatistics(run.targets, mean_up, mean_down, s_up, s_down, mean, reversal, run.runs)
+
+
+def _warnings(run: PositioningRun) -> tuple[str, ...]:
+    if run.runs >= 2:
+        return ()
+    if run.targets[-1] - run.targets[0] > LONG_AXIS_M:
+        return (NO_S_WARNING + " (one run each way is what ISO 230-2 asks for on axes longer than 2000 mm)",)
+    return (NO_S_WARNING,)
+
+
+def iso230_2(run: PositioningRun, *, edition: str = "2014") -> Iso230Result:
+    """Evaluate a bidirectional positioning test to ISO 230-2.
+
+    Parameters
+    ----------
+    run : PositioningRun
+        Deviations per target, metres.
+    edition : {"2014", "2006", "1997", "1988"}, keyword-only
+        Edition of ISO 230-2 (default "2014", which GB/T 17421.2-2016 adopts unchanged). The
+        1997, 2006 and 2014 editions use the coverage factor k = 2 (A from mean +- 2 s, R_i up =
+        4 s); the 1988 edition uses k = 3 (mean +- 3 s, R_i up = 6 s). All other definitions are
+        the same.
+
+    Returns
+    -------
+    Iso230Result
+        Axis figures in metres; figures needing s are NaN (with a warning) for one run.
+    """
+    if edition not in ISO_EDITIONS:
+        raise AxiscalError(f"unknown ISO 230-2 edition '{edition}'; use one of {', '.join(ISO_EDITIONS)}")
+    k = ISO_EDITIONS[edition]
+    st = target_statistics(run)
+    r_up = 2 * k * st.s_up
+    r_down = 2 * k * st.s_down
+    r_bi = np.maximum(np.maximum(k * st.s_up + k * st.s_down + np.abs(st.reversal), r_up), r_down)
+    _readonly(r_up, r_down, r_bi)
+    hi_up, lo_up = st.mean_up + k * st.s_up, st.mean_up - k * st.s_up
+    hi_down, lo_down = st.mean_down + k * st.s_down, st.mean_down - k * st.s_down
+    both_means = np.concatenate([st.mean_up, st.mean_down])
+    return Iso230Result(
+        edition=edition,
+        coverage=k,
+        stats=st,
+        repeatability_up=r_up,
+        repeatability_down=r_down,
+        repeatability=r_bi,
+        A=float(max(hi_up.max(), hi_down.max()) - min(lo_up.min(), lo_down.min())),
+        A_up=float(hi_up.max() - lo_up.min()),
+        A_down=float(hi_down.max() - lo_down.min()),
+        B=float(np.abs(st.reversal).max()),
+        B_mean=float(st.reversal.mean()),
+        E=float(both_means.max() - both_means.min()),
+        E_up=float(np.ptp(st.mean_up)),
+        E_down=float(np.ptp(st.mean_down)),
+        M=float(np.ptp(st.mean)),
+        R=float(r_bi.max()),
+        R_up=float(r_up.max()),
+        R_down=float(r_down.max()),
+        S_up=float(st.s_up.max()),
+        S_down=float(st.s_down.max()),
+        warnings=_warnings(run),
+    )
+
+
+def vdi3441(run: PositioningRun) -> Vdi3441Result:
+    """Evaluate a bidirectional positioning test to VDI/DGQ 3441.
+
+    ``U_j = |mean_up_j - mean_down_j|``, ``s_mean_j = (s_up_j + s_down_j) / 2``,
+    ``Ps_j = 6 s_mean_j``, ``Pa = max mean_j - min mean_j`` (bidirectional means),
+    ``P = max(mean_j + (U_j + Ps_j) / 2) - min(mean_j - (U_j + Ps_j) / 2)``.
+    With one run the scatter and P are NaN (with a warning).
+    """
+    st = target_statistics(run)
+    u = np.abs(st.reversal)
+    s_mean = 0.5 * (st.s_up + st.s_down)
+    ps = 6.0 * s_mean
+    half = 0.5 * (u + ps)
+    _readonly(u, s_mean, ps)
+    return Vdi3441Result(
+        stats=st,
+        reversal_span=u,
+        s_mean=s_mean,
+        scatter=ps,
+        P=float((st.mean + half).max() - (st.mean - half).min()),
+        Pa=float(np.ptp(st.mean)),
+        Ps_max=float(ps.max()),
+        Ps_mean=float(ps.mean()),
+        U_max=float(u.max()),
+        U_mean=float(u.mean()),
+        warnings=_warnings(run),
+    )
+
+
+#: names accepted by :func:`evaluate_standard` and the command line's ``--standard``
+STANDARDS = ("iso230-2:2014", "iso230-2:2006", "iso230-2:1997", "iso230-2:1988", "jis-b6192", "vdi3441")
+
+
+def iso_edition(standard: str) -> str:
+    """The ISO 230-2 edition a ``--standard`` name evaluates with ("jis-b6192" -> "1988")."""
+    if standard == "jis-b6192":
+        return "1988"
+    prefix = "iso230-2:"
+    if standard.startswith(prefix) and standard[len(prefix):] in ISO_EDITIONS:
+        return standard[len(prefix):]
+    raise AxiscalError(f"unknown standard '{standard}'; use one of {', '.join(STANDARDS)}")

@@ -1,0 +1,236 @@
+"""Test planning for ISO 230-2 positioning tests: uneven target positions and the test cycle.
+
+ISO 230-2 asks for at least five target positions per metre (and at least five in all), spaced
+unevenly so that periodic errors of the screw or the scale are sampled rather than hit at the same
+phase every time: ``P_i = (i - 1) p + r_i`` with ``p`` the even interval and ``r_i`` a different
+offset at each target. Here ``r_i`` is drawn uniformly from [-p/4, p/4] by NumPy's seeded
+generator (``np.random.default_rng(seed)``), rounded to 1 um, and is 0 at the two end targets so
+the whole travel is covered. Each target is approached from both sides with an overrun beyond the
+end targets; the linear cycle runs through all targets up then down, once per run; the pilgrim
+(step) cycle makes all runs at one target before moving to the next. See docs/positioning.md.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.units import MM
+
+__all__ = [
+    "CYCLES",
+    "TARGETS_PER_METRE",
+    "PositioningTestPlan",
+    "minimum_targets",
+    "plan_targets",
+    "plan_test",
+    "cycle_csv",
+    "gcode_program",
+]
+
+CYCLES = ("linear", "pilgrim")
+#: ISO 230-2: at least this many targets per metre of travel (and at least this many in all)
+TARGETS_PER_METRE = 5
+
+
+@dataclass(frozen=True)
+class PositioningTestPlan:
+    """A planned positioning test.
+
+    Attributes
+    ----------
+    targets : ndarray, shape (m,), metres
+        Target positions, strictly increasing, first = start, last = end.
+    moves : ndarray, shape (k,), metres
+        Every commanded position in order, overrun moves included.
+    move_run : ndarray of int, shape (k,)
+        Run number (1-based) each move belongs to.
+    move_direction : ndarray of str, shape (k,)
+        "+" or "-": the direction of the move.
+    move_target : ndarray, shape (k,), metres
+        The target a move stops at for a reading, NaN for overrun moves (no reading).
+    cycle : str
+        "linear" or "pilgrim".
+    runs, overrun, seed :
+        The request the plan was made from (overrun in metres); ``seed`` is the one actually used
+        (drawn from the operating system's entropy when none was given), so the plan can be made again.
+    """
+
+    targets: np.ndarray
+    moves: np.ndarray
+    move_run: np.ndarray
+    move_direction: np.ndarray
+    move_target: np.ndarray
+    cycle: str
+    runs: int
+    overrun: float
+    seed: int
+
+    @property
+    def readings(self) -> int:
+        """Number of moves that end at a target (one reading each)."""
+        return int(np.isfinite(self.move_target).sum())
+
+
+def minimum_targets(length_m: float) -> int:
+    """Fewest targets ISO 230-2 accepts over ``length_m``: 5 per metre, at least 5."""
+    return max(TARGETS_PER_METRE, math.ceil(TARGETS_PER_METRE * length_m - 1e-9))
+
+
+def plan_targets(start_m: float, end_m: float, count: int, *, seed: int | None = None) -> np.ndarray:
+    """Uneven ISO 230-2 target positions from ``start_m`` to ``end_m``.
+
+    Parameters
+    ----------
+    start_m, end_m : float, metres
+        First and last target (end > start).
+    count : int
+        Number of targets, at least :func:`minimum_targets` of the length.
+    seed : int, optional, keyword-only
+        Seed of ``np.random.default_rng``; the same seed gives the same targets.
+
+    Returns
+    -------
+    ndarray, shape (count,), metres
+        ``P_i = start + i p + r_i``, ``r_i`` uniform in [-p/4, p/4] rounded to 1 um, r = 0 at both ends.
+    """
+    if not (math.isfinite(start_m) and math.isfinite(end_m)) or end_m <= start_m:
+        raise AxiscalError(f"the end ({end_m / MM:g} mm) must be beyond the start ({start_m / MM:g} mm)")
+    need = minimum_targets(end_m - start_m)
+    if count < need:
+        raise AxiscalError(
+            f"{count} targets over {(end_m - start_m) / MM:g} mm: ISO 230-2 needs at least {need}"
+            f" (5 per metre, at least 5)"
+        )
+    pitch = (end_m - start_m) / (count - 1)
+    rng = np.random.default_rng(seed)
+    offsets = rng.uniform(-0.25 * pitch, 0.25 * pitch, size=count)
+    offsets[0] = offsets[-1] = 0.0
+    targets = start_m + pitch * np.arange(count) + offsets
+    targets = np.round(targets / 1e-6) * 1e-6
+    targets[0], targets[-1] = start_m, end_m
+    return targets
+
+
+def plan_test(
+    start_m: float,
+    end_m: float,
+    count: int,
+    *,
+    runs: int = 5,
+    overrun_m: float = 5e-3,
+    seed: int | None = None,
+    cycle: str = "linear",
+) -> PositioningTestPlan:
+    """Targets and test cycle of an ISO 230-2 bidirectional positioning test.
+
+    Parameters
+    ----------
+    start_m, end_m, count :
+        See :func:`plan_targets`.
+    seed : int, optional, keyword-only
+        Seed of the target offsets (see :func:`plan_targets`). Default: a fresh seed, drawn from the
+        operating system's entropy and recorded in the plan (and in the CSV and G-code headers).
+    runs : int, keyword-only
+        Runs in each direction (default 5, as ISO 230-2 asks; 1 is accepted for axes over 2 m).
+    overrun_m : float, metres, keyword-only
+        How far the axis travels beyond a target before approaching it from that side (> 0).
+    cycle : {"linear", "pilgrim"}, keyword-only
+        "linear" (default): per run, every target up from ``start - overrun``, then to
+        ``end + overrun`` and every target down.
+        "pilgrim": per target, ``runs`` approaches from below, each from ``target - overrun``;
+        then, going down, ``runs`` approaches from above, each from ``target + overrun``.
+
+    Returns
+    -------
+    PositioningTestPlan
+    """
+    if cycle not in CYCLES:
+        raise AxiscalError(f"unknown cycle '{cycle}'; use one of {', '.join(CYCLES)}")
+    if runs < 1:
+        raise AxiscalError(f"runs must be at least 1, got {runs}")
+    if not math.isfinite(overrun_m) or overrun_m <= 0:
+        raise AxiscalError(f"the overrun must be positive, got {overrun_m / MM:g} mm")
+    if seed is None:
+        seed = int(np.random.SeedSequence().generate_state(1)[0])
+    targets = plan_targets(start_m, end_m, count, seed=seed)
+    moves: list[tuple[float, int, str, float]] = []
+    nan = math.nan
+    if cycle == "linear":
+        for run in range(1, runs + 1):
+            moves.append((targets[0] - overrun_m, run, "-", nan))
+            moves.extend((t, run, "+", t) for t in targets)
+            moves.append((targets[-1] + overrun_m, run, "+", nan))
+            moves.extend((t, run, "-", t) for t in targets[::-1])
+    else:
+        for t in targets:
+            for run in range(1, runs + 1):
+                moves.append((t - overrun_m, run, "-", nan))
+                moves.append((t, run, "+", t))
+        for t in targets[::-1]:
+            for run in range(1, runs + 1):
+                moves.append((t + overrun_m, run, "+", nan))
+                moves.append((t, run, "-", t))
+    pos = np.array([m[0] for m in moves])
+    return PositioningTestPlan(
+        targets=targets,
+        moves=pos,
+        move_run=np.array([m[1] for m in moves], dtype=int),
+        move_direction=np.array([m[2] for m in moves]),
+        move_target=np.array([m[3] for m in moves]),
+        cycle=cycle,
+        runs=runs,
+        overrun=overrun_m,
+        seed=seed,
+    )
+
+
+def cycle_csv(plan: PositioningTestPlan) -> str:
+    """The test cycle as CSV: ``step, run, direction, target_mm, move_to_mm``.
+
+    One row per move; ``target_mm`` is empty for overrun moves (no reading is taken there).
+    """
+    lines = [
+        f"# ISO 230-2 {plan.cycle} cycle, {plan.targets.size} targets, {plan.runs} runs each way,"
+        f" overrun {plan.overrun / MM:g} mm, seed {plan.seed}",
+        "step,run,direction,target_mm,move_to_mm",
+    ]
+    for k in range(plan.moves.size):
+        target = plan.move_target[k]
+        cell = "" if math.isnan(target) else f"{target / MM:.3f}"
+        lines.append(f"{k + 1},{plan.move_run[k]},{plan.move_direction[k]},{cell},{plan.moves[k] / MM:.3f}")
+    return "\n".join(lines) + "\n"
+
+
+def gcode_program(plan: PositioningTestPlan, *, axis: str = "X", dwell_s: float = 2.0, feed_mm_per_min: float = 2000.0) -> str:
+    """The test cycle as an RS-274 (G-code) program with a dwell at each target.
+
+    Metric, absolute (``G21 G90``), feed moves ``G1 <axis>... F...``, and after every move that
+    ends at a target ``G4 P<dwell_s>`` (dwell in seconds, as LinuxCNC and most controls read P;
+    Fanuc reads ``G4 P`` in milliseconds and ``G4 X`` in seconds, so check your control). Ends
+    with ``M2``.
+    """
+    if not axis or not axis.isalpha() or len(axis) != 1:
+        raise AxiscalError(f"axis must be one letter (X, Y, Z, ...), got '{axis}'")
+    if not math.isfinite(dwell_s) or dwell_s < 0:
+        raise AxiscalError(f"the dwell must be zero or positive, got {dwell_s:g} s")
+    if not math.isfinite(feed_mm_per_min) or feed_mm_per_min <= 0:
+        raise AxiscalError(f"the feed must be positive, got {feed_mm_per_min:g} mm/min")
+    axis = axis.upper()
+    out = [
+        "%",
+        f"(axiscal plan: ISO 230-2 {plan.cycle} cycle, {plan.targets.size} targets,"
+        f" {plan.runs} runs each way, overrun {plan.overrun / MM:g} mm, seed {plan.seed})",
+        "(a dwell follows every move that ends at a target: take the reading there)",
+        "G21 G90 G94",
+        f"G1 {axis}{plan.moves[0] / MM:.3f} F{feed_mm_per_min:g}",
+    ]
+    for k in range(1, plan.moves.size):
+        out.append(f"G1 {axis}{plan.moves[k] / MM:.3f}")
+        if not math.isnan(plan.move_target[k]):
+            out.append(f"G4 P{dwell_s:g}")
+    out += ["M2", "%"]
+    return "\n".join(out) + "\n"

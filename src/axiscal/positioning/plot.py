@@ -1,0 +1,95 @@
+"""The familiar positioning plot: mean deviation per direction with +-k s bands, the runs, the figures.
+
+Plots only; every number comes from :mod:`axiscal.positioning.evaluation`. matplotlib is imported when a plot
+is asked for.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.positioning.evaluation import Iso230Result, PositioningRun, Vdi3441Result
+from axiscal.units import MM, UM
+
+__all__ = ["plot_positioning"]
+
+
+#: how the figures table names each axis figure: the standard's typography, then the JSON key
+_LABELS = {
+    "A_up": "A↑", "A_down": "A↓", "B_mean": r"$\bar{B}$", "E_up": "E↑", "E_down": "E↓",
+    "R_up": "R↑", "R_down": "R↓", "S_up": "S↑ (max s↑)", "S_down": "S↓ (max s↓)",
+    "Ps_max": "Ps max", "Ps_mean": "Ps mean", "U_max": "U max", "U_mean": "U mean",
+}
+
+
+def _format_um(value: float) -> str:
+    return "n/a" if not np.isfinite(value) else f"{value / UM:.2f}"
+
+
+def plot_positioning(
+    run: PositioningRun, result: Iso230Result | Vdi3441Result, path: str | Path, *, title: str = "", compensated: bool = False
+) -> Path:
+    """Write the positioning plot to ``path`` (format from its suffix, e.g. .png, .svg, .pdf).
+
+    Mean deviation per direction against target (um over mm), bands of mean +- k s (k = 2 for
+    ISO 230-2:1997 and later, 3 for 1988 and VDI/DGQ 3441), each run as faint points, and the
+    axis figures in a table on the figure. Bands are left out, and the plot says so, when s
+    cannot be estimated (one run). ``compensated`` notes that raw laser readings were
+    compensated for the air and the material temperature.
+    """
+    from axiscal.cli.common import pyplot, write_output
+
+    plt = pyplot()
+    suffix = Path(path).suffix.lstrip(".").lower()
+    supported = plt.figure().canvas.get_supported_filetypes()
+    plt.close("all")
+    if suffix not in supported:
+        raise AxiscalError(f"cannot write a plot as '.{suffix}'; use one of .{', '.join(sorted(supported))}", path=path)
+    st = result.stats
+    k = result.coverage if isinstance(result, Iso230Result) else 3
+    has_s = bool(np.all(np.isfinite(st.s_up)) and np.all(np.isfinite(st.s_down)))
+    x = run.targets / MM
+    fig, (ax, tab) = plt.subplots(1, 2, figsize=(11.5, 5.4), gridspec_kw={"width_ratios": [3.2, 1]})
+    for devs, mean, s, color, arrow in (
+        (run.deviations_up, st.mean_up, st.s_up, "tab:red", "↑ (+)"),
+        (run.deviations_down, st.mean_down, st.s_down, "tab:blue", "↓ (−)"),
+    ):
+        ax.plot(np.repeat(x, devs.shape[1]), devs.ravel() / UM, ".", color=color, alpha=0.3, markersize=4)
+        ax.plot(x, mean / UM, "-o", color=color, markersize=3, label=f"mean x̄{arrow}")
+        if has_s:
+            ax.fill_between(x, (mean - k * s) / UM, (mean + k * s) / UM, color=color, alpha=0.12, label=f"x̄{arrow[0]} ± {k}s")
+    ax.plot(x, st.mean / UM, "--", color="0.3", linewidth=1, label="bidirectional mean x̄")
+    ax.plot([], [], ".", color="0.5", label="single runs")
+    ax.axhline(0.0, color="0.6", linewidth=0.6)
+    ax.set_xlabel("target position / mm")
+    ax.set_ylabel("positional deviation (actual − target) / µm")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, loc="best", framealpha=0.85)
+    runs = f"{run.runs} run{'s' if run.runs != 1 else ''} each way"
+    coverage = f", k = {k}" if isinstance(result, Iso230Result) else ""
+    ax.set_title(title or f"{Path(run.source).name}: {result.standard}{coverage}, {run.targets.size} targets, {runs}", fontsize=11)
+    notes = []
+    if not has_s:
+        notes.append("one run per direction: s cannot be estimated, so no ±ks bands, R, A or S")
+    if compensated:
+        notes.append("raw laser readings compensated for air index and material temperature")
+    if notes:
+        ax.text(0.01, 0.01, "\n".join(notes), transform=ax.transAxes, fontsize=8, va="bottom", color="0.25")
+    rows = [[_LABELS.get(name, name), _format_um(value)] for name, value in result.figures().items()]
+    tab.axis("off")
+    table = tab.table(cellText=rows, colLabels=["figure", "µm"], loc="center", cellLoc="right", colLoc="center")
+    table.auto_set_font_size(False)
+    table.set_fontsize(9)
+    table.scale(1.0, 1.3)
+    for (row, col), cell in table.get_celld().items():
+        if col == 0 and row > 0:
+            cell.set_text_props(ha="left")
+            cell.PAD = 0.08
+    fig.tight_layout()
+    try:
+        return write_output(path, lambda target: fig.savefig(target, dpi=120))
+    finally:
+        plt.close(fig)

@@ -1,0 +1,360 @@
+"""Squareness of a three-axis CMM from PSD runs, its compensation, and the gauge block check.
+
+Paper 004 (Li et al., micro/nano CMM): a laser turned 90 degrees by a pentaprism is the reference
+for the second axis; a PSD on that axis follows the beam and the fitted line of its readings gives
+the squareness, less the prism's deviation alpha_p (section 3.3). The compensation model of eq (6):
+
+    x' = x - y a_xy - z a_xz,    y' = y - z a_yz,    z' = z,
+
+with (x, y, z) the CMM's scale readings and (x', y', z') the corrected coordinates. Verification
+(section 4.2): a 6-point least-squares plane on one measuring face of a gauge block gives its axis
+(the plane's normal); the point-to-point length between one point on each face, projected on that
+axis, is the measured length.
+
+Signs. Paper 004's text only says an error angle above 0 is positive; the sign comes from its
+section 4.1 and eq (6): moving Y to y gives a position error ``-y a_xy`` along X (Z to z:
+``-z a_xz`` along X, ``-z a_yz`` along Y), so a positive value leans the second axis towards the
+negative first axis and opens the included angle beyond 90 degrees. That is the included-angle
+convention of :mod:`axiscal.squareness.evaluation`: ``a_xy, a_xz, a_yz`` are the included angles of X-Y, X-Z,
+Y-Z minus 90 degrees. As ISO 230-1 terms: ``EC0Y = a_xy``, ``EB0Z = -a_xz``, ``EA0Z = a_yz``.
+Eq (6) keeps X fixed (and Y in the XY plane); an HTM chain (:class:`axiscal.model.machine.Machine`,
+``squareness_placement="relative"``) has the same included angles in every chain, but may turn the
+whole point set by a small rigid rotation when the axis nearest the frame is not X.
+A PSD run's reading is the position of the beam on the detector along the positive first axis of
+the plane (X for XY and XZ, Y for YZ); a second axis leaning towards the negative first axis
+carries the detector away from the beam, so the reading grows with travel and the slope is the
+squareness.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.squareness.evaluation import iso_from_included_angle
+from axiscal.straightness.reference import reference_line
+
+__all__ = [
+    "CmmSquareness",
+    "compensate",
+    "readings_for",
+    "psd_squareness",
+    "squareness_from_psd_runs",
+    "Plane",
+    "least_squares_plane",
+    "gauge_block_length",
+    "GaugeBlockCheck",
+    "simulate_gauge_block",
+]
+
+
+@dataclass(frozen=True)
+class CmmSquareness:
+    """The three squareness errors of paper 004, included-angle convention, radians.
+
+    Attributes
+    ----------
+    xy_rad, xz_rad, yz_rad : float
+        ``a_xy``, ``a_xz``, ``a_yz``: included angle of the two axes minus 90 degrees.
+    """
+
+    xy_rad: float
+    xz_rad: float
+    yz_rad: float
+
+    def __post_init__(self) -> None:
+        if not all(math.isfinite(v) for v in (self.xy_rad, self.xz_rad, self.yz_rad)):
+            raise AxiscalError("squareness values must be finite numbers")
+
+    @classmethod
+    def from_iso(cls, terms: Mapping[str, float]) -> CmmSquareness:
+        """From ISO 230-1 terms ``EC0Y``, ``EB0Z``, ``EA0Z`` (radians; a missing term is 0)."""
+        unknown = sorted(set(terms) - {"EC0Y", "EB0Z", "EA0Z"})
+        if unknown:
+            raise AxiscalError(f"unknown squareness term {', '.join(unknown)}; use EC0Y, EB0Z, EA0Z")
+        return cls(
+            xy_rad=float(terms.get("EC0Y", 0.0)),
+            xz_rad=-float(terms.get("EB0Z", 0.0)),
+            yz_rad=float(terms.get("EA0Z", 0.0)),
+        )
+
+    def iso(self) -> dict[str, float]:
+        """The same as ISO 230-1 terms, radians: ``EC0Y = a_xy, EB0Z = -a_xz, EA0Z = a_yz``."""
+        return {
+            "EC0Y": iso_from_included_angle(self.xy_rad, plane="XY"),
+            "EB0Z": iso_from_included_angle(self.xz_rad, plane="XZ"),
+            "EA0Z": iso_from_included_angle(self.yz_rad, plane="YZ"),
+        }
+
+    def matrix(self) -> np.ndarray:
+        """Matrix ``C`` of eq (6), ``corrected = C @ reading``; shape (3, 3)."""
+        return np.array([[1.0, -self.xy_rad, -self.xz_rad], [0.0, 1.0, -self.yz_rad], [0.0, 0.0, 1.0]])
+
+
+def _points(points_m: np.ndarray | Sequence[Sequence[float]]) -> np.ndarray:
+    points = np.asarray(points_m, dtype=float)
+    if points.ndim == 1:
+        points = points[np.newaxis, :]
+    if points.ndim != 2 or points.shape[1] != 3:
+        raise AxiscalError(f"points must have shape (n, 3), got {points.shape}")
+    if not np.all(np.isfinite(points)):
+        raise AxiscalError("points must be finite numbers")
+    return points
+
+
+def compensate(points_m: np.ndarray, squareness: CmmSquareness) -> np.ndarray:
+    """Corrected coordinates from CMM readings by eq (6) of paper 004.
+
+    Parameters
+    ----------
+    points_m : array_like, shape (n, 3), metres
+        Readings (x, y, z).
+    squareness : CmmSquareness
+
+    Returns
+    -------
+    ndarray, shape (n, 3), metres
+        ``(x - y a_xy - z a_xz, y - z a_yz, z)``.
+    """
+    return _points(points_m) @ squareness.matrix().T
+
+
+def readings_for(points_m: np.ndarray, squareness: CmmSquareness) -> np.ndarray:
+    """The inverse of :func:`compensate`: the readings at which eq (6) gives ``points_m``.
+
+    Exact inverse of the triangular map: ``z = z'``, ``y = y' + z a_yz``,
+    ``x = x' + y a_xy + z a_xz`` (with the ``y`` just found). Shapes as in :func:`compensate`.
+    """
+    p = _points(points_m)
+    z = p[:, 2]
+    y = p[:, 1] + z * squareness.yz_rad
+    x = p[:, 0] + y * squareness.xy_rad + z * squareness.xz_rad
+    return np.column_stack([x, y, z])
+
+
+def psd_squareness(
+    position_m: np.ndarray,
+    reading_m: np.ndarray,
+    *,
+    prism_deviation_rad: float = 0.0,
+    reference: str = "least-squares",
+) -> float:
+    """Squareness of one plane from a PSD run (paper 004 section 3.3), radians.
+
+    Parameters
+    ----------
+    position_m : array_like, shape (n,), metres
+        Positions of the moving (second) axis.
+    reading_m : array_like, shape (n,), metres
+        PSD readings: the beam's position on the detector along the positive first axis.
+    prism_deviation_rad : float, keyword-only
+        ``alpha_p``, the prism's deviation (see :func:`axiscal.squareness.evaluation.prism_reversal`).
+    reference : {"least-squares", "end-points"}, keyword-only
+        Line through the readings: least squares (default) or the line through the first and
+        last reading, which paper 004's section 2.1 describes.
+
+    Returns
+    -------
+    float
+        ``atan(slope) - alpha_p``: included angle minus 90 degrees.
+    """
+    if np.asarray(position_m).size < 2:
+        raise AxiscalError(f"a PSD run has {np.asarray(position_m).size} point(s); a line needs at least 2")
+    line = reference_line(position_m, reading_m, reference=reference)
+    return math.atan(line.slope) - prism_deviation_rad
+
+
+def squareness_from_psd_runs(
+    runs: Mapping[str, tuple[np.ndarray, np.ndarray]],
+    *,
+    prism_deviation_rad: float = 0.0,
+    reference: str = "least-squares",
+) -> CmmSquareness:
+    """The three squareness errors from three PSD runs keyed ``"XY"``, ``"XZ"``, ``"YZ"``.
+
+    Each value is ``(position_m, reading_m)`` as in :func:`psd_squareness`.
+    """
+    missing = sorted({"XY", "XZ", "YZ"} - set(runs))
+    extra = sorted(set(runs) - {"XY", "XZ", "YZ"})
+    if missing or extra:
+        raise AxiscalError(f"need PSD runs for XY, XZ and YZ exactly (missing {missing or 'none'}, unknown {extra or 'none'})")
+    values = {
+        plane: psd_squareness(*runs[plane], prism_deviation_rad=prism_deviation_rad, reference=reference)
+        for plane in ("XY", "XZ", "YZ")
+    }
+    return CmmSquareness(values["XY"], values["XZ"], values["YZ"])
+
+
+@dataclass(frozen=True)
+class Plane:
+    """A least-squares plane: unit normal, centroid (m) and RMS distance of the points (m)."""
+
+    normal: np.ndarray
+    centroid_m: np.ndarray
+    rms_m: float
+
+
+def least_squares_plane(points_m: np.ndarray) -> Plane:
+    """The plane minimising the squared perpendicular distances (smallest singular vector).
+
+    Parameters
+    ----------
+    points_m : array_like, shape (n, 3), metres
+        At least 3 points, not all on one line.
+
+    Returns
+    -------
+    Plane
+        Normal oriented with a non-negative largest component (the sign of a plane's normal is
+        otherwise arbitrary).
+
+    Raises
+    ------
+    AxiscalError
+        Fewer than 3 points, or points on one line (or one point): no plane is defined.
+    """
+    points = _points(points_m)
+    if len(points) < 3:
+        raise AxiscalError(f"{len(points)} point(s): a plane needs at least 3")
+    centroid = points.mean(axis=0)
+    _, singular, vt = np.linalg.svd(points - centroid)
+    scale = max(float(singular[0]), 1e-300)
+    if singular[1] <= 1e-9 * scale:
+        raise AxiscalError("the points lie on one line: no plane is defined (probe points spread over the face)")
+    normal = vt[2]
+    if normal[np.argmax(np.abs(normal))] < 0:
+        normal = -normal
+    return Plane(normal, centroid, float(singular[2] / math.sqrt(len(points))))
+
+
+def gauge_block_length(face_points_m: np.ndarray, first_point_m: np.ndarray, second_point_m: np.ndarray) -> float:
+    """Gauge block length by paper 004 section 4.2, metres.
+
+    The least-squares plane of ``face_points_m`` (6 points in a rectangle on one measuring face)
+    gives the block's axis; the vector from ``first_point_m`` (on one measuring face) to
+    ``second_point_m`` (on the other) projected on that axis is the length (absolute value).
+    """
+    axis = least_squares_plane(face_points_m).normal
+    first = _points(first_point_m)[0]
+    second = _points(second_point_m)[0]
+    return float(abs((second - first) @ axis))
+
+
+@dataclass(frozen=True)
+class GaugeBlockCheck:
+    """A simulated gauge block measurement on a CMM with squareness errors, before and after eq (6).
+
+    Attributes
+    ----------
+    nominal_m : float
+        The block's length.
+    axis : ndarray, shape (3,)
+        Unit axis of the block in the CMM's frame.
+    aligned_before_m, aligned_after_m : float
+        Measured minus nominal length by the paper's procedure (6-point plane, projection), before
+        and after compensation, metres.
+    unaligned_before_m, unaligned_after_m : float
+        The same when the point-to-point vector is projected on the machine axis nearest to the
+        block's axis instead of the measured plane's normal (no alignment), metres. Meant for
+        blocks along a machine axis; for an oblique block it holds the cosine error as well.
+    """
+
+    nominal_m: float
+    axis: np.ndarray
+    aligned_before_m: float
+    aligned_after_m: float
+    unaligned_before_m: float
+    unaligned_after_m: float
+
+    @property
+    def aligned_improvement_m(self) -> float:
+        """How much the paper's procedure's error falls with compensation: ``|before| - |after|``, m."""
+        return abs(self.aligned_before_m) - abs(self.aligned_after_m)
+
+    @property
+    def unaligned_improvement_m(self) -> float:
+        """``|before| - |after|`` for the unaligned point-to-point length, m."""
+        return abs(self.unaligned_before_m) - abs(self.unaligned_after_m)
+
+
+def _face_basis(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    helper = np.eye(3)[int(np.argmin(np.abs(axis)))]
+    u = np.cross(axis, helper)
+    u /= np.linalg.norm(u)
+    return u, np.cross(axis, u)
+
+
+def simulate_gauge_block(
+    squareness: CmmSquareness,
+    nominal_m: float,
+    axis: Sequence[float] | np.ndarray,
+    *,
+    centre_m: Sequence[float] | np.ndarray = (0.0, 0.0, 0.0),
+    probe_rectangle_m: tuple[float, float] = (20e-3, 6e-3),
+    end_offset_m: Sequence[float] | np.ndarray = (0.0, 0.0, 0.0),
+    compensation: CmmSquareness | None = None,
+) -> GaugeBlockCheck:
+    """Simulate paper 004's gauge block check on a CMM whose axes are out of square.
+
+    The CMM reads :func:`readings_for` the true contact points (its scales read as if the axes
+    were square). The block's first measuring face passes through ``centre_m`` with normal
+    ``axis``; six probe points sit on a 3 x 2 grid spanning ``probe_rectangle_m`` on that face; one
+    end point is probed at ``centre_m`` and the other on the opposite face, moved across the axis
+    by ``end_offset_m`` (its component along the axis is dropped).
+
+    Parameters
+    ----------
+    squareness : CmmSquareness
+        The CMM's actual squareness errors.
+    nominal_m : float
+        Block length, metres.
+    axis : array_like, shape (3,)
+        Direction of the block's axis in the CMM frame (normalised here).
+    centre_m, probe_rectangle_m, end_offset_m : keyword-only, metres
+        Where the block is and how it is probed.
+    compensation : CmmSquareness, keyword-only
+        Squareness used by eq (6) for the "after" figures (default: the CMM's own, a perfect
+        calibration).
+
+    Returns
+    -------
+    GaugeBlockCheck
+    """
+    if not (math.isfinite(nominal_m) and nominal_m > 0.0):
+        raise AxiscalError(f"the block length must be positive, got {nominal_m}")
+    n = np.asarray(axis, dtype=float).reshape(3)
+    if not np.all(np.isfinite(n)) or np.linalg.norm(n) == 0.0:
+        raise AxiscalError("the block axis must be a finite non-zero vector")
+    n = n / np.linalg.norm(n)
+    centre = np.asarray(centre_m, dtype=float).reshape(3)
+    offset = np.asarray(end_offset_m, dtype=float).reshape(3)
+    offset = offset - (offset @ n) * n
+    u, v = _face_basis(n)
+    width, height = probe_rectangle_m
+    grid = [(a, b) for b in (-0.5, 0.5) for a in (-0.5, 0.0, 0.5)]
+    face = np.array([centre + a * width * u + b * height * v for a, b in grid])
+    first = centre
+    second = centre + nominal_m * n + offset
+    correction = squareness if compensation is None else compensation
+    nominal_axis = np.eye(3)[int(np.argmax(np.abs(n)))]
+
+    def measure(points: np.ndarray) -> tuple[float, float]:
+        aligned = gauge_block_length(points[:6], points[6], points[7]) - nominal_m
+        unaligned = abs(float((points[7] - points[6]) @ nominal_axis)) - nominal_m
+        return aligned, unaligned
+
+    read = readings_for(np.vstack([face, first, second]), squareness)
+    before = measure(read)
+    after = measure(compensate(read, correction))
+    return GaugeBlockCheck(
+        nominal_m=float(nominal_m),
+        axis=n,
+        aligned_before_m=before[0],
+        aligned_after_m=after[0],
+        unaligned_before_m=before[1],
+        unaligned_after_m=after[1],
+    )

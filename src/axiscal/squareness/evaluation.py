@@ -1,0 +1,358 @@
+"""Squareness of two axes from two straightness runs, and the pentaprism's own deviation.
+
+Paper 002 (Liang et al.): squareness = included angle of the two axes' fitted lines minus 90
+degrees (eq 1), minus the prism's deviation from 90 degrees (eq 13, eq 21); the prism's deviation
+by autocollimator and wedge (eq 22). Paper 004 (Li et al.): the prism's deviation by reversal
+(eqs 2-5; eqs 4-5 are missing from the text and follow from 2-3) and the angular resolution of a
+PSD set-up, r = a / L (eq 1). ISO 230-1 names and signs of the squareness terms: EC0Y (XY plane),
+EB0Z (XZ), EA0Z (YZ).
+
+Sign conventions (docs/squareness.md has the picture)
+-------------------------------------------------------
+* ``"included-angle"`` (the default): squareness = included angle between the positive directions
+  of the two axes minus 90 degrees; positive when the axes open wider than a right angle (paper
+  002 eqs 1 and 21; paper 004's values read the same way, see :mod:`axiscal.squareness.cmm`).
+* ``"iso"``: the ISO 230-1 rotation of the second axis about the third axis by the right-hand rule:
+  ``EC0Y = +s`` (XY), ``EB0Z = -s`` (XZ), ``EA0Z = +s`` (YZ), with ``s`` the included-angle value.
+  The XZ sign flips because turning +Z about +Y moves it towards +X, closing the angle.
+
+Runs
+----
+The first run moves the first axis of the plane and records the deviation along the second axis;
+the second run moves the second axis and records the deviation along the first. Both are in the
+machine's right-handed frame. A fitted line ``deviation = k position + b`` gives the direction
+``(1, k1)`` of the first axis and ``(k2, 1)`` of the second (components along first, second axis),
+so the included angle is ``theta = 90 deg - atan(k1) - atan(k2)``.
+
+The prism deviation ``D`` is that of eq (13): the prism turns the beam by ``90 deg + D`` between the
+incident beam and the exit beam. With the beam arriving against the first axis as in paper 002
+(incident ``[-1, 0, 0]``) and leaving along the positive second axis, the exit beam, the second
+axis' reference, makes ``90 deg - D`` with the positive first axis, so the second run sees the
+axis ``D`` too far open and eq (21) subtracts it. If only one of the two beams is reversed (the
+beam arrives along the positive first axis, or leaves along the negative second axis, e.g. turned
+down to -Z), the reference makes ``90 deg + D`` and ``-D`` must be given instead.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.io.tabular import CsvTable, read_csv
+from axiscal.straightness.reference import ReferenceLine, reference_line
+from axiscal.units import length_factor
+
+__all__ = [
+    "PLANES",
+    "CONVENTIONS",
+    "iso_term",
+    "iso_from_included_angle",
+    "included_angle_from_iso",
+    "SquarenessResult",
+    "squareness_from_slopes",
+    "squareness",
+    "ReversalResult",
+    "prism_reversal",
+    "prism_deviation_from_wedge",
+    "psd_angular_resolution",
+    "read_straightness_run",
+]
+
+#: plane -> (first axis, second axis, ISO 230-1 term, sign of the ISO term against the included-angle value)
+PLANES: dict[str, tuple[str, str, str, int]] = {
+    "XY": ("X", "Y", "EC0Y", 1),
+    "XZ": ("X", "Z", "EB0Z", -1),
+    "YZ": ("Y", "Z", "EA0Z", 1),
+}
+CONVENTIONS = ("included-angle", "iso")
+#: Beyond this the two "axes" are not two crossing axes (lines parallel or nearly so), rad.
+_MAX_SQUARENESS = math.pi / 4.0
+#: A pentaprism off 90 degrees by this much or more is not a pentaprism (a unit slip, most likely), rad.
+_MAX_PRISM_DEVIATION = math.pi / 180.0
+
+
+def _plane(plane: str) -> tuple[str, str, str, int]:
+    try:
+        return PLANES[plane.upper()]
+    except (KeyError, AttributeError):
+        raise AxiscalError(f"unknown plane '{plane}'; use one of {', '.join(PLANES)}") from None
+
+
+def iso_term(plane: str) -> str:
+    """ISO 230-1 name of the squareness of ``plane``: XY -> EC0Y, XZ -> EB0Z, YZ -> EA0Z."""
+    return _plane(plane)[2]
+
+
+def iso_from_included_angle(squareness_rad: float, *, plane: str) -> float:
+    """ISO 230-1 squareness term from the included-angle value (included angle - 90 deg), rad.
+
+    ``EC0Y = s_XY``, ``EB0Z = -s_XZ``, ``EA0Z = s_YZ``.
+    """
+    return _plane(plane)[3] * squareness_rad
+
+
+def included_angle_from_iso(iso_value_rad: float, *, plane: str) -> float:
+    """Included angle minus 90 deg from the ISO 230-1 term of ``plane``, rad (the inverse)."""
+    return _plane(plane)[3] * iso_value_rad
+
+
+@dataclass(frozen=True)
+class SquarenessResult:
+    """Squareness of two axes in one plane.
+
+    Attributes
+    ----------
+    plane : str
+        ``"XY"``, ``"XZ"`` or ``"YZ"``.
+    convention : str
+        Convention of :attr:`squareness_rad`: ``"iso"`` or ``"included-angle"``.
+    squareness_rad : float
+        The squareness in that convention, prism deviation removed (eq 21), radians.
+    included_angle_rad : float
+        Included angle between the positive axis directions, prism deviation removed, radians.
+    measured_included_angle_rad : float
+        Included angle of the two fitted lines as measured (theta of eq 1), radians.
+    prism_deviation_rad : float
+        ``D`` of eq (13) that was removed, radians.
+    iso_term : str
+        ``EC0Y``, ``EB0Z`` or ``EA0Z``.
+    iso_value_rad : float
+        The squareness as that ISO 230-1 term (right-hand-rule sign), radians.
+    slope_first, slope_second : float
+        Slopes (m/m) of the two runs' fitted lines, each in its own run: deviation along the other
+        axis per unit of travel.
+    first_line, second_line : ReferenceLine or None
+        The fitted lines when the result came from data (None from slopes alone).
+    """
+
+    plane: str
+    convention: str
+    squareness_rad: float
+    included_angle_rad: float
+    measured_included_angle_rad: float
+    prism_deviation_rad: float
+    iso_term: str
+    iso_value_rad: float
+    slope_first: float
+    slope_second: float
+    first_line: ReferenceLine | None = None
+    second_line: ReferenceLine | None = None
+
+
+def squareness_from_slopes(
+    slope_first: float,
+    slope_second: float,
+    *,
+    plane: str = "XY",
+    prism_deviation_rad: float = 0.0,
+    convention: str = "included-angle",
+) -> SquarenessResult:
+    """Squareness from the slopes of the two runs' fitted lines (paper 002 eqs 1 and 21).
+
+    Parameters
+    ----------
+    slope_first : float
+        Slope of the first run: deviation along the second axis per travel of the first (m/m).
+    slope_second : float
+        Slope of the second run: deviation along the first axis per travel of the second (m/m).
+        A line given in the common frame as ``second = k' first + b`` (paper 002's k') has
+        ``slope_second = 1 / k'``.
+    plane : {"XY", "XZ", "YZ"}, keyword-only
+    prism_deviation_rad : float, keyword-only
+        ``D`` of eq (13), radians (0 when no prism turned the beam); its sign as in the module
+        docstring (beam arriving against the first axis, leaving along the second).
+    convention : {"included-angle", "iso"}, keyword-only
+        Sign convention of ``squareness_rad``: ``"included-angle"`` (default, eq 21: included
+        angle - 90 deg - D) or ``"iso"`` (the ISO 230-1 term's sign); both values are in the result.
+
+    Raises
+    ------
+    AxiscalError
+        Unknown plane or convention, non-finite slopes, a prism deviation of 1 degree or more, or
+        lines that are (nearly) parallel: an included angle more than 45 degrees off a right angle
+        is not the squareness of two axes.
+    """
+    first, second, term, _ = _plane(plane)
+    if convention not in CONVENTIONS:
+        raise AxiscalError(f"unknown sign convention '{convention}'; use one of {', '.join(CONVENTIONS)}")
+    if not all(math.isfinite(v) for v in (slope_first, slope_second, prism_deviation_rad)):
+        raise AxiscalError("slopes and prism deviation must be finite numbers")
+    if abs(prism_deviation_rad) >= _MAX_PRISM_DEVIATION:
+        raise AxiscalError(
+            f"a prism deviation of {math.degrees(prism_deviation_rad) * 3600:.6g} arcsec is 1 degree or more off 90 degrees: "
+            "not a pentaprism (check the unit: arc seconds)"
+        )
+    measured = math.pi / 2.0 - math.atan(slope_first) - math.atan(slope_second)
+    if abs(measured - math.pi / 2.0) >= _MAX_SQUARENESS:
+        raise AxiscalError(
+            f"the two fitted lines are (nearly) parallel: included angle {math.degrees(measured):.3f} deg; "
+            f"the first run must move {first} (deviation along {second}), the second move {second} (deviation along {first})"
+        )
+    included = measured - prism_deviation_rad
+    value = included - math.pi / 2.0
+    iso_value = iso_from_included_angle(value, plane=plane)
+    return SquarenessResult(
+        plane=plane.upper(),
+        convention=convention,
+        squareness_rad=iso_value if convention == "iso" else value,
+        included_angle_rad=included,
+        measured_included_angle_rad=measured,
+        prism_deviation_rad=float(prism_deviation_rad),
+        iso_term=term,
+        iso_value_rad=iso_value,
+        slope_first=float(slope_first),
+        slope_second=float(slope_second),
+    )
+
+
+def squareness(
+    first_position_m: np.ndarray,
+    first_deviation_m: np.ndarray,
+    second_position_m: np.ndarray,
+    second_deviation_m: np.ndarray,
+    *,
+    plane: str = "XY",
+    prism_deviation_rad: float = 0.0,
+    reference: str = "least-squares",
+    convention: str = "included-angle",
+) -> SquarenessResult:
+    """Squareness from two straightness runs (paper 002 eqs 1, 15 and 21).
+
+    Parameters
+    ----------
+    first_position_m, first_deviation_m : array_like, shape (n,), metres
+        First run: positions of the first axis, deviations along the second axis.
+    second_position_m, second_deviation_m : array_like, shape (m,), metres
+        Second run: positions of the second axis, deviations along the first axis.
+    plane, prism_deviation_rad, convention
+        As in :func:`squareness_from_slopes`.
+    reference : {"least-squares", "end-points", "minimum-zone"}, keyword-only
+        Reference line fitted to each run (default least squares, eq 15).
+
+    Raises
+    ------
+    AxiscalError
+        A run with fewer than 2 points (or all at one position), or the cases of
+        :func:`squareness_from_slopes`.
+    """
+    lines = []
+    for label, position, deviation in (
+        ("first", first_position_m, first_deviation_m),
+        ("second", second_position_m, second_deviation_m),
+    ):
+        if np.asarray(position).size < 2:
+            raise AxiscalError(f"the {label} run has {np.asarray(position).size} point(s); a line needs at least 2")
+        try:
+            lines.append(reference_line(position, deviation, reference=reference))
+        except AxiscalError as exc:
+            raise AxiscalError(f"{label} run: {exc.message}") from None
+    result = squareness_from_slopes(
+        lines[0].slope, lines[1].slope, plane=plane, prism_deviation_rad=prism_deviation_rad, convention=convention
+    )
+    return replace(result, first_line=lines[0], second_line=lines[1])
+
+
+@dataclass(frozen=True)
+class ReversalResult:
+    """Paper 004's prism reversal (eqs 2-5).
+
+    Attributes
+    ----------
+    prism_deviation_rad : float
+        ``alpha_p = (alpha_1 + alpha_2) / 2``, the prism's deviation from 90 degrees, radians.
+    squareness_rad : float
+        ``alpha_0 = (alpha_2 - alpha_1) / 2``, the squareness of the two stages, radians.
+    """
+
+    prism_deviation_rad: float
+    squareness_rad: float
+
+
+def prism_reversal(alpha1_rad: float, alpha2_rad: float) -> ReversalResult:
+    """Prism deviation and squareness from a measurement and its reversal (paper 004 eqs 2-5).
+
+    With the laser on one side, ``alpha_1 = alpha_p - alpha_0`` (eq 2); with laser and prism turned
+    round, ``alpha_2 = alpha_0 + alpha_p`` (eq 3). The paper's eqs (4)-(5) are missing from the
+    text; solving 2-3 gives ``alpha_0 = (alpha_2 - alpha_1) / 2`` and ``alpha_p = (alpha_1 + alpha_2) / 2``.
+    Each ``alpha_i = delta_d_i / L_0`` (spot travel over stage travel).
+    """
+    if not (math.isfinite(alpha1_rad) and math.isfinite(alpha2_rad)):
+        raise AxiscalError("reversal angles must be finite numbers")
+    return ReversalResult(
+        prism_deviation_rad=(alpha1_rad + alpha2_rad) / 2.0, squareness_rad=(alpha2_rad - alpha1_rad) / 2.0
+    )
+
+
+def prism_deviation_from_wedge(alpha1_rad: float, alpha2_rad: float) -> float:
+    """Magnitude of a pentaprism's deviation from 90 deg by autocollimator and wedge (paper 002 eq 22).
+
+    ``|D| = |alpha_1 - alpha_2| / 4``: ``alpha_1`` is the angle between the autocollimator's beam
+    and the beam back from the wedge, ``alpha_2`` that between the autocollimator's transmitted
+    beam and the beam back from the mirror, radians. The method gives the size of the error only;
+    its sign must come from the set-up (or from a reversal, :func:`prism_reversal`).
+    """
+    if not (math.isfinite(alpha1_rad) and math.isfinite(alpha2_rad)):
+        raise AxiscalError("autocollimator angles must be finite numbers")
+    return abs(alpha1_rad - alpha2_rad) / 4.0
+
+
+def psd_angular_resolution(linear_resolution_m: float, travel_m: float) -> float:
+    """Angular resolution ``r = a / L`` of a PSD squareness set-up (paper 004 eq 1), radians.
+
+    Parameters
+    ----------
+    linear_resolution_m : float
+        Linear resolution ``a`` of the PSD, metres.
+    travel_m : float
+        Travel ``L`` of the stage over which the spot is followed, metres.
+
+    Notes
+    -----
+    0.3 um over 18 mm is 16.7 urad = 3.4 arcsec = 0.057 arcmin; the paper's "0.06 arcsec" is arc
+    minutes (primer slip 5), and so is its "0.001 arcsec" for 1000 mm.
+    """
+    if not (math.isfinite(linear_resolution_m) and linear_resolution_m > 0.0):
+        raise AxiscalError(f"the PSD resolution must be a positive length, got {linear_resolution_m}")
+    if not (math.isfinite(travel_m) and travel_m > 0.0):
+        raise AxiscalError(f"the travel must be a positive length, got {travel_m}")
+    return linear_resolution_m / travel_m
+
+
+def _length_column(table: CsvTable, stem: str, allowed: tuple[str, ...]) -> tuple[str, float]:
+    names = [name for name in table.header if name.rpartition("_")[0] == stem]
+    if len(names) != 1:
+        wanted = " or ".join(f"{stem}_{unit}" for unit in allowed)
+        problem = "no" if not names else "more than one"
+        raise AxiscalError(f"{problem} column {wanted} (columns are: {', '.join(table.header)})", path=table.path, line=table.header_line)
+    unit = names[0].rpartition("_")[2]
+    try:
+        return names[0], length_factor(unit, allowed=allowed, what=names[0])
+    except AxiscalError as exc:
+        raise exc.located(path=table.path, line=table.header_line) from None
+
+
+def read_straightness_run(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
+    """Read one straightness run (``position_mm, deviation_um``; also ``_m``/``_um`` and ``_nm``/``_mm``).
+
+    Returns
+    -------
+    position_m, deviation_m : ndarray, shape (n,), metres
+
+    Raises
+    ------
+    AxiscalError
+        Missing file or column, a cell that is not a finite number, fewer than 2 rows, or all rows
+        at one position (each naming the file and line).
+    """
+    table = read_csv(path, min_rows=2)
+    position_name, position_factor = _length_column(table, "position", ("mm", "m", "um"))
+    deviation_name, deviation_factor = _length_column(table, "deviation", ("um", "nm", "mm"))
+    position = table.numeric(position_name) * position_factor
+    deviation = table.numeric(deviation_name) * deviation_factor
+    if np.ptp(position) == 0.0:
+        raise AxiscalError("all rows are at one position: no line can be fitted", path=table.path, line=table.lines[0])
+    return position, deviation

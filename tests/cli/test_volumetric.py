@@ -1,0 +1,154 @@
+"""End-to-end: volumetric, diagonal, inverse and demo commands, and every bad-input case."""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import numpy as np
+import pytest
+
+from axiscal.io.tabular import read_csv
+
+
+@pytest.fixture
+def module(tmp_path, examples):
+    """A writable copy of the XZ module example."""
+    folder = tmp_path / "xz"
+    shutil.copytree(examples / "xz_module", folder)
+    return folder
+
+
+def test_volumetric_grid_matches_the_api(run_cli, module, tmp_path):
+    out = tmp_path / "map.csv"
+    status, _, err = run_cli("volumetric", "--machine", module / "machine.toml", "--grid", "X=0:190:95,Z=0:190:95", "-o", out, "--plot", tmp_path / "map.png")
+    assert status == 0, err
+    table = read_csv(out)
+    assert table.header == ("x_mm", "z_mm", "ex_um", "ey_um", "ez_um", "e_um")
+    import axiscal
+
+    machine = axiscal.load_machine(module / "machine.toml")
+    q = {"X": table.numeric("x_mm") * 1e-3, "Z": table.numeric("z_mm") * 1e-3}
+    np.testing.assert_allclose(table.numeric("ex_um"), machine.volumetric_error(q)[:, 0] * 1e6, atol=1e-4)
+    assert (tmp_path / "map.png").stat().st_size > 10_000
+
+
+def test_volumetric_points_to_stdout(run_cli, module, tmp_path):
+    points = tmp_path / "p.csv"
+    points.write_text("x_mm,z_mm\n0,0\n100,50\n")
+    status, out, _ = run_cli("volumetric", "--machine", module / "machine.toml", "--points", points)
+    assert status == 0
+    assert out.splitlines()[0] == "x_mm,z_mm,ex_um,ey_um,ez_um,e_um" and len(out.splitlines()) == 3
+
+
+def test_diagonal_with_interferometer(run_cli, module, tmp_path):
+    status, out, err = run_cli(
+        "diagonal", "--machine", module / "machine.toml", "--from", "X=0,Z=0", "--to", "X=190,Z=190",
+        "--interferometer", module / "diagonal_laser.csv", "--json", "--plot", tmp_path / "d.png",
+    )
+    assert status == 0, err
+    payload = json.loads(out)
+    assert payload["E_AD_range_um"] < payload["E_BD_range_um"] / 4
+    assert len(payload["points"]["E_BD_um"]) == 20
+
+
+def test_inverse_round_trip(run_cli, module, tmp_path):
+    import axiscal
+
+    machine = axiscal.load_machine(module / "machine.toml")
+    actual = machine.actual_point({"X": np.array([0.05, 0.12]), "Z": np.array([0.1, 0.17])})
+    points = tmp_path / "targets.csv"
+    points.write_text("x_mm,y_mm,z_mm\n" + "\n".join(",".join(f"{v * 1e3:.9f}" for v in p) for p in actual))
+    status, out, _ = run_cli("inverse", "--machine", module / "machine.toml", "--points", points)
+    assert status == 0
+    rows = [line.split(",") for line in out.splitlines()[1:]]
+    np.testing.assert_allclose([float(r[3]) for r in rows], [50.0, 120.0], atol=1e-6)
+    np.testing.assert_allclose([float(r[4]) for r in rows], [100.0, 170.0], atol=1e-6)
+
+
+def test_demo_writes_a_report(run_cli, tmp_path):
+    status, out, err = run_cli("demo", "--output", tmp_path / "demo")
+    assert status == 0, err
+    for name in ("report.md", "summary.json", "volumetric_map.csv", "volumetric_map.png", "diagonal.png", "error_motions.png"):
+        assert (tmp_path / "demo" / name).exists(), name
+    summary = json.loads((tmp_path / "demo" / "summary.json").read_text())
+    assert summary["diagonal_E_AD_range_um"] < summary["diagonal_E_BD_range_um"]
+
+
+def edit(path, old, new):
+    path.write_text(path.read_text().replace(old, new))
+
+
+def set_first_value(path, position, value):
+    lines = path.read_text().splitlines()
+    for k, line in enumerate(lines):
+        if line.startswith(position + ","):
+            cells = line.split(",")
+            cells[1] = value
+            lines[k] = ",".join(cells)
+    path.write_text("\n".join(lines) + "\n")
+
+
+@pytest.mark.parametrize(
+    "change, where, message",
+    [
+        (lambda m: edit(m / "machine.toml", 'chain = "FXZ"', 'chain = "FXZ'), "machine.toml:3", "malformed TOML"),
+        (lambda m: edit(m / "machine.toml", 'chain = "FXZ"', 'chain = "FX"'), "machine.toml", "[axes.Z] is not an axis of chain"),
+        (lambda m: edit(m / "machine.toml", '[axes.Z]\nerrors = "z_errors.csv"', '[axes.Q]\nerrors = "z_errors.csv"'), "machine.toml", "no [axes.Z] section"),
+        (lambda m: edit(m / "machine.toml", "EB0Z_arcsec", "EB0Z_furlong"), "machine.toml", "unknown angle unit 'furlong'"),
+        (lambda m: edit(m / "x_errors.csv", "EYX_um", "EYY_um"), "x_errors.csv:1", "unknown column 'EYY_um'"),
+        (lambda m: edit(m / "x_errors.csv", "EXX_um", "EXX_inch"), "x_errors.csv:1", "unknown length unit 'inch'"),
+        (lambda m: edit(m / "x_errors.csv", "\n20.000,", "\n5.000,"), "x_errors.csv:4", "not strictly increasing"),
+        (lambda m: edit(m / "z_errors.csv", "\n30.000,", "\n30.000,nan,"), "z_errors.csv:5", "cells where the header has"),
+        (lambda m: set_first_value(m / "z_errors.csv", "30.000", "nan"), "z_errors.csv:5", "nan is not a finite number"),
+        (lambda m: edit(m / "z_errors.csv", "\n30.000,", "\n30.000,abc"), "z_errors.csv:5", "is not a number"),
+    ],
+)
+def test_bad_input_is_one_line_exit_2(run_cli, module, change, where, message):
+    change(module)
+    status, out, err = run_cli("volumetric", "--machine", module / "machine.toml", "--grid", "X=0:190:95,Z=0:190:95")
+    assert status == 2
+    assert "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1
+    assert where in err and message in err, err
+
+
+def test_point_outside_the_tables_names_its_line(run_cli, module, tmp_path):
+    points = tmp_path / "p.csv"
+    points.write_text("x_mm,z_mm\n0,0\n# a comment\n200,50\n")
+    status, _, err = run_cli("volumetric", "--machine", module / "machine.toml", "--points", points)
+    assert status == 2
+    assert f"{points}:4: X = 200 mm is outside the error table" in err
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--grid", "X=0:190:10"], "no positions for axis Z"),
+        (["--grid", "X=0:190:10,Z=0:190:10,Y=0"], "not in chain"),
+        (["--grid", "X=0:190"], "expected parts like"),
+        (["--grid", "Z=0:300:100,X=0"], "Z = 200 mm is outside"),
+        ([], "exactly one of --points FILE or --grid SPEC"),
+    ],
+)
+def test_bad_grids(run_cli, module, args, message):
+    status, _, err = run_cli("volumetric", "--machine", module / "machine.toml", *args)
+    assert status == 2 and message in err, err
+
+
+def test_missing_machine_file_and_missing_points_column(run_cli, module, tmp_path):
+    status, _, err = run_cli("volumetric", "--machine", tmp_path / "nope.toml", "--grid", "X=0")
+    assert status == 2 and "nope.toml: file not found" in err
+    points = tmp_path / "p.csv"
+    points.write_text("x_mm\n0\n")
+    status, _, err = run_cli("volumetric", "--machine", module / "machine.toml", "--points", points)
+    assert status == 2 and "missing column 'z_mm' for axis Z" in err
+
+
+def test_diagonal_readings_that_do_not_match(run_cli, module, tmp_path):
+    readings = tmp_path / "r.csv"
+    readings.write_text("nominal_mm,measured_mm\n0,0\n15,15\n")
+    status, _, err = run_cli("diagonal", "--machine", module / "machine.toml", "--from", "X=0,Z=0", "--to", "X=190,Z=190", "--steps", "1", "--interferometer", readings)
+    assert status == 2 and "r.csv:3: nominal_mm" in err
+    status, _, err = run_cli("diagonal", "--machine", module / "machine.toml", "--from", "X=0;Z=0", "--to", "X=190,Z=190")
+    assert status == 2 and "--from" in err

@@ -1,0 +1,417 @@
+"""Controller compensation tables: each applied as its control applies it, and each format's rules."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from axiscal.compensation import (
+    ErrorCurve,
+    error_curve,
+    fanuc_table,
+    heidenhain_table,
+    linuxcnc_table,
+    parse_linuxcnc,
+    residuals,
+    siemens_table,
+)
+from axiscal.errors import AxiscalError
+from axiscal.positioning.evaluation import target_statistics
+from axiscal.positioning.reader import read_positioning_run
+
+UM, MM = 1e-6, 1e-3
+EPS = 1e-12
+
+
+@pytest.fixture
+def curve(examples) -> ErrorCurve:
+    return error_curve(target_statistics(read_positioning_run(examples / "positioning_run.csv").run))
+
+
+def random_curve(rng, m=17, length=0.8, start=0.0):
+    x = np.sort(np.concatenate([[start, start + length], start + rng.uniform(0, length, m - 2)]))
+    x = np.unique(np.round(x, 6))
+    up = 10e-6 * rng.standard_normal(x.size) + 12e-6 * x
+    return ErrorCurve(x, up, up + rng.uniform(2e-6, 6e-6, x.size))
+
+
+# ---------------------------------------------------------------------------------- LinuxCNC
+
+
+def linuxcnc_reference(table_rows: np.ndarray, comp_type: int, x: float, forward: bool) -> float:
+    """What LinuxCNC's motion module computes, written out from usrmotintf.cc and command.c:
+    type 0 trims are nominal - value, type 1 trims the values; the entry list has sentinels at
+    -/+ DBL_MAX that copy the first/last trims; the correction is trim + slope * (x - nominal)."""
+    nominal = table_rows[:, 0]
+    values = table_rows[:, 1] if forward else table_rows[:, 2]
+    trims = nominal - values if comp_type == 0 else values
+    entries = [(-math.inf, trims[0], 0.0)]
+    for k in range(nominal.size):
+        slope = (trims[k + 1] - trims[k]) / (nominal[k + 1] - nominal[k]) if k + 1 < nominal.size else 0.0
+        entries.append((nominal[k], trims[k], slope))
+    for k in range(len(entries) - 1, -1, -1):
+        start, trim, slope = entries[k]
+        if x >= start:
+            return trim + (slope * (x - start) if math.isfinite(start) else 0.0)
+    raise AssertionError("unreachable")
+
+
+@pytest.mark.parametrize("comp_type", [0, 1])
+def test_linuxcnc_file_rules_and_residuals(curve, comp_type):
+    table = linuxcnc_table(curve, comp_type=comp_type)
+    text = table.text()
+    rows = parse_linuxcnc(text)  # every line is read: no header, no comments, increasing, <= 256
+    assert rows.shape == (curve.positions.size, 3)
+    assert all(len(line.split()) == 3 for line in text.splitlines())
+    for direction in "+-":
+        left = residuals(table, curve, curve.positions, direction)
+        assert np.abs(left).max() <= table.resolution / 2 + EPS
+    # the control's own arithmetic, also between and beyond the entries
+    x = np.linspace(-0.05, 0.85, 97)
+    for forward, direction in ((True, "+"), (False, "-")):
+        want = [linuxcnc_reference(rows, comp_type, xi / MM, forward) * MM for xi in x]
+        assert table.correction(x, direction) == pytest.approx(want, abs=1e-15)
+
+
+def test_linuxcnc_type_0_holds_positions_reached_and_type_1_corrections(curve):
+    t0, t1 = linuxcnc_table(curve, comp_type=0), linuxcnc_table(curve, comp_type=1)
+    assert t0.forward == pytest.approx(curve.positions / MM + curve.up / MM, abs=1e-6)
+    assert t1.reverse == pytest.approx(-curve.down / MM, abs=1e-6)
+    x = np.linspace(0, 0.8, 41)
+    assert t0.correction(x, "+") == pytest.approx(t1.correction(x, "+"), abs=2 * t0.resolution)
+
+
+def test_linuxcnc_limits():
+    x = np.linspace(0, 1, 257)
+    with pytest.raises(AxiscalError, match="at most 256"):
+        linuxcnc_table(ErrorCurve(x, np.zeros(257), np.zeros(257)))
+    with pytest.raises(AxiscalError, match="0 or 1"):
+        linuxcnc_table(ErrorCurve(x[:3], np.zeros(3), np.zeros(3)), comp_type=2)
+    with pytest.raises(AxiscalError, match="stop reading at line 1"):
+        parse_linuxcnc("nominal forward reverse\n0 0 0\n")
+    with pytest.raises(AxiscalError, match="stop reading at line 2"):
+        parse_linuxcnc("0 0 0\n# comment\n1 0 0\n")
+    with pytest.raises(AxiscalError, match="strictly increase"):
+        parse_linuxcnc("0 0 0\n0 0 0\n")
+    with pytest.raises(AxiscalError, match="at most 256"):
+        parse_linuxcnc("".join(f"{k} 0 0\n" for k in range(257)))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 10_000), st.integers(2, 256))
+def test_linuxcnc_residuals_within_resolution_for_any_curve(seed, m):
+    c = random_curve(np.random.default_rng(seed), m=m)
+    for comp_type in (0, 1):
+        table = linuxcnc_table(c, comp_type=comp_type)
+        parse_linuxcnc(table.text())
+        for d in "+-":
+            # type 0 writes nominal + e and LinuxCNC subtracts: two roundings
+            assert np.abs(residuals(table, c, c.positions, d)).max() <= (1 if comp_type == 0 else 0.5) * table.resolution + EPS
+
+
+# ---------------------------------------------------------------------------------- FANUC
+
+
+def tape(text: str) -> tuple[dict[int, int], dict[int, int]]:
+    lines = text.splitlines()
+    assert lines[0] == "%" and lines[-1] == "%"
+    params, data = {}, {}
+    for line in lines[1:-1]:
+        m = re.fullmatch(r"N(\d{5})A1P(-?\d+)", line)
+        if m:
+            params[int(m.group(1))] = int(m.group(2))
+            continue
+        m = re.fullmatch(r"N1(\d{4})P(-?\d+)", line)
+        assert m, line
+        data[int(m.group(1))] = int(m.group(2))
+    return params, data
+
+
+def test_fanuc_point_numbers_follow_the_parameter_manual():
+    # FANUC parameter manual, pitch error compensation example 1: stroke -400 .. +800 mm, interval
+    # 50 mm, reference point 40 -> farthest - point 40 - 400/50 + 1 = 33, farthest + point 40 + 800/50 = 56
+    x = np.linspace(-0.4, 0.8, 25)
+    c = ErrorCurve(x, 5e-6 * np.sin(x * 20), 5e-6 * np.sin(x * 20))
+    table = fanuc_table(c, interval_m=0.05, reference_point=40)
+    params, data = tape(table.text())
+    assert params[3620] == 40 and params[3621] == 33 and params[3622] == 56 and params[3624] == 50_000
+    assert sorted(data) == list(range(33, 57))
+
+
+def test_fanuc_rotary_table_sums_to_zero():
+    # FANUC parameter manual, example 2: 360 deg per revolution, interval 45 deg, reference point 60:
+    # 3621 = 60, 3622 = 60 + 360/45 = 68; points 61..68 sum to zero; point 60 repeats point 68
+    deg = math.pi / 180
+    x = np.arange(0, 360, 15) * deg
+    e = 20e-6 * np.sin(x) + 8e-6 * np.cos(3 * x) + 3e-6
+    table = fanuc_table(
+        ErrorCurve(x, e, e), interval_m=45 * deg, reference_point=60, rotary=True,
+        travel_per_revolution=360 * deg, input_increment_m=0.001 * deg, detection_unit_m=1e-6,
+    )
+    params, data = tape(table.text())
+    assert params[3621] == 60 and params[3622] == 68
+    assert sum(data[p] for p in range(61, 69)) == 0
+    assert data[60] == data[68]
+    nodes = table.nodes
+    left = residuals(table, ErrorCurve(x, e, e), nodes[:-1], "mean", offset=table.reference_deviation_m)
+    assert np.abs(left).max() <= table.resolution / 2 + EPS
+    with pytest.raises(AxiscalError, match="whole sections"):
+        fanuc_table(ErrorCurve(x, e, e), interval_m=7 * deg, rotary=True, travel_per_revolution=360 * deg,
+                    input_increment_m=0.001 * deg)
+
+
+@pytest.mark.parametrize("magnification", [1, 2, 5])
+def test_fanuc_unidirectional_residuals_within_one_unit(curve, magnification):
+    table = fanuc_table(curve, interval_m=0.01, magnification=magnification)
+    params, data = tape(table.text())
+    assert params[3623] == magnification
+    assert max(abs(v) for v in data.values()) <= 127
+    left = residuals(table, curve, table.nodes, "mean", offset=table.reference_deviation_m)
+    assert np.abs(left).max() <= table.resolution / 2 + EPS
+    # at the measured targets the resampling onto the 10 mm grid adds its own (reported) error
+    assert np.abs(residuals(table, curve, curve.positions, "mean", offset=table.reference_deviation_m)).max() < 2 * table.resolution
+
+
+def test_fanuc_bidirectional(curve):
+    table = fanuc_table(curve, interval_m=0.02, bidirectional=True)
+    params, data = tape(table.text())
+    assert params[3626] == params[3622] + 1
+    count = params[3622] - params[3621] + 1
+    assert sorted(data) == list(range(params[3621], params[3622] + 1)) + list(range(params[3626], params[3626] + count))
+    # 3627: the - direction correction at the reference position, relative to the + deviation there
+    assert params[3627] == round(-(curve.down[0] - curve.up[0]) / UM)
+    for d in "+-":
+        left = residuals(table, curve, table.nodes, d, offset=table.reference_deviation_m)
+        assert np.abs(left).max() <= table.resolution / 2 + EPS
+
+
+def test_fanuc_reference_inside_the_travel(curve):
+    table = fanuc_table(curve, interval_m=0.05, reference_position_m=0.4)
+    params, _ = tape(table.text())
+    assert params[3620] - params[3621] + 1 == 8 and params[3622] - params[3620] == 8
+    assert table.correction(0.4, "+") == pytest.approx(0.0)
+
+
+@pytest.mark.parametrize(
+    "kwargs,message",
+    [
+        ({"interval_m": 0.01, "magnification": 0}, "1..100"),
+        ({"interval_m": 0.01, "magnification": 101}, "1..100"),
+        ({"interval_m": -0.01}, "positive"),
+        ({"interval_m": 0.0100005}, "whole number of input increments"),
+        ({"interval_m": 0.01, "reference_position_m": 1.0}, "outside the measured travel"),
+        ({"interval_m": 0.01, "reference_point": 1020}, "do not fit"),
+        ({"interval_m": 0.4, "detection_unit_m": 0.01e-6}, "exceeds"),
+    ],
+)
+def test_fanuc_bad_requests(curve, kwargs, message):
+    with pytest.raises(AxiscalError, match=message):
+        fanuc_table(curve, **kwargs)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 10_000), st.sampled_from([0.005, 0.01, 0.025, 0.05]), st.booleans())
+def test_fanuc_residuals_within_one_unit_for_any_curve(seed, interval, bidirectional):
+    c = random_curve(np.random.default_rng(seed))
+    table = fanuc_table(c, interval_m=interval, bidirectional=bidirectional)
+    for d in ("+", "-") if bidirectional else ("mean",):
+        assert np.abs(residuals(table, c, table.nodes, d, offset=table.reference_deviation_m)).max() <= table.resolution / 2 + EPS
+
+
+# ---------------------------------------------------------------------------------- SIEMENS
+
+
+def siemens_parse(text: str) -> tuple[list[float], dict[str, float]]:
+    lines = text.splitlines()
+    assert lines[0] == "%_N_AX_EEC_INI" and lines[1] == "CHANDATA(1)" and lines[-1] == "M17"
+    values, params = [], {}
+    for line in lines[2:-1]:
+        m = re.fullmatch(r"\$AA_ENC_COMP\[0,(\d+),X1\]=(-?\d+\.\d+)", line)
+        if m:
+            assert int(m.group(1)) == len(values)
+            values.append(float(m.group(2)))
+            continue
+        m = re.fullmatch(r"\$AA_ENC_COMP_(STEP|MIN|MAX|IS_MODULO)\[0,X1\]=(-?[\d.]+)", line)
+        assert m, line
+        params[m.group(1)] = float(m.group(2))
+    return values, params
+
+
+def test_siemens_table_rules_and_residuals(curve):
+    table = siemens_table(curve, step_m=0.01)
+    values, params = siemens_parse(table.text())
+    assert params["MIN"] == 0.0 and params["STEP"] == 10.0 and params["IS_MODULO"] == 0
+    assert round((params["MAX"] - params["MIN"]) / params["STEP"]) + 1 == len(values) == 81
+    assert np.abs(residuals(table, curve, table.nodes, "mean")).max() <= table.resolution / 2 + EPS
+    # sign: a positive deviation is entered as a positive value (the axis then moves back)
+    assert values[-1] == pytest.approx(round(curve.mean[-1] / MM, 4))
+    assert "-0.0000" not in table.text()
+
+
+def test_siemens_zero_at_reference_and_limits(curve):
+    table = siemens_table(curve, step_m=0.05, zero_at_m=0.0)
+    assert table.values_mm[0] == 0.0
+    assert np.abs(residuals(table, curve, table.nodes, "mean", offset=float(curve.at(0.0, "mean")))).max() <= table.resolution / 2 + EPS
+    with pytest.raises(AxiscalError, match="MD38000"):
+        siemens_table(curve, step_m=0.0005)
+    with pytest.raises(AxiscalError, match="positive"):
+        siemens_table(curve, step_m=0.0)
+    with pytest.raises(AxiscalError, match="machine axis"):
+        siemens_table(curve, step_m=0.01, axis="X 1")
+
+
+# ---------------------------------------------------------------------------------- HEIDENHAIN
+
+
+def test_heidenhain_table_rules_and_residuals(curve):
+    table = heidenhain_table(curve)
+    lines = table.text().splitlines()
+    assert lines[0] == "BEGIN X.COM MM" and lines[-1] == "[END]"
+    assert lines[1].split() == ["NR", "AXISPOS", "X", "BACKLASH"]
+    rows = np.array([[float(c) for c in line.split()] for line in lines[2:-1]])
+    assert rows.shape == (17, 4) and np.all(np.diff(rows[:, 1]) > 0) and rows[:, 0].tolist() == list(range(17))
+    assert rows[:, 3] == pytest.approx((curve.down - curve.up) / MM, abs=1.01e-4)  # = -B_i
+    # + uses one rounded value, - the sum of two: within one resolution step
+    assert np.abs(residuals(table, curve, curve.positions, "+")).max() <= table.resolution / 2 + EPS
+    assert np.abs(residuals(table, curve, curve.positions, "-")).max() <= table.resolution + EPS
+    mean_table = heidenhain_table(curve, backlash=False)
+    assert mean_table.text().splitlines()[1].split() == ["NR", "AXISPOS", "X"]
+    assert np.abs(residuals(mean_table, curve, curve.positions, "mean")).max() <= table.resolution / 2 + EPS
+
+
+def test_heidenhain_limits():
+    x = np.linspace(0, 1, 257)
+    with pytest.raises(AxiscalError, match="at most 256"):
+        heidenhain_table(ErrorCurve(x, np.zeros(257), np.zeros(257)))
+    with pytest.raises(AxiscalError, match="not an axis"):
+        heidenhain_table(ErrorCurve(x[:3], np.zeros(3), np.zeros(3)), axis="1")
+
+
+def test_error_curve_directions(curve):
+    assert curve.at(curve.positions, "mean") == pytest.approx(curve.mean)
+    with pytest.raises(AxiscalError, match="unknown direction"):
+        curve.at(0.1, "sideways")
+
+
+# ---------------------------------------------------------------------------------- command line
+
+
+@pytest.mark.parametrize("fmt", ["linuxcnc", "fanuc", "siemens", "heidenhain"])
+def test_compensate_command(run_cli, examples, tmp_path, fmt):
+    out_file = tmp_path / f"table.{fmt}"
+    status, out, err = run_cli("compensate", examples / "positioning_run.csv", "--format", fmt, "-o", out_file)
+    assert status == 0 and out == ""
+    assert "largest error left" in err
+    assert out_file.read_text()
+    status, out, _ = run_cli("compensate", examples / "positioning_run.csv", "--format", fmt)
+    assert status == 0 and out == out_file.read_text()
+
+
+def test_compensate_linuxcnc_output_is_readable_by_linuxcnc(run_cli, examples):
+    status, out, _ = run_cli("compensate", examples / "laser_raw_run.csv", "--format", "linuxcnc", "--comp-type", "0")
+    assert status == 0 and parse_linuxcnc(out).shape == (17, 3)
+
+
+def test_compensate_bad_input(run_cli, examples, tmp_path):
+    status, _, err = run_cli("compensate", examples / "positioning_run.csv", "--format", "fanuc", "--magnification", "0")
+    assert status == 2 and "1..100" in err and err.count("\n") == 1
+    status, _, err = run_cli("compensate", examples / "positioning_run.csv", "--format", "okuma")
+    assert status == 2
+    bad = tmp_path / "bad.csv"
+    bad.write_text("target_mm,run,direction,deviation_um\n0,1,+,1\n0,1,-,x\n")
+    status, _, err = run_cli("compensate", bad, "--format", "linuxcnc")
+    assert status == 2 and err.startswith(f"axiscal: error: {bad}:3:")
+
+
+# ------------------------------------------------------------ each file read back as its control reads it
+# The residual tests above use the table objects; these read the written text alone (nothing of the
+# object), rebuild the correction the control applies from it, and apply it to the measured means.
+
+
+def fanuc_control(text: str, *, reference_position_m: float, unit_m: float, increment_m: float = 1e-6):
+    """FANUC pitch error compensation from the parameter tape: returns correction(x, direction) in metres.
+
+    Point N sits at reference + (N - 3620) * 3624; its value is the change of the correction over
+    the section N-1 .. N; the correction is 0 at the reference (3627 for - travel, bidirectional)."""
+    params, data = tape(text)
+    ref, first, last = params[3620], params[3621], params[3622]
+    unit = params[3623] * unit_m
+    numbers = np.arange(first - 1, last + 1)
+    nodes = reference_position_m + (numbers - ref) * params[3624] * increment_m
+
+    def absolute(point_value, at_reference):
+        steps = np.array([point_value(n) for n in numbers[1:]])
+        cumulative = np.concatenate([[0], np.cumsum(steps)])
+        return (cumulative - cumulative[ref - (first - 1)] + at_reference) * unit
+
+    plus = absolute(lambda n: data[n], 0)
+    minus = absolute(lambda n: data[params[3626] + n - first], params[3627]) if 3626 in params else plus
+    return lambda x, d: np.interp(x, nodes, plus if d == "+" else minus), nodes
+
+
+@pytest.mark.parametrize("bidirectional", [False, True])
+@pytest.mark.parametrize("seed", [None, 1, 2])
+def test_fanuc_tape_applied_as_the_control_does(curve, bidirectional, seed):
+    c = curve if seed is None else random_curve(np.random.default_rng(seed))
+    reference = float(c.positions[0]) + 0.2
+    table = fanuc_table(c, interval_m=0.025, reference_position_m=reference, bidirectional=bidirectional)
+    correction, nodes = fanuc_control(table.text(), reference_position_m=reference, unit_m=1e-6)
+    for d in "+-":
+        e = c.at(nodes, d if bidirectional else "mean")
+        # the table is zero at the reference (3627 relative to it): a deviation there is the reference setting's
+        e_ref = float(c.at(reference, "+" if bidirectional else "mean"))
+        assert np.abs(e - e_ref + correction(nodes, d)).max() <= 0.5e-6 + EPS
+    assert table.correction(nodes, "-") == pytest.approx(correction(nodes, "-"), abs=1e-15)
+
+
+def siemens_control(text: str):
+    """SINUMERIK MSEC from the INI text: correction(x) = -(value interpolated over MIN + i STEP), mm -> m."""
+    values, params = siemens_parse(text)
+    nodes = params["MIN"] + params["STEP"] * np.arange(len(values))
+    assert nodes[-1] == pytest.approx(params["MAX"])
+    return lambda x: -np.interp(x / MM, nodes, values) * MM, nodes * MM
+
+
+@pytest.mark.parametrize("seed", [None, 1, 2])
+def test_siemens_file_applied_as_the_control_does(curve, seed):
+    c = curve if seed is None else random_curve(np.random.default_rng(seed))
+    table = siemens_table(c, step_m=0.005)
+    correction, nodes = siemens_control(table.text())
+    # a positive value moves the axis negative (K3): what is left is e + correction, within 0.05 um
+    assert np.abs(c.at(nodes, "mean") + correction(nodes)).max() <= 0.05e-6 + EPS
+
+
+def heidenhain_control(text: str):
+    """HEIDENHAIN .COM from its text: the control subtracts the error column (plus BACKLASH in -)."""
+    lines = text.splitlines()
+    header = lines[1].split()
+    rows = np.array([[float(cell) for cell in line.split()] for line in lines[2:-1]])
+    position, error = rows[:, 1], rows[:, 2]
+    extra = rows[:, 3] if "BACKLASH" in header else np.zeros_like(error)
+    return lambda x, d: -np.interp(x / MM, position, error + (extra if d == "-" else 0.0)) * MM
+
+
+@pytest.mark.parametrize("backlash", [True, False])
+@pytest.mark.parametrize("seed", [None, 1, 2])
+def test_heidenhain_file_applied_as_the_control_does(curve, backlash, seed):
+    c = curve if seed is None else random_curve(np.random.default_rng(seed))
+    correction = heidenhain_control(heidenhain_table(c, backlash=backlash).text())
+    for d in "+-":
+        e = c.at(c.positions, d if backlash else "mean")
+        # + reads one rounded value, - the sum of two: within one step of 0.1 um
+        assert np.abs(e + correction(c.positions, d)).max() <= (0.05e-6 if d == "+" or not backlash else 0.1e-6) + EPS
+
+
+@pytest.mark.parametrize(
+    "fmt,option",
+    [("linuxcnc", ["--bidirectional"]), ("heidenhain", ["--interval-mm", "10"]), ("fanuc", ["--no-backlash"]),
+     ("siemens", ["--comp-type", "0"]), ("linuxcnc", ["--axis", "X"])],
+)
+def test_an_option_of_another_format_is_refused_not_ignored(run_cli, examples, fmt, option):
+    status, out, err = run_cli("compensate", examples / "positioning_run.csv", "--format", fmt, *option)
+    assert status == 2 and out == "" and f"{option[0]} applies to --format" in err and err.count("\n") == 1

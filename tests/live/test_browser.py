@@ -1,0 +1,226 @@
+"""The dashboard in a real browser: headless Chromium shows live values equal to the pipeline's own numbers.
+
+Chromium is driven over the DevTools protocol (``--remote-debugging-port``) with the ``websockets``
+package; nothing else is needed. Without Chromium this test fails (CI installs it: .ci/run).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import subprocess
+import threading
+import time
+from pathlib import Path
+
+import httpx
+import numpy as np
+import pytest
+from websockets.sync.client import connect
+
+from axiscal.live.pipeline import Pipeline
+from axiscal.live.recorder import Recorder, read_record
+from axiscal.live.server import LiveServer, create_app
+from axiscal.live.sources import SimSource
+from axiscal.live.state import LiveState, result_columns
+from axiscal.measurement.virtual import VirtualModule
+
+CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
+FLAGS = (
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--remote-debugging-address=127.0.0.1",
+    "--remote-debugging-port=0",
+)
+
+READ_PAGE = """(() => {
+  if (!document.getElementById("v-t_s")) return "null";
+  const value = id => document.getElementById(id).dataset.value;
+  const text = id => document.getElementById(id).textContent;
+  const names = ["t_s", "ex_um", "ey_um", "ez_um", "e_um", "px_mm", "py_mm", "pz_mm"];
+  const inked = (id, rgb) => {
+    const canvas = document.getElementById(id);
+    if (!canvas) return 0;
+    const data = canvas.getContext("2d").getImageData(0, 0, canvas.width, canvas.height).data;
+    let count = 0;
+    for (let i = 0; i < data.length; i += 4) {
+      if (Math.abs(data[i] - rgb[0]) < 40 && Math.abs(data[i + 1] - rgb[1]) < 40 && Math.abs(data[i + 2] - rgb[2]) < 40 && data[i + 3] > 100) count++;
+    }
+    return count;
+  };
+  return JSON.stringify({
+    version: Number(document.body.dataset.version),
+    values: Object.fromEntries(names.map(n => [n, value("v-" + n)])),
+    texts: Object.fromEntries(names.map(n => [n, text("v-" + n)])),
+    frames: text("frames"),
+    connection: text("connection"),
+    sensors: Array.from(document.querySelectorAll("#sensors tr")).map(r => [r.cells[0].textContent, r.dataset.state]),
+    sensorSummary: text("sensor-summary"),
+    stale: text("stale"),
+    historyInk: inked("history", [214, 39, 40]),
+    profileInk: inked("profile-EXX_um", [31, 119, 180]),
+    profiles: document.querySelectorAll("canvas[id^=profile-]").length,
+  });
+})()"""
+
+
+ERROR_KINDS = """JSON.stringify(Object.fromEntries(
+  ["EXX", "EYX", "EZX", "EAX", "EBX", "ECX", "EXZ", "EYZ", "EZZ", "EAZ", "EBZ", "ECZ"].map(s => [s, errorKind(s, s[2])])))"""
+
+
+class DevTools:
+    """A minimal DevTools-protocol client for one page: commands with ids, events kept."""
+
+    def __init__(self, socket):
+        self.socket = socket
+        self.next_id = 0
+        self.events: list[dict] = []
+
+    def call(self, method: str, **params) -> dict:
+        self.next_id += 1
+        self.socket.send(json.dumps({"id": self.next_id, "method": method, "params": params}))
+        deadline = time.monotonic() + 10.0
+        while time.monotonic() < deadline:
+            message = json.loads(self.socket.recv(timeout=10.0))
+            if message.get("id") == self.next_id:
+                assert "error" not in message, message
+                return message["result"]
+            self.events.append(message)
+        raise TimeoutError(method)
+
+    def evaluate(self, expression: str):
+        result = self.call("Runtime.evaluate", expression=expression, returnByValue=True)
+        assert "exceptionDetails" not in result, result
+        return result["result"].get("value")
+
+
+def _start_chromium(profile: Path) -> tuple[subprocess.Popen, int]:
+    assert Path(CHROMIUM).exists(), "headless Chromium is needed for the dashboard test: apt-get install chromium"
+    process = subprocess.Popen(
+        [CHROMIUM, *FLAGS, f"--user-data-dir={profile}", "about:blank"],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )
+    port_file = profile / "DevToolsActivePort"
+    deadline = time.monotonic() + 20.0
+    while time.monotonic() < deadline and process.poll() is None:
+        if port_file.exists() and port_file.read_text().count("\n") >= 1:
+            return process, int(port_file.read_text().split("\n")[0])
+        time.sleep(0.05)
+    _stop_chromium(process)
+    raise AssertionError("Chromium did not open its DevTools port")
+
+
+def _stop_chromium(process: subprocess.Popen) -> None:
+    if process.poll() is None:
+        os.killpg(process.pid, signal.SIGTERM)
+        try:
+            process.wait(timeout=5)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait(timeout=5)
+
+
+class PsdDropsOut:
+    """The virtual module, but the X axis' PSD (channel x_psd_y_um) reads nothing from ``from_s`` on."""
+
+    def __init__(self, module):
+        self.module = module
+        self.from_s = np.inf
+
+    def frames(self, t_s, *, path="diagonal"):
+        frames, truth = self.module.frames(t_s, path=path)
+        frames["x_psd_y_um"] = np.where(t_s >= self.from_s, np.nan, frames["x_psd_y_um"])
+        return frames, truth
+
+
+@pytest.fixture(scope="module")
+def module():
+    return VirtualModule(seed=0)
+
+
+def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, module):
+    system = module.measurement_system()
+    record_path = tmp_path / "live.csv"
+    recorder = Recorder(record_path, system.channels, result_columns(system.axes))
+    state = LiveState(system)
+    instrument = PsdDropsOut(module)
+    source = SimSource(instrument, system.channels, rate_hz=1000.0)
+    pipeline = Pipeline(system, source, recorder=recorder, state=state)
+    stop = threading.Event()
+    runner = threading.Thread(target=pipeline.run, kwargs={"stop": stop, "duration_s": 30.0})
+    server = LiveServer(create_app(state, update_hz=10.0), port=0).start()
+    runner.start()
+    browser, debug_port = _start_chromium(tmp_path / "profile")
+    seen: list[dict] = []
+    try:
+        targets = httpx.get(f"http://127.0.0.1:{debug_port}/json/list", timeout=10).json()
+        page = next(t for t in targets if t["type"] == "page")
+        with connect(page["webSocketDebuggerUrl"], max_size=None, open_timeout=10) as socket:
+            tools = DevTools(socket)
+            tools.call("Runtime.enable")
+            tools.call("Page.navigate", url=server.url)
+            deadline = time.monotonic() + 20.0
+            while time.monotonic() < deadline:
+                shown = json.loads(tools.evaluate(READ_PAGE))
+                if shown and shown["version"] > 0 and shown["values"]["t_s"] and shown["historyInk"] > 50 and shown["profileInk"] > 50:
+                    seen.append(shown)
+                    if len(seen) >= 2 and seen[-1]["values"]["t_s"] != seen[0]["values"]["t_s"]:
+                        break
+                time.sleep(0.2)
+            kinds = json.loads(tools.evaluate(ERROR_KINDS))
+            # then a sensor drops out: the page must say so and mark the point's values as old
+            instrument.from_s = time.monotonic() - source.clock_offset_s
+            faulty = None
+            deadline = time.monotonic() + 20.0
+            while time.monotonic() < deadline:
+                shown = json.loads(tools.evaluate(READ_PAGE))
+                if shown["stale"] and shown["sensorSummary"].startswith("1 of"):
+                    faulty = shown
+                    break
+                time.sleep(0.2)
+        errors = [e for e in tools.events if e.get("method") == "Runtime.exceptionThrown"]
+    finally:
+        _stop_chromium(browser)
+        stop.set()
+        runner.join(timeout=5)
+        server.stop()
+        recorder.close()
+    assert not errors, errors
+    assert len(seen) >= 2, "the page did not show live values that change"
+    shown = seen[-1]
+    assert float(shown["values"]["t_s"]) > float(seen[0]["values"]["t_s"])
+    assert shown["connection"] == "live"
+    assert int(shown["frames"]) > 0
+    assert shown["profiles"] == 12
+    assert shown["sensors"] == [[name, "ok"] for name in system.channels]
+    assert shown["sensorSummary"] == f"all {len(system.channels)} ok" and shown["stale"] == ""
+    assert faulty is not None, "the page did not show the sensor that dropped out"
+    assert faulty["sensorSummary"] == f"1 of {len(system.channels)} faulty: x_psd_y_um missing"
+    assert faulty["sensors"] == [[name, "missing" if name == "x_psd_y_um" else "ok"] for name in system.channels]
+    assert float(faulty["values"]["t_s"]) < instrument.from_s  # the last good frame's values, shown as old
+    assert faulty["stale"].startswith("no good frame for ")
+    # the charts' titles name each ISO 230-1 error motion by what it is (docs/conventions.md)
+    assert kinds == {
+        "EXX": "positioning", "EYX": "straightness", "EZX": "straightness", "EAX": "roll", "EBX": "pitch", "ECX": "yaw",
+        "EXZ": "straightness", "EYZ": "straightness", "EZZ": "positioning",
+        "EAZ": "tilt about X", "EBZ": "tilt about Y", "ECZ": "roll",
+    }
+    record = read_record(record_path)
+    for values, texts in ((s["values"], s["texts"]) for s in seen):
+        rows = np.flatnonzero(np.abs(record.columns["t_s"] - float(values["t_s"])) < 1e-7)
+        assert len(rows) == 1, values["t_s"]
+        for name in ("ex_um", "ey_um", "ez_um", "e_um", "px_mm", "py_mm", "pz_mm"):
+            recorded = record.columns[name][rows[0]]
+            assert float(values[name]) == pytest.approx(recorded, rel=1e-8, abs=1e-9), name
+            digits = 3 if name.endswith("_um") else 4
+            assert float(texts[name]) == pytest.approx(recorded, abs=0.6 * 10.0**-digits), name

@@ -1,0 +1,161 @@
+"""The dashboard server: page and assets from the package, state over the WebSocket, a slow client never slows the pipeline."""
+
+from __future__ import annotations
+
+import base64
+import json
+import os
+import socket
+import threading
+import time
+
+import httpx
+import numpy as np
+import pytest
+from websockets.sync.client import connect
+
+from axiscal.errors import AxiscalError
+from axiscal.live.pipeline import Pipeline
+from axiscal.live.protocol import FrameBatch
+from axiscal.live.recorder import Recorder, read_record
+from axiscal.live.server import LiveServer, create_app
+from axiscal.live.sources import SimSource
+from axiscal.live.state import LiveState, axis_error_columns, result_columns
+
+
+def _fed_state(module, system, recorder=None):
+    state = LiveState(system)
+    pipeline = Pipeline(system, SimSource(module, system.channels, rate_hz=20000.0), state=state, recorder=recorder)
+    deadline = time.monotonic() + 5.0
+    while pipeline.frames < 2000 and time.monotonic() < deadline:
+        pipeline.step(0.02)
+    return state, pipeline
+
+
+def test_page_assets_config_and_state_are_served_without_internet(module, system):
+    state, _ = _fed_state(module, system)
+    server = LiveServer(create_app(state, update_hz=20.0), port=0).start()
+    with server, httpx.Client(base_url=server.url) as client:
+        page = client.get("/")
+        assert page.status_code == 200 and "axiscal live" in page.text
+        assert "http" not in page.text.replace("http-equiv", "")
+        for asset in ("app.js", "plot.js", "style.css"):
+            response = client.get(f"/static/{asset}")
+            assert response.status_code == 200 and len(response.text) > 500
+            assert "https://" not in response.text and "http://" not in response.text
+        config = client.get("/api/config").json()
+        assert config["channels"] == list(system.channels) and config["axes"] == ["X", "Z"]
+        with connect(f"ws://127.0.0.1:{server.port}/ws") as websocket:
+            first = json.loads(websocket.recv(timeout=5.0))
+            second = json.loads(websocket.recv(timeout=5.0))
+        assert second["version"] > first["version"]
+        assert second["frames"] >= 2000
+        latest = second["latest"]
+        assert {"ex_um", "ey_um", "ez_um", "e_um", "px_mm", "py_mm", "pz_mm", "t_s"} <= set(latest)
+        assert [s["name"] for s in second["sensors"]] == list(system.channels)
+        assert all(s["state"] == "ok" for s in second["sensors"])
+        profile = second["axes"]["X"]
+        assert set(profile["errors"]) == set(axis_error_columns("X"))
+        assert np.isfinite([v for v in profile["errors"]["EXX_um"] if v is not None]).all()
+        assert client.get("/api/state").json()["frames"] >= 2000
+
+
+def test_snapshot_latest_is_the_last_good_frame_the_pipeline_recorded(tmp_path, module, system):
+    recorder = Recorder(tmp_path / "r.csv", system.channels, result_columns(system.axes))
+    state, pipeline = _fed_state(module, system, recorder)
+    recorder.close()
+    snapshot = state.snapshot()
+    record = read_record(tmp_path / "r.csv")
+    assert snapshot["frames"] == pipeline.frames == len(record)
+    row = int(np.flatnonzero(np.abs(record.columns["t_s"] - snapshot["latest"]["t_s"]) < 1e-7)[-1])
+    assert row == len(record) - 1
+    for name in ("ex_um", "ey_um", "ez_um", "e_um", "px_mm", "py_mm", "pz_mm", "x_mm", "EXX_um", "ECZ_urad"):
+        assert snapshot["latest"][name] == pytest.approx(record.columns[name][row], rel=1e-8, abs=1e-9), name
+    assert len([t for t in snapshot["history"]["t_s"] if t is not None]) >= 2
+
+
+def _silent_websocket(port: int) -> socket.socket:
+    """A client that completes the WebSocket handshake and then never reads anything."""
+    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
+    sock.connect(("127.0.0.1", port))
+    key = base64.b64encode(os.urandom(16)).decode()
+    request = (
+        f"GET /ws HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+        f"Sec-WebSocket-Key: {key}\r\nSec-WebSocket-Version: 13\r\n\r\n"
+    )
+    sock.sendall(request.encode())
+    return sock
+
+
+def test_a_client_that_does_not_read_neither_slows_the_pipeline_nor_queues_states(module, system):
+    rate = 2000.0
+    state = LiveState(system, bins=2000, history_points=4000)  # large states fill the socket buffers fast
+    pipeline = Pipeline(system, SimSource(module, system.channels, rate_hz=rate), state=state)
+    app = create_app(state, update_hz=50.0)
+    server = LiveServer(app, port=0).start()
+    stop = threading.Event()
+    runner = threading.Thread(target=pipeline.run, kwargs={"stop": stop, "duration_s": 10.0})
+    silent = _silent_websocket(server.port)
+    start = time.monotonic()
+    runner.start()
+    try:
+        received = 0
+        with connect(f"ws://127.0.0.1:{server.port}/ws", max_size=None) as reader:
+            while time.monotonic() - start < 2.5:
+                latest = json.loads(reader.recv(timeout=5.0))
+                newest = app.state.broadcaster.version
+                received += 1
+            clients = list(app.state.broadcaster.clients)
+        frames = pipeline.frames
+        due = rate * (time.monotonic() - pipeline.source.clock_offset_s)  # frames the sim source had made due by now
+        deadline = time.monotonic() + 2.0
+        while len(app.state.broadcaster.clients) > 1 and time.monotonic() < deadline:
+            time.sleep(0.01)
+        remaining = list(app.state.broadcaster.clients)
+    finally:
+        stop.set()
+        runner.join(timeout=5)
+        server.stop()
+        silent.close()
+    slow, fast = sorted(clients, key=lambda c: c.sent)
+    # generous margins: a busy 2-core machine may hold any thread back for a while, but a pipeline that
+    # waited for the silent client would stop for good, and a queue for the reader would grow by the second
+    assert frames >= due - 0.5 * rate
+    assert received >= 10
+    assert newest - latest["version"] <= 10
+    assert slow.sent < fast.sent / 2
+    assert newest - slow.version > 20
+    assert remaining == [slow]  # a client that left is forgotten
+
+
+def test_server_refuses_a_port_in_use(module, system):
+    state = LiveState(system)
+    holder = socket.socket()
+    holder.bind(("127.0.0.1", 0))
+    holder.listen(1)
+    try:
+        with pytest.raises(AxiscalError, match="cannot listen"):
+            LiveServer(create_app(state), port=holder.getsockname()[1]).start()
+    finally:
+        holder.close()
+
+
+def test_faulty_frames_leave_a_gap_in_the_history_and_keep_the_last_good_values(module, system):
+    state = LiveState(system, history_s=2.0, history_points=200)  # one history sample per 10 ms
+    t = np.arange(1000) / 1000.0
+    frames, _ = module.frames(t)
+    frames["x_psd_y_um"][600:] = np.nan  # the PSD drops out at 0.6 s and stays out
+    batch = FrameBatch.from_frames(frames, system.channels)
+    results = system.process(batch.frames(system.channels))
+    state.update(batch, results["fault"], results)
+    snapshot = state.snapshot()
+    history_t = np.array(snapshot["history"]["t_s"], dtype=float)
+    history_e = np.array([np.nan if v is None else v for v in snapshot["history"]["e_um"]])
+    assert history_t[0] == 0.0 and history_t[-1] > 0.98 and np.all(np.diff(history_t) < 0.0125)  # faulty frames keep their time
+    assert np.isfinite(history_e[history_t < 0.6]).all() and np.isnan(history_e[history_t >= 0.6]).all()
+    assert snapshot["t_s"] == pytest.approx(0.999) and snapshot["latest"]["t_s"] == pytest.approx(0.599)
+    assert snapshot["latest"]["e_um"] == pytest.approx(results["e_um"][599], rel=1e-12)
+    assert snapshot["faults"] == 400 and snapshot["last_fault_text"] == "missing channel"
+    psd = next(s for s in snapshot["sensors"] if s["name"] == "x_psd_y_um")
+    assert psd["state"] == "missing" and psd["missing"] == 400 and psd["value"] is None
