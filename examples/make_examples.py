@@ -35,8 +35,8 @@ def xz_module() -> None:
     """Error tables of the XZ module: the true error motions of the virtual module of
     :mod:`axiscal.measurement.virtual` (seed 0, no load) sampled every 10 mm, so that the demo's offline model
     and its simulated live measurement describe one and the same module."""
+    from axiscal.conventions import component_names
     from axiscal.measurement.virtual import VirtualModule
-    from axiscal.model.tables import component_names
 
     module = VirtualModule(seed=0, noise=False)
     q = np.arange(0.0, 191.0, 10.0)

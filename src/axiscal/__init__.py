@@ -5,9 +5,9 @@ use the units people use, spelled out in names (``position_mm``, ``EXX_um``, ``-
 """
 
 from axiscal.errors import AxiscalError
+from axiscal.version import __version__ as __version__
 
 __all__ = ["AxiscalError", "load_machine", "Machine"]
-__version__ = "0.1.0"
 
 
 def __getattr__(name: str):

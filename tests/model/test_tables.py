@@ -7,8 +7,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from axiscal.conventions import component_names
 from axiscal.errors import AxiscalError
-from axiscal.model.tables import ErrorTable, component_names, read_error_table
+from axiscal.model.tables import ErrorTable, read_error_table
 from axiscal.units import ARCSEC
 
 

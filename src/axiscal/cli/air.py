@@ -15,6 +15,7 @@ from axiscal.instruments.interferometer import (
     compensated_length,
     length_from_fringes,
 )
+from axiscal.materials import STEEL_EXPANSION_PER_K
 from axiscal.units import MM
 
 __all__ = ["air_command", "fringes_command", "register"]
@@ -90,7 +91,7 @@ def air_command(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm
 @click.option("--interpolation", type=click.IntRange(min=1), default=1, show_default=True, help="Counts per fringe.")
 @_air_options
 @click.option("--material-temperature-c", type=float, multiple=True, help="Material temperature, degC; repeat for several sensors (averaged).")
-@click.option("--expansion-per-k", type=float, default=11.5e-6, show_default=True, help="Material expansion coefficient, 1/K.")
+@click.option("--expansion-per-k", type=float, default=STEEL_EXPANSION_PER_K, show_default=True, help="Material expansion coefficient, 1/K.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of text.")
 def fringes_command(
     counts,

@@ -7,6 +7,7 @@ import numpy as np
 
 from axiscal.cli.common import echo_json
 from axiscal.errors import AxiscalError
+from axiscal.materials import STEEL_EXPANSION_PER_K
 from axiscal.positioning.evaluation import (
     STANDARDS,
     Iso230Result,
@@ -21,7 +22,7 @@ from axiscal.units import MM, UM
 __all__ = ["evaluate_file", "payload", "report", "positioning_command", "register"]
 
 
-def evaluate_file(path: str, standard: str, *, wavelength_nm: float | None = None, expansion_per_k: float = 11.5e-6):
+def evaluate_file(path: str, standard: str, *, wavelength_nm: float | None = None, expansion_per_k: float = STEEL_EXPANSION_PER_K):
     """Read a run file and evaluate it to ``standard``; return (RunFile, result)."""
     data = read_positioning_run(path, wavelength_nm=wavelength_nm, expansion_per_k=expansion_per_k)
     if standard == "vdi3441":
@@ -97,7 +98,7 @@ def report(data, result: Iso230Result | Vdi3441Result) -> str:
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (figures in um, per-target arrays).")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write the positioning plot to this file.")
 @click.option("--wavelength-nm", type=float, default=None, help="Vacuum wavelength for raw laser readings [632.991].")
-@click.option("--expansion-per-k", type=float, default=11.5e-6, show_default=True,
+@click.option("--expansion-per-k", type=float, default=STEEL_EXPANSION_PER_K, show_default=True,
               help="Material expansion coefficient for material_temperature_c normalisation to 20 degC.")
 def positioning_command(run_csv, standard, as_json, plot_path, wavelength_nm, expansion_per_k):
     """Evaluate a bidirectional positioning test (RUN_CSV: target_mm, run, direction, deviation_um or actual_mm)."""

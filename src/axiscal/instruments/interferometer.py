@@ -24,6 +24,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.instruments.air import refractive_index
+from axiscal.materials import STEEL_EXPANSION_PER_K
 
 __all__ = [
     "HENE_WAVELENGTH_NM",
@@ -121,7 +122,7 @@ def fringes_from_length(
     return _finite("length", length_m) / unit
 
 
-def normalise_to_20c(length_m, material_temperature_c, *, expansion_per_k=11.5e-6) -> np.ndarray:
+def normalise_to_20c(length_m, material_temperature_c, *, expansion_per_k=STEEL_EXPANSION_PER_K) -> np.ndarray:
     """Length of a part at the ISO 1 reference temperature of 20 degC, in metres.
 
     ``L20 = Lt / (1 + alpha (t - 20))``.
@@ -151,7 +152,7 @@ def compensated_length(
     pressure_pa,
     humidity_pct,
     material_temperature_c=None,
-    expansion_per_k=11.5e-6,
+    expansion_per_k=STEEL_EXPANSION_PER_K,
     wavelength_nm=HENE_WAVELENGTH_NM,
     co2_ppm=450.0,
     method: str = "ciddor",

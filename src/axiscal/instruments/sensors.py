@@ -25,9 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from axiscal.conventions import AXIS_INDEX, component_names
 from axiscal.errors import AxiscalError
-from axiscal.model.kinematics import AXIS_INDEX
-from axiscal.model.tables import component_names
 
 __all__ = [
     "straightness_from_psd",
@@ -69,7 +68,7 @@ def autocollimation_shift(roll_rad: np.ndarray, focal_m: float) -> np.ndarray:
 
 @dataclass(frozen=True)
 class SignedComponent:
-    """An error component index (0..5 in the order of :func:`axiscal.model.tables.component_names`) and a sign."""
+    """An error component index (0..5 in the order of :func:`axiscal.conventions.component_names`) and a sign."""
 
     index: int
     sign: float

@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.conventions import component_names
 from axiscal.errors import AxiscalError
 from axiscal.instruments.calibration import (
     Calibration,
@@ -35,7 +36,6 @@ from axiscal.instruments.calibration import (
 from axiscal.instruments.sensors import SensorHead, sensor_head_from_dict
 from axiscal.io.tabular import read_toml
 from axiscal.model.machine import Machine, machine_from_dict
-from axiscal.model.tables import component_names
 
 __all__ = [
     "FAULT_MISSING",

@@ -22,6 +22,7 @@ from functools import cached_property
 
 import numpy as np
 
+from axiscal.conventions import component_names
 from axiscal.errors import AxiscalError
 from axiscal.instruments.calibration import (
     Calibration,
@@ -40,7 +41,7 @@ from axiscal.measurement.pipeline import (
     spatial_error,
 )
 from axiscal.model.machine import Axis, Machine
-from axiscal.model.tables import ErrorTable, component_names
+from axiscal.model.tables import ErrorTable
 from axiscal.units import ARCSEC
 
 __all__ = [

@@ -9,7 +9,6 @@ from axiscal.model.diagonal import (
     diagonal_positions,
 )
 from axiscal.model.kinematics import (
-    AXIS_INDEX,
     ChainLink,
     error_matrix,
     link_matrix,
@@ -19,7 +18,6 @@ from axiscal.model.kinematics import (
 )
 from axiscal.model.machine import (
     SQUARENESS_PLACEMENTS,
-    SQUARENESS_TERMS,
     Axis,
     Machine,
     axis_positions_from_grid,
@@ -34,30 +32,18 @@ from axiscal.model.plot import (
     plot_error_tables,
     plot_volumetric,
 )
-from axiscal.model.tables import (
-    COMPONENT_KINDS,
-    INTERPOLATIONS,
-    LETTERS,
-    ErrorTable,
-    component_names,
-    read_error_table,
-)
+from axiscal.model.tables import INTERPOLATIONS, ErrorTable, read_error_table
 
 __all__ = [
-    "LETTERS",
-    "COMPONENT_KINDS",
     "INTERPOLATIONS",
-    "component_names",
     "ErrorTable",
     "read_error_table",
-    "AXIS_INDEX",
     "ChainLink",
     "volumetric_error",
     "translation_matrix",
     "error_matrix",
     "link_matrix",
     "reference_volumetric_error",
-    "SQUARENESS_TERMS",
     "SQUARENESS_PLACEMENTS",
     "Axis",
     "parse_chain",

@@ -29,10 +29,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from axiscal.conventions import AXIS_INDEX
 from axiscal.model.tables import ErrorTable
 
 __all__ = [
-    "AXIS_INDEX",
     "ChainLink",
     "volumetric_error",
     "translation_matrix",
@@ -40,9 +40,6 @@ __all__ = [
     "link_matrix",
     "reference_volumetric_error",
 ]
-
-AXIS_INDEX = {"X": 0, "Y": 1, "Z": 2}
-
 
 @dataclass(frozen=True)
 class ChainLink:

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.conventions import SQUARENESS_TERMS
 from axiscal.errors import AxiscalError
 from axiscal.io.tabular import read_toml
 from axiscal.model.kinematics import (
@@ -28,7 +29,6 @@ from axiscal.model.tables import ErrorTable, read_error_table
 from axiscal.units import angle_factor, split_unit
 
 __all__ = [
-    "SQUARENESS_TERMS",
     "SQUARENESS_PLACEMENTS",
     "Axis",
     "parse_chain",
@@ -39,7 +39,6 @@ __all__ = [
     "positions_from_points",
 ]
 
-SQUARENESS_TERMS = ("EC0Y", "EB0Z", "EA0Z")
 _CHUNK = 65536
 #: squareness term -> (axis whose guideway it turns, reference axis, index of the rotation vector component)
 _SQUARENESS_PLACE = {"EC0Y": ("Y", "X", 2), "EB0Z": ("Z", "X", 1), "EA0Z": ("Z", "Y", 0)}

@@ -1,4 +1,4 @@
-"""Plots and the written report of the volumetric model (matplotlib imported lazily, inside functions)."""
+"""Plots of the machine model: error tables, volumetric map, diagonal tests (matplotlib imported lazily)."""
 
 from __future__ import annotations
 
@@ -6,24 +6,18 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.io.figures import pyplot, save_figure
 from axiscal.model.diagonal import DiagonalResult
 from axiscal.model.machine import Machine
 
 __all__ = ["plot_error_tables", "plot_volumetric", "plot_diagonal", "plot_diagonal_experiment"]
 
 
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def plot_error_tables(machine: Machine, path: str | Path) -> None:
     """The six error motions of every axis against position (um and urad)."""
-    plt = _pyplot()
+    plt = pyplot()
     letters = machine.letters
     fig, axes = plt.subplots(len(letters), 2, figsize=(11, 3.2 * len(letters)), squeeze=False)
     for row, letter in enumerate(letters):
@@ -41,14 +35,13 @@ def plot_error_tables(machine: Machine, path: str | Path) -> None:
             ax.legend(fontsize=8, ncol=3)
     fig.suptitle(f"Error motions: {machine.name or machine.chain}")
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_figure(fig, path, dpi=120)
 
 
 def plot_volumetric(positions_m: dict[str, np.ndarray], error_m: np.ndarray, path: str | Path, *, title: str = "") -> None:
     """Map of the volumetric error: on a 2-axis grid a colour map of |e| with arrows of the in-plane
     components; otherwise |e| and its components against point number."""
-    plt = _pyplot()
+    plt = pyplot()
     magnitude_um = np.linalg.norm(error_m, axis=1) * 1e6
     moving = [k for k, q in positions_m.items() if np.ptp(q) > 0]
     fig, ax = plt.subplots(figsize=(8, 6.5))
@@ -81,13 +74,12 @@ def plot_volumetric(positions_m: dict[str, np.ndarray], error_m: np.ndarray, pat
         ax.grid(True, alpha=0.3)
         ax.set_title(title or "Volumetric error")
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_figure(fig, path, dpi=120)
 
 
 def plot_diagonal(result: DiagonalResult, path: str | Path, *, title: str = "Diagonal displacement error") -> None:
     """Paper 000 Fig. 22 style: the diagonal error before (E_BD) and after (E_AD) the model."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(8, 4.5))
     nominal_mm = result.nominal_m * 1e3
     ax.plot(nominal_mm, -result.model_error_m * 1e6, "k--", label="model prediction (nominal - predicted)")
@@ -101,14 +93,13 @@ def plot_diagonal(result: DiagonalResult, path: str | Path, *, title: str = "Dia
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=9)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_figure(fig, path, dpi=120)
 
 
 def plot_diagonal_experiment(result, path: str | Path) -> None:
     """Paper 000 Fig. 22 in simulation (:class:`axiscal.measurement.virtual.DiagonalExperiment`): the diagonal
     error before the model, with the scales only, and after the model."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(7.0, 4.2))
     diagonal_mm = np.hypot(result.x_mm, result.z_mm)
     ax.plot(diagonal_mm, result.before_um, "o-", label=f"before the model, E_BD (max {result.before_max_um:.1f} um)")
@@ -121,5 +112,4 @@ def plot_diagonal_experiment(result, path: str | Path) -> None:
     ax.legend(loc="best", fontsize=8)
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_figure(fig, path, dpi=120)

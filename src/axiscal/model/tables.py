@@ -16,27 +16,14 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.conventions import component_names
 from axiscal.errors import AxiscalError
 from axiscal.io.tabular import CsvTable, read_csv
 from axiscal.units import angle_factor, length_factor, split_unit
 
-__all__ = ["LETTERS", "COMPONENT_KINDS", "INTERPOLATIONS", "component_names", "ErrorTable", "read_error_table"]
+__all__ = ["INTERPOLATIONS", "ErrorTable", "read_error_table"]
 
-LETTERS = ("X", "Y", "Z")
-#: order of the six components everywhere in the code: translations x, y, z, then rotations a, b, c
-COMPONENT_KINDS = ("tx", "ty", "tz", "ea", "eb", "ec")
 INTERPOLATIONS = ("linear", "cubic")
-
-
-def component_names(letter: str) -> tuple[str, ...]:
-    """ISO 230-1 names of the six error motions of axis ``letter``, in the order tx, ty, tz, a, b, c.
-
-    >>> component_names("X")
-    ('EXX', 'EYX', 'EZX', 'EAX', 'EBX', 'ECX')
-    """
-    if letter not in LETTERS:
-        raise AxiscalError(f"unknown linear axis '{letter}'; axes are X, Y, Z")
-    return tuple(f"E{d}{letter}" for d in ("X", "Y", "Z", "A", "B", "C"))
 
 
 @dataclass(frozen=True)

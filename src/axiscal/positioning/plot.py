@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.figures import pyplot, save_figure
 from axiscal.positioning.evaluation import Iso230Result, PositioningRun, Vdi3441Result
 from axiscal.units import MM, UM
 
@@ -40,8 +41,6 @@ def plot_positioning(
     cannot be estimated (one run). ``compensated`` notes that raw laser readings were
     compensated for the air and the material temperature.
     """
-    from axiscal.cli.common import pyplot, write_output
-
     plt = pyplot()
     suffix = Path(path).suffix.lstrip(".").lower()
     supported = plt.figure().canvas.get_supported_filetypes()
@@ -89,7 +88,4 @@ def plot_positioning(
             cell.set_text_props(ha="left")
             cell.PAD = 0.08
     fig.tight_layout()
-    try:
-        return write_output(path, lambda target: fig.savefig(target, dpi=120))
-    finally:
-        plt.close(fig)
+    return save_figure(fig, path, dpi=120)

@@ -19,6 +19,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.tabular import CsvTable, read_csv
+from axiscal.materials import STEEL_EXPANSION_PER_K
 from axiscal.positioning.evaluation import PositioningRun
 from axiscal.units import LENGTH_UNITS
 
@@ -115,7 +116,7 @@ def read_positioning_run(
     *,
     wavelength_nm: float | None = None,
     co2_ppm: float = 450.0,
-    expansion_per_k: float = 11.5e-6,
+    expansion_per_k: float = STEEL_EXPANSION_PER_K,
     method: str = "ciddor",
 ) -> RunFile:
     """Read a bidirectional positioning test from CSV.

@@ -1,0 +1,94 @@
+"""Atomic writes: a temporary file in the target's folder, flushed to disk, then renamed over it.
+
+A failure (no permission, disk full, an exception while the content is produced) never leaves a
+half-written file and never destroys the file that was there before.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from axiscal.errors import AxiscalError
+
+__all__ = ["atomic_write", "write_text"]
+
+
+def atomic_write(path: str | Path, write: Callable[[Path], Any], *, make_parents: bool = True) -> Path:
+    """Produce ``path`` atomically: ``write(tmp)`` fills a temporary file that then replaces ``path``.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file to produce. Its folder is created when ``make_parents`` (the default).
+    write : callable
+        Called with the temporary path (in the same folder, same suffix, so that writers that pick
+        a format from the suffix, such as matplotlib, still do).
+    make_parents : bool, keyword-only
+        Create missing parent folders.
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    Raises
+    ------
+    AxiscalError
+        If the folder cannot be made or the file cannot be written; it names the file.
+    """
+    path = Path(path)
+    tmp: Path | None = None
+    try:
+        if make_parents:
+            path.parent.mkdir(parents=True, exist_ok=True)
+        if path.is_dir():
+            raise AxiscalError("is a folder, not a file", path=path)
+        fd, name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix or ".tmp", dir=path.parent)
+        os.close(fd)
+        tmp = Path(name)
+        write(tmp)
+        with open(tmp, "rb+") as handle:
+            os.fsync(handle.fileno())
+        mode = path.stat().st_mode & 0o7777 if path.exists() else 0o666 & ~_umask()
+        os.chmod(tmp, mode)
+        os.replace(tmp, path)
+        tmp = None
+        _sync_folder(path.parent)
+    except OSError as exc:
+        raise AxiscalError(f"cannot write this file: {exc.strerror or exc}", path=path) from None
+    finally:
+        if tmp is not None:
+            try:
+                tmp.unlink()
+            except OSError:
+                pass
+    return path
+
+
+def write_text(path: str | Path, text: str) -> Path:
+    """Write ``text`` (UTF-8, newlines as given) to ``path`` atomically; see :func:`atomic_write`."""
+    return atomic_write(path, lambda target: target.write_bytes(text.encode("utf-8")))
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def _sync_folder(folder: Path) -> None:
+    # the rename is durable once the folder's entry is on disk (POSIX; not possible on Windows)
+    try:
+        fd = os.open(folder, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)

@@ -1,0 +1,104 @@
+"""JSON output: plain values (NaN becomes null), atomic files, and the sidecar beside a data CSV.
+
+A data CSV that axiscal writes is plain (header first, no comment lines); what describes it (the
+method, the units, the source files, the axiscal version) is written beside it as ``NAME.json``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.io.atomic import write_text
+from axiscal.version import __version__
+
+__all__ = ["to_plain", "dumps", "write_json", "read_json", "sidecar_path", "write_sidecar"]
+
+
+def to_plain(value: Any) -> Any:
+    """``value`` with NumPy scalars and arrays turned into Python ones, non-finite floats into None."""
+    if isinstance(value, Mapping):
+        return {str(k): to_plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [to_plain(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return [to_plain(v) for v in value.tolist()]
+    if isinstance(value, (np.floating, float)):
+        value = float(value)
+        return value if math.isfinite(value) else None
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, np.bool_):
+        return bool(value)
+    if isinstance(value, Path):
+        return str(value)
+    return value
+
+
+def dumps(payload: Any) -> str:
+    """The JSON text of ``payload`` (indented, ending in a newline); NaN and infinities are null."""
+    return json.dumps(to_plain(payload), indent=2, ensure_ascii=False) + "\n"
+
+
+def write_json(path: str | Path, payload: Any) -> Path:
+    """Write ``payload`` as JSON to ``path`` atomically."""
+    return write_text(path, dumps(payload))
+
+
+def read_json(path: str | Path) -> Any:
+    """Parse a JSON file; a missing or malformed file raises AxiscalError naming the line."""
+    from axiscal.io.tabular import read_text
+
+    text = read_text(path)
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise AxiscalError(f"malformed JSON: {exc.msg}", path=path, line=exc.lineno) from None
+
+
+def sidecar_path(csv_path: str | Path) -> Path:
+    """``NAME.json`` beside ``NAME.csv``."""
+    return Path(csv_path).with_suffix(".json")
+
+
+def write_sidecar(
+    csv_path: str | Path,
+    *,
+    kind: str,
+    units: Mapping[str, str] | None = None,
+    sources: Sequence[str | Path] = (),
+    **metadata: Any,
+) -> Path:
+    """Write the JSON sidecar of a data CSV: what it is, its columns' units, its sources.
+
+    Parameters
+    ----------
+    csv_path : str or Path
+        The CSV the sidecar describes; the sidecar is ``csv_path`` with the suffix ``.json``.
+    kind : str, keyword-only
+        What the file holds, e.g. ``"separation"`` or ``"positioning plan"``.
+    units : mapping, keyword-only
+        Column name to unit, where the name alone does not say it.
+    sources : sequence of paths, keyword-only
+        The input files the CSV was computed from.
+    **metadata
+        Anything else worth keeping (method, settings, counts).
+
+    Returns
+    -------
+    Path
+        The sidecar's path.
+    """
+    payload: dict[str, Any] = {"kind": kind, "file": Path(csv_path).name, "axiscal_version": __version__}
+    if units:
+        payload["units"] = dict(units)
+    if sources:
+        payload["sources"] = [str(s) for s in sources]
+    payload.update(metadata)
+    return write_json(sidecar_path(csv_path), payload)
