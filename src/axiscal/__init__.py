@@ -2,18 +2,77 @@
 
 The Python API works in SI units (metres, radians, kelvin, pascals). Files and the command line
 use the units people use, spelled out in names (``position_mm``, ``EXX_um``, ``--pressure-pa``).
+
+The names below are the stated public API; each lives in its room (``axiscal.model``,
+``axiscal.positioning``, ...) and is imported from there on first use, so ``import axiscal``
+stays cheap.
+
+Examples
+--------
+>>> import numpy as np, axiscal
+>>> axiscal.refractive_index(20.0, 101325.0, 50.0, 632.99137)  # doctest: +ELLIPSIS
+1.000271...
 """
+
+from __future__ import annotations
+
+import importlib
+from typing import Any
 
 from axiscal.errors import AxiscalError
 from axiscal.version import __version__ as __version__
 
-__all__ = ["AxiscalError", "load_machine", "Machine"]
+#: public name -> the module that defines it
+_PUBLIC: dict[str, str] = {
+    # the machine model (paper 000, ISO 230-1)
+    "load_machine": "axiscal.model.machine",
+    "Machine": "axiscal.model.machine",
+    "ErrorTable": "axiscal.model.tables",
+    "read_error_table": "axiscal.model.tables",
+    "diagonal_check": "axiscal.model.diagonal",
+    # instruments (paper 003, Ciddor/Edlen, paper 002)
+    "refractive_index": "axiscal.instruments.air",
+    "length_from_fringes": "axiscal.instruments.interferometer",
+    "compensated_length": "axiscal.instruments.interferometer",
+    "pentaprism_deviation": "axiscal.instruments.optics",
+    # positioning (ISO 230-2, VDI/DGQ 3441)
+    "PositioningRun": "axiscal.positioning.evaluation",
+    "read_positioning_run": "axiscal.positioning.reader",
+    "iso230_2": "axiscal.positioning.evaluation",
+    "vdi3441": "axiscal.positioning.evaluation",
+    "target_statistics": "axiscal.positioning.evaluation",
+    "plan_test": "axiscal.positioning.plan",
+    # straightness and error separation (paper 001)
+    "reference_line": "axiscal.straightness.reference",
+    "separate": "axiscal.straightness.separation",
+    "reversal": "axiscal.straightness.separation",
+    "ProbeReadings": "axiscal.straightness.separation",
+    # squareness (papers 002, 004)
+    "squareness": "axiscal.squareness.evaluation",
+    "squareness_from_slopes": "axiscal.squareness.evaluation",
+    "prism_reversal": "axiscal.squareness.evaluation",
+    # compensation tables
+    "error_curve": "axiscal.compensation.curve",
+    "linuxcnc_table": "axiscal.compensation.linuxcnc",
+    "fanuc_table": "axiscal.compensation.fanuc",
+    "siemens_table": "axiscal.compensation.siemens",
+    "heidenhain_table": "axiscal.compensation.heidenhain",
+    # measurement from raw sensor frames (paper 000)
+    "MeasurementSystem": "axiscal.measurement.pipeline",
+    "VirtualModule": "axiscal.measurement.virtual",
+}
+
+__all__ = ["AxiscalError", "__version__", *_PUBLIC]
 
 
-def __getattr__(name: str):
-    # Lazy so that `import axiscal` stays cheap and the submodules import in any order.
-    if name in ("load_machine", "Machine"):
-        from axiscal.model import machine
+def __getattr__(name: str) -> Any:
+    module = _PUBLIC.get(name)
+    if module is None:
+        raise AttributeError(f"module 'axiscal' has no attribute '{name}'")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
 
-        return getattr(machine, name)
-    raise AttributeError(name)
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_PUBLIC))

@@ -11,3 +11,5 @@ The pieces (docs/live.md has the architecture):
 - :mod:`axiscal.live.server` -- the Starlette app pushing that state over a WebSocket (imports
   starlette/uvicorn; the other modules do not).
 """
+
+__all__: list[str] = []
