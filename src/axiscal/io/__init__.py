@@ -1,21 +1,25 @@
-"""The one tabular reader and writer (CSV with units in column names), TOML and JSON files, atomic writes."""
+"""The one tabular reader and writer (CSV with units in column names), TOML and JSON files, atomic
+writes, JSON sidecars, and the lazy entry to matplotlib for plots (:mod:`axiscal.io.figures`)."""
 
 from __future__ import annotations
 
-from axiscal.io.tabular import (
-    CsvTable,
-    parse_csv,
-    read_csv,
-    read_text,
-    read_toml,
-    write_csv,
-)
+from axiscal.io.atomic import atomic_write, write_text
+from axiscal.io.jsonio import dumps, read_json, sidecar_path, to_plain, write_json, write_sidecar
+from axiscal.io.tabular import CsvTable, parse_csv, read_csv, read_text, read_toml, write_csv
 
 __all__ = [
+    "atomic_write",
+    "write_text",
+    "dumps",
+    "read_json",
+    "sidecar_path",
+    "to_plain",
+    "write_json",
+    "write_sidecar",
     "CsvTable",
+    "parse_csv",
     "read_csv",
     "read_text",
-    "parse_csv",
-    "write_csv",
     "read_toml",
+    "write_csv",
 ]
