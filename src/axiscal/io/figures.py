@@ -44,8 +44,13 @@ def check_figure_path(path: str | Path) -> Path:
 def save_figure(fig: Any, path: str | Path, *, dpi: int = 120, close: bool = True) -> Path:
     """Save a matplotlib figure to ``path`` atomically (format from the suffix) and close it."""
     path = check_figure_path(path)
+    fmt = path.suffix.lstrip(".").lower()
+    # reproducible files: no creation date; SVG text stays text (small, searchable, inline-safe)
+    metadata = {"Date": None} if fmt in ("svg", "pdf", "eps", "ps") else None
+    plt = pyplot()
     try:
-        return atomic_write(path, lambda target: fig.savefig(target, dpi=dpi, format=path.suffix.lstrip(".").lower()))
+        with plt.rc_context({"svg.fonttype": "none", "svg.hashsalt": "axiscal"}):
+            return atomic_write(path, lambda target: fig.savefig(target, dpi=dpi, format=fmt, metadata=metadata))
     finally:
         if close:
             pyplot().close(fig)

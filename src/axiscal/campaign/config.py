@@ -1,0 +1,444 @@
+"""The campaign folder: ``campaign.toml`` and the data files it names, read and checked once.
+
+A campaign is what a calibration engineer does on one machine on one day: several tests (laser
+positioning runs, straightness, separation, squareness, diagonal checks, 6-DOF recordings), the
+instrument used, the tolerances agreed with the customer. :func:`load_campaign` turns the folder
+into a :class:`Campaign`; every mistake (an unknown key, a wrong type, a missing file, a path that
+leaves the folder, a kind with no data) is an :class:`~axiscal.errors.AxiscalError` naming
+``campaign.toml`` and the line. The format is documented in docs/campaign.md.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from axiscal.errors import AxiscalError
+from axiscal.io.tabular import read_text
+
+__all__ = [
+    "CAMPAIGN_FILE",
+    "KINDS",
+    "CONTROLLERS",
+    "POSITIONING_TOLERANCE_KEYS",
+    "TestSpec",
+    "Campaign",
+    "load_campaign",
+]
+
+CAMPAIGN_FILE = "campaign.toml"
+CONTROLLERS = ("linuxcnc", "fanuc", "siemens", "heidenhain")
+#: figure keys a positioning tolerance may name (um), those of ``axiscal positioning --json``
+POSITIONING_TOLERANCE_KEYS = tuple(
+    f"{k}_um" for k in ("A", "A_up", "A_down", "B", "B_mean", "E", "E_up", "E_down", "M", "R", "R_up", "R_down")
+)
+_TOLERANCE_KEYS = {"positioning": dict, "straightness_um": float, "squareness_arcsec": float, "diagonal_um": float}
+
+# option types: "str", "float", "int", "bool", "file", "floats2", ("choice", values)
+_COMMON = {"kind": "str", "id": "str", "notes": "str", "tolerances": "table"}
+#: per kind: the keys a test may carry, spelled as the options of the command of the same name
+KINDS: dict[str, dict[str, Any]] = {
+    "positioning": {
+        "axis": "axis", "file": "file",
+        "standard": ("choice", ("iso230-2:2014", "iso230-2:2006", "iso230-2:1997", "iso230-2:1988", "jis-b6192", "vdi3441")),
+        "wavelength_nm": "float", "expansion_per_k": "float",
+    },
+    "straightness": {
+        "axis": "axis", "direction": "axis", "file": "file",
+        "reference": ("choice", ("least-squares", "end-points", "minimum-zone")),
+    },
+    "separation": {
+        "axis": "axis", "direction": "axis", "file": "file",
+        "method": ("choice", ("stp", "strp", "fstrp", "gtp", "frequency", "combined", "reversal")),
+        "spacing_mm": "float", "spacing_bc_mm": "float", "reversed": "file", "two_probe": "bool",
+        "min_gain": "float", "periodic": "bool", "calibration_mm": "floats2",
+        "reference": ("choice", ("least-squares", "end-points", "minimum-zone")),
+    },
+    "squareness": {
+        "axes": "plane", "plane": "plane", "first": "file", "second": "file",
+        "prism_deviation_arcsec": "float",
+        "reference": ("choice", ("least-squares", "end-points")),
+        "convention": ("choice", ("included-angle", "iso")),
+    },
+    "diagonal": {
+        "from": "str", "to": "str", "steps": "int", "interferometer": "file", "file": "file",
+        "measure": ("choice", ("projection", "length")),
+    },
+    "sixdof": {"file": "file", "machine": "file", "axis": "axis"},
+}
+#: the data file(s) each kind cannot do without
+_REQUIRED = {
+    "positioning": ("axis", "file"),
+    "straightness": ("axis", "file"),
+    "separation": ("file",),
+    "squareness": ("first", "second"),
+    "diagonal": ("from", "to"),
+    "sixdof": ("file",),
+}
+
+
+@dataclass(frozen=True)
+class TestSpec:
+    """One ``[[tests]]`` entry, checked: its kind, axis or axes, files (absolute paths) and options.
+
+    Attributes
+    ----------
+    id : str
+        The test's name in the report and in results.json (``id`` key, else ``kind-axis-n``).
+    kind : str
+        One of :data:`KINDS`.
+    axis : str or None
+        The moving axis (``"X"``), or for squareness the plane (``"XY"``).
+    options : dict
+        Every other key, spelled as the command's option (``method``, ``spacing_mm`` ...);
+        file options hold absolute paths.
+    tolerances : dict
+        Limits for this test (merged over the campaign's ``[tolerances]``), figure key -> limit.
+    line : int
+        The line of ``[[tests]]`` in campaign.toml.
+    """
+
+    id: str
+    kind: str
+    axis: str | None
+    options: dict[str, Any]
+    tolerances: dict[str, float]
+    line: int
+
+    __test__ = False  # not a pytest test class
+
+
+@dataclass(frozen=True)
+class Campaign:
+    """A checked campaign folder.
+
+    Attributes
+    ----------
+    folder : Path
+        The campaign folder (absolute).
+    campaign, machine, instrument : dict
+        The ``[campaign]``, ``[machine]`` and ``[instrument]`` tables as written (dates as ISO strings).
+    tolerances : dict
+        The ``[tolerances]`` table.
+    tests : tuple of TestSpec
+    model : Path or None
+        The machine description (``[machine] model``), absolute.
+    controller : str or None
+        ``[machine] controller``.
+    """
+
+    folder: Path
+    campaign: dict[str, Any]
+    machine: dict[str, Any]
+    instrument: dict[str, Any]
+    tolerances: dict[str, Any]
+    tests: tuple[TestSpec, ...]
+    model: Path | None = None
+    controller: str | None = None
+    extra: dict[str, Any] = field(default_factory=dict)
+
+
+class _Lines:
+    """Where each key of a TOML file stands, so that an error can name the line."""
+
+    _header = re.compile(r"^\s*(\[\[?)\s*([A-Za-z0-9_.\-\"' ]+?)\s*\]\]?\s*(#.*)?$")
+    _key = re.compile(r"^\s*([A-Za-z0-9_\-]+|\"[^\"]*\")\s*=")
+
+    def __init__(self, text: str):
+        self.tables: dict[tuple[str, int], int] = {}
+        self.keys: dict[tuple[str, int, str], int] = {}
+        counts: dict[str, int] = {}
+        table, index = "", 0
+        for number, line in enumerate(re.split(r"\r\n|\r|\n", text), start=1):
+            found = self._header.match(line)
+            if found:
+                table = found.group(2).strip()
+                if found.group(1) == "[[":
+                    index = counts.get(table, 0)
+                    counts[table] = index + 1
+                else:
+                    index = 0
+                self.tables[(table, index)] = number
+                continue
+            found = self._key.match(line)
+            if found:
+                self.keys.setdefault((table, index, found.group(1).strip('"')), number)
+
+    def of(self, table: str, index: int = 0, key: str | None = None) -> int | None:
+        if key is not None and (table, index, key) in self.keys:
+            return self.keys[(table, index, key)]
+        return self.tables.get((table, index))
+
+
+def load_campaign(folder: str | Path) -> Campaign:
+    """Read and check a campaign folder.
+
+    Parameters
+    ----------
+    folder : str or Path
+        A folder holding ``campaign.toml`` (or the path of that file).
+
+    Returns
+    -------
+    Campaign
+
+    Raises
+    ------
+    AxiscalError
+        For a missing or malformed campaign.toml, an unknown key, a value of the wrong type, a data
+        file that is missing or outside the folder, a kind that has no data; it names
+        ``campaign.toml`` and the line.
+
+    Examples
+    --------
+    >>> campaign = load_campaign("examples/campaign")  # doctest: +SKIP
+    >>> [t.id for t in campaign.tests]  # doctest: +SKIP
+    ['positioning-X-1', ...]
+    """
+    import tomllib
+
+    folder = Path(folder)
+    path = folder if folder.name == CAMPAIGN_FILE and folder.is_file() else folder / CAMPAIGN_FILE
+    folder = path.parent.resolve()
+    if not path.parent.is_dir():
+        raise AxiscalError("no such campaign folder", path=path.parent)
+    text = read_text(path)
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        found = re.search(r"\(at line (\d+)", str(exc))
+        raise AxiscalError(
+            f"malformed TOML: {str(exc).split(' (at line')[0]}", path=path, line=int(found.group(1)) if found else None
+        ) from None
+    lines = _Lines(text)
+
+    def fail(message: str, table: str = "", index: int = 0, key: str | None = None) -> AxiscalError:
+        return AxiscalError(message, path=path, line=lines.of(table, index, key))
+
+    known = {"campaign", "machine", "instrument", "tolerances", "tests"}
+    for name in data:
+        if name not in known:
+            raise fail(f"unknown table or key '{name}' (known: {', '.join(sorted(known))})", name, 0, name)
+
+    def table(name: str, spec: Mapping[str, tuple[type, bool]]) -> dict[str, Any]:
+        value = data.get(name, {})
+        if not isinstance(value, dict):
+            raise fail(f"'{name}' must be a table [{name}]", "", 0, name)
+        for key, item in value.items():
+            if key not in spec:
+                raise fail(f"unknown key '{key}' in [{name}] (known: {', '.join(spec)})", name, 0, key)
+            kind, _ = spec[key]
+            if not _is_type(item, kind):
+                raise fail(f"[{name}] {key} must be {_type_name(kind)}, not {_show(item)}", name, 0, key)
+        for key, (_, required) in spec.items():
+            if required and key not in value:
+                raise fail(f"[{name}] needs '{key}'", name, 0)
+        return {k: (v.isoformat() if isinstance(v, (_dt.date, _dt.datetime)) else v) for k, v in value.items()}
+
+    if "campaign" not in data:
+        raise fail("campaign.toml needs a [campaign] table (title, date, operator)")
+    campaign = table("campaign", {"title": (str, True), "date": (_dt.date, True), "operator": (str, True),
+                                  "customer": (str, False), "notes": (str, False)})
+    if "machine" not in data:
+        raise fail("campaign.toml needs a [machine] table (name)")
+    machine = table("machine", {"name": (str, True), "serial": (str, False), "model": (str, False),
+                                "controller": (str, False)})
+    instrument = table("instrument", {"name": (str, False), "serial": (str, False), "certificate": (str, False),
+                                      "calibrated": (_dt.date, False), "vacuum_wavelength_nm": (float, False)})
+    tolerances = _tolerances(data.get("tolerances", {}), lambda m, k=None: fail(m, "tolerances", 0, k), "[tolerances]")
+
+    controller = machine.get("controller")
+    if controller is not None and controller not in CONTROLLERS:
+        raise fail(f"[machine] controller '{controller}' is not one of {', '.join(CONTROLLERS)}", "machine", 0, "controller")
+    model = None
+    if "model" in machine:
+        model = _inside(folder, machine["model"], lambda m: fail(m, "machine", 0, "model"))
+
+    raw_tests = data.get("tests", [])
+    if not isinstance(raw_tests, list) or not all(isinstance(t, dict) for t in raw_tests):
+        raise fail("'tests' must be an array of tables [[tests]]", "", 0, "tests")
+    if not raw_tests:
+        raise fail("the campaign has no [[tests]]")
+    tests: list[TestSpec] = []
+    counters: dict[str, int] = {}
+    for index, raw in enumerate(raw_tests):
+        tests.append(_test(raw, index, folder, tolerances, model, counters, fail))
+    ids = [t.id for t in tests]
+    for index, test_id in enumerate(ids):
+        if ids.index(test_id) != index:
+            raise fail(f"two tests have the id '{test_id}'", "tests", index, "id")
+    return Campaign(folder, campaign, machine, instrument, tolerances, tuple(tests), model, controller)
+
+
+def _test(raw, index, folder, campaign_tolerances, model, counters, fail) -> TestSpec:
+    def bad(message: str, key: str | None = None) -> AxiscalError:
+        return fail(message, "tests", index, key)
+
+    kind = raw.get("kind")
+    if kind is None:
+        raise bad(f"[[tests]] number {index + 1} needs 'kind' ({' | '.join(KINDS)})")
+    if kind not in KINDS:
+        raise bad(f"unknown kind '{kind}' (kinds: {', '.join(KINDS)})", "kind")
+    spec = {**_COMMON, **KINDS[kind]}
+    options: dict[str, Any] = {}
+    for key, value in raw.items():
+        name = key.replace("-", "_")
+        if name not in spec:
+            allowed = sorted(k for k in spec if k != "kind")
+            raise bad(f"unknown key '{key}' for a {kind} test (known: {', '.join(allowed)})", key)
+        options[name] = _check_option(name, spec[name], value, folder, lambda m, k=key: bad(m, k))
+    for name in _REQUIRED[kind]:
+        if name not in options:
+            raise bad(f"a {kind} test needs '{name}'")
+    if kind == "diagonal":
+        if model is None:
+            raise bad("a diagonal test needs the machine model: set [machine] model", "kind")
+        if "interferometer" in options and "file" in options:
+            raise bad("give the laser readings as 'interferometer' or 'file', not both", "file")
+        if "file" in options:
+            options["interferometer"] = options.pop("file")
+    if kind == "squareness":
+        plane = options.pop("axes", None) or options.pop("plane", None) or "XY"
+        options.pop("plane", None)
+        options["plane"] = plane
+    own = _tolerances(options.pop("tolerances", {}), lambda m, k=None: bad(m, k or "tolerances"), "tolerances of this test")
+    merged = _merged_tolerances(kind, campaign_tolerances, own)
+    axis = options.pop("axis", None) if kind != "squareness" else options["plane"]
+    options.pop("kind")
+    test_id = options.pop("id", None)
+    notes = options.pop("notes", None)
+    if notes is not None:
+        options["notes"] = notes
+    if test_id is None:
+        stem = f"{kind}-{axis}" if axis else kind
+        counters[stem] = counters.get(stem, 0) + 1
+        test_id = f"{stem}-{counters[stem]}"
+    return TestSpec(test_id, kind, axis, options, merged, fail("", "tests", index).line or 0)
+
+
+def _merged_tolerances(kind: str, campaign: Mapping[str, Any], own: Mapping[str, Any]) -> dict[str, float]:
+    """The limits that apply to a test of ``kind``: the campaign's, overridden by the test's own."""
+    out: dict[str, float] = {}
+    if kind == "positioning":
+        out.update(campaign.get("positioning", {}))
+        out.update(own.get("positioning", {}))
+        out.update({k: v for k, v in own.items() if k in POSITIONING_TOLERANCE_KEYS})
+    elif kind in ("straightness", "separation"):
+        for source in (campaign, own):
+            if "straightness_um" in source:
+                out["straightness_um"] = source["straightness_um"]
+    elif kind == "squareness":
+        for source in (campaign, own):
+            if "squareness_arcsec" in source:
+                out["squareness_arcsec"] = source["squareness_arcsec"]
+    elif kind == "diagonal":
+        for source in (campaign, own):
+            if "diagonal_um" in source:
+                out["diagonal_um"] = source["diagonal_um"]
+    return {k: float(v) for k, v in out.items()}
+
+
+def _tolerances(value: Any, fail, where: str) -> dict[str, Any]:
+    if not isinstance(value, dict):
+        raise fail(f"{where} must be a table", None)
+    out: dict[str, Any] = {}
+    for key, item in value.items():
+        if key in POSITIONING_TOLERANCE_KEYS:
+            out[key] = _limit(item, key, fail)
+            continue
+        if key not in _TOLERANCE_KEYS:
+            known = [*_TOLERANCE_KEYS, *POSITIONING_TOLERANCE_KEYS]
+            raise fail(f"unknown tolerance '{key}' in {where} (known: {', '.join(known)})", key)
+        if key == "positioning":
+            if not isinstance(item, dict):
+                raise fail(f"{where} positioning must be a table such as {{ A_um = 12.0 }}", key)
+            for name, limit in item.items():
+                if name not in POSITIONING_TOLERANCE_KEYS:
+                    raise fail(
+                        f"unknown positioning tolerance '{name}' (known: {', '.join(POSITIONING_TOLERANCE_KEYS)})", key
+                    )
+            out[key] = {name: _limit(limit, name, fail, key) for name, limit in item.items()}
+        else:
+            out[key] = _limit(item, key, fail)
+    return out
+
+
+def _limit(value: Any, name: str, fail, key: str | None = None) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not (value > 0) or value == float("inf"):
+        raise fail(f"tolerance {name} must be a positive number, not {_show(value)}", key or name)
+    return float(value)
+
+
+def _check_option(name: str, kind: Any, value: Any, folder: Path, fail) -> Any:
+    if kind == "table":
+        return value
+    if isinstance(kind, tuple):
+        if not isinstance(value, str) or value not in kind[1]:
+            raise fail(f"{name} must be one of {', '.join(kind[1])}, not {_show(value)}")
+        return value
+    if kind in ("str", "axis", "plane"):
+        if not isinstance(value, str) or not value.strip():
+            raise fail(f"{name} must be a text, not {_show(value)}")
+        if kind == "axis" and value.upper() not in ("X", "Y", "Z", "A", "B", "C"):
+            raise fail(f"{name} must be an axis letter (X, Y, Z, A, B, C), not {_show(value)}")
+        if kind == "plane" and value.upper() not in ("XY", "XZ", "YZ"):
+            raise fail(f"{name} must be a plane XY, XZ or YZ, not {_show(value)}")
+        return value.upper() if kind in ("axis", "plane") else value
+    if kind == "float":
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or value != value or abs(value) == float("inf"):
+            raise fail(f"{name} must be a finite number, not {_show(value)}")
+        return float(value)
+    if kind == "int":
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            raise fail(f"{name} must be a positive whole number, not {_show(value)}")
+        return value
+    if kind == "bool":
+        if not isinstance(value, bool):
+            raise fail(f"{name} must be true or false, not {_show(value)}")
+        return value
+    if kind == "floats2":
+        if (not isinstance(value, list) or len(value) != 2
+                or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)):
+            raise fail(f"{name} must be two numbers [START, END], not {_show(value)}")
+        return [float(v) for v in value]
+    if kind == "file":
+        if not isinstance(value, str):
+            raise fail(f"{name} must be a file name, not {_show(value)}")
+        return _inside(folder, value, fail)
+    raise AssertionError(kind)
+
+
+def _inside(folder: Path, name: str, fail) -> Path:
+    """The file ``name`` relative to the campaign folder; it must exist and stay inside the folder."""
+    if not isinstance(name, str) or not name.strip():
+        raise fail(f"a file name is needed, not {_show(name)}")
+    candidate = Path(name)
+    if candidate.is_absolute():
+        raise fail(f"'{name}' is an absolute path: data files are named relative to the campaign folder")
+    resolved = (folder / candidate).resolve()
+    if not resolved.is_relative_to(folder):
+        raise fail(f"'{name}' leaves the campaign folder")
+    if not resolved.is_file():
+        raise fail(f"data file '{name}' not found in the campaign folder")
+    return resolved
+
+
+def _is_type(value: Any, kind: type) -> bool:
+    if kind is float:
+        return isinstance(value, (int, float)) and not isinstance(value, bool)
+    if kind is _dt.date:
+        return isinstance(value, _dt.date)
+    return isinstance(value, kind)
+
+
+def _type_name(kind: type) -> str:
+    return {str: "a text", float: "a number", _dt.date: "a date (2026-11-20)", dict: "a table"}.get(kind, kind.__name__)
+
+
+def _show(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."

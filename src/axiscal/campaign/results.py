@@ -1,0 +1,233 @@
+"""The results of a campaign: each test's figures against its tolerances, the verdict, results.json.
+
+A figure passes when its magnitude is at most its tolerance (simple acceptance: the measured value
+is compared with the limit as it is). A test with no tolerance for any of its figures is ``"not
+assessed"``; the campaign fails when any test fails, passes when at least one test was assessed
+and none failed. The schema of results.json (``axiscal-results/1``) is documented in
+docs/campaign.md.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from axiscal.version import __version__
+
+__all__ = [
+    "SCHEMA",
+    "VERDICTS",
+    "Check",
+    "Figure",
+    "Plot",
+    "TestResult",
+    "CampaignResults",
+    "check_figures",
+    "overall_verdict",
+    "results_payload",
+]
+
+SCHEMA = "axiscal-results/1"
+VERDICTS = ("pass", "fail", "not assessed")
+
+
+@dataclass(frozen=True)
+class Check:
+    """One figure held against its tolerance.
+
+    Attributes
+    ----------
+    figure : str
+        The figure's key in the test's figures (``"E"``, ``"straightness_um"`` ...).
+    tolerance_key : str
+        The tolerance's key as written in campaign.toml (``"E_um"`` ...).
+    value : float
+        The figure's magnitude in the tolerance's unit.
+    limit : float
+        The tolerance.
+    unit : str
+        ``"um"`` or ``"arcsec"``.
+    """
+
+    figure: str
+    tolerance_key: str
+    value: float
+    limit: float
+    unit: str
+
+    @property
+    def passed(self) -> bool:
+        """True when ``|value| <= limit`` (a figure that could not be computed does not pass)."""
+        return math.isfinite(self.value) and abs(self.value) <= self.limit
+
+
+@dataclass(frozen=True)
+class Plot:
+    """A figure of the report: its title and its SVG text (inline in the HTML page)."""
+
+    title: str
+    svg: str = field(repr=False)
+
+
+@dataclass(frozen=True)
+class Figure:
+    """A figure as the report's tables show it: label, value, unit."""
+
+    label: str
+    value: float
+    unit: str
+
+
+@dataclass
+class TestResult:
+    """What one test of the campaign gave.
+
+    Attributes
+    ----------
+    id, kind : str
+        From the campaign.
+    axis : str or None
+        The axis, or the plane for squareness.
+    files : list of str
+        The data files, relative to the campaign folder.
+    figures : dict
+        The figures under the keys and units of the command of the same name's ``--json``.
+    checks : list of Check
+        Each toleranced figure against its limit.
+    plots : list of Plot
+    table : list of Figure
+        The figures the report shows in its axis section.
+    environment : dict
+        Per-run statistics of air and material sensors, when the file has them.
+    warnings : list of str
+    compensation : list of dict
+        ``{"controller", "axis", "file"}`` for each compensation file written.
+    method : str
+        The method and standard used, one line.
+    """
+
+    id: str
+    kind: str
+    axis: str | None
+    files: list[str]
+    figures: dict[str, Any]
+    checks: list[Check] = field(default_factory=list)
+    plots: list[Plot] = field(default_factory=list)
+    table: list[Figure] = field(default_factory=list)
+    environment: dict[str, Any] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+    compensation: list[dict[str, str]] = field(default_factory=list)
+    method: str = ""
+
+    __test__ = False  # not a pytest test class
+
+    @property
+    def verdict(self) -> str:
+        """``"pass"``, ``"fail"`` or ``"not assessed"``."""
+        if not self.checks:
+            return "not assessed"
+        return "pass" if all(c.passed for c in self.checks) else "fail"
+
+    @property
+    def tolerances(self) -> dict[str, float]:
+        """The tolerances held against this test's figures, as keyed in campaign.toml."""
+        return {c.tolerance_key: c.limit for c in self.checks}
+
+
+@dataclass
+class CampaignResults:
+    """The whole campaign's results: what :func:`axiscal.campaign.run_campaign` returns."""
+
+    campaign: dict[str, Any]
+    machine: dict[str, Any]
+    instrument: dict[str, Any]
+    tests: list[TestResult]
+    warnings: list[str] = field(default_factory=list)
+    model: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def verdict(self) -> str:
+        """The campaign's verdict, see :func:`overall_verdict`."""
+        return overall_verdict([t.verdict for t in self.tests])
+
+    @property
+    def compensation(self) -> list[dict[str, str]]:
+        """Every compensation file written, over all tests."""
+        return [entry for t in self.tests for entry in t.compensation]
+
+
+def check_figures(figures: Mapping[str, Any], tolerances: Mapping[str, float], units: Mapping[str, str]) -> list[Check]:
+    """Hold figures against tolerances.
+
+    Parameters
+    ----------
+    figures : mapping
+        Figure key -> value (in the tolerance's unit).
+    tolerances : mapping
+        Tolerance key -> limit. ``E_um`` applies to figure ``E``; ``straightness_um`` to
+        ``straightness_um``.
+    units : mapping
+        Tolerance key -> unit shown in the report.
+
+    Returns
+    -------
+    list of Check
+        One per tolerance whose figure exists.
+    """
+    out = []
+    for key, limit in tolerances.items():
+        figure = key if key in figures else key.rsplit("_", 1)[0]
+        if figure not in figures:
+            continue
+        value = figures[figure]
+        value = float("nan") if value is None else float(value)
+        out.append(Check(figure, key, value, float(limit), units.get(key, key.rsplit("_", 1)[-1])))
+    return out
+
+
+def overall_verdict(verdicts: Sequence[str]) -> str:
+    """``"fail"`` if any test failed, ``"pass"`` if any passed and none failed, else ``"not assessed"``."""
+    if "fail" in verdicts:
+        return "fail"
+    if "pass" in verdicts:
+        return "pass"
+    return "not assessed"
+
+
+def results_payload(results: CampaignResults) -> dict[str, Any]:
+    """The results.json object (schema ``axiscal-results/1``), values in the units of their keys.
+
+    Parameters
+    ----------
+    results : CampaignResults
+
+    Returns
+    -------
+    dict
+        Ready for :func:`axiscal.io.dumps` (NaN becomes null there).
+    """
+    tests = []
+    for t in results.tests:
+        entry: dict[str, Any] = {"id": t.id, "kind": t.kind}
+        if t.kind == "squareness":
+            entry["axes"] = t.axis
+        elif t.axis is not None:
+            entry["axis"] = t.axis
+        entry["file"] = t.files[0] if len(t.files) == 1 else t.files
+        entry.update(figures=t.figures, tolerances=t.tolerances, verdict=t.verdict)
+        if t.environment:
+            entry["environment"] = t.environment
+        if t.warnings:
+            entry["warnings"] = list(t.warnings)
+        tests.append(entry)
+    return {
+        "schema": SCHEMA,
+        "software": {"name": "axiscal", "version": __version__},
+        "campaign": {"campaign": results.campaign, "machine": results.machine, "instrument": results.instrument},
+        "verdict": results.verdict,
+        "tests": tests,
+        "compensation": results.compensation,
+        "warnings": [*results.warnings, *(f"{t.id}: {w}" for t in results.tests for w in t.warnings)],
+    }

@@ -1,0 +1,53 @@
+"""``axiscal report``: run a calibration campaign and write its report, results and compensation files."""
+
+from __future__ import annotations
+
+import sys
+from contextlib import contextmanager
+
+import click
+
+from axiscal.report.writer import report_campaign
+
+__all__ = ["report_command", "register"]
+
+
+@contextmanager
+def _progress(enabled: bool):
+    """A Rich progress bar on a terminal; nothing when output is redirected."""
+    if not enabled:
+        yield None
+        return
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    with Progress(
+        TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(), transient=True
+    ) as bar:
+        task = bar.add_task("tests", total=None)
+
+        def update(done: int, total: int, spec) -> None:
+            bar.update(task, total=total, completed=done, description=f"{spec.id}" if done < total else "writing")
+
+        yield update
+
+
+@click.command("report")
+@click.argument("campaign_dir", type=click.Path(file_okay=True, dir_okay=True))
+@click.option("-o", "--output", "out_dir", type=click.Path(file_okay=False), help="Report folder [CAMPAIGN_DIR/report].")
+@click.option("--compare", type=click.Path(dir_okay=False), help="results.json of another campaign (e.g. before compensation).")
+@click.option("--pdf", is_flag=True, help="Also write report.pdf.")
+def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, pdf: bool) -> None:
+    """Run every test of CAMPAIGN_DIR (campaign.toml) and write report.html, results.json and the compensation files."""
+    with _progress(sys.stderr.isatty()) as progress:
+        files = report_campaign(campaign_dir, out_dir, compare=compare, pdf=pdf, progress=progress)
+    verdict = files.results_data.verdict
+    click.echo(f"{verdict.upper()}: {len(files.results_data.tests)} tests; report {files.html}")
+    click.echo(f"results {files.results}")
+    for path in files.compensation:
+        click.echo(f"compensation {path}")
+    if files.pdf is not None:
+        click.echo(f"pdf {files.pdf}")
+
+
+def register(group: click.Group) -> None:
+    group.add_command(report_command)

@@ -1,0 +1,141 @@
+"""The campaign report: one self-contained HTML page rendered from the templates shipped with axiscal.
+
+The page has no external resource (styles inline, plots as inline SVG), so it can be mailed,
+archived or opened offline. Numbers come from :class:`~axiscal.campaign.results.CampaignResults`;
+this module only arranges them.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import math
+from collections.abc import Mapping
+from typing import Any
+
+from axiscal.campaign.results import CampaignResults, TestResult, results_payload
+from axiscal.version import __version__
+
+__all__ = ["template_environment", "render_html", "format_number"]
+
+_SECTION_ORDER = ("positioning", "straightness", "separation", "squareness", "diagonal", "sixdof")
+
+
+def template_environment():
+    """The Jinja2 environment over the templates shipped as package data (HTML autoescaped)."""
+    import jinja2
+
+    env = jinja2.Environment(
+        loader=jinja2.PackageLoader("axiscal", "templates"),
+        autoescape=jinja2.select_autoescape(("html", "html.j2")),
+        trim_blocks=True,
+        lstrip_blocks=True,
+    )
+    env.globals["fmt"] = format_number
+    return env
+
+
+def format_number(value: Any, digits: int = 3) -> str:
+    """A figure as the report prints it: fixed decimals, ``n/a`` for a missing or non-finite value."""
+    if value is None:
+        return "n/a"
+    if isinstance(value, str):
+        return value
+    value = float(value)
+    if not math.isfinite(value):
+        return "n/a"
+    return f"{value:.{digits}f}"
+
+
+def _verdict_rows(results: CampaignResults, before: Mapping[str, Any] | None) -> list[dict[str, str]]:
+    rows = []
+    for test in results.tests:
+        old = (before or {}).get(test.id, {})
+        if not test.checks:
+            rows.append({"test_id": test.id, "axis": test.axis or "", "figure": "no tolerance given", "value": "",
+                         "limit": "", "before": "", "change": "", "result": "not assessed", "css": "na"})
+            continue
+        for check in test.checks:
+            previous = old.get(check.figure) if isinstance(old, Mapping) else None
+            change = "" if previous is None else f"{abs(check.value) - abs(float(previous)):+.3f}"
+            rows.append({
+                "test_id": test.id, "axis": test.axis or "",
+                "figure": f"{check.figure.removesuffix('_' + check.unit)} / {check.unit}",
+                "value": format_number(abs(check.value)), "limit": format_number(check.limit),
+                "before": "" if previous is None else format_number(abs(float(previous))), "change": change,
+                "result": "pass" if check.passed else "fail", "css": "pass" if check.passed else "fail",
+            })
+    return rows
+
+
+def _sections(tests: list[TestResult]) -> list[dict[str, Any]]:
+    groups: dict[str, list[TestResult]] = {}
+    titles: dict[str, str] = {}
+    for test in sorted(tests, key=lambda t: (_SECTION_ORDER.index(t.kind) if t.kind in _SECTION_ORDER else 99)):
+        if test.kind in ("positioning", "straightness", "separation") and test.axis:
+            key, title = f"axis-{test.axis}", f"{test.axis} axis"
+        elif test.kind == "squareness":
+            key, title = "squareness", "Squareness"
+        elif test.kind == "diagonal":
+            key, title = "diagonal", "Diagonal checks"
+        elif test.kind == "sixdof":
+            key, title = "sixdof", "6-DOF recordings"
+        else:
+            key, title = test.kind, test.kind.capitalize()
+        groups.setdefault(key, []).append(test)
+        titles[key] = title
+    axis_keys = sorted(k for k in groups if k.startswith("axis-"))
+    other = [k for k in ("squareness", "diagonal", "sixdof") if k in groups]
+    rest = [k for k in groups if k not in axis_keys and k not in other]
+    return [{"anchor": k, "title": titles[k], "tests": groups[k]} for k in (*axis_keys, *other, *rest)]
+
+
+def render_html(
+    results: CampaignResults,
+    *,
+    compare: Mapping[str, Any] | None = None,
+    volumetric: Mapping[str, Any] | None = None,
+    generated: str | None = None,
+) -> str:
+    """The report page of a campaign.
+
+    Parameters
+    ----------
+    results : CampaignResults
+        What the campaign's tests gave.
+    compare : mapping, keyword-only
+        Another campaign's results.json (e.g. before compensation): the verdict table shows each
+        figure's value there and its change.
+    volumetric : mapping, keyword-only
+        The volumetric section (``method``, ``table``, ``plots``), when the campaign has a model.
+    generated : str, keyword-only
+        When the report was made (default: now, UTC, to the minute).
+
+    Returns
+    -------
+    str
+        The HTML text.
+    """
+    before = None
+    label = None
+    if compare is not None:
+        before = {t.get("id"): t.get("figures", {}) for t in compare.get("tests", []) if isinstance(t, Mapping)}
+        info = compare.get("campaign", {}).get("campaign", {})
+        label = f"{info.get('title', 'another campaign')} ({info.get('date', 'undated')})"
+    payload = results_payload(results)
+    methods = sorted({t.method for t in results.tests if t.method})
+    env = template_environment()
+    return env.get_template("report/report.html.j2").render(
+        version=__version__,
+        generated=generated or _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+        campaign=results.campaign,
+        machine=results.machine,
+        instrument=results.instrument,
+        verdict=results.verdict,
+        verdict_rows=_verdict_rows(results, before),
+        warnings=payload["warnings"],
+        sections=_sections(results.tests),
+        volumetric=volumetric,
+        compensation=results.compensation,
+        methods=methods,
+        compare={"label": label} if compare is not None else None,
+    )

@@ -1,0 +1,187 @@
+"""Writing a campaign's report folder in one step: report.html, results.json, compensation files, PDF.
+
+The folder is built next to its destination and renamed into place at the end, so a failed run
+never leaves a half-written report, and an earlier report stays as it was until the new one is
+complete.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from axiscal.campaign.config import Campaign, TestSpec, load_campaign
+from axiscal.campaign.results import CampaignResults, results_payload
+from axiscal.campaign.runner import run_campaign
+from axiscal.errors import AxiscalError
+from axiscal.io.jsonio import dumps, read_json
+from axiscal.report.html import render_html
+
+__all__ = ["ReportFiles", "write_report", "report_campaign"]
+
+
+@dataclass(frozen=True)
+class ReportFiles:
+    """Where a campaign's report was written.
+
+    Attributes
+    ----------
+    folder : Path
+        The report folder.
+    html, results : Path
+        ``report.html`` and ``results.json``.
+    pdf : Path or None
+        ``report.pdf`` when asked for.
+    compensation : tuple of Path
+        The compensation files.
+    results_data : CampaignResults
+        The results the files were made from.
+    """
+
+    folder: Path
+    html: Path
+    results: Path
+    pdf: Path | None
+    compensation: tuple[Path, ...]
+    results_data: CampaignResults
+
+
+def _fsync_tree(folder: Path) -> None:
+    for path in folder.rglob("*"):
+        if path.is_file():
+            with open(path, "rb") as handle:
+                os.fsync(handle.fileno())
+
+
+def write_report(
+    results: CampaignResults,
+    out_dir: str | Path,
+    *,
+    compare: Mapping[str, Any] | None = None,
+    pdf: bool = False,
+    extra_files: Mapping[str, str] | None = None,
+) -> ReportFiles:
+    """Write the report folder of ``results`` atomically.
+
+    Parameters
+    ----------
+    results : CampaignResults
+    out_dir : str or Path
+        The report folder; replaced as a whole when it exists.
+    compare : mapping, keyword-only
+        Another campaign's results.json, shown beside each figure.
+    pdf : bool, keyword-only
+        Also write ``report.pdf``.
+    extra_files : mapping, keyword-only
+        Relative path -> text of further files (the compensation tables).
+
+    Returns
+    -------
+    ReportFiles
+
+    Raises
+    ------
+    AxiscalError
+        When the folder cannot be written; nothing is left half-written.
+    """
+    out_dir = Path(out_dir)
+    try:
+        out_dir.parent.mkdir(parents=True, exist_ok=True)
+        staging = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
+    except OSError as exc:
+        raise AxiscalError(f"cannot make the report folder: {exc.strerror or exc}", path=out_dir) from None
+    try:
+        html = render_html(results, compare=compare)
+        (staging / "report.html").write_text(html, encoding="utf-8")
+        (staging / "results.json").write_text(dumps(results_payload(results)), encoding="utf-8")
+        written = []
+        for name, text in (extra_files or {}).items():
+            target = staging / name
+            target.parent.mkdir(parents=True, exist_ok=True)
+            target.write_text(text, encoding="utf-8")
+            written.append(out_dir / name)
+        pdf_path = None
+        if pdf:
+            from axiscal.report.pdf import write_pdf
+
+            write_pdf(results, staging / "report.pdf", compare=compare)
+            pdf_path = out_dir / "report.pdf"
+        _fsync_tree(staging)
+        os.chmod(staging, 0o777 & ~_umask())
+        old = None
+        if out_dir.exists():
+            if not out_dir.is_dir():
+                raise AxiscalError("exists and is not a folder", path=out_dir)
+            old = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.old.", dir=out_dir.parent))
+            os.replace(out_dir, old / "previous")
+        os.replace(staging, out_dir)
+        if old is not None:
+            shutil.rmtree(old, ignore_errors=True)
+    except OSError as exc:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise AxiscalError(f"cannot write the report: {exc.strerror or exc}", path=out_dir) from None
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+    return ReportFiles(out_dir, out_dir / "report.html", out_dir / "results.json", pdf_path, tuple(written), results)
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def report_campaign(
+    campaign_dir: str | Path,
+    out_dir: str | Path | None = None,
+    *,
+    compare: str | Path | None = None,
+    pdf: bool = False,
+    progress: Callable[[int, int, TestSpec], None] | None = None,
+) -> ReportFiles:
+    """Run a campaign and write its report: what ``axiscal report`` does.
+
+    Parameters
+    ----------
+    campaign_dir : str or Path
+        The campaign folder (with campaign.toml).
+    out_dir : str or Path, optional
+        The report folder (default: ``CAMPAIGN_DIR/report``).
+    compare : str or Path, keyword-only
+        results.json of another campaign to compare with.
+    pdf : bool, keyword-only
+        Also write report.pdf.
+    progress : callable, keyword-only
+        See :func:`~axiscal.campaign.runner.run_campaign`.
+
+    Returns
+    -------
+    ReportFiles
+
+    Raises
+    ------
+    AxiscalError
+        For a bad campaign, data file or comparison file; nothing is written then.
+
+    Examples
+    --------
+    >>> files = report_campaign("examples/campaign", "/tmp/report")  # doctest: +SKIP
+    >>> files.results_data.verdict  # doctest: +SKIP
+    'fail'
+    """
+    campaign: Campaign = load_campaign(campaign_dir)
+    other = None
+    if compare is not None:
+        other = read_json(compare)
+        if not isinstance(other, dict) or other.get("schema") != "axiscal-results/1":
+            raise AxiscalError("not an axiscal results.json (schema axiscal-results/1)", path=compare)
+    results = run_campaign(campaign, progress=progress)
+    target = Path(out_dir) if out_dir is not None else campaign.folder / "report"
+    files = {entry["file"]: entry["text"] for t in results.tests for entry in t.compensation if "text" in entry}
+    return write_report(results, target, compare=other, pdf=pdf, extra_files=files)

@@ -1,0 +1,96 @@
+"""``axiscal report``: the report folder, results.json equal to the single commands, atomic writes."""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import pytest
+
+from axiscal.campaign import run_campaign
+
+pytestmark = pytest.mark.filterwarnings("ignore::UserWarning")
+
+
+@pytest.fixture
+def campaign(tmp_path, examples):
+    folder = tmp_path / "campaign"
+    shutil.copytree(examples / "campaign", folder)
+    return folder
+
+
+def test_report_writes_the_page_and_results(run_cli, campaign):
+    status, out, err = run_cli("report", campaign)
+    assert status == 0, err
+    folder = campaign / "report"
+    assert (folder / "report.html").is_file() and (folder / "results.json").is_file()
+    assert out.startswith("FAIL: 4 tests")
+    results = json.loads((folder / "results.json").read_text())
+    assert results["schema"] == "axiscal-results/1"
+    assert results["software"]["name"] == "axiscal"
+    assert results["verdict"] == "fail"
+    assert {t["id"]: t["verdict"] for t in results["tests"]} == {
+        "positioning-X-1": "pass",
+        "positioning-Y-1": "pass",
+        "straightness-X-1": "pass",
+        "squareness-XY-1": "fail",
+    }
+    assert results["campaign"]["machine"]["name"] == "VMC 850"
+
+
+def test_positioning_figures_equal_the_positioning_command(run_cli, campaign):
+    results = run_campaign(campaign)
+    status, out, _ = run_cli("positioning", campaign / "positioning_x.csv", "--json")
+    assert status == 0
+    single = json.loads(out)
+    figures = results.tests[0].figures
+    for key in ("A", "A_up", "A_down", "B", "B_mean", "E", "E_up", "E_down", "M", "R", "R_up", "R_down"):
+        assert figures[key] == pytest.approx(single[key], rel=1e-12, abs=1e-12), key
+
+
+def test_straightness_and_squareness_equal_their_commands(run_cli, campaign):
+    results = {t.id: t.figures for t in run_campaign(campaign).tests}
+    _, out, _ = run_cli("straightness", campaign / "straightness_x.csv", "--json")
+    assert results["straightness-X-1"]["straightness_um"] == pytest.approx(json.loads(out)["straightness_um"], rel=1e-12)
+    _, out, _ = run_cli("squareness", "--first", campaign / "square_first.csv", "--second", campaign / "square_second.csv", "--json")
+    assert results["squareness-XY-1"]["squareness_arcsec"] == pytest.approx(json.loads(out)["squareness_arcsec"], rel=1e-12)
+
+
+def test_a_bad_campaign_writes_nothing(run_cli, campaign):
+    text = (campaign / "campaign.toml").read_text()
+    (campaign / "campaign.toml").write_text(text.replace('file = "positioning_x.csv"', 'file = "../positioning_x.csv"'))
+    status, out, err = run_cli("report", campaign)
+    assert status == 2
+    assert err.count("\n") == 1 and "campaign.toml:" in err and "Traceback" not in err
+    assert not (campaign / "report").exists()
+
+
+def test_a_failed_run_keeps_the_previous_report(run_cli, campaign, monkeypatch):
+    assert run_cli("report", campaign)[0] == 0
+    before = (campaign / "report" / "results.json").read_text()
+
+    import axiscal.report.writer as writer
+
+    def broken(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(writer, "render_html", broken)
+    status, _, err = run_cli("report", campaign)
+    assert status == 2 and "No space left" in err
+    assert (campaign / "report" / "results.json").read_text() == before
+    assert sorted(p.name for p in campaign.iterdir() if p.name.startswith(".")) == []
+
+
+def test_compare_shows_the_change(run_cli, campaign, tmp_path):
+    assert run_cli("report", campaign, "-o", tmp_path / "before")[0] == 0
+    status, _, err = run_cli("report", campaign, "--compare", tmp_path / "before" / "results.json")
+    assert status == 0, err
+    html = (campaign / "report" / "report.html").read_text()
+    assert "Compared with" in html and "+0.000" in html
+
+
+def test_compare_refuses_a_file_that_is_not_results(run_cli, campaign, tmp_path):
+    other = tmp_path / "other.json"
+    other.write_text('{"hello": 1}')
+    status, _, err = run_cli("report", campaign, "--compare", other)
+    assert status == 2 and "results.json" in err
