@@ -94,3 +94,18 @@ def test_compare_refuses_a_file_that_is_not_results(run_cli, campaign, tmp_path)
     other.write_text('{"hello": 1}')
     status, _, err = run_cli("report", campaign, "--compare", other)
     assert status == 2 and "results.json" in err
+
+
+def test_pdf_is_a_print_of_the_report(run_cli, campaign):
+    status, out, err = run_cli("report", campaign, "--pdf")
+    assert status == 0, err
+    pdf = (campaign / "report" / "report.pdf").read_bytes()
+    assert pdf.startswith(b"%PDF-") and b"/Type /Page" in pdf
+    assert "pdf " in out
+
+
+def test_typst_text_cannot_inject_markup():
+    from axiscal.report.pdf import typst_string, typst_text
+
+    assert typst_text('#set "x" \\ = *bold*') == '#"#set \\"x\\" \\\\ = *bold*"'
+    assert typst_string("a\nb") == '"a b"'

@@ -15,7 +15,15 @@ from typing import Any
 from axiscal.campaign.results import CampaignResults, TestResult, results_payload
 from axiscal.version import __version__
 
-__all__ = ["template_environment", "render_html", "format_number"]
+__all__ = [
+    "template_environment",
+    "render_html",
+    "format_number",
+    "previous_figures",
+    "compare_label",
+    "verdict_rows",
+    "sections",
+]
 
 _SECTION_ORDER = ("positioning", "straightness", "separation", "squareness", "diagonal", "sixdof")
 
@@ -46,7 +54,23 @@ def format_number(value: Any, digits: int = 3) -> str:
     return f"{value:.{digits}f}"
 
 
-def _verdict_rows(results: CampaignResults, before: Mapping[str, Any] | None) -> list[dict[str, str]]:
+def previous_figures(compare: Mapping[str, Any] | None) -> dict[str, Any] | None:
+    """Test id -> figures of another campaign's results.json (None without one)."""
+    if compare is None:
+        return None
+    return {t.get("id"): t.get("figures", {}) for t in compare.get("tests", []) if isinstance(t, Mapping)}
+
+
+def compare_label(compare: Mapping[str, Any] | None) -> str | None:
+    """How the report names the campaign it is compared with."""
+    if compare is None:
+        return None
+    info = compare.get("campaign", {}).get("campaign", {})
+    return f"{info.get('title', 'another campaign')} ({info.get('date', 'undated')})"
+
+
+def verdict_rows(results: CampaignResults, before: Mapping[str, Any] | None) -> list[dict[str, str]]:
+    """One row per toleranced figure (or per test without a tolerance) for the verdict table."""
     rows = []
     for test in results.tests:
         old = (before or {}).get(test.id, {})
@@ -67,7 +91,8 @@ def _verdict_rows(results: CampaignResults, before: Mapping[str, Any] | None) ->
     return rows
 
 
-def _sections(tests: list[TestResult]) -> list[dict[str, Any]]:
+def sections(tests: list[TestResult]) -> list[dict[str, Any]]:
+    """The report's sections: one per axis, then squareness, diagonal checks, 6-DOF recordings."""
     groups: dict[str, list[TestResult]] = {}
     titles: dict[str, str] = {}
     for test in sorted(tests, key=lambda t: (_SECTION_ORDER.index(t.kind) if t.kind in _SECTION_ORDER else 99)):
@@ -115,12 +140,8 @@ def render_html(
     str
         The HTML text.
     """
-    before = None
-    label = None
-    if compare is not None:
-        before = {t.get("id"): t.get("figures", {}) for t in compare.get("tests", []) if isinstance(t, Mapping)}
-        info = compare.get("campaign", {}).get("campaign", {})
-        label = f"{info.get('title', 'another campaign')} ({info.get('date', 'undated')})"
+    before = previous_figures(compare)
+    label = compare_label(compare)
     payload = results_payload(results)
     methods = sorted({t.method for t in results.tests if t.method})
     env = template_environment()
@@ -131,9 +152,9 @@ def render_html(
         machine=results.machine,
         instrument=results.instrument,
         verdict=results.verdict,
-        verdict_rows=_verdict_rows(results, before),
+        verdict_rows=verdict_rows(results, before),
         warnings=payload["warnings"],
-        sections=_sections(results.tests),
+        sections=sections(results.tests),
         volumetric=volumetric,
         compensation=results.compensation,
         methods=methods,

@@ -1,0 +1,114 @@
+"""The PDF print of the campaign report, typeset with Typst.
+
+Typst installs from the package registry as a Python package that carries its own typesetter (no
+system library, no browser), typesets in a fraction of a second and embeds the plots as vector
+graphics. The print holds the same sections and numbers as ``report.html``; it is rendered from
+its own template (``templates/report/report.typ.j2``) because a page for paper is laid out
+differently from a page for a screen.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import tempfile
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from axiscal.campaign.results import CampaignResults, results_payload
+from axiscal.errors import AxiscalError
+from axiscal.report.html import compare_label, previous_figures, sections, template_environment, verdict_rows
+from axiscal.version import __version__
+
+__all__ = ["typst_string", "typst_text", "write_pdf"]
+
+
+def typst_string(value: Any) -> str:
+    """``value`` as a Typst string literal (``"..."``) for code."""
+    text = "" if value is None else str(value)
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", " ") + '"'
+
+
+def typst_text(value: Any) -> str:
+    """``value`` as a string literal placed in markup (``#"..."``): nothing in it is read as markup."""
+    return "#" + typst_string(value)
+
+
+def write_pdf(
+    results: CampaignResults, path: str | Path, *, compare: Mapping[str, Any] | None = None, generated: str | None = None
+) -> Path:
+    """Typeset the report of ``results`` as a PDF.
+
+    Parameters
+    ----------
+    results : CampaignResults
+    path : str or Path
+        The PDF to write.
+    compare : mapping, keyword-only
+        Another campaign's results.json, as for the HTML page.
+    generated : str, keyword-only
+        When the report was made (default: now, UTC).
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    Raises
+    ------
+    AxiscalError
+        When Typst is not installed or fails.
+    """
+    try:
+        import typst
+    except ImportError:  # pragma: no cover - typst is a dependency
+        raise AxiscalError("the PDF needs the typst package: pip install typst") from None
+    path = Path(path)
+    env = template_environment()
+    env.filters["t"] = typst_text
+    env.filters["s"] = typst_string
+    instrument = results.instrument
+    parts = [instrument.get("name")] if instrument.get("name") else []
+    parts += [f"{label} {instrument[key]}" for key, label in (("serial", "serial"), ("certificate", "certificate"),
+                                                              ("calibrated", "calibrated")) if instrument.get(key)]
+    with tempfile.TemporaryDirectory(prefix="axiscal-pdf-") as folder:
+        root = Path(folder)
+        counter = 0
+        section_list = sections(results.tests)
+        for section in section_list:
+            plotted = []
+            for test in section["tests"]:
+                files = []
+                for plot in test.plots:
+                    counter += 1
+                    name = f"plot{counter}.svg"
+                    (root / name).write_text(plot.svg, encoding="utf-8")
+                    files.append({"file": name, "title": plot.title})
+                plotted.append({"id": test.id, "verdict": test.verdict, "method": test.method, "files": test.files,
+                                "table": test.table, "plots": files, "environment": test.environment,
+                                "warnings": test.warnings})
+            section["tests"] = plotted
+        before = previous_figures(compare)
+        source = env.get_template("report/report.typ.j2").render(
+            version=__version__,
+            generated=generated or _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+            campaign=results.campaign,
+            machine=results.machine,
+            instrument_line=", ".join(parts) or "not stated",
+            verdict=results.verdict,
+            verdict_rows=verdict_rows(results, before),
+            warnings=results_payload(results)["warnings"],
+            sections=section_list,
+            volumetric=None,
+            compensation=results.compensation,
+            methods=sorted({t.method for t in results.tests if t.method}),
+            compare={"label": compare_label(compare)} if compare is not None else None,
+        )
+        main = root / "report.typ"
+        main.write_text(source, encoding="utf-8")
+        try:
+            typst.compile(str(main), output=str(root / "report.pdf"), root=str(root))
+        except Exception as exc:  # typst raises its own error types; the message says what failed
+            raise AxiscalError(f"typesetting the PDF failed: {' '.join(str(exc).split())[:300]}", path=path) from None
+        path.write_bytes((root / "report.pdf").read_bytes())
+    return path
