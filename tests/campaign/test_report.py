@@ -100,7 +100,7 @@ def test_pdf_is_a_print_of_the_report(run_cli, campaign):
     status, out, err = run_cli("report", campaign, "--pdf")
     assert status == 0, err
     pdf = (campaign / "report" / "report.pdf").read_bytes()
-    assert pdf.startswith(b"%PDF-") and b"/Type /Page" in pdf
+    assert pdf.startswith(b"%PDF-") and b"/Type/Pages" in pdf
     assert "pdf " in out
 
 
