@@ -17,7 +17,6 @@ from axiscal.squareness.evaluation import (
     prism_deviation_from_wedge,
     prism_reversal,
     psd_angular_resolution,
-    read_straightness_run,
     squareness,
     squareness_from_slopes,
 )
@@ -162,27 +161,6 @@ def test_bad_input():
         squareness_from_slopes(0.0, float("nan"))
     with pytest.raises(AxiscalError, match="unknown reference"):
         squareness(x, 0 * x, x, 0 * x, reference="best")
-
-
-def test_read_run_and_its_errors(tmp_path):
-    good = tmp_path / "run.csv"
-    good.write_text("# a run\nposition_mm,deviation_um\n0,1\n100,2\n200,2.5\n")
-    position, deviation = read_straightness_run(good)
-    np.testing.assert_allclose(position, [0, 0.1, 0.2])
-    np.testing.assert_allclose(deviation, [1e-6, 2e-6, 2.5e-6])
-    one = tmp_path / "one.csv"
-    one.write_text("position_mm,deviation_um\n0,1\n")
-    with pytest.raises(AxiscalError, match="at least 2"):
-        read_straightness_run(one)
-    unit = tmp_path / "unit.csv"
-    unit.write_text("position_in,deviation_um\n0,1\n1,2\n")
-    with pytest.raises(AxiscalError, match="unknown length unit") as info:
-        read_straightness_run(unit)
-    assert info.value.line == 1
-    same = tmp_path / "same.csv"
-    same.write_text("position_mm,deviation_um\n5,1\n5,2\n")
-    with pytest.raises(AxiscalError, match="one position"):
-        read_straightness_run(same)
 
 
 @settings(max_examples=80, deadline=None)

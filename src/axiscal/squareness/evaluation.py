@@ -38,13 +38,15 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.tabular import CsvTable, read_csv
+from axiscal.straightness.files import Profile, read_profile
 from axiscal.straightness.reference import ReferenceLine, reference_line
-from axiscal.units import length_factor
+from axiscal.straightness.report import render_report
+from axiscal.units import ARCSEC, UM
 
 __all__ = [
     "PLANES",
@@ -59,7 +61,9 @@ __all__ = [
     "prism_reversal",
     "prism_deviation_from_wedge",
     "psd_angular_resolution",
-    "read_straightness_run",
+    "SQUARENESS_REFERENCES",
+    "SquarenessEvaluation",
+    "squareness_from_files",
 ]
 
 #: plane -> (first axis, second axis, ISO 230-1 term, sign of the ISO term against the included-angle value)
@@ -322,37 +326,131 @@ def psd_angular_resolution(linear_resolution_m: float, travel_m: float) -> float
     return linear_resolution_m / travel_m
 
 
-def _length_column(table: CsvTable, stem: str, allowed: tuple[str, ...]) -> tuple[str, float]:
-    names = [name for name in table.header if name.rpartition("_")[0] == stem]
-    if len(names) != 1:
-        wanted = " or ".join(f"{stem}_{unit}" for unit in allowed)
-        problem = "no" if not names else "more than one"
-        raise AxiscalError(f"{problem} column {wanted} (columns are: {', '.join(table.header)})", path=table.path, line=table.header_line)
-    unit = names[0].rpartition("_")[2]
-    try:
-        return names[0], length_factor(unit, allowed=allowed, what=names[0])
-    except AxiscalError as exc:
-        raise exc.located(path=table.path, line=table.header_line) from None
+#: reference lines :func:`squareness_from_files` fits to a run
+SQUARENESS_REFERENCES = ("least-squares", "end-points")
 
 
-def read_straightness_run(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
-    """Read one straightness run (``position_mm, deviation_um``; also ``_m``/``_um`` and ``_nm``/``_mm``).
+@dataclass(frozen=True)
+class SquarenessEvaluation:
+    """Squareness from two run files, with the runs it came from.
+
+    Attributes
+    ----------
+    result : SquarenessResult
+        The squareness, SI.
+    first, second : Profile
+        The two runs as read, metres.
+    """
+
+    result: SquarenessResult
+    first: Profile
+    second: Profile
+
+    def payload(self) -> dict[str, Any]:
+        """The JSON object: angles in arcsec and degrees, slopes, straightness of each run in um."""
+        result = self.result
+        first, second = result.first_line, result.second_line
+        return {
+            "plane": result.plane,
+            "convention": result.convention,
+            "squareness_arcsec": result.squareness_rad / ARCSEC,
+            "included_angle_deg": math.degrees(result.included_angle_rad),
+            "measured_included_angle_deg": math.degrees(result.measured_included_angle_rad),
+            "prism_deviation_arcsec": result.prism_deviation_rad / ARCSEC,
+            "iso_term": result.iso_term,
+            "iso_value_arcsec": result.iso_value_rad / ARCSEC,
+            "slope_first": result.slope_first,
+            "slope_second": result.slope_second,
+            "reference": None if first is None else first.reference,
+            "straightness_first_um": None if first is None else first.straightness_m / UM,
+            "straightness_second_um": None if second is None else second.straightness_m / UM,
+        }
+
+    def report(self) -> str:
+        """The readable summary: slopes, included angles, the prism's deviation, both conventions."""
+        result = self.result
+        first_axis, second_axis = PLANES[result.plane][:2]
+        return render_report(
+            "squareness.txt.j2",
+            first_axis=first_axis,
+            second_axis=second_axis,
+            first_path=self.first.path,
+            second_path=self.second.path,
+            slope_first=result.slope_first,
+            slope_first_arcsec=math.atan(result.slope_first) / ARCSEC,
+            slope_second=result.slope_second,
+            slope_second_arcsec=math.atan(result.slope_second) / ARCSEC,
+            measured_included_angle_deg=math.degrees(result.measured_included_angle_rad),
+            prism_deviation_arcsec=result.prism_deviation_rad / ARCSEC,
+            included_angle_deg=math.degrees(result.included_angle_rad),
+            convention_name="ISO 230-1 sign" if result.convention == "iso" else "included angle - 90 deg",
+            squareness_arcsec=result.squareness_rad / ARCSEC,
+            iso_term=result.iso_term,
+            iso_value_arcsec=result.iso_value_rad / ARCSEC,
+        )
+
+
+def squareness_from_files(
+    first_path: str | Path,
+    second_path: str | Path,
+    *,
+    plane: str = "XY",
+    prism_deviation_rad: float = 0.0,
+    reference: str = "least-squares",
+    convention: str = "included-angle",
+    plot_path: str | Path | None = None,
+) -> SquarenessEvaluation:
+    """Squareness of two axes from two straightness run files (paper 002 eqs 1, 15 and 21).
+
+    Parameters
+    ----------
+    first_path : str or Path
+        Run of the plane's first axis (deviation along the second axis), read by
+        :func:`axiscal.straightness.files.read_profile`.
+    second_path : str or Path
+        Run of the plane's second axis (deviation along the first axis).
+    plane, prism_deviation_rad, convention : keyword-only
+        As in :func:`squareness_from_slopes`.
+    reference : {"least-squares", "end-points"}, keyword-only
+        Line fitted to each run (default least squares, eq 15).
+    plot_path : str or Path, optional, keyword-only
+        Write both runs and their lines to this image.
 
     Returns
     -------
-    position_m, deviation_m : ndarray, shape (n,), metres
+    SquarenessEvaluation
 
     Raises
     ------
     AxiscalError
-        Missing file or column, a cell that is not a finite number, fewer than 2 rows, or all rows
-        at one position (each naming the file and line).
+        A bad file (naming it and the line), an unknown reference, or the cases of
+        :func:`squareness_from_slopes`.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (folder / "x.csv").write_text("position_mm,deviation_um\\n0,0\\n100,1\\n")
+    >>> _ = (folder / "y.csv").write_text("position_mm,deviation_um\\n0,0\\n100,0\\n")
+    >>> run = squareness_from_files(folder / "x.csv", folder / "y.csv")
+    >>> round(run.payload()["squareness_arcsec"], 3)
+    -2.063
     """
-    table = read_csv(path, min_rows=2)
-    position_name, position_factor = _length_column(table, "position", ("mm", "m", "um"))
-    deviation_name, deviation_factor = _length_column(table, "deviation", ("um", "nm", "mm"))
-    position = table.numeric(position_name) * position_factor
-    deviation = table.numeric(deviation_name) * deviation_factor
-    if np.ptp(position) == 0.0:
-        raise AxiscalError("all rows are at one position: no line can be fitted", path=table.path, line=table.lines[0])
-    return position, deviation
+    if reference not in SQUARENESS_REFERENCES:
+        raise AxiscalError(f"the reference line of a squareness run must be least-squares or end-points, not '{reference}'")
+    first, second = read_profile(first_path), read_profile(second_path)
+    result = squareness(
+        first.position_m,
+        first.deviation_m,
+        second.position_m,
+        second.deviation_m,
+        plane=plane,
+        prism_deviation_rad=prism_deviation_rad,
+        reference=reference,
+        convention=convention,
+    )
+    if plot_path is not None:
+        from axiscal.squareness.plot import plot_squareness
+
+        plot_squareness(plot_path, result, ((first.position_m, first.deviation_m), (second.position_m, second.deviation_m)))
+    return SquarenessEvaluation(result, first, second)

@@ -73,7 +73,7 @@ class Profile:
     deviation_m : ndarray, shape (n,)
         Deviations across the axis, metres.
     yaw_rad : ndarray, shape (n,) or None
-        Yaw from a ``yaw_urad`` column, radians; None when the file has none.
+        Yaw from a ``yaw_urad`` column, radians (NaN for an empty cell); None when the file has none.
     path : str
         The file.
     lines : tuple of int
@@ -110,7 +110,8 @@ def read_profile(path: str | Path, *, increasing: bool = False) -> Profile:
 
     The position column is ``position_mm`` (or ``_m``, ``_um``); the deviation column is
     ``deviation_um`` (or ``_nm``, ``_mm``), or ``profile_um`` as ``axiscal separate`` writes it. A
-    ``yaw_urad`` column, when present, is read too. Other columns are ignored.
+    ``yaw_urad`` column, when present, is read too (an empty cell, a yaw not resolved, is NaN).
+    Other columns are ignored.
 
     Parameters
     ----------
@@ -144,7 +145,7 @@ def read_profile(path: str | Path, *, increasing: bool = False) -> Profile:
     deviation_name, deviation_factor = _column(table, DEVIATION_STEMS, DEVIATION_UNITS)
     position = table.numeric(position_name) * position_factor
     deviation = table.numeric(deviation_name) * deviation_factor
-    yaw = table.numeric("yaw_urad") * URAD if table.has("yaw_urad") else None
+    yaw = table.numeric("yaw_urad", allow_empty=True) * URAD if table.has("yaw_urad") else None
     if np.ptp(position) == 0.0:
         raise AxiscalError(
             "all rows are at one position: a profile needs at least 2 distinct positions",
@@ -543,7 +544,12 @@ def simulate_probe_readings(
     motion_run = read_profile(motion_path, increasing=True)
     profile = _interpolator(profile_run, profile_run.deviation_m, "the profile")
     motion = _interpolator(motion_run, motion_run.deviation_m, "the motion")
-    yaw = None if motion_run.yaw_rad is None else _interpolator(motion_run, motion_run.yaw_rad, "the yaw")
+    yaw = None
+    if motion_run.yaw_rad is not None:
+        missing = np.flatnonzero(~np.isfinite(motion_run.yaw_rad))
+        if missing.size:
+            raise AxiscalError("column 'yaw_urad': empty cell", path=motion_run.path, line=motion_run.lines[missing[0]])
+        yaw = _interpolator(motion_run, motion_run.yaw_rad, "the yaw")
     px = profile_run.position_m
     d2 = (spacing_ab_m if spacing_bc_m is None else spacing_bc_m) if probes == 3 else None
     reach = spacing_ab_m + (d2 or 0.0)
