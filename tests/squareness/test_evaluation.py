@@ -18,6 +18,7 @@ from axiscal.squareness.evaluation import (
     prism_reversal,
     psd_angular_resolution,
     squareness,
+    squareness_from_files,
     squareness_from_slopes,
 )
 from axiscal.units import ARCMIN, ARCSEC, MM, UM
@@ -216,3 +217,25 @@ def test_squareness_of_the_htm_model_is_its_iso_term(chain, plane, term):
     assert result.iso_term == term
     assert result.iso_value_rad == pytest.approx(value, rel=1e-6)
     assert result.included_angle_rad - math.pi / 2 == pytest.approx(included_angle_from_iso(value, plane=plane), rel=1e-6)
+
+
+def test_squareness_from_files_reproduces_paper_002(examples, tmp_path):
+    # paper 002 section 4: D = 2.7 arcsec leaves 20.9 arcsec (20.954 unrounded)
+    run = squareness_from_files(
+        examples / "squareness_x.csv", examples / "squareness_y.csv", prism_deviation_rad=2.7 * ARCSEC,
+        plot_path=tmp_path / "runs.png",
+    )
+    assert math.floor(run.result.squareness_rad / ARCSEC * 10) / 10 == 20.9
+    assert (tmp_path / "runs.png").read_bytes()[:4] == b"\x89PNG"
+    body = run.payload()
+    assert body["squareness_arcsec"] == run.result.squareness_rad / ARCSEC and body["reference"] == "least-squares"
+    report = run.report().splitlines()
+    assert report[0].startswith("squareness of XY: first run ") and report[0].endswith("(moves Y)")
+    assert report[6] == "  squareness (included angle - 90 deg)  +20.95 arcsec"
+    with pytest.raises(AxiscalError, match="least-squares or end-points"):
+        squareness_from_files(examples / "squareness_x.csv", examples / "squareness_y.csv", reference="minimum-zone")
+    one = tmp_path / "one.csv"
+    one.write_text("position_mm,deviation_um\n0,1\n")
+    with pytest.raises(AxiscalError, match="at least 2") as info:
+        squareness_from_files(one, examples / "squareness_y.csv")
+    assert str(one) in str(info.value)
