@@ -175,6 +175,17 @@ def compensate(points_m: np.ndarray, squareness: CmmSquareness) -> np.ndarray:
     -------
     ndarray, shape (n, 3), metres
         ``(x - y a_xy - z a_xz, y - z a_yz, z)``.
+
+    Raises
+    ------
+    AxiscalError
+        Points not of shape (n, 3) or not finite.
+
+    Examples
+    --------
+    >>> c = CmmSquareness(1e-4, 0.0, 0.0)
+    >>> compensate([[0.0, 0.1, 0.0]], c).round(9).tolist()
+    [[-1e-05, 0.1, 0.0]]
     """
     return _points(points_m) @ squareness.matrix().T
 
@@ -184,6 +195,22 @@ def readings_for(points_m: np.ndarray, squareness: CmmSquareness) -> np.ndarray:
 
     Exact inverse of the triangular map: ``z = z'``, ``y = y' + z a_yz``,
     ``x = x' + y a_xy + z a_xz`` (with the ``y`` just found). Shapes as in :func:`compensate`.
+
+    Parameters
+    ----------
+    points_m : array_like, shape (n, 3), metres
+        True coordinates.
+    squareness : CmmSquareness
+
+    Returns
+    -------
+    ndarray, shape (n, 3), metres
+        The readings.
+
+    Raises
+    ------
+    AxiscalError
+        Points not of shape (n, 3) or not finite.
     """
     p = _points(points_m)
     z = p[:, 2]
@@ -217,6 +244,11 @@ def psd_squareness(
     -------
     float
         ``atan(slope) - alpha_p``: included angle minus 90 degrees.
+
+    Raises
+    ------
+    AxiscalError
+        Fewer than 2 points, all at one position, or an unknown reference.
     """
     if np.asarray(position_m).size < 2:
         raise AxiscalError(f"a PSD run has {np.asarray(position_m).size} point(s); a line needs at least 2")
@@ -233,6 +265,22 @@ def squareness_from_psd_runs(
     """The three squareness errors from three PSD runs keyed ``"XY"``, ``"XZ"``, ``"YZ"``.
 
     Each value is ``(position_m, reading_m)`` as in :func:`psd_squareness`.
+
+    Parameters
+    ----------
+    runs : mapping of str to (ndarray, ndarray)
+        ``"XY"``, ``"XZ"``, ``"YZ"`` to ``(position_m, reading_m)``, metres.
+    prism_deviation_rad, reference : keyword-only
+        As in :func:`psd_squareness`.
+
+    Returns
+    -------
+    CmmSquareness
+
+    Raises
+    ------
+    AxiscalError
+        A plane missing or unknown, or a run :func:`psd_squareness` refuses.
     """
     missing = sorted({"XY", "XZ", "YZ"} - set(runs))
     extra = sorted(set(runs) - {"XY", "XZ", "YZ"})
@@ -293,6 +341,23 @@ def gauge_block_length(face_points_m: np.ndarray, first_point_m: np.ndarray, sec
     The least-squares plane of ``face_points_m`` (6 points in a rectangle on one measuring face)
     gives the block's axis; the vector from ``first_point_m`` (on one measuring face) to
     ``second_point_m`` (on the other) projected on that axis is the length (absolute value).
+
+    Parameters
+    ----------
+    face_points_m : array_like, shape (n, 3), metres
+        Points on one measuring face, n >= 3.
+    first_point_m, second_point_m : array_like, shape (3,), metres
+        One point on each measuring face.
+
+    Returns
+    -------
+    float
+        The length, metres.
+
+    Raises
+    ------
+    AxiscalError
+        Face points that define no plane, or points not finite.
     """
     axis = least_squares_plane(face_points_m).normal
     first = _points(first_point_m)[0]
@@ -379,6 +444,11 @@ def simulate_gauge_block(
     Returns
     -------
     GaugeBlockCheck
+
+    Raises
+    ------
+    AxiscalError
+        A block length that is not positive, or an axis that is zero or not finite.
     """
     if not (math.isfinite(nominal_m) and nominal_m > 0.0):
         raise AxiscalError(f"the block length must be positive, got {nominal_m}")

@@ -87,7 +87,27 @@ def _plane(plane: str) -> tuple[str, str, str, int]:
 
 
 def iso_term(plane: str) -> str:
-    """ISO 230-1 name of the squareness of ``plane``: XY -> EC0Y, XZ -> EB0Z, YZ -> EA0Z."""
+    """ISO 230-1 name of the squareness of ``plane``: XY -> EC0Y, XZ -> EB0Z, YZ -> EA0Z.
+
+    Parameters
+    ----------
+    plane : {"XY", "XZ", "YZ"}
+        The plane (any case).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    AxiscalError
+        An unknown plane.
+
+    Examples
+    --------
+    >>> iso_term("xz")
+    'EB0Z'
+    """
     return _plane(plane)[2]
 
 
@@ -95,12 +115,55 @@ def iso_from_included_angle(squareness_rad: float, *, plane: str) -> float:
     """ISO 230-1 squareness term from the included-angle value (included angle - 90 deg), rad.
 
     ``EC0Y = s_XY``, ``EB0Z = -s_XZ``, ``EA0Z = s_YZ``.
+
+    Parameters
+    ----------
+    squareness_rad : float
+        The value, radians.
+    plane : {"XY", "XZ", "YZ"}, keyword-only
+
+    Returns
+    -------
+    float
+        Radians.
+
+    Raises
+    ------
+    AxiscalError
+        An unknown plane.
+
+    Examples
+    --------
+    >>> iso_from_included_angle(1e-5, plane="XZ")
+    -1e-05
     """
     return _plane(plane)[3] * squareness_rad
 
 
 def included_angle_from_iso(iso_value_rad: float, *, plane: str) -> float:
-    """Included angle minus 90 deg from the ISO 230-1 term of ``plane``, rad (the inverse)."""
+    """Included angle minus 90 deg from the ISO 230-1 term of ``plane``, rad (the inverse).
+
+    Parameters
+    ----------
+    iso_value_rad : float
+        The value, radians.
+    plane : {"XY", "XZ", "YZ"}, keyword-only
+
+    Returns
+    -------
+    float
+        Radians.
+
+    Raises
+    ------
+    AxiscalError
+        An unknown plane.
+
+    Examples
+    --------
+    >>> included_angle_from_iso(1e-5, plane="XZ")
+    -1e-05
+    """
     return _plane(plane)[3] * iso_value_rad
 
 
@@ -179,6 +242,18 @@ def squareness_from_slopes(
         Unknown plane or convention, non-finite slopes, a prism deviation of 1 degree or more, or
         lines that are (nearly) parallel: an included angle more than 45 degrees off a right angle
         is not the squareness of two axes.
+
+    Returns
+    -------
+    SquarenessResult
+        Without fitted lines.
+
+    Examples
+    --------
+    >>> from axiscal.units import ARCSEC
+    >>> result = squareness_from_slopes(-0.00044783, 1 / 3001.62173825, prism_deviation_rad=2.7 * ARCSEC)
+    >>> round(result.squareness_rad / ARCSEC, 2)
+    20.95
     """
     first, second, term, _ = _plane(plane)
     if convention not in CONVENTIONS:
@@ -187,7 +262,7 @@ def squareness_from_slopes(
         raise AxiscalError("slopes and prism deviation must be finite numbers")
     if abs(prism_deviation_rad) >= _MAX_PRISM_DEVIATION:
         raise AxiscalError(
-            f"a prism deviation of {math.degrees(prism_deviation_rad) * 3600:.6g} arcsec is 1 degree or more off 90 degrees: "
+            f"a prism deviation of {prism_deviation_rad / ARCSEC:.6g} arcsec is 1 degree or more off 90 degrees: "
             "not a pentaprism (check the unit: arc seconds)"
         )
     measured = math.pi / 2.0 - math.atan(slope_first) - math.atan(slope_second)
@@ -242,6 +317,11 @@ def squareness(
     AxiscalError
         A run with fewer than 2 points (or all at one position), or the cases of
         :func:`squareness_from_slopes`.
+
+    Returns
+    -------
+    SquarenessResult
+        With both fitted lines.
     """
     lines = []
     for label, position, deviation in (
@@ -283,6 +363,26 @@ def prism_reversal(alpha1_rad: float, alpha2_rad: float) -> ReversalResult:
     round, ``alpha_2 = alpha_0 + alpha_p`` (eq 3). The paper's eqs (4)-(5) are missing from the
     text; solving 2-3 gives ``alpha_0 = (alpha_2 - alpha_1) / 2`` and ``alpha_p = (alpha_1 + alpha_2) / 2``.
     Each ``alpha_i = delta_d_i / L_0`` (spot travel over stage travel).
+
+    Parameters
+    ----------
+    alpha1_rad, alpha2_rad : float
+        The angles of the first and the reversed measurement, radians.
+
+    Returns
+    -------
+    ReversalResult
+
+    Raises
+    ------
+    AxiscalError
+        An angle that is not finite.
+
+    Examples
+    --------
+    >>> result = prism_reversal(3e-5, 5e-5)
+    >>> round(result.prism_deviation_rad, 9), round(result.squareness_rad, 9)
+    (4e-05, 1e-05)
     """
     if not (math.isfinite(alpha1_rad) and math.isfinite(alpha2_rad)):
         raise AxiscalError("reversal angles must be finite numbers")
@@ -298,6 +398,26 @@ def prism_deviation_from_wedge(alpha1_rad: float, alpha2_rad: float) -> float:
     and the beam back from the wedge, ``alpha_2`` that between the autocollimator's transmitted
     beam and the beam back from the mirror, radians. The method gives the size of the error only;
     its sign must come from the set-up (or from a reversal, :func:`prism_reversal`).
+
+    Parameters
+    ----------
+    alpha1_rad, alpha2_rad : float
+        The two autocollimator angles, radians.
+
+    Returns
+    -------
+    float
+        ``|D|``, radians.
+
+    Raises
+    ------
+    AxiscalError
+        An angle that is not finite.
+
+    Examples
+    --------
+    >>> prism_deviation_from_wedge(5e-5, 1e-5)
+    1e-05
     """
     if not (math.isfinite(alpha1_rad) and math.isfinite(alpha2_rad)):
         raise AxiscalError("autocollimator angles must be finite numbers")
@@ -317,7 +437,23 @@ def psd_angular_resolution(linear_resolution_m: float, travel_m: float) -> float
     Notes
     -----
     0.3 um over 18 mm is 16.7 urad = 3.4 arcsec = 0.057 arcmin; the paper's "0.06 arcsec" is arc
-    minutes (primer slip 5), and so is its "0.001 arcsec" for 1000 mm.
+    minutes (a unit slip in the paper), and so is its "0.001 arcsec" for 1000 mm.
+
+    Returns
+    -------
+    float
+        ``a / L``, radians.
+
+    Raises
+    ------
+    AxiscalError
+        A resolution or travel that is not a positive length.
+
+    Examples
+    --------
+    >>> from axiscal.units import UM, MM
+    >>> round(psd_angular_resolution(0.3 * UM, 18 * MM), 7)
+    1.67e-05
     """
     if not (math.isfinite(linear_resolution_m) and linear_resolution_m > 0.0):
         raise AxiscalError(f"the PSD resolution must be a positive length, got {linear_resolution_m}")

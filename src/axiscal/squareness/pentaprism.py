@@ -120,7 +120,7 @@ def pentaprism_study(
     Examples
     --------
     >>> study = pentaprism_study(range_rad=5 * ARCMIN, steps=3)
-    >>> round(study.payload()["deviation_change_arcsec"]["Z"][0], 4)
+    >>> float(round(study.payload()["deviation_change_arcsec"]["Z"][0], 4))
     -0.4363
     """
     if not (math.isfinite(range_rad) and 0 < range_rad <= MAX_ROTATION_RAD):
