@@ -7,6 +7,8 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from axiscal.errors import AxiscalError
 from axiscal.straightness.files import (
@@ -161,3 +163,20 @@ def test_a_motion_with_a_gap_in_its_yaw_is_refused(examples, tmp_path):
     with pytest.raises(AxiscalError, match="yaw_urad") as info:
         simulate_probe_readings(examples / "separation_profile.csv", motion, spacing_ab_m=15 * MM, step_m=1 * MM)
     assert info.value.line == 3
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    st.sampled_from([("mm", MM), ("m", 1.0), ("um", UM)]),
+    st.sampled_from([("um", UM), ("nm", 1e-9), ("mm", MM)]),
+    st.lists(st.floats(-1e3, 1e3, allow_nan=False), min_size=2, max_size=20),
+)
+def test_read_profile_round_trips_any_unit(tmp_path_factory, position_unit, deviation_unit, values):
+    (p_name, p_factor), (d_name, d_factor) = position_unit, deviation_unit
+    positions = [7.0 * k for k in range(len(values))]
+    path = tmp_path_factory.mktemp("units") / "p.csv"
+    rows = "".join(f"{p!r},{v!r}\n" for p, v in zip(positions, values))
+    path.write_text(f"position_{p_name},deviation_{d_name}\n{rows}")
+    profile = read_profile(path)
+    np.testing.assert_allclose(profile.position_m, np.array(positions) * p_factor, rtol=1e-15)
+    np.testing.assert_allclose(profile.deviation_m, np.array(values) * d_factor, rtol=1e-15)
