@@ -20,6 +20,8 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.units import MM, UM
+
 HERE = Path(__file__).resolve().parent
 
 SLOPE_X = -0.00044783
@@ -30,7 +32,7 @@ def run(path: Path, position_mm: np.ndarray, slope: float, bow_um: float, ripple
     mid = 0.5 * (position_mm[0] + position_mm[-1])
     half = 0.5 * (position_mm[-1] - position_mm[0])
     s = (position_mm - mid) / half
-    deviation_um = slope * position_mm * 1e3 + bow_um * s**2 + ripple_um * np.cos(3 * np.pi * s)
+    deviation_um = slope * position_mm * MM / UM + bow_um * s**2 + ripple_um * np.cos(3 * np.pi * s)
     lines = ["position_mm,deviation_um"]
     lines += [f"{q:.1f},{d:.4f}" for q, d in zip(position_mm, deviation_um)]
     path.write_text("\n".join(lines) + "\n")

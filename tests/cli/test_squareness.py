@@ -6,6 +6,7 @@ import json
 import math
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from axiscal.io.tabular import read_csv
@@ -89,7 +90,14 @@ def test_cmm_compensate(run_cli, examples, tmp_path):
     np.testing.assert_allclose(xr - yr * a_xy - zr * a_xz, x, atol=2e-6)
     np.testing.assert_allclose(yr - zr * a_yz, y, atol=2e-6)
     status, out, _ = run_cli("cmm", "compensate", "--squareness-arcmin=-8.05,27.1,-16.6", examples / "cmm_points.csv")
-    assert status == 0 and out.startswith("# paper 004 eq (6)") and "x_corrected_mm" in out
+    assert status == 0 and out.startswith("x_mm,y_mm,z_mm,x_corrected_mm,y_corrected_mm,z_corrected_mm\n")
+    frame = pd.read_csv(out_path)
+    assert list(frame.columns)[-3:] == ["x_corrected_mm", "y_corrected_mm", "z_corrected_mm"]
+    sidecar = json.loads(out_path.with_suffix(".json").read_text())
+    assert sidecar["kind"] == "cmm compensation" and sidecar["model"] == "paper 004 eq (6)"
+    assert sidecar["squareness_arcmin"]["a_xz"] == pytest.approx(27.1)
+    assert sidecar["iso_terms_arcmin"]["EB0Z"] == pytest.approx(-27.1)
+    assert list(pd.read_csv(readings).columns)[-1] == "z_reading_mm"
 
 
 def test_cmm_gauge_blocks(run_cli):

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from axiscal.io.tabular import parse_csv
@@ -62,9 +63,11 @@ def test_separation_plot_with_yaw(run_cli, examples, tmp_path, method):
     assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
-def test_frequency_options_reach_the_method(run_cli, examples):
-    status, bowed, _ = run_cli("separate", examples / "probe_readings.csv", "--method", "frequency", "--spacing-mm", "15")
-    assert status == 0 and "harmonics left out" in bowed
+def test_frequency_options_reach_the_method(run_cli, examples, tmp_path):
+    out_csv = tmp_path / "bowed.csv"
+    status, _, _ = run_cli("separate", examples / "probe_readings.csv", "--method", "frequency", "--spacing-mm", "15", "-o", out_csv)
+    assert status == 0 and json.loads(out_csv.with_suffix(".json").read_text())["lost_wavelength_mm"]
+    bowed = out_csv.read_text()
     status, periodic, _ = run_cli(
         "separate", examples / "probe_readings.csv", "--method", "frequency", "--spacing-mm", "15", "--periodic", "--two-probe"
     )
@@ -87,6 +90,32 @@ def test_combined_recovers_the_shipped_profile(run_cli, examples):
     xs = strp.numeric("position_mm")
     error = strp.numeric("profile_um") - np.interp(xs, truth.numeric("position_mm"), truth.numeric("deviation_um"))
     assert np.ptp(reference_line(xs, error).residuals(xs, error)) > 1.0  # the zero offsets, eq (10)
+
+
+def test_what_separate_writes_is_a_straightness_input(run_cli, examples, tmp_path):
+    separated = tmp_path / "separated.csv"
+    status, _, err = run_cli("separate", examples / "probe_readings.csv", "--method", "strp", "--spacing-mm", "15", "-o", separated)
+    assert status == 0, err
+    frame = pd.read_csv(separated)
+    assert list(frame.columns) == ["position_mm", "profile_um", "motion_um", "yaw_urad"]
+    sidecar = json.loads(separated.with_suffix(".json").read_text())
+    assert sidecar["kind"] == "separation" and sidecar["method"] == "strp"
+    status, out, err = run_cli("straightness", separated, "--json")
+    assert status == 0, err
+    x, r = frame["position_mm"].to_numpy() * 1e-3, frame["profile_um"].to_numpy() * 1e-6
+    assert json.loads(out)["straightness_um"] == pytest.approx(reference_line(x, r).straightness_m * 1e6)
+
+
+def test_simulate_probes_writes_a_plain_csv_and_sidecar(run_cli, examples, tmp_path):
+    readings = tmp_path / "readings.csv"
+    status, _, err = run_cli(
+        "simulate-probes", "--profile", examples / "separation_profile.csv", "--motion", examples / "separation_motion.csv",
+        "--spacing-mm", "15", "--step-mm", "1", "--probes", "2", "-o", readings,
+    )
+    assert status == 0, err
+    assert list(pd.read_csv(readings).columns) == ["position_mm", "a_um", "b_um"]
+    sidecar = json.loads(readings.with_suffix(".json").read_text())
+    assert sidecar["kind"] == "probe readings" and sidecar["spacing_bc_mm"] is None
 
 
 def test_simulate_then_separate_round_trip_with_fstrp(run_cli, examples, tmp_path):
@@ -118,7 +147,7 @@ def test_two_probe_simulation_and_reversal(run_cli, examples, tmp_path):
         "simulate-probes", "--profile", examples / "separation_profile.csv", "--motion", examples / "separation_motion.csv",
         "--spacing-mm", "15", "--step-mm", "1", "--probes", "2",
     )
-    assert status == 0 and "c_um" not in out.splitlines()[1]
+    assert status == 0 and out.splitlines()[0] == "position_mm,a_um,b_um"
     normal = tmp_path / "normal.csv"
     turned = tmp_path / "turned.csv"
     normal.write_text("position_mm,a_um\n0,0.5\n10,1.0\n20,0.0\n")
@@ -229,7 +258,7 @@ def test_bad_simulation_options(run_cli, examples, argv, needle):
         ("position_mm,deviation_um\n0,1\n", "at least 2"),
         ("position_mm,deviation_um\n0,1\n1,nan\n", "p.csv:3: column 'deviation_um': nan is not a finite number"),
         ("position_mm,deviation_um\n0,1\n1,inf\n", "p.csv:3:"),
-        ("position_mm,deviation_nm\n0,1\n1,2\n", "p.csv:1: missing column 'deviation_um'"),
+        ("position_mm,height_um\n0,1\n1,2\n", "p.csv:1: missing column deviation_um"),
         ("position_mm,deviation_um\n0,1\n1,2,3\n", "p.csv:3:"),
         ("position_mm,deviation_um\n0,1\n0,2\n1,3\n", "end-point line"),
     ],

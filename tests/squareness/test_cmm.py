@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pandas as pd
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -12,8 +13,14 @@ from hypothesis import strategies as st
 from axiscal.errors import AxiscalError
 from axiscal.model.machine import Axis, Machine
 from axiscal.squareness.cmm import (
+    MAX_CMM_SQUARENESS_ARCMIN,
+    PAPER_004_GAUGE_BLOCKS_MM,
+    PAPER_004_IMPROVEMENT_UM,
+    PAPER_004_SQUARENESS_ARCMIN,
     CmmSquareness,
     compensate,
+    compensate_file,
+    gauge_block_study,
     gauge_block_length,
     least_squares_plane,
     psd_squareness,
@@ -224,3 +231,45 @@ def test_aligned_length_is_independent_of_probing_property(a, b, c, direction, l
     expected = length / np.linalg.norm(s.matrix().T @ unit) - length
     assert one.aligned_before_m == pytest.approx(expected, abs=1e-15)
     assert other.aligned_before_m == pytest.approx(expected, abs=1e-15)
+
+
+def test_published_values_name_paper_004():
+    # paper 004 section 4.1 (a_xy, a_xz, a_yz in arc minutes), section 4.2 (blocks), Table 2 text
+    assert PAPER_004_SQUARENESS_ARCMIN == (8.05, 27.1, -16.6)
+    assert PAPER_004_GAUGE_BLOCKS_MM == {"X": 0.992, "Y": 1.000}
+    assert PAPER_004_IMPROVEMENT_UM == {"X": 11.0, "Y": 5.0}
+
+
+def test_gauge_block_study_is_the_simulation_of_each_block():
+    study = gauge_block_study(PAPER, end_offset_m=1 * MM)
+    x_offset = simulate_gauge_block(PAPER, 0.992 * MM, (1, 0, 0), end_offset_m=(0, 1 * MM, 1 * MM))
+    assert study.blocks["X"].unaligned_before_m == x_offset.unaligned_before_m
+    assert study.blocks["X"].aligned_before_m == x_offset.aligned_before_m
+    body = study.payload()
+    assert body["end_offset_mm"] == pytest.approx(1.0)
+    assert round(body["blocks"]["X"]["unaligned_improvement_um"], 1) == 10.2
+    assert round(body["blocks"]["Y"]["unaligned_improvement_um"], 1) == 4.8
+    assert body["blocks"]["Y"]["paper_004_improvement_um"] == 5.0
+    lines = study.report().splitlines()
+    assert lines[4] == "  0.992 X         -0.0335    0.0000           10.2134    0.0000        10.21       11.0"
+    with pytest.raises(AxiscalError, match="finite"):
+        gauge_block_study(PAPER, end_offset_m=math.nan)
+
+
+def test_checked_squareness_refuses_large_angles():
+    assert CmmSquareness.checked(PAPER.xy_rad, PAPER.xz_rad, PAPER.yz_rad) == PAPER
+    with pytest.raises(AxiscalError, match=f"{MAX_CMM_SQUARENESS_ARCMIN:g} arc minutes"):
+        CmmSquareness.checked(0.0, 61 * ARCMIN, 0.0)
+    with pytest.raises(AxiscalError, match="finite"):
+        CmmSquareness.checked(0.0, math.inf, 0.0)
+
+
+def test_compensate_file_round_trip(tmp_path, examples):
+    corrected = tmp_path / "corrected.csv"
+    run = compensate_file(examples / "cmm_points.csv", PAPER, output=corrected)
+    np.testing.assert_allclose(run.moved_m, compensate(run.points_m, PAPER))
+    back = compensate_file(corrected, PAPER, inverse=True)
+    assert back.csv_text.splitlines()[0].endswith("x_reading_mm,y_reading_mm,z_reading_mm")
+    frame = pd.read_csv(corrected)
+    again = readings_for(frame[["x_corrected_mm", "y_corrected_mm", "z_corrected_mm"]].to_numpy() * MM, PAPER)
+    np.testing.assert_allclose(again, run.points_m, atol=2e-9)

@@ -17,8 +17,8 @@ from axiscal.squareness.evaluation import (
     prism_deviation_from_wedge,
     prism_reversal,
     psd_angular_resolution,
-    read_straightness_run,
     squareness,
+    squareness_from_files,
     squareness_from_slopes,
 )
 from axiscal.units import ARCMIN, ARCSEC, MM, UM
@@ -164,27 +164,6 @@ def test_bad_input():
         squareness(x, 0 * x, x, 0 * x, reference="best")
 
 
-def test_read_run_and_its_errors(tmp_path):
-    good = tmp_path / "run.csv"
-    good.write_text("# a run\nposition_mm,deviation_um\n0,1\n100,2\n200,2.5\n")
-    position, deviation = read_straightness_run(good)
-    np.testing.assert_allclose(position, [0, 0.1, 0.2])
-    np.testing.assert_allclose(deviation, [1e-6, 2e-6, 2.5e-6])
-    one = tmp_path / "one.csv"
-    one.write_text("position_mm,deviation_um\n0,1\n")
-    with pytest.raises(AxiscalError, match="at least 2"):
-        read_straightness_run(one)
-    unit = tmp_path / "unit.csv"
-    unit.write_text("position_in,deviation_um\n0,1\n1,2\n")
-    with pytest.raises(AxiscalError, match="unknown length unit") as info:
-        read_straightness_run(unit)
-    assert info.value.line == 1
-    same = tmp_path / "same.csv"
-    same.write_text("position_mm,deviation_um\n5,1\n5,2\n")
-    with pytest.raises(AxiscalError, match="one position"):
-        read_straightness_run(same)
-
-
 @settings(max_examples=80, deadline=None)
 @given(
     st.floats(-1e-3, 1e-3),
@@ -238,3 +217,25 @@ def test_squareness_of_the_htm_model_is_its_iso_term(chain, plane, term):
     assert result.iso_term == term
     assert result.iso_value_rad == pytest.approx(value, rel=1e-6)
     assert result.included_angle_rad - math.pi / 2 == pytest.approx(included_angle_from_iso(value, plane=plane), rel=1e-6)
+
+
+def test_squareness_from_files_reproduces_paper_002(examples, tmp_path):
+    # paper 002 section 4: D = 2.7 arcsec leaves 20.9 arcsec (20.954 unrounded)
+    run = squareness_from_files(
+        examples / "squareness_x.csv", examples / "squareness_y.csv", prism_deviation_rad=2.7 * ARCSEC,
+        plot_path=tmp_path / "runs.png",
+    )
+    assert math.floor(run.result.squareness_rad / ARCSEC * 10) / 10 == 20.9
+    assert (tmp_path / "runs.png").read_bytes()[:4] == b"\x89PNG"
+    body = run.payload()
+    assert body["squareness_arcsec"] == run.result.squareness_rad / ARCSEC and body["reference"] == "least-squares"
+    report = run.report().splitlines()
+    assert report[0].startswith("squareness of XY: first run ") and report[0].endswith("(moves Y)")
+    assert report[6] == "  squareness (included angle - 90 deg)  +20.95 arcsec"
+    with pytest.raises(AxiscalError, match="least-squares or end-points"):
+        squareness_from_files(examples / "squareness_x.csv", examples / "squareness_y.csv", reference="minimum-zone")
+    one = tmp_path / "one.csv"
+    one.write_text("position_mm,deviation_um\n0,1\n")
+    with pytest.raises(AxiscalError, match="at least 2") as info:
+        squareness_from_files(one, examples / "squareness_y.csv")
+    assert str(one) in str(info.value)

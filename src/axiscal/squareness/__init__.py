@@ -3,11 +3,19 @@
 from __future__ import annotations
 
 from axiscal.squareness.cmm import (
+    MAX_CMM_SQUARENESS_ARCMIN,
+    PAPER_004_GAUGE_BLOCKS_MM,
+    PAPER_004_IMPROVEMENT_UM,
+    PAPER_004_SQUARENESS_ARCMIN,
+    CmmCompensation,
     CmmSquareness,
     GaugeBlockCheck,
+    GaugeBlockStudy,
     Plane,
     compensate,
+    compensate_file,
     gauge_block_length,
+    gauge_block_study,
     least_squares_plane,
     psd_squareness,
     readings_for,
@@ -17,7 +25,9 @@ from axiscal.squareness.cmm import (
 from axiscal.squareness.evaluation import (
     CONVENTIONS,
     PLANES,
+    SQUARENESS_REFERENCES,
     ReversalResult,
+    SquarenessEvaluation,
     SquarenessResult,
     included_angle_from_iso,
     iso_from_included_angle,
@@ -25,10 +35,17 @@ from axiscal.squareness.evaluation import (
     prism_deviation_from_wedge,
     prism_reversal,
     psd_angular_resolution,
-    read_straightness_run,
     squareness,
+    squareness_from_files,
     squareness_from_slopes,
 )
+from axiscal.squareness.pentaprism import (
+    PAPER_002_QUADRATIC_ARCSEC,
+    PENTAPRISM_SHIFTS_M,
+    PentaprismStudy,
+    pentaprism_study,
+)
+from axiscal.squareness.plot import plot_pentaprism, plot_squareness
 
 __all__ = [
     "PLANES",
@@ -43,7 +60,17 @@ __all__ = [
     "prism_reversal",
     "prism_deviation_from_wedge",
     "psd_angular_resolution",
-    "read_straightness_run",
+    "SQUARENESS_REFERENCES",
+    "SquarenessEvaluation",
+    "squareness_from_files",
+    "PAPER_002_QUADRATIC_ARCSEC",
+    "PENTAPRISM_SHIFTS_M",
+    "PentaprismStudy",
+    "pentaprism_study",
+    "PAPER_004_IMPROVEMENT_UM",
+    "PAPER_004_SQUARENESS_ARCMIN",
+    "PAPER_004_GAUGE_BLOCKS_MM",
+    "MAX_CMM_SQUARENESS_ARCMIN",
     "CmmSquareness",
     "compensate",
     "readings_for",
@@ -54,4 +81,10 @@ __all__ = [
     "gauge_block_length",
     "GaugeBlockCheck",
     "simulate_gauge_block",
+    "CmmCompensation",
+    "compensate_file",
+    "GaugeBlockStudy",
+    "gauge_block_study",
+    "plot_squareness",
+    "plot_pentaprism",
 ]

@@ -31,14 +31,25 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.atomic import write_text
+from axiscal.io.jsonio import write_sidecar
+from axiscal.io.tabular import read_csv, write_csv
 from axiscal.squareness.evaluation import iso_from_included_angle
 from axiscal.straightness.reference import reference_line
+from axiscal.straightness.report import render_report
+from axiscal.units import ARCMIN, MM, UM
 
 __all__ = [
+    "PAPER_004_IMPROVEMENT_UM",
+    "PAPER_004_SQUARENESS_ARCMIN",
+    "PAPER_004_GAUGE_BLOCKS_MM",
+    "MAX_CMM_SQUARENESS_ARCMIN",
     "CmmSquareness",
     "compensate",
     "readings_for",
@@ -49,7 +60,20 @@ __all__ = [
     "gauge_block_length",
     "GaugeBlockCheck",
     "simulate_gauge_block",
+    "CmmCompensation",
+    "compensate_file",
+    "GaugeBlockStudy",
+    "gauge_block_study",
 ]
+
+#: paper 004, Table 2 as its text gives it: error reductions of the two gauge blocks by compensation, um
+PAPER_004_IMPROVEMENT_UM = {"X": 11.0, "Y": 5.0}
+#: paper 004, section 4.1: the measured a_xy, a_xz, a_yz, arc minutes (included-angle signs)
+PAPER_004_SQUARENESS_ARCMIN = (8.05, 27.1, -16.6)
+#: paper 004, section 4.2: the gauge blocks checked, along X and along Y, mm
+PAPER_004_GAUGE_BLOCKS_MM = {"X": 0.992, "Y": 1.000}
+#: Largest CMM squareness :meth:`CmmSquareness.checked` accepts, arc minutes: eq (6) is a small-angle model.
+MAX_CMM_SQUARENESS_ARCMIN = 60.0
 
 
 @dataclass(frozen=True)
@@ -81,6 +105,38 @@ class CmmSquareness:
             xz_rad=-float(terms.get("EB0Z", 0.0)),
             yz_rad=float(terms.get("EA0Z", 0.0)),
         )
+
+    @classmethod
+    def checked(cls, xy_rad: float, xz_rad: float, yz_rad: float) -> CmmSquareness:
+        """The three values, refused when eq (6), a small-angle model, does not hold for them.
+
+        Parameters
+        ----------
+        xy_rad, xz_rad, yz_rad : float
+            ``a_xy``, ``a_xz``, ``a_yz``, radians (included-angle convention).
+
+        Returns
+        -------
+        CmmSquareness
+
+        Raises
+        ------
+        AxiscalError
+            A value that is not finite or beyond :data:`MAX_CMM_SQUARENESS_ARCMIN`.
+
+        Examples
+        --------
+        >>> CmmSquareness.checked(0.0, 1e-3, 0.0).xz_rad
+        0.001
+        """
+        values = cls(xy_rad, xz_rad, yz_rad)
+        if any(abs(v) > MAX_CMM_SQUARENESS_ARCMIN * ARCMIN for v in (xy_rad, xz_rad, yz_rad)):
+            shown = ",".join(f"{v / ARCMIN:g}" for v in (xy_rad, xz_rad, yz_rad))
+            raise AxiscalError(
+                f"values must be within +-{MAX_CMM_SQUARENESS_ARCMIN:g} arc minutes "
+                f"(eq 6 is a small-angle model; check the unit), got '{shown}'"
+            )
+        return values
 
     def iso(self) -> dict[str, float]:
         """The same as ISO 230-1 terms, radians: ``EC0Y = a_xy, EB0Z = -a_xz, EA0Z = a_yz``."""
@@ -119,6 +175,17 @@ def compensate(points_m: np.ndarray, squareness: CmmSquareness) -> np.ndarray:
     -------
     ndarray, shape (n, 3), metres
         ``(x - y a_xy - z a_xz, y - z a_yz, z)``.
+
+    Raises
+    ------
+    AxiscalError
+        Points not of shape (n, 3) or not finite.
+
+    Examples
+    --------
+    >>> c = CmmSquareness(1e-4, 0.0, 0.0)
+    >>> compensate([[0.0, 0.1, 0.0]], c).round(9).tolist()
+    [[-1e-05, 0.1, 0.0]]
     """
     return _points(points_m) @ squareness.matrix().T
 
@@ -128,6 +195,22 @@ def readings_for(points_m: np.ndarray, squareness: CmmSquareness) -> np.ndarray:
 
     Exact inverse of the triangular map: ``z = z'``, ``y = y' + z a_yz``,
     ``x = x' + y a_xy + z a_xz`` (with the ``y`` just found). Shapes as in :func:`compensate`.
+
+    Parameters
+    ----------
+    points_m : array_like, shape (n, 3), metres
+        True coordinates.
+    squareness : CmmSquareness
+
+    Returns
+    -------
+    ndarray, shape (n, 3), metres
+        The readings.
+
+    Raises
+    ------
+    AxiscalError
+        Points not of shape (n, 3) or not finite.
     """
     p = _points(points_m)
     z = p[:, 2]
@@ -161,6 +244,11 @@ def psd_squareness(
     -------
     float
         ``atan(slope) - alpha_p``: included angle minus 90 degrees.
+
+    Raises
+    ------
+    AxiscalError
+        Fewer than 2 points, all at one position, or an unknown reference.
     """
     if np.asarray(position_m).size < 2:
         raise AxiscalError(f"a PSD run has {np.asarray(position_m).size} point(s); a line needs at least 2")
@@ -177,6 +265,22 @@ def squareness_from_psd_runs(
     """The three squareness errors from three PSD runs keyed ``"XY"``, ``"XZ"``, ``"YZ"``.
 
     Each value is ``(position_m, reading_m)`` as in :func:`psd_squareness`.
+
+    Parameters
+    ----------
+    runs : mapping of str to (ndarray, ndarray)
+        ``"XY"``, ``"XZ"``, ``"YZ"`` to ``(position_m, reading_m)``, metres.
+    prism_deviation_rad, reference : keyword-only
+        As in :func:`psd_squareness`.
+
+    Returns
+    -------
+    CmmSquareness
+
+    Raises
+    ------
+    AxiscalError
+        A plane missing or unknown, or a run :func:`psd_squareness` refuses.
     """
     missing = sorted({"XY", "XZ", "YZ"} - set(runs))
     extra = sorted(set(runs) - {"XY", "XZ", "YZ"})
@@ -237,6 +341,23 @@ def gauge_block_length(face_points_m: np.ndarray, first_point_m: np.ndarray, sec
     The least-squares plane of ``face_points_m`` (6 points in a rectangle on one measuring face)
     gives the block's axis; the vector from ``first_point_m`` (on one measuring face) to
     ``second_point_m`` (on the other) projected on that axis is the length (absolute value).
+
+    Parameters
+    ----------
+    face_points_m : array_like, shape (n, 3), metres
+        Points on one measuring face, n >= 3.
+    first_point_m, second_point_m : array_like, shape (3,), metres
+        One point on each measuring face.
+
+    Returns
+    -------
+    float
+        The length, metres.
+
+    Raises
+    ------
+    AxiscalError
+        Face points that define no plane, or points not finite.
     """
     axis = least_squares_plane(face_points_m).normal
     first = _points(first_point_m)[0]
@@ -323,6 +444,11 @@ def simulate_gauge_block(
     Returns
     -------
     GaugeBlockCheck
+
+    Raises
+    ------
+    AxiscalError
+        A block length that is not positive, or an axis that is zero or not finite.
     """
     if not (math.isfinite(nominal_m) and nominal_m > 0.0):
         raise AxiscalError(f"the block length must be positive, got {nominal_m}")
@@ -358,3 +484,157 @@ def simulate_gauge_block(
         unaligned_before_m=before[1],
         unaligned_after_m=after[1],
     )
+
+
+# ---------------------------------------------------------------------------------------------
+# file-level calls of ``axiscal cmm``
+
+
+@dataclass(frozen=True)
+class CmmCompensation:
+    """Points of a file moved by eq (6) of paper 004 (or its inverse).
+
+    Attributes
+    ----------
+    points_m : ndarray, shape (n, 3)
+        The points as read, metres.
+    moved_m : ndarray, shape (n, 3)
+        Corrected coordinates (or, inverse, the readings the CMM shows), metres.
+    csv_text : str
+        The CSV: the input's columns as they were, then ``x_corrected_mm, y_corrected_mm,
+        z_corrected_mm`` (inverse: ``*_reading_mm``).
+    metadata : dict
+        What the sidecar holds besides kind and sources: the model, a_xy, a_xz, a_yz in arcmin.
+    """
+
+    points_m: np.ndarray
+    moved_m: np.ndarray
+    csv_text: str
+    metadata: dict[str, Any]
+
+
+def compensate_file(
+    points_path: str | Path,
+    squareness: CmmSquareness,
+    *,
+    inverse: bool = False,
+    output: str | Path | None = None,
+) -> CmmCompensation:
+    """Correct the CMM readings of a file by eq (6) of paper 004, or go the other way.
+
+    Parameters
+    ----------
+    points_path : str or Path
+        CSV with ``x_mm, y_mm, z_mm`` (other columns are carried through).
+    squareness : CmmSquareness
+        a_xy, a_xz, a_yz, radians.
+    inverse : bool, keyword-only
+        From true coordinates to the readings the CMM shows (:func:`readings_for`).
+    output : str or Path, optional, keyword-only
+        Write the CSV here, with its JSON sidecar.
+
+    Returns
+    -------
+    CmmCompensation
+
+    Raises
+    ------
+    AxiscalError
+        Missing file or column, or a cell that is not a finite number (naming file and line).
+    """
+    table = read_csv(points_path)
+    table.require("x_mm", "y_mm", "z_mm")
+    points = np.column_stack([table.numeric(name) for name in ("x_mm", "y_mm", "z_mm")]) * MM
+    moved = readings_for(points, squareness) if inverse else compensate(points, squareness)
+    suffix = "reading" if inverse else "corrected"
+    columns: dict[str, Any] = {name: table.text(name) for name in table.header}
+    for k, axis in enumerate("xyz"):
+        columns[f"{axis}_{suffix}_mm"] = moved[:, k] / MM
+    text = write_csv(None, columns, fmt="{:.6f}")
+    metadata: dict[str, Any] = {
+        "model": f"paper 004 eq (6){' inverse' if inverse else ''}",
+        "squareness_arcmin": {
+            "a_xy": squareness.xy_rad / ARCMIN,
+            "a_xz": squareness.xz_rad / ARCMIN,
+            "a_yz": squareness.yz_rad / ARCMIN,
+        },
+        "iso_terms_arcmin": {term: value / ARCMIN for term, value in squareness.iso().items()},
+    }
+    if output is not None:
+        write_text(output, text)
+        write_sidecar(output, kind="cmm compensation", sources=[points_path], **metadata)
+    return CmmCompensation(points, moved, text, metadata)
+
+
+@dataclass(frozen=True)
+class GaugeBlockStudy:
+    """Paper 004's gauge block check simulated before and after compensation.
+
+    Attributes
+    ----------
+    end_offset_m : float
+        Sideways distance between the two probed end points, metres.
+    blocks : dict of str to GaugeBlockCheck
+        ``"X"`` and ``"Y"``: the blocks of :data:`PAPER_004_GAUGE_BLOCKS_MM`.
+    """
+
+    end_offset_m: float
+    blocks: dict[str, GaugeBlockCheck]
+
+    def payload(self) -> dict[str, Any]:
+        """The JSON object: errors in um per block, with paper 004's published improvement."""
+        body = {
+            axis: {
+                "nominal_mm": check.nominal_m / MM,
+                "aligned_before_um": check.aligned_before_m / UM,
+                "aligned_after_um": check.aligned_after_m / UM,
+                "aligned_improvement_um": check.aligned_improvement_m / UM,
+                "unaligned_before_um": check.unaligned_before_m / UM,
+                "unaligned_after_um": check.unaligned_after_m / UM,
+                "unaligned_improvement_um": check.unaligned_improvement_m / UM,
+                "paper_004_improvement_um": PAPER_004_IMPROVEMENT_UM[axis],
+            }
+            for axis, check in self.blocks.items()
+        }
+        return {"end_offset_mm": self.end_offset_m / MM, "blocks": body}
+
+    def report(self) -> str:
+        """The readable table of the check."""
+        payload = self.payload()
+        return render_report("squareness_gauge_blocks.txt.j2", end_offset_mm=payload["end_offset_mm"], blocks=payload["blocks"])
+
+
+def gauge_block_study(squareness: CmmSquareness, *, end_offset_m: float = 1.0 * MM) -> GaugeBlockStudy:
+    """Simulate paper 004's gauge block check (0.992 mm along X, 1.000 mm along Y) before and after eq (6).
+
+    Parameters
+    ----------
+    squareness : CmmSquareness
+        The CMM's squareness errors (paper 004's: ``PAPER_004_SQUARENESS_ARCMIN``).
+    end_offset_m : float, keyword-only
+        Sideways distance, in each of the two across directions, between the two probed end
+        points, metres (default 1 mm).
+
+    Returns
+    -------
+    GaugeBlockStudy
+
+    Raises
+    ------
+    AxiscalError
+        An offset that is not a finite number.
+
+    Examples
+    --------
+    >>> values = CmmSquareness(*(v * ARCMIN for v in PAPER_004_SQUARENESS_ARCMIN))
+    >>> round(gauge_block_study(values).payload()["blocks"]["X"]["unaligned_improvement_um"], 1)
+    10.2
+    """
+    if not math.isfinite(end_offset_m):
+        raise AxiscalError(f"the end offset must be a finite length, got {end_offset_m}")
+    d = end_offset_m
+    blocks = {
+        "X": simulate_gauge_block(squareness, PAPER_004_GAUGE_BLOCKS_MM["X"] * MM, (1, 0, 0), end_offset_m=(0, d, d)),
+        "Y": simulate_gauge_block(squareness, PAPER_004_GAUGE_BLOCKS_MM["Y"] * MM, (0, 1, 0), end_offset_m=(d, 0, -d)),
+    }
+    return GaugeBlockStudy(float(end_offset_m), blocks)

@@ -38,13 +38,15 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.tabular import CsvTable, read_csv
+from axiscal.straightness.files import Profile, read_profile
 from axiscal.straightness.reference import ReferenceLine, reference_line
-from axiscal.units import length_factor
+from axiscal.straightness.report import render_report
+from axiscal.units import ARCSEC, UM
 
 __all__ = [
     "PLANES",
@@ -59,7 +61,9 @@ __all__ = [
     "prism_reversal",
     "prism_deviation_from_wedge",
     "psd_angular_resolution",
-    "read_straightness_run",
+    "SQUARENESS_REFERENCES",
+    "SquarenessEvaluation",
+    "squareness_from_files",
 ]
 
 #: plane -> (first axis, second axis, ISO 230-1 term, sign of the ISO term against the included-angle value)
@@ -83,7 +87,27 @@ def _plane(plane: str) -> tuple[str, str, str, int]:
 
 
 def iso_term(plane: str) -> str:
-    """ISO 230-1 name of the squareness of ``plane``: XY -> EC0Y, XZ -> EB0Z, YZ -> EA0Z."""
+    """ISO 230-1 name of the squareness of ``plane``: XY -> EC0Y, XZ -> EB0Z, YZ -> EA0Z.
+
+    Parameters
+    ----------
+    plane : {"XY", "XZ", "YZ"}
+        The plane (any case).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    AxiscalError
+        An unknown plane.
+
+    Examples
+    --------
+    >>> iso_term("xz")
+    'EB0Z'
+    """
     return _plane(plane)[2]
 
 
@@ -91,12 +115,55 @@ def iso_from_included_angle(squareness_rad: float, *, plane: str) -> float:
     """ISO 230-1 squareness term from the included-angle value (included angle - 90 deg), rad.
 
     ``EC0Y = s_XY``, ``EB0Z = -s_XZ``, ``EA0Z = s_YZ``.
+
+    Parameters
+    ----------
+    squareness_rad : float
+        The value, radians.
+    plane : {"XY", "XZ", "YZ"}, keyword-only
+
+    Returns
+    -------
+    float
+        Radians.
+
+    Raises
+    ------
+    AxiscalError
+        An unknown plane.
+
+    Examples
+    --------
+    >>> iso_from_included_angle(1e-5, plane="XZ")
+    -1e-05
     """
     return _plane(plane)[3] * squareness_rad
 
 
 def included_angle_from_iso(iso_value_rad: float, *, plane: str) -> float:
-    """Included angle minus 90 deg from the ISO 230-1 term of ``plane``, rad (the inverse)."""
+    """Included angle minus 90 deg from the ISO 230-1 term of ``plane``, rad (the inverse).
+
+    Parameters
+    ----------
+    iso_value_rad : float
+        The value, radians.
+    plane : {"XY", "XZ", "YZ"}, keyword-only
+
+    Returns
+    -------
+    float
+        Radians.
+
+    Raises
+    ------
+    AxiscalError
+        An unknown plane.
+
+    Examples
+    --------
+    >>> included_angle_from_iso(1e-5, plane="XZ")
+    -1e-05
+    """
     return _plane(plane)[3] * iso_value_rad
 
 
@@ -175,6 +242,18 @@ def squareness_from_slopes(
         Unknown plane or convention, non-finite slopes, a prism deviation of 1 degree or more, or
         lines that are (nearly) parallel: an included angle more than 45 degrees off a right angle
         is not the squareness of two axes.
+
+    Returns
+    -------
+    SquarenessResult
+        Without fitted lines.
+
+    Examples
+    --------
+    >>> from axiscal.units import ARCSEC
+    >>> result = squareness_from_slopes(-0.00044783, 1 / 3001.62173825, prism_deviation_rad=2.7 * ARCSEC)
+    >>> round(result.squareness_rad / ARCSEC, 2)
+    20.95
     """
     first, second, term, _ = _plane(plane)
     if convention not in CONVENTIONS:
@@ -183,7 +262,7 @@ def squareness_from_slopes(
         raise AxiscalError("slopes and prism deviation must be finite numbers")
     if abs(prism_deviation_rad) >= _MAX_PRISM_DEVIATION:
         raise AxiscalError(
-            f"a prism deviation of {math.degrees(prism_deviation_rad) * 3600:.6g} arcsec is 1 degree or more off 90 degrees: "
+            f"a prism deviation of {prism_deviation_rad / ARCSEC:.6g} arcsec is 1 degree or more off 90 degrees: "
             "not a pentaprism (check the unit: arc seconds)"
         )
     measured = math.pi / 2.0 - math.atan(slope_first) - math.atan(slope_second)
@@ -238,6 +317,11 @@ def squareness(
     AxiscalError
         A run with fewer than 2 points (or all at one position), or the cases of
         :func:`squareness_from_slopes`.
+
+    Returns
+    -------
+    SquarenessResult
+        With both fitted lines.
     """
     lines = []
     for label, position, deviation in (
@@ -279,6 +363,26 @@ def prism_reversal(alpha1_rad: float, alpha2_rad: float) -> ReversalResult:
     round, ``alpha_2 = alpha_0 + alpha_p`` (eq 3). The paper's eqs (4)-(5) are missing from the
     text; solving 2-3 gives ``alpha_0 = (alpha_2 - alpha_1) / 2`` and ``alpha_p = (alpha_1 + alpha_2) / 2``.
     Each ``alpha_i = delta_d_i / L_0`` (spot travel over stage travel).
+
+    Parameters
+    ----------
+    alpha1_rad, alpha2_rad : float
+        The angles of the first and the reversed measurement, radians.
+
+    Returns
+    -------
+    ReversalResult
+
+    Raises
+    ------
+    AxiscalError
+        An angle that is not finite.
+
+    Examples
+    --------
+    >>> result = prism_reversal(3e-5, 5e-5)
+    >>> round(result.prism_deviation_rad, 9), round(result.squareness_rad, 9)
+    (4e-05, 1e-05)
     """
     if not (math.isfinite(alpha1_rad) and math.isfinite(alpha2_rad)):
         raise AxiscalError("reversal angles must be finite numbers")
@@ -294,6 +398,26 @@ def prism_deviation_from_wedge(alpha1_rad: float, alpha2_rad: float) -> float:
     and the beam back from the wedge, ``alpha_2`` that between the autocollimator's transmitted
     beam and the beam back from the mirror, radians. The method gives the size of the error only;
     its sign must come from the set-up (or from a reversal, :func:`prism_reversal`).
+
+    Parameters
+    ----------
+    alpha1_rad, alpha2_rad : float
+        The two autocollimator angles, radians.
+
+    Returns
+    -------
+    float
+        ``|D|``, radians.
+
+    Raises
+    ------
+    AxiscalError
+        An angle that is not finite.
+
+    Examples
+    --------
+    >>> prism_deviation_from_wedge(5e-5, 1e-5)
+    1e-05
     """
     if not (math.isfinite(alpha1_rad) and math.isfinite(alpha2_rad)):
         raise AxiscalError("autocollimator angles must be finite numbers")
@@ -313,7 +437,23 @@ def psd_angular_resolution(linear_resolution_m: float, travel_m: float) -> float
     Notes
     -----
     0.3 um over 18 mm is 16.7 urad = 3.4 arcsec = 0.057 arcmin; the paper's "0.06 arcsec" is arc
-    minutes (primer slip 5), and so is its "0.001 arcsec" for 1000 mm.
+    minutes (a unit slip in the paper), and so is its "0.001 arcsec" for 1000 mm.
+
+    Returns
+    -------
+    float
+        ``a / L``, radians.
+
+    Raises
+    ------
+    AxiscalError
+        A resolution or travel that is not a positive length.
+
+    Examples
+    --------
+    >>> from axiscal.units import UM, MM
+    >>> round(psd_angular_resolution(0.3 * UM, 18 * MM), 7)
+    1.67e-05
     """
     if not (math.isfinite(linear_resolution_m) and linear_resolution_m > 0.0):
         raise AxiscalError(f"the PSD resolution must be a positive length, got {linear_resolution_m}")
@@ -322,37 +462,131 @@ def psd_angular_resolution(linear_resolution_m: float, travel_m: float) -> float
     return linear_resolution_m / travel_m
 
 
-def _length_column(table: CsvTable, stem: str, allowed: tuple[str, ...]) -> tuple[str, float]:
-    names = [name for name in table.header if name.rpartition("_")[0] == stem]
-    if len(names) != 1:
-        wanted = " or ".join(f"{stem}_{unit}" for unit in allowed)
-        problem = "no" if not names else "more than one"
-        raise AxiscalError(f"{problem} column {wanted} (columns are: {', '.join(table.header)})", path=table.path, line=table.header_line)
-    unit = names[0].rpartition("_")[2]
-    try:
-        return names[0], length_factor(unit, allowed=allowed, what=names[0])
-    except AxiscalError as exc:
-        raise exc.located(path=table.path, line=table.header_line) from None
+#: reference lines :func:`squareness_from_files` fits to a run
+SQUARENESS_REFERENCES = ("least-squares", "end-points")
 
 
-def read_straightness_run(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
-    """Read one straightness run (``position_mm, deviation_um``; also ``_m``/``_um`` and ``_nm``/``_mm``).
+@dataclass(frozen=True)
+class SquarenessEvaluation:
+    """Squareness from two run files, with the runs it came from.
+
+    Attributes
+    ----------
+    result : SquarenessResult
+        The squareness, SI.
+    first, second : Profile
+        The two runs as read, metres.
+    """
+
+    result: SquarenessResult
+    first: Profile
+    second: Profile
+
+    def payload(self) -> dict[str, Any]:
+        """The JSON object: angles in arcsec and degrees, slopes, straightness of each run in um."""
+        result = self.result
+        first, second = result.first_line, result.second_line
+        return {
+            "plane": result.plane,
+            "convention": result.convention,
+            "squareness_arcsec": result.squareness_rad / ARCSEC,
+            "included_angle_deg": math.degrees(result.included_angle_rad),
+            "measured_included_angle_deg": math.degrees(result.measured_included_angle_rad),
+            "prism_deviation_arcsec": result.prism_deviation_rad / ARCSEC,
+            "iso_term": result.iso_term,
+            "iso_value_arcsec": result.iso_value_rad / ARCSEC,
+            "slope_first": result.slope_first,
+            "slope_second": result.slope_second,
+            "reference": None if first is None else first.reference,
+            "straightness_first_um": None if first is None else first.straightness_m / UM,
+            "straightness_second_um": None if second is None else second.straightness_m / UM,
+        }
+
+    def report(self) -> str:
+        """The readable summary: slopes, included angles, the prism's deviation, both conventions."""
+        result = self.result
+        first_axis, second_axis = PLANES[result.plane][:2]
+        return render_report(
+            "squareness.txt.j2",
+            first_axis=first_axis,
+            second_axis=second_axis,
+            first_path=self.first.path,
+            second_path=self.second.path,
+            slope_first=result.slope_first,
+            slope_first_arcsec=math.atan(result.slope_first) / ARCSEC,
+            slope_second=result.slope_second,
+            slope_second_arcsec=math.atan(result.slope_second) / ARCSEC,
+            measured_included_angle_deg=math.degrees(result.measured_included_angle_rad),
+            prism_deviation_arcsec=result.prism_deviation_rad / ARCSEC,
+            included_angle_deg=math.degrees(result.included_angle_rad),
+            convention_name="ISO 230-1 sign" if result.convention == "iso" else "included angle - 90 deg",
+            squareness_arcsec=result.squareness_rad / ARCSEC,
+            iso_term=result.iso_term,
+            iso_value_arcsec=result.iso_value_rad / ARCSEC,
+        )
+
+
+def squareness_from_files(
+    first_path: str | Path,
+    second_path: str | Path,
+    *,
+    plane: str = "XY",
+    prism_deviation_rad: float = 0.0,
+    reference: str = "least-squares",
+    convention: str = "included-angle",
+    plot_path: str | Path | None = None,
+) -> SquarenessEvaluation:
+    """Squareness of two axes from two straightness run files (paper 002 eqs 1, 15 and 21).
+
+    Parameters
+    ----------
+    first_path : str or Path
+        Run of the plane's first axis (deviation along the second axis), read by
+        :func:`axiscal.straightness.files.read_profile`.
+    second_path : str or Path
+        Run of the plane's second axis (deviation along the first axis).
+    plane, prism_deviation_rad, convention : keyword-only
+        As in :func:`squareness_from_slopes`.
+    reference : {"least-squares", "end-points"}, keyword-only
+        Line fitted to each run (default least squares, eq 15).
+    plot_path : str or Path, optional, keyword-only
+        Write both runs and their lines to this image.
 
     Returns
     -------
-    position_m, deviation_m : ndarray, shape (n,), metres
+    SquarenessEvaluation
 
     Raises
     ------
     AxiscalError
-        Missing file or column, a cell that is not a finite number, fewer than 2 rows, or all rows
-        at one position (each naming the file and line).
+        A bad file (naming it and the line), an unknown reference, or the cases of
+        :func:`squareness_from_slopes`.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (folder / "x.csv").write_text("position_mm,deviation_um\\n0,0\\n100,1\\n")
+    >>> _ = (folder / "y.csv").write_text("position_mm,deviation_um\\n0,0\\n100,0\\n")
+    >>> run = squareness_from_files(folder / "x.csv", folder / "y.csv")
+    >>> round(run.payload()["squareness_arcsec"], 3)
+    -2.063
     """
-    table = read_csv(path, min_rows=2)
-    position_name, position_factor = _length_column(table, "position", ("mm", "m", "um"))
-    deviation_name, deviation_factor = _length_column(table, "deviation", ("um", "nm", "mm"))
-    position = table.numeric(position_name) * position_factor
-    deviation = table.numeric(deviation_name) * deviation_factor
-    if np.ptp(position) == 0.0:
-        raise AxiscalError("all rows are at one position: no line can be fitted", path=table.path, line=table.lines[0])
-    return position, deviation
+    if reference not in SQUARENESS_REFERENCES:
+        raise AxiscalError(f"the reference line of a squareness run must be least-squares or end-points, not '{reference}'")
+    first, second = read_profile(first_path), read_profile(second_path)
+    result = squareness(
+        first.position_m,
+        first.deviation_m,
+        second.position_m,
+        second.deviation_m,
+        plane=plane,
+        prism_deviation_rad=prism_deviation_rad,
+        reference=reference,
+        convention=convention,
+    )
+    if plot_path is not None:
+        from axiscal.squareness.plot import plot_squareness
+
+        plot_squareness(plot_path, result, ((first.position_m, first.deviation_m), (second.position_m, second.deviation_m)))
+    return SquarenessEvaluation(result, first, second)

@@ -2,7 +2,24 @@
 
 from __future__ import annotations
 
+from axiscal.straightness.files import (
+    MAX_READINGS,
+    SEPARATION_METHODS,
+    Profile,
+    SeparationRun,
+    SimulatedReadings,
+    StraightnessEvaluation,
+    evaluate_straightness_file,
+    read_probe_readings,
+    read_profile,
+    read_reversal_runs,
+    separate_file,
+    separation_columns,
+    simulate_probe_readings,
+)
+from axiscal.straightness.plot import plot_separation, plot_straightness
 from axiscal.straightness.reference import REFERENCES, ReferenceLine, reference_line
+from axiscal.straightness.report import render_report
 from axiscal.straightness.separation import (
     METHODS,
     NoisePropagation,
@@ -58,4 +75,20 @@ __all__ = [
     "gtp_noise_std",
     "NoisePropagation",
     "noise_propagation",
+    "SEPARATION_METHODS",
+    "MAX_READINGS",
+    "Profile",
+    "read_profile",
+    "read_probe_readings",
+    "read_reversal_runs",
+    "StraightnessEvaluation",
+    "evaluate_straightness_file",
+    "separation_columns",
+    "SeparationRun",
+    "separate_file",
+    "SimulatedReadings",
+    "simulate_probe_readings",
+    "plot_straightness",
+    "plot_separation",
+    "render_report",
 ]

@@ -83,12 +83,20 @@ def reference_line(position_m: np.ndarray, deviation_m: np.ndarray, *, reference
     Returns
     -------
     ReferenceLine
+        The line (slope, intercept in metres) and the straightness, metres.
 
     Raises
     ------
     AxiscalError
         Fewer than 2 points, arrays of different shapes, non-finite values, all positions equal,
         an unknown reference, or (end points only) a repeated smallest or largest position.
+
+    Examples
+    --------
+    >>> from axiscal.units import MM, UM
+    >>> line = reference_line([0 * MM, 50 * MM, 100 * MM], [0 * UM, 1 * UM, 0 * UM], reference="end-points")
+    >>> round(line.straightness_m / UM, 6), line.slope
+    (1.0, 0.0)
     """
     if reference not in REFERENCES:
         raise AxiscalError(f"unknown reference line '{reference}'; use one of {', '.join(REFERENCES)}")

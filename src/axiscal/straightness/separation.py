@@ -39,6 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.units import MM
 
 __all__ = [
     "METHODS",
@@ -162,6 +163,19 @@ def simulate_readings(
         Standard deviation of independent Gaussian noise on every reading, metres.
     rng : numpy.random.Generator, optional
         Source of the noise (default ``np.random.default_rng(0)``).
+
+    Returns
+    -------
+    ProbeReadings
+        The readings, metres.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x = np.arange(5) * 1e-3
+    >>> data = simulate_readings(x, lambda p: 0 * p, lambda p: 1e-6 + 0 * p, spacing_ab_m=1e-3)
+    >>> data.a_m.tolist()
+    [-1e-06, -1e-06, -1e-06, -1e-06, -1e-06]
     """
     x = np.asarray(position_m, dtype=float)
     rng = np.random.default_rng(0) if rng is None else rng
@@ -195,6 +209,17 @@ def uneven_step(position_m: np.ndarray) -> int | None:
     ----------
     position_m : ndarray, shape (n,), n >= 2
         Positions of probe A, metres.
+
+    Returns
+    -------
+    int or None
+        The index, or None when every step equals the first.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> uneven_step(np.array([0.0, 1.0, 2.0, 4.0]))
+    2
     """
     steps = np.diff(position_m)
     if not steps[0] > 0:
@@ -210,23 +235,23 @@ def _step(position: np.ndarray, method: str) -> float:
     k = uneven_step(position)
     if k is not None:
         if not step > 0:
-            raise AxiscalError(f"{method} needs increasing positions (the first step is {step * 1e3:g} mm)")
+            raise AxiscalError(f"{method} needs increasing positions (the first step is {step / MM:g} mm)")
         raise AxiscalError(
-            f"{method} needs evenly stepped positions: the step after {position[k] * 1e3:g} mm is "
-            f"{(position[k + 1] - position[k]) * 1e3:g} mm, the first step is {step * 1e3:g} mm"
+            f"{method} needs evenly stepped positions: the step after {position[k] / MM:g} mm is "
+            f"{(position[k + 1] - position[k]) / MM:g} mm, the first step is {step / MM:g} mm"
         )
     return step
 
 
 def _steps_in(spacing: float, step: float, method: str, what: str = "probe spacing") -> int:
     if not (math.isfinite(spacing) and spacing > 0):
-        raise AxiscalError(f"{method} needs a positive, finite {what}, got {spacing * 1e3:g} mm")
+        raise AxiscalError(f"{method} needs a positive, finite {what}, got {spacing / MM:g} mm")
     ratio = spacing / step
     m = int(round(ratio))
     if m < 1 or abs(ratio - m) > 1e-6 * max(1.0, ratio):
         raise AxiscalError(
-            f"{method} needs the {what} to be a whole number of steps: {spacing * 1e3:g} mm is "
-            f"{ratio:g} steps of {step * 1e3:g} mm"
+            f"{method} needs the {what} to be a whole number of steps: {spacing / MM:g} mm is "
+            f"{ratio:g} steps of {step / MM:g} mm"
         )
     return m
 
@@ -288,6 +313,23 @@ def reversal(position_m: np.ndarray, normal_m: np.ndarray, reversed_m: np.ndarra
     ----------
     position_m, normal_m, reversed_m : array_like, shape (n,)
         Positions and the two runs' readings at the same positions, metres.
+
+    Returns
+    -------
+    Separation
+        Profile R and motion S at the given positions; no yaw.
+
+    Raises
+    ------
+    AxiscalError
+        Runs of different shapes or not one-dimensional.
+
+    Examples
+    --------
+    >>> from axiscal.units import UM
+    >>> result = reversal([0.0, 0.01], [0.5 * UM, 1.0 * UM], [1.5 * UM, 1.0 * UM])
+    >>> (result.profile_m / UM).round(6).tolist()
+    [1.0, 1.0]
     """
     x = np.asarray(position_m, dtype=float)
     n = np.asarray(normal_m, dtype=float)
@@ -316,6 +358,12 @@ def sequential_two_point(readings: ProbeReadings, *, yaw_rad: np.ndarray | None 
     -------
     Separation
         Profile at ``x0 + j d1``, j = 0..J (J readings used).
+
+    Raises
+    ------
+    AxiscalError
+        Fewer than 2 readings, positions not increasing in even steps, or a spacing that is not a
+        positive whole number of steps.
     """
     x = readings.position_m
     m = _steps_in(readings.spacing_ab_m, _step(x, "STP"), "STP")
@@ -343,16 +391,27 @@ def sequential_three_point(readings: ProbeReadings) -> Separation:
     ``gamma(n) = (R(n + 1) - R(n) + a(n) - b(n)) / d`` (eq 2 with S = R - a), on the readings one
     spacing apart. Yaw is separated; zero offsets accumulate quadratically (eq 10).
 
+    Parameters
+    ----------
+    readings : ProbeReadings
+        Three probes, evenly stepped, the spacing a whole number of steps.
+
     Returns
     -------
     Separation
         Profile at ``x0 + j d``, j = 0..J + 1, yaw at the J reading positions.
+
+    Raises
+    ------
+    AxiscalError
+        Fewer than 2 readings, positions not increasing in even steps, or a spacing that is not a
+        positive whole number of steps. Also when probe C is missing or the spacings differ.
     """
     x = readings.position_m
     c, d2 = _third_probe(readings, "STRP")
     d = readings.spacing_ab_m
     if not abs(d2 - d) <= 1e-9 * d:
-        raise AxiscalError(f"STRP needs equal spacings (A-B {d * 1e3:g} mm, B-C {d2 * 1e3:g} mm); use FSTRP for unequal ones")
+        raise AxiscalError(f"STRP needs equal spacings (A-B {d / MM:g} mm, B-C {d2 / MM:g} mm); use FSTRP for unequal ones")
     m = _steps_in(d, _step(x, "STRP"), "STRP")
     profile, yaw = _strp_chain(readings.a_m[::m], readings.b_m[::m], c[::m], d)
     position = x[0] + d * np.arange(profile.size)
@@ -378,6 +437,23 @@ def fine_sequential_three_point(readings: ProbeReadings) -> Separation:
     families share their points; the chain offsets and one relative tilt (the two families
     accumulate zero offsets at different rates) are fitted by least squares at the common points,
     then the families are averaged where both exist. Resolves every step.
+
+    Parameters
+    ----------
+    readings : ProbeReadings
+        Three probes, evenly stepped, both spacings whole numbers of steps.
+
+    Returns
+    -------
+    Separation
+        Profile at every step, up to probe C's reach; no yaw.
+
+    Raises
+    ------
+    AxiscalError
+        Fewer than 2 readings, positions not increasing in even steps, or a spacing that is not a
+        positive whole number of steps. Also when probe C is missing, the spacings in
+        steps are not coprime, or there are fewer readings than the A-C spacing has steps.
     """
     x = readings.position_m
     c, d2 = _third_probe(readings, "FSTRP")
@@ -446,6 +522,22 @@ def generalized_two_point(readings: ProbeReadings) -> Separation:
     is placed at the window's centre ``x_n + (d1 - s) / 2``; its amplitude response to a
     wavelength lambda is ``sinc(d1 / lambda) / sinc(s / lambda)`` (6.5 % short at 75 mm for
     d1 = 15 mm, s = 1 mm, as the paper says).
+
+    Parameters
+    ----------
+    readings : ProbeReadings
+        Evenly stepped, the A-B spacing a whole number of steps.
+
+    Returns
+    -------
+    Separation
+        Profile at the window centres, one per reading plus one; no yaw.
+
+    Raises
+    ------
+    AxiscalError
+        Fewer than 2 readings, positions not increasing in even steps, or a spacing that is not a
+        positive whole number of steps.
     """
     x = readings.position_m
     step = _step(x, "GTP")
@@ -462,6 +554,23 @@ def gtp_amplitude_response(wavelength_m: np.ndarray, *, spacing_m: float, step_m
     The difference over d1 has gain ``|sin(pi d1 / lambda)| / (pi d1 / lambda)`` relative to the
     derivative, the rectangle-rule sum over s has ``(pi s / lambda) / sin(pi s / lambda)``
     relative to the integral.
+
+    Parameters
+    ----------
+    wavelength_m : array_like
+        Wavelengths, metres.
+    spacing_m, step_m : float, keyword-only
+        Probe spacing d1 and sampling step s, metres.
+
+    Returns
+    -------
+    ndarray
+        The amplitude ratio for each wavelength.
+
+    Examples
+    --------
+    >>> round(float(gtp_amplitude_response(75e-3, spacing_m=15e-3, step_m=1e-3)), 3)
+    0.936
     """
     lam = np.asarray(wavelength_m, dtype=float)
     return (np.abs(np.sinc(spacing_m / lam))) / np.sinc(step_m / lam)
@@ -503,6 +612,18 @@ def frequency_domain(
         (default 0.05). Harmonics where H is exactly zero are always left out.
     parabola : bool, keyword-only
         Take the parabola out in closed form first (default True).
+
+    Returns
+    -------
+    Separation
+        Profile at every reading; the yaw with three probes; ``lost_wavelength_m`` the wavelengths
+        left out.
+
+    Raises
+    ------
+    AxiscalError
+        ``min_gain`` outside [0, 1), probes not 2 or 3, probe C missing for three, uneven steps,
+        spacings not whole numbers of steps, or no more readings than the probes span steps.
     """
     if not 0.0 <= min_gain < 1.0:
         raise AxiscalError(f"the frequency-domain method needs 0 <= min_gain < 1, got {min_gain:g}")
@@ -529,7 +650,7 @@ def frequency_domain(
     if offsets[-1] >= n_pts:
         raise AxiscalError(
             f"the frequency-domain method needs more readings than the probes span steps: the probes span "
-            f"{offsets[-1]} steps of {step * 1e3:g} mm, the record has {n_pts} readings"
+            f"{offsets[-1]} steps of {step / MM:g} mm, the record has {n_pts} readings"
         )
     bow = curvature * n**2
     residual = signal - sum(w * curvature * (n + o) ** 2 for w, o in zip(weights, offsets))
@@ -575,15 +696,28 @@ def combined(
 
     Parameters
     ----------
-    calibration_m : (float, float), optional
+    readings : ProbeReadings
+        Three probes with equal spacings, evenly stepped, the spacing a whole number of steps.
+    calibration_m : (float, float), optional, keyword-only
         Positions (m) bounding the smooth region where the groups are joined to the GTP shape;
         default: everywhere z is known.
+
+    Returns
+    -------
+    Separation
+        Profile at every step of the groups, motion and yaw where resolved.
+
+    Raises
+    ------
+    AxiscalError
+        Probe C missing, unequal spacings, uneven steps, fewer than two readings per group, or a
+        calibration region missing a group.
     """
     x = readings.position_m
     c, d2 = _third_probe(readings, "the combined method")
     d = readings.spacing_ab_m
     if not abs(d2 - d) <= 1e-9 * d:
-        raise AxiscalError(f"the combined method needs equal spacings (A-B {d * 1e3:g} mm, B-C {d2 * 1e3:g} mm)")
+        raise AxiscalError(f"the combined method needs equal spacings (A-B {d / MM:g} mm, B-C {d2 / MM:g} mm)")
     step = _step(x, "the combined method")
     k = _steps_in(d, step, "the combined method")
     n_read = x.size
@@ -634,12 +768,34 @@ def separate(
 
     Parameters
     ----------
+    readings : ProbeReadings
+        The readings (see each method for what it needs).
+    method : {"stp", "strp", "fstrp", "gtp", "frequency", "combined"}, keyword-only
+        The method.
     probes : {2, 3}, optional, keyword-only
         Frequency method only: probes used (default: 3 when probe C is present, else 2).
     min_gain, parabola : keyword-only
         Frequency method only, see :func:`frequency_domain`.
     calibration_m : (float, float), optional, keyword-only
         Combined method only, see :func:`combined`.
+
+    Returns
+    -------
+    Separation
+
+    Raises
+    ------
+    AxiscalError
+        An unknown method, or readings the method refuses (see each method).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x = np.arange(0, 31) * 1e-3
+    >>> data = simulate_readings(x, lambda p: 1e-3 * (p - 0.02) ** 2, lambda p: 0 * p,
+    ...                          spacing_ab_m=5e-3, spacing_bc_m=5e-3)
+    >>> separate(data, method="strp").method
+    'strp'
     """
     if method == "stp":
         return sequential_two_point(readings)
@@ -666,6 +822,18 @@ def stp_offset_error(n: np.ndarray, delta1_m: float) -> np.ndarray:
 
     Linear in the point number n (R(0) = 0), so it tilts the profile and leaves its straightness
     unchanged. (Eq 9 prints ``+n Delta1``; the sign follows from eq 8, where offsets are subtracted.)
+
+    Parameters
+    ----------
+    n : array_like
+        Chain point numbers.
+    delta1_m : float
+        Delta1, metres.
+
+    Returns
+    -------
+    ndarray
+        Profile error at each n, metres.
     """
     return -np.asarray(n, dtype=float) * delta1_m
 
@@ -675,13 +843,40 @@ def strp_offset_error(n: np.ndarray, delta1_m: float, delta2_m: float) -> np.nda
 
     Only the second difference's offset ``Delta2 - 2 Delta1`` enters, every step, and sums twice:
     ``-(Delta2 - 2 Delta1) n (n - 1) / 2`` with R(0) = R(1) = 0 (the corrected eq 10).
+
+    Parameters
+    ----------
+    n : array_like
+        Chain point numbers.
+    delta1_m, delta2_m : float
+        Delta1 and Delta2, metres.
+
+    Returns
+    -------
+    ndarray
+        Profile error at each n, metres.
     """
     n = np.asarray(n, dtype=float)
     return -(delta2_m - 2.0 * delta1_m) * n * (n - 1.0) / 2.0
 
 
 def strp_yaw_offset_error(n: np.ndarray, delta1_m: float, delta2_m: float, *, spacing_m: float) -> np.ndarray:
-    """Yaw error of STRP from the zero offsets (corrected eq 11): ``((2n + 1) Delta1 - n Delta2) / d``."""
+    """Yaw error of STRP from the zero offsets (corrected eq 11): ``((2n + 1) Delta1 - n Delta2) / d``.
+
+    Parameters
+    ----------
+    n : array_like
+        Chain point numbers.
+    delta1_m, delta2_m : float
+        Delta1 and Delta2, metres.
+    spacing_m : float, keyword-only
+        Probe spacing d, metres.
+
+    Returns
+    -------
+    ndarray
+        Yaw error at each n, radians.
+    """
     n = np.asarray(n, dtype=float)
     return ((2.0 * n + 1.0) * delta1_m - n * delta2_m) / spacing_m
 
@@ -693,6 +888,8 @@ def stp_yaw_neglect_error(yaw_rad: np.ndarray, *, spacing_m: float) -> np.ndarra
     ----------
     yaw_rad : array_like, shape (J,)
         Yaw at the J readings of the chain, radians.
+    spacing_m : float, keyword-only
+        Probe spacing d, metres.
 
     Returns
     -------
@@ -707,6 +904,20 @@ def stp_residual_yaw_error(n: np.ndarray, *, spacing_m: float, mean_rad: float, 
 
     ``delta(n) = -n d mu - n (n - 1) / 2 d eta``: the mean accumulates linearly (a tilt), the
     slope quadratically (a bow).
+
+    Parameters
+    ----------
+    n : array_like
+        Chain point numbers.
+    spacing_m : float, keyword-only
+        Probe spacing d, metres.
+    mean_rad, slope_rad_per_step : float, keyword-only
+        Mean mu and slope eta of the yaw left, radians and radians per step.
+
+    Returns
+    -------
+    ndarray
+        Profile error at each n, metres.
     """
     n = np.asarray(n, dtype=float)
     return -n * spacing_m * mean_rad - 0.5 * n * (n - 1.0) * spacing_m * slope_rad_per_step
@@ -716,6 +927,18 @@ def stp_noise_std(n: np.ndarray, noise_m: float) -> np.ndarray:
     """Standard deviation of the STP profile at chain point n from independent probe noise sigma.
 
     Each step adds ``b - a`` (variance 2 sigma^2): a random walk, ``sigma sqrt(2 n)``.
+
+    Parameters
+    ----------
+    n : array_like
+        Chain point numbers.
+    noise_m : float
+        Standard deviation sigma of each reading, metres.
+
+    Returns
+    -------
+    ndarray
+        Standard deviation at each n, metres.
     """
     return noise_m * np.sqrt(2.0 * np.asarray(n, dtype=float))
 
@@ -725,13 +948,40 @@ def strp_noise_std(n: np.ndarray, noise_m: float) -> np.ndarray:
 
     ``c - 2b + a`` has variance 6 sigma^2 and enters point n with weight n - 1 - k, so the
     variance is ``6 sigma^2 sum_{j<n} j^2 = sigma^2 (n - 1) n (2n - 1)``: it grows as n^3.
+
+    Parameters
+    ----------
+    n : array_like
+        Chain point numbers.
+    noise_m : float
+        Standard deviation sigma of each reading, metres.
+
+    Returns
+    -------
+    ndarray
+        Standard deviation at each n, metres.
     """
     n = np.asarray(n, dtype=float)
     return noise_m * np.sqrt(np.clip((n - 1.0) * n * (2.0 * n - 1.0), 0.0, None))
 
 
 def gtp_noise_std(n: np.ndarray, noise_m: float, *, steps_per_spacing: int) -> np.ndarray:
-    """Standard deviation of the GTP profile at point n: a random walk scaled by s / d."""
+    """Standard deviation of the GTP profile at point n: a random walk scaled by s / d.
+
+    Parameters
+    ----------
+    n : array_like
+        Point numbers.
+    noise_m : float
+        Standard deviation of each reading, metres.
+    steps_per_spacing : int, keyword-only
+        d / s.
+
+    Returns
+    -------
+    ndarray
+        Standard deviation at each n, metres.
+    """
     return noise_m * np.sqrt(2.0 * np.asarray(n, dtype=float)) / steps_per_spacing
 
 
@@ -767,6 +1017,28 @@ def noise_propagation(
     Every method is linear in the readings, so this is exactly the noise part of any separation
     with this set-up. ``readings`` supplies the positions and spacings (its values are ignored);
     ``method`` is a name accepted by :func:`separate`, or ``"reversal"`` (two runs of probe A).
+
+    Parameters
+    ----------
+    readings : ProbeReadings
+        The set-up: positions and spacings.
+    method : str, keyword-only
+        A method of :func:`separate`, or ``"reversal"``.
+    noise_m : float, keyword-only
+        Standard deviation of each reading, metres.
+    trials : int, keyword-only
+        Number of noisy separations (default 1000).
+    rng : numpy.random.Generator, optional, keyword-only
+        Source of the noise (default ``np.random.default_rng(0)``).
+
+    Returns
+    -------
+    NoisePropagation
+
+    Raises
+    ------
+    AxiscalError
+        A method the set-up does not allow (see :func:`separate`).
     """
     rng = np.random.default_rng(0) if rng is None else rng
     x = readings.position_m

@@ -1,0 +1,108 @@
+"""Plots of the squareness room: two runs and their lines (paper 002 eqs 1 and 21), and paper 002 Fig. 5.
+
+Drawn through :func:`axiscal.io.figures.pyplot` and saved atomically with
+:func:`axiscal.io.figures.save_figure`; positions in mm, deviations in um, angles in arcsec/arcmin.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.instruments.optics import PentaprismSensitivity
+from axiscal.io.figures import pyplot, save_figure
+from axiscal.squareness.evaluation import PLANES, SquarenessResult
+from axiscal.units import ARCMIN, ARCSEC, MM, UM
+
+__all__ = ["plot_squareness", "plot_pentaprism"]
+
+
+def plot_squareness(
+    path: str | Path, result: SquarenessResult, runs: tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
+) -> Path:
+    """Plot both runs with their fitted lines, deviation in um against position in mm.
+
+    Parameters
+    ----------
+    path : str or Path
+        Image to write (format from the suffix).
+    result : SquarenessResult
+        From :func:`axiscal.squareness.evaluation.squareness` (it carries both fitted lines).
+    runs : ((position_m, deviation_m), (position_m, deviation_m))
+        The first and the second run, metres.
+
+    Returns
+    -------
+    Path
+        The image written.
+
+    Raises
+    ------
+    AxiscalError
+        An unknown image format or a file that cannot be written.
+    """
+    plt = pyplot()
+    a, b = PLANES[result.plane][:2]
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.6), constrained_layout=True)
+    for ax, (position, deviation), line, (moving, across) in zip(
+        axes, runs, (result.first_line, result.second_line), ((a, b), (b, a))
+    ):
+        ax.plot(position / MM, deviation / UM, "o", ms=4, label="measured")
+        ends = np.array([position.min(), position.max()])
+        ax.plot(ends / MM, (line.slope * ends + line.intercept_m) / UM, "-", label=f"{line.reference} line")
+        ax.set_xlabel(f"{moving} position / mm")
+        ax.set_ylabel(f"deviation along {across} / um")
+        ax.set_title(f"{moving} run: slope {line.slope:+.3e} ({math.atan(line.slope) / ARCSEC:+.2f} arcsec)")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle(
+        f"{a}{b}: included angle - 90 deg - D = {(result.included_angle_rad - math.pi / 2) / ARCSEC:+.2f} arcsec"
+        f"  ({result.iso_term} {result.iso_value_rad / ARCSEC:+.2f} arcsec)"
+    )
+    return save_figure(fig, path, dpi=110)
+
+
+def plot_pentaprism(path: str | Path, table: PentaprismSensitivity) -> Path:
+    """Paper 002 Fig. 5: the change of the prism's deviation against rotation about X, Y, Z, and against shifts.
+
+    Parameters
+    ----------
+    path : str or Path
+        Image to write (format from the suffix).
+    table : PentaprismSensitivity
+        From :func:`axiscal.instruments.optics.pentaprism_sensitivity`.
+
+    Returns
+    -------
+    Path
+        The image written.
+
+    Raises
+    ------
+    AxiscalError
+        An unknown image format or a file that cannot be written.
+    """
+    plt = pyplot()
+    fig, axes = plt.subplots(1, 4, figsize=(13, 3.6), sharey=True, constrained_layout=True)
+    rotation_arcmin = table.rotation_rad / ARCMIN
+    for k, ax in enumerate(axes[:3]):
+        ax.plot(rotation_arcmin, table.change_rad[k] / ARCSEC, "-o", ms=3, label="ray trace")
+        ax.set_title(f"({'abc'[k]}) rotation about {'XYZ'[k]}")
+        ax.set_xlabel("rotation / arcmin")
+        ax.grid(True, alpha=0.3)
+    fine = np.linspace(table.rotation_rad.min(), table.rotation_rad.max(), 200)
+    axes[2].plot(fine / ARCMIN, -(fine**2) / ARCSEC, "--", color="tab:red", label="eq (12): -gamma^2 (rad)")
+    axes[2].legend(fontsize=8, loc="lower center")
+    for k, marker in enumerate("os^"):
+        # falling marker sizes keep all three visible where they coincide (all zero)
+        axes[3].plot(table.translation_m / MM, table.translation_change_rad[k] / ARCSEC, marker + "-", ms=8 - 2 * k,
+                     label=f"along {'XYZ'[k]}")
+    axes[3].set_title("(d) translation: no effect")
+    axes[3].set_xlabel("shift / mm")
+    axes[3].grid(True, alpha=0.3)
+    axes[3].legend(fontsize=8, loc="lower center")
+    axes[0].set_ylabel("angle between beams - 90 deg / arcsec")
+    fig.suptitle(f"pentaprism of paper 002, index {table.index:g}: incident beam [-1, 0, 0]")
+    return save_figure(fig, path, dpi=110)

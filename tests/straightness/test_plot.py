@@ -1,0 +1,27 @@
+"""Plots of the straightness room, written through io.figures."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from axiscal.errors import AxiscalError
+from axiscal.straightness.plot import plot_separation, plot_straightness
+from axiscal.straightness.reference import reference_line
+from axiscal.straightness.separation import reversal
+from axiscal.units import MM, UM
+
+
+def test_plots_are_written(tmp_path):
+    x = np.linspace(0, 300, 31) * MM
+    y = np.sin(x / (100 * MM)) * UM
+    line = reference_line(x, y, reference="minimum-zone")
+    assert plot_straightness(tmp_path / "zone.png", x, y, line).read_bytes()[:4] == b"\x89PNG"
+    result = reversal(x, y, -y)
+    assert plot_separation(tmp_path / "sep.svg", result).read_text().lstrip().startswith("<?xml")
+
+
+def test_an_unknown_format_is_refused(tmp_path):
+    x = np.linspace(0, 1, 5)
+    with pytest.raises(AxiscalError, match="figure format"):
+        plot_straightness(tmp_path / "zone.txt", x, x, reference_line(x, x))
