@@ -24,7 +24,7 @@ def test_report_writes_the_page_and_results(run_cli, campaign):
     assert status == 0, err
     folder = campaign / "report"
     assert (folder / "report.html").is_file() and (folder / "results.json").is_file()
-    assert out.startswith("FAIL: 4 tests")
+    assert out.startswith("FAIL: 5 tests")
     results = json.loads((folder / "results.json").read_text())
     assert results["schema"] == "axiscal-results/1"
     assert results["software"]["name"] == "axiscal"
@@ -34,6 +34,7 @@ def test_report_writes_the_page_and_results(run_cli, campaign):
         "positioning-Y-1": "pass",
         "straightness-X-1": "pass",
         "squareness-XY-1": "fail",
+        "separation-X-1": "pass",
     }
     assert results["campaign"]["machine"]["name"] == "VMC 850"
 
@@ -52,6 +53,11 @@ def test_straightness_and_squareness_equal_their_commands(run_cli, campaign):
     results = {t.id: t.figures for t in run_campaign(campaign).tests}
     _, out, _ = run_cli("straightness", campaign / "straightness_x.csv", "--json")
     assert results["straightness-X-1"]["straightness_um"] == pytest.approx(json.loads(out)["straightness_um"], rel=1e-12)
+    _, out, _ = run_cli("separate", campaign / "probes_x.csv", "--spacing-mm", "15", "-o", campaign / "sep.csv")
+    separated = run_cli("straightness", campaign / "sep.csv", "--json")[1]
+    # the slide's straightness is the motion column: the separated profile file read with motion as deviation
+    assert results["separation-X-1"]["points"] > 200
+    assert json.loads(separated)["straightness_um"] == pytest.approx(results["separation-X-1"]["profile_straightness_um"], abs=1e-5)  # CSV rounding
     _, out, _ = run_cli("squareness", "--first", campaign / "square_first.csv", "--second", campaign / "square_second.csv", "--json")
     assert results["squareness-XY-1"]["squareness_arcsec"] == pytest.approx(json.loads(out)["squareness_arcsec"], rel=1e-12)
 

@@ -15,7 +15,13 @@ from typing import Any
 import numpy as np
 
 from axiscal.campaign.config import Campaign, TestSpec, load_campaign
-from axiscal.campaign.results import CampaignResults, Figure, Plot, TestResult, check_figures
+from axiscal.campaign.results import (
+    CampaignResults,
+    Figure,
+    Plot,
+    TestResult,
+    check_figures,
+)
 from axiscal.errors import AxiscalError
 from axiscal.units import ARCSEC, MM, UM
 
@@ -85,84 +91,98 @@ def _positioning(campaign: Campaign, spec: TestSpec) -> TestResult:
     )
 
 
+def _captured(call: Callable[[Path], Any]) -> tuple[Any, str]:
+    """Run ``call(plot_path)`` once: its result and the SVG of the plot it wrote."""
+    holder: list[Any] = []
+    svg = svg_of(lambda p: holder.append(call(p)))
+    return holder[0], svg
+
+
 def _straightness(campaign: Campaign, spec: TestSpec) -> TestResult:
-    from axiscal.squareness.evaluation import read_straightness_run
-    from axiscal.straightness.reference import reference_line
+    from axiscal.straightness.files import evaluate_straightness_file
 
     path = spec.options["file"]
     reference = spec.options.get("reference", "least-squares")
-    position, deviation = read_straightness_run(path)
-    try:
-        line = reference_line(position, deviation, reference=reference)
-    except AxiscalError as exc:
-        raise exc.located(path=path) from None
-    figures = {
-        "straightness_um": line.straightness_m / UM,
-        "slope_urad": line.slope / 1e-6,
-        "intercept_um": line.intercept_m / UM,
-        "reference": line.reference,
-    }
+    evaluation, svg = _captured(lambda p: evaluate_straightness_file(path, reference=reference, plot_path=p))
+    figures = evaluation.payload()
     checks = check_figures(figures, spec.tolerances, {"straightness_um": "um"})
     direction = spec.options.get("direction")
     label = f"E{direction}{spec.axis}" if direction else f"straightness of {spec.axis}"
-    plots = [Plot(f"{label}: profile and {reference} reference line", svg_of(lambda p: _plot_profile(p, position, deviation, line)))]
     return TestResult(
         id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, path)], figures=figures,
-        checks=checks, plots=plots,
+        checks=checks, plots=[Plot(f"{label}: profile and {reference} reference line", svg)],
         table=[Figure(f"straightness {label}", figures["straightness_um"], "um"), Figure("slope", figures["slope_urad"], "urad")],
         method=f"Straightness: ISO 230-1 {reference} reference line",
     )
 
 
-def _plot_profile(path: Path, position_m: np.ndarray, deviation_m: np.ndarray, line) -> None:
-    from axiscal.io.figures import pyplot, save_figure
+def _separation(campaign: Campaign, spec: TestSpec) -> TestResult:
+    from axiscal.straightness.files import separate_file
+    from axiscal.straightness.reference import reference_line
 
-    plt = pyplot()
-    order = np.argsort(position_m, kind="stable")
-    x = position_m[order]
-    fit = line.slope * x + line.intercept_m
-    residual = line.residuals(position_m, deviation_m)
-    fig, ax = plt.subplots(figsize=(7, 3.2))
-    ax.plot(x / MM, deviation_m[order] / UM, "o-", ms=3, label="profile")
-    ax.plot(x / MM, fit / UM, "-", label=f"{line.reference} line")
-    for bound in (residual.min(), residual.max()):
-        ax.plot(x / MM, (fit + bound) / UM, "--", color="gray", lw=0.8)
-    ax.set_xlabel("position / mm")
-    ax.set_ylabel("deviation / um")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    save_figure(fig, path)
+    options = spec.options
+    path = options["file"]
+    method = options.get("method", "combined")
+    reference = options.get("reference", "least-squares")
+    spacing = options.get("spacing_mm")
+    spacing_bc = options.get("spacing_bc_mm")
+    calibration = options.get("calibration_mm")
+    run, svg = _captured(lambda p: separate_file(
+        path, method=method,
+        spacing_ab_m=None if spacing is None else spacing * MM,
+        spacing_bc_m=None if spacing_bc is None else spacing_bc * MM,
+        reversed_path=options.get("reversed"),
+        probes=2 if options.get("two_probe") else None,
+        min_gain=options.get("min_gain", 0.05),
+        parabola=not options.get("periodic", False),
+        calibration_m=None if calibration is None else (calibration[0] * MM, calibration[1] * MM),
+        plot_path=p,
+    ))
+    separation = run.separation
+    motion = np.isfinite(separation.motion_m)
+    slide = reference_line(separation.position_m[motion], separation.motion_m[motion], reference=reference)
+    workpiece = reference_line(separation.position_m, separation.profile_m, reference=reference)
+    figures = {
+        "method": separation.method,
+        "straightness_um": slide.straightness_m / UM,
+        "slope_urad": slide.slope / 1e-6,
+        "profile_straightness_um": workpiece.straightness_m / UM,
+        "reference": reference,
+        "points": int(separation.position_m.size),
+    }
+    checks = check_figures(figures, spec.tolerances, {"straightness_um": "um"})
+    direction = options.get("direction")
+    label = f"E{direction}{spec.axis}" if direction and spec.axis else "slide motion"
+    files = [_relative(campaign, path)] + ([_relative(campaign, options["reversed"])] if "reversed" in options else [])
+    return TestResult(
+        id=spec.id, kind=spec.kind, axis=spec.axis, files=files, figures=figures, checks=checks,
+        plots=[Plot(f"{separation.method} separation: workpiece profile and slide motion", svg)],
+        table=[Figure(f"straightness {label} (slide motion)", figures["straightness_um"], "um"),
+               Figure("straightness of the workpiece profile", figures["profile_straightness_um"], "um")],
+        method=f"Straightness by error separation ({separation.method}), ISO 230-1 {reference} reference line",
+    )
 
 
 def _squareness(campaign: Campaign, spec: TestSpec) -> TestResult:
-    from axiscal.squareness.evaluation import read_straightness_run, squareness
+    from axiscal.squareness.evaluation import squareness_from_files
 
     first, second = spec.options["first"], spec.options["second"]
-    p1, d1 = read_straightness_run(first)
-    p2, d2 = read_straightness_run(second)
-    result = squareness(
-        p1, d1, p2, d2, plane=spec.options["plane"],
+    evaluation, svg = _captured(lambda p: squareness_from_files(
+        first, second, plane=spec.options["plane"],
         prism_deviation_rad=spec.options.get("prism_deviation_arcsec", 0.0) * ARCSEC,
         reference=spec.options.get("reference", "least-squares"),
         convention=spec.options.get("convention", "included-angle"),
-    )
-    figures = {
-        "plane": result.plane,
-        "convention": result.convention,
-        "squareness_arcsec": result.squareness_rad / ARCSEC,
-        "included_angle_deg": float(np.degrees(result.included_angle_rad)),
-        "iso_term": result.iso_term,
-        "iso_value_arcsec": result.iso_value_rad / ARCSEC,
-        "prism_deviation_arcsec": result.prism_deviation_rad / ARCSEC,
-    }
+        plot_path=p,
+    ))
+    figures = evaluation.payload()
     checks = check_figures(figures, spec.tolerances, {"squareness_arcsec": "arcsec"})
+    result = evaluation.result
     return TestResult(
         id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, first), _relative(campaign, second)],
-        figures=figures, checks=checks,
+        figures=figures, checks=checks, plots=[Plot(f"{result.plane} squareness: both runs and their lines", svg)],
         table=[Figure(f"squareness {result.plane} ({result.convention})", figures["squareness_arcsec"], "arcsec"),
                Figure(f"{result.iso_term} (ISO 230-1 sign)", figures["iso_value_arcsec"], "arcsec")],
-        method="Squareness: two straightness runs and a pentaprism (included angle minus 90 degrees)",
+        method="Squareness: two straightness runs and a pentaprism (paper 002 eqs 1 and 21)",
     )
 
 
@@ -170,6 +190,7 @@ def _squareness(campaign: Campaign, spec: TestSpec) -> TestResult:
 KIND_RUNNERS: dict[str, Callable[[Campaign, TestSpec], TestResult]] = {
     "positioning": _positioning,
     "straightness": _straightness,
+    "separation": _separation,
     "squareness": _squareness,
 }
 
