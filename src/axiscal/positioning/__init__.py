@@ -1,4 +1,4 @@
-"""Positioning accuracy and repeatability of numerically controlled axes: ISO 230-2 (and VDI/DGQ 3441), test planning, the reader of test runs and the plot."""
+"""Positioning accuracy and repeatability of numerically controlled axes: ISO 230-2 (and VDI/DGQ 3441), test planning, the reader of test runs, the report and the plot."""
 
 from __future__ import annotations
 
@@ -29,6 +29,11 @@ from axiscal.positioning.plan import (
     plan_test,
 )
 from axiscal.positioning.plot import plot_positioning
+from axiscal.positioning.report import (
+    PositioningEvaluation,
+    evaluate_positioning_file,
+    render_template,
+)
 from axiscal.positioning.reader import (
     ALLOWED_UNITS,
     DIRECTIONS,
@@ -66,4 +71,7 @@ __all__ = [
     "cycle_csv",
     "gcode_program",
     "plot_positioning",
+    "PositioningEvaluation",
+    "evaluate_positioning_file",
+    "render_template",
 ]
