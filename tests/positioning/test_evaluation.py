@@ -21,8 +21,8 @@ from axiscal.positioning.evaluation import (
     vdi3441,
 )
 from axiscal.positioning.reader import read_positioning_run
+from axiscal.units import UM
 
-UM = 1e-6
 
 # paper 003, Table 4: three runs at targets 0 and 20 mm (the columns under targets 1 and 2);
 # the first column of each target is the approach marked "down", the second "up".

@@ -15,8 +15,7 @@ from axiscal.positioning.plan import (
     plan_targets,
     plan_test,
 )
-
-MM = 1e-3
+from axiscal.units import MM
 
 
 def test_targets_are_uneven_reproducible_and_span_the_travel():

@@ -9,7 +9,7 @@ import numpy as np
 
 from axiscal.compensation.curve import ErrorCurve, _check_direction
 from axiscal.errors import AxiscalError
-from axiscal.units import MM
+from axiscal.units import MM, UM
 
 __all__ = ["FanucTable", "fanuc_table"]
 
@@ -58,7 +58,7 @@ class FanucTable:
     down_first: int | None = None
     reference_value_down: int = 0
     rotary: bool = False
-    input_increment_m: float = 1e-6
+    input_increment_m: float = UM
     axis_number: int = 1
     reference_deviation_m: float = 0.0
 
@@ -124,13 +124,13 @@ def fanuc_table(
     reference_position_m: float = 0.0,
     reference_point: int | None = None,
     magnification: int = 1,
-    detection_unit_m: float = 1e-6,
+    detection_unit_m: float = UM,
     bidirectional: bool = False,
     rotary: bool = False,
     travel_per_revolution: float | None = None,
     value_limit: int = 127,
     max_point: int = 1023,
-    input_increment_m: float = 1e-6,
+    input_increment_m: float = UM,
     axis_number: int = 1,
 ) -> FanucTable:
     """FANUC pitch error compensation from the mean deviations.

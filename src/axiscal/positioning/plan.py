@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.units import MM
+from axiscal.units import MM, UM
 
 __all__ = [
     "CYCLES",
@@ -110,7 +110,7 @@ def plan_targets(start_m: float, end_m: float, count: int, *, seed: int | None =
     offsets = rng.uniform(-0.25 * pitch, 0.25 * pitch, size=count)
     offsets[0] = offsets[-1] = 0.0
     targets = start_m + pitch * np.arange(count) + offsets
-    targets = np.round(targets / 1e-6) * 1e-6
+    targets = np.round(targets / UM) * UM
     targets[0], targets[-1] = start_m, end_m
     return targets
 

@@ -256,7 +256,7 @@ def evaluate_positioning_file(
     Examples
     --------
     >>> evaluation = evaluate_positioning_file("examples/positioning_run.csv")  # doctest: +SKIP
-    >>> round(evaluation.result.A / 1e-6, 3)  # doctest: +SKIP
+    >>> round(evaluation.result.A / UM, 3)  # doctest: +SKIP
     14.936
     """
     edition = None if standard == "vdi3441" else iso_edition(standard)
