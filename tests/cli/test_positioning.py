@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 
 import numpy as np
+import pandas
 import pytest
 
 from axiscal.positioning.evaluation import ISO_SYMBOLS, VDI_SYMBOLS
@@ -119,31 +120,44 @@ def test_missing_file_and_unknown_standard(run_cli, tmp_path, examples):
 def test_plan_then_positioning_round_trip(run_cli, tmp_path):
     cycle = tmp_path / "cycle.csv"
     gcode = tmp_path / "cycle.nc"
-    status, out, _ = run_cli(
+    status, out, err = run_cli(
         "plan", "--start-mm", 0, "--end-mm", 800, "--targets", 17, "--runs", 5, "--overrun-mm", 5,
         "--seed", 1, "--gcode", gcode, "-o", cycle,
     )
     assert status == 0 and out == ""
-    rows = [line.split(",") for line in cycle.read_text().splitlines() if line and not line.startswith("#")]
-    header, rows = rows[0], rows[1:]
-    assert header == ["step", "run", "direction", "target_mm", "move_to_mm"]
-    readings = [r for r in rows if r[3]]
-    assert len(readings) == 17 * 5 * 2
-    assert gcode.read_text().count("G4 P2") == len(readings)
-    # a "measurement" of the planned cycle with a pure scale error of 10 um/m
-    lines = ["target_mm,run,direction,deviation_um"]
-    lines += [f"{r[3]},{r[1]},{r[2]},{0.01 * float(r[3]):.4f}" for r in readings]
-    run_file = tmp_path / "run.csv"
-    run_file.write_text("\n".join(lines))
-    status, out, _ = run_cli("positioning", run_file, "--json")
+    assert err == "axiscal: note: ISO 230-2 linear cycle, 17 targets, 5 runs each way, overrun 5 mm, seed 1\n"
+    assert json.loads((tmp_path / "cycle.json").read_text())["seed"] == 1
+    frame = pandas.read_csv(cycle)
+    assert list(frame.columns) == ["step", "run", "direction", "target_mm", "move_to_mm", "deviation_um"]
+    readings = frame["target_mm"].notna()
+    assert readings.sum() == 17 * 5 * 2 and frame["deviation_um"].isna().all()
+    assert gcode.read_text().count("G4 P2") == readings.sum()
+    # the technician types a pure scale error of 10 um/m into the plan itself, rows without a target left empty
+    lines = cycle.read_text().splitlines()
+    filled = [lines[0]]
+    for line in lines[1:]:
+        cells = line.split(",")
+        filled.append(line + (f"{0.01 * float(cells[3]):.4f}" if cells[3] else ""))
+    cycle.write_text("\n".join(filled) + "\n")
+    status, out, _ = run_cli("positioning", cycle, "--json")
     body = json.loads(out)
+    assert status == 0 and body["runs"] == 5 and body["target_count"] == 17
     assert body["E"] == pytest.approx(8.0, abs=1e-3) and body["B"] == pytest.approx(0.0, abs=1e-9)
-    assert body["targets"]["target_mm"] == pytest.approx(sorted({float(r[3]) for r in readings}))
+    assert body["targets"]["target_mm"] == pytest.approx(sorted(set(frame["target_mm"].dropna())))
+
+
+def test_a_plan_not_filled_in_is_one_error_line_naming_the_row(run_cli, tmp_path):
+    cycle = tmp_path / "cycle.csv"
+    assert run_cli("plan", "--start-mm", 0, "--end-mm", 400, "--targets", 5, "--seed", 1, "-o", cycle)[0] == 0
+    status, out, err = run_cli("positioning", cycle)
+    assert status == 2 and out == "" and err.count("\n") == 1
+    assert err.startswith(f"axiscal: error: {cycle}:3: no reading at target 0.000 (run 1, direction +)")
 
 
 def test_plan_to_stdout_and_bad_requests(run_cli):
-    status, out, _ = run_cli("plan", "--start-mm", 0, "--end-mm", 400, "--targets", 5, "--cycle", "pilgrim", "--seed", 3)
-    assert status == 0 and out.count("\n") == 2 + 5 * 5 * 2 * 2
+    status, out, err = run_cli("plan", "--start-mm", 0, "--end-mm", 400, "--targets", 5, "--cycle", "pilgrim", "--seed", 3)
+    assert status == 0 and out.count("\n") == 1 + 5 * 5 * 2 * 2 and not out.startswith("#")
+    assert "seed 3" in err
     status, _, err = run_cli("plan", "--start-mm", 0, "--end-mm", 800, "--targets", 3)
     assert status == 2 and "at least 5" in err and err.count("\n") == 1
     status, _, err = run_cli("plan", "--start-mm", 0, "--end-mm", 800, "--targets", 17, "--overrun-mm", 0)

@@ -8,16 +8,23 @@ generator (``np.random.default_rng(seed)``), rounded to 1 um, and is 0 at the tw
 the whole travel is covered. Each target is approached from both sides with an overrun beyond the
 end targets; the linear cycle runs through all targets up then down, once per run; the pilgrim
 (step) cycle makes all runs at one target before moving to the next. See docs/positioning.md.
+
+The cycle CSV is plain (header first) with an empty ``deviation_um`` column: type each reading in
+and the file is a run file for :func:`axiscal.positioning.reader.read_positioning_run`. What the plan
+was made from (cycle, runs, overrun, seed) goes into the JSON sidecar beside it.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.atomic import write_text
+from axiscal.io.jsonio import write_sidecar
 from axiscal.units import MM, UM
 
 __all__ = [
@@ -27,13 +34,17 @@ __all__ = [
     "minimum_targets",
     "plan_targets",
     "plan_test",
+    "PLAN_COLUMNS",
     "cycle_csv",
     "gcode_program",
+    "write_plan",
 ]
 
 CYCLES = ("linear", "pilgrim")
 #: ISO 230-2: at least this many targets per metre of travel (and at least this many in all)
 TARGETS_PER_METRE = 5
+#: columns of the cycle CSV; ``deviation_um`` is empty, for the readings to be typed in
+PLAN_COLUMNS = ("step", "run", "direction", "target_mm", "move_to_mm", "deviation_um")
 
 
 @dataclass(frozen=True)
@@ -73,6 +84,14 @@ class PositioningTestPlan:
     def readings(self) -> int:
         """Number of moves that end at a target (one reading each)."""
         return int(np.isfinite(self.move_target).sum())
+
+    @property
+    def description(self) -> str:
+        """The plan in one phrase: cycle, targets, runs, overrun (mm) and seed."""
+        return (
+            f"ISO 230-2 {self.cycle} cycle, {self.targets.size} targets, {self.runs} runs each way,"
+            f" overrun {self.overrun / MM:g} mm, seed {self.seed}"
+        )
 
 
 def minimum_targets(length_m: float) -> int:
@@ -189,19 +208,32 @@ def plan_test(
 
 
 def cycle_csv(plan: PositioningTestPlan) -> str:
-    """The test cycle as CSV: ``step, run, direction, target_mm, move_to_mm``.
+    """The test cycle as plain CSV: ``step, run, direction, target_mm, move_to_mm, deviation_um``.
 
-    One row per move; ``target_mm`` is empty for overrun moves (no reading is taken there).
+    Parameters
+    ----------
+    plan : PositioningTestPlan
+        The plan (see :func:`plan_test`).
+
+    Returns
+    -------
+    str
+        The header line, then one row per move. ``target_mm`` (mm, 1 um resolution) is empty for
+        overrun moves, where no reading is taken; ``deviation_um`` is empty everywhere, for the
+        deviations (actual - target, um) to be typed in at the rows with a target. Filled in, the
+        file is read by :func:`axiscal.positioning.reader.read_positioning_run` as it is.
+
+    Examples
+    --------
+    >>> plan = plan_test(0.0, 0.4, 5, runs=1, seed=1)
+    >>> cycle_csv(plan).splitlines()[:3]
+    ['step,run,direction,target_mm,move_to_mm,deviation_um', '1,1,-,,-5.000,', '2,1,+,0.000,0.000,']
     """
-    lines = [
-        f"# ISO 230-2 {plan.cycle} cycle, {plan.targets.size} targets, {plan.runs} runs each way,"
-        f" overrun {plan.overrun / MM:g} mm, seed {plan.seed}",
-        "step,run,direction,target_mm,move_to_mm",
-    ]
+    lines = [",".join(PLAN_COLUMNS)]
     for k in range(plan.moves.size):
         target = plan.move_target[k]
         cell = "" if math.isnan(target) else f"{target / MM:.3f}"
-        lines.append(f"{k + 1},{plan.move_run[k]},{plan.move_direction[k]},{cell},{plan.moves[k] / MM:.3f}")
+        lines.append(f"{k + 1},{plan.move_run[k]},{plan.move_direction[k]},{cell},{plan.moves[k] / MM:.3f},")
     return "\n".join(lines) + "\n"
 
 
@@ -222,8 +254,7 @@ def gcode_program(plan: PositioningTestPlan, *, axis: str = "X", dwell_s: float 
     axis = axis.upper()
     out = [
         "%",
-        f"(axiscal plan: ISO 230-2 {plan.cycle} cycle, {plan.targets.size} targets,"
-        f" {plan.runs} runs each way, overrun {plan.overrun / MM:g} mm, seed {plan.seed})",
+        f"(axiscal plan: {plan.description})",
         "(a dwell follows every move that ends at a target: take the reading there)",
         "G21 G90 G94",
         f"G1 {axis}{plan.moves[0] / MM:.3f} F{feed_mm_per_min:g}",
@@ -234,3 +265,67 @@ def gcode_program(plan: PositioningTestPlan, *, axis: str = "X", dwell_s: float 
             out.append(f"G4 P{dwell_s:g}")
     out += ["M2", "%"]
     return "\n".join(out) + "\n"
+
+
+def write_plan(
+    plan: PositioningTestPlan,
+    csv_path: str | Path | None = None,
+    *,
+    gcode_path: str | Path | None = None,
+    axis: str = "X",
+    dwell_s: float = 2.0,
+    feed_mm_per_min: float = 2000.0,
+) -> list[Path]:
+    """Write the cycle CSV with its JSON sidecar, and the G-code program, each atomically.
+
+    Parameters
+    ----------
+    plan : PositioningTestPlan
+        The plan (see :func:`plan_test`).
+    csv_path : str or Path, optional
+        The cycle CSV (:func:`cycle_csv`); its sidecar ``NAME.json`` records the plan (cycle,
+        targets in mm, runs, overrun in mm, seed). None writes no CSV.
+    gcode_path : str or Path, optional, keyword-only
+        The G-code program (:func:`gcode_program`). None writes none.
+    axis, dwell_s, feed_mm_per_min : keyword-only
+        Passed to :func:`gcode_program` (axis letter, dwell in seconds, feed in mm/min).
+
+    Returns
+    -------
+    list of Path
+        The files written: CSV, sidecar, G-code (those asked for).
+
+    Raises
+    ------
+    AxiscalError
+        For a G-code option :func:`gcode_program` refuses (checked before anything is written),
+        or a file that cannot be written (naming it).
+
+    Examples
+    --------
+    >>> plan = plan_test(0.0, 0.8, 17, seed=1)
+    >>> write_plan(plan, "cycle.csv", gcode_path="cycle.ngc")  # doctest: +SKIP
+    [PosixPath('cycle.csv'), PosixPath('cycle.json'), PosixPath('cycle.ngc')]
+    """
+    program = None if gcode_path is None else gcode_program(plan, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_per_min)
+    written: list[Path] = []
+    if csv_path is not None:
+        written.append(write_text(csv_path, cycle_csv(plan)))
+        written.append(
+            write_sidecar(
+                csv_path,
+                kind="positioning test plan",
+                units={"deviation_um": "um, actual - target: to be typed in at every row with a target_mm"},
+                standard="ISO 230-2",
+                description=plan.description,
+                cycle=plan.cycle,
+                target_mm=plan.targets / MM,
+                runs=plan.runs,
+                overrun_mm=plan.overrun / MM,
+                seed=plan.seed,
+                readings=plan.readings,
+            )
+        )
+    if program is not None:
+        written.append(write_text(gcode_path, program))
+    return written
