@@ -92,3 +92,18 @@ def test_render_template_shipped_with_the_package():
     )
     assert text.splitlines() == ["s.csv: vdi3441, 2 targets, 2 runs each way", "", "target_mm", "    0.000", "",
                                  "axis figures (um):", "  P              n/a"]
+
+
+def test_the_shipped_run_files_are_plain_csv_with_a_sidecar(examples):
+    import json
+
+    import pandas as pd
+
+    plain = pd.read_csv(examples / "positioning_run.csv")
+    assert list(plain.columns) == ["target_mm", "run", "direction", "deviation_um"] and len(plain) == 170
+    raw = pd.read_csv(examples / "laser_raw_run.csv")
+    assert list(raw.columns) == ["target_mm", "run", "direction", "actual_mm", "air_temperature_c", "pressure_pa",
+                                 "humidity_pct", "material_temperature_c"]
+    for name in ("positioning_run", "laser_raw_run"):
+        meta = json.loads((examples / f"{name}.json").read_text())
+        assert meta["kind"] == "positioning run" and meta["file"] == f"{name}.csv"
