@@ -1,4 +1,9 @@
-"""FANUC compensation table."""
+"""FANUC compensation table: pitch error compensation, parameters 3620-3627 and the incremental data.
+
+After the parameter manual of Series 0i (B-63980EN): compensation point N at reference position +
+(N - 3620) x 3624, each value the change of the correction over the section ending at point N, in
+units of 3623 x the detection unit.
+"""
 
 from __future__ import annotations
 
@@ -45,6 +50,16 @@ class FanucTable:
         The deviation at the reference position, which the table leaves uncorrected (of the +
         direction for a bidirectional table, which assumes the reference is approached in +; of
         the bidirectional mean otherwise), metres.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from axiscal.compensation.curve import ErrorCurve
+    >>> from axiscal.units import UM
+    >>> curve = ErrorCurve(np.array([0.0, 0.02]), np.array([0.733, 1.6]) * UM, np.array([2.233, 2.733]) * UM)
+    >>> table = fanuc_table(curve, interval_m=0.01)
+    >>> table.points.tolist(), table.values.tolist()
+    ([1, 2], [0, -1])
     """
 
     reference_point: int
@@ -86,6 +101,17 @@ class FanucTable:
         Exact at the compensation points. A control without interpolated pitch error compensation
         outputs each section's increment as a step at the compensation point, so between points it
         may differ from this by up to one increment (see docs/compensation.md).
+
+        Parameters
+        ----------
+        x : float or array_like, metres
+            Commanded positions.
+        direction : {"+", "-"}
+            Direction of travel (the - table of a bidirectional table for "-").
+
+        Returns
+        -------
+        ndarray, shape of ``x``, metres
         """
         _check_direction(direction)
         if direction == "-" and self.values_down is not None:
@@ -164,8 +190,41 @@ def fanuc_table(
         Largest magnitude of one incremental value (127 on Series 0i/16i).
     max_point : int, keyword-only
         Highest compensation point number the control has (1023 on Series 0i/16i).
-    input_increment_m, axis_number : keyword-only
-        Unit of parameter 3624 (1 um, IS-B) and the axis number written on the tape.
+    input_increment_m : float, keyword-only
+        Unit of parameter 3624, metres (1 um, IS-B).
+    axis_number : int, keyword-only
+        The axis number written on the tape (default 1).
+
+    Returns
+    -------
+    FanucTable
+        Parameters and incremental values; ``reference_deviation_m`` is the deviation at the
+        reference position that the table leaves to the reference position setting.
+
+    Raises
+    ------
+    AxiscalError
+        For a magnification outside 1..100, an interval that is not positive or not a whole
+        number of input increments, a reference position outside the measured travel, points
+        beyond 0..``max_point``, an increment larger than ``value_limit``, or a rotary axis
+        without whole sections per revolution.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from axiscal.compensation.curve import ErrorCurve
+    >>> from axiscal.units import UM
+    >>> curve = ErrorCurve(np.array([0.0, 0.02]), np.array([0.733, 1.6]) * UM, np.array([2.233, 2.733]) * UM)
+    >>> print(fanuc_table(curve, interval_m=0.01).text(), end="")
+    %
+    N03620A1P0
+    N03621A1P1
+    N03622A1P2
+    N03623A1P1
+    N03624A1P10000
+    N10001P0
+    N10002P-1
+    %
     """
     if not 1 <= magnification <= 100:
         raise AxiscalError(f"FANUC pitch error magnification (parameter 3623) is 1..100, got {magnification}")

@@ -65,9 +65,13 @@ class PositioningTestPlan:
         The target a move stops at for a reading, NaN for overrun moves (no reading).
     cycle : str
         "linear" or "pilgrim".
-    runs, overrun, seed :
-        The request the plan was made from (overrun in metres); ``seed`` is the one actually used
-        (drawn from the operating system's entropy when none was given), so the plan can be made again.
+    runs : int
+        Runs in each direction.
+    overrun : float, metres
+        Travel beyond a target before approaching it.
+    seed : int
+        The seed actually used (drawn from the operating system's entropy when none was given),
+        so the plan can be made again.
     """
 
     targets: np.ndarray
@@ -95,7 +99,22 @@ class PositioningTestPlan:
 
 
 def minimum_targets(length_m: float) -> int:
-    """Fewest targets ISO 230-2 accepts over ``length_m``: 5 per metre, at least 5."""
+    """Fewest targets ISO 230-2 accepts over ``length_m``: 5 per metre, at least 5.
+
+    Parameters
+    ----------
+    length_m : float, metres
+        The measured travel.
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
+    >>> minimum_targets(0.8), minimum_targets(2.1)
+    (5, 11)
+    """
     return max(TARGETS_PER_METRE, math.ceil(TARGETS_PER_METRE * length_m - 1e-9))
 
 
@@ -115,6 +134,17 @@ def plan_targets(start_m: float, end_m: float, count: int, *, seed: int | None =
     -------
     ndarray, shape (count,), metres
         ``P_i = start + i p + r_i``, ``r_i`` uniform in [-p/4, p/4] rounded to 1 um, r = 0 at both ends.
+
+    Raises
+    ------
+    AxiscalError
+        If the end is not beyond the start or ``count`` is below :func:`minimum_targets`.
+
+    Examples
+    --------
+    >>> from axiscal.units import MM
+    >>> (plan_targets(0.0, 0.4, 5, seed=1) / MM).round(3).tolist()
+    [0.0, 122.523, 182.208, 322.432, 400.0]
     """
     if not (math.isfinite(start_m) and math.isfinite(end_m)) or end_m <= start_m:
         raise AxiscalError(f"the end ({end_m / MM:g} mm) must be beyond the start ({start_m / MM:g} mm)")
@@ -166,6 +196,19 @@ def plan_test(
     Returns
     -------
     PositioningTestPlan
+        Targets and every move of the cycle, metres.
+
+    Raises
+    ------
+    AxiscalError
+        For an unknown cycle, fewer than 1 run, an overrun that is not positive, or targets
+        :func:`plan_targets` refuses.
+
+    Examples
+    --------
+    >>> plan = plan_test(0.0, 0.8, 17, runs=5, seed=1)
+    >>> plan.readings, plan.moves.size
+    (170, 180)
     """
     if cycle not in CYCLES:
         raise AxiscalError(f"unknown cycle '{cycle}'; use one of {', '.join(CYCLES)}")
@@ -244,6 +287,33 @@ def gcode_program(plan: PositioningTestPlan, *, axis: str = "X", dwell_s: float 
     ends at a target ``G4 P<dwell_s>`` (dwell in seconds, as LinuxCNC and most controls read P;
     Fanuc reads ``G4 P`` in milliseconds and ``G4 X`` in seconds, so check your control). Ends
     with ``M2``.
+
+    Parameters
+    ----------
+    plan : PositioningTestPlan
+        The plan (see :func:`plan_test`).
+    axis : str, keyword-only
+        One axis letter (default "X").
+    dwell_s : float, keyword-only
+        Dwell at each target, seconds (>= 0, default 2).
+    feed_mm_per_min : float, keyword-only
+        Feed of the moves, mm/min (> 0, default 2000).
+
+    Returns
+    -------
+    str
+        The program, one block a line, starting and ending with ``%``.
+
+    Raises
+    ------
+    AxiscalError
+        For an axis that is not one letter, a negative dwell or a feed that is not positive.
+
+    Examples
+    --------
+    >>> program = gcode_program(plan_test(0.0, 0.4, 5, runs=1, seed=1), axis="z", dwell_s=1)
+    >>> program.splitlines()[4:7]
+    ['G1 Z-5.000 F2000', 'G1 Z0.000', 'G4 P1']
     """
     if not axis or not axis.isalpha() or len(axis) != 1:
         raise AxiscalError(f"axis must be one letter (X, Y, Z, ...), got '{axis}'")

@@ -1,5 +1,7 @@
 """Reading bidirectional positioning runs from CSV, with errors that name the file and the line.
 
+The data of an ISO 230-2 test: target P_i, run j, direction and the deviation x_ij = P_ij - P_i.
+
 Columns (see docs/positioning.md): ``target_<unit>``, ``run``, ``direction`` (``+``/``-`` or
 ``up``/``down``) and exactly one of ``deviation_<unit>`` (actual - target) or ``actual_<unit>``
 (position reached). Units are nm, um or mm. A row whose target and value cells are both empty is
@@ -45,6 +47,12 @@ class RunFile:
         material temperature, if given).
     run_labels : tuple of str
         The ``run`` identifiers in column order of the deviation arrays.
+
+    Examples
+    --------
+    >>> data = read_positioning_run("examples/positioning_run.csv")  # doctest: +SKIP
+    >>> data.run.targets.shape, data.compensated, data.run_labels  # doctest: +SKIP
+    ((17,), False, ('1', '2', '3', '4', '5'))
     """
 
     run: PositioningRun
@@ -158,14 +166,20 @@ def read_positioning_run(
     path : str or Path
         The CSV file.
     wavelength_nm : float, optional, keyword-only
-        Vacuum wavelength of the laser for raw readings (default: that of
+        Vacuum wavelength of the laser for raw readings, nm (default: that of
         :func:`axiscal.instruments.interferometer.compensated_length`, 632.991 nm).
-    co2_ppm, expansion_per_k, method : keyword-only
-        Passed to :func:`axiscal.instruments.interferometer.compensated_length` for raw readings.
+    co2_ppm : float, keyword-only
+        CO2 content of the air, ppm (default 450), for raw readings.
+    expansion_per_k : float, keyword-only
+        Expansion coefficient of the material, 1/K (default steel, 11.5e-6), for raw readings
+        with a material temperature.
+    method : str, keyword-only
+        Refractive index equation of the air (default ``"ciddor"``), for raw readings.
 
     Returns
     -------
     RunFile
+        The deviations in metres, whether they were compensated and the run labels.
 
     Raises
     ------
@@ -175,6 +189,12 @@ def read_positioning_run(
         (target, run, direction), a target measured in one direction only, a run missing at
         some target, a non-numeric or non-finite cell, environment columns given only in part, or
         a row with a target but no reading (or a reading but no target).
+
+    Examples
+    --------
+    >>> data = read_positioning_run("examples/laser_raw_run.csv")  # doctest: +SKIP
+    >>> data.compensated, data.run.runs  # doctest: +SKIP
+    (True, 5)
     """
     table = read_csv(path, min_rows=2)
     table.require("run", "direction")
