@@ -31,3 +31,9 @@ def test_public_names_have_numpydoc_sections(name):
     assert any(f"\n{s}\n---" in doc for s in sections), f"{name}: no {' or '.join(sections)} section"
     if inspect.isfunction(obj):
         assert "\nReturns\n---" in doc, f"{name}: no Returns section"
+
+
+@pytest.mark.parametrize("module", MODULES, ids=lambda m: m.__name__)
+def test_the_package_re_exports_every_public_name_of_its_modules(module):
+    assert set(module.__all__) <= set(room.__all__)
+    assert all(getattr(room, name) is getattr(module, name) for name in module.__all__)

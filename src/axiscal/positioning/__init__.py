@@ -20,6 +20,7 @@ from axiscal.positioning.evaluation import (
 )
 from axiscal.positioning.plan import (
     CYCLES,
+    PLAN_COLUMNS,
     TARGETS_PER_METRE,
     PositioningTestPlan,
     cycle_csv,
@@ -27,6 +28,7 @@ from axiscal.positioning.plan import (
     minimum_targets,
     plan_targets,
     plan_test,
+    write_plan,
 )
 from axiscal.positioning.plot import plot_positioning
 from axiscal.positioning.report import (
@@ -63,6 +65,7 @@ __all__ = [
     "RunFile",
     "read_positioning_run",
     "CYCLES",
+    "PLAN_COLUMNS",
     "TARGETS_PER_METRE",
     "PositioningTestPlan",
     "minimum_targets",
@@ -70,6 +73,7 @@ __all__ = [
     "plan_test",
     "cycle_csv",
     "gcode_program",
+    "write_plan",
     "plot_positioning",
     "PositioningEvaluation",
     "evaluate_positioning_file",
