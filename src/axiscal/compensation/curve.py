@@ -53,9 +53,9 @@ class ErrorCurve:
 
     Examples
     --------
-    >>> import numpy as np
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
     >>> from axiscal.units import UM
-    >>> curve = ErrorCurve(np.array([0.0, 0.02]), np.array([0.733, 1.6]) * UM, np.array([2.233, 2.733]) * UM)
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
     >>> round(float(curve.at(0.01, "mean")) / UM, 3)
     1.825
     """
@@ -109,7 +109,9 @@ def error_curve(stats: TargetStatistics) -> ErrorCurve:
 
     Examples
     --------
-    >>> curve = error_curve(target_statistics(run))  # doctest: +SKIP
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> error_curve(target_statistics(paper003_table4_run())).positions.tolist()
+    [0.0, 0.02]
     """
     return ErrorCurve(np.asarray(stats.targets), np.asarray(stats.mean_up), np.asarray(stats.mean_down))
 
@@ -156,9 +158,9 @@ def residuals(table, curve: ErrorCurve, x, direction: str, *, offset: float = 0.
 
     Examples
     --------
-    >>> import numpy as np
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
     >>> from axiscal.units import UM
-    >>> curve = ErrorCurve(np.array([0.0, 0.02]), np.array([0.733, 1.6]) * UM, np.array([2.233, 2.733]) * UM)
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
     >>> from axiscal.compensation.heidenhain import heidenhain_table
     >>> left = residuals(heidenhain_table(curve), curve, curve.positions, "+")
     >>> bool(abs(left).max() <= 0.05 * UM)

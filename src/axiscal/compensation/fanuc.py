@@ -53,10 +53,9 @@ class FanucTable:
 
     Examples
     --------
-    >>> import numpy as np
-    >>> from axiscal.compensation.curve import ErrorCurve
-    >>> from axiscal.units import UM
-    >>> curve = ErrorCurve(np.array([0.0, 0.02]), np.array([0.733, 1.6]) * UM, np.array([2.233, 2.733]) * UM)
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
     >>> table = fanuc_table(curve, interval_m=0.01)
     >>> table.points.tolist(), table.values.tolist()
     ([1, 2], [0, -1])
@@ -211,10 +210,9 @@ def fanuc_table(
 
     Examples
     --------
-    >>> import numpy as np
-    >>> from axiscal.compensation.curve import ErrorCurve
-    >>> from axiscal.units import UM
-    >>> curve = ErrorCurve(np.array([0.0, 0.02]), np.array([0.733, 1.6]) * UM, np.array([2.233, 2.733]) * UM)
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
     >>> print(fanuc_table(curve, interval_m=0.01).text(), end="")
     %
     N03620A1P0

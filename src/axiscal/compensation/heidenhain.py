@@ -44,10 +44,9 @@ class HeidenhainTable:
 
     Examples
     --------
-    >>> import numpy as np
-    >>> from axiscal.compensation.curve import ErrorCurve
-    >>> from axiscal.units import UM
-    >>> curve = ErrorCurve(np.array([0.0, 0.02]), np.array([0.733, 1.6]) * UM, np.array([2.233, 2.733]) * UM)
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
     >>> print(heidenhain_table(curve).text(), end="")
     BEGIN X.COM MM
     NR           AXISPOS             X      BACKLASH
@@ -132,10 +131,9 @@ def heidenhain_table(curve: ErrorCurve, *, axis: str = "X", backlash: bool = Tru
 
     Examples
     --------
-    >>> import numpy as np
-    >>> from axiscal.compensation.curve import ErrorCurve
-    >>> from axiscal.units import UM
-    >>> curve = ErrorCurve(np.array([0.0, 0.02]), np.array([0.733, 1.6]) * UM, np.array([2.233, 2.733]) * UM)
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
     >>> heidenhain_table(curve, backlash=False).error_mm.tolist()
     [0.0015, 0.0022]
     """

@@ -44,10 +44,9 @@ class LinuxcncTable:
 
     Examples
     --------
-    >>> import numpy as np
-    >>> from axiscal.compensation.curve import ErrorCurve
-    >>> from axiscal.units import UM
-    >>> curve = ErrorCurve(np.array([0.0, 0.02]), np.array([0.733, 1.6]) * UM, np.array([2.233, 2.733]) * UM)
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
     >>> print(linuxcnc_table(curve).text(), end="")
     0.000000 -0.000733 -0.002233
     20.000000 -0.001600 -0.002733
@@ -124,10 +123,9 @@ def linuxcnc_table(curve: ErrorCurve, *, comp_type: int = 1, unit_m: float = MM,
 
     Examples
     --------
-    >>> import numpy as np
-    >>> from axiscal.compensation.curve import ErrorCurve
-    >>> from axiscal.units import UM
-    >>> curve = ErrorCurve(np.array([0.0, 0.02]), np.array([0.733, 1.6]) * UM, np.array([2.233, 2.733]) * UM)
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
     >>> linuxcnc_table(curve, comp_type=0).forward.tolist()
     [0.000733, 20.0016]
     """

@@ -43,10 +43,9 @@ class SiemensTable:
 
     Examples
     --------
-    >>> import numpy as np
-    >>> from axiscal.compensation.curve import ErrorCurve
-    >>> from axiscal.units import UM
-    >>> curve = ErrorCurve(np.array([0.0, 0.02]), np.array([0.733, 1.6]) * UM, np.array([2.233, 2.733]) * UM)
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
     >>> siemens_table(curve, step_m=0.01).values_mm.tolist()
     [0.0015, 0.0018, 0.0022]
     """
@@ -152,10 +151,9 @@ def siemens_table(
 
     Examples
     --------
-    >>> import numpy as np
-    >>> from axiscal.compensation.curve import ErrorCurve
-    >>> from axiscal.units import UM
-    >>> curve = ErrorCurve(np.array([0.0, 0.02]), np.array([0.733, 1.6]) * UM, np.array([2.233, 2.733]) * UM)
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
     >>> print(siemens_table(curve, step_m=0.01, axis="Y1").text().splitlines()[2])
     $AA_ENC_COMP[0,0,Y1]=0.0015
     """

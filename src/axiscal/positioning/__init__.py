@@ -15,6 +15,7 @@ from axiscal.positioning.evaluation import (
     Vdi3441Result,
     iso230_2,
     iso_edition,
+    paper003_table4_run,
     target_statistics,
     vdi3441,
 )
@@ -59,6 +60,7 @@ __all__ = [
     "vdi3441",
     "STANDARDS",
     "iso_edition",
+    "paper003_table4_run",
     "DIRECTIONS",
     "ENVIRONMENT_REQUIRED",
     "ALLOWED_UNITS",

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.units import MM, UM
 
 __all__ = [
     "ISO_EDITIONS",
@@ -33,6 +34,7 @@ __all__ = [
     "vdi3441",
     "STANDARDS",
     "iso_edition",
+    "paper003_table4_run",
 ]
 
 #: ISO 230-2 editions this module evaluates, and their coverage factor k
@@ -275,14 +277,9 @@ def target_statistics(run: PositioningRun) -> TargetStatistics:
 
     Examples
     --------
-    Paper 003, Table 4 (three runs at two targets, um):
-
-    >>> import numpy as np
     >>> from axiscal.units import UM
-    >>> up = np.array([[0.0, 1.2, 1.0], [1.7, 2.0, 1.1]]) * UM
-    >>> down = np.array([[3.6, -0.2, 3.3], [4.1, 1.9, 2.2]]) * UM
-    >>> st = target_statistics(PositioningRun(np.array([0.0, 0.02]), up, down))
-    >>> np.round(st.mean_up / UM, 3).tolist(), np.round(st.s_up / UM, 3).tolist()
+    >>> st = target_statistics(paper003_table4_run())
+    >>> (st.mean_up / UM).round(3).tolist(), (st.s_up / UM).round(3).tolist()
     ([0.733, 1.6], [0.643, 0.458])
     """
     up, down = run.deviations_up, run.deviations_down
@@ -333,11 +330,8 @@ def iso230_2(run: PositioningRun, *, edition: str = "2014") -> Iso230Result:
 
     Examples
     --------
-    >>> import numpy as np
     >>> from axiscal.units import UM
-    >>> up = np.array([[0.0, 1.2, 1.0], [1.7, 2.0, 1.1]]) * UM
-    >>> down = np.array([[3.6, -0.2, 3.3], [4.1, 1.9, 2.2]]) * UM
-    >>> result = iso230_2(PositioningRun(np.array([0.0, 0.02]), up, down))
+    >>> result = iso230_2(paper003_table4_run())
     >>> round(result.B / UM, 3), round(result.R / UM, 3)
     (1.5, 8.451)
     """
@@ -396,11 +390,8 @@ def vdi3441(run: PositioningRun) -> Vdi3441Result:
 
     Examples
     --------
-    >>> import numpy as np
     >>> from axiscal.units import UM
-    >>> up = np.array([[0.0, 1.2, 1.0], [1.7, 2.0, 1.1]]) * UM
-    >>> down = np.array([[3.6, -0.2, 3.3], [4.1, 1.9, 2.2]]) * UM
-    >>> result = vdi3441(PositioningRun(np.array([0.0, 0.02]), up, down))
+    >>> result = vdi3441(paper003_table4_run())
     >>> round(result.Pa / UM, 3), round(result.P / UM, 3)
     (0.683, 9.767)
     """
@@ -458,3 +449,25 @@ def iso_edition(standard: str) -> str:
     if standard.startswith(prefix) and standard[len(prefix):] in ISO_EDITIONS:
         return standard[len(prefix):]
     raise AxiscalError(f"unknown standard '{standard}'; use one of {', '.join(STANDARDS)}")
+
+
+def paper003_table4_run() -> PositioningRun:
+    """The three runs at two targets printed in paper 003, Table 4, as a run to try the estimators on.
+
+    Targets 0 and 20 mm; per target the column marked "up" is the + approach, the one marked
+    "down" the - approach (three runs each). See docs/positioning.md for how the table reads.
+
+    Returns
+    -------
+    PositioningRun
+        Shape (2, 3) per direction, metres; ``source`` is "paper 003, Table 4".
+
+    Examples
+    --------
+    >>> from axiscal.units import UM
+    >>> round(float(iso230_2(paper003_table4_run()).repeatability[0]) / UM, 3)  # R_1 as printed
+    8.451
+    """
+    up = np.array([[0.0, 1.2, 1.0], [1.7, 2.0, 1.1]]) * UM
+    down = np.array([[3.6, -0.2, 3.3], [4.1, 1.9, 2.2]]) * UM
+    return PositioningRun(np.array([0.0, 20.0]) * MM, up, down, source="paper 003, Table 4")
