@@ -17,6 +17,7 @@ from axiscal.positioning.evaluation import (
     PositioningRun,
     iso230_2,
     iso_edition,
+    paper003_table4_run,
     target_statistics,
     vdi3441,
 )
@@ -32,6 +33,14 @@ TABLE4_UP = np.array([[0.0, 1.2, 1.0], [1.7, 2.0, 1.1]])
 
 def table4_run() -> PositioningRun:
     return PositioningRun(np.array([0.0, 0.020]), TABLE4_UP * UM, TABLE4_DOWN * UM, source="paper 003")
+
+
+def test_the_shipped_table_4_run_is_the_printed_one():
+    shipped = paper003_table4_run()
+    reference = table4_run()
+    assert shipped.targets == pytest.approx(reference.targets, abs=1e-15)
+    assert shipped.deviations_up == pytest.approx(reference.deviations_up, abs=1e-15)
+    assert shipped.deviations_down == pytest.approx(reference.deviations_down, abs=1e-15)
 
 
 def test_paper_003_table_4_per_direction_rows():

@@ -6,7 +6,6 @@ import click
 
 from axiscal.cli.common import given_options, write_output
 from axiscal.compensation.formats import FORMATS, compensation_table
-from axiscal.positioning.reader import read_positioning_run
 from axiscal.units import MM, UM
 
 __all__ = ["compensate_command", "register"]
@@ -45,7 +44,7 @@ def compensate_command(run_csv, fmt, output, comp_type, interval_mm, magnificati
     keywords = {"interval_mm": "interval_m", "detection_unit_um": "detection_unit_m",
                 "reference_position_mm": "reference_position_m", "no_backlash": "backlash"}
     options = {keywords.get(name, name): value for name, value in options.items()}
-    result = compensation_table(read_positioning_run(run_csv).run, fmt, **options)
+    result = compensation_table(run_csv, fmt, **options)
     if output:
         write_output(output, lambda target: target.write_text(result.text, encoding="utf-8"))
     else:

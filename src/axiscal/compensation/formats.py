@@ -10,6 +10,7 @@ ignoring it, and measures the error the table leaves at the measured targets (th
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -21,6 +22,7 @@ from axiscal.compensation.linuxcnc import linuxcnc_table
 from axiscal.compensation.siemens import siemens_table
 from axiscal.errors import AxiscalError
 from axiscal.positioning.evaluation import PositioningRun, target_statistics
+from axiscal.positioning.reader import read_positioning_run
 from axiscal.units import MM, UM
 
 __all__ = ["FORMATS", "FORMAT_OPTIONS", "CompensationResult", "compensation_table"]
@@ -104,7 +106,7 @@ def _default_interval(targets: np.ndarray) -> float:
 
 
 def compensation_table(
-    run: PositioningRun,
+    run: PositioningRun | str | Path,
     fmt: str,
     *,
     comp_type: int | None = None,
@@ -125,8 +127,10 @@ def compensation_table(
 
     Parameters
     ----------
-    run : PositioningRun
-        The bidirectional test, metres; the table corrects its mean deviation per direction.
+    run : PositioningRun, or str or Path
+        The bidirectional test, metres, or a run file read with
+        :func:`axiscal.positioning.reader.read_positioning_run`; the table corrects its mean
+        deviation per direction.
     fmt : {"linuxcnc", "fanuc", "siemens", "heidenhain"}
         The controller table format.
     comp_type : {0, 1}, optional, keyword-only
@@ -161,8 +165,8 @@ def compensation_table(
     Raises
     ------
     AxiscalError
-        For an unknown format, an option of another format, or a value the controller's table
-        cannot hold (see the controller modules).
+        For an unknown format, an option of another format, a run file the reader refuses
+        (naming its line), or a value the controller's table cannot hold (see the controller modules).
 
     Examples
     --------
@@ -180,6 +184,8 @@ def compensation_table(
              reference_position_m=reference_position_m, reference_point=reference_point, bidirectional=bidirectional,
              axis=axis, axis_number=axis_number, backlash=backlash),
     )
+    if not isinstance(run, PositioningRun):
+        run = read_positioning_run(run).run
     curve: ErrorCurve = error_curve(target_statistics(run))
     targets = run.targets
     interval = _default_interval(targets) if interval_m is None else interval_m

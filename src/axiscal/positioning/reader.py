@@ -121,7 +121,7 @@ def _readings_only(table: CsvTable, target_name: str, value_name: str) -> CsvTab
             )
     if len(keep) == len(table):
         return table
-    return replace(table, rows=tuple(table.rows[k] for k in keep), lines=tuple(table.lines[k] for k in keep), _index={})
+    return replace(table, rows=tuple(table.rows[k] for k in keep), lines=tuple(table.lines[k] for k in keep))
 
 
 def _sort_key(label: str) -> tuple[int, float, str]:
