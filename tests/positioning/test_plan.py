@@ -192,3 +192,23 @@ def test_write_plan_checks_the_gcode_options_before_writing(tmp_path):
     with pytest.raises(AxiscalError, match="one letter"):
         write_plan(plan, tmp_path / "cycle.csv", gcode_path=tmp_path / "cycle.ngc", axis="XY")
     assert list(tmp_path.iterdir()) == []
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 10_000), st.integers(1, 3), st.sampled_from(["linear", "pilgrim"]), st.integers(5, 9))
+def test_any_plan_filled_in_reads_back_the_readings_typed_in(tmp_path_factory, seed, runs, cycle, count):
+    plan = plan_test(0.0, 0.5, count, runs=runs, seed=seed, cycle=cycle)
+    rng = np.random.default_rng(seed)
+    typed = {}
+
+    def reading(t, run, d):
+        return typed.setdefault((round(t, 3), run, d), round(float(rng.normal(0.0, 3.0)), 4))
+
+    path = write_plan(plan, tmp_path_factory.mktemp("plan") / "cycle.csv")[0]
+    path.write_text(fill_in(path.read_text(), reading))
+    data = read_positioning_run(path)
+    labels = [int(r) for r in data.run_labels]
+    for i, t in enumerate(data.run.targets / MM):
+        for j, run in enumerate(labels):
+            assert data.run.deviations_up[i, j] == pytest.approx(typed[(round(t, 3), run, "+")] * UM, abs=1e-12)
+            assert data.run.deviations_down[i, j] == pytest.approx(typed[(round(t, 3), run, "-")] * UM, abs=1e-12)

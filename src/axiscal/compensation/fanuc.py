@@ -36,6 +36,16 @@ class FanucTable:
 
     Attributes
     ----------
+    reference_point : int
+        Parameter 3620, the compensation point number of the reference position.
+    reference_position_m : float, metres
+        Machine position of the reference position.
+    interval_m : float, metres
+        Interval between compensation points (3624).
+    magnification : int
+        Parameter 3623.
+    detection_unit_m : float, metres
+        Detection unit of the axis; one compensation unit is ``magnification * detection_unit_m``.
     points : ndarray of int, shape (k,)
         Compensation point numbers 3621 .. 3622 (for a rotary axis 3621 is the reference point,
         which repeats the value of 3622; ``points`` then starts one after it).
@@ -44,8 +54,16 @@ class FanucTable:
     values_down : ndarray of int, shape (k,) or None
         Incremental values for travel in the - direction (bidirectional table), points
         ``down_first .. down_first + k - 1``.
+    down_first : int or None
+        Parameter 3626, the first point of the - direction table (bidirectional), else None.
     reference_value_down : int
         Parameter 3627 (bidirectional), in compensation units.
+    rotary : bool
+        A rotary axis (one revolution from the reference point).
+    input_increment_m : float, metres
+        Unit of parameter 3624.
+    axis_number : int
+        Axis number written on the tape.
     reference_deviation_m : float
         The deviation at the reference position, which the table leaves uncorrected (of the +
         direction for a bidirectional table, which assumes the reference is approached in +; of
