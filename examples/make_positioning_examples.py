@@ -9,6 +9,8 @@ laser_raw_run.csv holds the same test as raw laser readings (computed with the v
 of an axis in air at about 21.4 degC and 100.9 kPa with the steel at 21.0 degC: reading =
 position_at_20C * (1 + alpha (t_material - 20)) * n_air. `axiscal positioning` must turn it back
 into the deviations of positioning_run.csv (to the rounding of the files).
+
+Both files are plain CSV (header first); what they are is in the JSON sidecar beside each.
 """
 
 from __future__ import annotations
@@ -18,11 +20,15 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.instruments.air import refractive_index
+from axiscal.io.atomic import write_text
+from axiscal.io.jsonio import write_sidecar
+from axiscal.materials import STEEL_EXPANSION_PER_K
 from axiscal.positioning.plan import plan_targets
+from axiscal.units import MM, UM
 
 HERE = Path(__file__).resolve().parent
 RUNS = 5
-ALPHA = 11.5e-6
+ALPHA = STEEL_EXPANSION_PER_K
 WAVELENGTH_NM = 632.991
 
 
@@ -39,7 +45,7 @@ def deviations_um(rng: np.random.Generator, targets_mm: np.ndarray) -> dict[tupl
 
 
 def main() -> None:
-    targets_mm = plan_targets(0.0, 0.8, 17, seed=1) * 1e3
+    targets_mm = plan_targets(0.0, 800 * MM, 17, seed=1) / MM
     rng = np.random.default_rng(3441)
     devs = deviations_um(rng, targets_mm)
     plain = ["target_mm,run,direction,deviation_um"]
@@ -56,15 +62,29 @@ def main() -> None:
                 humidity = 43.0
                 material = round(21.0 + 0.03 * (run - 1), 3)
                 n = float(refractive_index(air_t, pressure, humidity, WAVELENGTH_NM))
-                position_20c_mm = t + d * 1e-3
+                position_20c_mm = t + d * UM / MM
                 reading_mm = position_20c_mm * (1 + ALPHA * (material - 20.0)) * n
                 raw.append(
                     f"{t:.3f},{run},{direction},{reading_mm:.7f},{air_t:.3f},{pressure:.1f},{humidity:.1f},{material:.3f}"
                 )
-    header = "# bidirectional ISO 230-2 test of an 800 mm axis (synthetic, see make_positioning_examples.py)"
-    (HERE / "positioning_run.csv").write_text(header + "\n" + "\n".join(plain) + "\n")
-    raw_header = "# the same test as raw laser readings with air and material temperatures (synthetic)"
-    (HERE / "laser_raw_run.csv").write_text(raw_header + "\n" + "\n".join(raw) + "\n")
+    about = {"synthetic": True, "made_by": "examples/make_positioning_examples.py", "axis_length_mm": 800, "runs": RUNS}
+    write_text(HERE / "positioning_run.csv", "\n".join(plain) + "\n")
+    write_sidecar(
+        HERE / "positioning_run.csv",
+        kind="positioning run",
+        description="bidirectional ISO 230-2 test of an 800 mm axis (synthetic)",
+        **about,
+    )
+    write_text(HERE / "laser_raw_run.csv", "\n".join(raw) + "\n")
+    write_sidecar(
+        HERE / "laser_raw_run.csv",
+        kind="positioning run",
+        description="the same test as raw laser readings with air and material temperatures (synthetic)",
+        units={"actual_mm": "mm, raw laser reading computed with the vacuum wavelength"},
+        wavelength_nm=WAVELENGTH_NM,
+        expansion_per_k=ALPHA,
+        **about,
+    )
 
 
 if __name__ == "__main__":

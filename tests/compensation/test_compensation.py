@@ -11,7 +11,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from axiscal.compensation import (
+    FORMATS,
+    CompensationResult,
     ErrorCurve,
+    compensation_table,
     error_curve,
     fanuc_table,
     heidenhain_table,
@@ -23,8 +26,8 @@ from axiscal.compensation import (
 from axiscal.errors import AxiscalError
 from axiscal.positioning.evaluation import target_statistics
 from axiscal.positioning.reader import read_positioning_run
+from axiscal.units import MM, UM
 
-UM, MM = 1e-6, 1e-3
 EPS = 1e-12
 
 
@@ -298,36 +301,6 @@ def test_error_curve_directions(curve):
         curve.at(0.1, "sideways")
 
 
-# ---------------------------------------------------------------------------------- command line
-
-
-@pytest.mark.parametrize("fmt", ["linuxcnc", "fanuc", "siemens", "heidenhain"])
-def test_compensate_command(run_cli, examples, tmp_path, fmt):
-    out_file = tmp_path / f"table.{fmt}"
-    status, out, err = run_cli("compensate", examples / "positioning_run.csv", "--format", fmt, "-o", out_file)
-    assert status == 0 and out == ""
-    assert "largest error left" in err
-    assert out_file.read_text()
-    status, out, _ = run_cli("compensate", examples / "positioning_run.csv", "--format", fmt)
-    assert status == 0 and out == out_file.read_text()
-
-
-def test_compensate_linuxcnc_output_is_readable_by_linuxcnc(run_cli, examples):
-    status, out, _ = run_cli("compensate", examples / "laser_raw_run.csv", "--format", "linuxcnc", "--comp-type", "0")
-    assert status == 0 and parse_linuxcnc(out).shape == (17, 3)
-
-
-def test_compensate_bad_input(run_cli, examples, tmp_path):
-    status, _, err = run_cli("compensate", examples / "positioning_run.csv", "--format", "fanuc", "--magnification", "0")
-    assert status == 2 and "1..100" in err and err.count("\n") == 1
-    status, _, err = run_cli("compensate", examples / "positioning_run.csv", "--format", "okuma")
-    assert status == 2
-    bad = tmp_path / "bad.csv"
-    bad.write_text("target_mm,run,direction,deviation_um\n0,1,+,1\n0,1,-,x\n")
-    status, _, err = run_cli("compensate", bad, "--format", "linuxcnc")
-    assert status == 2 and err.startswith(f"axiscal: error: {bad}:3:")
-
-
 # ------------------------------------------------------------ each file read back as its control reads it
 # The residual tests above use the table objects; these read the written text alone (nothing of the
 # object), rebuild the correction the control applies from it, and apply it to the measured means.
@@ -407,11 +380,66 @@ def test_heidenhain_file_applied_as_the_control_does(curve, backlash, seed):
         assert np.abs(e + correction(c.positions, d)).max() <= (0.05e-6 if d == "+" or not backlash else 0.1e-6) + EPS
 
 
+# ------------------------------------------------------------------- the one call behind the command
+
+
+@pytest.fixture
+def run(examples):
+    return read_positioning_run(examples / "positioning_run.csv").run
+
+
+@pytest.mark.parametrize("fmt", FORMATS)
+def test_compensation_table_is_the_controller_table_with_its_residual(run, curve, fmt):
+    result = compensation_table(run, fmt)
+    assert isinstance(result, CompensationResult) and result.format == fmt
+    assert result.text == result.table.text() and result.resolution_m == result.table.resolution
+    directions = ("+", "-") if fmt in ("linuxcnc", "heidenhain") else ("mean",)
+    offset = result.reference_offset_m
+    left = max(np.abs(residuals(result.table, curve, curve.positions, d, offset=offset)).max() for d in directions)
+    assert result.largest_residual_m == left
+    assert "largest error left at the measured targets" in result.note
+
+
+def test_compensation_table_defaults_are_those_the_command_documents(run, curve):
+    fanuc = compensation_table(run, "fanuc").table
+    # 17 targets over 800 mm: the mean spacing of 50 mm; the reference at the first target
+    assert fanuc.interval_m == pytest.approx(50 * MM) and fanuc.reference_position_m == run.targets[0]
+    assert fanuc.magnification == 1 and fanuc.detection_unit_m == UM and fanuc.values_down is None
+    assert fanuc.text() == fanuc_table(curve, interval_m=50 * MM, reference_position_m=run.targets[0]).text()
+    assert compensation_table(run, "siemens").table.axis == "X1"
+    assert compensation_table(run, "heidenhain").table.backlash_mm is not None
+    assert compensation_table(run, "linuxcnc").table.comp_type == 1
+
+
+def test_compensation_table_reference_offset(run, curve):
+    fanuc = compensation_table(run, "fanuc", interval_m=25 * MM, reference_position_m=0.2, bidirectional=True)
+    assert fanuc.reference_offset_m == pytest.approx(float(curve.at(0.2, "+")))
+    assert "-2.000 um is left to the reference position setting" in fanuc.note
+    siemens = compensation_table(run, "siemens", reference_position_m=0.1)
+    assert siemens.reference_offset_m == pytest.approx(float(curve.at(0.1, "mean")))
+    assert siemens.table.values_mm[0] == pytest.approx((curve.at(0.0, "mean") - curve.at(0.1, "mean")) / MM, abs=1e-4)
+    assert compensation_table(run, "siemens").reference_offset_m == 0.0
+    assert "reference position setting" not in compensation_table(run, "linuxcnc").note
+
+
 @pytest.mark.parametrize(
     "fmt,option",
-    [("linuxcnc", ["--bidirectional"]), ("heidenhain", ["--interval-mm", "10"]), ("fanuc", ["--no-backlash"]),
-     ("siemens", ["--comp-type", "0"]), ("linuxcnc", ["--axis", "X"])],
+    [("linuxcnc", {"bidirectional": True}), ("heidenhain", {"interval_m": 0.01}), ("fanuc", {"backlash": False}),
+     ("siemens", {"comp_type": 0}), ("linuxcnc", {"axis": "X"}), ("heidenhain", {"magnification": 2})],
 )
-def test_an_option_of_another_format_is_refused_not_ignored(run_cli, examples, fmt, option):
-    status, out, err = run_cli("compensate", examples / "positioning_run.csv", "--format", fmt, *option)
-    assert status == 2 and out == "" and f"{option[0]} applies to --format" in err and err.count("\n") == 1
+def test_compensation_table_refuses_an_option_of_another_format(run, fmt, option):
+    name = next(iter(option))
+    with pytest.raises(AxiscalError, match=f"^{name} applies to format .*, not {fmt}$"):
+        compensation_table(run, fmt, **option)
+
+
+def test_compensation_table_refuses_an_unknown_format(run):
+    with pytest.raises(AxiscalError, match="unknown compensation table format 'okuma'"):
+        compensation_table(run, "okuma")
+
+
+def test_compensation_table_reads_a_run_file(examples, run):
+    from_file = compensation_table(examples / "positioning_run.csv", "siemens")
+    assert from_file.text == compensation_table(run, "siemens").text
+    with pytest.raises(AxiscalError, match="file not found"):
+        compensation_table(examples / "nope.csv", "siemens")

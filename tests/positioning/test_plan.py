@@ -2,21 +2,27 @@
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
+import pandas as pd
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from axiscal.errors import AxiscalError
+from axiscal.positioning.evaluation import iso230_2
 from axiscal.positioning.plan import (
+    PLAN_COLUMNS,
     cycle_csv,
     gcode_program,
     minimum_targets,
     plan_targets,
     plan_test,
+    write_plan,
 )
-
-MM = 1e-3
+from axiscal.positioning.reader import read_positioning_run
+from axiscal.units import MM, UM
 
 
 def test_targets_are_uneven_reproducible_and_span_the_travel():
@@ -81,8 +87,9 @@ def test_cycle_csv_and_gcode():
     plan = plan_test(0.0, 0.4, 5, runs=1, seed=0, cycle="pilgrim")
     text = cycle_csv(plan)
     lines = text.splitlines()
-    assert lines[1] == "step,run,direction,target_mm,move_to_mm"
-    assert len(lines) == 2 + plan.moves.size
+    assert lines[0] == "step,run,direction,target_mm,move_to_mm,deviation_um"
+    assert len(lines) == 1 + plan.moves.size and not any(line.startswith("#") for line in lines)
+    assert all(line.endswith(",") for line in lines[1:])  # deviation_um: empty, to be typed in
     program = gcode_program(plan, axis="z", dwell_s=1.5, feed_mm_per_min=500)
     assert program.count("G4 P1.5") == plan.readings
     assert "G1 Z-5.000 F500" in program and program.endswith("M2\n%\n")
@@ -121,4 +128,87 @@ def test_a_plan_without_a_seed_records_the_one_it_used():
     plan = plan_test(0.0, 0.4, 5, runs=2)
     assert isinstance(plan.seed, int)
     assert np.array_equal(plan.targets, plan_test(0.0, 0.4, 5, runs=2, seed=plan.seed).targets)
-    assert f"seed {plan.seed}" in cycle_csv(plan).splitlines()[0]
+    assert f"seed {plan.seed}" in plan.description
+    assert f"seed {plan.seed})" in gcode_program(plan).splitlines()[1]
+
+
+def fill_in(text: str, deviation_um) -> str:
+    """Type a reading into every row of a cycle CSV that has a target, as a technician would."""
+    lines = text.splitlines()
+    header = lines[0].split(",")
+    t, r, d = header.index("target_mm"), header.index("run"), header.index("direction")
+    out = [lines[0]]
+    for line in lines[1:]:
+        cells = line.split(",")
+        if cells[t]:
+            cells[-1] = f"{deviation_um(float(cells[t]), int(cells[r]), cells[d]):.4f}"
+        out.append(",".join(cells))
+    return "\n".join(out) + "\n"
+
+
+@pytest.mark.parametrize("cycle", ["linear", "pilgrim"])
+def test_a_filled_in_plan_is_a_run_file_as_it_is(tmp_path, cycle):
+    plan = plan_test(0.0, 0.8, 17, runs=3, seed=1, cycle=cycle)
+    paths = write_plan(plan, tmp_path / "cycle.csv")
+    assert [p.name for p in paths] == ["cycle.csv", "cycle.json"]
+    path = tmp_path / "cycle.csv"
+    path.write_text(fill_in(path.read_text(), lambda t, run, d: 0.01 * t + (1.0 if d == "+" else -1.0) + 0.1 * run))
+    data = read_positioning_run(path)
+    assert data.run.targets == pytest.approx(plan.targets, abs=1e-9) and data.run_labels == ("1", "2", "3")
+    evaluation = iso230_2(data.run)
+    assert evaluation.B == pytest.approx(2 * UM, abs=1e-12) and evaluation.M == pytest.approx(8 * UM, abs=1e-12)
+
+
+def test_a_plan_not_filled_in_names_the_first_row_without_a_reading(tmp_path):
+    plan = plan_test(0.0, 0.4, 5, runs=1, seed=1)
+    path = write_plan(plan, tmp_path / "cycle.csv")[0]
+    with pytest.raises(AxiscalError, match="no reading at target 0.000 .*type the deviation_um value in") as caught:
+        read_positioning_run(path)
+    assert caught.value.line == 3  # line 2 is the overrun move before it
+    lines = path.read_text().splitlines()
+    lines[1] = lines[1] + "1.5"  # a reading typed into an overrun move
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(AxiscalError, match="deviation_um value without a target") as caught:
+        read_positioning_run(path)
+    assert caught.value.line == 2
+
+
+def test_plan_csv_reads_into_its_columns_with_pandas_and_the_sidecar_records_the_plan(tmp_path):
+    plan = plan_test(0.0, 0.8, 17, runs=2, overrun_m=4 * MM, seed=7, cycle="pilgrim")
+    csv_path, sidecar, gcode = write_plan(plan, tmp_path / "p" / "cycle.csv", gcode_path=tmp_path / "cycle.ngc")
+    frame = pd.read_csv(csv_path)
+    assert list(frame.columns) == list(PLAN_COLUMNS) and len(frame) == plan.moves.size
+    assert frame["target_mm"].notna().sum() == plan.readings and frame["deviation_um"].isna().all()
+    assert frame["move_to_mm"].to_numpy() == pytest.approx(plan.moves / MM)
+    meta = json.loads(sidecar.read_text())
+    assert meta["kind"] == "positioning test plan" and meta["file"] == "cycle.csv"
+    assert meta["seed"] == 7 and meta["cycle"] == "pilgrim" and meta["runs"] == 2 and meta["overrun_mm"] == 4
+    assert meta["target_mm"] == pytest.approx(plan.targets / MM)
+    assert gcode.read_text() == gcode_program(plan)
+
+
+def test_write_plan_checks_the_gcode_options_before_writing(tmp_path):
+    plan = plan_test(0.0, 0.4, 5, seed=1)
+    with pytest.raises(AxiscalError, match="one letter"):
+        write_plan(plan, tmp_path / "cycle.csv", gcode_path=tmp_path / "cycle.ngc", axis="XY")
+    assert list(tmp_path.iterdir()) == []
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 10_000), st.integers(1, 3), st.sampled_from(["linear", "pilgrim"]), st.integers(5, 9))
+def test_any_plan_filled_in_reads_back_the_readings_typed_in(tmp_path_factory, seed, runs, cycle, count):
+    plan = plan_test(0.0, 0.5, count, runs=runs, seed=seed, cycle=cycle)
+    rng = np.random.default_rng(seed)
+    typed = {}
+
+    def reading(t, run, d):
+        return typed.setdefault((round(t, 3), run, d), round(float(rng.normal(0.0, 3.0)), 4))
+
+    path = write_plan(plan, tmp_path_factory.mktemp("plan") / "cycle.csv")[0]
+    path.write_text(fill_in(path.read_text(), reading))
+    data = read_positioning_run(path)
+    labels = [int(r) for r in data.run_labels]
+    for i, t in enumerate(data.run.targets / MM):
+        for j, run in enumerate(labels):
+            assert data.run.deviations_up[i, j] == pytest.approx(typed[(round(t, 3), run, "+")] * UM, abs=1e-12)
+            assert data.run.deviations_down[i, j] == pytest.approx(typed[(round(t, 3), run, "-")] * UM, abs=1e-12)

@@ -12,12 +12,23 @@ from axiscal.io.atomic import atomic_write
 from axiscal.io.figures import pyplot
 from axiscal.io.jsonio import dumps
 
-__all__ = ["echo_json", "ensure_parent", "pyplot", "write_output"]
+__all__ = ["echo_json", "ensure_parent", "given_options", "pyplot", "write_output"]
 
 
 def echo_json(payload: dict[str, Any]) -> None:
     """Print one JSON object; NaN and infinities become null (JSON has no NaN)."""
     click.echo(dumps(payload), nl=False)
+
+
+def given_options(**values: Any) -> dict[str, Any]:
+    """The options of the running command that were typed on its command line, by parameter name.
+
+    Options left at their default are dropped, so that the library function called applies its own
+    defaults and can refuse an option that does not apply rather than ignore it.
+    """
+    ctx = click.get_current_context()
+    return {name: value for name, value in values.items()
+            if ctx.get_parameter_source(name) == click.core.ParameterSource.COMMANDLINE}
 
 
 def write_output(path: str | Path, write: Callable[[Path], Any]) -> Path:

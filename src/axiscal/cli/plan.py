@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import click
 
-from axiscal.cli.common import write_output
-from axiscal.positioning.plan import CYCLES, cycle_csv, gcode_program, plan_test
+from axiscal.positioning.plan import CYCLES, cycle_csv, plan_test, write_plan
 from axiscal.units import MM
 
 __all__ = ["plan_command", "register"]
@@ -17,24 +16,21 @@ __all__ = ["plan_command", "register"]
 @click.option("--targets", "count", type=int, required=True, help="Number of targets (ISO 230-2: >= 5 per metre, >= 5).")
 @click.option("--runs", type=int, default=5, show_default=True, help="Runs in each direction.")
 @click.option("--overrun-mm", type=float, default=5.0, show_default=True, help="Travel beyond a target before approaching it.")
-@click.option("--seed", type=int, default=None, help="Seed of the random target offsets (same seed, same targets) [a fresh one, printed in the header].")
+@click.option("--seed", type=int, default=None, help="Seed of the random target offsets (same seed, same targets) [a fresh one, shown in the note and recorded in the sidecar and the G-code].")
 @click.option("--cycle", type=click.Choice(CYCLES), default="linear", show_default=True, help="Test cycle.")
 @click.option("--gcode", "gcode_path", type=click.Path(dir_okay=False), help="Also write the cycle as a G-code program.")
 @click.option("--axis", default="X", show_default=True, help="Axis letter in the G-code program.")
 @click.option("--dwell-s", type=float, default=2.0, show_default=True, help="Dwell at each target in the G-code (G4 P, seconds).")
 @click.option("--feed-mm-min", type=float, default=2000.0, show_default=True, help="Feed of the G-code moves.")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the cycle CSV here instead of stdout.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False),
+              help="Write the cycle CSV (and its JSON sidecar) here instead of stdout.")
 def plan_command(start_mm, end_mm, count, runs, overrun_mm, seed, cycle, gcode_path, axis, dwell_s, feed_mm_min, output):
-    """Plan an ISO 230-2 positioning test: uneven targets and the test cycle (CSV; G-code with --gcode)."""
+    """Plan an ISO 230-2 positioning test: uneven targets and the test cycle (CSV to fill in; G-code with --gcode)."""
     plan = plan_test(start_mm * MM, end_mm * MM, count, runs=runs, overrun_m=overrun_mm * MM, seed=seed, cycle=cycle)
-    program = gcode_program(plan, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_min) if gcode_path else None
-    text = cycle_csv(plan)
-    if output:
-        write_output(output, lambda target: target.write_text(text, encoding="utf-8"))
-    else:
-        click.echo(text, nl=False)
-    if program is not None:
-        write_output(gcode_path, lambda target: target.write_text(program, encoding="utf-8"))
+    write_plan(plan, output, gcode_path=gcode_path, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_min)
+    if not output:
+        click.echo(cycle_csv(plan), nl=False)
+    click.echo(f"axiscal: note: {plan.description}", err=True)
 
 
 def register(group: click.Group) -> None:

@@ -1,8 +1,14 @@
-"""Controller compensation tables: the shared error curve and one module per controller."""
+"""Controller compensation tables: the shared error curve, one module per controller and the one call that picks the controller."""
 
 from __future__ import annotations
 
 from axiscal.compensation.curve import DIRECTIONS, ErrorCurve, error_curve, residuals
+from axiscal.compensation.formats import (
+    FORMAT_OPTIONS,
+    FORMATS,
+    CompensationResult,
+    compensation_table,
+)
 from axiscal.compensation.fanuc import FanucTable, fanuc_table
 from axiscal.compensation.heidenhain import (
     HEIDENHAIN_MAX_ENTRIES,
@@ -33,4 +39,8 @@ __all__ = [
     "HEIDENHAIN_MAX_ENTRIES",
     "HeidenhainTable",
     "heidenhain_table",
+    "FORMATS",
+    "FORMAT_OPTIONS",
+    "CompensationResult",
+    "compensation_table",
 ]

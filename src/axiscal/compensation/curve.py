@@ -1,4 +1,6 @@
-"""Controller compensation tables from the mean positioning deviations of an ISO 230-2 test.
+"""The error curve shared by every controller table: the mean ISO 230-2 deviations per direction.
+
+Controller compensation tables from the mean positioning deviations of an ISO 230-2 test.
 
 Writes the pitch (lead-screw) error tables of four controls: the LinuxCNC joint ``COMP_FILE``
 (types 0 and 1), FANUC pitch error compensation (parameters 3620-3627 and the incremental
@@ -44,9 +46,18 @@ class ErrorCurve:
 
     Attributes
     ----------
-    positions : ndarray, shape (m,), metres, strictly increasing
+    positions : ndarray, shape (m,), metres
+        Nominal positions, strictly increasing.
     up, down : ndarray, shape (m,), metres
         Mean deviation (actual - target) approaching in the + and - direction.
+
+    Examples
+    --------
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> from axiscal.units import UM
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
+    >>> round(float(curve.at(0.01, "mean")) / UM, 3)
+    1.825
     """
 
     positions: np.ndarray
@@ -59,7 +70,24 @@ class ErrorCurve:
         return 0.5 * (self.up + self.down)
 
     def at(self, x, direction: str) -> np.ndarray:
-        """Deviation at positions ``x`` (metres) for direction "+", "-" or "mean"."""
+        """Deviation at positions ``x`` for direction "+", "-" or "mean", metres.
+
+        Parameters
+        ----------
+        x : float or array_like, metres
+            Positions; beyond the ends the end values are held.
+        direction : {"+", "-", "mean"}
+            Which curve.
+
+        Returns
+        -------
+        ndarray, shape of ``x``, metres
+
+        Raises
+        ------
+        AxiscalError
+            For an unknown direction.
+        """
         values = {"+": self.up, "-": self.down, "mean": self.mean}.get(direction)
         if values is None:
             raise AxiscalError(f"unknown direction '{direction}'; use +, - or mean")
@@ -67,7 +95,24 @@ class ErrorCurve:
 
 
 def error_curve(stats: TargetStatistics) -> ErrorCurve:
-    """The mean deviations of a positioning test as an :class:`ErrorCurve`."""
+    """The mean deviations of a positioning test as an :class:`ErrorCurve`.
+
+    Parameters
+    ----------
+    stats : TargetStatistics
+        From :func:`axiscal.positioning.evaluation.target_statistics`, metres.
+
+    Returns
+    -------
+    ErrorCurve
+        ``positions`` = the targets, ``up``/``down`` = the mean unidirectional deviations, metres.
+
+    Examples
+    --------
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> error_curve(target_statistics(paper003_table4_run())).positions.tolist()
+    [0.0, 0.02]
+    """
     return ErrorCurve(np.asarray(stats.targets), np.asarray(stats.mean_up), np.asarray(stats.mean_down))
 
 
@@ -93,5 +138,32 @@ def residuals(table, curve: ErrorCurve, x, direction: str, *, offset: float = 0.
     position, so there it is the deviation at the reference position (of the + direction for a
     bidirectional table, which assumes the reference is approached in +), see
     :attr:`FanucTable.reference_deviation_m`.
+
+    Parameters
+    ----------
+    table : LinuxcncTable, FanucTable, SiemensTable or HeidenhainTable
+        Any table with ``correction(x, direction)``.
+    curve : ErrorCurve
+        The deviations the table is to correct, metres.
+    x : float or array_like, metres
+        Commanded positions.
+    direction : {"+", "-", "mean"}
+        Direction of travel.
+    offset : float, keyword-only, metres
+        Deviation left to the reference position setting (default 0).
+
+    Returns
+    -------
+    ndarray, shape of ``x``, metres
+
+    Examples
+    --------
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> from axiscal.units import UM
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
+    >>> from axiscal.compensation.heidenhain import heidenhain_table
+    >>> left = residuals(heidenhain_table(curve), curve, curve.positions, "+")
+    >>> bool(abs(left).max() <= 0.05 * UM)
+    True
     """
     return curve.at(x, direction) - offset + table.correction(x, "+" if direction == "mean" else direction)

@@ -1,4 +1,9 @@
-"""FANUC compensation table."""
+"""FANUC compensation table: pitch error compensation, parameters 3620-3627 and the incremental data.
+
+After the parameter manual of Series 0i (B-63980EN): compensation point N at reference position +
+(N - 3620) x 3624, each value the change of the correction over the section ending at point N, in
+units of 3623 x the detection unit.
+"""
 
 from __future__ import annotations
 
@@ -9,7 +14,7 @@ import numpy as np
 
 from axiscal.compensation.curve import ErrorCurve, _check_direction
 from axiscal.errors import AxiscalError
-from axiscal.units import MM
+from axiscal.units import MM, UM
 
 __all__ = ["FanucTable", "fanuc_table"]
 
@@ -31,6 +36,16 @@ class FanucTable:
 
     Attributes
     ----------
+    reference_point : int
+        Parameter 3620, the compensation point number of the reference position.
+    reference_position_m : float, metres
+        Machine position of the reference position.
+    interval_m : float, metres
+        Interval between compensation points (3624).
+    magnification : int
+        Parameter 3623.
+    detection_unit_m : float, metres
+        Detection unit of the axis; one compensation unit is ``magnification * detection_unit_m``.
     points : ndarray of int, shape (k,)
         Compensation point numbers 3621 .. 3622 (for a rotary axis 3621 is the reference point,
         which repeats the value of 3622; ``points`` then starts one after it).
@@ -39,12 +54,29 @@ class FanucTable:
     values_down : ndarray of int, shape (k,) or None
         Incremental values for travel in the - direction (bidirectional table), points
         ``down_first .. down_first + k - 1``.
+    down_first : int or None
+        Parameter 3626, the first point of the - direction table (bidirectional), else None.
     reference_value_down : int
         Parameter 3627 (bidirectional), in compensation units.
+    rotary : bool
+        A rotary axis (one revolution from the reference point).
+    input_increment_m : float, metres
+        Unit of parameter 3624.
+    axis_number : int
+        Axis number written on the tape.
     reference_deviation_m : float
         The deviation at the reference position, which the table leaves uncorrected (of the +
         direction for a bidirectional table, which assumes the reference is approached in +; of
         the bidirectional mean otherwise), metres.
+
+    Examples
+    --------
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
+    >>> table = fanuc_table(curve, interval_m=0.01)
+    >>> table.points.tolist(), table.values.tolist()
+    ([1, 2], [0, -1])
     """
 
     reference_point: int
@@ -58,7 +90,7 @@ class FanucTable:
     down_first: int | None = None
     reference_value_down: int = 0
     rotary: bool = False
-    input_increment_m: float = 1e-6
+    input_increment_m: float = UM
     axis_number: int = 1
     reference_deviation_m: float = 0.0
 
@@ -86,6 +118,17 @@ class FanucTable:
         Exact at the compensation points. A control without interpolated pitch error compensation
         outputs each section's increment as a step at the compensation point, so between points it
         may differ from this by up to one increment (see docs/compensation.md).
+
+        Parameters
+        ----------
+        x : float or array_like, metres
+            Commanded positions.
+        direction : {"+", "-"}
+            Direction of travel (the - table of a bidirectional table for "-").
+
+        Returns
+        -------
+        ndarray, shape of ``x``, metres
         """
         _check_direction(direction)
         if direction == "-" and self.values_down is not None:
@@ -124,13 +167,13 @@ def fanuc_table(
     reference_position_m: float = 0.0,
     reference_point: int | None = None,
     magnification: int = 1,
-    detection_unit_m: float = 1e-6,
+    detection_unit_m: float = UM,
     bidirectional: bool = False,
     rotary: bool = False,
     travel_per_revolution: float | None = None,
     value_limit: int = 127,
     max_point: int = 1023,
-    input_increment_m: float = 1e-6,
+    input_increment_m: float = UM,
     axis_number: int = 1,
 ) -> FanucTable:
     """FANUC pitch error compensation from the mean deviations.
@@ -164,8 +207,40 @@ def fanuc_table(
         Largest magnitude of one incremental value (127 on Series 0i/16i).
     max_point : int, keyword-only
         Highest compensation point number the control has (1023 on Series 0i/16i).
-    input_increment_m, axis_number : keyword-only
-        Unit of parameter 3624 (1 um, IS-B) and the axis number written on the tape.
+    input_increment_m : float, keyword-only
+        Unit of parameter 3624, metres (1 um, IS-B).
+    axis_number : int, keyword-only
+        The axis number written on the tape (default 1).
+
+    Returns
+    -------
+    FanucTable
+        Parameters and incremental values; ``reference_deviation_m`` is the deviation at the
+        reference position that the table leaves to the reference position setting.
+
+    Raises
+    ------
+    AxiscalError
+        For a magnification outside 1..100, an interval that is not positive or not a whole
+        number of input increments, a reference position outside the measured travel, points
+        beyond 0..``max_point``, an increment larger than ``value_limit``, or a rotary axis
+        without whole sections per revolution.
+
+    Examples
+    --------
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
+    >>> print(fanuc_table(curve, interval_m=0.01).text(), end="")
+    %
+    N03620A1P0
+    N03621A1P1
+    N03622A1P2
+    N03623A1P1
+    N03624A1P10000
+    N10001P0
+    N10002P-1
+    %
     """
     if not 1 <= magnification <= 100:
         raise AxiscalError(f"FANUC pitch error magnification (parameter 3623) is 1..100, got {magnification}")

@@ -1,4 +1,8 @@
-"""LinuxCNC compensation table."""
+"""LinuxCNC compensation table: the joint ``COMP_FILE`` of ``COMP_FILE_TYPE`` 0 and 1.
+
+As LinuxCNC reads and applies it: ``usrmotLoadComp`` (``src/emc/motion/usrmotintf.cc``) reads
+``nominal forward reverse`` triplets; the motion controller interpolates the trims linearly.
+"""
 
 from __future__ import annotations
 
@@ -37,6 +41,15 @@ class LinuxcncTable:
         Metres per machine unit (1e-3 for a metric machine).
     decimals : int
         Decimals written; the resolution is 10**-decimals machine units.
+
+    Examples
+    --------
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
+    >>> print(linuxcnc_table(curve).text(), end="")
+    0.000000 -0.000733 -0.002233
+    20.000000 -0.001600 -0.002733
     """
 
     nominal: np.ndarray
@@ -53,14 +66,28 @@ class LinuxcncTable:
 
     @property
     def nodes(self) -> np.ndarray:
+        """The nominal positions, metres, shape (k,)."""
         return self.nominal * self.unit_m
 
     def text(self) -> str:
+        """The file: one ``nominal forward reverse`` line per entry, nothing else."""
         d = self.decimals
         return "".join(f"{n:.{d}f} {f:.{d}f} {r:.{d}f}\n" for n, f, r in zip(self.nominal, self.forward, self.reverse))
 
     def correction(self, x, direction: str) -> np.ndarray:
-        """The correction LinuxCNC adds to commanded positions ``x`` (metres) moving in ``direction``."""
+        """The correction LinuxCNC adds to commanded positions ``x`` (metres) moving in ``direction``.
+
+        Parameters
+        ----------
+        x : float or array_like, metres
+            Commanded positions.
+        direction : {"+", "-"}
+            Direction of travel.
+
+        Returns
+        -------
+        ndarray, shape of ``x``, metres
+        """
         _check_direction(direction)
         values = self.forward if direction == "+" else self.reverse
         trims = self.nominal - values if self.comp_type == 0 else values
@@ -82,6 +109,25 @@ def linuxcnc_table(curve: ErrorCurve, *, comp_type: int = 1, unit_m: float = MM,
         Metres per machine unit (default 1e-3: a metric machine).
     decimals : int, keyword-only
         Decimals written (default 6: 1 nm on a metric machine).
+
+    Returns
+    -------
+    LinuxcncTable
+        One entry per measured target.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``comp_type`` other than 0 or 1, more than 256 targets, or targets so close that
+        the written nominals would not increase.
+
+    Examples
+    --------
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
+    >>> linuxcnc_table(curve, comp_type=0).forward.tolist()
+    [0.000733, 20.0016]
     """
     if comp_type not in (0, 1):
         raise AxiscalError(f"LinuxCNC COMP_FILE_TYPE is 0 or 1, got {comp_type}")
@@ -102,9 +148,27 @@ def linuxcnc_table(curve: ErrorCurve, *, comp_type: int = 1, unit_m: float = MM,
 def parse_linuxcnc(text: str) -> np.ndarray:
     """Read a compensation file as LinuxCNC does: triplets until the first line that is not one.
 
-    Returns an array of shape (k, 3). Raises if any line after that point would be ignored, if the
-    nominals do not strictly increase or if there are more than 256 entries (LinuxCNC rejects
-    those with "compensation values must increase" / "too many compensation entries").
+    Parameters
+    ----------
+    text : str
+        The content of a ``COMP_FILE``.
+
+    Returns
+    -------
+    ndarray, shape (k, 3)
+        ``nominal, forward, reverse`` per entry, machine units.
+
+    Raises
+    ------
+    AxiscalError
+        If any line after the first one that is not three numbers would be ignored, if the
+        nominals do not strictly increase or if there are more than 256 entries (LinuxCNC rejects
+        those with "compensation values must increase" / "too many compensation entries").
+
+    Examples
+    --------
+    >>> parse_linuxcnc("0 0 0\\n10 0.001 -0.001\\n").shape
+    (2, 3)
     """
     lines = text.splitlines()
     rows = []

@@ -1,4 +1,8 @@
-"""SIEMENS compensation table."""
+"""SIEMENS compensation table: SINUMERIK measuring-system error compensation, ``$AA_ENC_COMP``.
+
+After the function manual "Compensations" (K3): compensation values at ``$AA_ENC_COMP_MIN +
+i $AA_ENC_COMP_STEP``, interpolated linearly; a positive value moves the axis negative.
+"""
 
 from __future__ import annotations
 
@@ -23,6 +27,27 @@ class SiemensTable:
     moves the axis in the negative direction. So the value is the deviation itself
     (``+e``) and the correction applied to the command is its negative. Linear interpolation
     between points, end values held beyond MIN and MAX. One curve for both directions.
+
+    Attributes
+    ----------
+    axis : str
+        Machine axis name.
+    start_m, step_m : float, metres
+        ``$AA_ENC_COMP_MIN`` and ``$AA_ENC_COMP_STEP``.
+    values_mm : ndarray, shape (k,), mm
+        The compensation values as written.
+    encoder : int
+        Encoder index.
+    decimals : int
+        Decimals of mm written.
+
+    Examples
+    --------
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
+    >>> siemens_table(curve, step_m=0.01).values_mm.tolist()
+    [0.0015, 0.0018, 0.0022]
     """
 
     axis: str
@@ -34,21 +59,38 @@ class SiemensTable:
 
     @property
     def resolution(self) -> float:
+        """Smallest step of a written value, metres."""
         return 10.0 ** (-self.decimals) * MM
 
     @property
     def nodes(self) -> np.ndarray:
+        """Positions of the compensation points, metres, shape (k,)."""
         return self.start_m + self.step_m * np.arange(self.values_mm.size)
 
     @property
     def end_m(self) -> float:
+        """``$AA_ENC_COMP_MAX``, metres."""
         return float(self.nodes[-1])
 
     def correction(self, x, direction: str) -> np.ndarray:
+        """The correction at commanded positions ``x`` (metres): minus the interpolated value.
+
+        Parameters
+        ----------
+        x : float or array_like, metres
+            Commanded positions.
+        direction : {"+", "-"}
+            Direction of travel (one curve serves both).
+
+        Returns
+        -------
+        ndarray, shape of ``x``, metres
+        """
         _check_direction(direction)
         return -np.interp(np.asarray(x, dtype=float), self.nodes, self.values_mm * MM)
 
     def text(self) -> str:
+        """The ``%_N_AX_EEC_INI`` program that loads the table."""
         e, a, d = self.encoder, self.axis, self.decimals
         lines = ["%_N_AX_EEC_INI", "CHANDATA(1)"]
         lines += [f"$AA_ENC_COMP[{e},{i},{a}]={v:.{d}f}" for i, v in enumerate(self.values_mm)]
@@ -78,6 +120,7 @@ def siemens_table(
     Parameters
     ----------
     curve : ErrorCurve
+        Mean deviations per direction, metres.
     step_m : float, keyword-only
         ``$AA_ENC_COMP_STEP``, metres.
     axis : str, keyword-only
@@ -94,6 +137,25 @@ def siemens_table(
         Decimals of mm written (default 4: 0.1 um).
     max_points : int, keyword-only
         MD38000 $MA_MM_ENC_COMP_MAX_POINTS of the control (default 1000).
+
+    Returns
+    -------
+    SiemensTable
+        Values at ``first target + i step_m`` up to the last target.
+
+    Raises
+    ------
+    AxiscalError
+        For an axis name that is not alphanumeric, a step that is not positive, or more points
+        than ``max_points``.
+
+    Examples
+    --------
+    >>> from axiscal.compensation.curve import error_curve
+    >>> from axiscal.positioning import paper003_table4_run, target_statistics
+    >>> curve = error_curve(target_statistics(paper003_table4_run()))
+    >>> print(siemens_table(curve, step_m=0.01, axis="Y1").text().splitlines()[2])
+    $AA_ENC_COMP[0,0,Y1]=0.0015
     """
     if not axis or not axis.replace("_", "").isalnum():
         raise AxiscalError(f"'{axis}' is not a machine axis name")

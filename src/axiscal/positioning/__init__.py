@@ -1,4 +1,4 @@
-"""Positioning accuracy and repeatability of numerically controlled axes: ISO 230-2 (and VDI/DGQ 3441), test planning, the reader of test runs and the plot."""
+"""Positioning accuracy and repeatability of numerically controlled axes: ISO 230-2 (and VDI/DGQ 3441), test planning, the reader of test runs, the report and the plot."""
 
 from __future__ import annotations
 
@@ -15,11 +15,13 @@ from axiscal.positioning.evaluation import (
     Vdi3441Result,
     iso230_2,
     iso_edition,
+    paper003_table4_run,
     target_statistics,
     vdi3441,
 )
 from axiscal.positioning.plan import (
     CYCLES,
+    PLAN_COLUMNS,
     TARGETS_PER_METRE,
     PositioningTestPlan,
     cycle_csv,
@@ -27,8 +29,14 @@ from axiscal.positioning.plan import (
     minimum_targets,
     plan_targets,
     plan_test,
+    write_plan,
 )
 from axiscal.positioning.plot import plot_positioning
+from axiscal.positioning.report import (
+    PositioningEvaluation,
+    evaluate_positioning_file,
+    render_template,
+)
 from axiscal.positioning.reader import (
     ALLOWED_UNITS,
     DIRECTIONS,
@@ -52,12 +60,14 @@ __all__ = [
     "vdi3441",
     "STANDARDS",
     "iso_edition",
+    "paper003_table4_run",
     "DIRECTIONS",
     "ENVIRONMENT_REQUIRED",
     "ALLOWED_UNITS",
     "RunFile",
     "read_positioning_run",
     "CYCLES",
+    "PLAN_COLUMNS",
     "TARGETS_PER_METRE",
     "PositioningTestPlan",
     "minimum_targets",
@@ -65,5 +75,9 @@ __all__ = [
     "plan_test",
     "cycle_csv",
     "gcode_program",
+    "write_plan",
     "plot_positioning",
+    "PositioningEvaluation",
+    "evaluate_positioning_file",
+    "render_template",
 ]

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.units import MM, UM
 
 __all__ = [
     "ISO_EDITIONS",
@@ -33,6 +34,7 @@ __all__ = [
     "vdi3441",
     "STANDARDS",
     "iso_edition",
+    "paper003_table4_run",
 ]
 
 #: ISO 230-2 editions this module evaluates, and their coverage factor k
@@ -61,6 +63,18 @@ class PositioningRun:
         ``x_ij`` for the approach in the negative direction.
     source : str
         Where the data came from (a file name), for messages.
+
+    Raises
+    ------
+    AxiscalError
+        Fewer than 2 targets, arrays of the wrong shape, unequal run counts per direction, a
+        non-finite value, or targets that do not strictly increase.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> PositioningRun(np.array([0.0, 0.1]), np.zeros((2, 5)), np.zeros((2, 5))).runs
+    5
     """
 
     targets: np.ndarray
@@ -103,7 +117,21 @@ class PositioningRun:
 class TargetStatistics:
     """Per-target estimators shared by every standard (ISO 230-2, 3.2-3.3), metres.
 
-    All arrays have shape (m,). ``s_up``/``s_down`` are NaN when there is one run per direction.
+    Attributes
+    ----------
+    targets : ndarray, shape (m,), metres
+        Target positions P_i.
+    mean_up, mean_down : ndarray, shape (m,), metres
+        Mean unidirectional positional deviations x̄_i↑, x̄_i↓.
+    s_up, s_down : ndarray, shape (m,), metres
+        Estimators of the unidirectional standard uncertainty s_i↑, s_i↓ (n - 1 in the
+        denominator); NaN when there is one run per direction.
+    mean : ndarray, shape (m,), metres
+        Mean bidirectional positional deviation x̄_i = (x̄_i↑ + x̄_i↓) / 2.
+    reversal : ndarray, shape (m,), metres
+        Reversal value B_i = x̄_i↑ - x̄_i↓.
+    runs : int
+        Number of runs n in each direction.
     """
 
     targets: np.ndarray
@@ -129,6 +157,21 @@ class Iso230Result:
     range of the mean bidirectional positional deviation ``M``, repeatability ``R`` (``R_up``,
     ``R_down``), and ``S_up``/``S_down`` = the largest unidirectional s_i over the axis (so that
     R_up = 2 k S_up). Figures that need s are NaN when there is one run; ``warnings`` says so.
+
+    Attributes
+    ----------
+    edition : str
+        The ISO 230-2 edition (a key of :data:`ISO_EDITIONS`).
+    coverage : int
+        Coverage factor k (2, or 3 for 1988).
+    stats : TargetStatistics
+        Per-target means, s and B_i, metres.
+    repeatability_up, repeatability_down, repeatability : ndarray, shape (m,), metres
+        R_i↑, R_i↓ and R_i.
+    A, A_up, A_down, B, B_mean, E, E_up, E_down, M, R, R_up, R_down, S_up, S_down : float, metres
+        The axis figures (:data:`ISO_SYMBOLS`).
+    warnings : tuple of str
+        What the reader should know (e.g. one run: no s).
     """
 
     edition: str
@@ -155,10 +198,11 @@ class Iso230Result:
 
     @property
     def standard(self) -> str:
+        """The standard's name as ``--standard`` spells it, e.g. ``"iso230-2:2014"``."""
         return f"iso230-2:{self.edition}"
 
     def figures(self) -> dict[str, float]:
-        """The axis figures by their symbol, metres."""
+        """The axis figures by their symbol (:data:`ISO_SYMBOLS`), metres."""
         return {name: getattr(self, name) for name in ISO_SYMBOLS}
 
 
@@ -174,6 +218,17 @@ class Vdi3441Result:
     deviation ``s_mean_j = (s_up + s_down) / 2`` and positional scatter ``Ps_j = 6 s_mean_j``.
     Axis: ``Pa`` = range of the bidirectional means, ``P`` = max(mean + (U + Ps)/2) -
     min(mean - (U + Ps)/2), ``Ps_max``, ``Ps_mean``, ``U_max``, ``U_mean``.
+
+    Attributes
+    ----------
+    stats : TargetStatistics
+        Per-target means, s and B_i, metres.
+    reversal_span, s_mean, scatter : ndarray, shape (m,), metres
+        U_j, s_mean_j and Ps_j.
+    P, Pa, Ps_max, Ps_mean, U_max, U_mean : float, metres
+        The axis figures (:data:`VDI_SYMBOLS`).
+    warnings : tuple of str
+        What the reader should know (e.g. one run: no s).
     """
 
     stats: TargetStatistics
@@ -190,10 +245,11 @@ class Vdi3441Result:
 
     @property
     def standard(self) -> str:
+        """``"vdi3441"``."""
         return "vdi3441"
 
     def figures(self) -> dict[str, float]:
-        """The axis figures by their symbol, metres."""
+        """The axis figures by their symbol (:data:`VDI_SYMBOLS`), metres."""
         return {name: getattr(self, name) for name in VDI_SYMBOLS}
 
 
@@ -208,6 +264,23 @@ def target_statistics(run: PositioningRun) -> TargetStatistics:
     ISO 230-2 mean unidirectional and bidirectional positional deviations, reversal value
     ``B_i = mean_up - mean_down`` and the estimator of the unidirectional standard uncertainty
     ``s_i`` (n - 1 in the denominator). With one run s is NaN.
+
+    Parameters
+    ----------
+    run : PositioningRun
+        Deviations per target, metres, shape (m, n) per direction.
+
+    Returns
+    -------
+    TargetStatistics
+        Arrays of shape (m,), metres (read-only).
+
+    Examples
+    --------
+    >>> from axiscal.units import UM
+    >>> st = target_statistics(paper003_table4_run())
+    >>> (st.mean_up / UM).round(3).tolist(), (st.s_up / UM).round(3).tolist()
+    ([0.733, 1.6], [0.643, 0.458])
     """
     up, down = run.deviations_up, run.deviations_down
     mean_up = up.mean(axis=1)
@@ -249,6 +322,18 @@ def iso230_2(run: PositioningRun, *, edition: str = "2014") -> Iso230Result:
     -------
     Iso230Result
         Axis figures in metres; figures needing s are NaN (with a warning) for one run.
+
+    Raises
+    ------
+    AxiscalError
+        For an edition not in :data:`ISO_EDITIONS`.
+
+    Examples
+    --------
+    >>> from axiscal.units import UM
+    >>> result = iso230_2(paper003_table4_run())
+    >>> round(result.B / UM, 3), round(result.R / UM, 3)
+    (1.5, 8.451)
     """
     if edition not in ISO_EDITIONS:
         raise AxiscalError(f"unknown ISO 230-2 edition '{edition}'; use one of {', '.join(ISO_EDITIONS)}")
@@ -292,7 +377,23 @@ def vdi3441(run: PositioningRun) -> Vdi3441Result:
     ``U_j = |mean_up_j - mean_down_j|``, ``s_mean_j = (s_up_j + s_down_j) / 2``,
     ``Ps_j = 6 s_mean_j``, ``Pa = max mean_j - min mean_j`` (bidirectional means),
     ``P = max(mean_j + (U_j + Ps_j) / 2) - min(mean_j - (U_j + Ps_j) / 2)``.
-    With one run the scatter and P are NaN (with a warning).
+
+    Parameters
+    ----------
+    run : PositioningRun
+        Deviations per target, metres.
+
+    Returns
+    -------
+    Vdi3441Result
+        Axis figures in metres; with one run the scatter and P are NaN (with a warning).
+
+    Examples
+    --------
+    >>> from axiscal.units import UM
+    >>> result = vdi3441(paper003_table4_run())
+    >>> round(result.Pa / UM, 3), round(result.P / UM, 3)
+    (0.683, 9.767)
     """
     st = target_statistics(run)
     u = np.abs(st.reversal)
@@ -315,15 +416,58 @@ def vdi3441(run: PositioningRun) -> Vdi3441Result:
     )
 
 
-#: names accepted by :func:`evaluate_standard` and the command line's ``--standard``
+#: names accepted by :func:`axiscal.positioning.report.evaluate_positioning_file` and ``--standard``
 STANDARDS = ("iso230-2:2014", "iso230-2:2006", "iso230-2:1997", "iso230-2:1988", "jis-b6192", "vdi3441")
 
 
 def iso_edition(standard: str) -> str:
-    """The ISO 230-2 edition a ``--standard`` name evaluates with ("jis-b6192" -> "1988")."""
+    """The ISO 230-2 edition a standard's name evaluates with ("jis-b6192" -> "1988").
+
+    Parameters
+    ----------
+    standard : str
+        One of :data:`STANDARDS` other than ``"vdi3441"``.
+
+    Returns
+    -------
+    str
+        A key of :data:`ISO_EDITIONS`.
+
+    Raises
+    ------
+    AxiscalError
+        For a name that is not an ISO 230-2 edition or ``"jis-b6192"``.
+
+    Examples
+    --------
+    >>> iso_edition("jis-b6192"), iso_edition("iso230-2:1997")
+    ('1988', '1997')
+    """
     if standard == "jis-b6192":
         return "1988"
     prefix = "iso230-2:"
     if standard.startswith(prefix) and standard[len(prefix):] in ISO_EDITIONS:
         return standard[len(prefix):]
     raise AxiscalError(f"unknown standard '{standard}'; use one of {', '.join(STANDARDS)}")
+
+
+def paper003_table4_run() -> PositioningRun:
+    """The three runs at two targets printed in paper 003, Table 4, as a run to try the estimators on.
+
+    Targets 0 and 20 mm; per target the column marked "up" is the + approach, the one marked
+    "down" the - approach (three runs each). See docs/positioning.md for how the table reads.
+
+    Returns
+    -------
+    PositioningRun
+        Shape (2, 3) per direction, metres; ``source`` is "paper 003, Table 4".
+
+    Examples
+    --------
+    >>> from axiscal.units import UM
+    >>> round(float(iso230_2(paper003_table4_run()).repeatability[0]) / UM, 3)  # R_1 as printed
+    8.451
+    """
+    up = np.array([[0.0, 1.2, 1.0], [1.7, 2.0, 1.1]]) * UM
+    down = np.array([[3.6, -0.2, 3.3], [4.1, 1.9, 2.2]]) * UM
+    return PositioningRun(np.array([0.0, 20.0]) * MM, up, down, source="paper 003, Table 4")

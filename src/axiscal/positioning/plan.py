@@ -8,17 +8,24 @@ generator (``np.random.default_rng(seed)``), rounded to 1 um, and is 0 at the tw
 the whole travel is covered. Each target is approached from both sides with an overrun beyond the
 end targets; the linear cycle runs through all targets up then down, once per run; the pilgrim
 (step) cycle makes all runs at one target before moving to the next. See docs/positioning.md.
+
+The cycle CSV is plain (header first) with an empty ``deviation_um`` column: type each reading in
+and the file is a run file for :func:`axiscal.positioning.reader.read_positioning_run`. What the plan
+was made from (cycle, runs, overrun, seed) goes into the JSON sidecar beside it.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.units import MM
+from axiscal.io.atomic import write_text
+from axiscal.io.jsonio import write_sidecar
+from axiscal.units import MM, UM
 
 __all__ = [
     "CYCLES",
@@ -27,13 +34,17 @@ __all__ = [
     "minimum_targets",
     "plan_targets",
     "plan_test",
+    "PLAN_COLUMNS",
     "cycle_csv",
     "gcode_program",
+    "write_plan",
 ]
 
 CYCLES = ("linear", "pilgrim")
 #: ISO 230-2: at least this many targets per metre of travel (and at least this many in all)
 TARGETS_PER_METRE = 5
+#: columns of the cycle CSV; ``deviation_um`` is empty, for the readings to be typed in
+PLAN_COLUMNS = ("step", "run", "direction", "target_mm", "move_to_mm", "deviation_um")
 
 
 @dataclass(frozen=True)
@@ -54,9 +65,13 @@ class PositioningTestPlan:
         The target a move stops at for a reading, NaN for overrun moves (no reading).
     cycle : str
         "linear" or "pilgrim".
-    runs, overrun, seed :
-        The request the plan was made from (overrun in metres); ``seed`` is the one actually used
-        (drawn from the operating system's entropy when none was given), so the plan can be made again.
+    runs : int
+        Runs in each direction.
+    overrun : float, metres
+        Travel beyond a target before approaching it.
+    seed : int
+        The seed actually used (drawn from the operating system's entropy when none was given),
+        so the plan can be made again.
     """
 
     targets: np.ndarray
@@ -74,9 +89,32 @@ class PositioningTestPlan:
         """Number of moves that end at a target (one reading each)."""
         return int(np.isfinite(self.move_target).sum())
 
+    @property
+    def description(self) -> str:
+        """The plan in one phrase: cycle, targets, runs, overrun (mm) and seed."""
+        return (
+            f"ISO 230-2 {self.cycle} cycle, {self.targets.size} targets, {self.runs} runs each way,"
+            f" overrun {self.overrun / MM:g} mm, seed {self.seed}"
+        )
+
 
 def minimum_targets(length_m: float) -> int:
-    """Fewest targets ISO 230-2 accepts over ``length_m``: 5 per metre, at least 5."""
+    """Fewest targets ISO 230-2 accepts over ``length_m``: 5 per metre, at least 5.
+
+    Parameters
+    ----------
+    length_m : float, metres
+        The measured travel.
+
+    Returns
+    -------
+    int
+
+    Examples
+    --------
+    >>> minimum_targets(0.8), minimum_targets(2.1)
+    (5, 11)
+    """
     return max(TARGETS_PER_METRE, math.ceil(TARGETS_PER_METRE * length_m - 1e-9))
 
 
@@ -96,6 +134,17 @@ def plan_targets(start_m: float, end_m: float, count: int, *, seed: int | None =
     -------
     ndarray, shape (count,), metres
         ``P_i = start + i p + r_i``, ``r_i`` uniform in [-p/4, p/4] rounded to 1 um, r = 0 at both ends.
+
+    Raises
+    ------
+    AxiscalError
+        If the end is not beyond the start or ``count`` is below :func:`minimum_targets`.
+
+    Examples
+    --------
+    >>> from axiscal.units import MM
+    >>> (plan_targets(0.0, 0.4, 5, seed=1) / MM).round(3).tolist()
+    [0.0, 122.523, 182.208, 322.432, 400.0]
     """
     if not (math.isfinite(start_m) and math.isfinite(end_m)) or end_m <= start_m:
         raise AxiscalError(f"the end ({end_m / MM:g} mm) must be beyond the start ({start_m / MM:g} mm)")
@@ -110,7 +159,7 @@ def plan_targets(start_m: float, end_m: float, count: int, *, seed: int | None =
     offsets = rng.uniform(-0.25 * pitch, 0.25 * pitch, size=count)
     offsets[0] = offsets[-1] = 0.0
     targets = start_m + pitch * np.arange(count) + offsets
-    targets = np.round(targets / 1e-6) * 1e-6
+    targets = np.round(targets / UM) * UM
     targets[0], targets[-1] = start_m, end_m
     return targets
 
@@ -147,6 +196,19 @@ def plan_test(
     Returns
     -------
     PositioningTestPlan
+        Targets and every move of the cycle, metres.
+
+    Raises
+    ------
+    AxiscalError
+        For an unknown cycle, fewer than 1 run, an overrun that is not positive, or targets
+        :func:`plan_targets` refuses.
+
+    Examples
+    --------
+    >>> plan = plan_test(0.0, 0.8, 17, runs=5, seed=1)
+    >>> plan.readings, plan.moves.size
+    (170, 180)
     """
     if cycle not in CYCLES:
         raise AxiscalError(f"unknown cycle '{cycle}'; use one of {', '.join(CYCLES)}")
@@ -189,19 +251,32 @@ def plan_test(
 
 
 def cycle_csv(plan: PositioningTestPlan) -> str:
-    """The test cycle as CSV: ``step, run, direction, target_mm, move_to_mm``.
+    """The test cycle as plain CSV: ``step, run, direction, target_mm, move_to_mm, deviation_um``.
 
-    One row per move; ``target_mm`` is empty for overrun moves (no reading is taken there).
+    Parameters
+    ----------
+    plan : PositioningTestPlan
+        The plan (see :func:`plan_test`).
+
+    Returns
+    -------
+    str
+        The header line, then one row per move. ``target_mm`` (mm, 1 um resolution) is empty for
+        overrun moves, where no reading is taken; ``deviation_um`` is empty everywhere, for the
+        deviations (actual - target, um) to be typed in at the rows with a target. Filled in, the
+        file is read by :func:`axiscal.positioning.reader.read_positioning_run` as it is.
+
+    Examples
+    --------
+    >>> plan = plan_test(0.0, 0.4, 5, runs=1, seed=1)
+    >>> cycle_csv(plan).splitlines()[:3]
+    ['step,run,direction,target_mm,move_to_mm,deviation_um', '1,1,-,,-5.000,', '2,1,+,0.000,0.000,']
     """
-    lines = [
-        f"# ISO 230-2 {plan.cycle} cycle, {plan.targets.size} targets, {plan.runs} runs each way,"
-        f" overrun {plan.overrun / MM:g} mm, seed {plan.seed}",
-        "step,run,direction,target_mm,move_to_mm",
-    ]
+    lines = [",".join(PLAN_COLUMNS)]
     for k in range(plan.moves.size):
         target = plan.move_target[k]
         cell = "" if math.isnan(target) else f"{target / MM:.3f}"
-        lines.append(f"{k + 1},{plan.move_run[k]},{plan.move_direction[k]},{cell},{plan.moves[k] / MM:.3f}")
+        lines.append(f"{k + 1},{plan.move_run[k]},{plan.move_direction[k]},{cell},{plan.moves[k] / MM:.3f},")
     return "\n".join(lines) + "\n"
 
 
@@ -212,6 +287,33 @@ def gcode_program(plan: PositioningTestPlan, *, axis: str = "X", dwell_s: float 
     ends at a target ``G4 P<dwell_s>`` (dwell in seconds, as LinuxCNC and most controls read P;
     Fanuc reads ``G4 P`` in milliseconds and ``G4 X`` in seconds, so check your control). Ends
     with ``M2``.
+
+    Parameters
+    ----------
+    plan : PositioningTestPlan
+        The plan (see :func:`plan_test`).
+    axis : str, keyword-only
+        One axis letter (default "X").
+    dwell_s : float, keyword-only
+        Dwell at each target, seconds (>= 0, default 2).
+    feed_mm_per_min : float, keyword-only
+        Feed of the moves, mm/min (> 0, default 2000).
+
+    Returns
+    -------
+    str
+        The program, one block a line, starting and ending with ``%``.
+
+    Raises
+    ------
+    AxiscalError
+        For an axis that is not one letter, a negative dwell or a feed that is not positive.
+
+    Examples
+    --------
+    >>> program = gcode_program(plan_test(0.0, 0.4, 5, runs=1, seed=1), axis="z", dwell_s=1)
+    >>> program.splitlines()[4:7]
+    ['G1 Z-5.000 F2000', 'G1 Z0.000', 'G4 P1']
     """
     if not axis or not axis.isalpha() or len(axis) != 1:
         raise AxiscalError(f"axis must be one letter (X, Y, Z, ...), got '{axis}'")
@@ -222,8 +324,7 @@ def gcode_program(plan: PositioningTestPlan, *, axis: str = "X", dwell_s: float 
     axis = axis.upper()
     out = [
         "%",
-        f"(axiscal plan: ISO 230-2 {plan.cycle} cycle, {plan.targets.size} targets,"
-        f" {plan.runs} runs each way, overrun {plan.overrun / MM:g} mm, seed {plan.seed})",
+        f"(axiscal plan: {plan.description})",
         "(a dwell follows every move that ends at a target: take the reading there)",
         "G21 G90 G94",
         f"G1 {axis}{plan.moves[0] / MM:.3f} F{feed_mm_per_min:g}",
@@ -234,3 +335,67 @@ def gcode_program(plan: PositioningTestPlan, *, axis: str = "X", dwell_s: float 
             out.append(f"G4 P{dwell_s:g}")
     out += ["M2", "%"]
     return "\n".join(out) + "\n"
+
+
+def write_plan(
+    plan: PositioningTestPlan,
+    csv_path: str | Path | None = None,
+    *,
+    gcode_path: str | Path | None = None,
+    axis: str = "X",
+    dwell_s: float = 2.0,
+    feed_mm_per_min: float = 2000.0,
+) -> list[Path]:
+    """Write the cycle CSV with its JSON sidecar, and the G-code program, each atomically.
+
+    Parameters
+    ----------
+    plan : PositioningTestPlan
+        The plan (see :func:`plan_test`).
+    csv_path : str or Path, optional
+        The cycle CSV (:func:`cycle_csv`); its sidecar ``NAME.json`` records the plan (cycle,
+        targets in mm, runs, overrun in mm, seed). None writes no CSV.
+    gcode_path : str or Path, optional, keyword-only
+        The G-code program (:func:`gcode_program`). None writes none.
+    axis, dwell_s, feed_mm_per_min : keyword-only
+        Passed to :func:`gcode_program` (axis letter, dwell in seconds, feed in mm/min).
+
+    Returns
+    -------
+    list of Path
+        The files written: CSV, sidecar, G-code (those asked for).
+
+    Raises
+    ------
+    AxiscalError
+        For a G-code option :func:`gcode_program` refuses (checked before anything is written),
+        or a file that cannot be written (naming it).
+
+    Examples
+    --------
+    >>> plan = plan_test(0.0, 0.8, 17, seed=1)
+    >>> write_plan(plan, "cycle.csv", gcode_path="cycle.ngc")  # doctest: +SKIP
+    [PosixPath('cycle.csv'), PosixPath('cycle.json'), PosixPath('cycle.ngc')]
+    """
+    program = None if gcode_path is None else gcode_program(plan, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_per_min)
+    written: list[Path] = []
+    if csv_path is not None:
+        written.append(write_text(csv_path, cycle_csv(plan)))
+        written.append(
+            write_sidecar(
+                csv_path,
+                kind="positioning test plan",
+                units={"deviation_um": "um, actual - target: to be typed in at every row with a target_mm"},
+                standard="ISO 230-2",
+                description=plan.description,
+                cycle=plan.cycle,
+                target_mm=plan.targets / MM,
+                runs=plan.runs,
+                overrun_mm=plan.overrun / MM,
+                seed=plan.seed,
+                readings=plan.readings,
+            )
+        )
+    if program is not None:
+        written.append(write_text(gcode_path, program))
+    return written

@@ -1,5 +1,8 @@
 """The familiar positioning plot: mean deviation per direction with +-k s bands, the runs, the figures.
 
+Draws the ISO 230-2 quantities of :mod:`axiscal.positioning.evaluation`: x̄_i↑ and x̄_i↓ against P_i
+with their limits x̄ +- k s.
+
 Plots only; every number comes from :mod:`axiscal.positioning.evaluation`. matplotlib is imported when a plot
 is asked for.
 """
@@ -38,8 +41,37 @@ def plot_positioning(
     Mean deviation per direction against target (um over mm), bands of mean +- k s (k = 2 for
     ISO 230-2:1997 and later, 3 for 1988 and VDI/DGQ 3441), each run as faint points, and the
     axis figures in a table on the figure. Bands are left out, and the plot says so, when s
-    cannot be estimated (one run). ``compensated`` notes that raw laser readings were
-    compensated for the air and the material temperature.
+    cannot be estimated (one run).
+
+    Parameters
+    ----------
+    run : PositioningRun
+        Targets and deviations, metres (plotted in mm and um).
+    result : Iso230Result or Vdi3441Result
+        The evaluation of ``run`` whose means, s and figures are drawn.
+    path : str or Path
+        The figure file; its suffix gives the format.
+    title : str, keyword-only
+        Title of the plot (default: file name, standard, k, targets and runs).
+    compensated : bool, keyword-only
+        Note on the plot that raw laser readings were compensated for the air and the material
+        temperature.
+
+    Returns
+    -------
+    Path
+        ``path``, written atomically.
+
+    Raises
+    ------
+    AxiscalError
+        If matplotlib cannot write the suffix's format, or the file cannot be written.
+
+    Examples
+    --------
+    >>> run = read_positioning_run("examples/positioning_run.csv").run  # doctest: +SKIP
+    >>> plot_positioning(run, iso230_2(run), "positioning.png")  # doctest: +SKIP
+    PosixPath('positioning.png')
     """
     plt = pyplot()
     suffix = Path(path).suffix.lstrip(".").lower()

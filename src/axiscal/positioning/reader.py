@@ -1,8 +1,12 @@
 """Reading bidirectional positioning runs from CSV, with errors that name the file and the line.
 
+The data of an ISO 230-2 test: target P_i, run j, direction and the deviation x_ij = P_ij - P_i.
+
 Columns (see docs/positioning.md): ``target_<unit>``, ``run``, ``direction`` (``+``/``-`` or
 ``up``/``down``) and exactly one of ``deviation_<unit>`` (actual - target) or ``actual_<unit>``
-(position reached). Units are nm, um or mm. When the environment columns ``air_temperature_c``,
+(position reached). Units are nm, um or mm. A row whose target and value cells are both empty is
+a move without a reading (the overrun moves of a plan written by :func:`axiscal.positioning.plan.write_plan`)
+and is passed over, so a plan with its readings typed in is a run file as it is. When the environment columns ``air_temperature_c``,
 ``pressure_pa`` and ``humidity_pct`` (and optionally ``material_temperature_c``) are present,
 ``actual_<unit>`` is a raw laser reading computed with the vacuum wavelength; it is compensated
 with :func:`axiscal.instruments.interferometer.compensated_length` (paper 003 eq 1, ISO 1 normalisation to
@@ -12,7 +16,7 @@ with :func:`axiscal.instruments.interferometer.compensated_length` (paper 003 eq
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -43,6 +47,12 @@ class RunFile:
         material temperature, if given).
     run_labels : tuple of str
         The ``run`` identifiers in column order of the deviation arrays.
+
+    Examples
+    --------
+    >>> data = read_positioning_run("examples/positioning_run.csv")  # doctest: +SKIP
+    >>> data.run.targets.shape, data.compensated, data.run_labels  # doctest: +SKIP
+    ((17,), False, ('1', '2', '3', '4', '5'))
     """
 
     run: PositioningRun
@@ -82,6 +92,36 @@ def _one_column(table: CsvTable, stems: tuple[str, ...], what: str) -> tuple[str
             line=table.header_line,
         )
     return found[0]
+
+
+def _readings_only(table: CsvTable, target_name: str, value_name: str) -> CsvTable:
+    """The rows that hold a reading: rows with an empty target and an empty value are moves without one.
+
+    A row with only one of the two cells filled is a mistake and raises naming its line.
+    """
+    targets, values = table.text(target_name), table.text(value_name)
+    keep = []
+    for k, (target, value) in enumerate(zip(targets, values)):
+        if target and value:
+            keep.append(k)
+        elif target:
+            run, direction = table.text("run")[k], table.text("direction")[k]
+            raise AxiscalError(
+                f"no reading at target {target} (run {run}, direction {direction}): type the {value_name} value"
+                f" in, or empty the {target_name} cell of a move without a reading",
+                path=table.path,
+                line=table.lines[k],
+            )
+        elif value:
+            raise AxiscalError(
+                f"a {value_name} value without a target: fill in {target_name}, or empty the value of a move"
+                " without a reading",
+                path=table.path,
+                line=table.lines[k],
+            )
+    if len(keep) == len(table):
+        return table
+    return replace(table, rows=tuple(table.rows[k] for k in keep), lines=tuple(table.lines[k] for k in keep))
 
 
 def _sort_key(label: str) -> tuple[int, float, str]:
@@ -126,14 +166,20 @@ def read_positioning_run(
     path : str or Path
         The CSV file.
     wavelength_nm : float, optional, keyword-only
-        Vacuum wavelength of the laser for raw readings (default: that of
+        Vacuum wavelength of the laser for raw readings, nm (default: that of
         :func:`axiscal.instruments.interferometer.compensated_length`, 632.991 nm).
-    co2_ppm, expansion_per_k, method : keyword-only
-        Passed to :func:`axiscal.instruments.interferometer.compensated_length` for raw readings.
+    co2_ppm : float, keyword-only
+        CO2 content of the air, ppm (default 450), for raw readings.
+    expansion_per_k : float, keyword-only
+        Expansion coefficient of the material, 1/K (default steel, 11.5e-6), for raw readings
+        with a material temperature.
+    method : str, keyword-only
+        Refractive index equation of the air (default ``"ciddor"``), for raw readings.
 
     Returns
     -------
     RunFile
+        The deviations in metres, whether they were compensated and the run labels.
 
     Raises
     ------
@@ -141,7 +187,14 @@ def read_positioning_run(
         Naming the file and line: a missing or ambiguous column (two deviation columns in
         different units, deviation and actual both given), an unknown direction, a repeated
         (target, run, direction), a target measured in one direction only, a run missing at
-        some target, a non-numeric or non-finite cell, or environment columns given only in part.
+        some target, a non-numeric or non-finite cell, environment columns given only in part, or
+        a row with a target but no reading (or a reading but no target).
+
+    Examples
+    --------
+    >>> data = read_positioning_run("examples/laser_raw_run.csv")  # doctest: +SKIP
+    >>> data.compensated, data.run.runs  # doctest: +SKIP
+    (True, 5)
     """
     table = read_csv(path, min_rows=2)
     table.require("run", "direction")
@@ -167,6 +220,8 @@ def read_positioning_run(
                 line=table.header_line,
             )
 
+    header_line = table.header_line
+    table = _readings_only(table, target_name, value_name)
     targets_m = table.numeric(target_name) * target_factor
     values_m = table.numeric(value_name) * value_factor
     if compensate:
@@ -244,6 +299,6 @@ def read_positioning_run(
     up = np.array([[cells[(t, r, "+")] for r in run_labels] for t in targets])
     down = np.array([[cells[(t, r, "-")] for r in run_labels] for t in targets])
     if len(targets) < 2:
-        raise AxiscalError("at least 2 target positions are needed", path=table.path, line=table.header_line)
+        raise AxiscalError("at least 2 target positions are needed", path=table.path, line=header_line)
     run = PositioningRun(np.array(targets), up, down, source=str(path))
     return RunFile(run=run, compensated=compensate, run_labels=tuple(run_labels))

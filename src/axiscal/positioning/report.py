@@ -1,0 +1,277 @@
+"""One call from a run file to the evaluated positioning test, its JSON object and its text report.
+
+Reads the file with :func:`axiscal.positioning.reader.read_positioning_run` and evaluates it with
+the ISO 230-2 (:func:`axiscal.positioning.evaluation.iso230_2`) or VDI/DGQ 3441
+(:func:`axiscal.positioning.evaluation.vdi3441`) estimators. The result holds SI values; the
+JSON object and the text report (the Jinja2 template ``templates/positioning_report.txt.j2``)
+give micrometres and millimetres, as their names say.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.materials import STEEL_EXPANSION_PER_K
+from axiscal.positioning.evaluation import (
+    Iso230Result,
+    PositioningRun,
+    Vdi3441Result,
+    iso230_2,
+    iso_edition,
+    vdi3441,
+)
+from axiscal.positioning.reader import read_positioning_run
+from axiscal.units import MM, UM
+
+__all__ = ["PositioningEvaluation", "evaluate_positioning_file", "render_template"]
+
+
+@lru_cache(maxsize=1)
+def _environment():
+    import jinja2
+
+    env = jinja2.Environment(
+        loader=jinja2.PackageLoader("axiscal", "templates"),
+        trim_blocks=True,
+        lstrip_blocks=True,
+        keep_trailing_newline=False,
+        undefined=jinja2.StrictUndefined,
+        autoescape=False,
+    )
+    env.filters["cell"] = _cell
+    env.filters["heading"] = _heading
+    return env
+
+
+def render_template(name: str, **context: Any) -> str:
+    """Render the text template ``name`` shipped under ``axiscal/templates``.
+
+    Parameters
+    ----------
+    name : str
+        File name of the template, e.g. ``"positioning_report.txt.j2"``.
+    **context
+        The template's variables.
+
+    Returns
+    -------
+    str
+        The rendered text without a trailing newline.
+
+    Examples
+    --------
+    >>> render_template("positioning_report.txt.j2", source="x.csv", standard="vdi3441", target_count=2,
+    ...                 runs=1, compensated=False, columns=[], rows=[], figures=[]).splitlines()[0]
+    'x.csv: vdi3441, 2 targets, 1 run each way'
+    """
+    return _environment().get_template(name).render(**context).rstrip("\n")
+
+
+def _cell(value: float, width: int = 9) -> str:
+    return f"{'n/a':>{width}}" if not np.isfinite(value) else f"{value:>{width}.3f}"
+
+
+def _heading(name: str) -> str:
+    return f"{name:>9}" if len(name) <= 9 else name
+
+
+@dataclass(frozen=True)
+class PositioningEvaluation:
+    """A positioning test read from a file and evaluated to one standard (SI units).
+
+    Attributes
+    ----------
+    run : PositioningRun
+        Target positions and deviations, metres.
+    result : Iso230Result or Vdi3441Result
+        The figures of the standard asked for, metres.
+    compensated : bool
+        True when the file held raw laser readings that were compensated for the air (and the
+        material temperature).
+    run_labels : tuple of str
+        The ``run`` identifiers of the file, in the column order of the deviation arrays.
+    """
+
+    run: PositioningRun
+    result: Iso230Result | Vdi3441Result
+    compensated: bool
+    run_labels: tuple[str, ...]
+
+    @property
+    def standard(self) -> str:
+        """The standard evaluated, e.g. ``"iso230-2:2014"`` or ``"vdi3441"``."""
+        return self.result.standard
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """What the reader should know about the figures (e.g. s cannot be estimated from one run)."""
+        return self.result.warnings
+
+    def per_target_um(self) -> dict[str, np.ndarray]:
+        """The per-target values in display units: ``target_mm`` and the deviations in um.
+
+        Returns
+        -------
+        dict of str to ndarray, each of shape (m,)
+            ``target_mm, mean_up_um, mean_down_um, s_up_um, s_down_um, mean_um, B_um`` and, for
+            ISO 230-2, ``R_up_um, R_down_um, R_um``; for VDI/DGQ 3441 ``U_um, s_mean_um, Ps_um``.
+        """
+        result = self.result
+        st = result.stats
+        out = {
+            "target_mm": st.targets / MM,
+            "mean_up_um": st.mean_up / UM,
+            "mean_down_um": st.mean_down / UM,
+            "s_up_um": st.s_up / UM,
+            "s_down_um": st.s_down / UM,
+            "mean_um": st.mean / UM,
+            "B_um": st.reversal / UM,
+        }
+        if isinstance(result, Iso230Result):
+            out.update(
+                R_up_um=result.repeatability_up / UM,
+                R_down_um=result.repeatability_down / UM,
+                R_um=result.repeatability / UM,
+            )
+        else:
+            out.update(U_um=result.reversal_span / UM, s_mean_um=result.s_mean / UM, Ps_um=result.scatter / UM)
+        return out
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON object of the evaluation: axis figures in um under the standard's symbols.
+
+        Returns
+        -------
+        dict
+            ``standard``, ``unit`` ("um"), ``coverage_factor`` (ISO 230-2 only), every axis
+            figure by its symbol (um; NaN where s cannot be estimated), ``runs``,
+            ``target_count``, ``compensated``, ``warnings`` and ``targets`` (see
+            :meth:`per_target_um`).
+        """
+        result = self.result
+        body: dict[str, Any] = {"standard": result.standard, "unit": "um"}
+        if isinstance(result, Iso230Result):
+            body["coverage_factor"] = result.coverage
+        body.update({name: value / UM for name, value in result.figures().items()})
+        body.update(
+            runs=self.run.runs,
+            target_count=int(self.run.targets.size),
+            compensated=self.compensated,
+            warnings=list(result.warnings),
+            targets=self.per_target_um(),
+        )
+        return body
+
+    def report(self) -> str:
+        """The readable report: the per-target table and the axis figures in um.
+
+        Returns
+        -------
+        str
+            Text of several lines, without a trailing newline.
+        """
+        per = self.per_target_um()
+        names = list(per)
+        widths = [max(9, len(n)) for n in names]
+        rows = [[_cell(per[n][i], w) for n, w in zip(names, widths)] for i in range(self.run.targets.size)]
+        return render_template(
+            "positioning_report.txt.j2",
+            source=self.run.source,
+            standard=self.result.standard,
+            target_count=int(self.run.targets.size),
+            runs=self.run.runs,
+            compensated=self.compensated,
+            columns=names,
+            rows=rows,
+            figures=[(name, value / UM) for name, value in self.result.figures().items()],
+        )
+
+    def plot(self, path: str | Path, *, title: str = "") -> Path:
+        """Write the positioning plot (see :func:`axiscal.positioning.plot.plot_positioning`).
+
+        Parameters
+        ----------
+        path : str or Path
+            The figure file; its suffix gives the format (.png, .svg, .pdf, ...).
+        title : str, keyword-only
+            Title of the plot (default: file, standard, k, targets and runs).
+
+        Returns
+        -------
+        Path
+            ``path``.
+
+        Raises
+        ------
+        AxiscalError
+            If the suffix names no figure format or the file cannot be written.
+        """
+        from axiscal.positioning.plot import plot_positioning
+
+        return plot_positioning(self.run, self.result, path, title=title, compensated=self.compensated)
+
+
+def evaluate_positioning_file(
+    path: str | Path,
+    *,
+    standard: str = "iso230-2:2014",
+    wavelength_nm: float | None = None,
+    expansion_per_k: float | None = None,
+) -> PositioningEvaluation:
+    """Read a bidirectional positioning test from CSV and evaluate it to ``standard``.
+
+    Parameters
+    ----------
+    path : str or Path
+        The run file (columns in docs/positioning.md): ``target_<unit>, run, direction`` and
+        ``deviation_<unit>`` or ``actual_<unit>``; a filled-in plan of ``axiscal plan`` too.
+    standard : str, keyword-only
+        One of :data:`axiscal.positioning.evaluation.STANDARDS`: ``"iso230-2:2014"`` (default),
+        ``":2006"``, ``":1997"``, ``":1988"``, ``"jis-b6192"`` (the 1988 formulas, k = 3) or
+        ``"vdi3441"``.
+    wavelength_nm : float, optional, keyword-only
+        Vacuum wavelength of the laser, nm, for raw laser readings (default 632.991 nm).
+    expansion_per_k : float, optional, keyword-only
+        Expansion coefficient of the material, 1/K, for raw laser readings with a material
+        temperature (default :data:`axiscal.materials.STEEL_EXPANSION_PER_K`).
+
+    Returns
+    -------
+    PositioningEvaluation
+        The run and the figures in SI units.
+
+    Raises
+    ------
+    AxiscalError
+        For an unknown standard; for a file the reader refuses (naming the file and line); for
+        ``wavelength_nm`` or ``expansion_per_k`` given with a file that holds no raw laser
+        readings (they would do nothing).
+
+    Examples
+    --------
+    >>> evaluation = evaluate_positioning_file("examples/positioning_run.csv")  # doctest: +SKIP
+    >>> round(evaluation.result.A / UM, 3)  # doctest: +SKIP
+    14.936
+    """
+    edition = None if standard == "vdi3441" else iso_edition(standard)
+    data = read_positioning_run(
+        path,
+        wavelength_nm=wavelength_nm,
+        expansion_per_k=STEEL_EXPANSION_PER_K if expansion_per_k is None else expansion_per_k,
+    )
+    if not data.compensated:
+        for name, value in (("wavelength_nm", wavelength_nm), ("expansion_per_k", expansion_per_k)):
+            if value is not None:
+                raise AxiscalError(
+                    f"{name} applies to raw laser readings (actual_<unit> with the environment columns);"
+                    " this file holds none",
+                    path=data.run.source,
+                )
+    result = vdi3441(data.run) if edition is None else iso230_2(data.run, edition=edition)
+    return PositioningEvaluation(run=data.run, result=result, compensated=data.compensated, run_labels=data.run_labels)

@@ -1,0 +1,45 @@
+"""End-to-end runs of `axiscal compensate` on the shipped examples and bad input."""
+
+from __future__ import annotations
+
+import pytest
+
+from axiscal.compensation import parse_linuxcnc
+
+
+@pytest.mark.parametrize("fmt", ["linuxcnc", "fanuc", "siemens", "heidenhain"])
+def test_compensate_command(run_cli, examples, tmp_path, fmt):
+    out_file = tmp_path / f"table.{fmt}"
+    status, out, err = run_cli("compensate", examples / "positioning_run.csv", "--format", fmt, "-o", out_file)
+    assert status == 0 and out == ""
+    assert "largest error left" in err
+    assert out_file.read_text()
+    status, out, _ = run_cli("compensate", examples / "positioning_run.csv", "--format", fmt)
+    assert status == 0 and out == out_file.read_text()
+
+
+def test_compensate_linuxcnc_output_is_readable_by_linuxcnc(run_cli, examples):
+    status, out, _ = run_cli("compensate", examples / "laser_raw_run.csv", "--format", "linuxcnc", "--comp-type", "0")
+    assert status == 0 and parse_linuxcnc(out).shape == (17, 3)
+
+
+def test_compensate_bad_input(run_cli, examples, tmp_path):
+    status, _, err = run_cli("compensate", examples / "positioning_run.csv", "--format", "fanuc", "--magnification", "0")
+    assert status == 2 and "1..100" in err and err.count("\n") == 1
+    status, _, err = run_cli("compensate", examples / "positioning_run.csv", "--format", "okuma")
+    assert status == 2
+    bad = tmp_path / "bad.csv"
+    bad.write_text("target_mm,run,direction,deviation_um\n0,1,+,1\n0,1,-,x\n")
+    status, _, err = run_cli("compensate", bad, "--format", "linuxcnc")
+    assert status == 2 and err.startswith(f"axiscal: error: {bad}:3:")
+
+
+@pytest.mark.parametrize(
+    "fmt,option",
+    [("linuxcnc", ["--bidirectional"]), ("heidenhain", ["--interval-mm", "10"]), ("fanuc", ["--no-backlash"]),
+     ("siemens", ["--comp-type", "0"]), ("linuxcnc", ["--axis", "X"])],
+)
+def test_an_option_of_another_format_is_refused_not_ignored(run_cli, examples, fmt, option):
+    status, out, err = run_cli("compensate", examples / "positioning_run.csv", "--format", fmt, *option)
+    keyword = {"--interval-mm": "interval_m", "--no-backlash": "backlash"}.get(option[0], option[0][2:].replace("-", "_"))
+    assert status == 2 and out == "" and f"{keyword} applies to format" in err and err.count("\n") == 1
