@@ -115,3 +115,16 @@ def test_typst_text_cannot_inject_markup():
 
     assert typst_text('#set "x" \\ = *bold*') == '#"#set \\"x\\" \\\\ = *bold*"'
     assert typst_string("a\nb") == '"a b"'
+
+
+def test_compensation_files_are_what_compensate_writes(run_cli, campaign):
+    status, out, _ = run_cli("report", campaign)
+    assert status == 0
+    results = json.loads((campaign / "report" / "results.json").read_text())
+    assert results["compensation"] == [
+        {"controller": "linuxcnc", "axis": "X", "file": "compensation/X.comp"},
+        {"controller": "linuxcnc", "axis": "Y", "file": "compensation/Y.comp"},
+    ]
+    status, table, _ = run_cli("compensate", campaign / "positioning_x.csv", "--format", "linuxcnc")
+    assert status == 0
+    assert (campaign / "report" / "compensation" / "X.comp").read_text() == table

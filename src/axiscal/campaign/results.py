@@ -228,6 +228,6 @@ def results_payload(results: CampaignResults) -> dict[str, Any]:
         "campaign": {"campaign": results.campaign, "machine": results.machine, "instrument": results.instrument},
         "verdict": results.verdict,
         "tests": tests,
-        "compensation": results.compensation,
+        "compensation": [{k: v for k, v in entry.items() if k != "text"} for entry in results.compensation],
         "warnings": [*results.warnings, *(f"{t.id}: {w}" for t in results.tests for w in t.warnings)],
     }

@@ -25,7 +25,7 @@ from axiscal.campaign.results import (
 from axiscal.errors import AxiscalError
 from axiscal.units import ARCSEC, MM, UM
 
-__all__ = ["KIND_RUNNERS", "run_campaign", "run_test", "svg_of"]
+__all__ = ["COMPENSATION_FILES", "KIND_RUNNERS", "evaluation_is_raw", "run_campaign", "run_test", "svg_of"]
 
 
 def svg_of(draw: Callable[[Path], Any]) -> str:
@@ -61,34 +61,52 @@ def _environment(path: Path) -> dict[str, Any]:
     return out
 
 
+#: controller -> the compensation file name of an axis (in the report's compensation/ folder)
+COMPENSATION_FILES = {
+    "linuxcnc": "{axis}.comp",
+    "fanuc": "{axis}_pitch_error.txt",
+    "siemens": "{axis}_enc_comp.mpf",
+    "heidenhain": "{axis}.COM",
+}
+
+
 def _positioning(campaign: Campaign, spec: TestSpec) -> TestResult:
-    from axiscal.positioning.evaluation import iso230_2, iso_edition, vdi3441
-    from axiscal.positioning.plot import plot_positioning
-    from axiscal.positioning.reader import read_positioning_run
+    from axiscal.compensation.formats import compensation_table
+    from axiscal.positioning.report import evaluate_positioning_file
 
     path = spec.options["file"]
-    standard = spec.options.get("standard", "iso230-2:2014")
     wavelength = spec.options.get("wavelength_nm", campaign.instrument.get("vacuum_wavelength_nm"))
-    kwargs = {"wavelength_nm": wavelength} if wavelength is not None else {}
-    if "expansion_per_k" in spec.options:
-        kwargs["expansion_per_k"] = spec.options["expansion_per_k"]
-    try:
-        data = read_positioning_run(path, **kwargs)
-    except TypeError:  # pragma: no cover - guarded by the config's option types
-        raise
-    result = vdi3441(data.run) if standard == "vdi3441" else iso230_2(data.run, edition=iso_edition(standard))
-    figures = {name: value / UM for name, value in result.figures().items()}
-    checks = check_figures(figures, {k: v for k, v in spec.tolerances.items()}, {})
-    table = [Figure(name, value, "um") for name, value in figures.items()]
-    title = f"{spec.axis} axis positioning ({result.standard})"
-    plot = svg_of(lambda p: plot_positioning(data.run, result, p, title=title, compensated=data.compensated))
-    return TestResult(
-        id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, path)],
-        figures={"standard": result.standard, "unit": "um", **figures, "runs": data.run.runs,
-                 "target_count": int(data.run.targets.size), "compensated": data.compensated},
-        checks=checks, plots=[Plot(title, plot)], table=table, environment=_environment(path),
-        warnings=list(result.warnings), method=f"Positioning: {result.standard}",
+    evaluation = evaluate_positioning_file(
+        path,
+        standard=spec.options.get("standard", "iso230-2:2014"),
+        wavelength_nm=wavelength if evaluation_is_raw(path) else None,
+        expansion_per_k=spec.options.get("expansion_per_k"),
     )
+    payload = evaluation.to_dict()
+    figures = {k: v for k, v in payload.items()}
+    axis_figures = {name: value / UM for name, value in evaluation.result.figures().items()}
+    checks = check_figures(axis_figures, spec.tolerances, {})
+    title = f"{spec.axis} axis positioning ({evaluation.result.standard})"
+    svg = svg_of(lambda p: evaluation.plot(p, title=title))
+    compensation = []
+    if campaign.controller is not None:
+        options = {"axis": spec.axis} if campaign.controller in ("siemens", "heidenhain") else {}
+        table = compensation_table(evaluation.run, campaign.controller, **options)
+        name = "compensation/" + COMPENSATION_FILES[campaign.controller].format(axis=spec.axis)
+        compensation.append({"controller": campaign.controller, "axis": spec.axis, "file": name, "text": table.text})
+    return TestResult(
+        id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, path)], figures=figures,
+        checks=checks, plots=[Plot(title, svg)], table=[Figure(k, v, "um") for k, v in axis_figures.items()],
+        environment=_environment(path), warnings=list(evaluation.warnings), compensation=compensation,
+        method=f"Positioning: {evaluation.result.standard}",
+    )
+
+
+def evaluation_is_raw(path: Path) -> bool:
+    """True when a run file holds raw laser readings (an ``actual_*`` column) that need a wavelength."""
+    from axiscal.io.tabular import read_csv
+
+    return any(name.startswith("actual_") for name in read_csv(path).header)
 
 
 def _captured(call: Callable[[Path], Any]) -> tuple[Any, str]:
