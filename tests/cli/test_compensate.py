@@ -43,3 +43,21 @@ def test_an_option_of_another_format_is_refused_not_ignored(run_cli, examples, f
     status, out, err = run_cli("compensate", examples / "positioning_run.csv", "--format", fmt, *option)
     keyword = {"--interval-mm": "interval_m", "--no-backlash": "backlash"}.get(option[0], option[0][2:].replace("-", "_"))
     assert status == 2 and out == "" and f"{keyword} applies to format" in err and err.count("\n") == 1
+
+
+@pytest.mark.parametrize(
+    ("option", "words"),
+    [
+        (("--detection-unit-um", "0"), "detection unit"),
+        (("--detection-unit-um", "nan"), "detection unit"),
+        (("--reference-position-mm", "nan"), "finite"),
+        (("--axis-number", "-1"), "axis number"),
+        (("--axis-number", "0"), "axis number"),
+    ],
+)
+def test_a_table_that_would_be_zeros_or_nan_is_refused(run_cli, examples, tmp_path, option, words):
+    target = tmp_path / "table.txt"
+    target.write_text("old table\n")
+    status, out, err = run_cli("compensate", examples / "positioning_run.csv", "--format", "fanuc", *option, "-o", target)
+    assert status == 2 and words in err and err.count("\n") == 1
+    assert target.read_text() == "old table\n"

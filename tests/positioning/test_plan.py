@@ -212,3 +212,15 @@ def test_any_plan_filled_in_reads_back_the_readings_typed_in(tmp_path_factory, s
         for j, run in enumerate(labels):
             assert data.run.deviations_up[i, j] == pytest.approx(typed[(round(t, 3), run, "+")] * UM, abs=1e-12)
             assert data.run.deviations_down[i, j] == pytest.approx(typed[(round(t, 3), run, "-")] * UM, abs=1e-12)
+
+
+def test_a_plan_too_large_or_a_negative_seed_is_refused_before_allocating():
+    from axiscal.positioning.plan import MAX_RUNS, MAX_TARGETS
+
+    with pytest.raises(AxiscalError, match="at most"):
+        plan_test(0.0, 0.1, 10**9, seed=1)
+    with pytest.raises(AxiscalError, match="seed"):
+        plan_test(0.0, 0.1, 10, seed=-1)
+    with pytest.raises(AxiscalError, match="runs"):
+        plan_test(0.0, 0.1, 10, runs=MAX_RUNS + 1, seed=1)
+    assert plan_test(0.0, 10.0, MAX_TARGETS, runs=1, seed=1).targets.size == MAX_TARGETS

@@ -16,7 +16,10 @@ from axiscal.compensation.curve import ErrorCurve, _check_direction
 from axiscal.errors import AxiscalError
 from axiscal.units import MM, UM
 
-__all__ = ["FanucTable", "fanuc_table"]
+#: the largest axis number a FANUC parameter tape carries (Series 30i: 32 axes)
+MAX_AXIS_NUMBER = 32
+
+__all__ = ["MAX_AXIS_NUMBER", "FanucTable", "fanuc_table"]
 
 
 @dataclass(frozen=True)
@@ -244,10 +247,18 @@ def fanuc_table(
     """
     if not 1 <= magnification <= 100:
         raise AxiscalError(f"FANUC pitch error magnification (parameter 3623) is 1..100, got {magnification}")
+    if not (math.isfinite(input_increment_m) and input_increment_m > 0):
+        raise AxiscalError(f"the input increment must be a positive length, got {input_increment_m / UM:g} um")
     if not (math.isfinite(interval_m) and interval_m > 0):
         raise AxiscalError(f"the compensation interval must be positive, got {interval_m / MM:g} mm")
     if abs(interval_m / input_increment_m - round(interval_m / input_increment_m)) > 1e-6:
         raise AxiscalError(f"the interval {interval_m / MM:g} mm is not a whole number of input increments")
+    if not (math.isfinite(detection_unit_m) and detection_unit_m > 0):
+        raise AxiscalError(f"the detection unit must be a positive length, got {detection_unit_m / UM:g} um")
+    if not 1 <= axis_number <= MAX_AXIS_NUMBER:
+        raise AxiscalError(f"the axis number on the parameter tape is 1..{MAX_AXIS_NUMBER}, got {axis_number}")
+    if not math.isfinite(reference_position_m):
+        raise AxiscalError("the reference position must be a finite number")
     unit = magnification * detection_unit_m
     lo, hi = float(curve.positions[0]), float(curve.positions[-1])
     if rotary:

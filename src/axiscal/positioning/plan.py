@@ -27,7 +27,11 @@ from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.units import MM, UM
 
-__all__ = [
+#: largest plan accepted (checked before anything is allocated)
+MAX_TARGETS = 10_000
+MAX_RUNS = 100
+
+__all__ = ["MAX_TARGETS", "MAX_RUNS", 
     "CYCLES",
     "TARGETS_PER_METRE",
     "PositioningTestPlan",
@@ -149,6 +153,10 @@ def plan_targets(start_m: float, end_m: float, count: int, *, seed: int | None =
     if not (math.isfinite(start_m) and math.isfinite(end_m)) or end_m <= start_m:
         raise AxiscalError(f"the end ({end_m / MM:g} mm) must be beyond the start ({start_m / MM:g} mm)")
     need = minimum_targets(end_m - start_m)
+    if count > MAX_TARGETS:
+        raise AxiscalError(f"{count} targets: a plan holds at most {MAX_TARGETS}")
+    if seed is not None and not 0 <= seed < 2**63:
+        raise AxiscalError(f"the seed must be a whole number from 0 to 2**63 - 1, got {seed}")
     if count < need:
         raise AxiscalError(
             f"{count} targets over {(end_m - start_m) / MM:g} mm: ISO 230-2 needs at least {need}"
@@ -214,6 +222,8 @@ def plan_test(
         raise AxiscalError(f"unknown cycle '{cycle}'; use one of {', '.join(CYCLES)}")
     if runs < 1:
         raise AxiscalError(f"runs must be at least 1, got {runs}")
+    if runs > MAX_RUNS:
+        raise AxiscalError(f"{runs} runs: a plan holds at most {MAX_RUNS} runs in each direction")
     if not math.isfinite(overrun_m) or overrun_m <= 0:
         raise AxiscalError(f"the overrun must be positive, got {overrun_m / MM:g} mm")
     if seed is None:
