@@ -2,17 +2,19 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
 import click
 
+from axiscal.errors import AxiscalError
 from axiscal.io.atomic import atomic_write
 from axiscal.io.figures import pyplot
 from axiscal.io.jsonio import dumps
 
-__all__ = ["echo_json", "ensure_parent", "given_options", "pyplot", "write_output"]
+__all__ = ["flags_named", "echo_json", "ensure_parent", "given_options", "pyplot", "write_output"]
 
 
 def echo_json(payload: dict[str, Any]) -> None:
@@ -29,6 +31,19 @@ def given_options(**values: Any) -> dict[str, Any]:
     ctx = click.get_current_context()
     return {name: value for name, value in values.items()
             if ctx.get_parameter_source(name) == click.core.ParameterSource.COMMANDLINE}
+
+
+@contextmanager
+def flags_named(flags: Mapping[str, str]):
+    """Within the block, an AxiscalError that opens with a library keyword (``interval_m applies
+    to ...``) names the command-line flag instead (``--interval-mm applies to ...``)."""
+    try:
+        yield
+    except AxiscalError as exc:
+        head, sep, rest = exc.message.partition(" ")
+        if head in flags:
+            raise AxiscalError(flags[head] + sep + rest, path=exc.path, line=exc.line) from None
+        raise
 
 
 def write_output(path: str | Path, write: Callable[[Path], Any]) -> Path:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from axiscal.cli.common import given_options, write_output
+from axiscal.cli.common import flags_named, given_options, write_output
 from axiscal.compensation.formats import FORMATS, compensation_table
 from axiscal.units import MM, UM
 
@@ -44,7 +44,9 @@ def compensate_command(run_csv, fmt, output, comp_type, interval_mm, magnificati
     keywords = {"interval_mm": "interval_m", "detection_unit_um": "detection_unit_m",
                 "reference_position_mm": "reference_position_m", "no_backlash": "backlash"}
     options = {keywords.get(name, name): value for name, value in options.items()}
-    result = compensation_table(run_csv, fmt, **options)
+    with flags_named({keyword: "--" + name.replace("_", "-") for name, keyword in
+                      {**{n: n for n in options}, **keywords}.items()} | {"backlash": "--no-backlash"}):
+        result = compensation_table(run_csv, fmt, **options)
     if output:
         write_output(output, lambda target: target.write_text(result.text, encoding="utf-8"))
     else:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from axiscal.cli.common import echo_json, given_options
+from axiscal.cli.common import echo_json, flags_named, given_options
 from axiscal.materials import STEEL_EXPANSION_PER_K
 from axiscal.positioning.evaluation import STANDARDS
 from axiscal.positioning.report import evaluate_positioning_file
@@ -24,7 +24,8 @@ __all__ = ["positioning_command", "register"]
 def positioning_command(run_csv, standard, as_json, plot_path, wavelength_nm, expansion_per_k):
     """Evaluate a bidirectional positioning test (RUN_CSV: target_mm, run, direction, deviation_um or actual_mm)."""
     raw_options = given_options(wavelength_nm=wavelength_nm, expansion_per_k=expansion_per_k)
-    evaluation = evaluate_positioning_file(run_csv, standard=standard, **raw_options)
+    with flags_named({"wavelength_nm": "--wavelength-nm", "expansion_per_k": "--expansion-per-k"}):
+        evaluation = evaluate_positioning_file(run_csv, standard=standard, **raw_options)
     for warning in evaluation.warnings:
         click.echo(f"axiscal: warning: {evaluation.run.source}: {warning}", err=True)
     if plot_path:

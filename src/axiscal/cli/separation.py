@@ -7,7 +7,11 @@ import math
 import click
 
 from axiscal.errors import AxiscalError
-from axiscal.straightness.files import SEPARATION_METHODS, separate_file, simulate_probe_readings
+from axiscal.straightness.files import (
+    SEPARATION_METHODS,
+    separate_file,
+    simulate_probe_readings,
+)
 from axiscal.units import MM, UM
 
 __all__ = ["separate_command", "simulate_probes_command", "register"]
