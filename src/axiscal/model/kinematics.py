@@ -8,7 +8,10 @@ Each axis k contributes ``A_k(q) = M_k · Trans(o_k) · Trans(q · u_k) · E_k(q
 - ``Trans(q · u_k)``: the nominal motion along the axis letter;
 - ``Trans(o_k)``: the origin of the carriage frame at q = 0 in its parent's frame;
 - ``M_k``: the squareness of the axis' guideway, ``I + [s]x`` in the same first-order form as
-  paper 000 eq (8): ``s = (0, 0, EC0Y)`` for Y, ``s = (EA0Z, EB0Z, 0)`` for Z, identity for X.
+  paper 000 eq (8). :class:`axiscal.model.machine.Machine` fills ``s`` so that each measured
+  squareness term is the included angle between its two axes: ``s = (0, 0, EC0Y)`` for Y,
+  ``s = (EA0Z, EB0Z, 0)`` for Z, identity for X, except where the turned axis carries its
+  reference axis (then the reference axis gets the opposite rotation; docs/conventions.md).
 
 The tool branch (axes right of F, from the frame outward) gives ``T_tool = Π A_k · Trans(tool)``,
 the workpiece branch (axes left of F, read from F outward) ``T_wp = Π A_k · Trans(workpiece)``.

@@ -42,7 +42,8 @@ __all__ = [
 _CHUNK = 65536
 #: squareness term -> (axis whose guideway it turns, reference axis, index of the rotation vector component)
 _SQUARENESS_PLACE = {"EC0Y": ("Y", "X", 2), "EB0Z": ("Z", "X", 1), "EA0Z": ("Z", "Y", 0)}
-SQUARENESS_PLACEMENTS = ("guideway", "relative")
+#: where a squareness term sits in the chain; the first is the default (docs/conventions.md)
+SQUARENESS_PLACEMENTS = ("relative", "guideway")
 
 
 @dataclass(frozen=True)
@@ -91,14 +92,14 @@ class Machine:
         Functional point in the frame of the last tool-side carriage, metres.
     workpiece_m : sequence of 3 floats
         Point of the workpiece frame the error is measured from, metres.
-    squareness_placement : {"guideway", "relative"}
-        ``"guideway"`` (default, the contract of :mod:`axiscal.model.kinematics`): each term turns the
-        guideway of the axis it names (EC0Y: Y; EB0Z, EA0Z: Z). When that axis carries its reference
-        axis in the same branch (chains such as ``"FYXZ"`` or ``"XYFZ"``, where Y carries X), the
-        reference axis turns with it and the term becomes a rigid rotation of both.
-        ``"relative"``: in that case the term is put on the carried reference axis with the
-        opposite sign instead, so that the included angle between the two axes is the one the
-        term names (docs/conventions.md); other chains are unchanged.
+    squareness_placement : {"relative", "guideway"}
+        A squareness term is what was measured: the included angle between two axes
+        (docs/conventions.md). ``"relative"`` (default) keeps that angle in every chain: the term
+        turns the guideway of the axis it names (EC0Y: Y; EB0Z, EA0Z: Z), except where that axis
+        carries its reference axis in the same branch (``"FYXZ"``, ``"XYFZ"``: Y carries X); there
+        it turns the carried reference axis by the opposite angle. ``"guideway"`` always turns the
+        named axis' guideway; where it carries its reference axis, both turn together and the
+        term is lost (a rigid rotation; the included angle stays 90 degrees).
     """
 
     chain: str
@@ -107,7 +108,7 @@ class Machine:
     tool_m: tuple[float, float, float] = (0.0, 0.0, 0.0)
     workpiece_m: tuple[float, float, float] = (0.0, 0.0, 0.0)
     name: str = ""
-    squareness_placement: str = "guideway"
+    squareness_placement: str = "relative"
 
     def __post_init__(self) -> None:
         workpiece_side, tool_side = parse_chain(self.chain)
@@ -381,7 +382,7 @@ def machine_from_dict(data: Mapping, *, base_dir: Path = Path("."), source: str 
             tool_m=_vector_mm(data.get("tool_mm", [0.0, 0.0, 0.0]), "tool_mm"),
             workpiece_m=_vector_mm(data.get("workpiece_mm", [0.0, 0.0, 0.0]), "workpiece_mm"),
             name=str(data.get("name", "")),
-            squareness_placement=str(data.get("squareness_placement", "guideway")),
+            squareness_placement=str(data.get("squareness_placement", SQUARENESS_PLACEMENTS[0])),
         )
     except AxiscalError as exc:
         raise exc.located(path=source) from None
