@@ -26,7 +26,7 @@ from axiscal.model.kinematics import (
     volumetric_error,
 )
 from axiscal.model.tables import ErrorTable, read_error_table
-from axiscal.units import angle_factor, split_unit
+from axiscal.units import LENGTH_UNITS, MM, angle_factor, split_unit
 
 __all__ = [
     "SQUARENESS_PLACEMENTS",
@@ -35,6 +35,7 @@ __all__ = [
     "Machine",
     "machine_from_dict",
     "load_machine",
+    "as_machine",
     "axis_positions_from_grid",
     "positions_from_points",
 ]
@@ -315,7 +316,7 @@ class Machine:
             if worst <= tolerance_m:
                 return command
             command = {k: command[k] - sign[k] * miss[:, AXIS_INDEX[k]] for k in self.letters}
-        raise AxiscalError(f"inverse kinematics did not converge (miss {worst * 1e9:.3g} nm)")
+        raise AxiscalError(f"inverse kinematics did not converge (miss {worst / LENGTH_UNITS['nm']:.3g} nm)")
 
 
 _MACHINE_KEYS = {
@@ -327,7 +328,7 @@ _AXIS_KEYS = {"errors", "origin_mm", "interpolation", "hold_ends", "sensors"}
 def _vector_mm(value: object, what: str) -> tuple[float, float, float]:
     if not (isinstance(value, list) and len(value) == 3 and all(isinstance(v, (int, float)) for v in value)):
         raise AxiscalError(f"{what} must be a list of 3 numbers in mm, e.g. [0.0, -40.0, 0.0]")
-    return tuple(float(v) * 1e-3 for v in value)  # type: ignore[return-value]
+    return tuple(float(v) * MM for v in value)  # type: ignore[return-value]
 
 
 def machine_from_dict(data: Mapping, *, base_dir: Path = Path("."), source: str = "<machine>") -> Machine:
@@ -395,6 +396,26 @@ def load_machine(path: str | Path) -> Machine:
     return machine_from_dict(data, base_dir=path.parent, source=str(path))
 
 
+def as_machine(machine: Machine | str | Path) -> Machine:
+    """``machine`` itself, or the machine its description file describes.
+
+    Parameters
+    ----------
+    machine : Machine, str or Path
+        A machine, or the path of its TOML description.
+
+    Returns
+    -------
+    Machine
+
+    Raises
+    ------
+    AxiscalError
+        If the file is missing or malformed (see :func:`load_machine`).
+    """
+    return machine if isinstance(machine, Machine) else load_machine(machine)
+
+
 def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
     """Parse ``"X=0:190:10,Z=0:190:10"`` (mm, inclusive ends) into a full grid of positions in metres."""
     ranges: dict[str, np.ndarray] = {}
@@ -419,7 +440,7 @@ def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
         count = int(np.floor((end - start) / step + 1e-9)) + 1
         ranges[letter] = start + step * np.arange(count)
     mesh = np.meshgrid(*ranges.values(), indexing="ij")
-    return {letter: grid.ravel() * 1e-3 for letter, grid in zip(ranges, mesh)}
+    return {letter: grid.ravel() * MM for letter, grid in zip(ranges, mesh)}
 
 
 def positions_from_points(sequence: Sequence[Mapping[str, float]]) -> dict[str, np.ndarray]:

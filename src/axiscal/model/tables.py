@@ -19,7 +19,7 @@ import numpy as np
 from axiscal.conventions import component_names
 from axiscal.errors import AxiscalError
 from axiscal.io.tabular import CsvTable, read_csv
-from axiscal.units import angle_factor, length_factor, split_unit
+from axiscal.units import MM, angle_factor, length_factor, split_unit
 
 __all__ = ["INTERPOLATIONS", "ErrorTable", "read_error_table"]
 
@@ -143,8 +143,8 @@ class ErrorTable:
         k = self.first_outside(q_m)
         if k is not None:
             raise AxiscalError(
-                f"{self.letter} = {q_m[k] * 1e3:.6g} mm is outside the error table of axis {self.letter} "
-                f"({self.start_m * 1e3:.6g} to {self.end_m * 1e3:.6g} mm)",
+                f"{self.letter} = {q_m[k] / MM:.6g} mm is outside the error table of axis {self.letter} "
+                f"({self.start_m / MM:.6g} to {self.end_m / MM:.6g} mm)",
                 path=path,
                 line=lines[k] if lines else None,
             )
@@ -185,7 +185,7 @@ def _table_from_csv(table: CsvTable, letter: str, *, interpolation: str, hold_en
     names = component_names(letter)
     if table.header[0] != "position_mm":
         raise AxiscalError(f"first column must be 'position_mm', found '{table.header[0]}'", line=table.header_line)
-    position = table.numeric("position_mm") * 1e-3
+    position = table.numeric("position_mm") * MM
     steps = np.diff(position)
     if np.any(steps <= 0):
         k = int(np.argmax(steps <= 0)) + 1
