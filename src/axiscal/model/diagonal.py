@@ -92,8 +92,14 @@ class DiagonalResult:
         return float(np.ptp(self.model_error_m))
 
     def columns(self) -> dict[str, np.ndarray]:
-        """Per-point columns in display units: ``<axis>_mm``, ``nominal_mm``, (``measured_mm``),
-        ``model_error_um``, (``E_BD_um``, ``E_AD_um``); docs/formats.md."""
+        """Per-point columns in display units (docs/formats.md).
+
+        Returns
+        -------
+        dict of str to ndarray, shape (N,)
+            ``<axis>_mm``, ``nominal_mm``, with readings ``measured_mm``, then ``model_error_um``
+            and with readings ``E_BD_um``, ``E_AD_um``.
+        """
         columns = {f"{k.lower()}_mm": q / MM for k, q in self.positions_m.items()}
         columns["nominal_mm"] = self.nominal_m / MM
         if self.measured_m is not None:
@@ -105,11 +111,29 @@ class DiagonalResult:
         return columns
 
     def csv(self) -> str:
-        """The per-point CSV text (:meth:`columns`, 6 decimals)."""
+        """The per-point CSV text (:meth:`columns`, 6 decimals).
+
+        Returns
+        -------
+        str
+            Header line, then one line per point.
+        """
         return table_text(self.columns(), fmt="{:.6f}")
 
     def write_csv(self, path: str | Path, *, sidecar: bool = True) -> Path:
         """Write the per-point CSV atomically, with a JSON sidecar (measure, P-V, sign, sources).
+
+        Parameters
+        ----------
+        path : str or Path
+            The CSV file; the sidecar is the same name ending in ``.json``.
+        sidecar : bool
+            Write the sidecar (default True).
+
+        Returns
+        -------
+        Path
+            ``path``.
 
         Raises
         ------
@@ -122,7 +146,14 @@ class DiagonalResult:
         )
 
     def summary(self) -> dict:
-        """JSON-ready summary in display units: measure, sign, P-V of each error (um), the points."""
+        """JSON-ready summary in display units (the output of ``axiscal diagonal --json``).
+
+        Returns
+        -------
+        dict
+            ``measure``, ``sign``, ``model_error_range_um``, with readings ``E_BD_range_um`` and
+            ``E_AD_range_um``, and ``points`` (the columns, rounded to 6 decimals).
+        """
         payload: dict = {"measure": self.measure, "sign": SIGN_CONVENTION, "model_error_range_um": self.range_model_m / UM}
         if self.measured_m is not None:
             payload["E_BD_range_um"] = self.range_before_m / UM
@@ -131,7 +162,13 @@ class DiagonalResult:
         return payload
 
     def text(self) -> str:
-        """A few lines for a terminal: points, length and the P-V of each error."""
+        """A few lines for a terminal: points, length and the P-V of each error.
+
+        Returns
+        -------
+        str
+            Rendered from the template ``model_diagonal.txt.j2``, ending in a newline.
+        """
         return render_template(
             "model_diagonal.txt.j2",
             name=self.name,
@@ -143,7 +180,25 @@ class DiagonalResult:
         )
 
     def plot(self, path: str | Path, *, title: str = "Diagonal displacement error") -> Path:
-        """Write the figure of :func:`axiscal.model.plot.plot_diagonal` to ``path``."""
+        """Write the figure of :func:`axiscal.model.plot.plot_diagonal` to ``path``.
+
+        Parameters
+        ----------
+        path : str or Path
+            Figure file; the format follows the suffix.
+        title : str
+            Figure title.
+
+        Returns
+        -------
+        Path
+            ``path``.
+
+        Raises
+        ------
+        AxiscalError
+            If the suffix is not a figure format or the file cannot be written.
+        """
         from axiscal.model.plot import plot_diagonal
 
         plot_diagonal(self, path, title=title)
@@ -151,7 +206,25 @@ class DiagonalResult:
 
 
 def diagonal_positions(start_m: Mapping[str, float], end_m: Mapping[str, float], steps: int) -> dict[str, np.ndarray]:
-    """``steps + 1`` evenly spaced axis positions from ``start_m`` to ``end_m`` (all axes move together)."""
+    """Evenly spaced axis positions from a start to an end point, all axes moving together.
+
+    Parameters
+    ----------
+    start_m, end_m : mapping of str to float
+        Axis positions of the first and last point, metres; the same axes.
+    steps : int
+        Number of intervals.
+
+    Returns
+    -------
+    dict of str to ndarray, shape (steps + 1,)
+        Metres.
+
+    Raises
+    ------
+    AxiscalError
+        Different axes in start and end, or fewer than 1 step.
+    """
     if set(start_m) != set(end_m):
         raise AxiscalError(f"start and end name different axes ({sorted(start_m)} vs {sorted(end_m)})")
     if steps < 1:

@@ -40,17 +40,40 @@ class InverseResult:
     sources: tuple[str, ...] = field(default=())
 
     def columns(self) -> dict[str, np.ndarray]:
-        """Columns in display units: ``x_mm, y_mm, z_mm``, then ``<axis>_command_mm``."""
+        """Columns in display units: ``x_mm, y_mm, z_mm``, then ``<axis>_command_mm``.
+
+        Returns
+        -------
+        dict of str to ndarray, shape (N,)
+        """
         columns = {f"{c}_mm": self.target_m[:, i] / MM for i, c in enumerate("xyz")}
         columns |= {f"{k.lower()}_command_mm": q / MM for k, q in self.command_m.items()}
         return columns
 
     def csv(self) -> str:
-        """The CSV text of :meth:`columns` (7 decimals: 0.1 nm)."""
+        """The CSV text of :meth:`columns` (7 decimals: 0.1 nm).
+
+        Returns
+        -------
+        str
+            Header line, then one line per point.
+        """
         return table_text(self.columns(), fmt="{:.7f}")
 
     def write_csv(self, path: str | Path, *, sidecar: bool = True) -> Path:
         """Write the CSV atomically, with a JSON sidecar (kind, sources) unless ``sidecar=False``.
+
+        Parameters
+        ----------
+        path : str or Path
+            The CSV file; the sidecar is the same name ending in ``.json``.
+        sidecar : bool
+            Write the sidecar.
+
+        Returns
+        -------
+        Path
+            ``path``.
 
         Raises
         ------

@@ -115,5 +115,11 @@ def render_template(template: str, /, **context: Any) -> str:
     -------
     str
         The rendered text.
+
+    Raises
+    ------
+    jinja2.TemplateNotFound, jinja2.UndefinedError
+        A template that is not shipped, or a variable it uses that is not given (program errors,
+        not user mistakes).
     """
     return _environment().get_template(template).render(**context)

@@ -30,6 +30,11 @@ def plot_error_tables(machine: Machine, path: str | Path) -> None:
     path : str or Path
         Figure file; the format follows the suffix (``.png``, ``.svg``, ...).
 
+    Returns
+    -------
+    None
+        The figure is written to ``path``.
+
     Raises
     ------
     AxiscalError
@@ -70,6 +75,11 @@ def plot_volumetric(positions_m: dict[str, np.ndarray], error_m: np.ndarray, pat
         Figure file; the format follows the suffix.
     title : str, optional
         Figure title.
+
+    Returns
+    -------
+    None
+        The figure is written to ``path``.
 
     Raises
     ------
@@ -129,6 +139,11 @@ def plot_diagonal(result: DiagonalResult, path: str | Path, *, title: str = "Dia
     title : str
         Figure title.
 
+    Returns
+    -------
+    None
+        The figure is written to ``path``.
+
     Raises
     ------
     AxiscalError
@@ -163,6 +178,11 @@ def plot_diagonal_experiment(result, path: str | Path) -> None:
         The simulated experiment (``x_mm``, ``z_mm``, ``before_um``, ``after_um``, ``scales_only_um``).
     path : str or Path
         Figure file; the format follows the suffix.
+
+    Returns
+    -------
+    None
+        The figure is written to ``path``.
 
     Raises
     ------

@@ -68,18 +68,41 @@ class VolumetricMap:
         return float(np.sqrt(np.mean(self.magnitude_m**2)))
 
     def columns(self) -> dict[str, np.ndarray]:
-        """Columns in display units: ``<axis>_mm``, then ``ex_um, ey_um, ez_um`` and ``e_um`` (the length)."""
+        """Columns in display units: ``<axis>_mm``, then ``ex_um, ey_um, ez_um`` and ``e_um`` (the length).
+
+        Returns
+        -------
+        dict of str to ndarray, shape (N,)
+        """
         columns = {f"{k.lower()}_mm": q / MM for k, q in self.positions_m.items()}
         columns |= {f"{c}_um": self.error_m[:, i] / UM for i, c in enumerate(_COMPONENTS)}
         columns["e_um"] = self.magnitude_m / UM
         return columns
 
     def csv(self) -> str:
-        """The CSV text of :meth:`columns` (4 decimals)."""
+        """The CSV text of :meth:`columns` (4 decimals).
+
+        Returns
+        -------
+        str
+            Header line, then one line per point.
+        """
         return table_text(self.columns(), fmt="{:.4f}")
 
     def write_csv(self, path: str | Path, *, sidecar: bool = True) -> Path:
         """Write the CSV atomically, with a JSON sidecar (kind, sign, sources) unless ``sidecar=False``.
+
+        Parameters
+        ----------
+        path : str or Path
+            The CSV file; the sidecar is the same name ending in ``.json``.
+        sidecar : bool
+            Write the sidecar.
+
+        Returns
+        -------
+        Path
+            ``path``.
 
         Raises
         ------
@@ -92,7 +115,25 @@ class VolumetricMap:
         )
 
     def plot(self, path: str | Path, *, title: str | None = None) -> Path:
-        """Write the map of :func:`axiscal.model.plot.plot_volumetric` to ``path``."""
+        """Write the map of :func:`axiscal.model.plot.plot_volumetric` to ``path``.
+
+        Parameters
+        ----------
+        path : str or Path
+            Figure file; the format follows the suffix.
+        title : str, optional
+            Default: ``"Volumetric error: <machine>"``.
+
+        Returns
+        -------
+        Path
+            ``path``.
+
+        Raises
+        ------
+        AxiscalError
+            If the suffix is not a figure format or the file cannot be written.
+        """
         from axiscal.model.plot import plot_volumetric
 
         plot_volumetric(self.positions_m, self.error_m, path, title=f"Volumetric error: {self.name}" if title is None else title)

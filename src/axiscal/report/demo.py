@@ -84,11 +84,22 @@ class DemoResult:
 
     @property
     def files(self) -> dict[str, Path]:
-        """Every file written, by name."""
+        """Every file written, by name.
+
+        Returns
+        -------
+        dict of str to Path
+        """
         return {name: self.folder / name for name in DEMO_FILES}
 
     def text(self) -> str:
-        """The lines ``axiscal demo`` prints: where the report is and the headline numbers."""
+        """The lines ``axiscal demo`` prints: where the report is and the headline numbers.
+
+        Returns
+        -------
+        str
+            Rendered from the template ``demo_summary.txt.j2``, ending in a newline.
+        """
         return render_template("demo_summary.txt.j2", report=self.folder / "report.md", summary=self.summary)
 
 
