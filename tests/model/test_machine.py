@@ -307,3 +307,19 @@ def test_error_motions_given_per_point_equal_the_tables():
         np.testing.assert_array_equal(machine.volumetric_error(q, errors=given), machine.volumetric_error(q))
     with pytest.raises(AxiscalError, match=r"errors of axis Z must have shape \(6, 150000\)"):
         machine.volumetric_error(q, errors={k: v for k, v in given.items() if k != "Z"})
+
+
+def test_machine_file_placement_defaults_to_relative(tmp_path):
+    from axiscal.model.machine import machine_from_dict
+
+    for letter in "XYZ":
+        (tmp_path / f"{letter}.csv").write_text(f"position_mm,E{letter}{letter}_um\n-1000,0\n1000,0\n")
+    axes = {k: {"errors": f"{k}.csv"} for k in "XYZ"}
+    data = {"chain": "FYXZ", "axes": axes, "squareness": {"EC0Y_arcsec": 20.0}}
+    machine = machine_from_dict(data, base_dir=tmp_path)
+    assert machine.squareness_placement == "relative"
+    assert included_angles(machine)["XY"] - np.pi / 2 == pytest.approx(20 * ARCSEC, rel=1e-6)
+    guideway = machine_from_dict(data | {"squareness_placement": "guideway"}, base_dir=tmp_path)
+    assert included_angles(guideway)["XY"] == pytest.approx(np.pi / 2, abs=1e-12)
+    with pytest.raises(AxiscalError, match="machine.toml: unknown squareness placement 'sideways'"):
+        machine_from_dict(data | {"squareness_placement": "sideways"}, base_dir=tmp_path, source="machine.toml")
