@@ -25,7 +25,7 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.model.inputs import check_travel, parse_point, read_interferometer
 from axiscal.model.machine import Machine, as_machine
-from axiscal.model.output import SIGN_CONVENTION, render_template, table_text, write_table
+from axiscal.model.output import SIGN_CONVENTION, TableResult, render_template
 from axiscal.units import MM, UM
 
 __all__ = ["MEASURES", "DEFAULT_STEPS", "DiagonalResult", "diagonal_positions", "diagonal_check", "diagonal_test"]
@@ -36,7 +36,7 @@ DEFAULT_STEPS = 10
 
 
 @dataclass(frozen=True)
-class DiagonalResult:
+class DiagonalResult(TableResult):
     """A diagonal test predicted by the model, and compared with readings when given (SI units).
 
     Every error is actual minus nominal along the diagonal (module docstring).
@@ -76,6 +76,9 @@ class DiagonalResult:
     name: str = ""
     sources: tuple[str, ...] = field(default=())
 
+    csv_format = "{:.6f}"
+    csv_kind = "diagonal displacement test"
+
     @property
     def range_before_m(self) -> float:
         """Peak-to-valley of E_BD, metres (NaN without readings)."""
@@ -110,40 +113,14 @@ class DiagonalResult:
             columns["E_AD_um"] = self.error_after_m / UM
         return columns
 
-    def csv(self) -> str:
-        """The per-point CSV text (:meth:`columns`, 6 decimals).
+    def sidecar_metadata(self) -> dict:
+        """The summary without the points, for the sidecar.
 
         Returns
         -------
-        str
-            Header line, then one line per point.
+        dict
         """
-        return table_text(self.columns(), fmt="{:.6f}")
-
-    def write_csv(self, path: str | Path, *, sidecar: bool = True) -> Path:
-        """Write the per-point CSV atomically, with a JSON sidecar (measure, P-V, sign, sources).
-
-        Parameters
-        ----------
-        path : str or Path
-            The CSV file; the sidecar is the same name ending in ``.json``.
-        sidecar : bool
-            Write the sidecar (default True).
-
-        Returns
-        -------
-        Path
-            ``path``.
-
-        Raises
-        ------
-        AxiscalError
-            If the file cannot be written.
-        """
-        return write_table(
-            path, self.columns(), fmt="{:.6f}", kind="diagonal displacement test", sources=self.sources,
-            sidecar=sidecar, **{k: v for k, v in self.summary().items() if k != "points"},
-        )
+        return {k: v for k, v in self.summary().items() if k != "points"}
 
     def summary(self) -> dict:
         """JSON-ready summary in display units (the output of ``axiscal diagonal --json``).

@@ -15,14 +15,14 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.model.inputs import read_targets
 from axiscal.model.machine import Machine, as_machine
-from axiscal.model.output import table_text, write_table
+from axiscal.model.output import TableResult
 from axiscal.units import MM
 
 __all__ = ["InverseResult", "inverse_commands"]
 
 
 @dataclass(frozen=True)
-class InverseResult:
+class InverseResult(TableResult):
     """Axis commands for wanted tool points (SI units).
 
     Attributes
@@ -39,6 +39,9 @@ class InverseResult:
     command_m: dict[str, np.ndarray]
     sources: tuple[str, ...] = field(default=())
 
+    csv_format = "{:.7f}"  # 0.1 nm
+    csv_kind = "compensated axis commands"
+
     def columns(self) -> dict[str, np.ndarray]:
         """Columns in display units: ``x_mm, y_mm, z_mm``, then ``<axis>_command_mm``.
 
@@ -50,37 +53,6 @@ class InverseResult:
         columns |= {f"{k.lower()}_command_mm": q / MM for k, q in self.command_m.items()}
         return columns
 
-    def csv(self) -> str:
-        """The CSV text of :meth:`columns` (7 decimals: 0.1 nm).
-
-        Returns
-        -------
-        str
-            Header line, then one line per point.
-        """
-        return table_text(self.columns(), fmt="{:.7f}")
-
-    def write_csv(self, path: str | Path, *, sidecar: bool = True) -> Path:
-        """Write the CSV atomically, with a JSON sidecar (kind, sources) unless ``sidecar=False``.
-
-        Parameters
-        ----------
-        path : str or Path
-            The CSV file; the sidecar is the same name ending in ``.json``.
-        sidecar : bool
-            Write the sidecar.
-
-        Returns
-        -------
-        Path
-            ``path``.
-
-        Raises
-        ------
-        AxiscalError
-            If the file cannot be written.
-        """
-        return write_table(path, self.columns(), fmt="{:.7f}", kind="compensated axis commands", sources=self.sources, sidecar=sidecar)
 
 
 def inverse_commands(machine: Machine | str | Path, targets: np.ndarray | str | Path) -> InverseResult:

@@ -18,7 +18,7 @@ from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.tabular import write_csv
 
-__all__ = ["SIGN_CONVENTION", "table_text", "write_table", "render_template"]
+__all__ = ["SIGN_CONVENTION", "table_text", "write_table", "TableResult", "render_template"]
 
 #: the one sign of every displacement error the model room outputs (docs/conventions.md)
 SIGN_CONVENTION = "actual minus nominal, along the stated direction"
@@ -85,6 +85,73 @@ def write_table(
     if sidecar:
         write_sidecar(path, kind=kind, sources=sources, **({"sign": SIGN_CONVENTION} | metadata))
     return path
+
+
+class TableResult:
+    """What the model room's result objects share: their table as CSV text, or as a file with its sidecar.
+
+    A subclass gives :meth:`columns` (display units in names and values), the class attributes
+    ``csv_format`` and ``csv_kind``, a ``sources`` attribute and, optionally, more sidecar entries
+    in :meth:`sidecar_metadata`.
+    """
+
+    csv_format = "{:.6f}"
+    csv_kind = "table"
+    sources: tuple[str, ...] = ()
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The table: column name (with its unit) to values in that unit.
+
+        Returns
+        -------
+        dict of str to ndarray, shape (N,)
+        """
+        raise NotImplementedError
+
+    def sidecar_metadata(self) -> dict[str, Any]:
+        """Entries of the JSON sidecar besides kind, sign and sources.
+
+        Returns
+        -------
+        dict
+        """
+        return {}
+
+    def csv(self) -> str:
+        """The CSV text of :meth:`columns`.
+
+        Returns
+        -------
+        str
+            Header line, then one line per row.
+        """
+        return table_text(self.columns(), fmt=self.csv_format)
+
+    def write_csv(self, path: str | Path, *, sidecar: bool = True) -> Path:
+        """Write the CSV atomically and, unless ``sidecar=False``, its JSON sidecar.
+
+        Parameters
+        ----------
+        path : str or Path
+            The CSV file (its folder is created); the sidecar is the same name ending in ``.json``.
+        sidecar : bool
+            Write the sidecar (default True): kind, sign convention, sources and
+            :meth:`sidecar_metadata`.
+
+        Returns
+        -------
+        Path
+            ``path``.
+
+        Raises
+        ------
+        AxiscalError
+            If the file cannot be written.
+        """
+        return write_table(
+            path, self.columns(), fmt=self.csv_format, kind=self.csv_kind, sources=self.sources, sidecar=sidecar,
+            **self.sidecar_metadata(),
+        )
 
 
 @lru_cache(maxsize=1)

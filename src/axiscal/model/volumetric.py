@@ -16,7 +16,7 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.model.inputs import check_travel, read_points
 from axiscal.model.machine import Machine, as_machine, axis_positions_from_grid
-from axiscal.model.output import table_text, write_table
+from axiscal.model.output import TableResult
 from axiscal.units import MM, UM
 
 __all__ = ["VolumetricMap", "volumetric_map"]
@@ -25,7 +25,7 @@ _COMPONENTS = ("ex", "ey", "ez")
 
 
 @dataclass(frozen=True)
-class VolumetricMap:
+class VolumetricMap(TableResult):
     """The volumetric error at a set of axis positions (SI units).
 
     Attributes
@@ -45,6 +45,9 @@ class VolumetricMap:
     error_m: np.ndarray
     name: str = ""
     sources: tuple[str, ...] = field(default=())
+
+    csv_format = "{:.4f}"
+    csv_kind = "volumetric error"
 
     @property
     def magnitude_m(self) -> np.ndarray:
@@ -79,40 +82,14 @@ class VolumetricMap:
         columns["e_um"] = self.magnitude_m / UM
         return columns
 
-    def csv(self) -> str:
-        """The CSV text of :meth:`columns` (4 decimals).
+    def sidecar_metadata(self) -> dict[str, str]:
+        """The frame of the error, for the sidecar.
 
         Returns
         -------
-        str
-            Header line, then one line per point.
+        dict
         """
-        return table_text(self.columns(), fmt="{:.4f}")
-
-    def write_csv(self, path: str | Path, *, sidecar: bool = True) -> Path:
-        """Write the CSV atomically, with a JSON sidecar (kind, sign, sources) unless ``sidecar=False``.
-
-        Parameters
-        ----------
-        path : str or Path
-            The CSV file; the sidecar is the same name ending in ``.json``.
-        sidecar : bool
-            Write the sidecar.
-
-        Returns
-        -------
-        Path
-            ``path``.
-
-        Raises
-        ------
-        AxiscalError
-            If the file cannot be written.
-        """
-        return write_table(
-            path, self.columns(), fmt="{:.4f}", kind="volumetric error", sources=self.sources, sidecar=sidecar,
-            frame="tool point relative to the workpiece, workpiece frame",
-        )
+        return {"frame": "tool point relative to the workpiece, workpiece frame"}
 
     def plot(self, path: str | Path, *, title: str | None = None) -> Path:
         """Write the map of :func:`axiscal.model.plot.plot_volumetric` to ``path``.
