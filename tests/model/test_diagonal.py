@@ -7,6 +7,8 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from axiscal.errors import AxiscalError
 from axiscal.model.diagonal import diagonal_check, diagonal_test
@@ -104,3 +106,16 @@ def test_bad_diagonals():
     table_machine = stretched_x_machine()
     with pytest.raises(AxiscalError, match="X = 300 mm is outside the error table"):
         diagonal_test(table_machine, "X=0,Z=0", "X=300,Z=300")
+
+
+@settings(max_examples=40, deadline=None)
+@given(ppm=st.floats(-200.0, 200.0), offsets_um=st.lists(st.floats(-50.0, 50.0), min_size=4, max_size=4))
+def test_before_minus_after_is_the_models_error(ppm, offsets_um):
+    # one sign for all three: (P - nominal) - (P - predicted) = predicted - nominal, whatever P is
+    machine = stretched_x_machine(ppm)
+    nominal = np.linspace(0.0, 0.2 * np.sqrt(2), 5)
+    readings = nominal + np.array([0.0, *offsets_um]) * 1e-6
+    result = diagonal_test(machine, {"X": 0.0, "Z": 0.0}, {"X": 0.2, "Z": 0.2}, readings=readings)
+    np.testing.assert_allclose(result.error_before_m - result.error_after_m, result.model_error_m, atol=1e-15)
+    if abs(ppm) > 1e-3:
+        assert np.sign(result.model_error_m[-1]) == np.sign(ppm)
