@@ -38,7 +38,7 @@ from axiscal.model.machine import (
     parse_chain,
     positions_from_points,
 )
-from axiscal.model.output import SIGN_CONVENTION, render_template, table_text, write_table
+from axiscal.model.output import SIGN_CONVENTION, TableResult, render_template, table_text, write_table
 from axiscal.model.plot import (
     plot_diagonal,
     plot_diagonal_experiment,
@@ -76,6 +76,7 @@ __all__ = [
     "SIGN_CONVENTION",
     "table_text",
     "write_table",
+    "TableResult",
     "render_template",
     "VolumetricMap",
     "volumetric_map",

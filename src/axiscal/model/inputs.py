@@ -86,6 +86,11 @@ def check_travel(
     lines : sequence of int, optional
         Line of each position in that file.
 
+    Returns
+    -------
+    None
+        Returns only when every position is inside its table.
+
     Raises
     ------
     AxiscalError

@@ -91,8 +91,16 @@ class TableResult:
     """What the model room's result objects share: their table as CSV text, or as a file with its sidecar.
 
     A subclass gives :meth:`columns` (display units in names and values), the class attributes
-    ``csv_format`` and ``csv_kind``, a ``sources`` attribute and, optionally, more sidecar entries
-    in :meth:`sidecar_metadata`.
+    below and, optionally, more sidecar entries in :meth:`sidecar_metadata`.
+
+    Attributes
+    ----------
+    csv_format : str
+        Format of every value in the CSV.
+    csv_kind : str
+        What the table holds, for the sidecar.
+    sources : tuple of str
+        Files the result was computed from, for the sidecar.
     """
 
     csv_format = "{:.6f}"

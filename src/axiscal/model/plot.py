@@ -62,8 +62,10 @@ def plot_error_tables(machine: Machine, path: str | Path) -> None:
 
 
 def plot_volumetric(positions_m: dict[str, np.ndarray], error_m: np.ndarray, path: str | Path, *, title: str = "") -> None:
-    """Map of the volumetric error: on a 2-axis grid a colour map of |e| with arrows of the in-plane
-    components; otherwise |e| and its components against point number.
+    """Map of the volumetric error.
+
+    On a 2-axis grid a colour map of |e| with arrows of the in-plane components; otherwise |e| and
+    its components against point number.
 
     Parameters
     ----------
