@@ -12,6 +12,9 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.units import ANGLE_UNITS, MM, UM
+
+URAD = ANGLE_UNITS["urad"]
 HERE = Path(__file__).resolve().parent
 #: the XZ module is the built-in example of `axiscal demo`, shipped inside the package
 DATA = HERE.parent / "src" / "axiscal" / "data"
@@ -41,10 +44,10 @@ def xz_module() -> None:
     module = VirtualModule(seed=0, noise=False)
     q = np.arange(0.0, 191.0, 10.0)
     for letter in ("X", "Z"):
-        values = module.true_errors(letter, q * 1e-3)
+        values = module.true_errors(letter, q * MM)
         names = component_names(letter)
-        columns = {f"{n}_um": values[k] * 1e6 for k, n in enumerate(names[:3])}
-        columns |= {f"{n}_urad": values[3 + k] * 1e6 for k, n in enumerate(names[3:])}
+        columns = {f"{n}_um": values[k] / UM for k, n in enumerate(names[:3])}
+        columns |= {f"{n}_urad": values[3 + k] / URAD for k, n in enumerate(names[3:])}
         write_table(DATA / "xz_module" / f"{letter.lower()}_errors.csv", q, columns)
 
 
@@ -72,12 +75,12 @@ def xz_diagonal_readings() -> None:
     from axiscal.measurement.virtual import VirtualModule
 
     module = VirtualModule(seed=0, load_kg=2.0)
-    q = np.arange(20) * 0.010
+    q = np.arange(20) * 10.0 * MM
     measured = module.laser_diagonal({"X": q, "Z": q})
     nominal = np.hypot(q, q)
-    lines = ["# Simulated laser interferometer on the XZ diagonal of the virtual module with 2 kg on Z (examples/make_examples.py)"]
-    lines.append("nominal_mm,measured_mm")
-    lines += [f"{n * 1e3:.6f},{m * 1e3:.6f}" for n, m in zip(nominal, measured)]
+    # a plain data CSV: the header is the first line (docs/formats.md); this docstring says what it is
+    lines = ["nominal_mm,measured_mm"]
+    lines += [f"{n / MM:.6f},{m / MM:.6f}" for n, m in zip(nominal, measured)]
     (DATA / "xz_module" / "diagonal_laser.csv").write_text("\n".join(lines) + "\n")
 
 

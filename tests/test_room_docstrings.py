@@ -12,7 +12,7 @@ import pkgutil
 
 import pytest
 
-ROOMS = ("axiscal.positioning", "axiscal.compensation")
+ROOMS = ("axiscal.positioning", "axiscal.compensation", "axiscal.model", "axiscal.straightness", "axiscal.squareness")
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]
 MODULES = [

@@ -66,13 +66,43 @@ def test_inverse_round_trip(run_cli, module, tmp_path):
     np.testing.assert_allclose([float(r[4]) for r in rows], [100.0, 170.0], atol=1e-6)
 
 
-def test_demo_writes_a_report(run_cli, tmp_path):
-    status, out, err = run_cli("demo", "--output", tmp_path / "demo")
-    assert status == 0, err
-    for name in ("report.md", "summary.json", "volumetric_map.csv", "volumetric_map.png", "diagonal.png", "error_motions.png"):
-        assert (tmp_path / "demo" / name).exists(), name
-    summary = json.loads((tmp_path / "demo" / "summary.json").read_text())
-    assert summary["diagonal_E_AD_range_um"] < summary["diagonal_E_BD_range_um"]
+def test_every_csv_written_reads_plainly_with_pandas(run_cli, module, tmp_path):
+    import pandas as pd
+
+    machine = module / "machine.toml"
+    targets = tmp_path / "targets.csv"
+    targets.write_text("x_mm,y_mm,z_mm\n50,-40,150\n")
+    runs = {
+        "map.csv": (["volumetric", "--machine", machine, "--grid", "X=0:190:95,Z=0:190:95"], ["x_mm", "z_mm", "ex_um", "ey_um", "ez_um", "e_um"]),
+        "diagonal.csv": (
+            ["diagonal", "--machine", machine, "--from", "X=0,Z=0", "--to", "X=190,Z=190", "--interferometer", module / "diagonal_laser.csv"],
+            ["x_mm", "z_mm", "nominal_mm", "measured_mm", "model_error_um", "E_BD_um", "E_AD_um"],
+        ),
+        "commands.csv": (["inverse", "--machine", machine, "--points", targets], ["x_mm", "y_mm", "z_mm", "x_command_mm", "z_command_mm"]),
+    }
+    for name, (args, columns) in runs.items():
+        status, _, err = run_cli(*args, "-o", tmp_path / name)
+        assert status == 0, err
+        assert list(pd.read_csv(tmp_path / name).columns) == columns
+        sidecar = json.loads((tmp_path / name).with_suffix(".json").read_text())
+        assert str(machine) in sidecar["sources"]
+
+
+def test_diagonal_text_and_sign(run_cli, module):
+    status, out, _ = run_cli(
+        "diagonal", "--machine", module / "machine.toml", "--from", "X=0,Z=0", "--to", "X=190,Z=190",
+        "--interferometer", module / "diagonal_laser.csv",
+    )
+    assert status == 0
+    lines = out.splitlines()
+    assert lines[0] == "diagonal of XZ linear module (paper 000): 20 points, length 268.701 mm"
+    assert lines[2] == "  E_BD (before model): P-V 56.42 um" and lines[3] == "  E_AD (after model):  P-V 11.08 um"
+    status, out, _ = run_cli("diagonal", "--machine", module / "machine.toml", "--from", "X=0,Z=0", "--to", "X=190,Z=190",
+                             "--interferometer", module / "diagonal_laser.csv", "--json")
+    points = json.loads(out)["points"]
+    # actual minus nominal: the laser reads short of nominal at the far end, so E_BD is negative there
+    assert points["measured_mm"][-1] < points["nominal_mm"][-1] and points["E_BD_um"][-1] < 0
+    assert points["E_BD_um"][-1] == pytest.approx((points["measured_mm"][-1] - points["nominal_mm"][-1]) * 1e3, abs=2e-3)
 
 
 def edit(path, old, new):

@@ -87,7 +87,8 @@ def test_laser_readings_agree_with_the_offline_diagonal_check():
     q = np.arange(20) * 0.01
     laser = module.laser_diagonal({"X": q, "Z": q.copy()})
     check = diagonal_check(module.machine, {"X": 0.0, "Z": 0.0}, {"X": 0.19, "Z": 0.19}, 19, measured_m=laser)
-    np.testing.assert_allclose(check.error_before_m, np.hypot(q, q) - laser, atol=1e-12)
+    # axiscal's E_BD is actual minus nominal (docs/conventions.md): eq (13)'s nominal - P, negated
+    np.testing.assert_allclose(check.error_before_m, laser - np.hypot(q, q), atol=1e-12)
     assert np.max(np.abs(check.error_after_m)) < 1e-9
 
 

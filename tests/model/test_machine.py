@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -236,38 +238,64 @@ def test_worked_example_of_docs_conventions():
     assert abs(error_um[1]) < 1e-3 and abs(error_um[2]) < 1e-2
 
 
-@pytest.mark.parametrize(
-    "term, chain, reference_chain",
-    [("EC0Y", "FYXZ", "FXYZ"), ("EC0Y", "XYFZ", "YXFZ"), ("EB0Z", "FZXY", "FXZY"), ("EA0Z", "FZYX", "FYZX")],
-)
-def test_relative_squareness_placement_keeps_the_included_angle(term, chain, reference_chain):
-    # With the contract's "guideway" placement, a term on an axis that carries its reference axis
-    # turns both (a rigid rotation); "relative" puts it on the carried axis with the opposite sign
-    # so the two axes' included angle is as named. Direction of each axis' motion is what counts:
-    # compare the error of unit moves along each axis with the chain where the reference is inner.
+#: every 3-axis chain: workpiece-side axes, F, tool-side axes
+ALL_CHAINS = ["".join(order[:cut]) + "F" + "".join(order[cut:]) for order in itertools.permutations("XYZ") for cut in range(4)]
+
+
+def linear_map(machine):
+    """Actual move of the tool relative to the workpiece per nominal move along X, Y, Z (columns)."""
+    positions = {k: np.array([0.0, *(0.1 * (k == m) for m in "XYZ")]) for k in "XYZ"}
+    nominal, actual = machine.nominal_point(positions), machine.actual_point(positions)
+    return (actual[1:] - actual[0]).T @ np.linalg.inv((nominal[1:] - nominal[0]).T)
+
+
+def included_angles(machine):
+    """Included angles (rad) between the positive directions of X-Y, X-Z and Y-Z as the machine moves."""
+    a = linear_map(machine)
+    unit = a / np.linalg.norm(a, axis=0)
+    return {pair: float(np.arccos(unit[:, "XYZ".index(pair[0])] @ unit[:, "XYZ".index(pair[1])])) for pair in ("XY", "XZ", "YZ")}
+
+
+def test_there_are_24_three_axis_chains():
+    assert len(set(ALL_CHAINS)) == 24
+    for chain in ALL_CHAINS:
+        parse_chain(chain)
+
+
+@pytest.mark.parametrize("chain", ALL_CHAINS)
+def test_default_placement_keeps_the_measured_included_angles(chain):
+    # docs/conventions.md, Squareness: angle(+X, +Y) = 90 deg + EC0Y, angle(+X, +Z) = 90 deg - EB0Z,
+    # angle(+Y, +Z) = 90 deg + EA0Z, whatever the chain; all three terms at once, to first order
+    terms = {"EC0Y": 30 * ARCSEC, "EB0Z": -42.4 * ARCSEC, "EA0Z": 12 * ARCSEC}
+    machine = Machine(chain, {k: Axis(k) for k in "XYZ"}, squareness_rad=terms)
+    assert machine.squareness_placement == "relative"
+    angles = included_angles(machine)
+    second_order = 3 * (42.4 * ARCSEC) ** 2
+    assert angles["XY"] - np.pi / 2 == pytest.approx(terms["EC0Y"], abs=second_order)
+    assert angles["XZ"] - np.pi / 2 == pytest.approx(-terms["EB0Z"], abs=second_order)
+    assert angles["YZ"] - np.pi / 2 == pytest.approx(terms["EA0Z"], abs=second_order)
+
+
+@pytest.mark.parametrize("chain", ALL_CHAINS)
+@pytest.mark.parametrize("term, pair", [("EC0Y", "XY"), ("EB0Z", "XZ"), ("EA0Z", "YZ")])
+def test_guideway_placement_loses_the_term_where_the_turned_axis_carries_its_reference(chain, term, pair):
+    # the "guideway" option turns the named axis' guideway; where that axis carries its reference
+    # axis in the same branch, both turn together and the included angle stays 90 degrees
     value = 1e-3
-    axes = {k: Axis(k) for k in "XYZ"}
-    guideway = Machine(chain, axes, squareness_rad={term: value})
-    relative = Machine(chain, axes, squareness_rad={term: value}, squareness_placement="relative")
-    plain = Machine(reference_chain, axes, squareness_rad={term: value})
-
-    def directions(machine):
-        out = []
-        for letter in "XYZ":
-            q = {k: np.array([0.1 if k == letter else 0.0]) for k in "XYZ"}
-            out.append(machine.actual_point(q)[0] - machine.actual_point({k: np.zeros(1) for k in "XYZ"})[0])
-        return np.array(out)
-
-    def included(d, a, b):
-        i, j = "XYZ".index(a), "XYZ".index(b)
-        return np.degrees(np.arccos(d[i] @ d[j] / np.linalg.norm(d[i]) / np.linalg.norm(d[j])))
-
-    pair = {"EC0Y": ("X", "Y"), "EB0Z": ("X", "Z"), "EA0Z": ("Y", "Z")}[term]
-    assert included(directions(guideway), *pair) == pytest.approx(90.0, abs=1e-9)
-    assert included(directions(relative), *pair) == pytest.approx(included(directions(plain), *pair), abs=1e-9)
-    assert abs(included(directions(relative), *pair) - 90.0) > 0.05
+    guideway = Machine(chain, {k: Axis(k) for k in "XYZ"}, squareness_rad={term: value}, squareness_placement="guideway")
+    relative = Machine(chain, {k: Axis(k) for k in "XYZ"}, squareness_rad={term: value})
+    turned, reference = {"EC0Y": ("Y", "X"), "EB0Z": ("Z", "X"), "EA0Z": ("Z", "Y")}[term]
+    workpiece_side, tool_side = parse_chain(chain)
+    carries = any(
+        turned in branch and reference in branch and branch.index(turned) < branch.index(reference)
+        for branch in (workpiece_side, tool_side)
+    )
+    lost = included_angles(guideway)[pair] == pytest.approx(np.pi / 2, abs=1e-12)
+    assert lost == carries
+    if not carries:
+        np.testing.assert_allclose(linear_map(guideway), linear_map(relative), atol=1e-15)
     with pytest.raises(AxiscalError, match="unknown squareness placement"):
-        Machine(chain, axes, squareness_placement="sideways")
+        Machine(chain, {k: Axis(k) for k in "XYZ"}, squareness_placement="sideways")
 
 
 def test_error_motions_given_per_point_equal_the_tables():
@@ -279,3 +307,19 @@ def test_error_motions_given_per_point_equal_the_tables():
         np.testing.assert_array_equal(machine.volumetric_error(q, errors=given), machine.volumetric_error(q))
     with pytest.raises(AxiscalError, match=r"errors of axis Z must have shape \(6, 150000\)"):
         machine.volumetric_error(q, errors={k: v for k, v in given.items() if k != "Z"})
+
+
+def test_machine_file_placement_defaults_to_relative(tmp_path):
+    from axiscal.model.machine import machine_from_dict
+
+    for letter in "XYZ":
+        (tmp_path / f"{letter}.csv").write_text(f"position_mm,E{letter}{letter}_um\n-1000,0\n1000,0\n")
+    axes = {k: {"errors": f"{k}.csv"} for k in "XYZ"}
+    data = {"chain": "FYXZ", "axes": axes, "squareness": {"EC0Y_arcsec": 20.0}}
+    machine = machine_from_dict(data, base_dir=tmp_path)
+    assert machine.squareness_placement == "relative"
+    assert included_angles(machine)["XY"] - np.pi / 2 == pytest.approx(20 * ARCSEC, rel=1e-6)
+    guideway = machine_from_dict(data | {"squareness_placement": "guideway"}, base_dir=tmp_path)
+    assert included_angles(guideway)["XY"] == pytest.approx(np.pi / 2, abs=1e-12)
+    with pytest.raises(AxiscalError, match="machine.toml: unknown squareness placement 'sideways'"):
+        machine_from_dict(data | {"squareness_placement": "sideways"}, base_dir=tmp_path, source="machine.toml")

@@ -103,9 +103,11 @@ def test_eq_6_agrees_with_every_chain_up_to_a_rigid_rotation(chain):
     relative = Machine(chain, {k: Axis(k) for k in "XYZ"}, squareness_rad=small.iso(), squareness_placement="relative")
     a = _linear_map(relative)
     np.testing.assert_allclose(a.T @ a, c.T @ c, atol=second_order)
-    # the default "guideway" placement agrees where the turned axis never carries its reference
-    # axis in the same branch (docs/conventions.md, "Caveat of that placement")
-    guideway = _linear_map(Machine(chain, {k: Axis(k) for k in "XYZ"}, squareness_rad=small.iso()))
+    # the "guideway" placement agrees where the turned axis never carries its reference axis in
+    # the same branch (docs/conventions.md, Squareness)
+    guideway = _linear_map(
+        Machine(chain, {k: Axis(k) for k in "XYZ"}, squareness_rad=small.iso(), squareness_placement="guideway")
+    )
     carries = any(
         branch.index(turned) < branch.index(reference)
         for branch in (chain.split("F")[0][::-1], chain.split("F")[1])

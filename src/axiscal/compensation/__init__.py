@@ -9,7 +9,7 @@ from axiscal.compensation.formats import (
     CompensationResult,
     compensation_table,
 )
-from axiscal.compensation.fanuc import FanucTable, fanuc_table
+from axiscal.compensation.fanuc import MAX_AXIS_NUMBER, FanucTable, fanuc_table
 from axiscal.compensation.heidenhain import (
     HEIDENHAIN_MAX_ENTRIES,
     HeidenhainTable,
@@ -32,6 +32,7 @@ __all__ = [
     "LinuxcncTable",
     "linuxcnc_table",
     "parse_linuxcnc",
+    "MAX_AXIS_NUMBER",
     "FanucTable",
     "fanuc_table",
     "SiemensTable",

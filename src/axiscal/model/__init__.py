@@ -1,13 +1,24 @@
-"""The machine model: per-axis error tables, the homogeneous-transformation chain, the machine, diagonal tests and the volumetric map (paper 000)."""
+"""The machine model: per-axis error tables, the homogeneous-transformation chain, the machine, diagonal tests, the volumetric map and compensated commands (paper 000)."""
 
 from __future__ import annotations
 
 from axiscal.model.diagonal import (
+    DEFAULT_STEPS,
     MEASURES,
     DiagonalResult,
     diagonal_check,
     diagonal_positions,
+    diagonal_test,
 )
+from axiscal.model.inputs import (
+    READING_TOLERANCE_M,
+    check_travel,
+    parse_point,
+    read_interferometer,
+    read_points,
+    read_targets,
+)
+from axiscal.model.inverse import InverseResult, inverse_commands
 from axiscal.model.kinematics import (
     ChainLink,
     error_matrix,
@@ -20,12 +31,14 @@ from axiscal.model.machine import (
     SQUARENESS_PLACEMENTS,
     Axis,
     Machine,
+    as_machine,
     axis_positions_from_grid,
     load_machine,
     machine_from_dict,
     parse_chain,
     positions_from_points,
 )
+from axiscal.model.output import SIGN_CONVENTION, TableResult, render_template, table_text, write_table
 from axiscal.model.plot import (
     plot_diagonal,
     plot_diagonal_experiment,
@@ -33,6 +46,7 @@ from axiscal.model.plot import (
     plot_volumetric,
 )
 from axiscal.model.tables import INTERPOLATIONS, ErrorTable, read_error_table
+from axiscal.model.volumetric import VolumetricMap, volumetric_map
 
 __all__ = [
     "INTERPOLATIONS",
@@ -50,12 +64,30 @@ __all__ = [
     "Machine",
     "machine_from_dict",
     "load_machine",
+    "as_machine",
     "axis_positions_from_grid",
     "positions_from_points",
+    "READING_TOLERANCE_M",
+    "read_points",
+    "check_travel",
+    "parse_point",
+    "read_targets",
+    "read_interferometer",
+    "SIGN_CONVENTION",
+    "table_text",
+    "write_table",
+    "TableResult",
+    "render_template",
+    "VolumetricMap",
+    "volumetric_map",
     "MEASURES",
+    "DEFAULT_STEPS",
     "DiagonalResult",
     "diagonal_positions",
     "diagonal_check",
+    "diagonal_test",
+    "InverseResult",
+    "inverse_commands",
     "plot_error_tables",
     "plot_volumetric",
     "plot_diagonal",

@@ -8,7 +8,10 @@ Each axis k contributes ``A_k(q) = M_k · Trans(o_k) · Trans(q · u_k) · E_k(q
 - ``Trans(q · u_k)``: the nominal motion along the axis letter;
 - ``Trans(o_k)``: the origin of the carriage frame at q = 0 in its parent's frame;
 - ``M_k``: the squareness of the axis' guideway, ``I + [s]x`` in the same first-order form as
-  paper 000 eq (8): ``s = (0, 0, EC0Y)`` for Y, ``s = (EA0Z, EB0Z, 0)`` for Z, identity for X.
+  paper 000 eq (8). :class:`axiscal.model.machine.Machine` fills ``s`` so that each measured
+  squareness term is the included angle between its two axes: ``s = (0, 0, EC0Y)`` for Y,
+  ``s = (EA0Z, EB0Z, 0)`` for Z, identity for X, except where the turned axis carries its
+  reference axis (then the reference axis gets the opposite rotation; docs/conventions.md).
 
 The tool branch (axes right of F, from the frame outward) gives ``T_tool = Π A_k · Trans(tool)``,
 the workpiece branch (axes left of F, read from F outward) ``T_wp = Π A_k · Trans(workpiece)``.
@@ -45,7 +48,16 @@ __all__ = [
 class ChainLink:
     """One linear axis in a kinematic chain (SI units).
 
-    ``squareness_rad`` is the rotation vector ``s`` of ``M_k = I + [s]x``.
+    Parameters
+    ----------
+    letter : str
+        X, Y or Z.
+    table : ErrorTable
+        Its six error motions.
+    origin_m : ndarray, shape (3,)
+        Origin of the carriage frame at position 0 in its parent's frame, metres.
+    squareness_rad : ndarray, shape (3,)
+        The rotation vector ``s`` of ``M_k = I + [s]x``, radians.
     """
 
     letter: str
@@ -55,6 +67,7 @@ class ChainLink:
 
     @property
     def index(self) -> int:
+        """0, 1 or 2: the coordinate the axis moves along."""
         return AXIS_INDEX[self.letter]
 
 
@@ -101,6 +114,11 @@ def volumetric_error(
     -------
     ndarray, shape (N, 3)
         Volumetric error (ex, ey, ez), metres.
+
+    Raises
+    ------
+    AxiscalError
+        A position outside an error table (unless it holds its ends).
     """
     n = len(next(iter(positions_m.values())))
     px = np.full(n, float(tool_m[0]))
@@ -141,21 +159,63 @@ def volumetric_error(
 
 
 def translation_matrix(t: Sequence[float]) -> np.ndarray:
-    """4x4 homogeneous translation."""
+    """4x4 homogeneous translation.
+
+    Parameters
+    ----------
+    t : sequence of 3 floats
+        Translation, metres.
+
+    Returns
+    -------
+    ndarray, shape (4, 4)
+    """
     m = np.eye(4)
     m[:3, 3] = t
     return m
 
 
 def error_matrix(tx: float, ty: float, tz: float, ea: float, eb: float, ec: float) -> np.ndarray:
-    """The 4x4 error matrix of paper 000 eq (6)."""
+    """The 4x4 error matrix of paper 000 eq (6).
+
+    Parameters
+    ----------
+    tx, ty, tz : float
+        Translation errors, metres.
+    ea, eb, ec : float
+        Rotation errors about X, Y, Z, radians.
+
+    Returns
+    -------
+    ndarray, shape (4, 4)
+        Rotation part ``I + [eps]x`` (first order, as the paper writes it), translation ``t``.
+    """
     return np.array(
         [[1.0, -ec, eb, tx], [ec, 1.0, -ea, ty], [-eb, ea, 1.0, tz], [0.0, 0.0, 0.0, 1.0]],
     )
 
 
 def link_matrix(link: ChainLink, q: float, *, with_errors: bool = True) -> np.ndarray:
-    """``A_k(q)`` as a 4x4 matrix (``with_errors=False``: the nominal ``Trans(o_k + q u_k)``)."""
+    """``A_k(q)`` of the module docstring as a 4x4 matrix.
+
+    Parameters
+    ----------
+    link : ChainLink
+        The axis.
+    q : float
+        Its position, metres.
+    with_errors : bool
+        False: the nominal ``Trans(o_k + q u_k)``.
+
+    Returns
+    -------
+    ndarray, shape (4, 4)
+
+    Raises
+    ------
+    AxiscalError
+        A position outside the axis' table (unless it holds its ends).
+    """
     u = np.zeros(3)
     u[link.index] = 1.0
     if not with_errors:
@@ -173,7 +233,23 @@ def reference_volumetric_error(
     workpiece_m: np.ndarray,
     positions_m: dict[str, np.ndarray],
 ) -> np.ndarray:
-    """Plain per-point product of 4x4 matrices: the reference :func:`volumetric_error` is tested against."""
+    """Plain per-point product of 4x4 matrices: the reference :func:`volumetric_error` is tested against.
+
+    Parameters
+    ----------
+    tool_links, workpiece_links, tool_m, workpiece_m, positions_m
+        As :func:`volumetric_error`.
+
+    Returns
+    -------
+    ndarray, shape (N, 3)
+        Volumetric error, metres.
+
+    Raises
+    ------
+    AxiscalError
+        A position outside an error table (unless it holds its ends).
+    """
     n = len(next(iter(positions_m.values())))
     out = np.empty((n, 3))
     for i in range(n):

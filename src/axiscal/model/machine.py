@@ -26,7 +26,7 @@ from axiscal.model.kinematics import (
     volumetric_error,
 )
 from axiscal.model.tables import ErrorTable, read_error_table
-from axiscal.units import angle_factor, split_unit
+from axiscal.units import LENGTH_UNITS, MM, angle_factor, split_unit
 
 __all__ = [
     "SQUARENESS_PLACEMENTS",
@@ -35,6 +35,7 @@ __all__ = [
     "Machine",
     "machine_from_dict",
     "load_machine",
+    "as_machine",
     "axis_positions_from_grid",
     "positions_from_points",
 ]
@@ -42,12 +43,23 @@ __all__ = [
 _CHUNK = 65536
 #: squareness term -> (axis whose guideway it turns, reference axis, index of the rotation vector component)
 _SQUARENESS_PLACE = {"EC0Y": ("Y", "X", 2), "EB0Z": ("Z", "X", 1), "EA0Z": ("Z", "Y", 0)}
-SQUARENESS_PLACEMENTS = ("guideway", "relative")
+#: where a squareness term sits in the chain; the first is the default (docs/conventions.md)
+SQUARENESS_PLACEMENTS = ("relative", "guideway")
 
 
 @dataclass(frozen=True)
 class Axis:
-    """One linear axis: its letter, error table (None: an ideal axis) and carriage origin (m)."""
+    """One linear axis of a machine: its letter, error table and carriage origin.
+
+    Parameters
+    ----------
+    letter : str
+        X, Y or Z.
+    table : ErrorTable, optional
+        Its six error motions; None (default) for an ideal axis.
+    origin_m : tuple of 3 floats
+        Origin of the carriage frame at position 0 in its parent's frame, metres.
+    """
 
     letter: str
     table: ErrorTable | None = None
@@ -55,8 +67,26 @@ class Axis:
 
 
 def parse_chain(chain: str) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """Split a chain such as ``"XFYZ"`` into (workpiece branch from F outward, tool branch from F outward).
+    """Split a kinematic chain into its workpiece-side and tool-side axes (ISO 10791 notation).
 
+    Parameters
+    ----------
+    chain : str
+        Workpiece-side axes, ``F`` (the frame), tool-side axes, e.g. ``"XFYZ"``; 1 to 3 of the
+        letters X, Y, Z, each at most once (case and surrounding blanks are ignored).
+
+    Returns
+    -------
+    workpiece_side, tool_side : tuple of str
+        Each branch ordered from the frame outward.
+
+    Raises
+    ------
+    AxiscalError
+        No or several ``F``, a letter that is not X, Y or Z, an axis named twice, or no axis.
+
+    Examples
+    --------
     >>> parse_chain("YXFZ")
     (('X', 'Y'), ('Z',))
     """
@@ -91,14 +121,28 @@ class Machine:
         Functional point in the frame of the last tool-side carriage, metres.
     workpiece_m : sequence of 3 floats
         Point of the workpiece frame the error is measured from, metres.
-    squareness_placement : {"guideway", "relative"}
-        ``"guideway"`` (default, the contract of :mod:`axiscal.model.kinematics`): each term turns the
-        guideway of the axis it names (EC0Y: Y; EB0Z, EA0Z: Z). When that axis carries its reference
-        axis in the same branch (chains such as ``"FYXZ"`` or ``"XYFZ"``, where Y carries X), the
-        reference axis turns with it and the term becomes a rigid rotation of both.
-        ``"relative"``: in that case the term is put on the carried reference axis with the
-        opposite sign instead, so that the included angle between the two axes is the one the
-        term names (docs/conventions.md); other chains are unchanged.
+    squareness_placement : {"relative", "guideway"}
+        A squareness term is what was measured: the included angle between two axes
+        (docs/conventions.md). ``"relative"`` (default) keeps that angle in every chain: the term
+        turns the guideway of the axis it names (EC0Y: Y; EB0Z, EA0Z: Z), except where that axis
+        carries its reference axis in the same branch (``"FYXZ"``, ``"XYFZ"``: Y carries X); there
+        it turns the carried reference axis by the opposite angle. ``"guideway"`` always turns the
+        named axis' guideway; where it carries its reference axis, both turn together and the
+        term is lost (a rigid rotation; the included angle stays 90 degrees).
+    name : str
+        Free text for reports and titles.
+
+    Raises
+    ------
+    AxiscalError
+        An axis of the chain without a description or a description not in the chain, an
+        unknown squareness term or placement, a non-finite value, or a table of the wrong axis.
+
+    Examples
+    --------
+    >>> machine = Machine("FXZ", {"X": Axis("X"), "Z": Axis("Z")}, squareness_rad={"EB0Z": 1e-4})
+    >>> machine.volumetric_error({"X": [0.0], "Z": [0.1]}).round(9).tolist()
+    [[1e-05, 0.0, 0.0]]
     """
 
     chain: str
@@ -107,7 +151,7 @@ class Machine:
     tool_m: tuple[float, float, float] = (0.0, 0.0, 0.0)
     workpiece_m: tuple[float, float, float] = (0.0, 0.0, 0.0)
     name: str = ""
-    squareness_placement: str = "guideway"
+    squareness_placement: str = "relative"
 
     def __post_init__(self) -> None:
         workpiece_side, tool_side = parse_chain(self.chain)
@@ -164,21 +208,54 @@ class Machine:
 
     @property
     def tool_side(self) -> tuple[str, ...]:
+        """Tool-side axis letters, from the frame outward."""
         return tuple(link.letter for link in self._tool_links)
 
     @property
     def workpiece_side(self) -> tuple[str, ...]:
+        """Workpiece-side axis letters, from the frame outward."""
         return tuple(link.letter for link in self._workpiece_links)
 
     def table(self, letter: str) -> ErrorTable:
-        """The error table used for axis ``letter`` (zeros for an ideal axis)."""
+        """The error table used for axis ``letter`` (zeros for an ideal axis).
+
+        Parameters
+        ----------
+        letter : str
+            An axis of the chain.
+
+        Returns
+        -------
+        ErrorTable
+
+        Raises
+        ------
+        AxiscalError
+            If the axis is not in the chain.
+        """
         for link in self._workpiece_links + self._tool_links:
             if link.letter == letter:
                 return link.table
         raise AxiscalError(f"axis {letter} is not in chain '{self.chain}'")
 
     def travel_m(self, letter: str) -> tuple[float, float]:
-        """(start, end) of the error table of axis ``letter``, metres."""
+        """Travel covered by the error table of axis ``letter``.
+
+        Parameters
+        ----------
+        letter : str
+            An axis of the chain.
+
+        Returns
+        -------
+        (float, float)
+            First and last position of the table, metres.
+
+        Raises
+        ------
+        AxiscalError
+            If the axis is not in the chain.
+        """
         table = self.table(letter)
         return table.start_m, table.end_m
 
@@ -200,7 +277,23 @@ class Machine:
         return out
 
     def nominal_point(self, positions: Mapping[str, np.ndarray]) -> np.ndarray:
-        """Nominal tool point relative to the workpiece point, in the workpiece frame: (N, 3), m."""
+        """Nominal tool point relative to the workpiece point, in the workpiece frame.
+
+        Parameters
+        ----------
+        positions : mapping of str to ndarray, shape (N,)
+            Position of every axis of the chain, metres.
+
+        Returns
+        -------
+        ndarray, shape (N, 3)
+            Metres.
+
+        Raises
+        ------
+        AxiscalError
+            A missing axis, non-finite positions or axes of different lengths.
+        """
         q = self._positions(positions)
         n = len(next(iter(q.values())))
         p = np.tile(np.subtract(self.tool_m, self.workpiece_m), (n, 1))
@@ -236,6 +329,17 @@ class Machine:
         -------
         ndarray, shape (N, 3)
             Actual minus nominal tool point relative to the workpiece, in the workpiece frame, m.
+
+        Raises
+        ------
+        AxiscalError
+            A missing axis, non-finite positions, axes of different lengths, a position outside
+            an error table (unless it holds its ends), or ``errors`` of the wrong shape.
+
+        Examples
+        --------
+        >>> machine = load_machine("examples/xz_module/machine.toml")  # doctest: +SKIP
+        >>> machine.volumetric_error({"X": [0.1], "Z": [0.19]})  # (1, 3), metres  # doctest: +SKIP
         """
         q = self._positions(positions)
         n = len(next(iter(q.values())))
@@ -271,14 +375,46 @@ class Machine:
         return out
 
     def reference_volumetric_error(self, positions: Mapping[str, np.ndarray]) -> np.ndarray:
-        """The same by a plain per-point loop of 4x4 matrix products (slow; for checks)."""
+        """:meth:`volumetric_error` by a plain per-point loop of 4x4 matrix products (slow; for checks).
+
+        Parameters
+        ----------
+        positions : mapping of str to ndarray, shape (N,)
+            Position of every axis of the chain, metres.
+
+        Returns
+        -------
+        ndarray, shape (N, 3)
+            Volumetric error, metres.
+
+        Raises
+        ------
+        AxiscalError
+            As :meth:`volumetric_error`.
+        """
         q = self._positions(positions)
         return reference_volumetric_error(
             self._tool_links, self._workpiece_links, np.array(self.tool_m), np.array(self.workpiece_m), q
         )
 
     def actual_point(self, positions: Mapping[str, np.ndarray]) -> np.ndarray:
-        """Where the tool point really is relative to the workpiece point: nominal + error, (N, 3), m."""
+        """Where the tool point really is relative to the workpiece point: nominal plus volumetric error.
+
+        Parameters
+        ----------
+        positions : mapping of str to ndarray, shape (N,)
+            Position of every axis of the chain, metres.
+
+        Returns
+        -------
+        ndarray, shape (N, 3)
+            In the workpiece frame, metres.
+
+        Raises
+        ------
+        AxiscalError
+            As :meth:`volumetric_error`.
+        """
         return self.nominal_point(positions) + self.volumetric_error(positions)
 
     def command_for(
@@ -295,11 +431,26 @@ class Machine:
         ----------
         target_m : ndarray, shape (N, 3) or (3,)
             Wanted tool points relative to the workpiece point, in the workpiece frame, metres.
+        tolerance_m : float
+            Largest miss accepted along each axis, metres.
+        max_iterations : int
+            Iterations before giving up.
 
         Returns
         -------
         dict of str to ndarray, shape (N,)
             Commanded position of every axis, metres.
+
+        Raises
+        ------
+        AxiscalError
+            Targets that are not finite or not of shape (N, 3), commands outside an error table,
+            or no convergence within ``max_iterations``.
+
+        Examples
+        --------
+        >>> command = machine.command_for(machine.actual_point({"X": [0.1], "Z": [0.05]}))  # doctest: +SKIP
+        >>> command["X"]  # array([0.1]) to better than 1e-12 m  # doctest: +SKIP
         """
         target = np.atleast_2d(np.asarray(target_m, dtype=float))
         if target.shape[1:] != (3,) or not np.all(np.isfinite(target)):
@@ -314,7 +465,7 @@ class Machine:
             if worst <= tolerance_m:
                 return command
             command = {k: command[k] - sign[k] * miss[:, AXIS_INDEX[k]] for k in self.letters}
-        raise AxiscalError(f"inverse kinematics did not converge (miss {worst * 1e9:.3g} nm)")
+        raise AxiscalError(f"inverse kinematics did not converge (miss {worst / LENGTH_UNITS['nm']:.3g} nm)")
 
 
 _MACHINE_KEYS = {
@@ -326,11 +477,31 @@ _AXIS_KEYS = {"errors", "origin_mm", "interpolation", "hold_ends", "sensors"}
 def _vector_mm(value: object, what: str) -> tuple[float, float, float]:
     if not (isinstance(value, list) and len(value) == 3 and all(isinstance(v, (int, float)) for v in value)):
         raise AxiscalError(f"{what} must be a list of 3 numbers in mm, e.g. [0.0, -40.0, 0.0]")
-    return tuple(float(v) * 1e-3 for v in value)  # type: ignore[return-value]
+    return tuple(float(v) * MM for v in value)  # type: ignore[return-value]
 
 
 def machine_from_dict(data: Mapping, *, base_dir: Path = Path("."), source: str = "<machine>") -> Machine:
-    """Build a :class:`Machine` from the parsed TOML description (docs/formats.md)."""
+    """Build a :class:`Machine` from the parsed TOML description (docs/formats.md).
+
+    Parameters
+    ----------
+    data : mapping
+        The parsed TOML (lengths in mm, angles with their unit in the key).
+    base_dir : Path
+        Folder the error table paths are relative to.
+    source : str
+        Name of the description in error messages (its file).
+
+    Returns
+    -------
+    Machine
+
+    Raises
+    ------
+    AxiscalError
+        Unknown keys, a missing chain or axis section, a bad error table or squareness entry;
+        the message names ``source`` (or the table file and line).
+    """
     try:
         unknown = sorted(set(data) - _MACHINE_KEYS)
         if unknown:
@@ -381,21 +552,85 @@ def machine_from_dict(data: Mapping, *, base_dir: Path = Path("."), source: str 
             tool_m=_vector_mm(data.get("tool_mm", [0.0, 0.0, 0.0]), "tool_mm"),
             workpiece_m=_vector_mm(data.get("workpiece_mm", [0.0, 0.0, 0.0]), "workpiece_mm"),
             name=str(data.get("name", "")),
-            squareness_placement=str(data.get("squareness_placement", "guideway")),
+            squareness_placement=str(data.get("squareness_placement", SQUARENESS_PLACEMENTS[0])),
         )
     except AxiscalError as exc:
         raise exc.located(path=source) from None
 
 
 def load_machine(path: str | Path) -> Machine:
-    """Read a machine description (TOML, docs/formats.md); error tables are relative to the file."""
+    """Read a machine description (TOML, docs/formats.md) and its error tables.
+
+    Parameters
+    ----------
+    path : str or Path
+        The TOML file; the error table paths in it are relative to its folder.
+
+    Returns
+    -------
+    Machine
+        SI units throughout; the squareness placement is ``"relative"`` unless the file says otherwise.
+
+    Raises
+    ------
+    AxiscalError
+        A missing or malformed file, naming the file and, where known, the line.
+
+    Examples
+    --------
+    >>> machine = load_machine("examples/xz_module/machine.toml")  # doctest: +SKIP
+    >>> machine.chain  # doctest: +SKIP
+    'FXZ'
+    """
     path = Path(path)
     data = read_toml(path)
     return machine_from_dict(data, base_dir=path.parent, source=str(path))
 
 
+def as_machine(machine: Machine | str | Path) -> Machine:
+    """``machine`` itself, or the machine its description file describes.
+
+    Parameters
+    ----------
+    machine : Machine, str or Path
+        A machine, or the path of its TOML description.
+
+    Returns
+    -------
+    Machine
+
+    Raises
+    ------
+    AxiscalError
+        If the file is missing or malformed (see :func:`load_machine`).
+    """
+    return machine if isinstance(machine, Machine) else load_machine(machine)
+
+
 def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
-    """Parse ``"X=0:190:10,Z=0:190:10"`` (mm, inclusive ends) into a full grid of positions in metres."""
+    """Every combination of axis positions a grid specification names.
+
+    Parameters
+    ----------
+    spec : str
+        ``"X=0:190:10,Z=0:190:10"``: per axis ``start:end:step`` in mm (ends inclusive) or a single
+        value ``"Y=50"``.
+
+    Returns
+    -------
+    dict of str to ndarray, shape (N,)
+        Position of each named axis, metres, N the product of the axes' counts.
+
+    Raises
+    ------
+    AxiscalError
+        A part that is not of that form, an axis named twice, ``end < start`` or ``step <= 0``.
+
+    Examples
+    --------
+    >>> {k: v.tolist() for k, v in axis_positions_from_grid("X=0:20:10,Z=5").items()}
+    {'X': [0.0, 0.01, 0.02], 'Z': [0.005, 0.005, 0.005]}
+    """
     ranges: dict[str, np.ndarray] = {}
     for part in spec.split(","):
         letter, sep, rng = part.partition("=")
@@ -418,10 +653,21 @@ def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
         count = int(np.floor((end - start) / step + 1e-9)) + 1
         ranges[letter] = start + step * np.arange(count)
     mesh = np.meshgrid(*ranges.values(), indexing="ij")
-    return {letter: grid.ravel() * 1e-3 for letter, grid in zip(ranges, mesh)}
+    return {letter: grid.ravel() * MM for letter, grid in zip(ranges, mesh)}
 
 
 def positions_from_points(sequence: Sequence[Mapping[str, float]]) -> dict[str, np.ndarray]:
-    """Turn a list of ``{"X": m, ...}`` points into arrays per axis."""
+    """Turn a list of points into arrays per axis.
+
+    Parameters
+    ----------
+    sequence : sequence of mapping of str to float
+        Points such as ``{"X": 0.1, "Z": 0.05}`` (metres), all naming the same axes.
+
+    Returns
+    -------
+    dict of str to ndarray, shape (N,)
+        Metres.
+    """
     letters = list(sequence[0]) if sequence else []
     return {k: np.array([p[k] for p in sequence], dtype=float) for k in letters}

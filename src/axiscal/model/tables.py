@@ -19,7 +19,7 @@ import numpy as np
 from axiscal.conventions import component_names
 from axiscal.errors import AxiscalError
 from axiscal.io.tabular import CsvTable, read_csv
-from axiscal.units import angle_factor, length_factor, split_unit
+from axiscal.units import MM, angle_factor, length_factor, split_unit
 
 __all__ = ["INTERPOLATIONS", "ErrorTable", "read_error_table"]
 
@@ -43,6 +43,18 @@ class ErrorTable:
         Between rows: linear (default) or a not-a-knot cubic spline.
     hold_ends : bool
         Outside the table, hold the end values instead of raising (default False).
+
+    Raises
+    ------
+    AxiscalError
+        An unknown axis letter or interpolation, values of the wrong shape, fewer than 2 rows,
+        non-finite values, or positions not strictly increasing.
+
+    Examples
+    --------
+    >>> table = ErrorTable.from_components("X", [0.0, 0.2], {"EXX": [0.0, 4e-6]})
+    >>> table.evaluate([0.1])[0].tolist()  # EXX at X = 100 mm, metres
+    [2e-06]
     """
 
     letter: str
@@ -95,14 +107,47 @@ class ErrorTable:
 
     @classmethod
     def zeros(cls, letter: str, start_m: float = -1e3, end_m: float = 1e3) -> "ErrorTable":
-        """An ideal axis: all six error motions zero over ``start_m..end_m``."""
+        """An ideal axis: all six error motions zero, holding its ends.
+
+        Parameters
+        ----------
+        letter : str
+            X, Y or Z.
+        start_m, end_m : float
+            Range of the table, metres.
+
+        Returns
+        -------
+        ErrorTable
+        """
         return cls(letter, np.array([start_m, end_m]), np.zeros((6, 2)), hold_ends=True)
 
     @classmethod
     def from_components(
         cls, letter: str, position_m: np.ndarray, components: Mapping[str, np.ndarray], **options
     ) -> "ErrorTable":
-        """Build from a mapping of ISO names (``{"EXX": ..., "ECX": ...}``, SI); missing ones are zero."""
+        """Build a table from its components by ISO 230-1 name; missing components are zero.
+
+        Parameters
+        ----------
+        letter : str
+            X, Y or Z.
+        position_m : ndarray, shape (n,)
+            Strictly increasing positions, metres.
+        components : mapping of str to ndarray, shape (n,)
+            ``{"EXX": ..., "ECX": ...}``: translations in metres, rotations in radians.
+        **options
+            ``interpolation``, ``hold_ends`` (see the class).
+
+        Returns
+        -------
+        ErrorTable
+
+        Raises
+        ------
+        AxiscalError
+            A name that is not a component of the axis, or any reason of the class.
+        """
         names = component_names(letter)
         unknown = set(components) - set(names)
         if unknown:
@@ -116,41 +161,101 @@ class ErrorTable:
 
     @property
     def names(self) -> tuple[str, ...]:
+        """ISO 230-1 names of the six rows (for X: EXX, EYX, EZX, EAX, EBX, ECX)."""
         return component_names(self.letter)
 
     @property
     def start_m(self) -> float:
+        """First position of the table, metres."""
         return float(self.position_m[0])
 
     @property
     def end_m(self) -> float:
+        """Last position of the table, metres."""
         return float(self.position_m[-1])
 
     def component(self, name: str) -> np.ndarray:
-        """The sampled values of one component by ISO name, SI."""
+        """The sampled values of one component.
+
+        Parameters
+        ----------
+        name : str
+            ISO 230-1 name, e.g. ``"EBX"``.
+
+        Returns
+        -------
+        ndarray, shape (n,)
+            Metres or radians.
+
+        Raises
+        ------
+        ValueError
+            If ``name`` is not a component of this axis.
+        """
         return self.values[self.names.index(name)]
 
     def first_outside(self, q_m: np.ndarray) -> int | None:
-        """Index of the first position outside the table, or None (always None with ``hold_ends``)."""
+        """Index of the first position outside the table.
+
+        Parameters
+        ----------
+        q_m : ndarray, shape (N,)
+            Positions, metres.
+
+        Returns
+        -------
+        int or None
+            None when all are inside (always None with ``hold_ends``).
+        """
         if self.hold_ends:
             return None
         outside = (q_m < self.start_m) | (q_m > self.end_m)
         return int(np.argmax(outside)) if np.any(outside) else None
 
     def check_range(self, q_m: np.ndarray, *, path: str | None = None, lines: Sequence[int] | None = None) -> None:
-        """Raise naming the first position outside the table (unless ``hold_ends``), and its line
-        when the positions came from a file (``lines[k]`` is the line of position k)."""
+        """Raise naming the first position outside the table (unless ``hold_ends``).
+
+        Parameters
+        ----------
+        q_m : ndarray, shape (N,)
+            Positions, metres.
+        path : str, optional
+            Where the positions came from, for the message.
+        lines : sequence of int, optional
+            ``lines[k]`` is the file line of position k.
+
+        Raises
+        ------
+        AxiscalError
+            ``"X = 200 mm is outside the error table of axis X (0 to 190 mm)"``.
+        """
         k = self.first_outside(q_m)
         if k is not None:
             raise AxiscalError(
-                f"{self.letter} = {q_m[k] * 1e3:.6g} mm is outside the error table of axis {self.letter} "
-                f"({self.start_m * 1e3:.6g} to {self.end_m * 1e3:.6g} mm)",
+                f"{self.letter} = {q_m[k] / MM:.6g} mm is outside the error table of axis {self.letter} "
+                f"({self.start_m / MM:.6g} to {self.end_m / MM:.6g} mm)",
                 path=path,
                 line=lines[k] if lines else None,
             )
 
     def evaluate(self, q_m: np.ndarray) -> np.ndarray:
-        """The six error motions at positions ``q_m`` (shape (N,)): ndarray of shape (6, N), SI."""
+        """The six error motions at given positions, interpolated.
+
+        Parameters
+        ----------
+        q_m : ndarray, shape (N,)
+            Positions, metres.
+
+        Returns
+        -------
+        ndarray, shape (6, N)
+            Rows tx, ty, tz (metres) and ea, eb, ec (radians).
+
+        Raises
+        ------
+        AxiscalError
+            A position outside the table (unless ``hold_ends``).
+        """
         q = np.asarray(q_m, dtype=float)
         self.check_range(q)
         q = np.clip(q, self.start_m, self.end_m)
@@ -173,7 +278,36 @@ class ErrorTable:
 def read_error_table(
     path: str | Path, letter: str, *, interpolation: str = "linear", hold_ends: bool = False
 ) -> ErrorTable:
-    """Read an error-table CSV for axis ``letter`` (format in the module docstring)."""
+    """Read the error table of one axis from a CSV file (docs/formats.md).
+
+    Parameters
+    ----------
+    path : str or Path
+        CSV: ``position_mm`` first, strictly increasing, then any of the axis' six components
+        with a unit suffix (``EXX_um``, ``EBX_arcsec``, ...); missing components are zero.
+    letter : str
+        The axis, X, Y or Z.
+    interpolation : {"linear", "cubic"}
+        Between rows.
+    hold_ends : bool
+        Hold the end values outside the table instead of raising.
+
+    Returns
+    -------
+    ErrorTable
+        SI units.
+
+    Raises
+    ------
+    AxiscalError
+        A missing file, an unknown or repeated column, an unknown unit, a bad cell or positions
+        not strictly increasing, naming the file and the line.
+
+    Examples
+    --------
+    >>> table = read_error_table("examples/xz_module/x_errors.csv", "X")  # doctest: +SKIP
+    >>> table.component("EXX")  # metres  # doctest: +SKIP
+    """
     table = read_csv(path, min_rows=2)
     try:
         return _table_from_csv(table, letter, interpolation=interpolation, hold_ends=hold_ends)
@@ -185,7 +319,7 @@ def _table_from_csv(table: CsvTable, letter: str, *, interpolation: str, hold_en
     names = component_names(letter)
     if table.header[0] != "position_mm":
         raise AxiscalError(f"first column must be 'position_mm', found '{table.header[0]}'", line=table.header_line)
-    position = table.numeric("position_mm") * 1e-3
+    position = table.numeric("position_mm") * MM
     steps = np.diff(position)
     if np.any(steps <= 0):
         k = int(np.argmax(steps <= 0)) + 1

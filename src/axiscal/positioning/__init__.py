@@ -21,6 +21,8 @@ from axiscal.positioning.evaluation import (
 )
 from axiscal.positioning.plan import (
     CYCLES,
+    MAX_RUNS,
+    MAX_TARGETS,
     PLAN_COLUMNS,
     TARGETS_PER_METRE,
     PositioningTestPlan,
@@ -67,6 +69,8 @@ __all__ = [
     "RunFile",
     "read_positioning_run",
     "CYCLES",
+    "MAX_RUNS",
+    "MAX_TARGETS",
     "PLAN_COLUMNS",
     "TARGETS_PER_METRE",
     "PositioningTestPlan",

@@ -31,7 +31,9 @@ from axiscal.units import MM, UM
 MAX_TARGETS = 10_000
 MAX_RUNS = 100
 
-__all__ = ["MAX_TARGETS", "MAX_RUNS", 
+__all__ = [
+    "MAX_TARGETS",
+    "MAX_RUNS",
     "CYCLES",
     "TARGETS_PER_METRE",
     "PositioningTestPlan",

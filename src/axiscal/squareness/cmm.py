@@ -295,7 +295,17 @@ def squareness_from_psd_runs(
 
 @dataclass(frozen=True)
 class Plane:
-    """A least-squares plane: unit normal, centroid (m) and RMS distance of the points (m)."""
+    """A least-squares plane through measured points.
+
+    Attributes
+    ----------
+    normal : ndarray, shape (3,)
+        Unit normal of the plane.
+    centroid_m : ndarray, shape (3,)
+        Centroid of the points, metres (the plane passes through it).
+    rms_m : float
+        RMS perpendicular distance of the points from the plane, metres.
+    """
 
     normal: np.ndarray
     centroid_m: np.ndarray

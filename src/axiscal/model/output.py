@@ -1,0 +1,200 @@
+"""What the machine model writes: plain data CSVs with a JSON sidecar, and text from templates.
+
+A data CSV is plain (header first, no comment lines; docs/formats.md); what describes it (the kind,
+the sign convention, the machine file, settings) goes into the sidecar ``NAME.json`` beside it.
+Multi-line text is rendered from the Jinja2 templates shipped in ``axiscal/templates``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from axiscal.io.atomic import write_text
+from axiscal.io.jsonio import write_sidecar
+from axiscal.io.tabular import write_csv
+
+__all__ = ["SIGN_CONVENTION", "table_text", "write_table", "TableResult", "render_template"]
+
+#: the one sign of every displacement error the model room outputs (docs/conventions.md)
+SIGN_CONVENTION = "actual minus nominal, along the stated direction"
+
+
+def table_text(columns: Mapping[str, np.ndarray], *, fmt: str = "{:.6f}") -> str:
+    """The CSV text of equally long columns (display units already in the names and values).
+
+    Parameters
+    ----------
+    columns : mapping of str to ndarray, shape (N,)
+        Column name to values.
+    fmt : str
+        Format of every value.
+
+    Returns
+    -------
+    str
+        Header line, then one line per row, each ending in a newline.
+    """
+    return write_csv(None, columns, fmt=fmt)
+
+
+def write_table(
+    path: str | Path,
+    columns: Mapping[str, np.ndarray],
+    *,
+    fmt: str = "{:.6f}",
+    kind: str,
+    sources: Sequence[str | Path] = (),
+    sidecar: bool = True,
+    **metadata: Any,
+) -> Path:
+    """Write a plain data CSV atomically and, unless ``sidecar=False``, its JSON sidecar.
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV to write (its folder is created); the sidecar is the same name ending in ``.json``.
+    columns : mapping of str to ndarray, shape (N,)
+        Column name to values, display units.
+    fmt : str
+        Format of every value.
+    kind : str
+        What the file holds, for the sidecar.
+    sources : sequence of paths
+        Input files, for the sidecar.
+    sidecar : bool
+        Write the sidecar (default True).
+    **metadata
+        Further sidecar entries; the sign convention is always recorded.
+
+    Returns
+    -------
+    Path
+        The CSV's path.
+
+    Raises
+    ------
+    AxiscalError
+        If the file cannot be written.
+    """
+    path = write_text(path, table_text(columns, fmt=fmt))
+    if sidecar:
+        write_sidecar(path, kind=kind, sources=sources, **({"sign": SIGN_CONVENTION} | metadata))
+    return path
+
+
+class TableResult:
+    """What the model room's result objects share: their table as CSV text, or as a file with its sidecar.
+
+    A subclass gives :meth:`columns` (display units in names and values), the class attributes
+    below and, optionally, more sidecar entries in :meth:`sidecar_metadata`.
+
+    Attributes
+    ----------
+    csv_format : str
+        Format of every value in the CSV.
+    csv_kind : str
+        What the table holds, for the sidecar.
+    sources : tuple of str
+        Files the result was computed from, for the sidecar.
+    """
+
+    csv_format = "{:.6f}"
+    csv_kind = "table"
+    sources: tuple[str, ...] = ()
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The table: column name (with its unit) to values in that unit.
+
+        Returns
+        -------
+        dict of str to ndarray, shape (N,)
+        """
+        raise NotImplementedError
+
+    def sidecar_metadata(self) -> dict[str, Any]:
+        """Entries of the JSON sidecar besides kind, sign and sources.
+
+        Returns
+        -------
+        dict
+        """
+        return {}
+
+    def csv(self) -> str:
+        """The CSV text of :meth:`columns`.
+
+        Returns
+        -------
+        str
+            Header line, then one line per row.
+        """
+        return table_text(self.columns(), fmt=self.csv_format)
+
+    def write_csv(self, path: str | Path, *, sidecar: bool = True) -> Path:
+        """Write the CSV atomically and, unless ``sidecar=False``, its JSON sidecar.
+
+        Parameters
+        ----------
+        path : str or Path
+            The CSV file (its folder is created); the sidecar is the same name ending in ``.json``.
+        sidecar : bool
+            Write the sidecar (default True): kind, sign convention, sources and
+            :meth:`sidecar_metadata`.
+
+        Returns
+        -------
+        Path
+            ``path``.
+
+        Raises
+        ------
+        AxiscalError
+            If the file cannot be written.
+        """
+        return write_table(
+            path, self.columns(), fmt=self.csv_format, kind=self.csv_kind, sources=self.sources, sidecar=sidecar,
+            **self.sidecar_metadata(),
+        )
+
+
+@lru_cache(maxsize=1)
+def _environment():
+    from jinja2 import Environment, PackageLoader, StrictUndefined
+
+    return Environment(
+        loader=PackageLoader("axiscal", "templates"),
+        undefined=StrictUndefined,
+        keep_trailing_newline=True,
+        trim_blocks=True,
+        lstrip_blocks=True,
+        autoescape=False,
+    )
+
+
+def render_template(template: str, /, **context: Any) -> str:
+    """Render the text template ``axiscal/templates/<template>`` with ``context``.
+
+    Parameters
+    ----------
+    template : str
+        File name of the template, e.g. ``"model_diagonal.txt.j2"``.
+    **context
+        The template's variables; a variable the template uses but is not given raises.
+
+    Returns
+    -------
+    str
+        The rendered text.
+
+    Raises
+    ------
+    jinja2.TemplateNotFound, jinja2.UndefinedError
+        A template that is not shipped, or a variable it uses that is not given (program errors,
+        not user mistakes).
+    """
+    return _environment().get_template(template).render(**context)
