@@ -199,8 +199,10 @@ def _joint_fit(design: np.ndarray, trace: BallbarTrace, keep: np.ndarray, y: np.
         s, c = _CyclicBasis(trace.angles, trace.radius, axis)(np.array([k]))
         columns.extend([s, c])
     full = np.column_stack(columns)
-    coef, *_ = np.linalg.lstsq(full[keep], y[keep], rcond=None)
-    r = y[keep] - full[keep] @ coef
+    a = full[keep]
+    # normal equations: the columns are harmonics, steps and sinusoids of order one, well conditioned
+    coef = np.linalg.solve(a.T @ a, a.T @ y[keep])
+    r = y[keep] - a @ coef
     return coef, full, float(r @ r)
 
 

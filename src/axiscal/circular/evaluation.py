@@ -221,7 +221,7 @@ def check_direction(angles: np.ndarray, direction: str) -> tuple[str, int] | Non
     if angles.size < MIN_POINTS:
         return f"{angles.size} points in direction {direction}; at least {MIN_POINTS} needed", max(angles.size - 1, 0)
     gap, k = coverage_gap(angles)
-    if math.degrees(gap) > MAX_GAP_DEG:
+    if math.degrees(gap) > MAX_GAP_DEG * (1 + 1e-9):
         start = math.degrees(float(np.mod(angles[k], 2 * math.pi)))
         return (
             f"direction {direction} leaves {math.degrees(gap):.1f} deg unmeasured after {start:.2f} deg;"
@@ -261,7 +261,7 @@ def lsq_circle(angles: np.ndarray, deviations: np.ndarray, radius: float) -> tup
     Examples
     --------
     >>> a = np.linspace(0, 2 * np.pi, 8, endpoint=False)
-    >>> [round(v * 1e6, 3) for v in lsq_circle(a, 5e-6 * np.cos(a) + 1e-6, 0.1)]
+    >>> [round(v * 1e6, 3) + 0.0 for v in lsq_circle(a, 5e-6 * np.cos(a) + 1e-6, 0.1)]
     [5.0, 0.0, 1.0]
     """
     a = np.asarray(angles, dtype=float)
@@ -273,26 +273,40 @@ def lsq_circle(angles: np.ndarray, deviations: np.ndarray, radius: float) -> tup
 
 
 def radial_deviations(angles: np.ndarray, deviations: np.ndarray, radius: float, centre: tuple[float, float]) -> np.ndarray:
-    """Distance of each point of the path from ``centre``, minus the nominal radius (metres).
+    """Radial deviation of the path about ``centre`` instead of the ballbar's table ball (metres).
+
+    The ballbar reads the distance L from the table ball; the tool is taken at the commanded
+    angle a from the path's centre, which sits at ``centre`` from the ball. Then
+    ``L^2 = r^2 + 2 r (c . u) + |c|^2`` with u = (cos a, sin a), so the tool's distance from the
+    centre is exactly ``r = sqrt(L^2 - |c x u|^2) - c . u``: a circle offset from the ball reads
+    as a circle.
 
     Parameters
     ----------
     angles : ndarray, shape (n,), radians
     deviations : ndarray, shape (n,), metres
-        Measured length minus ``radius``, about the nominal centre.
+        Measured length minus ``radius``.
     radius : float, metres
     centre : (float, float), metres
-        The centre measured from, relative to the nominal centre (first, second axis).
+        Centre of the path relative to the table ball (first, second axis).
 
     Returns
     -------
     ndarray, shape (n,), metres
+        ``r - radius`` for each point.
+
+    Examples
+    --------
+    >>> a = np.radians([0.0, 90.0])
+    >>> L = np.hypot(0.1 * np.cos(a) + 3e-5, 0.1 * np.sin(a))  # a 100 mm circle 30 um along +first
+    >>> np.round(radial_deviations(a, L - 0.1, 0.1, (3e-5, 0.0)) * 1e9, 6)
+    array([0., 0.])
     """
     a = np.asarray(angles, dtype=float)
-    r = radius + np.asarray(deviations, dtype=float)
-    u = r * np.cos(a) - centre[0]
-    v = r * np.sin(a) - centre[1]
-    return np.hypot(u, v) - radius
+    length = radius + np.asarray(deviations, dtype=float)
+    along = centre[0] * np.cos(a) + centre[1] * np.sin(a)
+    across = centre[0] * np.sin(a) - centre[1] * np.cos(a)
+    return np.sqrt(length * length - across * across) - along - radius
 
 
 @dataclass(frozen=True)
@@ -349,7 +363,7 @@ def iso230_4(trace: BallbarTrace) -> CircularFigures:
     >>> a = np.radians(np.arange(0.0, 360.0, 1.0))
     >>> t = BallbarTrace(a, ("ccw",) * a.size, 3e-6 * np.cos(a), radius=0.1)
     >>> f = iso230_4(t)
-    >>> round(f.G["ccw"] * 1e6, 6), round(f.F_max * 1e6, 3), round(f.centre[0] * 1e6, 3)
+    >>> round(f.G["ccw"] * 1e6, 3), round(f.F_max * 1e6, 3), round(f.centre[0] * 1e6, 3)
     (0.0, 3.0, 3.0)
     """
     cx, cy, r0 = lsq_circle(trace.angles, trace.deviations, trace.radius)
