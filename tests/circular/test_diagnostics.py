@@ -11,19 +11,20 @@ from hypothesis import strategies as st
 
 from axiscal.circular.diagnostics import SERVO_WARNING, backlash_signature, diagnose
 from axiscal.circular.evaluation import MM_PER_MIN, BallbarTrace
+from axiscal.circular.report import MS, PPM
 from axiscal.circular.simulation import simulate_ballbar
 from axiscal.errors import AxiscalError
-from axiscal.units import MM, UM
+from axiscal.units import ANGLE_UNITS, MM, UM
 
-URAD = 1e-6 * 1.0  # radians per microradian, written out for the reader of the test
+URAD = ANGLE_UNITS["urad"]
 FEED = 1000.0 * MM_PER_MIN
 
 #: a machine with every error at once, and noise of 0.1 um on each reading
 MACHINE = {
     "squareness": 30.0 * URAD,
-    "scale": {"X": 20e-6, "Y": -5e-6},
+    "scale": {"X": 20 * PPM, "Y": -5 * PPM},
     "backlash": {"X": 6.0 * UM, "Y": 4.0 * UM},
-    "servo_mismatch": 3e-3,
+    "servo_mismatch": 3 * MS,
     "reversal_spike": {"X": 5.0 * UM, "Y": 8.0 * UM},
     "cyclic_error": {"X": 1.5 * UM, "Y": 1.0 * UM},
     "cyclic_pitch": {"X": 5.0 * MM, "Y": 10.0 * MM},
@@ -42,7 +43,7 @@ def test_squareness_within_2_percent(found):
 
 
 def test_scale_mismatch_within_2_percent(found):
-    assert found.scale_mismatch == pytest.approx(20e-6 - (-5e-6), rel=0.02)
+    assert found.scale_mismatch == pytest.approx(20 * PPM - (-5 * PPM), rel=0.02)
 
 
 def test_servo_mismatch_within_2_percent(found):
@@ -75,9 +76,9 @@ def test_another_plane_radius_feed_and_negative_errors():
     feed = 2500.0 * MM_PER_MIN
     errors = {
         "squareness": -45.0 * URAD,
-        "scale": {"Z": -12e-6, "X": 8e-6},
+        "scale": {"Z": -12 * PPM, "X": 8 * PPM},
         "backlash": {"Z": -3.0 * UM, "X": 7.0 * UM},
-        "servo_mismatch": -1.5e-3,
+        "servo_mismatch": -1.5 * MS,
         "reversal_spike": {"Z": 6.0 * UM, "X": -5.0 * UM},
         "cyclic_error": {"Z": 2.0 * UM},
         "cyclic_pitch": {"Z": 4.0 * MM},
@@ -85,8 +86,8 @@ def test_another_plane_radius_feed_and_negative_errors():
     trace = simulate_ballbar(radius=150.0 * MM, plane="ZX", feed=feed, noise=0.05 * UM, seed=7, **errors)
     d = diagnose(trace, feed=feed)
     assert d.squareness == pytest.approx(-45.0 * URAD, rel=0.02)
-    assert d.scale_mismatch == pytest.approx(-20e-6, rel=0.02)
-    assert d.servo_mismatch == pytest.approx(-1.5e-3, rel=0.02)
+    assert d.scale_mismatch == pytest.approx(-20 * PPM, rel=0.02)
+    assert d.servo_mismatch == pytest.approx(-1.5 * MS, rel=0.02)
     assert d.backlash["Z"] == pytest.approx(-3.0 * UM, rel=0.02)
     assert d.backlash["X"] == pytest.approx(7.0 * UM, rel=0.02)
     for direction in ("ccw", "cw"):
@@ -107,7 +108,7 @@ def test_one_direction_gives_squareness_but_no_servo_mismatch_and_says_why():
 
 
 def test_without_feed_no_servo_mismatch():
-    trace = simulate_ballbar(servo_mismatch=2e-3, step=math.radians(0.5))
+    trace = simulate_ballbar(servo_mismatch=2 * MS, step=math.radians(0.5))
     assert math.isnan(diagnose(trace).servo_mismatch)
 
 
@@ -118,7 +119,7 @@ def test_first_order_signatures_of_the_docs():
     trace = simulate_ballbar(radius=R, squareness=q, directions=("ccw",), step=math.radians(1.0))
     a = trace.angles
     np.testing.assert_allclose(trace.deviations, -R * q / 2 * np.sin(2 * a), atol=1e-10)
-    s1, s2 = 10e-6, -4e-6
+    s1, s2 = 10 * PPM, -4 * PPM
     trace = simulate_ballbar(radius=R, scale={"X": s1, "Y": s2}, directions=("ccw",), step=math.radians(1.0))
     np.testing.assert_allclose(trace.deviations, R * (s1 + s2) / 2 + R * (s1 - s2) / 2 * np.cos(2 * a), atol=1e-10)
 
@@ -143,15 +144,15 @@ def test_backlash_steps_outwards_at_the_reversals():
 )
 def test_noise_free_errors_come_back(q, s1, s2, bx, by, lag):
     trace = simulate_ballbar(
-        squareness=q * URAD, scale={"X": s1 * 1e-6, "Y": s2 * 1e-6}, backlash={"X": bx * UM, "Y": by * UM},
-        servo_mismatch=lag * 1e-3, step=math.radians(0.5),
+        squareness=q * URAD, scale={"X": s1 * PPM, "Y": s2 * PPM}, backlash={"X": bx * UM, "Y": by * UM},
+        servo_mismatch=lag * MS, step=math.radians(0.5),
     )
     d = diagnose(trace, feed=FEED)
     assert d.squareness == pytest.approx(q * URAD, rel=0.01, abs=0.05 * URAD)
-    assert d.scale_mismatch == pytest.approx((s1 - s2) * 1e-6, rel=0.01, abs=0.05e-6)
+    assert d.scale_mismatch == pytest.approx((s1 - s2) * PPM, rel=0.01, abs=0.05 * PPM)
     assert d.backlash["X"] == pytest.approx(bx * UM, rel=0.01, abs=0.01 * UM)
     assert d.backlash["Y"] == pytest.approx(by * UM, rel=0.01, abs=0.01 * UM)
-    assert d.servo_mismatch == pytest.approx(lag * 1e-3, rel=0.01, abs=0.005e-3)
+    assert d.servo_mismatch == pytest.approx(lag * MS, rel=0.01, abs=0.005 * MS)
 
 
 def test_bad_feed_and_window_are_refused():
@@ -164,7 +165,7 @@ def test_bad_feed_and_window_are_refused():
 
 def test_a_trace_built_by_hand_works_too():
     a = np.radians(np.arange(0.25, 360.0, 0.5))
-    t = BallbarTrace(a, ("ccw",) * a.size, 2e-6 * np.cos(2 * a), radius=0.05, plane="YZ")
+    t = BallbarTrace(a, ("ccw",) * a.size, 2 * UM * np.cos(2 * a), radius=0.05, plane="YZ")
     d = diagnose(t)
-    assert d.scale_mismatch == pytest.approx(2 * 2e-6 / 0.05, rel=1e-9)
+    assert d.scale_mismatch == pytest.approx(2 * 2 * UM / 0.05, rel=1e-9)
     assert set(d.backlash) == {"Y", "Z"}

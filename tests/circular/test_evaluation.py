@@ -20,6 +20,7 @@ from axiscal.circular.evaluation import (
 )
 from axiscal.circular.simulation import simulate_ballbar
 from axiscal.errors import AxiscalError
+from axiscal.circular.report import MS, PPM
 from axiscal.units import MM, UM
 
 R = 100.0 * MM
@@ -51,7 +52,7 @@ def _reference_h(a_ccw, r_ccw, a_cw, r_cw):
 
 
 def test_lsq_centre_agrees_with_the_kasa_circle():
-    trace = simulate_ballbar(centre_offset={"X": 15 * UM, "Y": -9 * UM}, scale={"X": 10e-6}, backlash={"Y": 3 * UM},
+    trace = simulate_ballbar(centre_offset={"X": 15 * UM, "Y": -9 * UM}, scale={"X": 10 * PPM}, backlash={"Y": 3 * UM},
                              noise=0.2 * UM, step=math.radians(0.5))
     ours = lsq_circle(trace.angles, trace.deviations, R)
     ref = _reference_lsq_centre(trace.angles, trace.deviations, R)
@@ -72,10 +73,10 @@ def test_an_offset_circle_has_no_circular_deviation():
 
 def test_g_of_a_scale_mismatch_is_its_peak_to_peak():
     # dR = R (s1 - s2)/2 cos 2a: the two enveloping circles are R |s1 - s2| apart
-    trace = simulate_ballbar(scale={"X": 12e-6, "Y": -8e-6}, step=math.radians(0.25))
+    trace = simulate_ballbar(scale={"X": 12 * PPM, "Y": -8 * PPM}, step=math.radians(0.25))
     f = iso230_4(trace)
-    assert f.G["ccw"] == pytest.approx(R * 20e-6, rel=1e-3)
-    assert f.radius_offset == pytest.approx(R * 2e-6, rel=1e-3)
+    assert f.G["ccw"] == pytest.approx(R * 20 * PPM, rel=1e-3)
+    assert f.radius_offset == pytest.approx(R * 2 * PPM, rel=1e-3)
 
 
 def test_h_of_a_backlash_is_the_backlash():
@@ -85,7 +86,7 @@ def test_h_of_a_backlash_is_the_backlash():
 
 
 def test_h_agrees_with_a_plain_reference():
-    trace = simulate_ballbar(backlash={"X": 4 * UM, "Y": 2 * UM}, servo_mismatch=4e-3, noise=0.3 * UM, step=math.radians(0.7))
+    trace = simulate_ballbar(backlash={"X": 4 * UM, "Y": 2 * UM}, servo_mismatch=4 * MS, noise=0.3 * UM, step=math.radians(0.7))
     f = iso230_4(trace)
     paths = {}
     for d in ("ccw", "cw"):

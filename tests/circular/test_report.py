@@ -7,18 +7,19 @@ import math
 import pytest
 
 from axiscal.circular.evaluation import MM_PER_MIN
-from axiscal.circular.report import ballbar_payload, evaluate_ballbar, evaluate_ballbar_file, iso_squareness, render_report
+from axiscal.circular.report import MS, ballbar_payload, evaluate_ballbar, evaluate_ballbar_file, iso_squareness, render_report
 from axiscal.circular.simulation import simulate_ballbar
 from axiscal.errors import AxiscalError
-from axiscal.units import MM, UM
+from axiscal.units import ANGLE_UNITS, MM, UM
 
+URAD = ANGLE_UNITS["urad"]
 KEYS = ("G_ccw_um", "G_cw_um", "H_um", "F_max_um", "F_min_um", "centre_x_um", "centre_y_um", "squareness_urad",
         "scale_mismatch_ppm", "backlash_um", "reversal_spike_um", "cyclic_error_um", "servo_mismatch_ms")
 
 
 @pytest.fixture(scope="module")
 def result():
-    trace = simulate_ballbar(squareness=12e-6, backlash={"X": 3 * UM}, servo_mismatch=1e-3, step=math.radians(0.5))
+    trace = simulate_ballbar(squareness=12 * URAD, backlash={"X": 3 * UM}, servo_mismatch=1 * MS, step=math.radians(0.5))
     return evaluate_ballbar(trace, feed=1000 * MM_PER_MIN)
 
 
@@ -49,7 +50,7 @@ def test_report_text(result):
                                                ("YZ", "EA0Z", 1), ("ZY", "EA0Z", 1)])
 def test_iso_terms_follow_docs_conventions(plane, term, sign):
     # docs/conventions.md: angle(+X,+Y) = 90 + EC0Y, angle(+X,+Z) = 90 - EB0Z, angle(+Y,+Z) = 90 + EA0Z
-    assert iso_squareness(plane, 7e-6) == (term, sign * 7e-6)
+    assert iso_squareness(plane, 7 * URAD) == (term, sign * 7 * URAD)
 
 
 def test_file_errors_name_the_file(tmp_path):

@@ -12,6 +12,7 @@ import pytest
 from axiscal.circular.reader import read_ballbar
 from axiscal.circular.simulation import simulate_ballbar, trace_csv, write_trace
 from axiscal.errors import AxiscalError
+from axiscal.circular.report import PPM
 from axiscal.units import MM, UM
 
 
@@ -42,9 +43,9 @@ def test_same_seed_same_trace_and_directions_in_the_order_run():
     [
         ({"radius": -1.0}, "radius"),
         ({"step": math.radians(2.0)}, "step"),
-        ({"noise": -1e-6}, "noise"),
-        ({"backlash": {"Z": 1e-6}}, "not in the plane"),
-        ({"cyclic_error": {"X": 1e-6}}, "pitch"),
+        ({"noise": -1 * UM}, "noise"),
+        ({"backlash": {"Z": 1 * UM}}, "not in the plane"),
+        ({"cyclic_error": {"X": 1 * UM}}, "pitch"),
         ({"directions": ("up",)}, "directions"),
         ({"squareness": math.nan}, "squareness"),
     ],
@@ -56,5 +57,5 @@ def test_bad_machines_are_refused(kwargs, message):
 
 def test_each_axis_error_lands_on_its_axis_in_other_planes():
     # scale of Z only, in ZX: the first axis, so dR = R s cos^2 a
-    trace = simulate_ballbar(plane="ZX", scale={"Z": 10e-6}, directions=("ccw",), step=math.radians(1.0), radius=50 * MM)
-    np.testing.assert_allclose(trace.deviations, 50 * MM * 10e-6 * np.cos(trace.angles) ** 2, atol=1e-11)
+    trace = simulate_ballbar(plane="ZX", scale={"Z": 10 * PPM}, directions=("ccw",), step=math.radians(1.0), radius=50 * MM)
+    np.testing.assert_allclose(trace.deviations, 50 * MM * 10 * PPM * np.cos(trace.angles) ** 2, atol=1e-11)

@@ -1,8 +1,8 @@
 """Machine errors read from a ballbar trace: squareness, scale mismatch, backlash, reversal spikes, cyclic error, servo mismatch.
 
 To first order a point of the path that is off by (e1, e2) along the plane's axes reads
-``dR = e1 cos(a) + e2 sin(a)`` (the radial deviation model of ISO 230-4 annex and of the
-ballbar literature, e.g. Kakino et al. 1987, Knapp 1983). Each error has its own signature in
+``dR = e1 cos(a) + e2 sin(a)`` (the first-order radial model of the ballbar literature, e.g.
+Bryan 1982, Kakino et al. 1987). Each error has its own signature in
 ``dR(a)``; the trace is fitted to all of them at once by linear least squares (see
 docs/ballbar.md for the derivation of every term and its sign):
 
@@ -28,6 +28,7 @@ from scipy.optimize import minimize_scalar
 
 from axiscal.circular.evaluation import BallbarTrace
 from axiscal.errors import AxiscalError
+from axiscal.units import MM
 
 __all__ = [
     "SPIKE_WINDOW_DEG",
@@ -42,7 +43,7 @@ __all__ = [
 #: the arc after each reversal (deg) in which the spike is sought; it is left out of the fit
 SPIKE_WINDOW_DEG = 10.0
 #: the shortest pitch of a cyclic error looked for, metres
-MIN_PITCH_M = 1e-3
+MIN_PITCH_M = 1.0 * MM
 #: said when only one direction was measured (squareness and servo mismatch cannot be told apart)
 SERVO_WARNING = (
     "one direction only: squareness and servo mismatch both show as a sin 2a term and cannot be told"
@@ -88,7 +89,17 @@ class BallbarDiagnostics:
 
 
 def reversal_angles(axis: int) -> tuple[float, float]:
-    """Angles (rad) at which axis 0 (first) or 1 (second) of the plane reverses on the circle.
+    """Angles at which an axis of the plane reverses its direction of motion on the circle.
+
+    Parameters
+    ----------
+    axis : int
+        0 for the plane's first axis, 1 for its second.
+
+    Returns
+    -------
+    tuple of float, radians
+        (0, pi) for the first axis, (pi/2, 3 pi/2) for the second.
 
     Examples
     --------
