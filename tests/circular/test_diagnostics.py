@@ -95,7 +95,8 @@ def test_another_plane_radius_feed_and_negative_errors():
         assert d.reversal_spike["X"][direction] == pytest.approx(-5.0 * UM, rel=0.02)
     assert d.cyclic_error["Z"] == pytest.approx(2.0 * UM, rel=0.02)
     assert d.cyclic_pitch["Z"] == pytest.approx(4.0 * MM, rel=0.02)
-    assert d.cyclic_error["X"] < 0.02 * UM  # none simulated: the noise floor
+    assert d.cyclic_error["X"] < 0.02 * UM  # none simulated: the noise floor, and no pitch
+    assert math.isnan(d.cyclic_pitch["X"])
 
 
 def test_one_direction_gives_squareness_but_no_servo_mismatch_and_says_why():

@@ -28,7 +28,7 @@ from scipy.optimize import minimize_scalar
 
 from axiscal.circular.evaluation import BallbarTrace
 from axiscal.errors import AxiscalError
-from axiscal.units import MM
+from axiscal.units import MM, UM
 
 __all__ = [
     "SPIKE_WINDOW_DEG",
@@ -69,7 +69,8 @@ class BallbarDiagnostics:
     cyclic_error : dict of str to float, metres
         Amplitude of the cyclic error found along each axis.
     cyclic_pitch : dict of str to float, metres
-        Its pitch (period in the axis' position).
+        Its pitch (period in the axis' position); NaN when the amplitude is within what the
+        noise of the trace alone would give.
     servo_mismatch : float, seconds
         Lag of the first axis minus lag of the second; NaN without both directions and a feed.
     residual_rms : float, metres
@@ -189,8 +190,8 @@ def _fit_amplitude(residual: np.ndarray, s: np.ndarray, c: np.ndarray) -> tuple[
     return alpha, beta, alpha * rs + beta * rc
 
 
-def _pitch_search(trace: BallbarTrace, residual: np.ndarray, keep: np.ndarray, axis: int) -> tuple[float, float]:
-    """Wavenumber (1/m) of the strongest cyclic error of one axis in ``residual`` (a periodogram), and the grid step."""
+def _pitch_search(trace: BallbarTrace, residual: np.ndarray, keep: np.ndarray, axis: int) -> tuple[float, float, int]:
+    """Wavenumber (1/m) of the strongest cyclic error of one axis in ``residual`` (a periodogram), the grid step, the pitches tried."""
     radius = trace.radius
     k_min, k_max = 2.0 / radius, 1.0 / MIN_PITCH_M
     step = 1.0 / (16.0 * radius)  # a quarter of the wavenumber resolution of a record 4 R long
@@ -200,7 +201,7 @@ def _pitch_search(trace: BallbarTrace, residual: np.ndarray, keep: np.ndarray, a
     explained = np.zeros(grid.size)
     for start in range(0, grid.size, 256):
         explained[start : start + 256] = _fit_amplitude(r, *basis(grid[start : start + 256]))[2]
-    return float(grid[int(np.argmax(explained))]), step
+    return float(grid[int(np.argmax(explained))]), step, int(grid.size)
 
 
 def _joint_fit(design: np.ndarray, trace: BallbarTrace, keep: np.ndarray, y: np.ndarray, wavenumbers: list[float]):
@@ -265,9 +266,10 @@ def diagnose(trace: BallbarTrace, *, feed: float | None = None, spike_window: fl
     # each pitch refined on the joint fit
     coef, *_ = np.linalg.lstsq(design[keep], y[keep], rcond=None)
     residual = y - design @ coef
-    wavenumbers, steps = [], []
+    wavenumbers, steps, tried = [], [], []
     for axis in (0, 1):
-        k, step = _pitch_search(trace, residual, keep, axis)
+        k, step, count = _pitch_search(trace, residual, keep, axis)
+        tried.append(count)
         wavenumbers.append(k)
         steps.append(step)
         s, c = _CyclicBasis(trace.angles[keep], R, axis)(np.array([k]))
@@ -291,7 +293,16 @@ def diagnose(trace: BallbarTrace, *, feed: float | None = None, spike_window: fl
     residual = y - full @ coef
     n = design.shape[1]
     cyclic_error = {letters[axis]: float(math.hypot(coef[n + 2 * axis], coef[n + 2 * axis + 1])) for axis in (0, 1)}
-    cyclic_pitch = {letters[axis]: 1.0 / wavenumbers[axis] for axis in (0, 1)}
+    # noise alone gives the best of M pitches an amplitude of about se sqrt(2 ln M) (se: the standard error
+    # of one amplitude); below twice that the pitch found means nothing and is not given
+    sigma = float(np.sqrt(np.mean(residual[keep] ** 2)))
+    cyclic_pitch = {}
+    for axis in (0, 1):
+        proj = np.cos(a[keep]) if axis == 0 else np.sin(a[keep])
+        se = sigma / math.sqrt(max(float(proj @ proj) / 2.0, 1.0))
+        floor = max(2.0 * se * math.sqrt(2.0 * math.log(max(tried[axis], 2))), 1e-4 * UM)  # and 0.1 nm of rounding
+        found_pitch = 1.0 / wavenumbers[axis]
+        cyclic_pitch[letters[axis]] = found_pitch if cyclic_error[letters[axis]] > floor else math.nan
 
     sin2 = [coef[column[f"sin2_{d}"]] for d in trace.present]
     cos2 = [coef[column[f"cos2_{d}"]] for d in trace.present]

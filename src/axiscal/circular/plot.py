@@ -57,8 +57,9 @@ def _figure_lines(result: BallbarResult) -> list[str]:
         for d, value in p["reversal_spike_um"][axis].items():
             lines.append(f"spike {axis} {d:<3} {_fmt(value, '{:+7.2f}')} µm")
     for axis in (a, b):
-        pitch = _fmt(p["cyclic_pitch_mm"][axis], "{:.2f}")
-        lines.append(f"cyclic {axis}   {_fmt(p['cyclic_error_um'][axis], '{:8.2f}')} µm / {pitch} mm")
+        pitch = p["cyclic_pitch_mm"][axis]
+        where = f" / {pitch:.2f} mm" if pitch is not None else " (noise)"
+        lines.append(f"cyclic {axis}   {_fmt(p['cyclic_error_um'][axis], '{:8.2f}')} µm{where}")
     return lines
 
 
