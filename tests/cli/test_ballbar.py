@@ -78,3 +78,16 @@ def test_simulate_refuses_bad_axes(args, message):
     assert result.exit_code != 0
     text = result.output + (str(result.exception) if result.exception else "")
     assert any(m in text for m in message.split("|"))
+
+
+def test_the_report_shown_in_the_docs_is_what_the_command_prints(run_cli, examples):
+    import re
+    from pathlib import Path
+
+    docs = (Path(__file__).resolve().parents[2] / "docs" / "ballbar.md").read_text()
+    shown = re.search(r"\$ (axiscal ballbar examples/\S+ [^\n]*)\n(.*?)\n```", docs, re.S)
+    argv = shown.group(1).split()[1:]
+    argv[1] = str(examples / "ballbar" / "ballbar_run.csv")
+    status, out, _ = run_cli(*argv)
+    assert status == 0
+    assert out.rstrip("\n").replace(argv[1], "examples/ballbar/ballbar_run.csv") == shown.group(2)

@@ -36,6 +36,7 @@ from axiscal.circular.report import (
     ballbar_payload,
     evaluate_ballbar,
     evaluate_ballbar_file,
+    format_number,
     iso_squareness,
     render_report,
 )
@@ -72,6 +73,7 @@ __all__ = [
     "evaluate_ballbar",
     "evaluate_ballbar_file",
     "ballbar_payload",
+    "format_number",
     "render_report",
     "SPIKE_WIDTH_DEG",
     "simulate_ballbar",

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.circular.evaluation import radial_deviations
-from axiscal.circular.report import BallbarResult, ballbar_payload
+from axiscal.circular.report import BallbarResult, ballbar_payload, format_number
 from axiscal.io.figures import check_figure_path, pyplot, save_figure
 from axiscal.units import MM, UM
 
@@ -30,36 +30,32 @@ def _nice_ceiling(value: float) -> float:
     return 10.0 ** (exponent + 1)
 
 
-def _fmt(value: float | None, fmt: str) -> str:
-    return "n/a" if value is None else fmt.format(value)
-
-
 def _figure_lines(result: BallbarResult) -> list[str]:
     p = ballbar_payload(result)
     a, b = p["axes"]
     lines = [
         f"{p['standard']}",
-        f"G ccw      {_fmt(p['G_ccw_um'], '{:8.2f}')} µm",
-        f"G cw       {_fmt(p['G_cw_um'], '{:8.2f}')} µm",
-        f"H          {_fmt(p['H_um'], '{:8.2f}')} µm",
-        f"F max      {_fmt(p['F_max_um'], '{:8.2f}')} µm",
-        f"F min      {_fmt(p['F_min_um'], '{:8.2f}')} µm",
-        f"centre {a}   {_fmt(p['centre_x_um'], '{:8.2f}')} µm",
-        f"centre {b}   {_fmt(p['centre_y_um'], '{:8.2f}')} µm",
+        f"G ccw      {format_number(p['G_ccw_um'], '{:8.2f}')} µm",
+        f"G cw       {format_number(p['G_cw_um'], '{:8.2f}')} µm",
+        f"H          {format_number(p['H_um'], '{:8.2f}')} µm",
+        f"F max      {format_number(p['F_max_um'], '{:8.2f}')} µm",
+        f"F min      {format_number(p['F_min_um'], '{:8.2f}')} µm",
+        f"centre {a}   {format_number(p['centre_x_um'], '{:8.2f}')} µm",
+        f"centre {b}   {format_number(p['centre_y_um'], '{:8.2f}')} µm",
         "",
-        f"squareness {_fmt(p['squareness_urad'], '{:+8.2f}')} µrad",
-        f"scale {a}-{b}  {_fmt(p['scale_mismatch_ppm'], '{:+8.2f}')} ppm",
-        f"servo {a}-{b}  {_fmt(p['servo_mismatch_ms'], '{:+8.3f}')} ms",
+        f"squareness {format_number(p['squareness_urad'], '{:+8.2f}')} µrad",
+        f"scale {a}-{b}  {format_number(p['scale_mismatch_ppm'], '{:+8.2f}')} ppm",
+        f"servo {a}-{b}  {format_number(p['servo_mismatch_ms'], '{:+8.3f}')} ms",
     ]
     for axis in (a, b):
-        lines.append(f"backlash {axis} {_fmt(p['backlash_um'][axis], '{:+8.2f}')} µm")
+        lines.append(f"backlash {axis} {format_number(p['backlash_um'][axis], '{:+8.2f}')} µm")
     for axis in (a, b):
         for d, value in p["reversal_spike_um"][axis].items():
-            lines.append(f"spike {axis} {d:<3} {_fmt(value, '{:+7.2f}')} µm")
+            lines.append(f"spike {axis} {d:<3} {format_number(value, '{:+7.2f}')} µm")
     for axis in (a, b):
         pitch = p["cyclic_pitch_mm"][axis]
         where = f" / {pitch:.2f} mm" if pitch is not None else " (noise)"
-        lines.append(f"cyclic {axis}   {_fmt(p['cyclic_error_um'][axis], '{:8.2f}')} µm{where}")
+        lines.append(f"cyclic {axis}   {format_number(p['cyclic_error_um'][axis], '{:8.2f}')} µm{where}")
     return lines
 
 

@@ -28,6 +28,7 @@ __all__ = [
     "evaluate_ballbar",
     "evaluate_ballbar_file",
     "ballbar_payload",
+    "format_number",
     "render_report",
 ]
 
@@ -184,6 +185,27 @@ def ballbar_payload(result: BallbarResult) -> dict[str, Any]:
     }
 
 
+def format_number(value: float | None, fmt: str = "{:+.2f}") -> str:
+    """A value of :func:`ballbar_payload` for a report: formatted, or ``n/a`` as wide as the format makes a number.
+
+    Parameters
+    ----------
+    value : float or None
+    fmt : str
+        A :meth:`str.format` pattern for one number.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> format_number(None, "{:6.2f}"), format_number(1.5, "{:6.2f}")
+    ('   n/a', '  1.50')
+    """
+    return "n/a".rjust(len(fmt.format(0.0))) if value is None else fmt.format(value)
+
+
 def render_report(result: BallbarResult) -> str:
     """The readable report of ``axiscal ballbar`` (from the package's ``templates/ballbar.txt.j2``).
 
@@ -202,5 +224,5 @@ def render_report(result: BallbarResult) -> str:
 
     text = (files("axiscal") / "templates" / "ballbar.txt.j2").read_text(encoding="utf-8")
     env = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=False, trim_blocks=True, lstrip_blocks=True)
-    env.filters["num"] = lambda v, fmt="{:+.2f}": "n/a" if v is None else fmt.format(v)
+    env.filters["num"] = format_number
     return env.from_string(text).render(p=ballbar_payload(result), source=result.trace.source).rstrip("\n")
