@@ -12,7 +12,14 @@ import pkgutil
 
 import pytest
 
-ROOMS = ("axiscal.positioning", "axiscal.compensation", "axiscal.model", "axiscal.straightness", "axiscal.squareness")
+ROOMS = (
+    "axiscal.positioning",
+    "axiscal.compensation",
+    "axiscal.model",
+    "axiscal.straightness",
+    "axiscal.squareness",
+    "axiscal.circular",
+)
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]
 MODULES = [

@@ -1,0 +1,228 @@
+"""A ballbar test evaluated in one call: ISO 230-4 figures, diagnostics, the JSON object and the text report.
+
+The JSON keys (figures in um, ``squareness_urad``, ``scale_mismatch_ppm``, ``servo_mismatch_ms``)
+are the interface of ``axiscal ballbar --json``; docs/ballbar.md describes each. The squareness
+is also given as ISO 230-1's term for the plane (docs/conventions.md): EC0Y for X and Y,
+EB0Z for X and Z (opposite sign), EA0Z for Y and Z.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from axiscal.circular.diagnostics import BallbarDiagnostics, diagnose
+from axiscal.circular.evaluation import MM_PER_MIN, BallbarTrace, CircularFigures, iso230_4
+from axiscal.circular.reader import read_ballbar
+from axiscal.conventions import SQUARENESS_TERMS
+from axiscal.units import ANGLE_UNITS, LENGTH_UNITS, MM, UM
+
+__all__ = [
+    "PPM",
+    "MS",
+    "STANDARD",
+    "BallbarResult",
+    "iso_squareness",
+    "evaluate_ballbar",
+    "evaluate_ballbar_file",
+    "ballbar_payload",
+    "format_number",
+    "render_report",
+]
+
+#: one part per million (1 um per m)
+PPM = UM / LENGTH_UNITS["m"]
+#: seconds in a millisecond
+MS = 1e-3
+#: the standard the figures follow
+STANDARD = "ISO 230-4:2005"
+#: ISO 230-1 squareness term of each pair of axes, and its sign against (included angle - 90 deg)
+_ISO_TERMS = {
+    frozenset("XY"): (SQUARENESS_TERMS[0], 1.0),
+    frozenset("XZ"): (SQUARENESS_TERMS[1], -1.0),
+    frozenset("YZ"): (SQUARENESS_TERMS[2], 1.0),
+}
+_URAD = ANGLE_UNITS["urad"]
+
+
+def iso_squareness(plane: str, squareness: float) -> tuple[str, float]:
+    """ISO 230-1's squareness term for the plane's axes, and its value (radians).
+
+    Parameters
+    ----------
+    plane : str
+        Two axes, e.g. ``"XY"`` or ``"ZX"``.
+    squareness : float, radians
+        Included angle between the positive axes minus 90 degrees.
+
+    Returns
+    -------
+    tuple of (str, float)
+        ``("EC0Y", q)`` for X and Y, ``("EB0Z", -q)`` for X and Z, ``("EA0Z", q)`` for Y and Z.
+
+    Examples
+    --------
+    >>> iso_squareness("ZX", 5e-6)
+    ('EB0Z', -5e-06)
+    """
+    term, sign = _ISO_TERMS[frozenset(plane.upper())]
+    return term, sign * squareness
+
+
+@dataclass(frozen=True)
+class BallbarResult:
+    """A circular test evaluated: the trace, its ISO 230-4 figures and the diagnostics (SI units).
+
+    Attributes
+    ----------
+    trace : BallbarTrace
+    figures : CircularFigures
+    diagnostics : BallbarDiagnostics
+    feed : float or None, m/s
+        The feed of the test, when given.
+    """
+
+    trace: BallbarTrace
+    figures: CircularFigures
+    diagnostics: BallbarDiagnostics
+    feed: float | None = None
+
+
+def evaluate_ballbar(trace: BallbarTrace, *, feed: float | None = None) -> BallbarResult:
+    """ISO 230-4 figures and diagnostics of a trace.
+
+    Parameters
+    ----------
+    trace : BallbarTrace
+    feed : float, optional, m/s
+        Feed of the test; with both directions it gives the servo mismatch.
+
+    Returns
+    -------
+    BallbarResult
+
+    Raises
+    ------
+    AxiscalError
+        If the feed is not a positive speed.
+    """
+    return BallbarResult(trace=trace, figures=iso230_4(trace), diagnostics=diagnose(trace, feed=feed), feed=feed)
+
+
+def evaluate_ballbar_file(path: str | Path, *, radius: float, plane: str = "XY", feed: float | None = None) -> BallbarResult:
+    """Read a trace file (see :func:`axiscal.circular.reader.read_ballbar`) and evaluate it.
+
+    Parameters
+    ----------
+    path : str or Path
+        CSV with ``angle_deg, direction, radius_deviation_um``.
+    radius : float, metres, keyword-only
+        Nominal radius.
+    plane : str, keyword-only
+        First and second axis.
+    feed : float, optional, m/s
+
+    Returns
+    -------
+    BallbarResult
+
+    Raises
+    ------
+    AxiscalError
+        On a bad file (naming it and the line), radius, plane or feed.
+    """
+    return evaluate_ballbar(read_ballbar(path, radius=radius, plane=plane), feed=feed)
+
+
+def _um(value: float) -> float | None:
+    return value / UM if math.isfinite(value) else None
+
+
+def ballbar_payload(result: BallbarResult) -> dict[str, Any]:
+    """The JSON object of ``axiscal ballbar --json`` (lengths in um, angles in urad, scale in ppm, time in ms).
+
+    Parameters
+    ----------
+    result : BallbarResult
+
+    Returns
+    -------
+    dict
+        Plain values; a figure that cannot be given (H or G_cw of a single direction, the servo
+        mismatch without feed) is None.
+    """
+    t, f, d = result.trace, result.figures, result.diagnostics
+    term, iso_value = iso_squareness(t.plane, d.squareness)
+    return {
+        "standard": STANDARD,
+        "plane": t.plane,
+        "axes": list(t.axes),
+        "radius_mm": t.radius / MM,
+        "feed_mm_min": None if result.feed is None else result.feed / MM_PER_MIN,
+        "directions": list(t.present),
+        "points": {direction: int(t.rows(direction).size) for direction in t.present},
+        "G_ccw_um": _um(f.G.get("ccw", math.nan)),
+        "G_cw_um": _um(f.G.get("cw", math.nan)),
+        "H_um": _um(f.H),
+        "F_max_um": _um(f.F_max),
+        "F_min_um": _um(f.F_min),
+        "centre_x_um": _um(f.centre[0]),
+        "centre_y_um": _um(f.centre[1]),
+        "radius_offset_um": _um(f.radius_offset),
+        "squareness_urad": d.squareness / _URAD,
+        "squareness_iso_term": term,
+        "squareness_iso_urad": iso_value / _URAD,
+        "scale_mismatch_ppm": d.scale_mismatch / PPM,
+        "backlash_um": {k: _um(v) for k, v in d.backlash.items()},
+        "reversal_spike_um": {k: {dr: _um(v) for dr, v in per.items()} for k, per in d.reversal_spike.items()},
+        "cyclic_error_um": {k: _um(v) for k, v in d.cyclic_error.items()},
+        "cyclic_pitch_mm": {k: (v / MM if math.isfinite(v) else None) for k, v in d.cyclic_pitch.items()},
+        "servo_mismatch_ms": d.servo_mismatch / MS if math.isfinite(d.servo_mismatch) else None,
+        "residual_rms_um": _um(d.residual_rms),
+        "warnings": list(d.warnings),
+    }
+
+
+def format_number(value: float | None, fmt: str = "{:+.2f}") -> str:
+    """A value of :func:`ballbar_payload` for a report: formatted, or ``n/a`` as wide as the format makes a number.
+
+    Parameters
+    ----------
+    value : float or None
+    fmt : str
+        A :meth:`str.format` pattern for one number.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> format_number(None, "{:6.2f}"), format_number(1.5, "{:6.2f}")
+    ('   n/a', '  1.50')
+    """
+    return "n/a".rjust(len(fmt.format(0.0))) if value is None else fmt.format(value)
+
+
+def render_report(result: BallbarResult) -> str:
+    """The readable report of ``axiscal ballbar`` (from the package's ``templates/ballbar.txt.j2``).
+
+    Parameters
+    ----------
+    result : BallbarResult
+
+    Returns
+    -------
+    str
+        Several lines, no trailing newline.
+    """
+    from importlib.resources import files
+
+    import jinja2
+
+    text = (files("axiscal") / "templates" / "ballbar.txt.j2").read_text(encoding="utf-8")
+    env = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=False, trim_blocks=True, lstrip_blocks=True)
+    env.filters["num"] = format_number
+    return env.from_string(text).render(p=ballbar_payload(result), source=result.trace.source).rstrip("\n")
