@@ -24,7 +24,7 @@ def test_report_writes_the_page_and_results(run_cli, campaign):
     assert status == 0, err
     folder = campaign / "report"
     assert (folder / "report.html").is_file() and (folder / "results.json").is_file()
-    assert out.startswith("FAIL: 5 tests")
+    assert out.startswith("FAIL: 6 tests")
     results = json.loads((folder / "results.json").read_text())
     assert results["schema"] == "axiscal-results/1"
     assert results["software"]["name"] == "axiscal"
@@ -35,6 +35,7 @@ def test_report_writes_the_page_and_results(run_cli, campaign):
         "straightness-X-1": "pass",
         "squareness-XY-1": "fail",
         "separation-X-1": "pass",
+        "ballbar-XY-1": "pass",
     }
     assert results["campaign"]["machine"]["name"] == "VMC 850"
 
@@ -128,3 +129,13 @@ def test_compensation_files_are_what_compensate_writes(run_cli, campaign):
     status, table, _ = run_cli("compensate", campaign / "positioning_x.csv", "--format", "linuxcnc")
     assert status == 0
     assert (campaign / "report" / "compensation" / "X.comp").read_text() == table
+
+
+def test_ballbar_figures_equal_the_ballbar_command(run_cli, campaign):
+    results = {t.id: t.figures for t in run_campaign(campaign).tests}
+    status, out, _ = run_cli("ballbar", campaign / "ballbar_xy.csv", "--radius-mm", "100", "--plane", "XY",
+                             "--feed-mm-min", "1000", "--json")
+    assert status == 0
+    single = json.loads(out)
+    for key in ("G_ccw_um", "G_cw_um", "H_um", "squareness_urad", "scale_mismatch_ppm", "servo_mismatch_ms"):
+        assert results["ballbar-XY-1"][key] == pytest.approx(single[key], rel=1e-12), key

@@ -42,10 +42,10 @@ def test_report_page_in_chromium(chromium_page, run_cli, examples, tmp_path):
     assert shown is not None, "the page did not load"
     assert shown["title"] == "Acceptance test after rebuild"
     assert shown["verdict"] == "FAIL"
-    assert shown["verdictRows"] == 11  # 4 figures for each of 2 positioning tests, straightness, separation, squareness
-    assert {"axis-X", "axis-Y", "squareness", "methods"} <= set(shown["sections"])
-    assert shown["tests"] == ["positioning-X-1", "straightness-X-1", "separation-X-1", "positioning-Y-1", "squareness-XY-1"]
-    assert len(shown["plots"]) == 5 and min(shown["plots"]) > 300  # the plots are drawn, not empty boxes
+    assert shown["verdictRows"] == 12  # 4 figures for each of 2 positioning tests, then one each
+    assert {"axis-X", "axis-Y", "squareness", "ballbar", "methods"} <= set(shown["sections"])
+    assert shown["tests"] == ["positioning-X-1", "straightness-X-1", "separation-X-1", "positioning-Y-1", "squareness-XY-1", "ballbar-XY-1"]
+    assert len(shown["plots"]) == 6 and min(shown["plots"]) > 300  # the plots are drawn, not empty boxes
     assert shown["external"] == [] and shown["resources"] == []
     requested = [e["params"]["request"]["url"] for e in tools.events if e.get("method") == "Network.requestWillBeSent"]
     assert requested == [page.as_uri()], requested

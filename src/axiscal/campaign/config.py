@@ -36,7 +36,13 @@ CONTROLLERS = ("linuxcnc", "fanuc", "siemens", "heidenhain")
 POSITIONING_TOLERANCE_KEYS = tuple(
     f"{k}_um" for k in ("A", "A_up", "A_down", "B", "B_mean", "E", "E_up", "E_down", "M", "R", "R_up", "R_down")
 )
-_TOLERANCE_KEYS = {"positioning": dict, "straightness_um": float, "squareness_arcsec": float, "diagonal_um": float}
+_TOLERANCE_KEYS = {
+    "positioning": dict,
+    "straightness_um": float,
+    "squareness_arcsec": float,
+    "diagonal_um": float,
+    "circular_deviation_um": float,
+}
 
 # option types: "str", "float", "int", "bool", "file", "floats2", ("choice", values)
 _COMMON = {"kind": "str", "id": "str", "notes": "str", "tolerances": "table"}
@@ -69,6 +75,7 @@ KINDS: dict[str, dict[str, Any]] = {
         "measure": ("choice", ("projection", "length")),
     },
     "sixdof": {"file": "file", "machine": "file", "axis": "axis"},
+    "ballbar": {"file": "file", "radius_mm": "float", "plane": "plane", "axes": "plane", "feed_mm_min": "float"},
 }
 #: the data file(s) each kind cannot do without
 _REQUIRED = {
@@ -78,6 +85,7 @@ _REQUIRED = {
     "squareness": ("first", "second"),
     "diagonal": ("from", "to"),
     "sixdof": ("file",),
+    "ballbar": ("file", "radius_mm"),
 }
 
 
@@ -301,13 +309,13 @@ def _test(raw, index, folder, campaign_tolerances, model, counters, fail) -> Tes
             raise bad("give the laser readings as 'interferometer' or 'file', not both", "file")
         if "file" in options:
             options["interferometer"] = options.pop("file")
-    if kind == "squareness":
+    if kind in ("squareness", "ballbar"):
         plane = options.pop("axes", None) or options.pop("plane", None) or "XY"
         options.pop("plane", None)
         options["plane"] = plane
     own = _tolerances(options.pop("tolerances", {}), lambda m, k=None: bad(m, k or "tolerances"), "tolerances of this test")
     merged = _merged_tolerances(kind, campaign_tolerances, own)
-    axis = options.pop("axis", None) if kind != "squareness" else options["plane"]
+    axis = options.pop("axis", None) if kind not in ("squareness", "ballbar") else options["plane"]
     options.pop("kind")
     test_id = options.pop("id", None)
     notes = options.pop("notes", None)
@@ -339,6 +347,10 @@ def _merged_tolerances(kind: str, campaign: Mapping[str, Any], own: Mapping[str,
         for source in (campaign, own):
             if "diagonal_um" in source:
                 out["diagonal_um"] = source["diagonal_um"]
+    elif kind == "ballbar":
+        for source in (campaign, own):
+            if "circular_deviation_um" in source:
+                out["circular_deviation_um"] = source["circular_deviation_um"]
     return {k: float(v) for k, v in out.items()}
 
 

@@ -204,12 +204,41 @@ def _squareness(campaign: Campaign, spec: TestSpec) -> TestResult:
     )
 
 
+def _ballbar(campaign: Campaign, spec: TestSpec) -> TestResult:
+    from axiscal.circular.plot import plot_ballbar
+    from axiscal.circular.evaluation import MM_PER_MIN
+    from axiscal.circular.report import ballbar_payload, evaluate_ballbar_file
+
+    path = spec.options["file"]
+    feed = spec.options.get("feed_mm_min")
+    result = evaluate_ballbar_file(
+        path, radius=spec.options["radius_mm"] * MM, plane=spec.options["plane"],
+        feed=None if feed is None else feed * MM_PER_MIN,
+    )
+    figures = ballbar_payload(result)
+    deviations = [figures[k] for k in ("G_ccw_um", "G_cw_um") if figures.get(k) is not None]
+    figures["circular_deviation_um"] = max(deviations) if deviations else None
+    checks = check_figures(figures, spec.tolerances, {"circular_deviation_um": "um"})
+    title = f"{spec.axis} circular test (ISO 230-4), radius {spec.options['radius_mm']:g} mm"
+    svg = svg_of(lambda p: plot_ballbar(result, p, title=title))
+    table = [Figure(label, figures[key], unit) for key, label, unit in (
+        ("G_ccw_um", "circular deviation G ccw", "um"), ("G_cw_um", "circular deviation G cw", "um"),
+        ("H_um", "circular hysteresis H", "um"), ("squareness_urad", "squareness", "urad"),
+        ("scale_mismatch_ppm", "scale mismatch", "ppm"),
+    ) if figures.get(key) is not None]
+    return TestResult(
+        id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, path)], figures=figures,
+        checks=checks, plots=[Plot(title, svg)], table=table, method="Circular test: ISO 230-4 (ballbar)",
+    )
+
+
 #: kind -> the function that runs a test of that kind
 KIND_RUNNERS: dict[str, Callable[[Campaign, TestSpec], TestResult]] = {
     "positioning": _positioning,
     "straightness": _straightness,
     "separation": _separation,
     "squareness": _squareness,
+    "ballbar": _ballbar,
 }
 
 

@@ -25,7 +25,7 @@ __all__ = [
     "sections",
 ]
 
-_SECTION_ORDER = ("positioning", "straightness", "separation", "squareness", "diagonal", "sixdof")
+_SECTION_ORDER = ("positioning", "straightness", "separation", "squareness", "ballbar", "diagonal", "sixdof")
 
 
 def template_environment():
@@ -100,6 +100,8 @@ def sections(tests: list[TestResult]) -> list[dict[str, Any]]:
             key, title = f"axis-{test.axis}", f"{test.axis} axis"
         elif test.kind == "squareness":
             key, title = "squareness", "Squareness"
+        elif test.kind == "ballbar":
+            key, title = "ballbar", "Circular tests"
         elif test.kind == "diagonal":
             key, title = "diagonal", "Diagonal checks"
         elif test.kind == "sixdof":
@@ -109,7 +111,7 @@ def sections(tests: list[TestResult]) -> list[dict[str, Any]]:
         groups.setdefault(key, []).append(test)
         titles[key] = title
     axis_keys = sorted(k for k in groups if k.startswith("axis-"))
-    other = [k for k in ("squareness", "diagonal", "sixdof") if k in groups]
+    other = [k for k in ("squareness", "ballbar", "diagonal", "sixdof") if k in groups]
     rest = [k for k in groups if k not in axis_keys and k not in other]
     return [{"anchor": k, "title": titles[k], "tests": groups[k]} for k in (*axis_keys, *other, *rest)]
 
