@@ -17,6 +17,7 @@ from axiscal.positioning.evaluation import (
     vdi3441,
 )
 from axiscal.positioning.reader import read_positioning_run
+from axiscal.uncertainty import budget_report, positioning_uncertainty, uncertainty_payload
 from axiscal.units import MM, UM
 
 __all__ = ["evaluate_file", "payload", "report", "positioning_command", "register"]
@@ -100,10 +101,18 @@ def report(data, result: Iso230Result | Vdi3441Result) -> str:
 @click.option("--wavelength-nm", type=float, default=None, help="Vacuum wavelength for raw laser readings [632.991].")
 @click.option("--expansion-per-k", type=float, default=STEEL_EXPANSION_PER_K, show_default=True,
               help="Material expansion coefficient for material_temperature_c normalisation to 20 degC.")
-def positioning_command(run_csv, standard, as_json, plot_path, wavelength_nm, expansion_per_k):
+@click.option("--uncertainty", "budget_path", type=click.Path(dir_okay=False),
+              help="Uncertainty budget (TOML): add U (k = 2) of E, R, B, A, M and the budget table.")
+@click.option("--monte-carlo", type=click.IntRange(min=1), default=None,
+              help="Also propagate the budget by Monte Carlo with this many draws (95 % coverage intervals).")
+def positioning_command(run_csv, standard, as_json, plot_path, wavelength_nm, expansion_per_k, budget_path, monte_carlo):
     """Evaluate a bidirectional positioning test (RUN_CSV: target_mm, run, direction, deviation_um or actual_mm)."""
     data, result = evaluate_file(run_csv, standard, wavelength_nm=wavelength_nm, expansion_per_k=expansion_per_k)
     ctx = click.get_current_context()
+    if monte_carlo and not budget_path:
+        raise AxiscalError("--monte-carlo propagates a budget: give it with --uncertainty BUDGET.toml")
+    if budget_path and not isinstance(result, Iso230Result):
+        raise AxiscalError("--uncertainty gives U of the ISO 230-2 figures; use an iso230-2 --standard")
     for name in ("wavelength_nm", "expansion_per_k"):
         if not data.compensated and ctx.get_parameter_source(name) == click.core.ParameterSource.COMMANDLINE:
             raise AxiscalError(
@@ -117,10 +126,14 @@ def positioning_command(run_csv, standard, as_json, plot_path, wavelength_nm, ex
         from axiscal.positioning.plot import plot_positioning
 
         plot_positioning(data.run, result, plot_path, compensated=data.compensated)
+    unc = positioning_uncertainty(budget_path, data.run, monte_carlo=monte_carlo or 0) if budget_path else None
     if as_json:
-        echo_json(payload(data, result))
+        body = payload(data, result)
+        if unc is not None:
+            body["uncertainty"] = uncertainty_payload(unc)
+        echo_json(body)
     else:
-        click.echo(report(data, result))
+        click.echo(report(data, result) + ("\n\n" + budget_report(unc) if unc is not None else ""))
 
 
 def register(group: click.Group) -> None:

@@ -1,0 +1,52 @@
+"""Measurement uncertainty: the budget file, U of the ISO 230-2 figures (GTC), Monte Carlo (GUM Supplement 1) and decision rules (ISO 14253-1)."""
+
+from __future__ import annotations
+
+from axiscal.uncertainty.budget import (
+    BUDGET_KEYS,
+    COMPONENTS,
+    HE_NE_WAVELENGTH_NM,
+    Budget,
+    air_sensitivities,
+    budget_from_dict,
+    length_components,
+    length_model,
+    read_budget,
+)
+from axiscal.uncertainty.decision import DECISION_RULES, Decision, decide
+from axiscal.uncertainty.montecarlo import CoverageInterval, coverage_interval
+from axiscal.uncertainty.positioning import (
+    COVERAGE_FACTOR,
+    FIGURE_COMPONENTS,
+    FIGURES,
+    PositioningUncertainty,
+    budget_report,
+    positioning_monte_carlo,
+    positioning_uncertainty,
+    uncertainty_payload,
+)
+
+__all__ = [
+    "COMPONENTS",
+    "BUDGET_KEYS",
+    "HE_NE_WAVELENGTH_NM",
+    "Budget",
+    "budget_from_dict",
+    "read_budget",
+    "air_sensitivities",
+    "length_model",
+    "length_components",
+    "DECISION_RULES",
+    "Decision",
+    "decide",
+    "CoverageInterval",
+    "coverage_interval",
+    "FIGURES",
+    "FIGURE_COMPONENTS",
+    "COVERAGE_FACTOR",
+    "PositioningUncertainty",
+    "positioning_uncertainty",
+    "positioning_monte_carlo",
+    "uncertainty_payload",
+    "budget_report",
+]
