@@ -1,4 +1,4 @@
-"""Measurement uncertainty: the budget file, U of the ISO 230-2 figures (GTC), Monte Carlo (GUM Supplement 1) and decision rules (ISO 14253-1)."""
+"""Measurement uncertainty: the budget file, U of the ISO 230-2 figures (GTC), Monte Carlo (GUM Supplement 1) and decision rules (ISO 14253-1), the volumetric map with uncertainty."""
 
 from __future__ import annotations
 
@@ -25,6 +25,12 @@ from axiscal.uncertainty.positioning import (
     positioning_uncertainty,
     uncertainty_payload,
 )
+from axiscal.uncertainty.volumetric import (
+    MachineUncertainty,
+    VolumetricUncertainty,
+    load_machine_uncertainty,
+    volumetric_monte_carlo,
+)
 
 __all__ = [
     "COMPONENTS",
@@ -49,4 +55,8 @@ __all__ = [
     "positioning_monte_carlo",
     "uncertainty_payload",
     "budget_report",
+    "MachineUncertainty",
+    "VolumetricUncertainty",
+    "load_machine_uncertainty",
+    "volumetric_monte_carlo",
 ]
