@@ -6,9 +6,8 @@ table row, carried to the points by the table's own interpolation), every square
 its value with its ``<term>_u`` key (``EC0Y_arcsec_u``), and each draw goes through
 :meth:`axiscal.model.Machine.volumetric_error` with the error motions given per point, for all draws
 and points in one vectorised call per chunk of draws. The squareness draws enter through the
-model's sensitivity to each term (central differences of the model; the volumetric error is
-linear in these small angles up to terms of order angle^2 * travel, below 1e-10 m for 10 arcsec
-over 1 m). The output per point is the error of the nominal model and the probabilistically
+model's sensitivity to each term (central differences of the model; what is left out is of
+order u^2 * travel, 2e-11 m for a squareness known to 1 arcsec over 1 m of travel). The output per point is the error of the nominal model and the probabilistically
 symmetric 95 % coverage interval of each component.
 
 Chunks of draws get their own seeds from one :class:`numpy.random.SeedSequence`, so the result
