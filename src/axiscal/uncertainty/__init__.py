@@ -1,4 +1,4 @@
-"""Measurement uncertainty: the budget file, U of the ISO 230-2 figures (GTC), Monte Carlo (GUM Supplement 1) and decision rules (ISO 14253-1), the volumetric map with uncertainty."""
+"""Measurement uncertainty: the budget file, U of the ISO 230-2 figures (GTC), Monte Carlo (GUM Supplement 1) and decision rules (ISO 14253-1), straightness and squareness, the volumetric map with uncertainty."""
 
 from __future__ import annotations
 
@@ -25,6 +25,7 @@ from axiscal.uncertainty.positioning import (
     positioning_uncertainty,
     uncertainty_payload,
 )
+from axiscal.uncertainty.straightness import LineUncertainty, squareness_uncertainty, straightness_uncertainty
 from axiscal.uncertainty.volumetric import (
     MachineUncertainty,
     VolumetricUncertainty,
@@ -55,6 +56,9 @@ __all__ = [
     "positioning_monte_carlo",
     "uncertainty_payload",
     "budget_report",
+    "LineUncertainty",
+    "straightness_uncertainty",
+    "squareness_uncertainty",
     "MachineUncertainty",
     "VolumetricUncertainty",
     "load_machine_uncertainty",

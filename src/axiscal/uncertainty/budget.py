@@ -29,7 +29,7 @@ from pathlib import Path
 from axiscal.errors import AxiscalError
 from axiscal.instruments.air import METHODS, refractive_index
 from axiscal.io.tabular import read_text, read_toml
-from axiscal.units import UM
+from axiscal.units import ARCSEC, UM
 
 __all__ = [
     "COMPONENTS",
@@ -48,10 +48,10 @@ COMPONENTS = ("device", "air", "machine_expansion", "machine_temperature", "misa
 
 #: the keys a budget file may hold, per section (docs/uncertainty.md)
 BUDGET_KEYS: dict[str, tuple[str, ...]] = {
-    "instrument": ("length_U_ppm", "wavelength_nm", "method"),
+    "instrument": ("length_U_ppm", "straightness_U_um", "wavelength_nm", "method"),
     "air": ("temperature_u_K", "pressure_u_Pa", "humidity_u_percent", "temperature_C", "pressure_Pa", "humidity_percent"),
     "machine": ("temperature_C", "temperature_u_K", "expansion_per_K", "expansion_u_per_K"),
-    "setup": ("misalignment_urad", "eve_um"),
+    "setup": ("misalignment_urad", "eve_um", "prism_deviation_u_arcsec"),
 }
 
 #: vacuum wavelength of a He-Ne laser, nm
@@ -85,6 +85,10 @@ class Budget:
         Bound of the beam-to-axis angle (rectangular distribution), rad.
     eve_m : float
         Environmental variation error from the drift test (full range), m.
+    straightness_U_m : float
+        Expanded (k = 2) uncertainty of one straightness reading, m.
+    prism_deviation_u_rad : float
+        Standard uncertainty of the pentaprism's deviation from 90 degrees (squareness), rad.
     wavelength_nm : float
         Vacuum wavelength of the laser (default He-Ne, 632.991 nm).
     method : str
@@ -106,6 +110,8 @@ class Budget:
     expansion_u_per_K: float = 0.0
     misalignment_rad: float = 0.0
     eve_m: float = 0.0
+    straightness_U_m: float = 0.0
+    prism_deviation_u_rad: float = 0.0
     wavelength_nm: float = HE_NE_WAVELENGTH_NM
     method: str = "ciddor"
     source: str = "<budget>"
@@ -119,7 +125,8 @@ class Budget:
                 raise AxiscalError(f"budget value {f.name} must be a finite number, got {value!r}", path=self.source)
             object.__setattr__(self, f.name, float(value))
         uncertainties = ("length_U_rel", "air_temperature_u_K", "air_pressure_u_Pa", "air_humidity_u_percent",
-                         "machine_temperature_u_K", "expansion_u_per_K", "misalignment_rad", "eve_m")
+                         "machine_temperature_u_K", "expansion_u_per_K", "misalignment_rad", "eve_m",
+                         "straightness_U_m", "prism_deviation_u_rad")
         for name in uncertainties:
             if getattr(self, name) < 0:
                 raise AxiscalError(f"budget value {name} must not be negative, got {getattr(self, name):g}", path=self.source)
@@ -143,6 +150,8 @@ _FIELDS: dict[tuple[str, str], tuple[str, float]] = {
     ("machine", "expansion_u_per_K"): ("expansion_u_per_K", 1.0),
     ("setup", "misalignment_urad"): ("misalignment_rad", _URAD),
     ("setup", "eve_um"): ("eve_m", UM),
+    ("instrument", "straightness_U_um"): ("straightness_U_m", UM),
+    ("setup", "prism_deviation_u_arcsec"): ("prism_deviation_u_rad", ARCSEC),
 }
 
 
