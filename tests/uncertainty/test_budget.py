@@ -129,3 +129,16 @@ def test_malformed_toml_is_one_error(tmp_path):
     path.write_text("[setup\n")
     with pytest.raises(AxiscalError):
         read_budget(path)
+
+
+def test_unknown_method_names_its_line(tmp_path):
+    path = tmp_path / "b.toml"
+    path.write_text("[instrument]\nlength_U_ppm = 0.5\nmethod = 'magic'\n")
+    with pytest.raises(AxiscalError, match="method") as info:
+        read_budget(path)
+    assert info.value.line == 3
+
+
+def test_python_budget_refuses_negative_values():
+    with pytest.raises(AxiscalError, match="negative"):
+        Budget(eve_m=-1e-6)

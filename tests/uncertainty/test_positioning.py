@@ -16,6 +16,7 @@ from axiscal.uncertainty import (
     budget_from_dict,
     budget_report,
     length_model,
+    positioning_decisions,
     positioning_monte_carlo,
     positioning_uncertainty,
     read_budget,
@@ -149,3 +150,18 @@ def test_bad_arguments():
         positioning_monte_carlo(Budget(), 1.0, 10)
     with pytest.raises(AxiscalError):
         positioning_uncertainty("/nonexistent/budget.toml", 1.0)
+
+
+def test_decisions_for_a_campaign(examples):
+    from axiscal.positioning import iso230_2
+
+    run = read_positioning_run(examples / "positioning_run.csv").run
+    result = iso230_2(run)
+    unc = positioning_uncertainty(examples / "uncertainty_budget.toml", run)
+    limit = result.E + 0.5 * unc.U["E"]  # inside the limit, but not by U
+    simple = positioning_decisions(result, unc, {"E": limit})
+    guarded = positioning_decisions(result, unc, {"E": limit, "B": result.B + 2 * unc.U["B"]}, rule="guard-band")
+    assert simple["E"].verdict == "pass" and guarded["E"].verdict == "inconclusive"
+    assert guarded["B"].verdict == "pass" and "ISO 14253-1" in guarded["B"].statement
+    with pytest.raises(AxiscalError, match="S_up"):
+        positioning_decisions(result, unc, {"S_up": 1e-6})

@@ -124,15 +124,17 @@ class Budget:
             if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
                 raise AxiscalError(f"budget value {f.name} must be a finite number, got {value!r}", path=self.source)
             object.__setattr__(self, f.name, float(value))
-        uncertainties = ("length_U_rel", "air_temperature_u_K", "air_pressure_u_Pa", "air_humidity_u_percent",
-                         "machine_temperature_u_K", "expansion_u_per_K", "misalignment_rad", "eve_m",
-                         "straightness_U_m", "prism_deviation_u_rad")
-        for name in uncertainties:
+        for name in _UNCERTAINTIES:
             if getattr(self, name) < 0:
                 raise AxiscalError(f"budget value {name} must not be negative, got {getattr(self, name):g}", path=self.source)
         if self.method not in METHODS:
             raise AxiscalError(f"unknown refractive-index method '{self.method}'; use one of {', '.join(METHODS)}", path=self.source)
 
+
+# Budget fields that are uncertainties or bounds (never negative)
+_UNCERTAINTIES = ("length_U_rel", "air_temperature_u_K", "air_pressure_u_Pa", "air_humidity_u_percent",
+                  "machine_temperature_u_K", "expansion_u_per_K", "misalignment_rad", "eve_m",
+                  "straightness_U_m", "prism_deviation_u_rad")
 
 # (section, key) -> (Budget field, factor to SI)
 _FIELDS: dict[tuple[str, str], tuple[str, float]] = {
@@ -223,13 +225,13 @@ def budget_from_dict(data: dict, *, source: str = "<budget>", text: str | None =
             if not isinstance(value, (int, float)) or isinstance(value, bool):
                 raise AxiscalError(f"[{section}] {key} must be a number, got {value!r}", path=source, line=line(section, key))
             name, factor = _FIELDS[(section, key)]
+            if name in _UNCERTAINTIES and value < 0:
+                raise AxiscalError(f"[{section}] {key} must not be negative, got {value:g}", path=source, line=line(section, key))
             values[name] = float(value) * factor
     try:
         return Budget(**values, source=source)
-    except AxiscalError as exc:
-        bad = next((k for (s, k), (n, _) in _FIELDS.items() if n in exc.message.split()), None)
-        section = next((s for (s, k), (n, _) in _FIELDS.items() if k == bad and n in exc.message.split()), None)
-        raise AxiscalError(exc.message, path=source, line=line(section, bad) if section else None) from None
+    except AxiscalError as exc:  # the method is the one value only Budget itself checks
+        raise exc.located(line=line("instrument", "method")) from None
 
 
 def read_budget(path: str | Path) -> Budget:

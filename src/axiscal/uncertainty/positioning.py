@@ -23,8 +23,9 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.instruments.air import refractive_index
-from axiscal.positioning.evaluation import PositioningRun
+from axiscal.positioning.evaluation import Iso230Result, PositioningRun
 from axiscal.uncertainty.budget import COMPONENTS, Budget, length_components, length_model, read_budget
+from axiscal.uncertainty.decision import Decision, decide
 from axiscal.uncertainty.montecarlo import CoverageInterval, coverage_interval
 from axiscal.units import UM
 
@@ -37,6 +38,7 @@ __all__ = [
     "positioning_monte_carlo",
     "uncertainty_payload",
     "budget_report",
+    "positioning_decisions",
 ]
 
 #: the ISO 230-2 figures that get an uncertainty
@@ -263,3 +265,41 @@ def budget_report(result: PositioningUncertainty) -> str:
         length_mm=result.length_m * 1e3, k=result.k, rows=rows, combined=combined, figures=figures, mc=mc, draws=draws
     )
     return text.rstrip("\n")
+
+
+def positioning_decisions(
+    result: Iso230Result, uncertainty: PositioningUncertainty, limits: dict[str, float], *, rule: str = "simple"
+) -> dict[str, Decision]:
+    """Verdicts on the ISO 230-2 figures against their limits, with the figures' U (for a campaign report).
+
+    Parameters
+    ----------
+    result : Iso230Result
+        The evaluated test (figures in m).
+    uncertainty : PositioningUncertainty
+        Their uncertainties (:func:`positioning_uncertainty`).
+    limits : dict of str to float
+        Upper limit of each figure to judge, by symbol of :data:`FIGURES` (``{"E": 10e-6}``), m.
+    rule : {"simple", "guard-band"}, keyword-only
+        Decision rule (:func:`axiscal.uncertainty.decide`).
+
+    Returns
+    -------
+    dict of str to Decision
+        One verdict per figure in ``limits``, each stating its rule.
+
+    Raises
+    ------
+    AxiscalError
+        A figure that has no uncertainty here, a figure that is not available (NaN with one run),
+        an unknown rule.
+    """
+    out = {}
+    for figure, limit in limits.items():
+        if figure not in FIGURES:
+            raise AxiscalError(f"no uncertainty for figure '{figure}'; use one of {', '.join(FIGURES)}")
+        value = getattr(result, figure)
+        if not math.isfinite(value):
+            raise AxiscalError(f"figure {figure} is not available for this test (one run per direction)")
+        out[figure] = decide(value, limit, uncertainty.U[figure], rule=rule)
+    return out
