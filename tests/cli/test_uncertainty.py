@@ -45,3 +45,13 @@ def test_errors_are_one_line(run_cli, examples, tmp_path):
     status, _, err = run_cli("positioning", examples / "positioning_run.csv", "--standard", "vdi3441",
                              "--uncertainty", examples / "uncertainty_budget.toml")
     assert status == 2 and "iso230-2" in err
+
+
+def test_raw_laser_run_has_the_same_travel_and_U(run_cli, examples):
+    status, out, _ = run_cli("positioning", examples / "laser_raw_run.csv", "--json", "--uncertainty",
+                             examples / "uncertainty_budget.toml")
+    assert status == 0
+    body = json.loads(out)
+    assert body["compensated"] is True
+    assert set(body["uncertainty"]) == {"k", "E", "R", "B", "A", "M", "components_um"}
+    assert body["uncertainty"]["E"]["U"] == pytest.approx(6.874, abs=1e-3)

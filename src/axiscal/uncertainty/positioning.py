@@ -228,7 +228,6 @@ def uncertainty_payload(result: PositioningUncertainty) -> dict:
     body: dict = {"k": int(result.k) if float(result.k).is_integer() else result.k}
     body.update({figure: {"U": result.U[figure] / UM} for figure in FIGURES})
     body["components_um"] = {name: u / UM for name, u in result.components.items()}
-    body["length_mm"] = result.length_m * 1e3
     if result.monte_carlo:
         first = next(iter(result.monte_carlo.values()))
         mc: dict = {"draws": first.draws, "probability": first.probability}
