@@ -142,3 +142,11 @@ def test_unknown_method_names_its_line(tmp_path):
 def test_python_budget_refuses_negative_values():
     with pytest.raises(AxiscalError, match="negative"):
         Budget(eve_m=-1e-6)
+
+
+def test_air_conditions_in_the_wrong_unit_name_the_section(tmp_path):
+    path = tmp_path / "b.toml"
+    path.write_text("[setup]\neve_um = 1.0\n\n[air]\npressure_Pa = 1013.25\n")
+    with pytest.raises(AxiscalError, match="pressure") as info:
+        read_budget(path)
+    assert info.value.line == 4

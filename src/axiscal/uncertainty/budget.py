@@ -194,7 +194,8 @@ def budget_from_dict(data: dict, *, source: str = "<budget>", text: str | None =
     Raises
     ------
     AxiscalError
-        An unknown section or key, a value that is not a number, a negative uncertainty.
+        An unknown section or key, a value that is not a number, a negative uncertainty, air
+        conditions outside the range of the refractive-index equation.
 
     Examples
     --------
@@ -229,9 +230,14 @@ def budget_from_dict(data: dict, *, source: str = "<budget>", text: str | None =
                 raise AxiscalError(f"[{section}] {key} must not be negative, got {value:g}", path=source, line=line(section, key))
             values[name] = float(value) * factor
     try:
-        return Budget(**values, source=source)
+        budget = Budget(**values, source=source)
     except AxiscalError as exc:  # the method is the one value only Budget itself checks
         raise exc.located(line=line("instrument", "method")) from None
+    try:  # air conditions the refractive-index equation refuses (hPa for Pa, ...) show here, not later
+        air_sensitivities(budget)
+    except AxiscalError as exc:
+        raise AxiscalError(f"[air] conditions: {exc.message}", path=source, line=line("air")) from None
+    return budget
 
 
 def read_budget(path: str | Path) -> Budget:
@@ -269,6 +275,11 @@ def air_sensitivities(budget: Budget) -> dict[str, float]:
     -------
     dict
         ``{"temperature": dn/dT (1/K), "pressure": dn/dp (1/Pa), "humidity": dn/dh (1/%)}``.
+
+    Raises
+    ------
+    AxiscalError
+        Air conditions or a wavelength outside the range of the refractive-index equation.
     """
     base = {"temperature": budget.air_temperature_C, "pressure": budget.air_pressure_Pa, "humidity": budget.air_humidity_percent}
     steps = {"temperature": 0.01, "pressure": 1.0, "humidity": 0.1}
@@ -305,6 +316,11 @@ def length_model(budget: Budget, length_m: float):
     -------
     GTC.lib.UncertainReal
         The length error, m.
+
+    Raises
+    ------
+    AxiscalError
+        As :func:`air_sensitivities`.
     """
     from GTC import ureal
 
@@ -343,6 +359,11 @@ def length_components(budget: Budget, length_m: float) -> dict[str, float]:
     dict of str to float
         One entry per name of :data:`COMPONENTS`, m (k = 1); the air's three sensors combined in
         quadrature.
+
+    Raises
+    ------
+    AxiscalError
+        As :func:`air_sensitivities`.
 
     Examples
     --------
