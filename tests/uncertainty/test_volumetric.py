@@ -143,3 +143,25 @@ def test_dask_local_cluster_gives_the_same_interval(machine):
         there = volumetric_monte_carlo(machine, u, q, 400, seed=11, chunk_draws=100, scheduler=client)
     np.testing.assert_array_equal(here.low, there.low)
     np.testing.assert_array_equal(here.high, there.high)
+
+
+def test_written_map_reads_with_plain_pandas(machine, tmp_path):
+    import json
+
+    import pandas as pd
+
+    from axiscal.uncertainty import write_volumetric_uncertainty
+
+    q = points(machine, 7)
+    u = MachineUncertainty({k: np.full_like(v, 1e-6) for k, v in zero_u(machine).items()}, {})
+    result = volumetric_monte_carlo(machine, u, q, 200, seed=1)
+    path = write_volumetric_uncertainty(tmp_path / "map.csv", q, result)
+    frame = pd.read_csv(path)
+    expected = ["X_mm", "Y_mm", "Z_mm"] + [f"{e}_{s}um" for e in ("ex", "ey", "ez") for s in ("", "u_", "low_", "high_")]
+    assert list(frame.columns) == expected and len(frame) == 7
+    np.testing.assert_allclose(frame["ex_high_um"], result.high[:, 0] * 1e6, atol=1e-6)
+    np.testing.assert_allclose(frame["X_mm"], q["X"] * 1e3, atol=1e-6)
+    side = json.loads((tmp_path / "map.json").read_text())
+    assert side["draws"] == 200 and side["probability"] == 0.95
+    with pytest.raises(AxiscalError, match="points"):
+        write_volumetric_uncertainty(tmp_path / "bad.csv", points(machine, 3), result)

@@ -32,6 +32,7 @@ from axiscal.uncertainty.volumetric import (
     VolumetricUncertainty,
     load_machine_uncertainty,
     volumetric_monte_carlo,
+    write_volumetric_uncertainty,
 )
 
 __all__ = [
@@ -65,4 +66,5 @@ __all__ = [
     "VolumetricUncertainty",
     "load_machine_uncertainty",
     "volumetric_monte_carlo",
+    "write_volumetric_uncertainty",
 ]

@@ -29,16 +29,19 @@ import numpy as np
 
 from axiscal.conventions import SQUARENESS_TERMS, component_names
 from axiscal.errors import AxiscalError
-from axiscal.io.tabular import read_csv, read_text, read_toml
+from axiscal.io.atomic import write_text
+from axiscal.io.jsonio import write_sidecar
+from axiscal.io.tabular import read_csv, read_text, read_toml, write_csv
 from axiscal.model.machine import Machine, machine_from_dict
 from axiscal.uncertainty.montecarlo import coverage_interval
-from axiscal.units import angle_factor, length_factor, split_unit
+from axiscal.units import MM, UM, angle_factor, length_factor, split_unit
 
 __all__ = [
     "MachineUncertainty",
     "VolumetricUncertainty",
     "load_machine_uncertainty",
     "volumetric_monte_carlo",
+    "write_volumetric_uncertainty",
 ]
 
 _SUFFIX = "_u"
@@ -364,3 +367,51 @@ def _run_on_dask(scheduler, machine, setup, seeds, sizes) -> list[np.ndarray]:
         if own is not None:
             client.close()
             own.close()
+
+
+def write_volumetric_uncertainty(
+    path: str | Path, positions: Mapping[str, np.ndarray], result: VolumetricUncertainty, *, sources=()
+) -> Path:
+    """Write the volumetric map with its coverage intervals as a plain CSV and its JSON sidecar.
+
+    Columns: ``<axis>_mm`` for each axis of ``positions``, then for each of ex, ey, ez:
+    ``e?_um`` (the model's error), ``e?_u_um`` (standard deviation of the draws), ``e?_low_um`` and
+    ``e?_high_um`` (the coverage interval). The sidecar (``path`` with ``.json``) holds the number
+    of draws and the coverage probability. The write is atomic.
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV to write.
+    positions : mapping of str to ndarray, shape (N,)
+        The points' axis positions, metres (as given to :func:`volumetric_monte_carlo`).
+    result : VolumetricUncertainty
+    sources : sequence of paths, keyword-only
+        Input files, for the sidecar.
+
+    Returns
+    -------
+    Path
+        The CSV written.
+
+    Raises
+    ------
+    AxiscalError
+        Positions that do not match the result's points, or a file that cannot be written.
+    """
+    n = result.error.shape[0]
+    columns: dict[str, np.ndarray] = {}
+    for letter, q in positions.items():
+        q = np.atleast_1d(np.asarray(q, dtype=float))
+        if q.shape != (n,):
+            raise AxiscalError(f"positions of axis {letter}: {q.size} values for {n} points")
+        columns[f"{letter}_mm"] = q / MM
+    for i, name in enumerate(("ex", "ey", "ez")):
+        columns[f"{name}_um"] = result.error[:, i] / UM
+        columns[f"{name}_u_um"] = result.std[:, i] / UM
+        columns[f"{name}_low_um"] = result.low[:, i] / UM
+        columns[f"{name}_high_um"] = result.high[:, i] / UM
+    written = write_text(path, write_csv(None, columns, fmt="{:.6f}"))
+    write_sidecar(written, kind="volumetric uncertainty", sources=list(sources), method="Monte Carlo (JCGM 101)",
+                  draws=result.draws, probability=result.probability)
+    return written
