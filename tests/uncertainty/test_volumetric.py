@@ -102,7 +102,7 @@ def test_bad_u_columns_name_the_file(examples, tmp_path):
         load_machine_uncertainty(path)
     assert info.value.path == str(csv) and info.value.line == 2 and "negative" in info.value.message
     csv.write_text(csv.read_text().replace("EXX_um_u", "EQQ_um_u"))
-    with pytest.raises(AxiscalError, match="no value column") as info:
+    with pytest.raises(AxiscalError, match="no error column") as info:
         load_machine_uncertainty(path)
     assert info.value.path == str(csv)
 
@@ -165,3 +165,15 @@ def test_written_map_reads_with_plain_pandas(machine, tmp_path):
     assert side["draws"] == 200 and side["probability"] == 0.95
     with pytest.raises(AxiscalError, match="points"):
         write_volumetric_uncertainty(tmp_path / "bad.csv", points(machine, 3), result)
+
+
+def test_bad_squareness_u_key_names_its_line(examples, tmp_path):
+    path = write_machine_with_u(examples, tmp_path)
+    path.write_text(path.read_text().replace("EC0Y_arcsec_u = 1.0", "EC0Y_arcsec_u = -1.0"))
+    with pytest.raises(AxiscalError, match="non-negative") as info:
+        load_machine_uncertainty(path)
+    line = path.read_text().splitlines().index("EC0Y_arcsec_u = -1.0") + 1
+    assert info.value.path == str(path) and info.value.line == line
+    path.write_text(path.read_text().replace("EC0Y_arcsec_u = -1.0", "EQ0Y_arcsec_u = 1.0"))
+    with pytest.raises(AxiscalError, match="no squareness term"):
+        load_machine_uncertainty(path)

@@ -27,14 +27,15 @@ from pathlib import Path
 
 import numpy as np
 
-from axiscal.conventions import SQUARENESS_TERMS, component_names
+from axiscal.conventions import AXIS_INDEX, SQUARENESS_TERMS, component_names
 from axiscal.errors import AxiscalError
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.tabular import read_csv, read_text, read_toml, write_csv
 from axiscal.model.machine import Machine, machine_from_dict
+from axiscal.uncertainty.budget import _line_of
 from axiscal.uncertainty.montecarlo import coverage_interval
-from axiscal.units import MM, UM, angle_factor, length_factor, split_unit
+from axiscal.units import MM, UM, angle_factor, length_factor
 
 __all__ = [
     "MachineUncertainty",
@@ -90,30 +91,31 @@ class VolumetricUncertainty:
     probability: float
 
 
-def _split_uncertainty_columns(path: Path) -> tuple[str, dict[str, tuple[str, float]]]:
-    """The CSV text without its ``_u`` columns, and {value column: (u column, factor to SI)}."""
+def _split_uncertainty_columns(path: Path, letter: str):
+    """The CSV text without its ``_u`` columns, the table, and {u column: (row, factor to SI)}."""
     table = read_csv(path, min_rows=2)
-    u_columns = [c for c in table.header if c.endswith(_SUFFIX)]
-    pairs: dict[str, tuple[str, float]] = {}
-    for column in u_columns:
+    names = component_names(letter)
+    rows: dict[str, tuple[int, float]] = {}
+    for column in (c for c in table.header if c.endswith(_SUFFIX)):
         value = column[: -len(_SUFFIX)]
-        if value not in table.header:
-            raise AxiscalError(f"column '{column}' has no value column '{value}' beside it", path=path, line=table.header_line)
-        stem, unit = split_unit(value)
+        stem, _, unit = value.rpartition("_")
+        if value not in table.header or stem not in names:
+            raise AxiscalError(f"column '{column}' has no error column '{value}' beside it", path=path, line=table.header_line)
+        row = names.index(stem)
         try:
-            factor = length_factor(unit, what=value) if stem.startswith("E") and stem[1] in "XYZ" else angle_factor(unit, what=value)
+            factor = length_factor(unit, what=value) if row < 3 else angle_factor(unit, what=value)
         except AxiscalError as exc:
             raise exc.located(path=path, line=table.header_line) from None
-        pairs[value] = (column, factor)
+        rows[column] = (row, factor)
     keep = [i for i, c in enumerate(table.header) if not c.endswith(_SUFFIX)]
     out = io.StringIO()
-    for line in read_text(path).splitlines():
+    for line in read_text(path).splitlines():  # every line kept, so errors keep their line numbers
         if not line.strip() or line.lstrip().startswith("#"):
             out.write(line + "\n")
             continue
         cells = next(csv.reader([line]))
         out.write(",".join(cells[i] for i in keep if i < len(cells)) + "\n")
-    return out.getvalue(), pairs
+    return out.getvalue(), table, rows
 
 
 def load_machine_uncertainty(path: str | Path) -> tuple[Machine, MachineUncertainty]:
@@ -148,17 +150,20 @@ def load_machine_uncertainty(path: str | Path) -> tuple[Machine, MachineUncertai
     if isinstance(squareness, dict):
         for key in [k for k in squareness if k.endswith(_SUFFIX)]:
             value_key = key[: -len(_SUFFIX)]
-            stem, unit = split_unit(value_key)
+            stem, _, unit = value_key.rpartition("_")
+            where = {"path": path, "line": _line_of(read_text(path), "squareness", key)}
             if value_key not in squareness or stem not in SQUARENESS_TERMS:
-                raise AxiscalError(f"[squareness] '{key}' has no squareness term '{value_key}' beside it", path=path)
+                raise AxiscalError(f"[squareness] '{key}' has no squareness term '{value_key}' beside it", **where)
             u = squareness.pop(key)
-            if not isinstance(u, (int, float)) or not np.isfinite(u) or u < 0:
-                raise AxiscalError(f"[squareness] {key} must be a non-negative number", path=path)
-            squareness_u[stem] = float(u) * angle_factor(unit, what=key)
+            if not isinstance(u, (int, float)) or isinstance(u, bool) or not np.isfinite(u) or u < 0:
+                raise AxiscalError(f"[squareness] {key} must be a non-negative number", **where)
+            try:
+                squareness_u[stem] = float(u) * angle_factor(unit, what=key)
+            except AxiscalError as exc:
+                raise exc.located(**where) from None
     axes = data.get("axes", {})
     originals: dict[str, Path] = {}
-    by_letter: dict[str, Path] = {}
-    pairs: dict[str, dict[str, tuple[str, float]]] = {}
+    u_columns: dict[str, tuple] = {}
     with tempfile.TemporaryDirectory(prefix="axiscal-u-") as folder:
         if isinstance(axes, dict):
             axes = {k: (dict(v) if isinstance(v, Mapping) else v) for k, v in axes.items()}
@@ -167,11 +172,13 @@ def load_machine_uncertainty(path: str | Path) -> tuple[Machine, MachineUncertai
                 if not isinstance(section, dict) or "errors" not in section:
                     continue
                 original = path.parent / str(section["errors"])
-                text, pairs[letter] = _split_uncertainty_columns(original)
+                if letter not in AXIS_INDEX:
+                    continue  # machine_from_dict names the stray section
+                text, table, rows = _split_uncertainty_columns(original, letter)
                 copy = Path(folder) / f"{letter}_{original.name}"
                 copy.write_text(text)
                 originals[str(copy)] = original
-                by_letter[letter] = original
+                u_columns[letter] = (table, rows)
                 section["errors"] = str(copy)
         try:
             machine = machine_from_dict(data, base_dir=path.parent, source=str(path))
@@ -184,17 +191,14 @@ def load_machine_uncertainty(path: str | Path) -> tuple[Machine, MachineUncertai
     for letter in machine.letters:
         table = machine.table(letter)
         u = np.zeros_like(table.values)
-        if letter in pairs and pairs[letter]:
-            csv_table = read_csv(by_letter[letter], min_rows=2)
-            names = component_names(letter)
-            for value_column, (u_column, factor) in pairs[letter].items():
-                row = names.index(split_unit(value_column)[0])
-                values = csv_table.numeric(u_column) * factor
-                bad = np.flatnonzero(values < 0)
-                if bad.size:
-                    raise AxiscalError(f"column '{u_column}': a standard uncertainty must not be negative",
-                                       path=csv_table.path, line=csv_table.lines[bad[0]])
-                u[row] = values
+        csv_table, rows = u_columns.get(letter, (None, {}))
+        for u_column, (row, factor) in rows.items():
+            values = csv_table.numeric(u_column) * factor
+            bad = np.flatnonzero(values < 0)
+            if bad.size:
+                raise AxiscalError(f"column '{u_column}': a standard uncertainty must not be negative",
+                                   path=csv_table.path, line=csv_table.lines[bad[0]])
+            u[row] = values
         u.setflags(write=False)
         tables[letter] = u
     return machine, MachineUncertainty(tables, squareness_u)
