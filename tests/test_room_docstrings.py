@@ -19,6 +19,9 @@ ROOMS = (
     "axiscal.straightness",
     "axiscal.squareness",
     "axiscal.circular",
+    "axiscal.uncertainty",
+    "axiscal.campaign",
+    "axiscal.report",
 )
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]

@@ -18,9 +18,9 @@ from axiscal.circular.evaluation import (
     plane_axes,
     radial_deviations,
 )
+from axiscal.circular.report import MS, PPM
 from axiscal.circular.simulation import simulate_ballbar
 from axiscal.errors import AxiscalError
-from axiscal.circular.report import MS, PPM
 from axiscal.units import MM, UM
 
 R = 100.0 * MM

@@ -7,7 +7,14 @@ import math
 import pytest
 
 from axiscal.circular.evaluation import MM_PER_MIN
-from axiscal.circular.report import MS, ballbar_payload, evaluate_ballbar, evaluate_ballbar_file, iso_squareness, render_report
+from axiscal.circular.report import (
+    MS,
+    ballbar_payload,
+    evaluate_ballbar,
+    evaluate_ballbar_file,
+    iso_squareness,
+    render_report,
+)
 from axiscal.circular.simulation import simulate_ballbar
 from axiscal.errors import AxiscalError
 from axiscal.units import ANGLE_UNITS, MM, UM

@@ -10,9 +10,9 @@ import pandas as pd
 import pytest
 
 from axiscal.circular.reader import read_ballbar
+from axiscal.circular.report import PPM
 from axiscal.circular.simulation import simulate_ballbar, trace_csv, write_trace
 from axiscal.errors import AxiscalError
-from axiscal.circular.report import PPM
 from axiscal.units import MM, UM
 
 

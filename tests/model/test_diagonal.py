@@ -12,8 +12,8 @@ from hypothesis import strategies as st
 
 from axiscal.errors import AxiscalError
 from axiscal.model.diagonal import diagonal_check, diagonal_test
-from axiscal.model.output import SIGN_CONVENTION
 from axiscal.model.machine import Axis, Machine
+from axiscal.model.output import SIGN_CONVENTION
 from axiscal.model.tables import ErrorTable
 
 

@@ -6,7 +6,12 @@ import numpy as np
 import pytest
 
 from axiscal.errors import AxiscalError
-from axiscal.model.inputs import parse_point, read_interferometer, read_points, read_targets
+from axiscal.model.inputs import (
+    parse_point,
+    read_interferometer,
+    read_points,
+    read_targets,
+)
 from axiscal.model.machine import load_machine
 
 

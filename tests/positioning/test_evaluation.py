@@ -24,7 +24,6 @@ from axiscal.positioning.evaluation import (
 from axiscal.positioning.reader import read_positioning_run
 from axiscal.units import UM
 
-
 # paper 003, Table 4: three runs at targets 0 and 20 mm (the columns under targets 1 and 2);
 # the first column of each target is the approach marked "down", the second "up".
 TABLE4_DOWN = np.array([[3.6, -0.2, 3.3], [4.1, 1.9, 2.2]])

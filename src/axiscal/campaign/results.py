@@ -65,7 +65,15 @@ class Check:
 
 @dataclass(frozen=True)
 class Plot:
-    """A figure of the report: its title and its SVG text (inline in the HTML page)."""
+    """A plot of the report.
+
+    Attributes
+    ----------
+    title : str
+        Its caption.
+    svg : str
+        Its SVG text, placed inline in the HTML page.
+    """
 
     title: str
     svg: str = field(repr=False)
@@ -73,7 +81,14 @@ class Plot:
 
 @dataclass(frozen=True)
 class Figure:
-    """A figure as the report's tables show it: label, value, unit."""
+    """A figure as the report's tables show it.
+
+    Attributes
+    ----------
+    label : str
+    value : float
+    unit : str
+    """
 
     label: str
     value: float
@@ -138,7 +153,19 @@ class TestResult:
 
 @dataclass
 class CampaignResults:
-    """The whole campaign's results: what :func:`axiscal.campaign.run_campaign` returns."""
+    """The whole campaign's results: what :func:`axiscal.campaign.run_campaign` returns.
+
+    Attributes
+    ----------
+    campaign, machine, instrument : dict
+        The campaign.toml tables as written.
+    tests : list of TestResult
+        One per ``[[tests]]`` entry, in order.
+    warnings : list of str
+        Warnings about the campaign as a whole.
+    model : dict
+        The volumetric section when the campaign names a machine model.
+    """
 
     campaign: dict[str, Any]
     machine: dict[str, Any]
@@ -188,7 +215,23 @@ def check_figures(figures: Mapping[str, Any], tolerances: Mapping[str, float], u
 
 
 def overall_verdict(verdicts: Sequence[str]) -> str:
-    """``"fail"`` if any test failed, ``"pass"`` if any passed and none failed, else ``"not assessed"``."""
+    """The campaign's verdict from its tests' verdicts.
+
+    Parameters
+    ----------
+    verdicts : sequence of str
+        Each test's ``"pass"``, ``"fail"`` or ``"not assessed"``.
+
+    Returns
+    -------
+    str
+        ``"fail"`` if any test failed, ``"pass"`` if any passed and none failed, else ``"not assessed"``.
+
+    Examples
+    --------
+    >>> overall_verdict(["pass", "not assessed"])
+    'pass'
+    """
     if "fail" in verdicts:
         return "fail"
     if "pass" in verdicts:

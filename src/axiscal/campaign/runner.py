@@ -29,7 +29,18 @@ __all__ = ["COMPENSATION_FILES", "KIND_RUNNERS", "evaluation_is_raw", "run_campa
 
 
 def svg_of(draw: Callable[[Path], Any]) -> str:
-    """The SVG text of a plot that ``draw(path)`` writes to an ``.svg`` path."""
+    """The SVG text of a plot, for placing inline in a page.
+
+    Parameters
+    ----------
+    draw : callable
+        Writes the plot to the ``.svg`` path it is given.
+
+    Returns
+    -------
+    str
+        The ``<svg>`` element, without XML prolog and metadata.
+    """
     with tempfile.TemporaryDirectory(prefix="axiscal-plot-") as folder:
         path = Path(folder) / "plot.svg"
         draw(path)
@@ -103,7 +114,18 @@ def _positioning(campaign: Campaign, spec: TestSpec) -> TestResult:
 
 
 def evaluation_is_raw(path: Path) -> bool:
-    """True when a run file holds raw laser readings (an ``actual_*`` column) that need a wavelength."""
+    """Whether a run file holds raw laser readings, which need a wavelength.
+
+    Parameters
+    ----------
+    path : Path
+        A positioning run file.
+
+    Returns
+    -------
+    bool
+        True when it has an ``actual_<unit>`` column.
+    """
     from axiscal.io.tabular import read_csv
 
     return any(name.startswith("actual_") for name in read_csv(path).header)
@@ -205,8 +227,8 @@ def _squareness(campaign: Campaign, spec: TestSpec) -> TestResult:
 
 
 def _ballbar(campaign: Campaign, spec: TestSpec) -> TestResult:
-    from axiscal.circular.plot import plot_ballbar
     from axiscal.circular.evaluation import MM_PER_MIN
+    from axiscal.circular.plot import plot_ballbar
     from axiscal.circular.report import ballbar_payload, evaluate_ballbar_file
 
     path = spec.options["file"]
@@ -243,7 +265,23 @@ KIND_RUNNERS: dict[str, Callable[[Campaign, TestSpec], TestResult]] = {
 
 
 def run_test(campaign: Campaign, spec: TestSpec) -> TestResult:
-    """Run one test of ``campaign``; errors name the test's data file or campaign.toml's line."""
+    """Run one test of a campaign through the library call of its kind.
+
+    Parameters
+    ----------
+    campaign : Campaign
+    spec : TestSpec
+        One of ``campaign.tests``.
+
+    Returns
+    -------
+    TestResult
+
+    Raises
+    ------
+    AxiscalError
+        For a bad data file (naming it and the line).
+    """
     runner = KIND_RUNNERS.get(spec.kind)
     if runner is None:
         raise AxiscalError(f"tests of kind '{spec.kind}' cannot be run yet", path=campaign.folder / "campaign.toml", line=spec.line)

@@ -40,7 +40,12 @@ from axiscal.circular.report import (
     iso_squareness,
     render_report,
 )
-from axiscal.circular.simulation import SPIKE_WIDTH_DEG, simulate_ballbar, trace_csv, write_trace
+from axiscal.circular.simulation import (
+    SPIKE_WIDTH_DEG,
+    simulate_ballbar,
+    trace_csv,
+    write_trace,
+)
 
 __all__ = [
     "DIRECTIONS",

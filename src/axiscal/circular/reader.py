@@ -12,7 +12,12 @@ from pathlib import Path
 
 import numpy as np
 
-from axiscal.circular.evaluation import DIRECTIONS, BallbarTrace, check_direction, plane_axes
+from axiscal.circular.evaluation import (
+    DIRECTIONS,
+    BallbarTrace,
+    check_direction,
+    plane_axes,
+)
 from axiscal.errors import AxiscalError
 from axiscal.io.tabular import read_csv
 from axiscal.units import length_factor

@@ -14,7 +14,12 @@ from pathlib import Path
 from typing import Any
 
 from axiscal.circular.diagnostics import BallbarDiagnostics, diagnose
-from axiscal.circular.evaluation import MM_PER_MIN, BallbarTrace, CircularFigures, iso230_4
+from axiscal.circular.evaluation import (
+    MM_PER_MIN,
+    BallbarTrace,
+    CircularFigures,
+    iso230_4,
+)
 from axiscal.circular.reader import read_ballbar
 from axiscal.conventions import SQUARENESS_TERMS
 from axiscal.units import ANGLE_UNITS, LENGTH_UNITS, MM, UM

@@ -7,7 +7,13 @@ import math
 import click
 
 from axiscal.circular.evaluation import DIRECTIONS, MM_PER_MIN, PLANES
-from axiscal.circular.report import MS, PPM, ballbar_payload, evaluate_ballbar_file, render_report
+from axiscal.circular.report import (
+    MS,
+    PPM,
+    ballbar_payload,
+    evaluate_ballbar_file,
+    render_report,
+)
 from axiscal.cli.common import echo_json
 from axiscal.units import ANGLE_UNITS, MM, UM
 

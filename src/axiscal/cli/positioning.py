@@ -5,9 +5,11 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import echo_json, flags_named, given_options
+from axiscal.errors import AxiscalError
 from axiscal.materials import STEEL_EXPANSION_PER_K
 from axiscal.positioning.evaluation import STANDARDS
 from axiscal.positioning.report import evaluate_positioning_file
+from axiscal.uncertainty.positioning import evaluate_positioning_with_uncertainty
 
 __all__ = ["positioning_command", "register"]
 
@@ -21,11 +23,22 @@ __all__ = ["positioning_command", "register"]
 @click.option("--wavelength-nm", type=float, default=None, help="Vacuum wavelength for raw laser readings [632.991].")
 @click.option("--expansion-per-k", type=float, default=STEEL_EXPANSION_PER_K, show_default=True,
               help="Material expansion coefficient for material_temperature_c normalisation to 20 degC.")
-def positioning_command(run_csv, standard, as_json, plot_path, wavelength_nm, expansion_per_k):
+@click.option("--uncertainty", "budget_path", type=click.Path(dir_okay=False),
+              help="Uncertainty budget (TOML): add U (k = 2) of E, R, B, A, M and the budget table.")
+@click.option("--monte-carlo", type=click.IntRange(min=1), default=None,
+              help="Also propagate the budget by Monte Carlo with this many draws (95 % coverage intervals).")
+def positioning_command(run_csv, standard, as_json, plot_path, wavelength_nm, expansion_per_k, budget_path, monte_carlo):
     """Evaluate a bidirectional positioning test (RUN_CSV: target_mm, run, direction, deviation_um or actual_mm)."""
     raw_options = given_options(wavelength_nm=wavelength_nm, expansion_per_k=expansion_per_k)
+    if monte_carlo and not budget_path:
+        raise AxiscalError("--monte-carlo propagates a budget: give it with --uncertainty BUDGET.toml")
     with flags_named({"wavelength_nm": "--wavelength-nm", "expansion_per_k": "--expansion-per-k"}):
-        evaluation = evaluate_positioning_file(run_csv, standard=standard, **raw_options)
+        if budget_path:
+            evaluation = evaluate_positioning_with_uncertainty(
+                run_csv, budget_path, standard=standard, monte_carlo=monte_carlo or 0, **raw_options
+            )
+        else:
+            evaluation = evaluate_positioning_file(run_csv, standard=standard, **raw_options)
     for warning in evaluation.warnings:
         click.echo(f"axiscal: warning: {evaluation.run.source}: {warning}", err=True)
     if plot_path:

@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 from axiscal.compensation.curve import DIRECTIONS, ErrorCurve, error_curve, residuals
+from axiscal.compensation.fanuc import MAX_AXIS_NUMBER, FanucTable, fanuc_table
 from axiscal.compensation.formats import (
     FORMAT_OPTIONS,
     FORMATS,
     CompensationResult,
     compensation_table,
 )
-from axiscal.compensation.fanuc import MAX_AXIS_NUMBER, FanucTable, fanuc_table
 from axiscal.compensation.heidenhain import (
     HEIDENHAIN_MAX_ENTRIES,
     HeidenhainTable,

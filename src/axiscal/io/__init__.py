@@ -4,8 +4,22 @@ writes, JSON sidecars, and the lazy entry to matplotlib for plots (:mod:`axiscal
 from __future__ import annotations
 
 from axiscal.io.atomic import atomic_write, write_text
-from axiscal.io.jsonio import dumps, read_json, sidecar_path, to_plain, write_json, write_sidecar
-from axiscal.io.tabular import CsvTable, parse_csv, read_csv, read_text, read_toml, write_csv
+from axiscal.io.jsonio import (
+    dumps,
+    read_json,
+    sidecar_path,
+    to_plain,
+    write_json,
+    write_sidecar,
+)
+from axiscal.io.tabular import (
+    CsvTable,
+    parse_csv,
+    read_csv,
+    read_text,
+    read_toml,
+    write_csv,
+)
 
 __all__ = [
     "atomic_write",

@@ -38,7 +38,13 @@ from axiscal.model.machine import (
     parse_chain,
     positions_from_points,
 )
-from axiscal.model.output import SIGN_CONVENTION, TableResult, render_template, table_text, write_table
+from axiscal.model.output import (
+    SIGN_CONVENTION,
+    TableResult,
+    render_template,
+    table_text,
+    write_table,
+)
 from axiscal.model.plot import (
     plot_diagonal,
     plot_diagonal_experiment,

@@ -34,17 +34,17 @@ from axiscal.positioning.plan import (
     write_plan,
 )
 from axiscal.positioning.plot import plot_positioning
-from axiscal.positioning.report import (
-    PositioningEvaluation,
-    evaluate_positioning_file,
-    render_template,
-)
 from axiscal.positioning.reader import (
     ALLOWED_UNITS,
     DIRECTIONS,
     ENVIRONMENT_REQUIRED,
     RunFile,
     read_positioning_run,
+)
+from axiscal.positioning.report import (
+    PositioningEvaluation,
+    evaluate_positioning_file,
+    render_template,
 )
 
 __all__ = [

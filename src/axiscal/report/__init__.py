@@ -3,19 +3,48 @@ rendered from templates shipped with axiscal."""
 
 from __future__ import annotations
 
-from axiscal.report.demo import DEMO_FILES, DemoResult, builtin_example, run_demo
-from axiscal.report.html import format_number, render_html, template_environment
-from axiscal.report.writer import ReportFiles, report_campaign, write_report
+from axiscal.report.demo import (
+    DEMO_FILES,
+    DemoResult,
+    builtin_example,
+    run_demo,
+)
+from axiscal.report.html import (
+    compare_label,
+    format_number,
+    previous_figures,
+    render_html,
+    sections,
+    template_environment,
+    verdict_rows,
+)
+from axiscal.report.pdf import (
+    typst_string,
+    typst_text,
+    write_pdf,
+)
+from axiscal.report.writer import (
+    ReportFiles,
+    report_campaign,
+    write_report,
+)
 
 __all__ = [
+    "template_environment",
+    "render_html",
+    "format_number",
+    "previous_figures",
+    "compare_label",
+    "verdict_rows",
+    "sections",
+    "ReportFiles",
+    "write_report",
+    "report_campaign",
+    "typst_string",
+    "typst_text",
+    "write_pdf",
     "DEMO_FILES",
     "DemoResult",
     "builtin_example",
     "run_demo",
-    "format_number",
-    "render_html",
-    "template_environment",
-    "ReportFiles",
-    "report_campaign",
-    "write_report",
 ]

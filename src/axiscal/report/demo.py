@@ -18,7 +18,11 @@ from typing import Any
 from axiscal.errors import AxiscalError
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_json
-from axiscal.measurement.virtual import DiagonalExperiment, VirtualModule, diagonal_experiment
+from axiscal.measurement.virtual import (
+    DiagonalExperiment,
+    VirtualModule,
+    diagonal_experiment,
+)
 from axiscal.model.diagonal import DiagonalResult, diagonal_test
 from axiscal.model.machine import Machine, load_machine
 from axiscal.model.output import render_template

@@ -29,7 +29,13 @@ _SECTION_ORDER = ("positioning", "straightness", "separation", "squareness", "ba
 
 
 def template_environment():
-    """The Jinja2 environment over the templates shipped as package data (HTML autoescaped)."""
+    """The Jinja2 environment over the templates shipped as package data.
+
+    Returns
+    -------
+    jinja2.Environment
+        HTML templates autoescaped; ``fmt`` (:func:`format_number`) available in every template.
+    """
     import jinja2
 
     env = jinja2.Environment(
@@ -43,7 +49,25 @@ def template_environment():
 
 
 def format_number(value: Any, digits: int = 3) -> str:
-    """A figure as the report prints it: fixed decimals, ``n/a`` for a missing or non-finite value."""
+    """A figure as the report prints it.
+
+    Parameters
+    ----------
+    value : float, str or None
+        The figure (a text is returned as it is).
+    digits : int
+        Decimals.
+
+    Returns
+    -------
+    str
+        Fixed decimals, ``n/a`` for a missing or non-finite value.
+
+    Examples
+    --------
+    >>> format_number(2.23333), format_number(float("nan"))
+    ('2.233', 'n/a')
+    """
     if value is None:
         return "n/a"
     if isinstance(value, str):
@@ -55,14 +79,36 @@ def format_number(value: Any, digits: int = 3) -> str:
 
 
 def previous_figures(compare: Mapping[str, Any] | None) -> dict[str, Any] | None:
-    """Test id -> figures of another campaign's results.json (None without one)."""
+    """The figures of another campaign, by test id.
+
+    Parameters
+    ----------
+    compare : mapping or None
+        Another campaign's results.json.
+
+    Returns
+    -------
+    dict or None
+        Test id -> its figures; None without a comparison.
+    """
     if compare is None:
         return None
     return {t.get("id"): t.get("figures", {}) for t in compare.get("tests", []) if isinstance(t, Mapping)}
 
 
 def compare_label(compare: Mapping[str, Any] | None) -> str | None:
-    """How the report names the campaign it is compared with."""
+    """How the report names the campaign it is compared with.
+
+    Parameters
+    ----------
+    compare : mapping or None
+        Another campaign's results.json.
+
+    Returns
+    -------
+    str or None
+        Its title and date; None without a comparison.
+    """
     if compare is None:
         return None
     info = compare.get("campaign", {}).get("campaign", {})
@@ -70,7 +116,19 @@ def compare_label(compare: Mapping[str, Any] | None) -> str | None:
 
 
 def verdict_rows(results: CampaignResults, before: Mapping[str, Any] | None) -> list[dict[str, str]]:
-    """One row per toleranced figure (or per test without a tolerance) for the verdict table."""
+    """The rows of the verdict table.
+
+    Parameters
+    ----------
+    results : CampaignResults
+    before : mapping or None
+        Figures of a campaign to compare with, by test id (see :func:`previous_figures`).
+
+    Returns
+    -------
+    list of dict
+        One row per toleranced figure, or per test without a tolerance; texts ready to print.
+    """
     rows = []
     for test in results.tests:
         old = (before or {}).get(test.id, {})
@@ -92,7 +150,18 @@ def verdict_rows(results: CampaignResults, before: Mapping[str, Any] | None) -> 
 
 
 def sections(tests: list[TestResult]) -> list[dict[str, Any]]:
-    """The report's sections: one per axis, then squareness, diagonal checks, 6-DOF recordings."""
+    """The report's sections.
+
+    Parameters
+    ----------
+    tests : list of TestResult
+
+    Returns
+    -------
+    list of dict
+        ``anchor``, ``title`` and ``tests`` of each section: one per axis, then squareness,
+        circular tests, diagonal checks, 6-DOF recordings.
+    """
     groups: dict[str, list[TestResult]] = {}
     titles: dict[str, str] = {}
     for test in sorted(tests, key=lambda t: (_SECTION_ORDER.index(t.kind) if t.kind in _SECTION_ORDER else 99)):

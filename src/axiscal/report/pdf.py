@@ -17,20 +17,52 @@ from typing import Any
 
 from axiscal.campaign.results import CampaignResults, results_payload
 from axiscal.errors import AxiscalError
-from axiscal.report.html import compare_label, previous_figures, sections, template_environment, verdict_rows
+from axiscal.report.html import (
+    compare_label,
+    previous_figures,
+    sections,
+    template_environment,
+    verdict_rows,
+)
 from axiscal.version import __version__
 
 __all__ = ["typst_string", "typst_text", "write_pdf"]
 
 
 def typst_string(value: Any) -> str:
-    """``value`` as a Typst string literal (``"..."``) for code."""
+    """A value as a Typst string literal, for code.
+
+    Parameters
+    ----------
+    value : object
+        Printed with ``str``; None is empty.
+
+    Returns
+    -------
+    str
+        ``"..."`` with quotes and backslashes escaped and newlines as spaces.
+    """
     text = "" if value is None else str(value)
     return '"' + text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", " ") + '"'
 
 
 def typst_text(value: Any) -> str:
-    """``value`` as a string literal placed in markup (``#"..."``): nothing in it is read as markup."""
+    """A value as text in Typst markup, nothing in it read as markup.
+
+    Parameters
+    ----------
+    value : object
+
+    Returns
+    -------
+    str
+        ``#"..."``: a string literal placed in markup.
+
+    Examples
+    --------
+    >>> typst_text("*not bold*")
+    '#"*not bold*"'
+    """
     return "#" + typst_string(value)
 
 

@@ -16,7 +16,11 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.instruments.optics import BK7_INDEX, PentaprismSensitivity, pentaprism_sensitivity
+from axiscal.instruments.optics import (
+    BK7_INDEX,
+    PentaprismSensitivity,
+    pentaprism_sensitivity,
+)
 from axiscal.straightness.report import render_report
 from axiscal.units import ARCMIN, ARCSEC, MM
 

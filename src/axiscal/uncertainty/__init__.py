@@ -1,0 +1,78 @@
+"""Measurement uncertainty: the budget file, U of the ISO 230-2 figures (GTC), Monte Carlo (GUM Supplement 1) and decision rules (ISO 14253-1), straightness and squareness, the volumetric map with uncertainty."""
+
+from __future__ import annotations
+
+from axiscal.uncertainty.budget import (
+    BUDGET_KEYS,
+    COMPONENTS,
+    HE_NE_WAVELENGTH_NM,
+    Budget,
+    air_sensitivities,
+    budget_from_dict,
+    length_components,
+    length_model,
+    read_budget,
+)
+from axiscal.uncertainty.decision import DECISION_RULES, Decision, decide
+from axiscal.uncertainty.montecarlo import CoverageInterval, coverage_interval
+from axiscal.uncertainty.positioning import (
+    COVERAGE_FACTOR,
+    FIGURE_COMPONENTS,
+    FIGURES,
+    PositioningUncertainty,
+    PositioningWithUncertainty,
+    budget_report,
+    evaluate_positioning_with_uncertainty,
+    positioning_decisions,
+    positioning_monte_carlo,
+    positioning_uncertainty,
+    uncertainty_payload,
+)
+from axiscal.uncertainty.straightness import (
+    LineUncertainty,
+    squareness_uncertainty,
+    straightness_uncertainty,
+)
+from axiscal.uncertainty.volumetric import (
+    MachineUncertainty,
+    VolumetricUncertainty,
+    load_machine_uncertainty,
+    volumetric_monte_carlo,
+    write_volumetric_uncertainty,
+)
+
+__all__ = [
+    "COMPONENTS",
+    "BUDGET_KEYS",
+    "HE_NE_WAVELENGTH_NM",
+    "Budget",
+    "budget_from_dict",
+    "read_budget",
+    "air_sensitivities",
+    "length_model",
+    "length_components",
+    "DECISION_RULES",
+    "Decision",
+    "decide",
+    "CoverageInterval",
+    "coverage_interval",
+    "FIGURES",
+    "FIGURE_COMPONENTS",
+    "COVERAGE_FACTOR",
+    "PositioningUncertainty",
+    "PositioningWithUncertainty",
+    "evaluate_positioning_with_uncertainty",
+    "positioning_uncertainty",
+    "positioning_monte_carlo",
+    "uncertainty_payload",
+    "budget_report",
+    "positioning_decisions",
+    "LineUncertainty",
+    "straightness_uncertainty",
+    "squareness_uncertainty",
+    "MachineUncertainty",
+    "VolumetricUncertainty",
+    "load_machine_uncertainty",
+    "volumetric_monte_carlo",
+    "write_volumetric_uncertainty",
+]

@@ -1,0 +1,379 @@
+"""The uncertainty budget of a length measurement with a laser interferometer (ISO/TR 230-9, ISO 230-2:2014 Annex A).
+
+A budget file (TOML, docs/uncertainty.md) states the standard uncertainties (k = 1) of the
+influences, or expanded ones (k = 2) where a key ends in ``_U``. :func:`length_components` turns it
+into the standard uncertainty of each contribution at a measured length L, SI:
+
+- ``device`` = L * length_U_ppm / 2 (laser certificate, relative, k = 2);
+- ``air`` = L * sqrt(sum_i (dn/dx_i u(x_i))^2) over air temperature, pressure and humidity, the
+  sensitivities dn/dx_i taken numerically from :func:`axiscal.instruments.air.refractive_index`
+  (Ciddor by default) at the stated air conditions;
+- ``machine_expansion`` = L * |T - 20 degC| * u(alpha);
+- ``machine_temperature`` = L * alpha * u(T);
+- ``misalignment`` = L (1 - cos theta_max) / (2 sqrt 3), the cosine error of the bound as a
+  rectangular distribution of that full width;
+- ``eve`` = EVE / (2 sqrt 3), the environmental variation error (full range) as a rectangular
+  distribution.
+
+The combination goes through GTC (the GUM Tree Calculator): each influence is an uncertain real
+with its name, and the components are its budget.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, fields
+from pathlib import Path
+
+from axiscal.errors import AxiscalError
+from axiscal.instruments.air import METHODS, refractive_index
+from axiscal.io.tabular import read_text, read_toml
+from axiscal.units import ARCSEC, UM
+
+__all__ = [
+    "COMPONENTS",
+    "BUDGET_KEYS",
+    "HE_NE_WAVELENGTH_NM",
+    "Budget",
+    "budget_from_dict",
+    "read_budget",
+    "air_sensitivities",
+    "length_model",
+    "length_components",
+]
+
+#: names of the contributions, in the order of the budget table
+COMPONENTS = ("device", "air", "machine_expansion", "machine_temperature", "misalignment", "eve")
+
+#: the keys a budget file may hold, per section (docs/uncertainty.md)
+BUDGET_KEYS: dict[str, tuple[str, ...]] = {
+    "instrument": ("length_U_ppm", "straightness_U_um", "wavelength_nm", "method"),
+    "air": ("temperature_u_K", "pressure_u_Pa", "humidity_u_percent", "temperature_C", "pressure_Pa", "humidity_percent"),
+    "machine": ("temperature_C", "temperature_u_K", "expansion_per_K", "expansion_u_per_K"),
+    "setup": ("misalignment_urad", "eve_um", "prism_deviation_u_arcsec"),
+}
+
+#: vacuum wavelength of a He-Ne laser, nm
+HE_NE_WAVELENGTH_NM = 632.991
+
+_PPM = 1e-6
+_URAD = 1e-6
+_REFERENCE_C = 20.0
+_RECTANGULAR = 2.0 * math.sqrt(3.0)  # full width / standard uncertainty of a rectangular distribution
+
+
+@dataclass(frozen=True)
+class Budget:
+    """Uncertainties of the influences on a laser length measurement, SI (a missing key is zero).
+
+    Parameters
+    ----------
+    length_U_rel : float
+        Expanded (k = 2) relative uncertainty of a length reading (certificate), dimensionless.
+    air_temperature_u_K, air_pressure_u_Pa, air_humidity_u_percent : float
+        Standard uncertainties of the air sensors, K, Pa and percent relative humidity.
+    air_temperature_C, air_pressure_Pa, air_humidity_percent : float
+        Air conditions at which the sensitivities of the refractive index are taken (degC, Pa, %).
+    machine_temperature_C : float
+        Mean machine (scale) temperature during the test, degC.
+    machine_temperature_u_K : float
+        Standard uncertainty of that temperature, K.
+    expansion_per_K, expansion_u_per_K : float
+        Expansion coefficient used to normalise to 20 degC and its standard uncertainty, 1/K.
+    misalignment_rad : float
+        Bound of the beam-to-axis angle (rectangular distribution), rad.
+    eve_m : float
+        Environmental variation error from the drift test (full range), m.
+    straightness_U_m : float
+        Expanded (k = 2) uncertainty of one straightness reading, m.
+    prism_deviation_u_rad : float
+        Standard uncertainty of the pentaprism's deviation from 90 degrees (squareness), rad.
+    wavelength_nm : float
+        Vacuum wavelength of the laser (default He-Ne, 632.991 nm).
+    method : str
+        Refractive-index equation of :func:`axiscal.instruments.air.refractive_index` ("ciddor").
+    source : str
+        Where the budget came from, for messages.
+    """
+
+    length_U_rel: float = 0.0
+    air_temperature_u_K: float = 0.0
+    air_pressure_u_Pa: float = 0.0
+    air_humidity_u_percent: float = 0.0
+    air_temperature_C: float = 20.0
+    air_pressure_Pa: float = 101325.0
+    air_humidity_percent: float = 50.0
+    machine_temperature_C: float = 20.0
+    machine_temperature_u_K: float = 0.0
+    expansion_per_K: float = 0.0
+    expansion_u_per_K: float = 0.0
+    misalignment_rad: float = 0.0
+    eve_m: float = 0.0
+    straightness_U_m: float = 0.0
+    prism_deviation_u_rad: float = 0.0
+    wavelength_nm: float = HE_NE_WAVELENGTH_NM
+    method: str = "ciddor"
+    source: str = "<budget>"
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if f.name in ("method", "source"):
+                continue
+            if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
+                raise AxiscalError(f"budget value {f.name} must be a finite number, got {value!r}", path=self.source)
+            object.__setattr__(self, f.name, float(value))
+        for name in _UNCERTAINTIES:
+            if getattr(self, name) < 0:
+                raise AxiscalError(f"budget value {name} must not be negative, got {getattr(self, name):g}", path=self.source)
+        if self.method not in METHODS:
+            raise AxiscalError(f"unknown refractive-index method '{self.method}'; use one of {', '.join(METHODS)}", path=self.source)
+
+
+# Budget fields that are uncertainties or bounds (never negative)
+_UNCERTAINTIES = ("length_U_rel", "air_temperature_u_K", "air_pressure_u_Pa", "air_humidity_u_percent",
+                  "machine_temperature_u_K", "expansion_u_per_K", "misalignment_rad", "eve_m",
+                  "straightness_U_m", "prism_deviation_u_rad")
+
+# (section, key) -> (Budget field, factor to SI)
+_FIELDS: dict[tuple[str, str], tuple[str, float]] = {
+    ("instrument", "length_U_ppm"): ("length_U_rel", _PPM),
+    ("instrument", "wavelength_nm"): ("wavelength_nm", 1.0),
+    ("air", "temperature_u_K"): ("air_temperature_u_K", 1.0),
+    ("air", "pressure_u_Pa"): ("air_pressure_u_Pa", 1.0),
+    ("air", "humidity_u_percent"): ("air_humidity_u_percent", 1.0),
+    ("air", "temperature_C"): ("air_temperature_C", 1.0),
+    ("air", "pressure_Pa"): ("air_pressure_Pa", 1.0),
+    ("air", "humidity_percent"): ("air_humidity_percent", 1.0),
+    ("machine", "temperature_C"): ("machine_temperature_C", 1.0),
+    ("machine", "temperature_u_K"): ("machine_temperature_u_K", 1.0),
+    ("machine", "expansion_per_K"): ("expansion_per_K", 1.0),
+    ("machine", "expansion_u_per_K"): ("expansion_u_per_K", 1.0),
+    ("setup", "misalignment_urad"): ("misalignment_rad", _URAD),
+    ("setup", "eve_um"): ("eve_m", UM),
+    ("instrument", "straightness_U_um"): ("straightness_U_m", UM),
+    ("setup", "prism_deviation_u_arcsec"): ("prism_deviation_u_rad", ARCSEC),
+}
+
+
+def _line_of(text: str, section: str, key: str | None = None) -> int | None:
+    """1-based line of ``[section]`` (or of ``key`` inside it) in a TOML text; None when not found."""
+    inside = False
+    for number, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        header = re.match(r"^\[\s*([^\]]+?)\s*\]", stripped)
+        if header:
+            inside = header.group(1) == section
+            if inside and key is None:
+                return number
+            continue
+        if inside and key is not None and re.match(rf"^{re.escape(key)}\s*=", stripped):
+            return number
+    return None
+
+
+def budget_from_dict(data: dict, *, source: str = "<budget>", text: str | None = None) -> Budget:
+    """Build a :class:`Budget` from the parsed TOML tables (keys of docs/uncertainty.md).
+
+    Parameters
+    ----------
+    data : dict
+        ``{"instrument": {...}, "air": {...}, "machine": {...}, "setup": {...}}``; a missing
+        section or key is a zero contribution (air and machine conditions default to 20 degC,
+        101325 Pa and 50 %).
+    source : str, keyword-only
+        File name for messages.
+    text : str, optional, keyword-only
+        The TOML text, to name the line of a bad key.
+
+    Returns
+    -------
+    Budget
+
+    Raises
+    ------
+    AxiscalError
+        An unknown section or key, a value that is not a number, a negative uncertainty, air
+        conditions outside the range of the refractive-index equation.
+
+    Examples
+    --------
+    >>> budget_from_dict({"setup": {"eve_um": 1.0}}).eve_m
+    1e-06
+    """
+    def line(section: str, key: str | None = None) -> int | None:
+        return None if text is None else _line_of(text, section, key)
+
+    values: dict[str, object] = {}
+    for section, table in data.items():
+        if section not in BUDGET_KEYS:
+            raise AxiscalError(
+                f"unknown budget section [{section}]; use {', '.join('[' + s + ']' for s in BUDGET_KEYS)}",
+                path=source, line=line(section),
+            )
+        if not isinstance(table, dict):
+            raise AxiscalError(f"[{section}] must be a table of keys", path=source, line=line(section))
+        for key, value in table.items():
+            if key not in BUDGET_KEYS[section]:
+                raise AxiscalError(
+                    f"[{section}] unknown key '{key}'; known keys: {', '.join(BUDGET_KEYS[section])}",
+                    path=source, line=line(section, key),
+                )
+            if key == "method":
+                values["method"] = str(value)
+                continue
+            if not isinstance(value, (int, float)) or isinstance(value, bool):
+                raise AxiscalError(f"[{section}] {key} must be a number, got {value!r}", path=source, line=line(section, key))
+            name, factor = _FIELDS[(section, key)]
+            if name in _UNCERTAINTIES and value < 0:
+                raise AxiscalError(f"[{section}] {key} must not be negative, got {value:g}", path=source, line=line(section, key))
+            values[name] = float(value) * factor
+    try:
+        budget = Budget(**values, source=source)
+    except AxiscalError as exc:  # the method is the one value only Budget itself checks
+        raise exc.located(line=line("instrument", "method")) from None
+    try:  # air conditions the refractive-index equation refuses (hPa for Pa, ...) show here, not later
+        air_sensitivities(budget)
+    except AxiscalError as exc:
+        raise AxiscalError(f"[air] conditions: {exc.message}", path=source, line=line("air")) from None
+    return budget
+
+
+def read_budget(path: str | Path) -> Budget:
+    """Read a budget file (TOML, docs/uncertainty.md).
+
+    Parameters
+    ----------
+    path : str or Path
+        The budget file.
+
+    Returns
+    -------
+    Budget
+
+    Raises
+    ------
+    AxiscalError
+        A missing or malformed file, or a bad key, naming the file and line.
+    """
+    data = read_toml(path)
+    return budget_from_dict(data, source=str(path), text=read_text(path))
+
+
+def air_sensitivities(budget: Budget) -> dict[str, float]:
+    """Sensitivities of the refractive index of air at the budget's air conditions.
+
+    Central differences of :func:`axiscal.instruments.air.refractive_index` (the budget's
+    method and wavelength) at ``air_temperature_C``, ``air_pressure_Pa``, ``air_humidity_percent``.
+
+    Parameters
+    ----------
+    budget : Budget
+
+    Returns
+    -------
+    dict
+        ``{"temperature": dn/dT (1/K), "pressure": dn/dp (1/Pa), "humidity": dn/dh (1/%)}``.
+
+    Raises
+    ------
+    AxiscalError
+        Air conditions or a wavelength outside the range of the refractive-index equation.
+    """
+    base = {"temperature": budget.air_temperature_C, "pressure": budget.air_pressure_Pa, "humidity": budget.air_humidity_percent}
+    steps = {"temperature": 0.01, "pressure": 1.0, "humidity": 0.1}
+    out: dict[str, float] = {}
+    for name, step in steps.items():
+        if name == "humidity":  # stay inside 0..100 %
+            step = min(step, max(1e-6, min(base[name], 100.0 - base[name])))
+        hi, lo = dict(base), dict(base)
+        hi[name] += step
+        lo[name] -= step
+        n_hi, n_lo = (
+            refractive_index(c["temperature"], c["pressure"], c["humidity"], budget.wavelength_nm, method=budget.method)
+            for c in (hi, lo)
+        )
+        out[name] = (n_hi - n_lo) / (2.0 * step)
+    return out
+
+
+def length_model(budget: Budget, length_m: float):
+    """The GUM model of the error of a laser length reading over ``length_m``, as a GTC uncertain real.
+
+    Each influence is a named GTC elementary uncertain real (label = the component it feeds, see
+    :data:`COMPONENTS`; the air has three, ``air temperature``, ``air pressure``, ``air humidity``,
+    and the machine two), all of infinite degrees of freedom (type B). The value is the error
+    estimate (zero: the corrections are applied), its uncertainty the combined standard uncertainty.
+
+    Parameters
+    ----------
+    budget : Budget
+    length_m : float
+        Measured length L (the travel of the test), m.
+
+    Returns
+    -------
+    GTC.lib.UncertainReal
+        The length error, m.
+
+    Raises
+    ------
+    AxiscalError
+        As :func:`air_sensitivities`.
+    """
+    from GTC import ureal
+
+    length = abs(float(length_m))
+    c = air_sensitivities(budget)
+    device = ureal(0.0, budget.length_U_rel / 2.0, label="device")
+    air_t = ureal(budget.air_temperature_C, budget.air_temperature_u_K, label="air temperature")
+    air_p = ureal(budget.air_pressure_Pa, budget.air_pressure_u_Pa, label="air pressure")
+    air_h = ureal(budget.air_humidity_percent, budget.air_humidity_u_percent, label="air humidity")
+    alpha = ureal(budget.expansion_per_K, budget.expansion_u_per_K, label="machine_expansion")
+    temperature = ureal(budget.machine_temperature_C, budget.machine_temperature_u_K, label="machine_temperature")
+    cosine = length * (1.0 - math.cos(budget.misalignment_rad))
+    misalignment = ureal(0.0, cosine / _RECTANGULAR, label="misalignment")
+    eve = ureal(0.0, budget.eve_m / _RECTANGULAR, label="eve")
+    delta_n = (
+        c["temperature"] * (air_t - budget.air_temperature_C)
+        + c["pressure"] * (air_p - budget.air_pressure_Pa)
+        + c["humidity"] * (air_h - budget.air_humidity_percent)
+    )
+    nominal = budget.expansion_per_K * (budget.machine_temperature_C - _REFERENCE_C)
+    expansion = alpha * (temperature - _REFERENCE_C) - nominal
+    return length * (device + delta_n + expansion) + misalignment + eve
+
+
+def length_components(budget: Budget, length_m: float) -> dict[str, float]:
+    """Standard uncertainty of each contribution at a measured length, from the GTC budget.
+
+    Parameters
+    ----------
+    budget : Budget
+    length_m : float
+        Measured length L, m.
+
+    Returns
+    -------
+    dict of str to float
+        One entry per name of :data:`COMPONENTS`, m (k = 1); the air's three sensors combined in
+        quadrature.
+
+    Raises
+    ------
+    AxiscalError
+        As :func:`air_sensitivities`.
+
+    Examples
+    --------
+    >>> round(length_components(Budget(length_U_rel=0.5e-6), 1.0)["device"] * 1e6, 6)
+    0.25
+    """
+    from GTC import reporting
+
+    out = dict.fromkeys(COMPONENTS, 0.0)
+    for influence in reporting.budget(length_model(budget, length_m), trim=0):
+        key = "air" if influence.label.startswith("air ") else influence.label
+        out[key] = math.hypot(out[key], abs(influence.u))
+    return out

@@ -1,0 +1,421 @@
+"""The volumetric error map with its uncertainty, by Monte Carlo through the HTM model (JCGM 101:2008, GUM Supplement 1).
+
+Every error motion of every axis is drawn around its table value with the standard uncertainty of
+its ``<name>_u`` column (e.g. ``EXX_um_u``, same unit as ``EXX_um``; independent normal draws per
+table row, carried to the points by the table's own interpolation), every squareness term around
+its value with its ``<term>_u`` key (``EC0Y_arcsec_u``), and each draw goes through
+:meth:`axiscal.model.Machine.volumetric_error` with the error motions given per point, for all draws
+and points in one vectorised call per chunk of draws. The squareness draws enter through the
+model's sensitivity to each term (central differences of the model; what is left out is of
+order u^2 * travel, 2e-11 m for a squareness known to 1 arcsec over 1 m of travel). The output per point is the error of the nominal model and the probabilistically
+symmetric 95 % coverage interval of each component.
+
+Chunks of draws get their own seeds from one :class:`numpy.random.SeedSequence`, so the result
+for a seed does not depend on where the chunks run: :func:`volumetric_monte_carlo` runs them here,
+or on a Dask cluster with ``scheduler=`` (a ``dask.distributed`` Client, a scheduler address, or
+``"local"`` for a LocalCluster).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import tempfile
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.conventions import AXIS_INDEX, SQUARENESS_TERMS, component_names
+from axiscal.errors import AxiscalError
+from axiscal.io.atomic import write_text
+from axiscal.io.jsonio import write_sidecar
+from axiscal.io.tabular import read_csv, read_text, read_toml, write_csv
+from axiscal.model.machine import Machine, machine_from_dict
+from axiscal.uncertainty.budget import _line_of
+from axiscal.uncertainty.montecarlo import coverage_interval
+from axiscal.units import MM, UM, angle_factor, length_factor
+
+__all__ = [
+    "MachineUncertainty",
+    "VolumetricUncertainty",
+    "load_machine_uncertainty",
+    "volumetric_monte_carlo",
+    "write_volumetric_uncertainty",
+]
+
+_SUFFIX = "_u"
+_SQUARENESS_STEP_RAD = 1e-6
+
+
+@dataclass(frozen=True)
+class MachineUncertainty:
+    """Standard uncertainties of a machine's error motions and squareness terms, SI.
+
+    Attributes
+    ----------
+    tables : dict of str to ndarray, shape (6, rows)
+        Per axis letter, the standard uncertainty of each error motion at each row of its table
+        (rows tx, ty, tz in m; ea, eb, ec in rad); zero where no ``_u`` column was given.
+    squareness_rad : dict of str to float
+        Standard uncertainty of each squareness term (EC0Y, EB0Z, EA0Z), rad.
+    """
+
+    tables: dict[str, np.ndarray]
+    squareness_rad: dict[str, float]
+
+
+@dataclass(frozen=True)
+class VolumetricUncertainty:
+    """The volumetric error at each point and its coverage interval from Monte Carlo, metres.
+
+    Attributes
+    ----------
+    error : ndarray, shape (N, 3)
+        Volumetric error of the nominal model (the table values).
+    mean, std : ndarray, shape (N, 3)
+        Mean and standard deviation of the draws.
+    low, high : ndarray, shape (N, 3)
+        Ends of the probabilistically symmetric coverage interval per component.
+    draws : int
+    probability : float
+    """
+
+    error: np.ndarray
+    mean: np.ndarray
+    std: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
+    draws: int
+    probability: float
+
+
+def _split_uncertainty_columns(path: Path, letter: str):
+    """The CSV text without its ``_u`` columns, the table, and {u column: (row, factor to SI)}."""
+    table = read_csv(path, min_rows=2)
+    names = component_names(letter)
+    rows: dict[str, tuple[int, float]] = {}
+    for column in (c for c in table.header if c.endswith(_SUFFIX)):
+        value = column[: -len(_SUFFIX)]
+        stem, _, unit = value.rpartition("_")
+        if value not in table.header or stem not in names:
+            raise AxiscalError(f"column '{column}' has no error column '{value}' beside it", path=path, line=table.header_line)
+        row = names.index(stem)
+        try:
+            factor = length_factor(unit, what=value) if row < 3 else angle_factor(unit, what=value)
+        except AxiscalError as exc:
+            raise exc.located(path=path, line=table.header_line) from None
+        rows[column] = (row, factor)
+    keep = [i for i, c in enumerate(table.header) if not c.endswith(_SUFFIX)]
+    out = io.StringIO()
+    for line in read_text(path).splitlines():  # every line kept, so errors keep their line numbers
+        if not line.strip() or line.lstrip().startswith("#"):
+            out.write(line + "\n")
+            continue
+        cells = next(csv.reader([line]))
+        out.write(",".join(cells[i] for i in keep if i < len(cells)) + "\n")
+    return out.getvalue(), table, rows
+
+
+def load_machine_uncertainty(path: str | Path) -> tuple[Machine, MachineUncertainty]:
+    """Read a machine description whose error tables and squareness carry standard uncertainties.
+
+    The files are those of :func:`axiscal.model.load_machine` (docs/formats.md) with, optionally, a
+    ``<column>_u`` column beside any error column of a table (``EXX_um_u``: the standard
+    uncertainty of ``EXX_um`` in the same unit) and a ``<key>_u`` key beside any squareness key
+    (``EC0Y_arcsec_u``).
+
+    Parameters
+    ----------
+    path : str or Path
+        The machine TOML file.
+
+    Returns
+    -------
+    (Machine, MachineUncertainty)
+        The model of the table values and the uncertainties.
+
+    Raises
+    ------
+    AxiscalError
+        What :func:`axiscal.model.load_machine` raises, naming the original file; a ``_u`` column or
+        key without its value, a negative or non-finite uncertainty.
+    """
+    path = Path(path)
+    data = read_toml(path)
+    data = {k: (dict(v) if isinstance(v, Mapping) else v) for k, v in data.items()}
+    squareness = data.get("squareness", {})
+    squareness_u: dict[str, float] = {}
+    if isinstance(squareness, dict):
+        for key in [k for k in squareness if k.endswith(_SUFFIX)]:
+            value_key = key[: -len(_SUFFIX)]
+            stem, _, unit = value_key.rpartition("_")
+            where = {"path": path, "line": _line_of(read_text(path), "squareness", key)}
+            if value_key not in squareness or stem not in SQUARENESS_TERMS:
+                raise AxiscalError(f"[squareness] '{key}' has no squareness term '{value_key}' beside it", **where)
+            u = squareness.pop(key)
+            if not isinstance(u, (int, float)) or isinstance(u, bool) or not np.isfinite(u) or u < 0:
+                raise AxiscalError(f"[squareness] {key} must be a non-negative number", **where)
+            try:
+                squareness_u[stem] = float(u) * angle_factor(unit, what=key)
+            except AxiscalError as exc:
+                raise exc.located(**where) from None
+    axes = data.get("axes", {})
+    originals: dict[str, Path] = {}
+    u_columns: dict[str, tuple] = {}
+    with tempfile.TemporaryDirectory(prefix="axiscal-u-") as folder:
+        if isinstance(axes, dict):
+            axes = {k: (dict(v) if isinstance(v, Mapping) else v) for k, v in axes.items()}
+            data["axes"] = axes
+            for letter, section in axes.items():
+                if not isinstance(section, dict) or "errors" not in section:
+                    continue
+                original = path.parent / str(section["errors"])
+                if letter not in AXIS_INDEX:
+                    continue  # machine_from_dict names the stray section
+                text, table, rows = _split_uncertainty_columns(original, letter)
+                copy = Path(folder) / f"{letter}_{original.name}"
+                copy.write_text(text)
+                originals[str(copy)] = original
+                u_columns[letter] = (table, rows)
+                section["errors"] = str(copy)
+        try:
+            machine = machine_from_dict(data, base_dir=path.parent, source=str(path))
+        except AxiscalError as exc:
+            for copy, original in originals.items():
+                if exc.path == copy:
+                    raise AxiscalError(exc.message, path=original, line=exc.line) from None
+            raise
+    tables: dict[str, np.ndarray] = {}
+    for letter in machine.letters:
+        table = machine.table(letter)
+        u = np.zeros_like(table.values)
+        csv_table, rows = u_columns.get(letter, (None, {}))
+        for u_column, (row, factor) in rows.items():
+            values = csv_table.numeric(u_column) * factor
+            bad = np.flatnonzero(values < 0)
+            if bad.size:
+                raise AxiscalError(f"column '{u_column}': a standard uncertainty must not be negative",
+                                   path=csv_table.path, line=csv_table.lines[bad[0]])
+            u[row] = values
+        u.setflags(write=False)
+        tables[letter] = u
+    return machine, MachineUncertainty(tables, squareness_u)
+
+
+def _weights(machine: Machine, letter: str, q: np.ndarray):
+    """How the table of ``letter`` interpolates at ``q``: values @ W = evaluate(q).
+
+    Linear tables: ``(index, fraction)``, each point between rows index and index + 1 (two
+    non-zero weights per point, gathered instead of multiplied); cubic: the dense (rows, N) W.
+    """
+    table = machine.table(letter)
+    table.check_range(q)
+    q = np.clip(q, table.start_m, table.end_m)
+    rows = table.position_m.size
+    if table.interpolation == "cubic":
+        from scipy.interpolate import CubicSpline
+
+        return CubicSpline(table.position_m, np.eye(rows), axis=1)(q)
+    index = np.clip(np.searchsorted(table.position_m, q, side="right") - 1, 0, rows - 2)
+    fraction = (q - table.position_m[index]) / (table.position_m[index + 1] - table.position_m[index])
+    return index, fraction
+
+
+def _interpolate(delta: np.ndarray, weights) -> np.ndarray:
+    """Row perturbations (draws, 6, rows) carried to the points: (draws, 6, N)."""
+    if isinstance(weights, tuple):
+        index, fraction = weights
+        lower = delta[..., index]
+        return lower + (delta[..., index + 1] - lower) * fraction
+    return delta @ weights
+
+
+def _chunk(machine: Machine, setup: dict, seed: np.random.SeedSequence, draws: int) -> np.ndarray:
+    """The volumetric error of ``draws`` draws at the setup's points: (draws, N, 3), float32."""
+    rng = np.random.default_rng(seed)
+    positions, n = setup["positions"], setup["n"]
+    tiled = {k: np.tile(v, draws) for k, v in positions.items()}
+    errors = {}
+    for letter in machine.letters:
+        mean = setup["mean"][letter]  # (6, N)
+        u = setup["u"][letter]  # (6, rows)
+        if np.any(u):
+            delta = rng.standard_normal((draws,) + u.shape) * u
+            perturbed = mean[None] + _interpolate(delta, setup["weights"][letter])  # (draws, 6, N)
+        else:
+            perturbed = np.broadcast_to(mean[None], (draws,) + mean.shape)
+        errors[letter] = np.ascontiguousarray(perturbed.transpose(1, 0, 2).reshape(6, draws * n))
+    out = machine.volumetric_error(tiled, errors=errors).reshape(draws, n, 3)
+    for term, (u, sensitivity) in setup["squareness"].items():
+        out += rng.normal(0.0, u, draws)[:, None, None] * sensitivity[None]
+    return out.astype(np.float32)
+
+
+def volumetric_monte_carlo(
+    machine: Machine,
+    uncertainty: MachineUncertainty,
+    positions: Mapping[str, np.ndarray],
+    draws: int,
+    *,
+    seed: int = 0,
+    probability: float = 0.95,
+    chunk_draws: int = 250,
+    scheduler=None,
+) -> VolumetricUncertainty:
+    """Propagate the uncertainties of the error motions and squareness to the volumetric error.
+
+    Parameters
+    ----------
+    machine : Machine
+        The model (table values), e.g. from :func:`load_machine_uncertainty`.
+    uncertainty : MachineUncertainty
+        Standard uncertainties of its error motions and squareness terms.
+    positions : mapping of str to ndarray, shape (N,)
+        Axis positions of the points, metres.
+    draws : int
+        Number of Monte Carlo draws M.
+    seed : int, keyword-only
+        Seed; the same seed gives the same result wherever the chunks run.
+    probability : float, keyword-only
+        Coverage probability (default 0.95).
+    chunk_draws : int, keyword-only
+        Draws per chunk (memory: about 150 bytes per draw and point).
+    scheduler : optional, keyword-only
+        None: run here. ``"local"``: a ``dask.distributed`` LocalCluster; an address string
+        (``"tcp://host:8786"``) or a ``dask.distributed.Client``: that cluster. Needs the optional
+        extra ``axiscal[dask]``.
+
+    Returns
+    -------
+    VolumetricUncertainty
+
+    Raises
+    ------
+    AxiscalError
+        Positions outside a table, uncertainties that do not fit the tables, too few draws, a
+        scheduler given without dask installed.
+    """
+    if int(draws) != draws or draws < 1:
+        raise AxiscalError(f"the number of Monte Carlo draws must be a positive whole number, got {draws!r}")
+    if int(chunk_draws) != chunk_draws or chunk_draws < 1:
+        raise AxiscalError(f"chunk_draws must be a positive whole number, got {chunk_draws!r}")
+    draws, chunk_draws = int(draws), int(chunk_draws)
+    if draws < 1.0 / (1.0 - probability):
+        raise AxiscalError(f"{draws} draws are too few for a {probability:.0%} coverage interval")
+    error = machine.volumetric_error(positions)  # also checks the positions
+    q = {k: np.atleast_1d(np.asarray(positions[k], dtype=float)) for k in machine.letters}
+    n = error.shape[0]
+    setup: dict = {"positions": q, "n": n, "mean": {}, "u": {}, "weights": {}, "squareness": {}}
+    for letter in machine.letters:
+        table = machine.table(letter)
+        u = np.asarray(uncertainty.tables.get(letter, np.zeros_like(table.values)), dtype=float)
+        if u.shape != table.values.shape or not np.all(np.isfinite(u)) or np.any(u < 0):
+            raise AxiscalError(f"axis {letter}: uncertainties must be non-negative numbers of shape {table.values.shape}")
+        setup["mean"][letter] = table.evaluate(q[letter])
+        setup["u"][letter] = u
+        setup["weights"][letter] = _weights(machine, letter, q[letter]) if np.any(u) else None
+    for term, u in uncertainty.squareness_rad.items():
+        if term not in SQUARENESS_TERMS or not np.isfinite(u) or u < 0:
+            raise AxiscalError(f"squareness uncertainty {term}: use EC0Y, EB0Z, EA0Z with a non-negative value")
+        if u == 0:
+            continue
+        shifted = []
+        for sign in (1.0, -1.0):
+            terms = dict(machine.squareness_rad)
+            terms[term] = terms.get(term, 0.0) + sign * _SQUARENESS_STEP_RAD
+            shifted.append(replace(machine, squareness_rad=terms).volumetric_error(q))
+        setup["squareness"][term] = (float(u), (shifted[0] - shifted[1]) / (2 * _SQUARENESS_STEP_RAD))
+    sizes = [min(chunk_draws, draws - start) for start in range(0, draws, chunk_draws)]
+    seeds = np.random.SeedSequence(seed).spawn(len(sizes))
+    if scheduler is None:
+        parts = [_chunk(machine, setup, s, m) for s, m in zip(seeds, sizes)]
+    else:
+        parts = _run_on_dask(scheduler, machine, setup, seeds, sizes)
+    samples = np.concatenate(parts, axis=0)
+    low, high = coverage_interval(samples, probability)
+    return VolumetricUncertainty(
+        error=error,
+        mean=samples.mean(axis=0, dtype=float),
+        std=samples.std(axis=0, ddof=1, dtype=float),
+        low=np.asarray(low, dtype=float),
+        high=np.asarray(high, dtype=float),
+        draws=draws,
+        probability=probability,
+    )
+
+
+def _run_on_dask(scheduler, machine, setup, seeds, sizes) -> list[np.ndarray]:
+    try:
+        from dask.distributed import Client, LocalCluster
+    except ImportError:
+        raise AxiscalError("running on a cluster needs dask: pip install 'axiscal[dask]'") from None
+    own = None
+    if isinstance(scheduler, str):
+        if scheduler == "local":
+            own = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None)
+            client = Client(own)
+        else:
+            try:
+                client = Client(scheduler, timeout=10)
+            except OSError as exc:
+                raise AxiscalError(f"cannot reach the dask scheduler at {scheduler}: {exc}") from None
+    else:
+        client = scheduler
+    try:
+        machine_f, setup_f = client.scatter([machine, setup], broadcast=True)
+        futures = [client.submit(_chunk, machine_f, setup_f, s, m, pure=False) for s, m in zip(seeds, sizes)]
+        return client.gather(futures)
+    finally:
+        if own is not None:
+            client.close()
+            own.close()
+
+
+def write_volumetric_uncertainty(
+    path: str | Path, positions: Mapping[str, np.ndarray], result: VolumetricUncertainty, *, sources=()
+) -> Path:
+    """Write the volumetric map with its coverage intervals as a plain CSV and its JSON sidecar.
+
+    Columns: ``<axis>_mm`` for each axis of ``positions``, then for each of ex, ey, ez:
+    ``e?_um`` (the model's error), ``e?_u_um`` (standard deviation of the draws), ``e?_low_um`` and
+    ``e?_high_um`` (the coverage interval). The sidecar (``path`` with ``.json``) holds the number
+    of draws and the coverage probability. The write is atomic.
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV to write.
+    positions : mapping of str to ndarray, shape (N,)
+        The points' axis positions, metres (as given to :func:`volumetric_monte_carlo`).
+    result : VolumetricUncertainty
+    sources : sequence of paths, keyword-only
+        Input files, for the sidecar.
+
+    Returns
+    -------
+    Path
+        The CSV written.
+
+    Raises
+    ------
+    AxiscalError
+        Positions that do not match the result's points, or a file that cannot be written.
+    """
+    n = result.error.shape[0]
+    columns: dict[str, np.ndarray] = {}
+    for letter, q in positions.items():
+        q = np.atleast_1d(np.asarray(q, dtype=float))
+        if q.shape != (n,):
+            raise AxiscalError(f"positions of axis {letter}: {q.size} values for {n} points")
+        columns[f"{letter}_mm"] = q / MM
+    for i, name in enumerate(("ex", "ey", "ez")):
+        columns[f"{name}_um"] = result.error[:, i] / UM
+        columns[f"{name}_u_um"] = result.std[:, i] / UM
+        columns[f"{name}_low_um"] = result.low[:, i] / UM
+        columns[f"{name}_high_um"] = result.high[:, i] / UM
+    written = write_text(path, write_csv(None, columns, fmt="{:.6f}"))
+    write_sidecar(written, kind="volumetric uncertainty", sources=list(sources), method="Monte Carlo (JCGM 101)",
+                  draws=result.draws, probability=result.probability)
+    return written
