@@ -30,6 +30,7 @@ import numpy as np
 from numpy.polynomial import legendre
 
 from axiscal.errors import AxiscalError
+from axiscal.instruments.abbe import transfer_point
 from axiscal.io.tabular import read_text
 
 __all__ = [
@@ -128,6 +129,16 @@ def transfer_reference(reference_m: np.ndarray, eps_rad: np.ndarray, offset_m: n
         ``M - R``: the sensor's measuring point minus the reference's, in the carriage frame, m.
     component : int
         0, 1 or 2 for the x, y or z translation.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        The reading moved to M, metres (:func:`axiscal.instruments.abbe.transfer_point`).
+
+    Raises
+    ------
+    AxiscalError
+        For shapes other than the above or a component outside 0..2.
     """
     eps = np.asarray(eps_rad, dtype=float)
     offset = np.asarray(offset_m, dtype=float)
@@ -135,7 +146,9 @@ def transfer_reference(reference_m: np.ndarray, eps_rad: np.ndarray, offset_m: n
         raise AxiscalError("eps_rad must have shape (n, 3) and offset_m shape (3,)")
     if component not in (0, 1, 2):
         raise AxiscalError(f"component must be 0, 1 or 2, got {component}")
-    return np.asarray(reference_m, dtype=float) + np.cross(eps, offset)[:, component]
+    delta = np.zeros(eps.shape)
+    delta[:, component] = reference_m
+    return transfer_point(delta, eps, offset)[:, component]
 
 
 @dataclass(frozen=True)

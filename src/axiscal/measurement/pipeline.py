@@ -28,6 +28,7 @@ import numpy as np
 
 from axiscal.conventions import component_names
 from axiscal.errors import AxiscalError
+from axiscal.instruments.abbe import transfer_components
 from axiscal.instruments.calibration import (
     Calibration,
     MirrorCorrection,
@@ -287,7 +288,7 @@ class MeasurementSystem:
             errors[plan.index] -= cmd
             if plan.mirror is not None:
                 errors[plan.roll_index] -= plan.roll_sign * plan.mirror.evaluate(cmd)
-            _abbe_bryan(errors, plan.offsets_m)
+            errors[:3] = transfer_components(errors[:3].T, errors[3:].T, plan.offsets_m).T
             command[plan.letter] = cmd
             measured[plan.letter] = errors
             scaled = errors * 1e6
@@ -344,20 +345,6 @@ def _batch_size(frames: Mapping[str, np.ndarray]) -> int:
     if not sizes:
         raise AxiscalError("no frame columns given")
     return sizes.pop()
-
-
-def _abbe_bryan(errors: np.ndarray, offsets: np.ndarray) -> None:
-    """In place: ``delta_i += (eps x (P - M_i))_i`` for the rows tx, ty, tz of ``errors`` (6, N)."""
-    ea, eb, ec = errors[3], errors[4], errors[5]
-    rx, ry, rz = offsets[0]
-    if ry or rz:
-        errors[0] += eb * rz - ec * ry
-    rx, ry, rz = offsets[1]
-    if rx or rz:
-        errors[1] += ec * rx - ea * rz
-    rx, ry, rz = offsets[2]
-    if rx or ry:
-        errors[2] += ea * ry - eb * rx
 
 
 def diagonal_errors(

@@ -24,6 +24,7 @@ import numpy as np
 
 from axiscal.conventions import component_names
 from axiscal.errors import AxiscalError
+from axiscal.instruments.abbe import transfer_point
 from axiscal.instruments.calibration import (
     Calibration,
     fit_mirror,
@@ -115,10 +116,8 @@ def _curve(q_m: np.ndarray, slope: float, terms: list[tuple[float, float, float]
 
 
 def _moved(errors: np.ndarray, point_m) -> np.ndarray:
-    """Translation (3, N) of the carriage point ``point_m`` from the errors (6, N) at its origin: delta + eps x r."""
-    ea, eb, ec = errors[3], errors[4], errors[5]
-    rx, ry, rz = point_m
-    return np.array([errors[0] + eb * rz - ec * ry, errors[1] + ec * rx - ea * rz, errors[2] + ea * ry - eb * rx])
+    """Translation (3, N) of the carriage point ``point_m`` from the errors (6, N) at its origin (Abbe-Bryan)."""
+    return transfer_point(errors[:3].T, errors[3:].T, np.asarray(point_m, dtype=float)).T
 
 
 @dataclass(frozen=True)
@@ -376,7 +375,7 @@ class VirtualModule:
             values = self.sensor_values(letter, q, e)
             beam = np.asarray(head.scale_point_m) + INTERFEROMETER_BEAM_M
             eps_true = e[3:].T
-            at_beam = e[:3].T + np.cross(eps_true, beam)
+            at_beam = transfer_point(e[:3].T, eps_true, beam)
             runs[names["scale"]] = {
                 "raw": self.raw({names["scale"]: values[names["scale"]]}, rng)[names["scale"]],
                 "position_m": q,
