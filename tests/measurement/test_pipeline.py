@@ -8,12 +8,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from axiscal.errors import AxiscalError
-from axiscal.measurement.pipeline import (
-    FAULT_MISSING,
-    FAULT_POSITION,
-    FAULT_RANGE,
-    spatial_error,
-)
+from axiscal.measurement.faults import Fault
+from axiscal.measurement.pipeline import spatial_error
 from axiscal.measurement.virtual import VirtualModule
 
 
@@ -111,19 +107,19 @@ def test_faults_are_flagged_not_raised(exact):
     frames["x_cmd_mm"][3] = 191.0
     del frames["z_roll_um"]
     out = system.process(frames)
-    assert np.all(out["fault"] & FAULT_MISSING)
+    assert np.all(out["fault"] & Fault.MISSING)
     frames["z_roll_um"] = np.zeros(6)
     out = system.process(frames)
     assert out["fault"][0] == 0
-    assert out["fault"][1] == FAULT_MISSING
-    assert out["fault"][2] == FAULT_RANGE
-    assert out["fault"][3] == FAULT_POSITION
+    assert out["fault"][1] == Fault.MISSING
+    assert out["fault"][2] == Fault.RANGE
+    assert out["fault"][3] == Fault.POSITION
     for k in (1, 2, 3):
         assert np.isnan(out["ex_um"][k]) and np.isnan(out["EXX_um"][k])
         assert out["t_s"][k] == frames["t_s"][k]
     assert np.isfinite(out["ex_um"][0])
     assert system.fault_text(0) == "ok"
-    assert system.fault_text(FAULT_MISSING | FAULT_POSITION) == "missing channel; position outside the error model"
+    assert system.fault_text(Fault.MISSING | Fault.POSITION) == "missing channel; position outside the error model"
 
 
 def test_ragged_batch_is_a_user_error(exact):
@@ -558,3 +554,12 @@ def test_an_output_that_cannot_be_written_is_one_error_line(run_cli, examples, t
     names = {"frames": examples / "xz_module" / "sensors_frames.csv", "psd": examples / "xz_module" / "sensors_psd_run.csv", "bad": blocker}
     status, out, err = run_cli(*(a.format(**names) for a in args))
     assert status == 2 and err.count("\n") == 1 and err.startswith(f"axiscal: error: {blocker}/")
+
+
+def test_fault_bits_keep_the_values_records_were_written_with():
+    assert [int(f) for f in (Fault.MISSING, Fault.RANGE, Fault.POSITION, Fault.MALFORMED)] == [1, 2, 4, 256]
+    from axiscal.measurement.faults import fault_legend, fault_text
+
+    assert fault_text(Fault.MALFORMED | Fault.MISSING).startswith("malformed frame")
+    assert fault_text(8) == "unknown fault bits 0x8"
+    assert list(fault_legend()) == ["1", "2", "4", "256"]

@@ -14,14 +14,13 @@ import click
 from axiscal.cli.common import ensure_parent
 from axiscal.errors import AxiscalError
 from axiscal.live.pipeline import Pipeline, RunSummary
-from axiscal.live.protocol import FAULT_MALFORMED
 from axiscal.live.recorder import Recorder
 from axiscal.live.sources import open_source, parse_source
 from axiscal.live.state import LiveState, result_columns
+from axiscal.measurement.faults import fault_legend
+from axiscal.measurement.virtual import PATHS
 
-__all__ = ["PATHS", "live", "register"]
-
-PATHS = ("diagonal", "raster", "back-and-forth")
+__all__ = ["live", "register"]
 
 
 def _progress_text(summary: RunSummary, rate_hz: float) -> str:
@@ -125,7 +124,7 @@ def live(
     previous_term = signal.getsignal(signal.SIGTERM) if threading.current_thread() is threading.main_thread() else None
     try:
         if record_path is not None:
-            bits = ", ".join(f"{1 << b} {system.fault_text(1 << b)}" for b in range(3)) + f", {FAULT_MALFORMED} malformed frame"
+            bits = ", ".join(f"{value} {text}" for value, text in fault_legend().items())
             try:
                 record_file = ensure_parent(record_path)
             except OSError as exc:

@@ -17,9 +17,9 @@ import numpy as np
 from axiscal.cli.common import echo_json, write_output
 from axiscal.errors import AxiscalError
 from axiscal.io.tabular import CsvTable, parse_csv, read_csv, read_text
+from axiscal.measurement.virtual import PATHS
 
 __all__ = [
-    "PATHS",
     "read_frames",
     "write_columns",
     "measure_command",
@@ -34,7 +34,6 @@ __all__ = [
     "register",
 ]
 
-PATHS = ("diagonal", "raster", "back-and-forth")
 
 
 def _system(machine: str | None, *, seed: int = 0, load_kg: float = 0.0):

@@ -1,7 +1,7 @@
 """The live loop: frames from a source through ``MeasurementSystem.process`` to the record and the dashboard.
 
 One batch at a time (whatever the source has, at most its batch limit): process, flag faults
-(``MeasurementSystem`` bits plus :data:`~axiscal.live.protocol.FAULT_MALFORMED`), append frames and
+(``MeasurementSystem`` bits plus ``Fault.MALFORMED`` of :class:`~axiscal.measurement.faults.Fault`), append frames and
 results to the :class:`~axiscal.live.recorder.Recorder`, fold them into the
 :class:`~axiscal.live.state.LiveState`. A faulty frame is kept in the record with NaN results; it
 never stops the run. The loop is bounded: it ends when ``stop`` is set, ``duration_s`` has passed
@@ -21,9 +21,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from axiscal.live.protocol import FAULT_MALFORMED, FrameBatch
+from axiscal.live.protocol import FrameBatch
 from axiscal.live.recorder import Recorder
 from axiscal.live.state import LiveState, result_columns
+from axiscal.measurement.faults import Fault
 
 __all__ = ["RunSummary", "Pipeline"]
 
@@ -77,7 +78,7 @@ class Pipeline:
     def process(self, batch: FrameBatch) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         """Process one batch: fault bits (N,) int64 and the result columns (NaN where faulty)."""
         results = self.system.process(batch.frames(self.channels))
-        fault = np.asarray(results["fault"], dtype=np.int64) | np.where(batch.malformed, FAULT_MALFORMED, 0)
+        fault = np.asarray(results["fault"], dtype=np.int64) | np.where(batch.malformed, int(Fault.MALFORMED), 0)
         if batch.malformed.any():
             results = {name: np.where(batch.malformed, np.nan, value) if name not in ("t_s", "fault") else value for name, value in results.items()}
         return fault, results

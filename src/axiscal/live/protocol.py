@@ -22,11 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["FAULT_MALFORMED", "FrameBatch", "LineDecoder", "encode_lines", "header_line"]
-
-#: fault bit the live pipeline adds to MeasurementSystem's bits: the line or row could not be read
-#: as a frame (no readable time stamp).
-FAULT_MALFORMED = 1 << 8
+__all__ = ["FrameBatch", "LineDecoder", "encode_lines", "header_line"]
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,8 @@ from typing import Any
 
 import numpy as np
 
-from axiscal.live.protocol import FAULT_MALFORMED, FrameBatch
+from axiscal.live.protocol import FrameBatch
+from axiscal.measurement.faults import fault_text
 
 __all__ = ["SPATIAL", "CORRECTED", "axis_error_columns", "result_columns", "LiveState"]
 
@@ -67,7 +68,6 @@ class LiveState:
         limits = [system.channel_limits.get(name, (-np.inf, np.inf)) for name in self.channels]
         self._low = np.array([lo for lo, _ in limits], dtype=float)
         self._high = np.array([hi for _, hi in limits], dtype=float)
-        self._fault_text = system.fault_text
         self.bins = bins
         self._edges: dict[str, np.ndarray] = {}
         for letter in self.axes:
@@ -154,12 +154,7 @@ class LiveState:
 
     def describe_fault(self, fault: int) -> str:
         """The fault bits in words: the measurement system's bits and the live pipeline's own."""
-        parts = []
-        if fault & FAULT_MALFORMED:
-            parts.append("malformed frame (no readable time stamp, or more fields than columns)")
-        if fault & ~FAULT_MALFORMED:
-            parts.append(self._fault_text(fault & ~FAULT_MALFORMED))
-        return "; ".join(parts)
+        return fault_text(fault) if fault else ""
 
     def measure_rate(self) -> float:
         """Frames per second since the previous call (the progress line and snapshots use it)."""

@@ -2,11 +2,8 @@
 
 from __future__ import annotations
 
+from axiscal.measurement.faults import FAULT_TEXT, Fault, fault_legend, fault_text
 from axiscal.measurement.pipeline import (
-    FAULT_MISSING,
-    FAULT_NAMES,
-    FAULT_POSITION,
-    FAULT_RANGE,
     MeasurementSystem,
     diagonal_errors,
     spatial_error,
@@ -29,10 +26,10 @@ from axiscal.measurement.virtual import (
 )
 
 __all__ = [
-    "FAULT_MISSING",
-    "FAULT_RANGE",
-    "FAULT_POSITION",
-    "FAULT_NAMES",
+    "Fault",
+    "FAULT_TEXT",
+    "fault_text",
+    "fault_legend",
     "MeasurementSystem",
     "spatial_error",
     "diagonal_errors",

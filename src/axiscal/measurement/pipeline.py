@@ -12,9 +12,10 @@ The pipeline of one batch of frames, vectorised over the frames:
 4. HTM chain (eqs 6-10) of :mod:`axiscal.model.kinematics` with those per-frame errors: the spatial
    error of the functional point and its actual (corrected) position.
 
-Faults are flagged per frame and never raise: bit 0 a channel is missing (NaN), bit 1 a channel
-is outside its valid range, bit 2 an axis' commanded position is outside the travel the error
-model covers (the machine's error table; the scale may read a little beyond, up to its margin).
+Faults are flagged per frame with the bits of :class:`axiscal.measurement.faults.Fault` and never
+raise: a channel is missing (NaN), a channel is outside its valid range, an axis' commanded
+position is outside the travel the error model covers (the machine's error table; the scale may
+read a little beyond, up to its margin).
 A faulty frame keeps its time stamp and fault bits; every other result of it is NaN.
 """
 
@@ -36,13 +37,10 @@ from axiscal.instruments.calibration import (
 )
 from axiscal.instruments.sensors import SensorHead, sensor_head_from_dict
 from axiscal.io.tabular import read_toml
+from axiscal.measurement.faults import Fault, fault_text
 from axiscal.model.machine import Machine, machine_from_dict
 
 __all__ = [
-    "FAULT_MISSING",
-    "FAULT_RANGE",
-    "FAULT_POSITION",
-    "FAULT_NAMES",
     "MeasurementSystem",
     "spatial_error",
     "diagonal_errors",
@@ -51,14 +49,6 @@ __all__ = [
 #: frames processed at once: big enough to amortise the Python overhead, small enough for the cache
 _CHUNK = 16384
 
-FAULT_MISSING = 1
-FAULT_RANGE = 2
-FAULT_POSITION = 4
-FAULT_NAMES = {
-    FAULT_MISSING: "missing channel",
-    FAULT_RANGE: "channel out of range",
-    FAULT_POSITION: "position outside the error model",
-}
 
 
 @dataclass(frozen=True)
@@ -218,15 +208,8 @@ class MeasurementSystem:
         return MeasurementSystem(self.machine, self.heads, self.calibration.merged(calibration))
 
     def fault_text(self, fault: int) -> str:
-        """The fault bits of a frame in words (``"ok"`` for 0)."""
-        fault = int(fault)
-        if fault == 0:
-            return "ok"
-        words = [text for bit, text in FAULT_NAMES.items() if fault & bit]
-        unknown = fault & ~sum(FAULT_NAMES)
-        if unknown:
-            words.append(f"unknown fault bits {unknown:#x}")
-        return "; ".join(words)
+        """The fault bits of a frame in words (``"ok"`` for 0); see :func:`axiscal.measurement.faults.fault_text`."""
+        return fault_text(fault)
 
     def channel_faults(self, frames: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
         """Fault bits (missing, out of range) of every raw channel separately: name -> int64 (N,)."""
@@ -235,8 +218,8 @@ class MeasurementSystem:
         for name in self.channels:
             value = np.asarray(frames[name], dtype=float) if name in frames else np.full(n, np.nan)
             low, high = self.channel_limits[name]
-            bits = np.isnan(value).astype(np.int64)
-            bits |= ((value < low) | (value > high)).astype(np.int64) << 1
+            bits = np.where(np.isnan(value), int(Fault.MISSING), 0).astype(np.int64)
+            bits |= np.where((value < low) | (value > high), int(Fault.RANGE), 0)
             out[name] = bits
         return out
 
@@ -273,9 +256,9 @@ class MeasurementSystem:
         for row, name in enumerate(self.channels):
             column = frames.get(name)
             raw[row] = np.nan if column is None else column
-        fault = np.any(np.isnan(raw), axis=0).astype(np.int64)
+        fault = np.where(np.any(np.isnan(raw), axis=0), int(Fault.MISSING), 0).astype(np.int64)
         outside = np.any((raw < self._low) | (raw > self._high), axis=0)
-        fault |= outside.astype(np.int64) << 1
+        fault |= np.where(outside, int(Fault.RANGE), 0)
         si = raw * self._scale_si
         si += self._offset_si
         out: dict[str, np.ndarray] = {"t_s": np.asarray(frames.get("t_s", np.full(n, np.nan)), dtype=float)}
@@ -283,7 +266,7 @@ class MeasurementSystem:
         measured: dict[str, np.ndarray] = {}
         for plan in self._plans:
             cmd = si[plan.cmd_row]
-            fault |= ((cmd < plan.start_m) | (cmd > plan.end_m)).astype(np.int64) << 2
+            fault |= np.where((cmd < plan.start_m) | (cmd > plan.end_m), int(Fault.POSITION), 0)
             errors = si[plan.error_rows]
             errors[plan.index] -= cmd
             if plan.mirror is not None:

@@ -66,6 +66,7 @@ STROKE_M = 0.19
 SQUARENESS_EB0Z_RAD = -42.4 * ARCSEC
 TOOL_M = (0.0, -0.040, 0.0)
 Z_ORIGIN_M = (0.0, 0.0, 0.050)
+#: the motions the module can make (:meth:`VirtualModule.positions`); the commands that drive it offer these
 PATHS = ("diagonal", "raster", "back-and-forth")
 
 #: (amplitude, cycles over the stroke, phase) of the smooth error curves, um or urad
