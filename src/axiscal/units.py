@@ -15,6 +15,7 @@ __all__ = [
     "ANGLE_UNITS",
     "ARCSEC",
     "ARCMIN",
+    "URAD",
     "UM",
     "MM",
     "split_unit",
@@ -36,6 +37,7 @@ ANGLE_UNITS: dict[str, float] = {
 
 ARCSEC = ANGLE_UNITS["arcsec"]
 ARCMIN = ANGLE_UNITS["arcmin"]
+URAD = ANGLE_UNITS["urad"]
 UM = LENGTH_UNITS["um"]
 MM = LENGTH_UNITS["mm"]
 

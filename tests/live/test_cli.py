@@ -14,6 +14,7 @@ from axiscal.live.protocol import encode_lines, header_line
 from axiscal.live.recorder import read_record
 from axiscal.live.state import result_columns
 from axiscal.measurement.virtual import VirtualModule
+from axiscal.measurement.display import to_display
 
 
 @pytest.fixture(scope="module")
@@ -82,7 +83,7 @@ def test_tcp_source_through_the_command(run_cli, tmp_path, system):
     record = read_record(path)
     assert len(record) == 300
     np.testing.assert_allclose(record.columns["x_psd_y_um"], frames["x_psd_y_um"], rtol=1e-8)
-    direct = system.process(frames)
+    direct = to_display(system.process(frames))
     np.testing.assert_allclose(record.columns["ex_um"], direct["ex_um"], rtol=1e-6, atol=1e-6)
 
 
@@ -143,7 +144,7 @@ def test_shipped_frames_replayed_with_the_shipped_machine_keep_their_two_faults(
     record = read_record(path)
     system = MeasurementSystem.from_toml(machine)
     source = read_record(frames_path)
-    direct = system.process({name: source.columns[name] for name in ("t_s", *system.channels)})
+    direct = to_display(system.process({name: source.columns[name] for name in ("t_s", *system.channels)}))
     np.testing.assert_array_equal(record.columns["fault"], direct["fault"])
     assert np.flatnonzero(record.columns["fault"]).tolist() == [50, 120]
     np.testing.assert_allclose(record.columns["ex_um"], direct["ex_um"], rtol=1e-8, atol=1e-9)

@@ -30,6 +30,7 @@ from axiscal.live.sources import (
     parse_source,
 )
 from axiscal.live.state import LiveState, result_columns
+from axiscal.measurement.display import to_display
 
 
 class LineServer:
@@ -198,7 +199,7 @@ def test_pipeline_results_equal_the_measurement_system_on_the_same_frames(module
     assert summary.frames == sum(len(b) for b, _ in frames) > 1000
     batch = FrameBatch.concatenate([b for b, _ in frames], len(system.channels))
     direct = system.process(batch.frames(system.channels))
-    np.testing.assert_allclose(np.concatenate([r["ex_um"] for _, r in frames]), direct["ex_um"], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(np.concatenate([r["ex_m"] for _, r in frames]), direct["ex_m"], rtol=1e-12, atol=1e-18)
     assert summary.latency_p99_ms > 0
 
 

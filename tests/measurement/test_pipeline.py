@@ -11,6 +11,7 @@ from axiscal.errors import AxiscalError
 from axiscal.measurement.faults import Fault
 from axiscal.measurement.pipeline import spatial_error
 from axiscal.measurement.virtual import VirtualModule
+from axiscal.measurement.display import to_display
 
 
 @pytest.fixture(scope="module")
@@ -41,7 +42,8 @@ def test_contract_attributes(exact):
 def test_noise_free_frames_give_the_truth(exact, path):
     module, system = exact
     frames, truth = module.frames(np.linspace(0.0, 20.0, 4001), path=path)
-    out = system.process(frames)
+    truth = to_display(truth)
+    out = to_display(system.process(frames))
     assert np.all(out["fault"] == 0)
     for key, tolerance in (("ex_um", 1e-4), ("ey_um", 1e-4), ("ez_um", 1e-4), ("e_um", 1e-4), ("px_mm", 1e-7), ("pz_mm", 1e-7), ("x_mm", 1e-7)):
         np.testing.assert_allclose(out[key], truth[key], atol=tolerance, err_msg=key)
@@ -56,7 +58,8 @@ def test_noisy_frames_within_the_noise(noisy):
     # paper 000 abstract: +-1.2 um positioning, +-1.3 um straightness, +-1 arcsec angles
     module, system = noisy
     frames, truth = module.frames(np.linspace(0.0, 15.0, 3000), path="raster")
-    out = system.process(frames)
+    truth = to_display(truth)
+    out = to_display(system.process(frames))
     good = out["fault"] == 0
     assert good.mean() > 0.95
     for name in ("EXX_um", "EZZ_um"):
@@ -75,7 +78,7 @@ def test_pipeline_matches_machine_model_at_table_nodes(exact):
     q = np.linspace(0.0, 0.19, 39)
     positions = {"X": q, "Z": q[::-1].copy()}
     frames, _ = module.frames_at(positions)
-    out = system.process(frames)
+    out = to_display(system.process(frames))
     expected = module.machine.volumetric_error(positions) * 1e6
     np.testing.assert_allclose(np.column_stack([out["ex_um"], out["ey_um"], out["ez_um"]]), expected, atol=1e-4)
 
@@ -106,10 +109,10 @@ def test_faults_are_flagged_not_raised(exact):
     frames["z_qd_u_um"][2] = 1e6
     frames["x_cmd_mm"][3] = 191.0
     del frames["z_roll_um"]
-    out = system.process(frames)
+    out = to_display(system.process(frames))
     assert np.all(out["fault"] & Fault.MISSING)
     frames["z_roll_um"] = np.zeros(6)
-    out = system.process(frames)
+    out = to_display(system.process(frames))
     assert out["fault"][0] == 0
     assert out["fault"][1] == Fault.MISSING
     assert out["fault"][2] == Fault.RANGE
@@ -154,13 +157,14 @@ def test_example_machine_is_the_virtual_module(examples):
         assert read.psd_range_m == pytest.approx(head.psd_range_m)
     assert system.calibration.channel("x_psd_y_um").gain == pytest.approx(module.calibration.channel("x_psd_y_um").gain)
     frames, truth = module.frames(np.linspace(0.0, 4.0, 300), path="raster")
-    out = system.process(frames)
+    truth = to_display(truth)
+    out = to_display(system.process(frames))
     good = out["fault"] == 0
     assert np.max(np.abs(out["ex_um"] - truth["ex_um"])[good]) < 2.0
 
 
 def test_measure_command_matches_the_pipeline(examples, run_cli, tmp_path):
-    from axiscal.cli.measure import read_frames
+    from axiscal.measurement.offline import read_frames
     from axiscal.io.tabular import read_csv
 
     frames_path = examples / "xz_module" / "sensors_frames.csv"
@@ -169,7 +173,7 @@ def test_measure_command_matches_the_pipeline(examples, run_cli, tmp_path):
     assert status == 0, err
     assert "200 frames, 2 faulty" in out
     system = VirtualModule(seed=0).measurement_system()
-    expected = system.process(read_frames(frames_path, system.channels))
+    expected = to_display(system.process(read_frames(frames_path, system.channels)))
     table = read_csv(output)
     fault = table.numeric("fault")
     assert list(np.flatnonzero(fault)) == [50, 120]
@@ -185,7 +189,7 @@ def test_measure_command_default_system_and_json(examples, run_cli):
     assert status == 0, err
     assert '"faulty_frames": 2' in out
     status, out, _ = run_cli("measure", examples / "xz_module" / "sensors_frames.csv")
-    assert status == 0 and out.startswith("# axiscal measure") and "ex_um" in out.splitlines()[1]
+    assert status == 0 and out.startswith("t_s,fault,") and "ex_um" in out.splitlines()[0]
 
 
 def test_measure_command_bad_input(examples, run_cli, tmp_path):
@@ -336,7 +340,7 @@ def _reference_frame(system, frame: dict[str, float]) -> np.ndarray:
 def test_pipeline_against_plain_reference(noisy):
     module, system = noisy
     frames, _ = module.frames(np.random.default_rng(0).uniform(0.0, 60.0, 40), path="raster")
-    out = system.process(frames)
+    out = to_display(system.process(frames))
     for k in range(40):
         expected = _reference_frame(system, {name: frames[name][k] for name in system.channels})
         np.testing.assert_allclose([out["ex_um"][k], out["ey_um"][k], out["ez_um"][k]], expected * 1e6, atol=1e-6)
@@ -349,9 +353,9 @@ def test_splitting_a_stream_into_batches_changes_nothing(cuts):
     module, system = _NOISY
     frames, _ = module.frames(np.linspace(0.0, 9.0, 300), path="back-and-forth")
     frames["x_psd_z_um"][17] = np.nan
-    whole = system.process(frames)
+    whole = to_display(system.process(frames))
     edges = [0, *sorted(set(cuts)), 300]
-    parts = [system.process({k: v[a:b] for k, v in frames.items()}) for a, b in zip(edges[:-1], edges[1:]) if b > a]
+    parts = [to_display(system.process({k: v[a:b] for k, v in frames.items()})) for a, b in zip(edges[:-1], edges[1:]) if b > a]
     for key, value in whole.items():
         np.testing.assert_array_equal(np.concatenate([p[key] for p in parts]), value)
 
@@ -359,8 +363,8 @@ def test_splitting_a_stream_into_batches_changes_nothing(cuts):
 def test_large_batches_are_chunked_transparently(exact):
     module, system = exact
     frames, _ = module.frames(np.linspace(0.0, 30.0, 40_000), path="raster")
-    whole = system.process(frames)
-    small = system.process({k: v[30_000:30_100] for k, v in frames.items()})
+    whole = to_display(system.process(frames))
+    small = to_display(system.process({k: v[30_000:30_100] for k, v in frames.items()}))
     for key in ("ex_um", "fault", "EBZ_urad", "t_s"):
         np.testing.assert_array_equal(whole[key][30_000:30_100], small[key])
     assert whole["ex_um"].shape == (40_000,)
@@ -447,7 +451,7 @@ def test_any_chain_matches_the_table_model(tmp_path, examples):
             component = getattr(head, role)
             frames[names[role]] = np.full(n, component.sign * errors[component.index] * focal * 1e6)
     machine = Machine(chain="XFYZ", axes=axes, squareness_rad=system.machine.squareness_rad, tool_m=system.machine.tool_m)
-    out = system.process(frames)
+    out = to_display(system.process(frames))
     assert np.all(out["fault"] == 0)
     expected = machine.volumetric_error(positions) * 1e6
     np.testing.assert_allclose(np.column_stack([out["ex_um"], out["ey_um"], out["ez_um"]]), expected, atol=1e-9)
@@ -508,7 +512,7 @@ def test_injected_faults_are_flagged_exactly(injections):
             letter = name[0].upper()
             start, end = (v * 1e3 for v in system.machine.travel_m(letter))
             expected |= ((value < start) | (value > end)).astype(np.int64) << 2
-    out = system.process(frames)
+    out = to_display(system.process(frames))
     np.testing.assert_array_equal(out["fault"], expected)
     assert np.all(np.isnan(out["ex_um"][expected != 0]))
     assert np.all(np.isfinite(out["ex_um"][expected == 0]))
@@ -563,3 +567,41 @@ def test_fault_bits_keep_the_values_records_were_written_with():
     assert fault_text(Fault.MALFORMED | Fault.MISSING).startswith("malformed frame")
     assert fault_text(8) == "unknown fault bits 0x8"
     assert list(fault_legend()) == ["1", "2", "4", "256"]
+
+
+def test_data_csvs_the_commands_write_are_plain_with_a_sidecar(examples, run_cli, tmp_path):
+    import json
+
+    import pandas
+
+    frames = tmp_path / "frames.csv"
+    results = tmp_path / "results.csv"
+    laser = tmp_path / "laser.csv"
+    for args in (
+        ("simulate", "frames", "--rate", "100", "--duration", "0.5", "--truth", "-o", frames),
+        ("measure", frames, "-o", results),
+        ("simulate", "laser", "-o", laser),
+    ):
+        status, _, err = run_cli(*args)
+        assert status == 0, err
+    read = {path: pandas.read_csv(path) for path in (frames, results, laser)}
+    assert list(read[frames].columns[:3]) == ["t_s", "x_cmd_mm", "x_scale_mm"] and "truth_ex_um" in read[frames].columns
+    assert len(read[frames]) == 50
+    assert list(read[results].columns[:2]) == ["t_s", "fault"] and {"ex_um", "e_um", "px_mm", "EXX_um", "ECZ_urad", "x_mm"} <= set(read[results].columns)
+    assert list(read[laser].columns) == ["nominal_mm", "measured_mm"] and len(read[laser]) == 20
+    assert json.loads(results.with_suffix(".json").read_text())["fault_bits"]["4"] == "position outside the error model"
+    assert json.loads(frames.with_suffix(".json").read_text())["kind"] == "raw frames"
+    assert json.loads(laser.with_suffix(".json").read_text())["kind"] == "interferometer readings"
+
+
+def test_measure_file_results_are_si(examples):
+    from axiscal.measurement.offline import measure_file
+
+    result = measure_file(examples / "xz_module" / "sensors_frames.csv")
+    shown = result.columns()
+    good = result.fault == 0
+    np.testing.assert_allclose(result.results["ex_m"][good] / 1e-6, shown["ex_um"][good], rtol=1e-12)
+    np.testing.assert_allclose(result.results["px_m"][good] / 1e-3, shown["px_mm"][good], rtol=1e-12)
+    np.testing.assert_allclose(result.results["EAX_rad"][good] / 1e-6, shown["EAX_urad"][good], rtol=1e-12)
+    assert result.summary()["faulty_frames"] == 2
+

@@ -18,7 +18,7 @@ import numpy as np
 from axiscal.io.tabular import read_csv, write_csv
 from axiscal.model.diagonal import diagonal_check
 from axiscal.model.machine import axis_positions_from_grid, load_machine
-from axiscal.units import ARCSEC
+from axiscal.units import ARCSEC, UM
 
 __all__ = ["builtin_example", "demo_command", "register"]
 
@@ -86,7 +86,7 @@ def demo_command(output):
         "diagonal_E_BD_range_um": diagonal.range_before_m * 1e6,
         "diagonal_E_AD_range_um": diagonal.range_after_m * 1e6,
         "experiment": {
-            f"{load:g}kg": {"before_max_um": e.before_max_um, "after_max_um": e.after_max_um, "scales_only_max_um": e.scales_only_max_um}
+            f"{load:g}kg": {"before_max_um": e.before_max_m / UM, "after_max_um": e.after_max_m / UM, "scales_only_max_um": e.scales_only_max_m / UM}
             for load, e in experiments.items()
         },
     }
@@ -128,8 +128,8 @@ diagonal (19 steps of 10 mm). Measuring the errors while the machine runs follow
 
 | load | before (E_BD) | after (E_AD) | scales only |
 |---|---|---|---|
-| 0 kg | {experiments[0.0].before_max_um:.1f} um | {experiments[0.0].after_max_um:.2f} um | {experiments[0.0].scales_only_max_um:.1f} um |
-| 2 kg | {experiments[2.0].before_max_um:.1f} um | {experiments[2.0].after_max_um:.2f} um | {experiments[2.0].scales_only_max_um:.1f} um |
+| 0 kg | {summary['experiment']['0kg']['before_max_um']:.1f} um | {summary['experiment']['0kg']['after_max_um']:.2f} um | {summary['experiment']['0kg']['scales_only_max_um']:.1f} um |
+| 2 kg | {summary['experiment']['2kg']['before_max_um']:.1f} um | {summary['experiment']['2kg']['after_max_um']:.2f} um | {summary['experiment']['2kg']['scales_only_max_um']:.1f} um |
 
 The simulation holds only what the model covers, so far less is left after the model than in the
 paper (docs/measurement.md says why; `axiscal experiment diagonal --help` for variations).
@@ -140,8 +140,8 @@ paper (docs/measurement.md says why; `axiscal experiment diagonal --help` for va
     (folder / "report.md").write_text(report)
     click.echo(f"wrote {folder}/report.md")
     click.echo(
-        f"  paper 000 experiment (simulated): {experiments[0.0].before_max_um:.1f} -> {experiments[0.0].after_max_um:.2f} um, "
-        f"2 kg: {experiments[2.0].before_max_um:.1f} -> {experiments[2.0].after_max_um:.2f} um"
+        f"  paper 000 experiment (simulated): {summary['experiment']['0kg']['before_max_um']:.1f} -> {summary['experiment']['0kg']['after_max_um']:.2f} um, "
+        f"2 kg: {summary['experiment']['2kg']['before_max_um']:.1f} -> {summary['experiment']['2kg']['after_max_um']:.2f} um"
     )
     click.echo(
         f"  volumetric |e| max {summary['volumetric_max_um']:.2f} um; diagonal P-V "

@@ -31,6 +31,8 @@ from numpy.polynomial import legendre
 
 from axiscal.errors import AxiscalError
 from axiscal.instruments.abbe import transfer_point
+from axiscal.units import MM, URAD
+from axiscal.io.atomic import write_text
 from axiscal.io.tabular import read_text
 
 __all__ = [
@@ -286,12 +288,12 @@ class Calibration:
             },
             "mirrors": {
                 letter: {
-                    "start_mm": m.start_m * 1e3,
-                    "end_mm": m.end_m * 1e3,
-                    "legendre_urad": [c * 1e6 for c in m.coefficients_rad],
-                    "residual_max_urad": m.residual_max_rad * 1e6,
-                    "residual_rms_urad": m.residual_rms_rad * 1e6,
-                    "cv_rms_urad": [v * 1e6 if math.isfinite(v) else None for v in m.cv_rms_rad],
+                    "start_mm": m.start_m / MM,
+                    "end_mm": m.end_m / MM,
+                    "legendre_urad": [c / URAD for c in m.coefficients_rad],
+                    "residual_max_urad": m.residual_max_rad / URAD,
+                    "residual_rms_urad": m.residual_rms_rad / URAD,
+                    "cv_rms_urad": [v / URAD if math.isfinite(v) else None for v in m.cv_rms_rad],
                     "points": m.points,
                 }
                 for letter, m in sorted(self.mirrors.items())
@@ -300,8 +302,21 @@ class Calibration:
 
 
 def save_calibration(calibration: Calibration, path: str | Path) -> None:
-    """Write a calibration as JSON (docs/measurement.md, "Calibration file")."""
-    Path(path).write_text(json.dumps(calibration.to_dict(), indent=2) + "\n", encoding="utf-8")
+    """Write a calibration as JSON, atomically (docs/measurement.md, "Calibration file").
+
+    Parameters
+    ----------
+    calibration : Calibration
+        What to save.
+    path : str or Path
+        The JSON file (replaced whole, never left half written).
+
+    Raises
+    ------
+    AxiscalError
+        If the file cannot be written (naming it).
+    """
+    write_text(path, json.dumps(calibration.to_dict(), indent=2) + "\n")
 
 
 def _number(entry: Mapping, key: str, where: str, *, default: float | None = None) -> float:
@@ -338,20 +353,20 @@ def calibration_from_dict(data: Mapping) -> Calibration:
         where = f"mirror of axis '{letter}'"
         if letter not in ("X", "Y", "Z") or not isinstance(entry, Mapping):
             raise AxiscalError(f"{where}: expected an axis letter X, Y or Z with an object")
-        start, end = _number(entry, "start_mm", where) * 1e-3, _number(entry, "end_mm", where) * 1e-3
+        start, end = _number(entry, "start_mm", where) * MM, _number(entry, "end_mm", where) * MM
         if not end > start:
             raise AxiscalError(f"{where}: end_mm must be greater than start_mm")
         coefficients = entry.get("legendre_urad")
         if not (isinstance(coefficients, list) and coefficients and all(isinstance(c, (int, float)) for c in coefficients)):
             raise AxiscalError(f"{where}: 'legendre_urad' must be a non-empty list of numbers")
-        cv = [math.inf if v is None else float(v) * 1e-6 for v in entry.get("cv_rms_urad", [])]
+        cv = [math.inf if v is None else float(v) * URAD for v in entry.get("cv_rms_urad", [])]
         mirrors[letter] = MirrorCorrection(
             letter=letter,
             start_m=start,
             end_m=end,
-            coefficients_rad=tuple(float(c) * 1e-6 for c in coefficients),
-            residual_max_rad=_number(entry, "residual_max_urad", where, default=0.0) * 1e-6,
-            residual_rms_rad=_number(entry, "residual_rms_urad", where, default=0.0) * 1e-6,
+            coefficients_rad=tuple(float(c) * URAD for c in coefficients),
+            residual_max_rad=_number(entry, "residual_max_urad", where, default=0.0) * URAD,
+            residual_rms_rad=_number(entry, "residual_rms_urad", where, default=0.0) * URAD,
             cv_rms_rad=tuple(cv),
             points=int(_number(entry, "points", where, default=0)),
         )

@@ -27,6 +27,7 @@ import numpy as np
 
 from axiscal.conventions import AXIS_INDEX, component_names
 from axiscal.errors import AxiscalError
+from axiscal.units import MM, UM
 
 __all__ = [
     "straightness_from_psd",
@@ -187,7 +188,7 @@ def _point(section: Mapping, key: str, where: str) -> tuple[float, float, float]
     value = section.get(key, [0.0, 0.0, 0.0])
     if not (isinstance(value, list) and len(value) == 3 and all(isinstance(v, (int, float)) for v in value)):
         raise AxiscalError(f"{where} {key} must be a list of 3 numbers in mm, e.g. [0.0, -30.0, 20.0]")
-    return tuple(float(v) * 1e-3 for v in value)  # type: ignore[return-value]
+    return tuple(float(v) * MM for v in value)  # type: ignore[return-value]
 
 
 def sensor_head_from_dict(letter: str, section: Mapping) -> SensorHead:
@@ -216,13 +217,13 @@ def sensor_head_from_dict(letter: str, section: Mapping) -> SensorHead:
         prefix=prefix,
         scale_point_m=_point(section, "scale_point_mm", where),
         psd_point_m=_point(section, "psd_point_mm", where),
-        qd_focal_m=_positive(section, "qd_focal_mm", 100.0, where) * 1e-3,
-        roll_focal_m=_positive(section, "roll_focal_mm", 100.0, where) * 1e-3,
+        qd_focal_m=_positive(section, "qd_focal_mm", 100.0, where) * MM,
+        roll_focal_m=_positive(section, "roll_focal_mm", 100.0, where) * MM,
         qd_u=rotations[0],
         qd_v=rotations[1],
         roll=rotations[2],
-        psd_range_m=_positive(section, "psd_range_um", 100.0, where) * 1e-6,
-        qd_range_m=_positive(section, "qd_range_um", 500.0, where) * 1e-6,
-        roll_range_m=_positive(section, "roll_range_um", 500.0, where) * 1e-6,
-        scale_margin_m=_positive(section, "scale_margin_mm", 5.0, where) * 1e-3,
+        psd_range_m=_positive(section, "psd_range_um", 100.0, where) * UM,
+        qd_range_m=_positive(section, "qd_range_um", 500.0, where) * UM,
+        roll_range_m=_positive(section, "roll_range_um", 500.0, where) * UM,
+        scale_margin_m=_positive(section, "scale_margin_mm", 5.0, where) * MM,
     )

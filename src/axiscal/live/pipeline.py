@@ -24,7 +24,11 @@ import numpy as np
 from axiscal.live.protocol import FrameBatch
 from axiscal.live.recorder import Recorder
 from axiscal.live.state import LiveState, result_columns
+from axiscal.measurement.display import to_display
 from axiscal.measurement.faults import Fault
+
+#: seconds per millisecond (delays are shown in ms)
+MS = 1e-3
 
 __all__ = ["RunSummary", "Pipeline"]
 
@@ -76,7 +80,20 @@ class Pipeline:
         self._latency_count = 0
 
     def process(self, batch: FrameBatch) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-        """Process one batch: fault bits (N,) int64 and the result columns (NaN where faulty)."""
+        """Process one batch.
+
+        Parameters
+        ----------
+        batch : FrameBatch
+            Frames as a source delivers them.
+
+        Returns
+        -------
+        fault : ndarray of int64, shape (N,)
+            Fault bits (:class:`~axiscal.measurement.faults.Fault`), 0 = good.
+        results : dict of str to ndarray, shape (N,)
+            The SI result columns of :meth:`MeasurementSystem.process` (NaN where faulty).
+        """
         results = self.system.process(batch.frames(self.channels))
         fault = np.asarray(results["fault"], dtype=np.int64) | np.where(batch.malformed, int(Fault.MALFORMED), 0)
         if batch.malformed.any():
@@ -90,13 +107,14 @@ class Pipeline:
         if n == 0:
             return 0
         fault, results = self.process(batch)
+        shown = to_display(results)  # the record and the dashboard show um, mm and urad
         if self.recorder is not None:
-            self.recorder.append(batch.t_s, batch.values, fault, results)
+            self.recorder.append(batch.t_s, batch.values, fault, shown)
         offset = self.source.clock_offset_s
         if offset is not None:
             self._keep_latency(time.monotonic() - (batch.t_s + offset))
         if self.state is not None:
-            self.state.update(batch, fault, results)
+            self.state.update(batch, fault, shown)
         self.frames += n
         self.faults += int(np.count_nonzero(fault))
         self.batches += 1
@@ -123,7 +141,7 @@ class Pipeline:
 
     def summary(self, elapsed_s: float, *, recent: int | None = None) -> RunSummary:
         """The run so far; delay percentiles over the last ``recent`` frames (None: all kept)."""
-        delays = self.latencies_s(recent) * 1e3
+        delays = self.latencies_s(recent) / MS
         p50, p99, worst = (np.percentile(delays, [50, 99, 100]) if len(delays) else (np.nan, np.nan, np.nan))
         return RunSummary(
             frames=self.frames,
@@ -143,7 +161,7 @@ class Pipeline:
         if self.state is None:
             return
         status = self.source.status
-        delays = self.latencies_s(20000) * 1e3
+        delays = self.latencies_s(20000) / MS
         self.state.extra = {
             "source": {"description": status.description, "state": status.state, "connections": status.connections, "retries": status.retries, "message": status.message},
             "record": None

@@ -20,6 +20,7 @@ import numpy as np
 
 from axiscal.live.protocol import FrameBatch
 from axiscal.measurement.faults import fault_text
+from axiscal.units import MM
 
 __all__ = ["SPATIAL", "CORRECTED", "axis_error_columns", "result_columns", "LiveState"]
 
@@ -72,7 +73,7 @@ class LiveState:
         self._edges: dict[str, np.ndarray] = {}
         for letter in self.axes:
             start, end = system.machine.travel_m(letter)
-            self._edges[letter] = np.linspace(start * 1e3, end * 1e3, bins + 1)
+            self._edges[letter] = np.linspace(start / MM, end / MM, bins + 1)
         self._profiles = {letter: np.full((6, bins), np.nan) for letter in self.axes}
         self._history_dt = history_s / history_points
         self._history = np.full((history_points, 1 + len(SPATIAL)), np.nan)

@@ -38,6 +38,7 @@ from axiscal.instruments.calibration import (
 from axiscal.instruments.sensors import SensorHead, sensor_head_from_dict
 from axiscal.io.tabular import read_toml
 from axiscal.measurement.faults import Fault, fault_text
+from axiscal.units import MM, UM
 from axiscal.model.machine import Machine, machine_from_dict
 
 __all__ = [
@@ -72,7 +73,7 @@ class _AxisPlan:
 
 def _error_names(letter: str) -> tuple[str, ...]:
     names = component_names(letter)
-    return tuple(f"{n}_um" for n in names[:3]) + tuple(f"{n}_urad" for n in names[3:])
+    return tuple(f"{n}_m" for n in names[:3]) + tuple(f"{n}_rad" for n in names[3:])
 
 
 class MeasurementSystem:
@@ -120,13 +121,13 @@ class MeasurementSystem:
                 channels.append(name)
                 if role in ("cmd", "scale"):
                     margin = head.scale_margin_m
-                    limits[name] = ((start - margin) * 1e3, (end + margin) * 1e3)
+                    limits[name] = ((start - margin) / MM, (end + margin) / MM)
                 elif role.startswith("psd"):
-                    limits[name] = (-head.psd_range_m * 1e6, head.psd_range_m * 1e6)
+                    limits[name] = (-head.psd_range_m / UM, head.psd_range_m / UM)
                 elif role == "roll":
-                    limits[name] = (-head.roll_range_m * 1e6, head.roll_range_m * 1e6)
+                    limits[name] = (-head.roll_range_m / UM, head.roll_range_m / UM)
                 else:
-                    limits[name] = (-head.qd_range_m * 1e6, head.qd_range_m * 1e6)
+                    limits[name] = (-head.qd_range_m / UM, head.qd_range_m / UM)
         self.channels = tuple(channels)
         self.channel_limits = limits
         self._prepare()
@@ -141,15 +142,15 @@ class MeasurementSystem:
         for letter in self.axes:
             head = self.heads[letter]
             names = head.channels
-            factor[row[names["cmd"]]] = factor[row[names["scale"]]] = 1e-3
+            factor[row[names["cmd"]]] = factor[row[names["scale"]]] = MM
             error_rows = [0] * 6
             error_rows[head.index] = row[names["scale"]]
             for d in head.cross_directions:
-                factor[row[names[f"psd_{d}"]]] = 1e-6
+                factor[row[names[f"psd_{d}"]]] = UM
                 error_rows["xyz".index(d)] = row[names[f"psd_{d}"]]
             for role, focal in (("qd_u", head.qd_focal_m), ("qd_v", head.qd_focal_m), ("roll", 2.0 * head.roll_focal_m)):
                 component = getattr(head, role)
-                factor[row[names[role]]] = component.sign * 1e-6 / focal
+                factor[row[names[role]]] = component.sign * UM / focal
                 error_rows[component.index] = row[names[role]]
             start, end = self._travel[letter]
             plans.append(
@@ -166,7 +167,7 @@ class MeasurementSystem:
                     start_m=start,
                     end_m=end,
                     error_names=_error_names(letter),
-                    position_name=f"{letter.lower()}_mm",
+                    position_name=f"{letter.lower()}_m",
                 )
             )
         calibrations = [self.calibration.channel(c) for c in self.channels]
@@ -235,12 +236,19 @@ class MeasurementSystem:
         Returns
         -------
         dict of str to ndarray, shape (N,)
-            ``"t_s"``; per axis the six errors at the axis' functional point (``"EXX_um"``,
-            ``"EYX_um"``, ``"EZX_um"``, ``"EAX_urad"``, ``"EBX_urad"``, ``"ECX_urad"``, ...);
-            the scale positions ``"x_mm"``, ``"z_mm"``; the spatial error ``"ex_um"``,
-            ``"ey_um"``, ``"ez_um"`` and its length ``"e_um"``; the actual functional point
-            ``"px_mm"``, ``"py_mm"``, ``"pz_mm"``; and ``"fault"`` (int64 bits, 0 = good).
-            Results of a faulty frame are NaN.
+            All SI: ``"t_s"``; per axis the six errors at the axis' functional point
+            (``"EXX_m"``, ``"EYX_m"``, ``"EZX_m"``, ``"EAX_rad"``, ``"EBX_rad"``, ``"ECX_rad"``,
+            ...); the scale positions ``"x_m"``, ``"z_m"``; the spatial error ``"ex_m"``,
+            ``"ey_m"``, ``"ez_m"`` and its length ``"e_m"``; the actual functional point
+            ``"px_m"``, ``"py_m"``, ``"pz_m"``; and ``"fault"`` (int64 bits of
+            :class:`~axiscal.measurement.faults.Fault`, 0 = good). Results of a faulty frame are
+            NaN. :func:`axiscal.measurement.display.to_display` gives the columns files and
+            screens show (``"EXX_um"``, ``"x_mm"``, ...).
+
+        Raises
+        ------
+        AxiscalError
+            If the frame columns differ in length or none is given.
         """
         n = _batch_size(frames)
         if n <= _CHUNK:
@@ -274,22 +282,21 @@ class MeasurementSystem:
             errors[:3] = transfer_components(errors[:3].T, errors[3:].T, plan.offsets_m).T
             command[plan.letter] = cmd
             measured[plan.letter] = errors
-            scaled = errors * 1e6
-            for name, row in zip(plan.error_names, scaled):
+            for name, row in zip(plan.error_names, errors):
                 out[name] = row
-            out[plan.position_name] = si[plan.scale_row] * 1e3
+            out[plan.position_name] = si[plan.scale_row]
         bad = fault != 0
         if np.any(bad):
             command = {k: np.where(bad, self._travel[k][0], q) for k, q in command.items()}
         error = spatial_error(self.machine, command, measured)
         actual = self.machine.nominal_point(command) + error
-        error_um = error.T * 1e6
-        actual_mm = actual.T * 1e3
+        error_t = np.ascontiguousarray(error.T)
+        actual_t = np.ascontiguousarray(actual.T)
         for k, axis in enumerate("xyz"):
-            out[f"e{axis}_um"] = error_um[k]
-        out["e_um"] = np.sqrt(np.einsum("ij,ij->j", error_um, error_um))
+            out[f"e{axis}_m"] = error_t[k]
+        out["e_m"] = np.sqrt(np.einsum("ij,ij->j", error_t, error_t))
         for k, axis in enumerate("xyz"):
-            out[f"p{axis}_mm"] = actual_mm[k]
+            out[f"p{axis}_m"] = actual_t[k]
         if np.any(bad):
             for name, value in out.items():
                 if name != "t_s":
