@@ -39,8 +39,10 @@ def test_duration_and_no_server_record_every_frame_in_order(recorded, system):
     assert list(record.columns) == ["t_s", *system.channels, "fault", *result_columns(system.axes)]
     assert (record.columns["fault"] == 0).all()
     assert np.isfinite(record.columns["e_um"]).all() and record.columns["e_um"].max() > 1.0
-    assert any(c.startswith("source: sim") for c in record.comments)
-    frame = pd.read_csv(recorded, comment="#")
+    assert record.metadata["kind"] == "live record" and record.metadata["source"].startswith("sim")
+    assert record.metadata["fault_bits"]["256"].startswith("malformed frame") and not record.comments
+    assert recorded.read_text().startswith("t_s,")
+    frame = pd.read_csv(recorded)
     assert len(frame) == len(record) and {"t_s", "ex_um", "ey_um", "ez_um"} <= set(frame.columns)
 
 

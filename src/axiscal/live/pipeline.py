@@ -48,6 +48,32 @@ class RunSummary:
     latency_max_ms: float
     source_state: str
 
+    def progress_text(self, rate_hz: float, *, label: str = "live") -> str:
+        """One status line: elapsed time, frames, rate, faults, record counts, delay and source state.
+
+        Parameters
+        ----------
+        rate_hz : float
+            The frame rate to show, Hz.
+        label : str
+            First word (``"live"`` while running, ``"done"`` at the end).
+
+        Returns
+        -------
+        str
+        """
+        record = f"  recorded {self.frames_acknowledged}/{self.frames_written}" if self.frames_written or self.frames_acknowledged else ""
+        delay = f"  delay p99 {self.latency_p99_ms:.2f} ms" if self.latency_p99_ms == self.latency_p99_ms else ""
+        return (
+            f"{label} {self.elapsed_s:6.1f} s  frames {self.frames}  rate {rate_hz:.0f} Hz  faults {self.faults}"
+            f"{record}{delay}  source {self.source_state}"
+        )
+
+    @property
+    def mean_rate_hz(self) -> float:
+        """Frames per second over the whole run (0 before any time has passed)."""
+        return self.frames / self.elapsed_s if self.elapsed_s > 0 else 0.0
+
 
 class Pipeline:
     """Run frames from ``source`` through ``system`` into ``recorder`` and ``state``.

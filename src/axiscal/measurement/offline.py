@@ -40,6 +40,7 @@ __all__ = [
     "MAX_SIMULATED_FRAMES",
     "load_system",
     "is_live_record",
+    "drop_cut_line",
     "read_frames",
     "columns_csv",
     "write_data_csv",
@@ -113,8 +114,22 @@ def is_live_record(path: str | Path, header: Sequence[str] = ()) -> bool:
     return {"t_s", "fault", "e_um"} <= set(header)
 
 
-def _drop_cut_line(text: str) -> str:
-    """The text without its last line when that line has no newline (cut short by a crash)."""
+def drop_cut_line(text: str) -> str:
+    """A live record's text without a last line cut short by a crash (one without its newline).
+
+    Only for live records (:func:`is_live_record`): in any other CSV a last line without its
+    newline is a complete row.
+
+    Parameters
+    ----------
+    text : str
+        The record's text.
+
+    Returns
+    -------
+    str
+        The text up to and including its last newline (unchanged when it ends with one).
+    """
     if text and not text.endswith("\n"):
         return text[: text.rfind("\n") + 1]
     return text
@@ -161,7 +176,7 @@ def read_frames(path: str | Path, channels: Sequence[str]) -> dict[str, np.ndarr
     first = text[: text.find("\n") + 1] if "\n" in text else text
     header = [c.strip() for c in first.split(",")]
     if is_live_record(path, header) or text.startswith("# axiscal live record"):
-        text = _drop_cut_line(text)
+        text = drop_cut_line(text)
     table = parse_csv(text.split("\n"), path=str(path))
     table.require("t_s", *channels)
     frames = {"t_s": table.numeric("t_s")}
