@@ -16,6 +16,7 @@ __all__ = [
     "ARCSEC",
     "ARCMIN",
     "URAD",
+    "PPM",
     "UM",
     "MM",
     "split_unit",
@@ -38,6 +39,8 @@ ANGLE_UNITS: dict[str, float] = {
 ARCSEC = ANGLE_UNITS["arcsec"]
 ARCMIN = ANGLE_UNITS["arcmin"]
 URAD = ANGLE_UNITS["urad"]
+#: parts per million, for ratios (n - 1, expansion)
+PPM = 1e-6
 UM = LENGTH_UNITS["um"]
 MM = LENGTH_UNITS["mm"]
 

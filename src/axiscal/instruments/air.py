@@ -27,6 +27,8 @@ from __future__ import annotations
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.instruments.reports import render_report
+from axiscal.units import PPM
 
 __all__ = [
     "METHODS",
@@ -37,6 +39,9 @@ __all__ = [
     "saturation_vapour_pressure",
     "water_vapour_mole_fraction",
     "refractive_index",
+    "air_report",
+    "air_inputs",
+    "air_text",
 ]
 
 #: names accepted by :func:`refractive_index`
@@ -253,3 +258,88 @@ def refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, *,
             f"is not below the air pressure {p.flat[where]:g} Pa"
         )
     return _as_float(_EQUATIONS[method](t, p, h, wavelength, co2))
+
+
+def air_report(
+    temperature_c: float,
+    pressure_pa: float,
+    humidity_pct: float,
+    wavelength_nm: float = 632.991,
+    *,
+    co2_ppm: float = 450.0,
+    method: str = "ciddor",
+) -> dict:
+    """The refractive index of air with what is shown of it (``axiscal air``).
+
+    Parameters
+    ----------
+    temperature_c, pressure_pa, humidity_pct, wavelength_nm : float
+        Air temperature (degC), pressure (Pa), relative humidity (%) and vacuum wavelength (nm).
+    co2_ppm : float, keyword-only
+        CO2 content, umol/mol.
+    method : str, keyword-only
+        Equation, see :func:`refractive_index`.
+
+    Returns
+    -------
+    dict
+        ``refractive_index``, ``n_minus_1_ppm``, ``wavelength_in_air_nm`` and the inputs
+        (``method``, ``temperature_c``, ``pressure_pa``, ``humidity_pct``, ``wavelength_nm``,
+        ``co2_ppm``): the JSON the command prints.
+
+    Raises
+    ------
+    AxiscalError
+        As :func:`refractive_index`.
+
+    Examples
+    --------
+    >>> round(air_report(20.0, 101325.0, 0.0, 633.0)["n_minus_1_ppm"], 3)
+    271.8
+    """
+    n = refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm=co2_ppm, method=method)
+    return {
+        "refractive_index": n,
+        "n_minus_1_ppm": (n - 1.0) / PPM,
+        "wavelength_in_air_nm": wavelength_nm / n,
+        **air_inputs(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm, method),
+    }
+
+
+def air_inputs(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm, method) -> dict:
+    """The air conditions as a report lists them (``method``, ``temperature_c``, ... ``co2_ppm``).
+
+    Parameters
+    ----------
+    temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm : float
+        As :func:`refractive_index`.
+    method : str
+        The equation.
+
+    Returns
+    -------
+    dict
+    """
+    return {
+        "method": method,
+        "temperature_c": temperature_c,
+        "pressure_pa": pressure_pa,
+        "humidity_pct": humidity_pct,
+        "wavelength_nm": wavelength_nm,
+        "co2_ppm": co2_ppm,
+    }
+
+
+def air_text(report: dict) -> str:
+    """The text ``axiscal air`` prints for an :func:`air_report` (template ``instruments/air.txt.j2``).
+
+    Parameters
+    ----------
+    report : dict
+        From :func:`air_report`.
+
+    Returns
+    -------
+    str
+    """
+    return render_report("instruments/air.txt.j2", r=report)

@@ -23,10 +23,14 @@ from __future__ import annotations
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.instruments.air import refractive_index
+from axiscal.instruments.air import air_inputs, refractive_index
+from axiscal.instruments.reports import render_report
 from axiscal.materials import STEEL_EXPANSION_PER_K
+from axiscal.units import MM
 
 __all__ = [
+    "fringe_report",
+    "fringe_text",
     "HENE_WAVELENGTH_NM",
     "REFERENCE_TEMPERATURE_C",
     "length_from_fringes",
@@ -276,3 +280,83 @@ def abbe_error(arm_m, angle_rad) -> np.ndarray:
         Angular error motion of the carriage.
     """
     return _finite("Abbe arm", arm_m) * np.sin(_finite("angle", angle_rad))
+
+
+def fringe_report(
+    counts: float,
+    *,
+    optical_fold: int = 1,
+    interpolation: int = 1,
+    temperature_c: float,
+    pressure_pa: float,
+    humidity_pct: float,
+    wavelength_nm: float = HENE_WAVELENGTH_NM,
+    co2_ppm: float = 450.0,
+    method: str = "ciddor",
+    material_temperature_c=(),
+    expansion_per_k: float = STEEL_EXPANSION_PER_K,
+) -> dict:
+    """A length from a fringe count (paper 003 eq 1), in air and at 20 degC, as ``axiscal fringes`` shows it.
+
+    Parameters
+    ----------
+    counts : float
+        Counter value N (fringes times ``interpolation``).
+    optical_fold, interpolation : int, keyword-only
+        Passes of the measuring beam and counts per fringe.
+    temperature_c, pressure_pa, humidity_pct : float, keyword-only
+        Air temperature (degC), pressure (Pa) and relative humidity (%).
+    wavelength_nm, co2_ppm, method : keyword-only
+        Vacuum wavelength (nm), CO2 (umol/mol) and refractive-index equation.
+    material_temperature_c : sequence of float, keyword-only
+        Material temperatures, degC (averaged); empty: no normalisation to 20 degC.
+    expansion_per_k : float, keyword-only
+        Material expansion coefficient, 1/K.
+
+    Returns
+    -------
+    dict
+        ``counts``, ``optical_fold``, ``interpolation``, ``refractive_index``,
+        ``vacuum_length_mm``, ``length_in_air_mm``, ``length_at_20c_mm`` (None without material
+        temperatures), ``material_temperature_c``, ``expansion_per_k`` and the air conditions:
+        the JSON the command prints.
+
+    Raises
+    ------
+    AxiscalError
+        For values :func:`length_from_fringes` or :func:`compensated_length` refuse.
+    """
+    vacuum = float(length_from_fringes(counts, wavelength_nm=wavelength_nm, optical_fold=optical_fold, interpolation=interpolation))
+    air = dict(air_temperature_c=temperature_c, pressure_pa=pressure_pa, humidity_pct=humidity_pct, wavelength_nm=wavelength_nm, co2_ppm=co2_ppm, method=method)
+    in_air = float(compensated_length(vacuum, **air))
+    material = [float(t) for t in material_temperature_c]
+    at_20c = float(compensated_length(vacuum, material_temperature_c=[material], expansion_per_k=expansion_per_k, **air)[0]) if material else None
+    return {
+        "counts": counts,
+        "optical_fold": optical_fold,
+        "interpolation": interpolation,
+        "refractive_index": refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm=co2_ppm, method=method),
+        "vacuum_length_mm": vacuum / MM,
+        "length_in_air_mm": in_air / MM,
+        "length_at_20c_mm": None if at_20c is None else at_20c / MM,
+        "material_temperature_c": material,
+        "expansion_per_k": expansion_per_k,
+        **air_inputs(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm, method),
+    }
+
+
+def fringe_text(report: dict) -> str:
+    """The text ``axiscal fringes`` prints for a :func:`fringe_report` (template ``instruments/fringes.txt.j2``).
+
+    Parameters
+    ----------
+    report : dict
+        From :func:`fringe_report`.
+
+    Returns
+    -------
+    str
+    """
+    material = report["material_temperature_c"]
+    mean = sum(material) / len(material) if material else None
+    return render_report("instruments/fringes.txt.j2", r=report, mean_material_c=mean)

@@ -25,6 +25,7 @@ from axiscal.instruments.calibration import (
     save_calibration,
     transfer_reference,
 )
+from axiscal.instruments.reports import render_report
 from axiscal.instruments.sensors import roll_from_autocollimation
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import read_json, sidecar_path, write_sidecar
@@ -630,14 +631,7 @@ class DiagonalReport:
 
     def text(self) -> str:
         """The plain-text report (template ``templates/measurement/diagonal_experiment.txt.j2``)."""
-        return _render("diagonal_experiment.txt.j2", report=self.to_dict(), steps=self.experiment.x_m.size - 1)
-
-
-def _render(name: str, **context: Any) -> str:
-    from jinja2 import Environment, PackageLoader, StrictUndefined
-
-    env = Environment(loader=PackageLoader("axiscal", "templates/measurement"), undefined=StrictUndefined, keep_trailing_newline=True)
-    return env.get_template(name).render(**context)
+        return render_report("measurement/diagonal_experiment.txt.j2", report=self.to_dict(), steps=self.experiment.x_m.size - 1)
 
 
 def run_diagonal_experiment(
