@@ -28,7 +28,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.instruments.reports import render_report
-from axiscal.units import PPM
+from axiscal.units import LENGTH_UNITS, PPM, UM
 
 __all__ = [
     "METHODS",
@@ -64,6 +64,9 @@ PRESSURE_RANGE_PA = (10e3, 140e3)
 CO2_RANGE_PPM = (0.0, 2000.0)
 
 _KELVIN = 273.15
+_NM = LENGTH_UNITS["nm"]
+#: Pa per kPa, the pressure unit of NIST's shop-floor formula
+_PA_PER_KPA = 1e3
 _TORR = 101325.0 / 760.0
 
 # IAPWS-IF97 saturation-pressure equation (over liquid water), NIST Appendix A-I
@@ -141,9 +144,14 @@ def water_vapour_mole_fraction(temperature_c, pressure_pa, humidity_pct):
     return _as_float(h / 100.0 * enhancement * saturation_vapour_pressure(t) / p)
 
 
+def _wavenumber_squared(wavelength_nm):
+    """``1 / lambda^2`` with lambda in um, the variable of the dispersion formulas."""
+    return (UM / (np.asarray(wavelength_nm) * _NM)) ** 2
+
+
 def _ciddor(t, p, h, wavelength_nm, co2_ppm):
     kelvin = t + _KELVIN
-    s = (1e3 / wavelength_nm) ** 2  # 1 / lambda^2 with lambda in um
+    s = _wavenumber_squared(wavelength_nm)
     x_v = water_vapour_mole_fraction(t, p, h)
     r_as = 1e-8 * (5792105.0 / (238.0185 - s) + 167917.0 / (57.362 - s))
     r_vs = 1.022e-8 * (295.235 + 2.6422 * s - 0.032380 * s**2 + 0.004028 * s**3)
@@ -165,7 +173,7 @@ def _ciddor(t, p, h, wavelength_nm, co2_ppm):
 
 
 def _edlen_birch_downs(t, p, h, wavelength_nm, co2_ppm):
-    s = (1e3 / wavelength_nm) ** 2
+    s = _wavenumber_squared(wavelength_nm)
     standard = 1e-8 * (8342.54 + 2406147.0 / (130.0 - s) + 15998.0 / (38.9 - s))
     standard = standard * (1.0 + 0.540e-6 * (co2_ppm - 450.0))
     x = (1.0 + 1e-8 * (0.601 - 0.00972 * t) * p) / (1.0 + 0.003661 * t)
@@ -176,7 +184,7 @@ def _edlen_birch_downs(t, p, h, wavelength_nm, co2_ppm):
 
 def _edlen_1966(t, p, h, wavelength_nm, co2_ppm):
     # Edlen's own units: pressures in torr (101325/760 Pa)
-    s = (1e3 / wavelength_nm) ** 2
+    s = _wavenumber_squared(wavelength_nm)
     standard = 1e-8 * (8342.13 + 2406030.0 / (130.0 - s) + 15997.0 / (38.9 - s))
     standard = standard * (1.0 + 0.540e-6 * (co2_ppm - 300.0))
     p_torr = p / _TORR
@@ -186,7 +194,7 @@ def _edlen_1966(t, p, h, wavelength_nm, co2_ppm):
 
 
 def _shopfloor(t, p, h, wavelength_nm, co2_ppm):
-    return 1.0 + 7.86e-4 * (p / 1e3) / (273.0 + t) - 1.5e-11 * h * (t**2 + 160.0)
+    return 1.0 + 7.86e-4 * (p / _PA_PER_KPA) / (273.0 + t) - 1.5e-11 * h * (t**2 + 160.0)
 
 
 def _check_range(values: np.ndarray, bounds: tuple[float, float], what: str, unit: str, hint: str = "") -> None:
