@@ -136,6 +136,20 @@ def water_vapour_mole_fraction(temperature_c, pressure_pa, humidity_pct):
 
     ``x_v = (h / 100) f(p, t) p_sv(t) / p`` with the enhancement factor
     ``f = 1.00062 + 3.14e-8 p + 5.6e-7 t^2``.
+
+    Parameters
+    ----------
+    temperature_c : float or array_like
+        Air temperature, degC.
+    pressure_pa : float or array_like
+        Air pressure, Pa.
+    humidity_pct : float or array_like
+        Relative humidity, percent.
+
+    Returns
+    -------
+    float or ndarray
+        Mole fraction x_v, dimensionless.
     """
     t = np.asarray(temperature_c, dtype=float)
     p = np.asarray(pressure_pa, dtype=float)

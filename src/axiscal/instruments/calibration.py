@@ -57,8 +57,18 @@ VERSION = 1
 class ChannelCalibration:
     """Gain and offset of one raw channel: ``value = gain * raw + offset`` in the channel's unit.
 
-    ``residual_max`` and ``residual_rms`` are the fit's residuals in the same unit; ``points`` the
-    number of calibration points.
+    Parameters
+    ----------
+    channel : str
+        Raw channel name.
+    gain : float
+        Sensitivity, channel unit per raw unit (1 for an uncalibrated channel).
+    offset : float
+        Offset, the channel's unit (mm for scales, um for spot shifts).
+    residual_max, residual_rms : float
+        The fit's largest and rms residual, the channel's unit.
+    points : int
+        Number of calibration points.
     """
 
     channel: str
@@ -69,6 +79,7 @@ class ChannelCalibration:
     points: int = 0
 
     def apply(self, raw: np.ndarray) -> np.ndarray:
+        """Calibrated values ``gain * raw + offset`` of raw readings (the channel's unit)."""
         return raw * self.gain + self.offset
 
 
@@ -157,8 +168,21 @@ def transfer_reference(reference_m: np.ndarray, eps_rad: np.ndarray, offset_m: n
 class MirrorCorrection:
     """The plane mirror's form error as seen by the roll detector, against position (eq 11 fitted).
 
-    ``coefficients_rad`` are Legendre coefficients over the position normalised to [-1, 1] on
-    ``start_m..end_m``; :meth:`evaluate` returns the apparent roll the mirror adds, radians.
+    Parameters
+    ----------
+    letter : str
+        Axis letter.
+    start_m, end_m : float
+        The mapped range of positions, metres.
+    coefficients_rad : tuple of float
+        Legendre coefficients over the position normalised to [-1, 1] on ``start_m..end_m``,
+        radians; :meth:`evaluate` returns the apparent roll the mirror adds.
+    residual_max_rad, residual_rms_rad : float
+        Residuals of the fit, radians.
+    cv_rms_rad : tuple of float
+        Leave-one-out rms error of every order tried, radians.
+    points : int
+        Points of the map.
     """
 
     letter: str
@@ -259,20 +283,50 @@ def fit_mirror(
 
 @dataclass(frozen=True)
 class Calibration:
-    """All calibration results of a measuring system: per channel and per axis mirror."""
+    """All calibration results of a measuring system: per channel and per axis mirror.
+
+    Parameters
+    ----------
+    channels : mapping of str to ChannelCalibration
+        By channel name.
+    mirrors : mapping of str to MirrorCorrection
+        By axis letter.
+    """
 
     channels: Mapping[str, ChannelCalibration] = field(default_factory=dict)
     mirrors: Mapping[str, MirrorCorrection] = field(default_factory=dict)
 
     def channel(self, name: str) -> ChannelCalibration:
-        """The calibration of channel ``name`` (identity when it was never calibrated)."""
+        """The calibration of one channel.
+
+        Parameters
+        ----------
+        name : str
+            Raw channel name.
+
+        Returns
+        -------
+        ChannelCalibration
+            Identity (gain 1, offset 0) when the channel was never calibrated.
+        """
         return self.channels.get(name, ChannelCalibration(name, 1.0, 0.0))
 
     def merged(self, other: "Calibration") -> "Calibration":
-        """This calibration with every entry of ``other`` added or replacing the old one."""
+        """This calibration with every entry of ``other`` added or replacing the old one.
+
+        Parameters
+        ----------
+        other : Calibration
+            The newer entries.
+
+        Returns
+        -------
+        Calibration
+        """
         return Calibration({**self.channels, **other.channels}, {**self.mirrors, **other.mirrors})
 
     def to_dict(self) -> dict:
+        """The JSON form of the calibration file (positions in mm, mirror values in urad)."""
         return {
             "format": FORMAT,
             "version": VERSION,
@@ -327,7 +381,22 @@ def _number(entry: Mapping, key: str, where: str, *, default: float | None = Non
 
 
 def calibration_from_dict(data: Mapping) -> Calibration:
-    """Build a :class:`Calibration` from the parsed JSON (see :func:`save_calibration`)."""
+    """Build a :class:`Calibration` from the parsed JSON (see :func:`save_calibration`).
+
+    Parameters
+    ----------
+    data : mapping
+        The parsed calibration file.
+
+    Returns
+    -------
+    Calibration
+
+    Raises
+    ------
+    AxiscalError
+        If it is not a calibration file of this version, or an entry is not a finite number.
+    """
     if not isinstance(data, Mapping) or data.get("format") != FORMAT:
         raise AxiscalError(f"not a sensor calibration file (expected \"format\": \"{FORMAT}\")")
     if data.get("version") != VERSION:
@@ -374,7 +443,22 @@ def calibration_from_dict(data: Mapping) -> Calibration:
 
 
 def load_calibration(path: str | Path) -> Calibration:
-    """Read a calibration JSON file; errors name the file."""
+    """Read a calibration JSON file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file (docs/measurement.md, "Calibration file").
+
+    Returns
+    -------
+    Calibration
+
+    Raises
+    ------
+    AxiscalError
+        If the file is missing, not JSON or not a calibration (naming the file and line).
+    """
     path = Path(path)
     text = read_text(path)
     try:

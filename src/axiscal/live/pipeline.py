@@ -35,7 +35,21 @@ __all__ = ["RunSummary", "Pipeline"]
 
 @dataclass(frozen=True)
 class RunSummary:
-    """What a run did: frames, faulty frames, batches, wall time (s), record counts and delays (ms)."""
+    """What a run did.
+
+    Attributes
+    ----------
+    frames, faults, batches : int
+        Frames processed, faulty frames, batches.
+    elapsed_s : float
+        Wall time, s.
+    frames_written, frames_acknowledged : int
+        Frames handed to the record and made durable.
+    latency_p50_ms, latency_p99_ms, latency_max_ms : float
+        Delay from time stamp to record, ms (NaN for sources without a clock).
+    source_state : str
+        The source's state at the end.
+    """
 
     frames: int
     faults: int
@@ -127,7 +141,18 @@ class Pipeline:
         return fault, results
 
     def step(self, timeout_s: float = 0.02) -> int:
-        """Read what the source has (waiting at most ``timeout_s``), process and record it; return the frame count."""
+        """Read what the source has, process and record it.
+
+        Parameters
+        ----------
+        timeout_s : float
+            Longest wait for frames, s.
+
+        Returns
+        -------
+        int
+            Frames handled (0 when none came).
+        """
         batch = self.source.read(timeout_s)
         n = len(batch)
         if n == 0:
@@ -157,7 +182,18 @@ class Pipeline:
         self._latency_count += len(delays)
 
     def latencies_s(self, last: int | None = None) -> np.ndarray:
-        """Delays (s) from time stamp to record of the most recent frames (at most ``last``), oldest first."""
+        """Delays from time stamp to record of the most recent frames, oldest first.
+
+        Parameters
+        ----------
+        last : int, optional
+            At most this many (None: all kept).
+
+        Returns
+        -------
+        ndarray
+            Delays, s.
+        """
         size = len(self._latency)
         count = min(self._latency_count, size if last is None else min(last, size))
         end = self._latency_count % size
@@ -166,7 +202,19 @@ class Pipeline:
         return np.concatenate([self._latency[size - (count - end) :], self._latency[:end]])
 
     def summary(self, elapsed_s: float, *, recent: int | None = None) -> RunSummary:
-        """The run so far; delay percentiles over the last ``recent`` frames (None: all kept)."""
+        """The run so far.
+
+        Parameters
+        ----------
+        elapsed_s : float
+            Wall time of the run, s.
+        recent : int, keyword-only
+            Delay percentiles over the last ``recent`` frames (None: all kept).
+
+        Returns
+        -------
+        RunSummary
+        """
         delays = self.latencies_s(recent) / MS
         p50, p99, worst = (np.percentile(delays, [50, 99, 100]) if len(delays) else (np.nan, np.nan, np.nan))
         return RunSummary(
@@ -206,7 +254,20 @@ class Pipeline:
     ) -> RunSummary:
         """Loop until ``stop`` is set, ``duration_s`` has passed or the source is finished; return the summary.
 
-        ``progress`` is called with the running summary every ``progress_interval_s`` (from this thread).
+        Parameters
+        ----------
+        stop : threading.Event, keyword-only
+            Set it to end the loop.
+        duration_s : float, keyword-only
+            Wall time, s (None: no limit).
+        progress : callable, keyword-only
+            Called with the running summary every ``progress_interval_s`` (from this thread).
+        progress_interval_s : float, keyword-only
+            Seconds between progress calls.
+
+        Returns
+        -------
+        RunSummary
         """
         start = time.monotonic()
         deadline = np.inf if duration_s is None else start + duration_s

@@ -29,12 +29,39 @@ CORRECTED = ("px_mm", "py_mm", "pz_mm")
 
 
 def axis_error_columns(letter: str) -> tuple[str, ...]:
-    """The six ISO 230-1 error columns of axis ``letter`` as ``MeasurementSystem.process`` names them."""
+    """The six ISO 230-1 error columns of axis ``letter`` as records and the dashboard show them.
+
+    Parameters
+    ----------
+    letter : str
+        Axis letter.
+
+    Returns
+    -------
+    tuple of str
+        ``EX<L>_um``, ``EY<L>_um``, ``EZ<L>_um``, ``EA<L>_urad``, ``EB<L>_urad``, ``EC<L>_urad``.
+
+    Examples
+    --------
+    >>> axis_error_columns("Z")[:2]
+    ('EXZ_um', 'EYZ_um')
+    """
     return tuple(f"E{d}{letter}_um" for d in "XYZ") + tuple(f"E{r}{letter}_urad" for r in "ABC")
 
 
 def result_columns(axes: tuple[str, ...]) -> tuple[str, ...]:
-    """Result columns of a live record, in order: spatial error, corrected point, positions, six errors per axis."""
+    """Result columns of a live record, in order: spatial error, corrected point, positions, six errors per axis.
+
+    Parameters
+    ----------
+    axes : tuple of str
+        Axis letters in chain order.
+
+    Returns
+    -------
+    tuple of str
+        Display names (``ex_um`` ... ``px_mm`` ... ``x_mm`` ... ``EXX_um`` ...).
+    """
     positions = tuple(f"{letter.lower()}_mm" for letter in axes)
     errors = tuple(name for letter in axes for name in axis_error_columns(letter))
     return SPATIAL + CORRECTED + positions + errors

@@ -56,6 +56,15 @@ def display_name(name: str) -> str:
 def display_factor(name: str) -> float:
     """SI units per display unit of result ``name`` (divide the SI value by it); 1 for other names.
 
+    Parameters
+    ----------
+    name : str
+        SI result name.
+
+    Returns
+    -------
+    float
+
     Examples
     --------
     >>> display_factor("ex_m") == 1e-6, display_factor("x_m") == 1e-3

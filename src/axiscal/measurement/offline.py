@@ -236,7 +236,15 @@ def write_data_csv(path: str | Path, columns: Mapping[str, np.ndarray], *, kind:
 
 @dataclass(frozen=True)
 class CsvOutput:
-    """A data CSV made by a command: its text and its number of data rows."""
+    """A data CSV made by a command.
+
+    Attributes
+    ----------
+    text : str
+        The CSV text.
+    rows : int
+        Its number of data rows.
+    """
 
     text: str
     rows: int

@@ -205,15 +205,48 @@ class MeasurementSystem:
         return system
 
     def with_calibration(self, calibration: Calibration) -> "MeasurementSystem":
-        """The same system with ``calibration`` merged over its own."""
+        """The same system with ``calibration`` merged over its own.
+
+        Parameters
+        ----------
+        calibration : Calibration
+            Entries that add to or replace the system's own.
+
+        Returns
+        -------
+        MeasurementSystem
+            A new system; this one is unchanged.
+        """
         return MeasurementSystem(self.machine, self.heads, self.calibration.merged(calibration))
 
     def fault_text(self, fault: int) -> str:
-        """The fault bits of a frame in words (``"ok"`` for 0); see :func:`axiscal.measurement.faults.fault_text`."""
+        """The fault bits of a frame in words.
+
+        Parameters
+        ----------
+        fault : int
+            The frame's fault bits.
+
+        Returns
+        -------
+        str
+            ``"ok"`` for 0; see :func:`axiscal.measurement.faults.fault_text`.
+        """
         return fault_text(fault)
 
     def channel_faults(self, frames: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
-        """Fault bits (missing, out of range) of every raw channel separately: name -> int64 (N,)."""
+        """Fault bits (missing, out of range) of every raw channel separately.
+
+        Parameters
+        ----------
+        frames : mapping of str to ndarray, shape (N,)
+            Raw channels (an absent one counts as missing).
+
+        Returns
+        -------
+        dict of str to ndarray of int64, shape (N,)
+            Per channel ``Fault.MISSING`` and ``Fault.RANGE`` bits.
+        """
         n = _batch_size(frames)
         out = {}
         for name in self.channels:

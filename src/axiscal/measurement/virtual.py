@@ -128,7 +128,17 @@ def _moved(errors: np.ndarray, point_m) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Truth:
-    """Gain and offset a raw channel really has: ``true value = gain * raw + offset`` (channel unit)."""
+    """Gain and offset a raw channel really has: ``true value = gain * raw + offset``.
+
+    Attributes
+    ----------
+    gain : float
+        True sensitivity.
+    offset : float
+        True offset, the channel's unit.
+    noise : float
+        Reading noise (rms), the channel's unit.
+    """
 
     gain: float
     offset: float
@@ -219,7 +229,20 @@ class VirtualModule:
         }
 
     def true_errors(self, letter: str, q_m: np.ndarray) -> np.ndarray:
-        """The six error motions of axis ``letter`` at positions ``q_m`` (with the load): (6, N), SI."""
+        """The six error motions of axis ``letter`` at positions ``q_m`` (with the load).
+
+        Parameters
+        ----------
+        letter : str
+            ``"X"`` or ``"Z"``.
+        q_m : array_like, shape (N,)
+            Positions, m.
+
+        Returns
+        -------
+        ndarray, shape (6, N)
+            Rows tx, ty, tz (m) and ea, eb, ec (rad).
+        """
         q = np.asarray(q_m, dtype=float).reshape(-1)
         slope, amplitude, cycles, phase, constant, ramp = self._curve_arrays[letter]
         s = q / STROKE_M
@@ -230,11 +253,41 @@ class VirtualModule:
         return value * _ERROR_UNITS
 
     def mirror_error(self, letter: str, q_m: np.ndarray) -> np.ndarray:
-        """The apparent roll the plane mirror's form adds at ``q_m``, radians."""
+        """The apparent roll the plane mirror's form adds.
+
+        Parameters
+        ----------
+        letter : str
+            Axis letter.
+        q_m : array_like
+            Positions, m.
+
+        Returns
+        -------
+        ndarray
+            Apparent roll, rad.
+        """
         return _curve(np.asarray(q_m, dtype=float), 0.0, self.mirror_terms[letter]) * URAD
 
     def positions(self, t_s: np.ndarray, *, path: str = "diagonal") -> dict[str, np.ndarray]:
-        """Commanded positions (m) of X and Z at times ``t_s`` along a periodic path.
+        """Commanded positions of X and Z at times ``t_s`` along a periodic path.
+
+        Parameters
+        ----------
+        t_s : array_like, shape (N,)
+            Times, s.
+        path : str, keyword-only
+            One of :data:`PATHS`.
+
+        Returns
+        -------
+        dict of str to ndarray, shape (N,)
+            ``"X"`` and ``"Z"`` positions, m.
+
+        Raises
+        ------
+        AxiscalError
+            For an unknown path.
 
         ``"diagonal"``: both axes 0 -> 190 mm -> 0 together; ``"back-and-forth"``: X 0 -> 190 ->
         0 mm with Z at mid-stroke; ``"raster"``: X sweeps back and forth while Z steps 10 mm per
@@ -288,6 +341,13 @@ class VirtualModule:
     def frames(self, t_s: np.ndarray, *, path: str = "diagonal") -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
         """Raw frames and their truth at times ``t_s`` along ``path`` (see :meth:`positions`).
 
+        Parameters
+        ----------
+        t_s : array_like, shape (N,)
+            Times, s.
+        path : str, keyword-only
+            One of :data:`PATHS`.
+
         Returns
         -------
         frames : dict of str to ndarray, shape (N,)
@@ -304,7 +364,20 @@ class VirtualModule:
         return self.frames_at(q, t_s=t)
 
     def frames_at(self, positions_m: dict[str, np.ndarray], *, t_s: np.ndarray | None = None):
-        """Raw frames and truth (as :meth:`frames`) at given commanded positions (m)."""
+        """Raw frames and truth (as :meth:`frames`) at given commanded positions.
+
+        Parameters
+        ----------
+        positions_m : dict of str to ndarray, shape (N,)
+            ``"X"`` and ``"Z"`` commanded positions, m.
+        t_s : ndarray, shape (N,), keyword-only
+            Time stamps, s (default zeros).
+
+        Returns
+        -------
+        frames, truth : dict of str to ndarray
+            As :meth:`frames`.
+        """
         n = positions_m["X"].size
         t = np.zeros(n) if t_s is None else np.asarray(t_s, dtype=float)
         frames: dict[str, np.ndarray] = {"t_s": t}
@@ -331,7 +404,18 @@ class VirtualModule:
         return frames, truth
 
     def true_point(self, positions_m: dict[str, np.ndarray]) -> np.ndarray:
-        """Where the functional point really is at the commanded positions: (N, 3), m."""
+        """Where the functional point really is at the commanded positions.
+
+        Parameters
+        ----------
+        positions_m : dict of str to ndarray, shape (N,)
+            Commanded positions, m.
+
+        Returns
+        -------
+        ndarray, shape (N, 3)
+            The functional point, m.
+        """
         errors = {k: self.true_errors(k, positions_m[k]) for k in ("X", "Z")}
         return self.machine.nominal_point(positions_m) + spatial_error(self.machine, positions_m, errors)
 
@@ -341,6 +425,16 @@ class VirtualModule:
         The beam is aligned with the nominal line from the first stop to the last, the reflector
         sits on the functional point, and the reading is zeroed at the first stop: the functional
         point's true displacement along the beam, plus the interferometer's noise.
+
+        Parameters
+        ----------
+        positions_m : dict of str to ndarray, shape (n,)
+            Commanded positions of X and Z at the stops, m.
+
+        Returns
+        -------
+        ndarray, shape (n,)
+            Readings, m (0 at the first stop).
         """
         nominal = self.machine.nominal_point(positions_m)
         direction = nominal[-1] - nominal[0]
@@ -420,7 +514,12 @@ class VirtualModule:
         return Calibration(channels, mirrors)
 
     def measurement_system(self) -> MeasurementSystem:
-        """The module's measurement system, calibrated by its simulated calibration runs."""
+        """The module's measurement system, calibrated by its simulated calibration runs.
+
+        Returns
+        -------
+        MeasurementSystem
+        """
         return MeasurementSystem(self.machine, self.heads, self.calibration)
 
 
