@@ -327,7 +327,9 @@ class MeasurementSystem:
         actual_t = np.ascontiguousarray(actual.T)
         for k, axis in enumerate("xyz"):
             out[f"e{axis}_m"] = error_t[k]
-        out["e_m"] = np.sqrt(np.einsum("ij,ij->j", error_t, error_t))
+        # element by element in a fixed order: a reduction (einsum) may round differently with the
+        # memory alignment of the batch, and a stream split anywhere must give the same numbers
+        out["e_m"] = np.sqrt(error_t[0] * error_t[0] + error_t[1] * error_t[1] + error_t[2] * error_t[2])
         for k, axis in enumerate("xyz"):
             out[f"p{axis}_m"] = actual_t[k]
         if np.any(bad):
