@@ -16,6 +16,7 @@ import numpy as np
 
 from axiscal.measurement.offline import write_data_csv
 from axiscal.instruments.calibration import save_calibration
+from axiscal.io.atomic import write_text
 from axiscal.measurement.virtual import INTERFEROMETER_BEAM_M, STROKE_M, VirtualModule
 from axiscal.units import ARCSEC, MM, UM, URAD
 
@@ -69,7 +70,7 @@ def machine_toml(module: VirtualModule) -> str:
 
 def main() -> None:
     module = VirtualModule(seed=0)
-    (OUT / "sensors_machine.toml").write_text(machine_toml(module))
+    write_text(OUT / "sensors_machine.toml", machine_toml(module))
     q = np.linspace(0.0, STROKE_M, 39)
     for letter in ("X", "Z"):
         table = module.machine.table(letter)
