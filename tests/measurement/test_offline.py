@@ -81,3 +81,18 @@ def test_a_record_without_its_sidecar_is_still_known_by_its_columns(tmp_path):
     assert is_live_record(plain, ["t_s", "a", "fault", "ex_um", "e_um"])
     (tmp_path / "frames.json").write_text('{"kind": "live record"}')
     assert is_live_record(plain, ["t_s", "a"])
+
+
+def test_the_example_data_are_plain_csvs_pandas_reads_with_no_options(examples):
+    import json
+
+    import pandas
+
+    files = sorted((examples / "xz_module").glob("sensors_*.csv"))
+    assert len(files) == 7
+    for path in files:
+        frame = pandas.read_csv(path)
+        assert len(frame) > 0 and not any(str(c).startswith("#") for c in frame.columns), path
+        assert json.loads(path.with_suffix(".json").read_text())["file"] == path.name
+    frames = pandas.read_csv(examples / "xz_module" / "sensors_frames.csv")
+    assert len(frames) == 200 and frames["t_s"].iloc[-1] == pytest.approx(199 / 50.0)
