@@ -365,6 +365,10 @@ def save_calibration(calibration: Calibration, path: str | Path) -> None:
     path : str or Path
         The JSON file (replaced whole, never left half written).
 
+    Returns
+    -------
+    None
+
     Raises
     ------
     AxiscalError

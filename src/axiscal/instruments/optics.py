@@ -40,7 +40,6 @@ from axiscal.errors import AxiscalError
 
 __all__ = [
     "BK7_INDEX",
-    "FaceKind",
     "PENTAPRISM_INCIDENT",
     "rotation_x",
     "rotation_y",
@@ -64,6 +63,7 @@ __all__ = [
 #: Refractive index of N-BK7 at 587.6 nm, the default glass of the pentaprism.
 BK7_INDEX = 1.5168
 
+#: what a face does to a ray (a type alias, not part of the public names)
 FaceKind = Literal["refract", "reflect"]
 
 #: Incident beam of paper 002, eq (5): travelling along -X into the prism.

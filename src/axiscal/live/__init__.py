@@ -10,7 +10,8 @@ The pieces (docs/live.md has the architecture):
 - :mod:`axiscal.live.state` -- the latest state a dashboard shows (bounded, independent of clients);
 - :mod:`axiscal.live.session` -- one run set up from a machine, a source, a record and a dashboard;
 - :mod:`axiscal.live.server` -- the Starlette app pushing that state over a WebSocket (imports
-  starlette/uvicorn; the other modules do not, so its names are imported from it, not from here).
+  starlette/uvicorn; the other modules do not, so this package loads it only when one of its
+  names is first used).
 """
 
 from __future__ import annotations
@@ -54,6 +55,19 @@ from axiscal.live.state import (
     result_columns,
 )
 
+#: the dashboard server's names, imported from :mod:`axiscal.live.server` only when first used
+#: (it imports starlette and uvicorn, which the rest of the live room and the CLI do without)
+_SERVER_NAMES = ("WEB", "HOST", "ClientStats", "Broadcaster", "create_app", "LiveServer")
+
+
+def __getattr__(name: str):
+    if name in _SERVER_NAMES:
+        from axiscal.live import server
+
+        return getattr(server, name)
+    raise AttributeError(f"module 'axiscal.live' has no attribute {name!r}")
+
+
 __all__ = [
     "RunSummary",
     "Pipeline",
@@ -81,4 +95,10 @@ __all__ = [
     "axis_error_columns",
     "result_columns",
     "LiveState",
+    "WEB",
+    "HOST",
+    "ClientStats",
+    "Broadcaster",
+    "create_app",
+    "LiveServer",
 ]

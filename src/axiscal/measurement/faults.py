@@ -24,6 +24,17 @@ __all__ = ["Fault", "FAULT_TEXT", "fault_text", "fault_legend"]
 class Fault(enum.IntFlag):
     """Fault bits of one frame; combine with ``|``, test with ``&``.
 
+    Attributes
+    ----------
+    MISSING : int
+        1: a channel is missing.
+    RANGE : int
+        2: a channel is outside its valid range.
+    POSITION : int
+        4: a commanded position is outside the error model's travel.
+    MALFORMED : int
+        256: the line or row could not be read as a frame.
+
     Examples
     --------
     >>> int(Fault.MISSING | Fault.POSITION)
