@@ -20,6 +20,7 @@ import pstats
 import numpy as np
 from timing import best_time
 
+from axiscal.live.pipeline import MS
 from axiscal.measurement.virtual import VirtualModule
 
 
@@ -43,7 +44,7 @@ def main() -> None:
         batch = {k: v[:size] for k, v in frames.items()}
         batches = max(1, min(1000, 200_000 // size))
         elapsed = best_time(lambda: [system.process(batch) for _ in range(batches)], args.repeat) / batches
-        print(f"{size:>10} {elapsed * 1e3:>10.3f} ms {size / elapsed:>14,.0f}")
+        print(f"{size:>10} {elapsed / MS:>10.3f} ms {size / elapsed:>14,.0f}")
     if args.profile:
         profile = cProfile.Profile()
         profile.enable()

@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from axiscal.live.pipeline import Pipeline
+from axiscal.live.pipeline import MS, Pipeline
 from axiscal.live.recorder import Recorder, read_record
 from axiscal.live.sources import Backoff, SimSource, TcpSource
 from axiscal.live.state import LiveState, result_columns
@@ -119,7 +119,7 @@ def run(kind: str, rate: float, seconds: float, *, dashboard: bool = False) -> d
         while pipeline.frames < expected and time.monotonic() < deadline:
             pipeline.step(0.02)
         summary = pipeline.summary(seconds)
-        delays = pipeline.latencies_s() * 1e3
+        delays = pipeline.latencies_s() / MS
         received = 0
         if server is not None:
             received = int(client.stdout.readline() or 0)

@@ -22,6 +22,9 @@ ROOMS = (
     "axiscal.uncertainty",
     "axiscal.campaign",
     "axiscal.report",
+    "axiscal.instruments",
+    "axiscal.measurement",
+    "axiscal.live",
 )
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]

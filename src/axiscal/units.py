@@ -15,6 +15,8 @@ __all__ = [
     "ANGLE_UNITS",
     "ARCSEC",
     "ARCMIN",
+    "URAD",
+    "PPM",
     "UM",
     "MM",
     "split_unit",
@@ -36,6 +38,9 @@ ANGLE_UNITS: dict[str, float] = {
 
 ARCSEC = ANGLE_UNITS["arcsec"]
 ARCMIN = ANGLE_UNITS["arcmin"]
+URAD = ANGLE_UNITS["urad"]
+#: parts per million, for ratios (n - 1, expansion)
+PPM = 1e-6
 UM = LENGTH_UNITS["um"]
 MM = LENGTH_UNITS["mm"]
 

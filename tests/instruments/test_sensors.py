@@ -79,13 +79,13 @@ def test_bad_sensor_sections(section, message):
         sensor_head_from_dict("X", section)
 
 
-def test_abbe_bryan_in_the_pipeline_is_paper_eqs_4_and_5():
+def test_abbe_bryan_transfer_is_paper_eqs_4_and_5():
     # paper 000 eq (5), Z axis, term by term; eq (4), X axis, with its slip fixed (second line
     # L_bz where the paper prints L_bx twice, docs/papers.md). L = P - M: the functional point
     # minus the read head (L_a) or the PSD spot (L_b). For X the paper's Abbe offsets are named
     # L_ax, L_ay, but an offset along the motion does nothing: its "L_ax" multiplies the pitch in
     # the x line, so it is the offset along z (docs/measurement.md).
-    from axiscal.measurement.pipeline import _abbe_bryan
+    from axiscal.instruments.abbe import transfer_components
 
     rng = np.random.default_rng(0)
     for letter in ("X", "Z"):
@@ -97,7 +97,7 @@ def test_abbe_bryan_in_the_pipeline_is_paper_eqs_4_and_5():
         d = rng.normal(0, 5e-6, (3, 7))
         ex, ey, ez = rng.normal(0, 50e-6, (3, 7))
         errors = np.vstack([d, ex, ey, ez])
-        _abbe_bryan(errors, head.offsets_m())
+        errors[:3] = transfer_components(errors[:3].T, errors[3:].T, head.offsets_m()).T
         if letter == "Z":
             expected = [
                 d[0] - ez * lb[1] + ey * lb[2],

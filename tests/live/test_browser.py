@@ -25,6 +25,7 @@ from axiscal.live.recorder import Recorder, read_record
 from axiscal.live.server import LiveServer, create_app
 from axiscal.live.sources import SimSource
 from axiscal.live.state import LiveState, result_columns
+from axiscal.measurement.display import to_display
 from axiscal.measurement.virtual import VirtualModule
 
 CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
@@ -139,6 +140,7 @@ class PsdDropsOut:
 
     def frames(self, t_s, *, path="diagonal"):
         frames, truth = self.module.frames(t_s, path=path)
+        truth = to_display(truth)
         frames["x_psd_y_um"] = np.where(t_s >= self.from_s, np.nan, frames["x_psd_y_um"])
         return frames, truth
 

@@ -13,6 +13,7 @@ import pytest
 from axiscal.live.protocol import encode_lines, header_line
 from axiscal.live.recorder import read_record
 from axiscal.live.state import result_columns
+from axiscal.measurement.display import to_display
 from axiscal.measurement.virtual import VirtualModule
 
 
@@ -38,8 +39,10 @@ def test_duration_and_no_server_record_every_frame_in_order(recorded, system):
     assert list(record.columns) == ["t_s", *system.channels, "fault", *result_columns(system.axes)]
     assert (record.columns["fault"] == 0).all()
     assert np.isfinite(record.columns["e_um"]).all() and record.columns["e_um"].max() > 1.0
-    assert any(c.startswith("source: sim") for c in record.comments)
-    frame = pd.read_csv(recorded, comment="#")
+    assert record.metadata["kind"] == "live record" and record.metadata["source"].startswith("sim")
+    assert record.metadata["fault_bits"]["256"].startswith("malformed frame") and not record.comments
+    assert recorded.read_text().startswith("t_s,")
+    frame = pd.read_csv(recorded)
     assert len(frame) == len(record) and {"t_s", "ex_um", "ey_um", "ez_um"} <= set(frame.columns)
 
 
@@ -82,7 +85,7 @@ def test_tcp_source_through_the_command(run_cli, tmp_path, system):
     record = read_record(path)
     assert len(record) == 300
     np.testing.assert_allclose(record.columns["x_psd_y_um"], frames["x_psd_y_um"], rtol=1e-8)
-    direct = system.process(frames)
+    direct = to_display(system.process(frames))
     np.testing.assert_allclose(record.columns["ex_um"], direct["ex_um"], rtol=1e-6, atol=1e-6)
 
 
@@ -143,7 +146,7 @@ def test_shipped_frames_replayed_with_the_shipped_machine_keep_their_two_faults(
     record = read_record(path)
     system = MeasurementSystem.from_toml(machine)
     source = read_record(frames_path)
-    direct = system.process({name: source.columns[name] for name in ("t_s", *system.channels)})
+    direct = to_display(system.process({name: source.columns[name] for name in ("t_s", *system.channels)}))
     np.testing.assert_array_equal(record.columns["fault"], direct["fault"])
     assert np.flatnonzero(record.columns["fault"]).tolist() == [50, 120]
     np.testing.assert_allclose(record.columns["ex_um"], direct["ex_um"], rtol=1e-8, atol=1e-9)

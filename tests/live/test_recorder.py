@@ -31,7 +31,7 @@ def _write(path: Path, n: int = 50) -> tuple[np.ndarray, np.ndarray, np.ndarray]
     fault[7] = 1
     ex = rng.normal(size=n)
     ex[7] = np.nan
-    with Recorder(path, CHANNELS, RESULTS, comments=("source: test",)) as recorder:
+    with Recorder(path, CHANNELS, RESULTS, metadata={"source": "test"}) as recorder:
         for k in range(0, n, 8):
             recorder.append(t[k : k + 8], values[k : k + 8], fault[k : k + 8], {"ex_um": ex[k : k + 8], "ey_um": ex[k : k + 8] * 2})
         assert recorder.frames_written == n
@@ -43,7 +43,10 @@ def test_record_round_trip_through_read_record(tmp_path):
     path = tmp_path / "r.csv"
     t, values, ex = _write(path)
     record = read_record(path)
-    assert record.comments[:2] == (FORMAT_LINE[1:].strip(), "source: test")
+    assert record.metadata["kind"] == "live record" and record.metadata["source"] == "test"
+    assert record.metadata["channels"] == list(CHANNELS) and record.metadata["results"] == list(RESULTS)
+    assert record.metadata["fault_bits"] == {"1": "missing channel", "2": "channel out of range", "4": "position outside the error model", "256": "malformed frame (no readable time stamp, or more fields than columns)"}
+    assert record.comments == ()
     assert list(record.columns) == ["t_s", *CHANNELS, "fault", *RESULTS]
     np.testing.assert_allclose(record.columns["t_s"], t, atol=5e-7)
     np.testing.assert_allclose(record.columns["x_scale_mm"], values[:, 0], rtol=1e-8)
@@ -53,10 +56,12 @@ def test_record_round_trip_through_read_record(tmp_path):
     assert not record.truncated
 
 
-def test_record_reads_in_pandas_with_comment_lines(tmp_path):
+def test_record_is_plain_csv_pandas_reads_with_no_options(tmp_path):
     path = tmp_path / "r.csv"
     t, values, ex = _write(path)
-    frame = pd.read_csv(path, comment="#")
+    assert path.read_text().splitlines()[0] == ",".join(["t_s", *CHANNELS, "fault", *RESULTS])
+    assert not any(line.startswith("#") for line in path.read_text().splitlines())
+    frame = pd.read_csv(path)
     assert list(frame.columns) == ["t_s", *CHANNELS, "fault", *RESULTS]
     np.testing.assert_allclose(frame["ex_um"].to_numpy(), ex, rtol=1e-8)
     assert frame["fault"].dtype.kind == "i"
@@ -69,9 +74,19 @@ def test_a_cut_last_line_is_dropped_by_read_record_and_readable_by_pandas(tmp_pa
     path.write_bytes(data[: data.rfind(b"\n", 0, len(data) - 1) + 12])
     record = read_record(path)
     assert record.truncated and len(record) == 49
-    frame = pd.read_csv(path, comment="#")
+    frame = pd.read_csv(path)
     assert len(frame) == 50
     np.testing.assert_allclose(frame["t_s"].to_numpy()[:49], record.columns["t_s"])
+
+
+def test_records_in_the_earlier_format_are_still_read(tmp_path):
+    # format 1: comment lines (format line, source, fault bits) before the header, no sidecar
+    path = tmp_path / "old.csv"
+    path.write_text(FORMAT_LINE + "\n# source: sim\nt_s,x_scale_mm,fault,ex_um\n0.001,1.5,0,0.25\n0.002,1.6,1,nan\n0.003,1.")
+    record = read_record(path)
+    assert record.comments == (FORMAT_LINE[1:].strip(), "source: sim") and record.metadata == {}
+    assert record.truncated and record.columns["t_s"].tolist() == [0.001, 0.002]
+    assert record.columns["ex_um"][0] == 0.25 and np.isnan(record.columns["ex_um"][1])
 
 
 def test_only_a_live_record_loses_a_last_line_without_newline(tmp_path):
@@ -127,7 +142,7 @@ def test_acknowledged_frames_survive_sigkill_of_the_live_process(tmp_path):
     np.testing.assert_allclose(record.columns["t_s"], np.arange(len(record)) / rate, atol=1e-6)
     assert (record.columns["fault"] == 0).all()
     assert np.isfinite(record.columns["ex_um"]).all()
-    frame = pd.read_csv(path, comment="#")
+    frame = pd.read_csv(path)
     assert len(frame) >= acknowledged
     np.testing.assert_allclose(frame["ex_um"].to_numpy()[:acknowledged], record.columns["ex_um"][:acknowledged])
 

@@ -21,6 +21,7 @@ from axiscal.live.recorder import Recorder, read_record
 from axiscal.live.server import LiveServer, create_app
 from axiscal.live.sources import SimSource
 from axiscal.live.state import LiveState, axis_error_columns, result_columns
+from axiscal.measurement.display import to_display
 
 
 def _fed_state(module, system, recorder=None):
@@ -147,7 +148,7 @@ def test_faulty_frames_leave_a_gap_in_the_history_and_keep_the_last_good_values(
     frames, _ = module.frames(t)
     frames["x_psd_y_um"][600:] = np.nan  # the PSD drops out at 0.6 s and stays out
     batch = FrameBatch.from_frames(frames, system.channels)
-    results = system.process(batch.frames(system.channels))
+    results = to_display(system.process(batch.frames(system.channels)))
     state.update(batch, results["fault"], results)
     snapshot = state.snapshot()
     history_t = np.array(snapshot["history"]["t_s"], dtype=float)

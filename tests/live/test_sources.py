@@ -17,7 +17,7 @@ import pytest
 
 from axiscal.errors import AxiscalError
 from axiscal.live.pipeline import Pipeline
-from axiscal.live.protocol import FAULT_MALFORMED, FrameBatch, encode_lines, header_line
+from axiscal.live.protocol import FrameBatch, encode_lines, header_line
 from axiscal.live.recorder import Recorder, read_record
 from axiscal.live.sources import (
     Backoff,
@@ -29,6 +29,7 @@ from axiscal.live.sources import (
     parse_source,
 )
 from axiscal.live.state import LiveState, result_columns
+from axiscal.measurement.faults import Fault
 
 
 class LineServer:
@@ -171,14 +172,14 @@ def test_faulty_frames_are_flagged_and_kept_in_the_record_not_dropped(tmp_path, 
     assert len(record) == 6
     fault = record.columns["fault"].astype(int)
     assert fault[0] == 0 and fault[5] == 0
-    assert fault[1] & 1 and fault[2] & 2 and fault[3] & FAULT_MALFORMED and fault[4] & 1
+    assert fault[1] & 1 and fault[2] & 2 and fault[3] & Fault.MALFORMED and fault[4] & 1
     assert np.isfinite(record.columns["ex_um"][[0, 5]]).all()
     assert np.isnan(record.columns["ex_um"][1:5]).all()
     assert np.isnan(record.columns["t_s"][3]) and record.columns["t_s"][4] == good.t_s[4]
     snapshot = state.snapshot()
     assert snapshot["frames"] == 6 and snapshot["faults"] == 4
     assert {s["name"]: s["missing"] for s in snapshot["sensors"]}[system.channels[2]] == 1
-    assert state.describe_fault(FAULT_MALFORMED | 1).startswith("malformed frame")
+    assert state.describe_fault(Fault.MALFORMED | 1).startswith("malformed frame")
 
 
 def test_pipeline_results_equal_the_measurement_system_on_the_same_frames(module, system):
@@ -197,7 +198,7 @@ def test_pipeline_results_equal_the_measurement_system_on_the_same_frames(module
     assert summary.frames == sum(len(b) for b, _ in frames) > 1000
     batch = FrameBatch.concatenate([b for b, _ in frames], len(system.channels))
     direct = system.process(batch.frames(system.channels))
-    np.testing.assert_allclose(np.concatenate([r["ex_um"] for _, r in frames]), direct["ex_um"], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(np.concatenate([r["ex_m"] for _, r in frames]), direct["ex_m"], rtol=1e-12, atol=1e-18)
     assert summary.latency_p99_ms > 0
 
 

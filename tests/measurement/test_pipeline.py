@@ -8,12 +8,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from axiscal.errors import AxiscalError
-from axiscal.measurement.pipeline import (
-    FAULT_MISSING,
-    FAULT_POSITION,
-    FAULT_RANGE,
-    spatial_error,
-)
+from axiscal.measurement.display import to_display
+from axiscal.measurement.faults import Fault
+from axiscal.measurement.pipeline import spatial_error
 from axiscal.measurement.virtual import VirtualModule
 
 
@@ -45,7 +42,8 @@ def test_contract_attributes(exact):
 def test_noise_free_frames_give_the_truth(exact, path):
     module, system = exact
     frames, truth = module.frames(np.linspace(0.0, 20.0, 4001), path=path)
-    out = system.process(frames)
+    truth = to_display(truth)
+    out = to_display(system.process(frames))
     assert np.all(out["fault"] == 0)
     for key, tolerance in (("ex_um", 1e-4), ("ey_um", 1e-4), ("ez_um", 1e-4), ("e_um", 1e-4), ("px_mm", 1e-7), ("pz_mm", 1e-7), ("x_mm", 1e-7)):
         np.testing.assert_allclose(out[key], truth[key], atol=tolerance, err_msg=key)
@@ -60,7 +58,8 @@ def test_noisy_frames_within_the_noise(noisy):
     # paper 000 abstract: +-1.2 um positioning, +-1.3 um straightness, +-1 arcsec angles
     module, system = noisy
     frames, truth = module.frames(np.linspace(0.0, 15.0, 3000), path="raster")
-    out = system.process(frames)
+    truth = to_display(truth)
+    out = to_display(system.process(frames))
     good = out["fault"] == 0
     assert good.mean() > 0.95
     for name in ("EXX_um", "EZZ_um"):
@@ -79,7 +78,7 @@ def test_pipeline_matches_machine_model_at_table_nodes(exact):
     q = np.linspace(0.0, 0.19, 39)
     positions = {"X": q, "Z": q[::-1].copy()}
     frames, _ = module.frames_at(positions)
-    out = system.process(frames)
+    out = to_display(system.process(frames))
     expected = module.machine.volumetric_error(positions) * 1e6
     np.testing.assert_allclose(np.column_stack([out["ex_um"], out["ey_um"], out["ez_um"]]), expected, atol=1e-4)
 
@@ -110,20 +109,20 @@ def test_faults_are_flagged_not_raised(exact):
     frames["z_qd_u_um"][2] = 1e6
     frames["x_cmd_mm"][3] = 191.0
     del frames["z_roll_um"]
-    out = system.process(frames)
-    assert np.all(out["fault"] & FAULT_MISSING)
+    out = to_display(system.process(frames))
+    assert np.all(out["fault"] & Fault.MISSING)
     frames["z_roll_um"] = np.zeros(6)
-    out = system.process(frames)
+    out = to_display(system.process(frames))
     assert out["fault"][0] == 0
-    assert out["fault"][1] == FAULT_MISSING
-    assert out["fault"][2] == FAULT_RANGE
-    assert out["fault"][3] == FAULT_POSITION
+    assert out["fault"][1] == Fault.MISSING
+    assert out["fault"][2] == Fault.RANGE
+    assert out["fault"][3] == Fault.POSITION
     for k in (1, 2, 3):
         assert np.isnan(out["ex_um"][k]) and np.isnan(out["EXX_um"][k])
         assert out["t_s"][k] == frames["t_s"][k]
     assert np.isfinite(out["ex_um"][0])
     assert system.fault_text(0) == "ok"
-    assert system.fault_text(FAULT_MISSING | FAULT_POSITION) == "missing channel; position outside the error model"
+    assert system.fault_text(Fault.MISSING | Fault.POSITION) == "missing channel; position outside the error model"
 
 
 def test_ragged_batch_is_a_user_error(exact):
@@ -158,14 +157,15 @@ def test_example_machine_is_the_virtual_module(examples):
         assert read.psd_range_m == pytest.approx(head.psd_range_m)
     assert system.calibration.channel("x_psd_y_um").gain == pytest.approx(module.calibration.channel("x_psd_y_um").gain)
     frames, truth = module.frames(np.linspace(0.0, 4.0, 300), path="raster")
-    out = system.process(frames)
+    truth = to_display(truth)
+    out = to_display(system.process(frames))
     good = out["fault"] == 0
     assert np.max(np.abs(out["ex_um"] - truth["ex_um"])[good]) < 2.0
 
 
 def test_measure_command_matches_the_pipeline(examples, run_cli, tmp_path):
-    from axiscal.cli.measure import read_frames
     from axiscal.io.tabular import read_csv
+    from axiscal.measurement.offline import read_frames
 
     frames_path = examples / "xz_module" / "sensors_frames.csv"
     output = tmp_path / "out.csv"
@@ -173,7 +173,7 @@ def test_measure_command_matches_the_pipeline(examples, run_cli, tmp_path):
     assert status == 0, err
     assert "200 frames, 2 faulty" in out
     system = VirtualModule(seed=0).measurement_system()
-    expected = system.process(read_frames(frames_path, system.channels))
+    expected = to_display(system.process(read_frames(frames_path, system.channels)))
     table = read_csv(output)
     fault = table.numeric("fault")
     assert list(np.flatnonzero(fault)) == [50, 120]
@@ -189,7 +189,7 @@ def test_measure_command_default_system_and_json(examples, run_cli):
     assert status == 0, err
     assert '"faulty_frames": 2' in out
     status, out, _ = run_cli("measure", examples / "xz_module" / "sensors_frames.csv")
-    assert status == 0 and out.startswith("# axiscal measure") and "ex_um" in out.splitlines()[1]
+    assert status == 0 and out.startswith("t_s,fault,") and "ex_um" in out.splitlines()[0]
 
 
 def test_measure_command_bad_input(examples, run_cli, tmp_path):
@@ -340,7 +340,7 @@ def _reference_frame(system, frame: dict[str, float]) -> np.ndarray:
 def test_pipeline_against_plain_reference(noisy):
     module, system = noisy
     frames, _ = module.frames(np.random.default_rng(0).uniform(0.0, 60.0, 40), path="raster")
-    out = system.process(frames)
+    out = to_display(system.process(frames))
     for k in range(40):
         expected = _reference_frame(system, {name: frames[name][k] for name in system.channels})
         np.testing.assert_allclose([out["ex_um"][k], out["ey_um"][k], out["ez_um"][k]], expected * 1e6, atol=1e-6)
@@ -353,9 +353,9 @@ def test_splitting_a_stream_into_batches_changes_nothing(cuts):
     module, system = _NOISY
     frames, _ = module.frames(np.linspace(0.0, 9.0, 300), path="back-and-forth")
     frames["x_psd_z_um"][17] = np.nan
-    whole = system.process(frames)
+    whole = to_display(system.process(frames))
     edges = [0, *sorted(set(cuts)), 300]
-    parts = [system.process({k: v[a:b] for k, v in frames.items()}) for a, b in zip(edges[:-1], edges[1:]) if b > a]
+    parts = [to_display(system.process({k: v[a:b] for k, v in frames.items()})) for a, b in zip(edges[:-1], edges[1:]) if b > a]
     for key, value in whole.items():
         np.testing.assert_array_equal(np.concatenate([p[key] for p in parts]), value)
 
@@ -363,8 +363,8 @@ def test_splitting_a_stream_into_batches_changes_nothing(cuts):
 def test_large_batches_are_chunked_transparently(exact):
     module, system = exact
     frames, _ = module.frames(np.linspace(0.0, 30.0, 40_000), path="raster")
-    whole = system.process(frames)
-    small = system.process({k: v[30_000:30_100] for k, v in frames.items()})
+    whole = to_display(system.process(frames))
+    small = to_display(system.process({k: v[30_000:30_100] for k, v in frames.items()}))
     for key in ("ex_um", "fault", "EBZ_urad", "t_s"):
         np.testing.assert_array_equal(whole[key][30_000:30_100], small[key])
     assert whole["ex_um"].shape == (40_000,)
@@ -451,7 +451,7 @@ def test_any_chain_matches_the_table_model(tmp_path, examples):
             component = getattr(head, role)
             frames[names[role]] = np.full(n, component.sign * errors[component.index] * focal * 1e6)
     machine = Machine(chain="XFYZ", axes=axes, squareness_rad=system.machine.squareness_rad, tool_m=system.machine.tool_m)
-    out = system.process(frames)
+    out = to_display(system.process(frames))
     assert np.all(out["fault"] == 0)
     expected = machine.volumetric_error(positions) * 1e6
     np.testing.assert_allclose(np.column_stack([out["ex_um"], out["ey_um"], out["ez_um"]]), expected, atol=1e-9)
@@ -512,7 +512,7 @@ def test_injected_faults_are_flagged_exactly(injections):
             letter = name[0].upper()
             start, end = (v * 1e3 for v in system.machine.travel_m(letter))
             expected |= ((value < start) | (value > end)).astype(np.int64) << 2
-    out = system.process(frames)
+    out = to_display(system.process(frames))
     np.testing.assert_array_equal(out["fault"], expected)
     assert np.all(np.isnan(out["ex_um"][expected != 0]))
     assert np.all(np.isfinite(out["ex_um"][expected == 0]))

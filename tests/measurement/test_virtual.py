@@ -7,6 +7,7 @@ import pytest
 
 from axiscal.errors import AxiscalError
 from axiscal.measurement.virtual import STROKE_M, VirtualModule
+from axiscal.units import UM
 
 
 @pytest.mark.parametrize("path", ["diagonal", "raster", "back-and-forth"])
@@ -72,11 +73,11 @@ def test_diagonal_experiment_before_values_are_the_papers():
 
     free = diagonal_experiment(VirtualModule())
     loaded = diagonal_experiment(VirtualModule(load_kg=2.0))
-    assert round(free.before_max_um) == 68
-    assert round(loaded.before_max_um) == 56
-    assert free.after_max_um < 1.5 and loaded.after_max_um < 1.5
-    assert np.max(np.abs(free.true_after_um)) < 0.05
-    assert free.x_mm.size == 20 and free.x_mm[-1] == pytest.approx(190.0)
+    assert round(free.before_max_m / UM) == 68
+    assert round(loaded.before_max_m / UM) == 56
+    assert free.after_max_m < 1.5 * UM and loaded.after_max_m < 1.5 * UM
+    assert np.max(np.abs(free.true_after_m)) < 0.05 * UM
+    assert free.x_m.size == 20 and free.x_m[-1] == pytest.approx(0.190)
 
 
 def test_laser_readings_agree_with_the_offline_diagonal_check():
@@ -99,4 +100,4 @@ def test_squareness_error_in_the_model_shows_on_the_diagonal():
 
     result = diagonal_experiment(VirtualModule(noise=False), squareness_error_rad=8.18 * ARCSEC)
     expected = 0.19 * 8.18 * ARCSEC / np.sqrt(2.0)  # x error at the end, projected on the diagonal
-    assert result.after_max_um == pytest.approx(expected * 1e6, rel=0.02)
+    assert result.after_max_m == pytest.approx(expected, rel=0.02)

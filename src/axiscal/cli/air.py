@@ -1,7 +1,7 @@
 """``axiscal air`` and ``axiscal fringes``: refractive index of air, and lengths from fringe counts.
 
-Thin wrappers over :func:`axiscal.instruments.air.refractive_index` and :mod:`axiscal.instruments.interferometer`;
-flags carry their units in their names.
+Thin wrappers over :func:`axiscal.instruments.air.air_report` and
+:func:`axiscal.instruments.interferometer.fringe_report`; flags carry their units in their names.
 """
 
 from __future__ import annotations
@@ -9,14 +9,13 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import echo_json
-from axiscal.instruments.air import METHODS, refractive_index
+from axiscal.instruments.air import METHODS, air_report, air_text
 from axiscal.instruments.interferometer import (
     HENE_WAVELENGTH_NM,
-    compensated_length,
-    length_from_fringes,
+    fringe_report,
+    fringe_text,
 )
 from axiscal.materials import STEEL_EXPANSION_PER_K
-from axiscal.units import MM
 
 __all__ = ["air_command", "fringes_command", "register"]
 
@@ -40,23 +39,6 @@ def _air_options(command):
     return command
 
 
-def _inputs(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm, method) -> dict:
-    return {
-        "method": method,
-        "temperature_c": temperature_c,
-        "pressure_pa": pressure_pa,
-        "humidity_pct": humidity_pct,
-        "wavelength_nm": wavelength_nm,
-        "co2_ppm": co2_ppm,
-    }
-
-
-def _rows(pairs: list[tuple[str, str]]) -> None:
-    width = max(len(label) for label, _ in pairs)
-    for label, value in pairs:
-        click.echo(f"{label:<{width}}  {value}")
-
-
 @click.command("air")
 @_air_options
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of text.")
@@ -65,24 +47,11 @@ def air_command(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm
 
     Prints the index, (n - 1) in ppm and the wavelength in air.
     """
-    n = refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm=co2_ppm, method=method)
-    body = {
-        "refractive_index": n,
-        "n_minus_1_ppm": (n - 1.0) * 1e6,
-        "wavelength_in_air_nm": wavelength_nm / n,
-        **_inputs(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm, method),
-    }
+    report = air_report(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm=co2_ppm, method=method)
     if as_json:
-        echo_json(body)
-        return
-    _rows(
-        [
-            ("method", method),
-            ("refractive index", f"{n:.9f}"),
-            ("n - 1", f"{body['n_minus_1_ppm']:.3f} ppm"),
-            ("wavelength in air", f"{body['wavelength_in_air_nm']:.6f} nm (vacuum {wavelength_nm:g} nm)"),
-        ]
-    )
+        echo_json(report)
+    else:
+        click.echo(air_text(report), nl=False)
 
 
 @click.command("fringes")
@@ -108,47 +77,23 @@ def fringes_command(
     as_json,
 ):
     """Length from a fringe count (paper 003 eq 1), compensated for the air and normalised to 20 degC."""
-    vacuum = float(length_from_fringes(counts, wavelength_nm=wavelength_nm, optical_fold=optical_fold, interpolation=interpolation))
-    common = dict(
-        air_temperature_c=temperature_c,
+    report = fringe_report(
+        counts,
+        optical_fold=optical_fold,
+        interpolation=interpolation,
+        temperature_c=temperature_c,
         pressure_pa=pressure_pa,
         humidity_pct=humidity_pct,
         wavelength_nm=wavelength_nm,
         co2_ppm=co2_ppm,
         method=method,
+        material_temperature_c=material_temperature_c,
+        expansion_per_k=expansion_per_k,
     )
-    in_air = float(compensated_length(vacuum, **common))
-    material = list(material_temperature_c)
-    at_20c = (
-        float(compensated_length(vacuum, material_temperature_c=[material], expansion_per_k=expansion_per_k, **common)[0])
-        if material
-        else None
-    )
-    n = refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm=co2_ppm, method=method)
-    body = {
-        "counts": counts,
-        "optical_fold": optical_fold,
-        "interpolation": interpolation,
-        "refractive_index": n,
-        "vacuum_length_mm": vacuum / MM,
-        "length_in_air_mm": in_air / MM,
-        "length_at_20c_mm": None if at_20c is None else at_20c / MM,
-        "material_temperature_c": material,
-        "expansion_per_k": expansion_per_k,
-        **_inputs(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm, method),
-    }
     if as_json:
-        echo_json(body)
-        return
-    rows = [
-        ("refractive index", f"{n:.9f} ({method})"),
-        ("length, index 1", f"{vacuum / MM:.6f} mm"),
-        ("length in air", f"{in_air / MM:.6f} mm"),
-    ]
-    if at_20c is not None:
-        mean = sum(material) / len(material)
-        rows.append(("length at 20 degC", f"{at_20c / MM:.6f} mm (material {mean:.3f} degC, alpha {expansion_per_k:g}/K)"))
-    _rows(rows)
+        echo_json(report)
+    else:
+        click.echo(fringe_text(report), nl=False)
 
 
 def register(group: click.Group) -> None:

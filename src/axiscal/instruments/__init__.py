@@ -2,13 +2,19 @@
 
 from __future__ import annotations
 
-from axiscal.instruments.abbe import transfer_components, transfer_point
+from axiscal.instruments.abbe import (
+    transfer_components,
+    transfer_point,
+)
 from axiscal.instruments.air import (
     CO2_RANGE_PPM,
     METHODS,
     PRESSURE_RANGE_PA,
     TEMPERATURE_RANGE_C,
     WAVELENGTH_RANGE_NM,
+    air_inputs,
+    air_report,
+    air_text,
     refractive_index,
     saturation_vapour_pressure,
     water_vapour_mole_fraction,
@@ -33,6 +39,8 @@ from axiscal.instruments.interferometer import (
     compensated_length,
     cosine_error,
     dead_path_error,
+    fringe_report,
+    fringe_text,
     fringes_from_length,
     length_from_fringes,
     misalignment_for_cosine_error,
@@ -42,7 +50,6 @@ from axiscal.instruments.optics import (
     BK7_INDEX,
     PENTAPRISM_INCIDENT,
     Face,
-    FaceKind,
     PentaprismSensitivity,
     Prism,
     RayTrace,
@@ -60,6 +67,9 @@ from axiscal.instruments.optics import (
     rotation_z,
     trace,
 )
+from axiscal.instruments.reports import (
+    render_report,
+)
 from axiscal.instruments.sensors import (
     DEFAULT_ROTATIONS,
     SensorHead,
@@ -74,6 +84,8 @@ from axiscal.instruments.sensors import (
 )
 
 __all__ = [
+    "transfer_point",
+    "transfer_components",
     "METHODS",
     "WAVELENGTH_RANGE_NM",
     "TEMPERATURE_RANGE_C",
@@ -82,6 +94,22 @@ __all__ = [
     "saturation_vapour_pressure",
     "water_vapour_mole_fraction",
     "refractive_index",
+    "air_report",
+    "air_inputs",
+    "air_text",
+    "FORMAT",
+    "VERSION",
+    "ChannelCalibration",
+    "fit_sensitivity",
+    "transfer_reference",
+    "MirrorCorrection",
+    "fit_mirror",
+    "Calibration",
+    "save_calibration",
+    "calibration_from_dict",
+    "load_calibration",
+    "fringe_report",
+    "fringe_text",
     "HENE_WAVELENGTH_NM",
     "REFERENCE_TEMPERATURE_C",
     "length_from_fringes",
@@ -93,7 +121,6 @@ __all__ = [
     "misalignment_for_cosine_error",
     "abbe_error",
     "BK7_INDEX",
-    "FaceKind",
     "PENTAPRISM_INCIDENT",
     "rotation_x",
     "rotation_y",
@@ -112,6 +139,7 @@ __all__ = [
     "pentaprism_deviation",
     "PentaprismSensitivity",
     "pentaprism_sensitivity",
+    "render_report",
     "straightness_from_psd",
     "angle_from_quadrant",
     "roll_from_autocollimation",
@@ -122,17 +150,4 @@ __all__ = [
     "SensorHead",
     "DEFAULT_ROTATIONS",
     "sensor_head_from_dict",
-    "FORMAT",
-    "VERSION",
-    "ChannelCalibration",
-    "fit_sensitivity",
-    "transfer_reference",
-    "MirrorCorrection",
-    "fit_mirror",
-    "Calibration",
-    "save_calibration",
-    "calibration_from_dict",
-    "load_calibration",
-    "transfer_point",
-    "transfer_components",
 ]

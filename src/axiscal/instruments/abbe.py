@@ -10,6 +10,10 @@ positioning, the PSD's spot for straightness), so :func:`transfer_components` ta
 ``P - M_i`` per component i and keeps component i of each transfer. Paper 000 eq (4) writes this
 pattern for the X axis with a slip in its second line (``L_bx`` twice; the first must be ``L_bz``,
 see docs/papers.md); eq (5) for the Z axis is consistent with the vector form.
+
+This is the one implementation of the transfer: the measurement pipeline (sensor points to the
+functional point), the calibration (reference instrument to sensor point, section 4.2) and the
+virtual instrument (carriage origin to a sensor point) all call it.
 """
 
 from __future__ import annotations
@@ -37,6 +41,16 @@ def transfer_point(delta_m: np.ndarray, eps_rad: np.ndarray, offset_m: np.ndarra
     -------
     ndarray, shape (..., 3)
         Translation error at P, metres.
+
+    Raises
+    ------
+    AxiscalError
+        If an argument does not have 3 components in its last dimension.
+
+    Examples
+    --------
+    >>> transfer_point([0.0, 0.0, 0.0], [0.0, 0.0, 1e-5], [0.0, 0.1, 0.0])
+    array([-1.e-06,  0.e+00,  0.e+00])
     """
     delta, eps, offset = (np.asarray(a, dtype=float) for a in (delta_m, eps_rad, offset_m))
     for name, a in (("delta_m", delta), ("eps_rad", eps), ("offset_m", offset)):
@@ -61,12 +75,37 @@ def transfer_components(delta_m: np.ndarray, eps_rad: np.ndarray, offsets_m: np.
     -------
     ndarray, shape (..., 3)
         ``delta_i + (eps × (P - M_i))_i`` for i = x, y, z, metres.
+
+    Raises
+    ------
+    AxiscalError
+        If ``offsets_m`` is not (3, 3) or ``delta_m``, ``eps_rad`` do not end in 3 components.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> offsets = np.array([[0.0, 0.0, 0.1], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]])
+    >>> transfer_components([0.0, 0.0, 0.0], [0.0, 1e-5, 0.0], offsets)
+    array([1.e-06, 0.e+00, 0.e+00])
     """
     offsets = np.asarray(offsets_m, dtype=float)
     if offsets.shape != (3, 3):
         raise AxiscalError(f"offsets_m must have shape (3, 3), one row per component, got {offsets.shape}")
     eps = np.asarray(eps_rad, dtype=float)
     out = np.array(delta_m, dtype=float, copy=True)
-    for i in range(3):
-        out[..., i] += np.cross(eps, offsets[i])[..., i]
+    for name, a in (("delta_m", out), ("eps_rad", eps)):
+        if a.shape[-1:] != (3,):
+            raise AxiscalError(f"{name} must have 3 components in its last dimension, got shape {a.shape}")
+    ea, eb, ec = eps[..., 0], eps[..., 1], eps[..., 2]
+    # (eps x r)_x = eb rz - ec ry, (eps x r)_y = ec rx - ea rz, (eps x r)_z = ea ry - eb rx;
+    # a zero arm adds nothing, so the common case (one offset per sensor) costs two products
+    _, ry, rz = offsets[0]
+    if ry or rz:
+        out[..., 0] += eb * rz - ec * ry
+    rx, _, rz = offsets[1]
+    if rx or rz:
+        out[..., 1] += ec * rx - ea * rz
+    rx, ry, _ = offsets[2]
+    if rx or ry:
+        out[..., 2] += ea * ry - eb * rx
     return out

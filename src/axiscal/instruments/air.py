@@ -27,6 +27,8 @@ from __future__ import annotations
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.instruments.reports import render_report
+from axiscal.units import LENGTH_UNITS, PPM, UM
 
 __all__ = [
     "METHODS",
@@ -37,6 +39,9 @@ __all__ = [
     "saturation_vapour_pressure",
     "water_vapour_mole_fraction",
     "refractive_index",
+    "air_report",
+    "air_inputs",
+    "air_text",
 ]
 
 #: names accepted by :func:`refractive_index`
@@ -59,6 +64,9 @@ PRESSURE_RANGE_PA = (10e3, 140e3)
 CO2_RANGE_PPM = (0.0, 2000.0)
 
 _KELVIN = 273.15
+_NM = LENGTH_UNITS["nm"]
+#: Pa per kPa, the pressure unit of NIST's shop-floor formula
+_PA_PER_KPA = 1e3
 _TORR = 101325.0 / 760.0
 
 # IAPWS-IF97 saturation-pressure equation (over liquid water), NIST Appendix A-I
@@ -128,6 +136,20 @@ def water_vapour_mole_fraction(temperature_c, pressure_pa, humidity_pct):
 
     ``x_v = (h / 100) f(p, t) p_sv(t) / p`` with the enhancement factor
     ``f = 1.00062 + 3.14e-8 p + 5.6e-7 t^2``.
+
+    Parameters
+    ----------
+    temperature_c : float or array_like
+        Air temperature, degC.
+    pressure_pa : float or array_like
+        Air pressure, Pa.
+    humidity_pct : float or array_like
+        Relative humidity, percent.
+
+    Returns
+    -------
+    float or ndarray
+        Mole fraction x_v, dimensionless.
     """
     t = np.asarray(temperature_c, dtype=float)
     p = np.asarray(pressure_pa, dtype=float)
@@ -136,9 +158,14 @@ def water_vapour_mole_fraction(temperature_c, pressure_pa, humidity_pct):
     return _as_float(h / 100.0 * enhancement * saturation_vapour_pressure(t) / p)
 
 
+def _wavenumber_squared(wavelength_nm):
+    """``1 / lambda^2`` with lambda in um, the variable of the dispersion formulas."""
+    return (UM / (np.asarray(wavelength_nm) * _NM)) ** 2
+
+
 def _ciddor(t, p, h, wavelength_nm, co2_ppm):
     kelvin = t + _KELVIN
-    s = (1e3 / wavelength_nm) ** 2  # 1 / lambda^2 with lambda in um
+    s = _wavenumber_squared(wavelength_nm)
     x_v = water_vapour_mole_fraction(t, p, h)
     r_as = 1e-8 * (5792105.0 / (238.0185 - s) + 167917.0 / (57.362 - s))
     r_vs = 1.022e-8 * (295.235 + 2.6422 * s - 0.032380 * s**2 + 0.004028 * s**3)
@@ -160,7 +187,7 @@ def _ciddor(t, p, h, wavelength_nm, co2_ppm):
 
 
 def _edlen_birch_downs(t, p, h, wavelength_nm, co2_ppm):
-    s = (1e3 / wavelength_nm) ** 2
+    s = _wavenumber_squared(wavelength_nm)
     standard = 1e-8 * (8342.54 + 2406147.0 / (130.0 - s) + 15998.0 / (38.9 - s))
     standard = standard * (1.0 + 0.540e-6 * (co2_ppm - 450.0))
     x = (1.0 + 1e-8 * (0.601 - 0.00972 * t) * p) / (1.0 + 0.003661 * t)
@@ -171,7 +198,7 @@ def _edlen_birch_downs(t, p, h, wavelength_nm, co2_ppm):
 
 def _edlen_1966(t, p, h, wavelength_nm, co2_ppm):
     # Edlen's own units: pressures in torr (101325/760 Pa)
-    s = (1e3 / wavelength_nm) ** 2
+    s = _wavenumber_squared(wavelength_nm)
     standard = 1e-8 * (8342.13 + 2406030.0 / (130.0 - s) + 15997.0 / (38.9 - s))
     standard = standard * (1.0 + 0.540e-6 * (co2_ppm - 300.0))
     p_torr = p / _TORR
@@ -181,7 +208,7 @@ def _edlen_1966(t, p, h, wavelength_nm, co2_ppm):
 
 
 def _shopfloor(t, p, h, wavelength_nm, co2_ppm):
-    return 1.0 + 7.86e-4 * (p / 1e3) / (273.0 + t) - 1.5e-11 * h * (t**2 + 160.0)
+    return 1.0 + 7.86e-4 * (p / _PA_PER_KPA) / (273.0 + t) - 1.5e-11 * h * (t**2 + 160.0)
 
 
 def _check_range(values: np.ndarray, bounds: tuple[float, float], what: str, unit: str, hint: str = "") -> None:
@@ -253,3 +280,88 @@ def refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, *,
             f"is not below the air pressure {p.flat[where]:g} Pa"
         )
     return _as_float(_EQUATIONS[method](t, p, h, wavelength, co2))
+
+
+def air_report(
+    temperature_c: float,
+    pressure_pa: float,
+    humidity_pct: float,
+    wavelength_nm: float = 632.991,
+    *,
+    co2_ppm: float = 450.0,
+    method: str = "ciddor",
+) -> dict:
+    """The refractive index of air with what is shown of it (``axiscal air``).
+
+    Parameters
+    ----------
+    temperature_c, pressure_pa, humidity_pct, wavelength_nm : float
+        Air temperature (degC), pressure (Pa), relative humidity (%) and vacuum wavelength (nm).
+    co2_ppm : float, keyword-only
+        CO2 content, umol/mol.
+    method : str, keyword-only
+        Equation, see :func:`refractive_index`.
+
+    Returns
+    -------
+    dict
+        ``refractive_index``, ``n_minus_1_ppm``, ``wavelength_in_air_nm`` and the inputs
+        (``method``, ``temperature_c``, ``pressure_pa``, ``humidity_pct``, ``wavelength_nm``,
+        ``co2_ppm``): the JSON the command prints.
+
+    Raises
+    ------
+    AxiscalError
+        As :func:`refractive_index`.
+
+    Examples
+    --------
+    >>> round(air_report(20.0, 101325.0, 0.0, 633.0)["n_minus_1_ppm"], 3)
+    271.8
+    """
+    n = refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm=co2_ppm, method=method)
+    return {
+        "refractive_index": n,
+        "n_minus_1_ppm": (n - 1.0) / PPM,
+        "wavelength_in_air_nm": wavelength_nm / n,
+        **air_inputs(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm, method),
+    }
+
+
+def air_inputs(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm, method) -> dict:
+    """The air conditions as a report lists them (``method``, ``temperature_c``, ... ``co2_ppm``).
+
+    Parameters
+    ----------
+    temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm : float
+        As :func:`refractive_index`.
+    method : str
+        The equation.
+
+    Returns
+    -------
+    dict
+    """
+    return {
+        "method": method,
+        "temperature_c": temperature_c,
+        "pressure_pa": pressure_pa,
+        "humidity_pct": humidity_pct,
+        "wavelength_nm": wavelength_nm,
+        "co2_ppm": co2_ppm,
+    }
+
+
+def air_text(report: dict) -> str:
+    """The text ``axiscal air`` prints for an :func:`air_report` (template ``instruments/air.txt.j2``).
+
+    Parameters
+    ----------
+    report : dict
+        From :func:`air_report`.
+
+    Returns
+    -------
+    str
+    """
+    return render_report("instruments/air.txt.j2", r=report)

@@ -30,7 +30,10 @@ import numpy as np
 from numpy.polynomial import legendre
 
 from axiscal.errors import AxiscalError
+from axiscal.instruments.abbe import transfer_point
+from axiscal.io.atomic import write_text
 from axiscal.io.tabular import read_text
+from axiscal.units import MM, URAD
 
 __all__ = [
     "FORMAT",
@@ -54,8 +57,18 @@ VERSION = 1
 class ChannelCalibration:
     """Gain and offset of one raw channel: ``value = gain * raw + offset`` in the channel's unit.
 
-    ``residual_max`` and ``residual_rms`` are the fit's residuals in the same unit; ``points`` the
-    number of calibration points.
+    Parameters
+    ----------
+    channel : str
+        Raw channel name.
+    gain : float
+        Sensitivity, channel unit per raw unit (1 for an uncalibrated channel).
+    offset : float
+        Offset, the channel's unit (mm for scales, um for spot shifts).
+    residual_max, residual_rms : float
+        The fit's largest and rms residual, the channel's unit.
+    points : int
+        Number of calibration points.
     """
 
     channel: str
@@ -66,6 +79,7 @@ class ChannelCalibration:
     points: int = 0
 
     def apply(self, raw: np.ndarray) -> np.ndarray:
+        """Calibrated values ``gain * raw + offset`` of raw readings (the channel's unit)."""
         return raw * self.gain + self.offset
 
 
@@ -128,6 +142,16 @@ def transfer_reference(reference_m: np.ndarray, eps_rad: np.ndarray, offset_m: n
         ``M - R``: the sensor's measuring point minus the reference's, in the carriage frame, m.
     component : int
         0, 1 or 2 for the x, y or z translation.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        The reading moved to M, metres (:func:`axiscal.instruments.abbe.transfer_point`).
+
+    Raises
+    ------
+    AxiscalError
+        For shapes other than the above or a component outside 0..2.
     """
     eps = np.asarray(eps_rad, dtype=float)
     offset = np.asarray(offset_m, dtype=float)
@@ -135,15 +159,30 @@ def transfer_reference(reference_m: np.ndarray, eps_rad: np.ndarray, offset_m: n
         raise AxiscalError("eps_rad must have shape (n, 3) and offset_m shape (3,)")
     if component not in (0, 1, 2):
         raise AxiscalError(f"component must be 0, 1 or 2, got {component}")
-    return np.asarray(reference_m, dtype=float) + np.cross(eps, offset)[:, component]
+    delta = np.zeros(eps.shape)
+    delta[:, component] = reference_m
+    return transfer_point(delta, eps, offset)[:, component]
 
 
 @dataclass(frozen=True)
 class MirrorCorrection:
     """The plane mirror's form error as seen by the roll detector, against position (eq 11 fitted).
 
-    ``coefficients_rad`` are Legendre coefficients over the position normalised to [-1, 1] on
-    ``start_m..end_m``; :meth:`evaluate` returns the apparent roll the mirror adds, radians.
+    Parameters
+    ----------
+    letter : str
+        Axis letter.
+    start_m, end_m : float
+        The mapped range of positions, metres.
+    coefficients_rad : tuple of float
+        Legendre coefficients over the position normalised to [-1, 1] on ``start_m..end_m``,
+        radians; :meth:`evaluate` returns the apparent roll the mirror adds.
+    residual_max_rad, residual_rms_rad : float
+        Residuals of the fit, radians.
+    cv_rms_rad : tuple of float
+        Leave-one-out rms error of every order tried, radians.
+    points : int
+        Points of the map.
     """
 
     letter: str
@@ -244,20 +283,50 @@ def fit_mirror(
 
 @dataclass(frozen=True)
 class Calibration:
-    """All calibration results of a measuring system: per channel and per axis mirror."""
+    """All calibration results of a measuring system: per channel and per axis mirror.
+
+    Parameters
+    ----------
+    channels : mapping of str to ChannelCalibration
+        By channel name.
+    mirrors : mapping of str to MirrorCorrection
+        By axis letter.
+    """
 
     channels: Mapping[str, ChannelCalibration] = field(default_factory=dict)
     mirrors: Mapping[str, MirrorCorrection] = field(default_factory=dict)
 
     def channel(self, name: str) -> ChannelCalibration:
-        """The calibration of channel ``name`` (identity when it was never calibrated)."""
+        """The calibration of one channel.
+
+        Parameters
+        ----------
+        name : str
+            Raw channel name.
+
+        Returns
+        -------
+        ChannelCalibration
+            Identity (gain 1, offset 0) when the channel was never calibrated.
+        """
         return self.channels.get(name, ChannelCalibration(name, 1.0, 0.0))
 
     def merged(self, other: "Calibration") -> "Calibration":
-        """This calibration with every entry of ``other`` added or replacing the old one."""
+        """This calibration with every entry of ``other`` added or replacing the old one.
+
+        Parameters
+        ----------
+        other : Calibration
+            The newer entries.
+
+        Returns
+        -------
+        Calibration
+        """
         return Calibration({**self.channels, **other.channels}, {**self.mirrors, **other.mirrors})
 
     def to_dict(self) -> dict:
+        """The JSON form of the calibration file (positions in mm, mirror values in urad)."""
         return {
             "format": FORMAT,
             "version": VERSION,
@@ -273,12 +342,12 @@ class Calibration:
             },
             "mirrors": {
                 letter: {
-                    "start_mm": m.start_m * 1e3,
-                    "end_mm": m.end_m * 1e3,
-                    "legendre_urad": [c * 1e6 for c in m.coefficients_rad],
-                    "residual_max_urad": m.residual_max_rad * 1e6,
-                    "residual_rms_urad": m.residual_rms_rad * 1e6,
-                    "cv_rms_urad": [v * 1e6 if math.isfinite(v) else None for v in m.cv_rms_rad],
+                    "start_mm": m.start_m / MM,
+                    "end_mm": m.end_m / MM,
+                    "legendre_urad": [c / URAD for c in m.coefficients_rad],
+                    "residual_max_urad": m.residual_max_rad / URAD,
+                    "residual_rms_urad": m.residual_rms_rad / URAD,
+                    "cv_rms_urad": [v / URAD if math.isfinite(v) else None for v in m.cv_rms_rad],
                     "points": m.points,
                 }
                 for letter, m in sorted(self.mirrors.items())
@@ -287,8 +356,25 @@ class Calibration:
 
 
 def save_calibration(calibration: Calibration, path: str | Path) -> None:
-    """Write a calibration as JSON (docs/measurement.md, "Calibration file")."""
-    Path(path).write_text(json.dumps(calibration.to_dict(), indent=2) + "\n", encoding="utf-8")
+    """Write a calibration as JSON, atomically (docs/measurement.md, "Calibration file").
+
+    Parameters
+    ----------
+    calibration : Calibration
+        What to save.
+    path : str or Path
+        The JSON file (replaced whole, never left half written).
+
+    Returns
+    -------
+    None
+
+    Raises
+    ------
+    AxiscalError
+        If the file cannot be written (naming it).
+    """
+    write_text(path, json.dumps(calibration.to_dict(), indent=2) + "\n")
 
 
 def _number(entry: Mapping, key: str, where: str, *, default: float | None = None) -> float:
@@ -299,7 +385,22 @@ def _number(entry: Mapping, key: str, where: str, *, default: float | None = Non
 
 
 def calibration_from_dict(data: Mapping) -> Calibration:
-    """Build a :class:`Calibration` from the parsed JSON (see :func:`save_calibration`)."""
+    """Build a :class:`Calibration` from the parsed JSON (see :func:`save_calibration`).
+
+    Parameters
+    ----------
+    data : mapping
+        The parsed calibration file.
+
+    Returns
+    -------
+    Calibration
+
+    Raises
+    ------
+    AxiscalError
+        If it is not a calibration file of this version, or an entry is not a finite number.
+    """
     if not isinstance(data, Mapping) or data.get("format") != FORMAT:
         raise AxiscalError(f"not a sensor calibration file (expected \"format\": \"{FORMAT}\")")
     if data.get("version") != VERSION:
@@ -325,20 +426,20 @@ def calibration_from_dict(data: Mapping) -> Calibration:
         where = f"mirror of axis '{letter}'"
         if letter not in ("X", "Y", "Z") or not isinstance(entry, Mapping):
             raise AxiscalError(f"{where}: expected an axis letter X, Y or Z with an object")
-        start, end = _number(entry, "start_mm", where) * 1e-3, _number(entry, "end_mm", where) * 1e-3
+        start, end = _number(entry, "start_mm", where) * MM, _number(entry, "end_mm", where) * MM
         if not end > start:
             raise AxiscalError(f"{where}: end_mm must be greater than start_mm")
         coefficients = entry.get("legendre_urad")
         if not (isinstance(coefficients, list) and coefficients and all(isinstance(c, (int, float)) for c in coefficients)):
             raise AxiscalError(f"{where}: 'legendre_urad' must be a non-empty list of numbers")
-        cv = [math.inf if v is None else float(v) * 1e-6 for v in entry.get("cv_rms_urad", [])]
+        cv = [math.inf if v is None else float(v) * URAD for v in entry.get("cv_rms_urad", [])]
         mirrors[letter] = MirrorCorrection(
             letter=letter,
             start_m=start,
             end_m=end,
-            coefficients_rad=tuple(float(c) * 1e-6 for c in coefficients),
-            residual_max_rad=_number(entry, "residual_max_urad", where, default=0.0) * 1e-6,
-            residual_rms_rad=_number(entry, "residual_rms_urad", where, default=0.0) * 1e-6,
+            coefficients_rad=tuple(float(c) * URAD for c in coefficients),
+            residual_max_rad=_number(entry, "residual_max_urad", where, default=0.0) * URAD,
+            residual_rms_rad=_number(entry, "residual_rms_urad", where, default=0.0) * URAD,
             cv_rms_rad=tuple(cv),
             points=int(_number(entry, "points", where, default=0)),
         )
@@ -346,7 +447,22 @@ def calibration_from_dict(data: Mapping) -> Calibration:
 
 
 def load_calibration(path: str | Path) -> Calibration:
-    """Read a calibration JSON file; errors name the file."""
+    """Read a calibration JSON file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file (docs/measurement.md, "Calibration file").
+
+    Returns
+    -------
+    Calibration
+
+    Raises
+    ------
+    AxiscalError
+        If the file is missing, not JSON or not a calibration (naming the file and line).
+    """
     path = Path(path)
     text = read_text(path)
     try:

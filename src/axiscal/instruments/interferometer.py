@@ -23,10 +23,14 @@ from __future__ import annotations
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.instruments.air import refractive_index
+from axiscal.instruments.air import air_inputs, refractive_index
+from axiscal.instruments.reports import render_report
 from axiscal.materials import STEEL_EXPANSION_PER_K
+from axiscal.units import MM
 
 __all__ = [
+    "fringe_report",
+    "fringe_text",
     "HENE_WAVELENGTH_NM",
     "REFERENCE_TEMPERATURE_C",
     "length_from_fringes",
@@ -115,7 +119,20 @@ def fringes_from_length(
     optical_fold: int = 1,
     interpolation: int = 1,
 ) -> np.ndarray:
-    """Inverse of :func:`length_from_fringes`: the (fractional) count that a displacement produces."""
+    """Inverse of :func:`length_from_fringes`: the (fractional) count that a displacement produces.
+
+    Parameters
+    ----------
+    length_m : float or array_like
+        Displacement, metres.
+    wavelength_nm, index_of_air, optical_fold, interpolation : keyword-only
+        As :func:`length_from_fringes`.
+
+    Returns
+    -------
+    ndarray
+        Counter value N.
+    """
     unit = length_from_fringes(
         1.0, wavelength_nm=wavelength_nm, index_of_air=index_of_air, optical_fold=optical_fold, interpolation=interpolation
     )
@@ -236,6 +253,21 @@ def cosine_error(length_m, misalignment_rad) -> np.ndarray:
         True displacement along the axis.
     misalignment_rad : float or array_like, rad
         Angle between beam and motion.
+
+    Returns
+    -------
+    ndarray
+        How much the laser reads short, metres (broadcast shape of the inputs).
+
+    Raises
+    ------
+    AxiscalError
+        If an input is not finite.
+
+    Examples
+    --------
+    >>> round(float(cosine_error(1.0, 1e-3)) * 1e9, 3)  # 1 m at 1 mrad: 0.5 um
+    500.0
     """
     angle = _finite("misalignment angle", misalignment_rad)
     return _finite("length", length_m) * 2.0 * np.sin(angle / 2.0) ** 2
@@ -251,6 +283,16 @@ def misalignment_for_cosine_error(relative_error) -> np.ndarray:
     ----------
     relative_error : float or array_like, dimensionless
         Cosine error as a fraction of the length (1e-6 for 1 ppm), 0 to 2.
+
+    Returns
+    -------
+    ndarray
+        Misalignment angle, radians.
+
+    Raises
+    ------
+    AxiscalError
+        If the error is not finite or outside 0 to 2.
     """
     error = _finite("relative cosine error", relative_error)
     if np.any((error < 0.0) | (error > 2.0)):
@@ -274,5 +316,95 @@ def abbe_error(arm_m, angle_rad) -> np.ndarray:
         Abbe offset between the beam and the line of interest.
     angle_rad : float or array_like, rad
         Angular error motion of the carriage.
+
+    Returns
+    -------
+    ndarray
+        The Abbe error, metres.
+
+    Raises
+    ------
+    AxiscalError
+        If an input is not finite.
     """
     return _finite("Abbe arm", arm_m) * np.sin(_finite("angle", angle_rad))
+
+
+def fringe_report(
+    counts: float,
+    *,
+    optical_fold: int = 1,
+    interpolation: int = 1,
+    temperature_c: float,
+    pressure_pa: float,
+    humidity_pct: float,
+    wavelength_nm: float = HENE_WAVELENGTH_NM,
+    co2_ppm: float = 450.0,
+    method: str = "ciddor",
+    material_temperature_c=(),
+    expansion_per_k: float = STEEL_EXPANSION_PER_K,
+) -> dict:
+    """A length from a fringe count (paper 003 eq 1), in air and at 20 degC, as ``axiscal fringes`` shows it.
+
+    Parameters
+    ----------
+    counts : float
+        Counter value N (fringes times ``interpolation``).
+    optical_fold, interpolation : int, keyword-only
+        Passes of the measuring beam and counts per fringe.
+    temperature_c, pressure_pa, humidity_pct : float, keyword-only
+        Air temperature (degC), pressure (Pa) and relative humidity (%).
+    wavelength_nm, co2_ppm, method : keyword-only
+        Vacuum wavelength (nm), CO2 (umol/mol) and refractive-index equation.
+    material_temperature_c : sequence of float, keyword-only
+        Material temperatures, degC (averaged); empty: no normalisation to 20 degC.
+    expansion_per_k : float, keyword-only
+        Material expansion coefficient, 1/K.
+
+    Returns
+    -------
+    dict
+        ``counts``, ``optical_fold``, ``interpolation``, ``refractive_index``,
+        ``vacuum_length_mm``, ``length_in_air_mm``, ``length_at_20c_mm`` (None without material
+        temperatures), ``material_temperature_c``, ``expansion_per_k`` and the air conditions:
+        the JSON the command prints.
+
+    Raises
+    ------
+    AxiscalError
+        For values :func:`length_from_fringes` or :func:`compensated_length` refuse.
+    """
+    vacuum = float(length_from_fringes(counts, wavelength_nm=wavelength_nm, optical_fold=optical_fold, interpolation=interpolation))
+    air = dict(air_temperature_c=temperature_c, pressure_pa=pressure_pa, humidity_pct=humidity_pct, wavelength_nm=wavelength_nm, co2_ppm=co2_ppm, method=method)
+    in_air = float(compensated_length(vacuum, **air))
+    material = [float(t) for t in material_temperature_c]
+    at_20c = float(compensated_length(vacuum, material_temperature_c=[material], expansion_per_k=expansion_per_k, **air)[0]) if material else None
+    return {
+        "counts": counts,
+        "optical_fold": optical_fold,
+        "interpolation": interpolation,
+        "refractive_index": refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm=co2_ppm, method=method),
+        "vacuum_length_mm": vacuum / MM,
+        "length_in_air_mm": in_air / MM,
+        "length_at_20c_mm": None if at_20c is None else at_20c / MM,
+        "material_temperature_c": material,
+        "expansion_per_k": expansion_per_k,
+        **air_inputs(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm, method),
+    }
+
+
+def fringe_text(report: dict) -> str:
+    """The text ``axiscal fringes`` prints for a :func:`fringe_report` (template ``instruments/fringes.txt.j2``).
+
+    Parameters
+    ----------
+    report : dict
+        From :func:`fringe_report`.
+
+    Returns
+    -------
+    str
+    """
+    material = report["material_temperature_c"]
+    mean = sum(material) / len(material) if material else None
+    return render_report("instruments/fringes.txt.j2", r=report, mean_material_c=mean)

@@ -40,7 +40,6 @@ from axiscal.errors import AxiscalError
 
 __all__ = [
     "BK7_INDEX",
-    "FaceKind",
     "PENTAPRISM_INCIDENT",
     "rotation_x",
     "rotation_y",
@@ -64,6 +63,7 @@ __all__ = [
 #: Refractive index of N-BK7 at 587.6 nm, the default glass of the pentaprism.
 BK7_INDEX = 1.5168
 
+#: what a face does to a ray (a type alias, not part of the public names)
 FaceKind = Literal["refract", "reflect"]
 
 #: Incident beam of paper 002, eq (5): travelling along -X into the prism.
@@ -87,7 +87,18 @@ def _batch(vectors: np.ndarray | Sequence[float], what: str) -> np.ndarray:
 
 
 def rotation_x(angle_rad: float | np.ndarray) -> np.ndarray:
-    """S_X(alpha) of paper 002 eq (8); shape ``angle.shape + (3, 3)``."""
+    """S_X(alpha) of paper 002 eq (8): rotation about X.
+
+    Parameters
+    ----------
+    angle_rad : float or ndarray
+        Rotation angle, radians.
+
+    Returns
+    -------
+    ndarray, shape ``angle.shape + (3, 3)``
+        The rotation matrix (matrices).
+    """
     a = np.asarray(angle_rad, dtype=float)
     c, s = np.cos(a), np.sin(a)
     one, zero = np.ones_like(a), np.zeros_like(a)
@@ -95,7 +106,18 @@ def rotation_x(angle_rad: float | np.ndarray) -> np.ndarray:
 
 
 def rotation_y(angle_rad: float | np.ndarray) -> np.ndarray:
-    """S_Y(beta) of paper 002 eq (8); shape ``angle.shape + (3, 3)``."""
+    """S_Y(beta) of paper 002 eq (8): rotation about Y.
+
+    Parameters
+    ----------
+    angle_rad : float or ndarray
+        Rotation angle, radians.
+
+    Returns
+    -------
+    ndarray, shape ``angle.shape + (3, 3)``
+        The rotation matrix (matrices).
+    """
     a = np.asarray(angle_rad, dtype=float)
     c, s = np.cos(a), np.sin(a)
     one, zero = np.ones_like(a), np.zeros_like(a)
@@ -103,7 +125,18 @@ def rotation_y(angle_rad: float | np.ndarray) -> np.ndarray:
 
 
 def rotation_z(angle_rad: float | np.ndarray) -> np.ndarray:
-    """S_Z(gamma) of paper 002 eq (8); shape ``angle.shape + (3, 3)``."""
+    """S_Z(gamma) of paper 002 eq (8): rotation about Z.
+
+    Parameters
+    ----------
+    angle_rad : float or ndarray
+        Rotation angle, radians.
+
+    Returns
+    -------
+    ndarray, shape ``angle.shape + (3, 3)``
+        The rotation matrix (matrices).
+    """
     a = np.asarray(angle_rad, dtype=float)
     c, s = np.cos(a), np.sin(a)
     one, zero = np.ones_like(a), np.zeros_like(a)
@@ -113,7 +146,15 @@ def rotation_z(angle_rad: float | np.ndarray) -> np.ndarray:
 def rotation_xyz(rx_rad: float | np.ndarray, ry_rad: float | np.ndarray, rz_rad: float | np.ndarray) -> np.ndarray:
     """``S_X(rx) S_Y(ry) S_Z(rz)``, the prism rotation of paper 002 eq (9).
 
-    The three angles broadcast against each other; the result has shape ``broadcast + (3, 3)``.
+    Parameters
+    ----------
+    rx_rad, ry_rad, rz_rad : float or ndarray
+        Rotations about X, Y and Z, radians (broadcast against each other).
+
+    Returns
+    -------
+    ndarray, shape ``broadcast + (3, 3)``
+        The rotation matrix (matrices).
     """
     rx, ry, rz = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (rx_rad, ry_rad, rz_rad)))
     return rotation_x(rx) @ rotation_y(ry) @ rotation_z(rz)
@@ -136,7 +177,20 @@ def reflection_matrix(normal: np.ndarray | Sequence[float]) -> np.ndarray:
 
 
 def reflect(directions: np.ndarray, normal: np.ndarray) -> np.ndarray:
-    """Reflected unit directions, ``B d`` with ``B`` of eq (4); shapes ``(n, 3)`` and ``(3,)`` or ``(n, 3)``."""
+    """Reflected unit directions, ``B d`` with ``B`` of eq (4).
+
+    Parameters
+    ----------
+    directions : ndarray, shape (n, 3)
+        Unit directions of the incident rays.
+    normal : ndarray, shape (3,) or (n, 3)
+        Mirror normal(s).
+
+    Returns
+    -------
+    ndarray, shape (n, 3)
+        Reflected directions.
+    """
     n = _unit(np.asarray(normal, dtype=float), "mirror normals")
     return directions - 2.0 * np.sum(directions * n, axis=-1, keepdims=True) * n
 
@@ -155,6 +209,11 @@ def refract(directions: np.ndarray, normal: np.ndarray, index_ratio: float) -> n
         Face normal (either sign).
     index_ratio : float
         ``n1 / n2``, index of the medium the ray leaves over that of the medium it enters.
+
+    Returns
+    -------
+    ndarray, shape (n, 3)
+        Refracted unit directions.
 
     Raises
     ------
@@ -327,6 +386,21 @@ def angle_between(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Angle between direction vectors (last axis), in rad, by ``atan2(|a x b|, a . b)`` (eqs 7, 11).
 
     ``atan2`` keeps full precision near 0 and 90 degrees, where ``arccos`` of eq (11) loses digits.
+
+    Parameters
+    ----------
+    a, b : ndarray, shape (..., 3)
+        Direction vectors (any length).
+
+    Returns
+    -------
+    ndarray, shape (...)
+        Angles, radians.
+
+    Examples
+    --------
+    >>> round(float(angle_between([1.0, 0.0, 0.0], [0.0, 2.0, 0.0])), 12)
+    1.570796326795
     """
     a = np.asarray(a, dtype=float)
     b = np.asarray(b, dtype=float)
@@ -352,6 +426,11 @@ def pentaprism(*, index: float = BK7_INDEX, size_m: float = 0.02, mirror_angle_e
         centre, so that the mirrors include ``45 deg + e``). In the principal section the beam is turned by ``90 deg + 2 e`` inside
         the glass and leaves the exit face at ``arcsin(n sin 2e)``: the prism deviates the beam by
         ``90 deg + arcsin(n sin 2e)``. See :func:`mirror_angle_error_for_deviation`.
+
+    Returns
+    -------
+    Prism
+        Its four faces, glass index and pivot.
 
     Raises
     ------
@@ -381,6 +460,23 @@ def mirror_angle_error_for_deviation(deviation_error_rad: float, *, index: float
     """Mirror angle error ``e`` that makes the pentaprism deviate the beam by ``90 deg + d`` (eq 13).
 
     Inverts ``d = arcsin(n sin 2e)`` (see :func:`pentaprism`): ``e = arcsin(sin(d) / n) / 2``.
+
+    Parameters
+    ----------
+    deviation_error_rad : float
+        Wanted deviation error ``d``, radians.
+    index : float, keyword-only
+        Glass index.
+
+    Returns
+    -------
+    float
+        Mirror angle error ``e``, radians.
+
+    Raises
+    ------
+    AxiscalError
+        If ``index`` is below 1.
     """
     if not (np.isfinite(index) and index >= 1.0):
         raise AxiscalError(f"a prism's refractive index must be at least 1 (glass in air), got {index}")
@@ -491,6 +587,12 @@ def pentaprism_sensitivity(
         Shifts (each axis in turn).
     index : float, keyword-only
         Glass index.
+
+    Returns
+    -------
+    PentaprismSensitivity
+        Deviation changes per rotation axis and per shift axis (rad) and the quadratic
+        coefficient of the change with rotation about Z.
     """
     angles = np.asarray(rotation_rad, dtype=float).reshape(-1)
     shifts = np.asarray(translation_m, dtype=float).reshape(-1)

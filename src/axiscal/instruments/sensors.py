@@ -27,6 +27,7 @@ import numpy as np
 
 from axiscal.conventions import AXIS_INDEX, component_names
 from axiscal.errors import AxiscalError
+from axiscal.units import MM, UM
 
 __all__ = [
     "straightness_from_psd",
@@ -42,40 +43,150 @@ __all__ = [
 ]
 
 def straightness_from_psd(shift_m: np.ndarray) -> np.ndarray:
-    """Paper 000 eq (1): the straightness error is the PSD spot shift (metres in, metres out)."""
+    """Paper 000 eq (1): the straightness error is the PSD spot shift.
+
+    Parameters
+    ----------
+    shift_m : array_like
+        Spot shift on the PSD, metres.
+
+    Returns
+    -------
+    ndarray
+        Straightness error, metres (the same numbers).
+
+    Examples
+    --------
+    >>> float(straightness_from_psd(2e-6))
+    2e-06
+    """
     return np.asarray(shift_m, dtype=float)
 
 
 def angle_from_quadrant(shift_m: np.ndarray, focal_m: float) -> np.ndarray:
-    """Paper 000 eq (2): pitch or yaw from the spot shift behind a lens, ``Delta / f`` (rad)."""
+    """Paper 000 eq (2): pitch or yaw from the spot shift behind a lens, ``Delta / f``.
+
+    Parameters
+    ----------
+    shift_m : array_like
+        Spot shift on the quadrant detector, metres.
+    focal_m : float
+        Focal length f1 of the lens, metres.
+
+    Returns
+    -------
+    ndarray
+        Angle, radians.
+
+    Examples
+    --------
+    >>> round(float(angle_from_quadrant(1e-6, 0.1)), 12)
+    1e-05
+    """
     return np.asarray(shift_m, dtype=float) / focal_m
 
 
 def roll_from_autocollimation(shift_m: np.ndarray, focal_m: float) -> np.ndarray:
-    """Paper 000 eq (3): roll from the autocollimated spot off a plane mirror, ``Delta / (2 f)`` (rad)."""
+    """Paper 000 eq (3): roll from the autocollimated spot off a plane mirror, ``Delta / (2 f)``.
+
+    Parameters
+    ----------
+    shift_m : array_like
+        Spot shift, metres.
+    focal_m : float
+        Focal length f2 of the autocollimator, metres.
+
+    Returns
+    -------
+    ndarray
+        Roll, radians.
+
+    Examples
+    --------
+    >>> round(float(roll_from_autocollimation(2e-6, 0.1)), 12)
+    1e-05
+    """
     return np.asarray(shift_m, dtype=float) / (2.0 * focal_m)
 
 
 def quadrant_shift(angle_rad: np.ndarray, focal_m: float) -> np.ndarray:
-    """Inverse of eq (2): the spot shift (m) a beam tilt of ``angle_rad`` gives."""
+    """Inverse of eq (2): the spot shift a beam tilt of ``angle_rad`` gives.
+
+    Parameters
+    ----------
+    angle_rad : array_like
+        Tilt, radians.
+    focal_m : float
+        Focal length f1, metres.
+
+    Returns
+    -------
+    ndarray
+        Spot shift, metres.
+    """
     return np.asarray(angle_rad, dtype=float) * focal_m
 
 
 def autocollimation_shift(roll_rad: np.ndarray, focal_m: float) -> np.ndarray:
-    """Inverse of eq (3): the spot shift (m) a roll of ``roll_rad`` gives."""
+    """Inverse of eq (3): the spot shift a roll of ``roll_rad`` gives.
+
+    Parameters
+    ----------
+    roll_rad : array_like
+        Roll, radians.
+    focal_m : float
+        Focal length f2, metres.
+
+    Returns
+    -------
+    ndarray
+        Spot shift, metres.
+    """
     return np.asarray(roll_rad, dtype=float) * (2.0 * focal_m)
 
 
 @dataclass(frozen=True)
 class SignedComponent:
-    """An error component index (0..5 in the order of :func:`axiscal.conventions.component_names`) and a sign."""
+    """An error component and the sign with which a detector sees it.
+
+    Parameters
+    ----------
+    index : int
+        0..5 in the order of :func:`axiscal.conventions.component_names`.
+    sign : float
+        +1 or -1.
+    """
 
     index: int
     sign: float
 
 
 def parse_signed_component(text: str, letter: str, *, what: str) -> SignedComponent:
-    """``"ECX"`` or ``"-EBX"`` for axis ``letter`` into (component index, sign)."""
+    """Parse ``"ECX"`` or ``"-EBX"`` for axis ``letter`` into (component index, sign).
+
+    Parameters
+    ----------
+    text : str
+        Component name, optionally with a sign.
+    letter : str
+        Axis letter.
+    what : str, keyword-only
+        Where the value came from, for the error message.
+
+    Returns
+    -------
+    SignedComponent
+
+    Raises
+    ------
+    AxiscalError
+        If ``text`` names no component of the axis.
+
+    Examples
+    --------
+    >>> parse_signed_component("-EBX", "X", what="qd_v")
+    SignedComponent(index=4, sign=-1.0)
+    """
     names = component_names(letter)
     value = str(text).strip().upper()
     sign = 1.0
@@ -187,11 +298,29 @@ def _point(section: Mapping, key: str, where: str) -> tuple[float, float, float]
     value = section.get(key, [0.0, 0.0, 0.0])
     if not (isinstance(value, list) and len(value) == 3 and all(isinstance(v, (int, float)) for v in value)):
         raise AxiscalError(f"{where} {key} must be a list of 3 numbers in mm, e.g. [0.0, -30.0, 20.0]")
-    return tuple(float(v) * 1e-3 for v in value)  # type: ignore[return-value]
+    return tuple(float(v) * MM for v in value)  # type: ignore[return-value]
 
 
 def sensor_head_from_dict(letter: str, section: Mapping) -> SensorHead:
-    """Build a :class:`SensorHead` from the ``[axes.<L>.sensors]`` table (docs/formats.md)."""
+    """Build a :class:`SensorHead` from the ``[axes.<L>.sensors]`` table (docs/formats.md).
+
+    Parameters
+    ----------
+    letter : str
+        Axis letter.
+    section : mapping
+        The TOML table: points and focal lengths in mm, ranges in um.
+
+    Returns
+    -------
+    SensorHead
+        The geometry in SI.
+
+    Raises
+    ------
+    AxiscalError
+        For an unknown key, a bad value or rotations that are not three different ones.
+    """
     where = f"[axes.{letter}.sensors]"
     if not isinstance(section, Mapping):
         raise AxiscalError(f"{where} must be a table")
@@ -216,13 +345,13 @@ def sensor_head_from_dict(letter: str, section: Mapping) -> SensorHead:
         prefix=prefix,
         scale_point_m=_point(section, "scale_point_mm", where),
         psd_point_m=_point(section, "psd_point_mm", where),
-        qd_focal_m=_positive(section, "qd_focal_mm", 100.0, where) * 1e-3,
-        roll_focal_m=_positive(section, "roll_focal_mm", 100.0, where) * 1e-3,
+        qd_focal_m=_positive(section, "qd_focal_mm", 100.0, where) * MM,
+        roll_focal_m=_positive(section, "roll_focal_mm", 100.0, where) * MM,
         qd_u=rotations[0],
         qd_v=rotations[1],
         roll=rotations[2],
-        psd_range_m=_positive(section, "psd_range_um", 100.0, where) * 1e-6,
-        qd_range_m=_positive(section, "qd_range_um", 500.0, where) * 1e-6,
-        roll_range_m=_positive(section, "roll_range_um", 500.0, where) * 1e-6,
-        scale_margin_m=_positive(section, "scale_margin_mm", 5.0, where) * 1e-3,
+        psd_range_m=_positive(section, "psd_range_um", 100.0, where) * UM,
+        qd_range_m=_positive(section, "qd_range_um", 500.0, where) * UM,
+        roll_range_m=_positive(section, "roll_range_um", 500.0, where) * UM,
+        scale_margin_m=_positive(section, "scale_margin_mm", 5.0, where) * MM,
     )

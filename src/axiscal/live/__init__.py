@@ -8,8 +8,97 @@ The pieces (docs/live.md has the architecture):
   batches, faults flagged and kept, every frame and result handed to the recorder and the state;
 - :mod:`axiscal.live.recorder` -- the crash-safe CSV record and its reader;
 - :mod:`axiscal.live.state` -- the latest state a dashboard shows (bounded, independent of clients);
+- :mod:`axiscal.live.session` -- one run set up from a machine, a source, a record and a dashboard;
 - :mod:`axiscal.live.server` -- the Starlette app pushing that state over a WebSocket (imports
-  starlette/uvicorn; the other modules do not).
+  starlette/uvicorn; the other modules do not, so this package loads it only when one of its
+  names is first used).
 """
 
-__all__: list[str] = []
+from __future__ import annotations
+
+from axiscal.live.pipeline import (
+    Pipeline,
+    RunSummary,
+)
+from axiscal.live.protocol import (
+    FrameBatch,
+    LineDecoder,
+    encode_lines,
+    header_line,
+)
+from axiscal.live.recorder import (
+    FORMAT_LINE,
+    RECORD_KIND,
+    Record,
+    Recorder,
+    read_record,
+)
+from axiscal.live.session import (
+    LiveSession,
+    build_system,
+)
+from axiscal.live.sources import (
+    Backoff,
+    ReplaySource,
+    SerialSource,
+    SimSource,
+    SourceStatus,
+    TcpSource,
+    open_source,
+    parse_source,
+)
+from axiscal.live.state import (
+    CORRECTED,
+    SPATIAL,
+    LiveState,
+    axis_error_columns,
+    result_columns,
+)
+
+#: the dashboard server's names, imported from :mod:`axiscal.live.server` only when first used
+#: (it imports starlette and uvicorn, which the rest of the live room and the CLI do without)
+_SERVER_NAMES = ("WEB", "HOST", "ClientStats", "Broadcaster", "create_app", "LiveServer")
+
+
+def __getattr__(name: str):
+    if name in _SERVER_NAMES:
+        from axiscal.live import server
+
+        return getattr(server, name)
+    raise AttributeError(f"module 'axiscal.live' has no attribute {name!r}")
+
+
+__all__ = [
+    "RunSummary",
+    "Pipeline",
+    "FrameBatch",
+    "LineDecoder",
+    "encode_lines",
+    "header_line",
+    "FORMAT_LINE",
+    "RECORD_KIND",
+    "Recorder",
+    "Record",
+    "read_record",
+    "build_system",
+    "LiveSession",
+    "SourceStatus",
+    "Backoff",
+    "SimSource",
+    "ReplaySource",
+    "TcpSource",
+    "SerialSource",
+    "parse_source",
+    "open_source",
+    "SPATIAL",
+    "CORRECTED",
+    "axis_error_columns",
+    "result_columns",
+    "LiveState",
+    "WEB",
+    "HOST",
+    "ClientStats",
+    "Broadcaster",
+    "create_app",
+    "LiveServer",
+]

@@ -1,7 +1,7 @@
 """The live loop: frames from a source through ``MeasurementSystem.process`` to the record and the dashboard.
 
 One batch at a time (whatever the source has, at most its batch limit): process, flag faults
-(``MeasurementSystem`` bits plus :data:`~axiscal.live.protocol.FAULT_MALFORMED`), append frames and
+(``MeasurementSystem`` bits plus ``Fault.MALFORMED`` of :class:`~axiscal.measurement.faults.Fault`), append frames and
 results to the :class:`~axiscal.live.recorder.Recorder`, fold them into the
 :class:`~axiscal.live.state.LiveState`. A faulty frame is kept in the record with NaN results; it
 never stops the run. The loop is bounded: it ends when ``stop`` is set, ``duration_s`` has passed
@@ -21,16 +21,35 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from axiscal.live.protocol import FAULT_MALFORMED, FrameBatch
+from axiscal.live.protocol import FrameBatch
 from axiscal.live.recorder import Recorder
 from axiscal.live.state import LiveState, result_columns
+from axiscal.measurement.display import to_display
+from axiscal.measurement.faults import Fault
+
+#: seconds per millisecond (delays are shown in ms)
+MS = 1e-3
 
 __all__ = ["RunSummary", "Pipeline"]
 
 
 @dataclass(frozen=True)
 class RunSummary:
-    """What a run did: frames, faulty frames, batches, wall time (s), record counts and delays (ms)."""
+    """What a run did.
+
+    Attributes
+    ----------
+    frames, faults, batches : int
+        Frames processed, faulty frames, batches.
+    elapsed_s : float
+        Wall time, s.
+    frames_written, frames_acknowledged : int
+        Frames handed to the record and made durable.
+    latency_p50_ms, latency_p99_ms, latency_max_ms : float
+        Delay from time stamp to record, ms (NaN for sources without a clock).
+    source_state : str
+        The source's state at the end.
+    """
 
     frames: int
     faults: int
@@ -42,6 +61,32 @@ class RunSummary:
     latency_p99_ms: float
     latency_max_ms: float
     source_state: str
+
+    def progress_text(self, rate_hz: float, *, label: str = "live") -> str:
+        """One status line: elapsed time, frames, rate, faults, record counts, delay and source state.
+
+        Parameters
+        ----------
+        rate_hz : float
+            The frame rate to show, Hz.
+        label : str
+            First word (``"live"`` while running, ``"done"`` at the end).
+
+        Returns
+        -------
+        str
+        """
+        record = f"  recorded {self.frames_acknowledged}/{self.frames_written}" if self.frames_written or self.frames_acknowledged else ""
+        delay = f"  delay p99 {self.latency_p99_ms:.2f} ms" if self.latency_p99_ms == self.latency_p99_ms else ""
+        return (
+            f"{label} {self.elapsed_s:6.1f} s  frames {self.frames}  rate {rate_hz:.0f} Hz  faults {self.faults}"
+            f"{record}{delay}  source {self.source_state}"
+        )
+
+    @property
+    def mean_rate_hz(self) -> float:
+        """Frames per second over the whole run (0 before any time has passed)."""
+        return self.frames / self.elapsed_s if self.elapsed_s > 0 else 0.0
 
 
 class Pipeline:
@@ -75,27 +120,52 @@ class Pipeline:
         self._latency_count = 0
 
     def process(self, batch: FrameBatch) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-        """Process one batch: fault bits (N,) int64 and the result columns (NaN where faulty)."""
+        """Process one batch.
+
+        Parameters
+        ----------
+        batch : FrameBatch
+            Frames as a source delivers them.
+
+        Returns
+        -------
+        fault : ndarray of int64, shape (N,)
+            Fault bits (:class:`~axiscal.measurement.faults.Fault`), 0 = good.
+        results : dict of str to ndarray, shape (N,)
+            The SI result columns of :meth:`MeasurementSystem.process` (NaN where faulty).
+        """
         results = self.system.process(batch.frames(self.channels))
-        fault = np.asarray(results["fault"], dtype=np.int64) | np.where(batch.malformed, FAULT_MALFORMED, 0)
+        fault = np.asarray(results["fault"], dtype=np.int64) | np.where(batch.malformed, int(Fault.MALFORMED), 0)
         if batch.malformed.any():
             results = {name: np.where(batch.malformed, np.nan, value) if name not in ("t_s", "fault") else value for name, value in results.items()}
         return fault, results
 
     def step(self, timeout_s: float = 0.02) -> int:
-        """Read what the source has (waiting at most ``timeout_s``), process and record it; return the frame count."""
+        """Read what the source has, process and record it.
+
+        Parameters
+        ----------
+        timeout_s : float
+            Longest wait for frames, s.
+
+        Returns
+        -------
+        int
+            Frames handled (0 when none came).
+        """
         batch = self.source.read(timeout_s)
         n = len(batch)
         if n == 0:
             return 0
         fault, results = self.process(batch)
+        shown = to_display(results)  # the record and the dashboard show um, mm and urad
         if self.recorder is not None:
-            self.recorder.append(batch.t_s, batch.values, fault, results)
+            self.recorder.append(batch.t_s, batch.values, fault, shown)
         offset = self.source.clock_offset_s
         if offset is not None:
             self._keep_latency(time.monotonic() - (batch.t_s + offset))
         if self.state is not None:
-            self.state.update(batch, fault, results)
+            self.state.update(batch, fault, shown)
         self.frames += n
         self.faults += int(np.count_nonzero(fault))
         self.batches += 1
@@ -112,7 +182,18 @@ class Pipeline:
         self._latency_count += len(delays)
 
     def latencies_s(self, last: int | None = None) -> np.ndarray:
-        """Delays (s) from time stamp to record of the most recent frames (at most ``last``), oldest first."""
+        """Delays from time stamp to record of the most recent frames, oldest first.
+
+        Parameters
+        ----------
+        last : int, optional
+            At most this many (None: all kept).
+
+        Returns
+        -------
+        ndarray
+            Delays, s.
+        """
         size = len(self._latency)
         count = min(self._latency_count, size if last is None else min(last, size))
         end = self._latency_count % size
@@ -121,8 +202,20 @@ class Pipeline:
         return np.concatenate([self._latency[size - (count - end) :], self._latency[:end]])
 
     def summary(self, elapsed_s: float, *, recent: int | None = None) -> RunSummary:
-        """The run so far; delay percentiles over the last ``recent`` frames (None: all kept)."""
-        delays = self.latencies_s(recent) * 1e3
+        """The run so far.
+
+        Parameters
+        ----------
+        elapsed_s : float
+            Wall time of the run, s.
+        recent : int, keyword-only
+            Delay percentiles over the last ``recent`` frames (None: all kept).
+
+        Returns
+        -------
+        RunSummary
+        """
+        delays = self.latencies_s(recent) / MS
         p50, p99, worst = (np.percentile(delays, [50, 99, 100]) if len(delays) else (np.nan, np.nan, np.nan))
         return RunSummary(
             frames=self.frames,
@@ -142,7 +235,7 @@ class Pipeline:
         if self.state is None:
             return
         status = self.source.status
-        delays = self.latencies_s(20000) * 1e3
+        delays = self.latencies_s(20000) / MS
         self.state.extra = {
             "source": {"description": status.description, "state": status.state, "connections": status.connections, "retries": status.retries, "message": status.message},
             "record": None
@@ -161,7 +254,20 @@ class Pipeline:
     ) -> RunSummary:
         """Loop until ``stop`` is set, ``duration_s`` has passed or the source is finished; return the summary.
 
-        ``progress`` is called with the running summary every ``progress_interval_s`` (from this thread).
+        Parameters
+        ----------
+        stop : threading.Event, keyword-only
+            Set it to end the loop.
+        duration_s : float, keyword-only
+            Wall time, s (None: no limit).
+        progress : callable, keyword-only
+            Called with the running summary every ``progress_interval_s`` (from this thread).
+        progress_interval_s : float, keyword-only
+            Seconds between progress calls.
+
+        Returns
+        -------
+        RunSummary
         """
         start = time.monotonic()
         deadline = np.inf if duration_s is None else start + duration_s

@@ -22,11 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["FAULT_MALFORMED", "FrameBatch", "LineDecoder", "encode_lines", "header_line"]
-
-#: fault bit the live pipeline adds to MeasurementSystem's bits: the line or row could not be read
-#: as a frame (no readable time stamp).
-FAULT_MALFORMED = 1 << 8
+__all__ = ["FrameBatch", "LineDecoder", "encode_lines", "header_line"]
 
 
 @dataclass(frozen=True)
@@ -174,12 +170,36 @@ class LineDecoder:
 
 
 def encode_lines(t_s: np.ndarray, values: np.ndarray) -> bytes:
-    """Frames as protocol lines (no header): what an acquisition box sends; used by tests and benchmarks."""
+    """Frames as protocol lines (no header): what an acquisition box sends; used by tests and benchmarks.
+
+    Parameters
+    ----------
+    t_s : ndarray, shape (N,)
+        Time stamps, s.
+    values : ndarray, shape (N, C)
+        Channel values in frame order, each in its own unit.
+
+    Returns
+    -------
+    bytes
+        One UTF-8 line per frame.
+    """
     table = np.column_stack([t_s, values])
     text = "".join(",".join(repr(v) for v in row) + "\n" for row in table.tolist())
     return text.encode("utf-8")
 
 
 def header_line(channels: Sequence[str]) -> bytes:
-    """The optional header line naming the columns."""
+    """The optional header line naming the columns.
+
+    Parameters
+    ----------
+    channels : sequence of str
+        Channel names in the order the lines carry them.
+
+    Returns
+    -------
+    bytes
+        ``t_s,<channels>`` and a newline.
+    """
     return (",".join(("t_s",) + tuple(channels)) + "\n").encode("utf-8")

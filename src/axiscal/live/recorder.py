@@ -1,8 +1,13 @@
 """The crash-safe live record: every frame received and every result computed, appended as CSV.
 
-Format (docs/live.md, "Record format"): ``#`` comment lines, a header, then one line per frame::
+Format (docs/live.md, "Record format"): a plain CSV, the header first, then one line per frame::
 
     t_s,<raw channels...>,fault,ex_um,ey_um,ez_um,e_um,px_mm,py_mm,pz_mm,<positions>,<six errors per axis>
+
+Its metadata (what the record is, source, machine, start time, the fault bits) is in the JSON
+sidecar ``<record>.json``, written when the record opens. ``pandas.read_csv(record)`` reads the
+record with no options. Records of the earlier format (``#`` lines before the header) are still
+read by :func:`read_record`.
 
 ``t_s`` to the nanosecond, raw channels to 15 significant digits (a replay reproduces the results
 to about 1e-12 relative), results to 9 significant digits, ``fault`` as an integer, ``nan`` where
@@ -24,17 +29,23 @@ import math
 import os
 import threading
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.jsonio import read_json, sidecar_path, write_sidecar
 from axiscal.io.tabular import parse_csv
+from axiscal.measurement.faults import fault_legend
+from axiscal.measurement.offline import RECORD_KIND, drop_cut_line, is_live_record
 
-__all__ = ["FORMAT_LINE", "Recorder", "Record", "drop_cut_line", "read_record"]
+__all__ = ["FORMAT_LINE", "RECORD_KIND", "Recorder", "Record", "read_record"]
 
+#: first line of a record in the earlier format (comment lines before the header); still read
 FORMAT_LINE = "# axiscal live record, format 1 (docs/live.md)"
+#: the record format written now: plain CSV with a JSON sidecar
+FORMAT_VERSION = 2
 
 
 class Recorder:
@@ -50,8 +61,14 @@ class Recorder:
         Result columns to write after ``fault`` (names as ``MeasurementSystem.process`` returns them).
     sync_interval_s : float
         How often the background thread makes the written frames durable (``fsync``), seconds.
-    comments : sequence of str
-        Lines written as ``# ...`` after the format line (source, machine, start time).
+    metadata : mapping, optional
+        Entries of the record's JSON sidecar besides its kind, format, columns and fault bits
+        (source, machine, start time).
+
+    Raises
+    ------
+    AxiscalError
+        If the record or its sidecar cannot be created or written (naming the file).
     """
 
     def __init__(
@@ -61,7 +78,7 @@ class Recorder:
         result_columns: Sequence[str],
         *,
         sync_interval_s: float = 0.1,
-        comments: Sequence[str] = (),
+        metadata: Mapping[str, object] | None = None,
     ):
         if not sync_interval_s > 0:
             raise AxiscalError(f"sync interval must be positive, got {sync_interval_s}")
@@ -75,14 +92,26 @@ class Recorder:
             self._fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_APPEND, 0o644)
         except OSError as exc:
             raise AxiscalError(f"cannot open the record file ({exc.strerror})", path=self.path) from None
-        head = [FORMAT_LINE] + [f"# {c}" for c in comments] + [",".join(self.columns)]
         try:
-            os.write(self._fd, ("\n".join(head) + "\n").encode("utf-8"))
+            os.write(self._fd, (",".join(self.columns) + "\n").encode("utf-8"))
             os.fsync(self._fd)
         except OSError as exc:
             os.close(self._fd)
             raise AxiscalError(f"cannot write the record file ({exc.strerror})", path=self.path) from None
         _sync_folder(self.path)
+        try:
+            write_sidecar(
+                self.path,
+                kind=RECORD_KIND,
+                format=FORMAT_VERSION,
+                channels=list(self.channels),
+                results=list(self.result_columns),
+                fault_bits=fault_legend(),
+                **dict(metadata or {}),
+            )
+        except AxiscalError:
+            os.close(self._fd)
+            raise
         self._lock = threading.Lock()
         self._written = 0
         self._acknowledged = 0
@@ -177,35 +206,47 @@ def _sync_folder(path: Path) -> None:
 
 @dataclass(frozen=True)
 class Record:
-    """A record read back: its comment lines, columns as float arrays, and whether a cut last line was dropped."""
+    """A record read back.
+
+    Attributes
+    ----------
+    path : str
+        The record file.
+    comments : tuple of str
+        Comment lines of a record in the earlier format (empty for a plain record).
+    columns : dict of str to ndarray
+        Every column as floats (NaN where missing), display units as named.
+    truncated : bool
+        Whether a last line cut short by a crash was dropped.
+    metadata : dict
+        The JSON sidecar (empty when there is none).
+    """
 
     path: str
     comments: tuple[str, ...]
     columns: dict[str, np.ndarray]
     truncated: bool
+    metadata: dict = field(default_factory=dict)
 
     def __len__(self) -> int:
         return len(self.columns["t_s"])
 
 
-def drop_cut_line(text: str) -> tuple[str, bool]:
-    """A live record's text without a last line cut short by a crash, and whether one was dropped.
-
-    The recorder ends every line with a newline, so in a live record (first line
-    :data:`FORMAT_LINE`) a last line without one was being written when the process died. Any other
-    CSV keeps a last line that merely lacks its newline: it is a frame like the others.
-    """
-    if text and not text.endswith("\n") and text.startswith(FORMAT_LINE):
-        return text[: text.rfind("\n") + 1], True
-    return text, False
-
-
 def read_record(path: str | Path) -> Record:
     """Read a live record (or any CSV with a ``t_s`` column): empty cells and ``nan`` are NaN.
 
-    In a live record, a last line without its newline (the process was killed while writing it)
-    is dropped and :attr:`Record.truncated` is set (:func:`drop_cut_line`); every complete line is
-    returned.
+    In a live record (its sidecar says so, its columns are a record's, or it is in the earlier
+    format), a last line without its newline (the process was killed while writing it) is dropped
+    and :attr:`Record.truncated` is set; every complete line is returned.
+
+    Parameters
+    ----------
+    path : str or Path
+        The record (or CSV) file.
+
+    Returns
+    -------
+    Record
 
     Raises
     ------
@@ -220,7 +261,13 @@ def read_record(path: str | Path) -> Record:
         raise AxiscalError("file not found", path=path) from None
     except OSError as exc:
         raise AxiscalError(f"cannot read file ({exc.strerror})", path=path) from None
-    text, truncated = drop_cut_line(data.decode("utf-8-sig", errors="replace"))
+    text = data.decode("utf-8-sig", errors="replace")
+    first = text[: text.find("\n")] if "\n" in text else text
+    if text.startswith(FORMAT_LINE) or is_live_record(path, [c.strip() for c in first.split(",")]):
+        kept = drop_cut_line(text)
+        truncated, text = kept != text, kept
+    else:
+        truncated = False
     lines = text.split("\n")
     comments = [line.strip()[1:].strip() for line in lines if line.strip().startswith("#")]
     parsed = parse_csv(lines, path=str(path), min_rows=0)
@@ -233,7 +280,9 @@ def read_record(path: str | Path) -> Record:
         table = _parse_cells(rows, header, numbers, path)
     table[~np.isfinite(table)] = np.nan
     columns = {name: np.ascontiguousarray(table[:, i]) for i, name in enumerate(header)}
-    return Record(str(path), tuple(comments), columns, truncated)
+    side = sidecar_path(path)
+    metadata = read_json(side) if side.is_file() else {}
+    return Record(str(path), tuple(comments), columns, truncated, metadata if isinstance(metadata, dict) else {})
 
 
 def _parse_cells(rows: Sequence[Sequence[str]], header: list[str], numbers: Sequence[int], path: Path) -> np.ndarray:

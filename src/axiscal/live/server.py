@@ -40,8 +40,17 @@ HOST = "127.0.0.1"
 
 @dataclass
 class ClientStats:
-    """Per-client counters: states sent, states skipped because the client was still busy, and the
-    version of the last state sent (the newest is ``Broadcaster.version``)."""
+    """Per-client counters of the dashboard's WebSocket.
+
+    Attributes
+    ----------
+    sent : int
+        States sent.
+    skipped : int
+        States skipped because the client was still busy.
+    version : int
+        Version of the last state sent (the newest is ``Broadcaster.version``).
+    """
 
     sent: int = 0
     skipped: int = 0
@@ -53,6 +62,15 @@ class Broadcaster:
 
     The state is turned into JSON only while a client is connected (or ``/api/state`` asks), so a
     dashboard nobody watches costs the pipeline nothing.
+
+    Parameters
+    ----------
+    state : LiveState
+        What is shown.
+    update_hz : float, keyword-only
+        Refreshes per second.
+    title : str, keyword-only
+        The page's title.
     """
 
     def __init__(self, state: LiveState, *, update_hz: float = 10.0, title: str = "axiscal live"):
@@ -85,7 +103,27 @@ class Broadcaster:
 
 
 def create_app(state: LiveState, *, update_hz: float = 10.0, title: str = "axiscal live") -> Starlette:
-    """The dashboard app for ``state`` (its broadcaster is ``app.state.broadcaster``)."""
+    """The dashboard app for ``state``.
+
+    Parameters
+    ----------
+    state : LiveState
+        What the page shows.
+    update_hz : float, keyword-only
+        Refreshes per second.
+    title : str, keyword-only
+        The page's title.
+
+    Returns
+    -------
+    Starlette
+        The app; its broadcaster is ``app.state.broadcaster``.
+
+    Raises
+    ------
+    AxiscalError
+        If ``update_hz`` is not positive.
+    """
     broadcaster = Broadcaster(state, update_hz=update_hz, title=title)
 
     @contextlib.asynccontextmanager

@@ -49,7 +49,18 @@ __all__ = [
 class SourceStatus:
     """What a source is doing, for the dashboard and the progress line.
 
-    ``state`` is one of ``"connecting"``, ``"streaming"``, ``"retrying"``, ``"finished"``.
+    Attributes
+    ----------
+    description : str
+        What the source is (``"sim (1000 Hz, diagonal)"``, a file, an address).
+    state : str
+        One of ``"connecting"``, ``"streaming"``, ``"retrying"``, ``"finished"``.
+    connections, retries : int
+        Connections made and retries after a failure.
+    message : str
+        The last problem, if any.
+    attempt_times : list of float
+        Monotonic times of the connection attempts.
     """
 
     description: str
@@ -400,7 +411,30 @@ class SerialSource(_LineStreamSource):
 
 
 def parse_source(spec: str) -> tuple[str, str]:
-    """Split a ``--source`` value into (kind, argument): ``sim``, ``replay:FILE``, ``tcp:HOST:PORT``, ``serial:DEVICE[:BAUD]``."""
+    """Split a ``--source`` value into (kind, argument).
+
+    Parameters
+    ----------
+    spec : str
+        ``sim``, ``replay:FILE``, ``tcp:HOST:PORT`` or ``serial:DEVICE[:BAUD]``.
+
+    Returns
+    -------
+    kind : str
+        ``"sim"``, ``"replay"``, ``"tcp"`` or ``"serial"``.
+    argument : str
+        The rest (empty for ``sim``).
+
+    Raises
+    ------
+    AxiscalError
+        For an unknown kind or a TCP address without a valid port.
+
+    Examples
+    --------
+    >>> parse_source("tcp:127.0.0.1:9000")
+    ('tcp', '127.0.0.1:9000')
+    """
     kind, sep, argument = spec.partition(":")
     kind = kind.strip().lower()
     if kind == "sim" and not sep:
@@ -425,7 +459,29 @@ def open_source(
 ):
     """Build the source a ``--source`` value names (see :func:`parse_source`).
 
-    ``virtual_module`` makes the :class:`~axiscal.measurement.virtual.VirtualModule` for ``sim`` when called.
+    Parameters
+    ----------
+    spec : str
+        The ``--source`` value.
+    channels : sequence of str
+        The measurement system's channels, in frame order.
+    virtual_module : callable, keyword-only
+        Makes the :class:`~axiscal.measurement.virtual.VirtualModule` for ``sim`` when called.
+    rate_hz : float, keyword-only
+        Frames per second of ``sim``, Hz.
+    path : str, keyword-only
+        Motion of ``sim``.
+    pace : bool, keyword-only
+        Replay at the file's ``t_s`` pace.
+
+    Returns
+    -------
+    SimSource, ReplaySource, TcpSource or SerialSource
+
+    Raises
+    ------
+    AxiscalError
+        For a bad spec or a replay file that does not exist.
     """
     kind, argument = parse_source(spec)
     if kind == "sim":

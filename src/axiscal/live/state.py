@@ -18,7 +18,9 @@ from typing import Any
 
 import numpy as np
 
-from axiscal.live.protocol import FAULT_MALFORMED, FrameBatch
+from axiscal.live.protocol import FrameBatch
+from axiscal.measurement.faults import fault_text
+from axiscal.units import MM
 
 __all__ = ["SPATIAL", "CORRECTED", "axis_error_columns", "result_columns", "LiveState"]
 
@@ -27,12 +29,39 @@ CORRECTED = ("px_mm", "py_mm", "pz_mm")
 
 
 def axis_error_columns(letter: str) -> tuple[str, ...]:
-    """The six ISO 230-1 error columns of axis ``letter`` as ``MeasurementSystem.process`` names them."""
+    """The six ISO 230-1 error columns of axis ``letter`` as records and the dashboard show them.
+
+    Parameters
+    ----------
+    letter : str
+        Axis letter.
+
+    Returns
+    -------
+    tuple of str
+        ``EX<L>_um``, ``EY<L>_um``, ``EZ<L>_um``, ``EA<L>_urad``, ``EB<L>_urad``, ``EC<L>_urad``.
+
+    Examples
+    --------
+    >>> axis_error_columns("Z")[:2]
+    ('EXZ_um', 'EYZ_um')
+    """
     return tuple(f"E{d}{letter}_um" for d in "XYZ") + tuple(f"E{r}{letter}_urad" for r in "ABC")
 
 
 def result_columns(axes: tuple[str, ...]) -> tuple[str, ...]:
-    """Result columns of a live record, in order: spatial error, corrected point, positions, six errors per axis."""
+    """Result columns of a live record, in order: spatial error, corrected point, positions, six errors per axis.
+
+    Parameters
+    ----------
+    axes : tuple of str
+        Axis letters in chain order.
+
+    Returns
+    -------
+    tuple of str
+        Display names (``ex_um`` ... ``px_mm`` ... ``x_mm`` ... ``EXX_um`` ...).
+    """
     positions = tuple(f"{letter.lower()}_mm" for letter in axes)
     errors = tuple(name for letter in axes for name in axis_error_columns(letter))
     return SPATIAL + CORRECTED + positions + errors
@@ -67,12 +96,11 @@ class LiveState:
         limits = [system.channel_limits.get(name, (-np.inf, np.inf)) for name in self.channels]
         self._low = np.array([lo for lo, _ in limits], dtype=float)
         self._high = np.array([hi for _, hi in limits], dtype=float)
-        self._fault_text = system.fault_text
         self.bins = bins
         self._edges: dict[str, np.ndarray] = {}
         for letter in self.axes:
             start, end = system.machine.travel_m(letter)
-            self._edges[letter] = np.linspace(start * 1e3, end * 1e3, bins + 1)
+            self._edges[letter] = np.linspace(start / MM, end / MM, bins + 1)
         self._profiles = {letter: np.full((6, bins), np.nan) for letter in self.axes}
         self._history_dt = history_s / history_points
         self._history = np.full((history_points, 1 + len(SPATIAL)), np.nan)
@@ -154,12 +182,7 @@ class LiveState:
 
     def describe_fault(self, fault: int) -> str:
         """The fault bits in words: the measurement system's bits and the live pipeline's own."""
-        parts = []
-        if fault & FAULT_MALFORMED:
-            parts.append("malformed frame (no readable time stamp, or more fields than columns)")
-        if fault & ~FAULT_MALFORMED:
-            parts.append(self._fault_text(fault & ~FAULT_MALFORMED))
-        return "; ".join(parts)
+        return fault_text(fault) if fault else ""
 
     def measure_rate(self) -> float:
         """Frames per second since the previous call (the progress line and snapshots use it)."""

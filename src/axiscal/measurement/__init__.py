@@ -2,11 +2,37 @@
 
 from __future__ import annotations
 
+from axiscal.measurement.display import (
+    display_factor,
+    display_name,
+    to_display,
+)
+from axiscal.measurement.faults import (
+    FAULT_TEXT,
+    Fault,
+    fault_legend,
+    fault_text,
+)
+from axiscal.measurement.offline import (
+    MAX_SIMULATED_FRAMES,
+    RECORD_KIND,
+    CsvOutput,
+    DiagonalReport,
+    MeasureResult,
+    calibrate_mirror,
+    calibrate_sensitivity,
+    columns_csv,
+    drop_cut_line,
+    is_live_record,
+    load_system,
+    measure_file,
+    read_frames,
+    run_diagonal_experiment,
+    simulate_frames,
+    simulate_laser,
+    write_data_csv,
+)
 from axiscal.measurement.pipeline import (
-    FAULT_MISSING,
-    FAULT_NAMES,
-    FAULT_POSITION,
-    FAULT_RANGE,
     MeasurementSystem,
     diagonal_errors,
     spatial_error,
@@ -29,10 +55,30 @@ from axiscal.measurement.virtual import (
 )
 
 __all__ = [
-    "FAULT_MISSING",
-    "FAULT_RANGE",
-    "FAULT_POSITION",
-    "FAULT_NAMES",
+    "display_name",
+    "display_factor",
+    "to_display",
+    "Fault",
+    "FAULT_TEXT",
+    "fault_text",
+    "fault_legend",
+    "RECORD_KIND",
+    "MAX_SIMULATED_FRAMES",
+    "load_system",
+    "is_live_record",
+    "drop_cut_line",
+    "read_frames",
+    "columns_csv",
+    "write_data_csv",
+    "CsvOutput",
+    "MeasureResult",
+    "measure_file",
+    "calibrate_sensitivity",
+    "calibrate_mirror",
+    "simulate_frames",
+    "simulate_laser",
+    "DiagonalReport",
+    "run_diagonal_experiment",
     "MeasurementSystem",
     "spatial_error",
     "diagonal_errors",

@@ -12,9 +12,10 @@ The pipeline of one batch of frames, vectorised over the frames:
 4. HTM chain (eqs 6-10) of :mod:`axiscal.model.kinematics` with those per-frame errors: the spatial
    error of the functional point and its actual (corrected) position.
 
-Faults are flagged per frame and never raise: bit 0 a channel is missing (NaN), bit 1 a channel
-is outside its valid range, bit 2 an axis' commanded position is outside the travel the error
-model covers (the machine's error table; the scale may read a little beyond, up to its margin).
+Faults are flagged per frame with the bits of :class:`axiscal.measurement.faults.Fault` and never
+raise: a channel is missing (NaN), a channel is outside its valid range, an axis' commanded
+position is outside the travel the error model covers (the machine's error table; the scale may
+read a little beyond, up to its margin).
 A faulty frame keeps its time stamp and fault bits; every other result of it is NaN.
 """
 
@@ -28,6 +29,7 @@ import numpy as np
 
 from axiscal.conventions import component_names
 from axiscal.errors import AxiscalError
+from axiscal.instruments.abbe import transfer_components
 from axiscal.instruments.calibration import (
     Calibration,
     MirrorCorrection,
@@ -35,13 +37,11 @@ from axiscal.instruments.calibration import (
 )
 from axiscal.instruments.sensors import SensorHead, sensor_head_from_dict
 from axiscal.io.tabular import read_toml
+from axiscal.measurement.faults import Fault, fault_text
 from axiscal.model.machine import Machine, machine_from_dict
+from axiscal.units import MM, UM
 
 __all__ = [
-    "FAULT_MISSING",
-    "FAULT_RANGE",
-    "FAULT_POSITION",
-    "FAULT_NAMES",
     "MeasurementSystem",
     "spatial_error",
     "diagonal_errors",
@@ -50,14 +50,6 @@ __all__ = [
 #: frames processed at once: big enough to amortise the Python overhead, small enough for the cache
 _CHUNK = 16384
 
-FAULT_MISSING = 1
-FAULT_RANGE = 2
-FAULT_POSITION = 4
-FAULT_NAMES = {
-    FAULT_MISSING: "missing channel",
-    FAULT_RANGE: "channel out of range",
-    FAULT_POSITION: "position outside the error model",
-}
 
 
 @dataclass(frozen=True)
@@ -81,7 +73,7 @@ class _AxisPlan:
 
 def _error_names(letter: str) -> tuple[str, ...]:
     names = component_names(letter)
-    return tuple(f"{n}_um" for n in names[:3]) + tuple(f"{n}_urad" for n in names[3:])
+    return tuple(f"{n}_m" for n in names[:3]) + tuple(f"{n}_rad" for n in names[3:])
 
 
 class MeasurementSystem:
@@ -129,13 +121,13 @@ class MeasurementSystem:
                 channels.append(name)
                 if role in ("cmd", "scale"):
                     margin = head.scale_margin_m
-                    limits[name] = ((start - margin) * 1e3, (end + margin) * 1e3)
+                    limits[name] = ((start - margin) / MM, (end + margin) / MM)
                 elif role.startswith("psd"):
-                    limits[name] = (-head.psd_range_m * 1e6, head.psd_range_m * 1e6)
+                    limits[name] = (-head.psd_range_m / UM, head.psd_range_m / UM)
                 elif role == "roll":
-                    limits[name] = (-head.roll_range_m * 1e6, head.roll_range_m * 1e6)
+                    limits[name] = (-head.roll_range_m / UM, head.roll_range_m / UM)
                 else:
-                    limits[name] = (-head.qd_range_m * 1e6, head.qd_range_m * 1e6)
+                    limits[name] = (-head.qd_range_m / UM, head.qd_range_m / UM)
         self.channels = tuple(channels)
         self.channel_limits = limits
         self._prepare()
@@ -150,15 +142,15 @@ class MeasurementSystem:
         for letter in self.axes:
             head = self.heads[letter]
             names = head.channels
-            factor[row[names["cmd"]]] = factor[row[names["scale"]]] = 1e-3
+            factor[row[names["cmd"]]] = factor[row[names["scale"]]] = MM
             error_rows = [0] * 6
             error_rows[head.index] = row[names["scale"]]
             for d in head.cross_directions:
-                factor[row[names[f"psd_{d}"]]] = 1e-6
+                factor[row[names[f"psd_{d}"]]] = UM
                 error_rows["xyz".index(d)] = row[names[f"psd_{d}"]]
             for role, focal in (("qd_u", head.qd_focal_m), ("qd_v", head.qd_focal_m), ("roll", 2.0 * head.roll_focal_m)):
                 component = getattr(head, role)
-                factor[row[names[role]]] = component.sign * 1e-6 / focal
+                factor[row[names[role]]] = component.sign * UM / focal
                 error_rows[component.index] = row[names[role]]
             start, end = self._travel[letter]
             plans.append(
@@ -175,7 +167,7 @@ class MeasurementSystem:
                     start_m=start,
                     end_m=end,
                     error_names=_error_names(letter),
-                    position_name=f"{letter.lower()}_mm",
+                    position_name=f"{letter.lower()}_m",
                 )
             )
         calibrations = [self.calibration.channel(c) for c in self.channels]
@@ -213,29 +205,55 @@ class MeasurementSystem:
         return system
 
     def with_calibration(self, calibration: Calibration) -> "MeasurementSystem":
-        """The same system with ``calibration`` merged over its own."""
+        """The same system with ``calibration`` merged over its own.
+
+        Parameters
+        ----------
+        calibration : Calibration
+            Entries that add to or replace the system's own.
+
+        Returns
+        -------
+        MeasurementSystem
+            A new system; this one is unchanged.
+        """
         return MeasurementSystem(self.machine, self.heads, self.calibration.merged(calibration))
 
     def fault_text(self, fault: int) -> str:
-        """The fault bits of a frame in words (``"ok"`` for 0)."""
-        fault = int(fault)
-        if fault == 0:
-            return "ok"
-        words = [text for bit, text in FAULT_NAMES.items() if fault & bit]
-        unknown = fault & ~sum(FAULT_NAMES)
-        if unknown:
-            words.append(f"unknown fault bits {unknown:#x}")
-        return "; ".join(words)
+        """The fault bits of a frame in words.
+
+        Parameters
+        ----------
+        fault : int
+            The frame's fault bits.
+
+        Returns
+        -------
+        str
+            ``"ok"`` for 0; see :func:`axiscal.measurement.faults.fault_text`.
+        """
+        return fault_text(fault)
 
     def channel_faults(self, frames: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
-        """Fault bits (missing, out of range) of every raw channel separately: name -> int64 (N,)."""
+        """Fault bits (missing, out of range) of every raw channel separately.
+
+        Parameters
+        ----------
+        frames : mapping of str to ndarray, shape (N,)
+            Raw channels (an absent one counts as missing).
+
+        Returns
+        -------
+        dict of str to ndarray of int64, shape (N,)
+            Per channel ``Fault.MISSING`` and ``Fault.RANGE`` bits.
+        """
         n = _batch_size(frames)
         out = {}
         for name in self.channels:
             value = np.asarray(frames[name], dtype=float) if name in frames else np.full(n, np.nan)
             low, high = self.channel_limits[name]
-            bits = np.isnan(value).astype(np.int64)
-            bits |= ((value < low) | (value > high)).astype(np.int64) << 1
+            bits = np.where(np.isnan(value), int(Fault.MISSING), 0).astype(np.int64)
+            bits |= np.where((value < low) | (value > high), int(Fault.RANGE), 0)
             out[name] = bits
         return out
 
@@ -251,12 +269,19 @@ class MeasurementSystem:
         Returns
         -------
         dict of str to ndarray, shape (N,)
-            ``"t_s"``; per axis the six errors at the axis' functional point (``"EXX_um"``,
-            ``"EYX_um"``, ``"EZX_um"``, ``"EAX_urad"``, ``"EBX_urad"``, ``"ECX_urad"``, ...);
-            the scale positions ``"x_mm"``, ``"z_mm"``; the spatial error ``"ex_um"``,
-            ``"ey_um"``, ``"ez_um"`` and its length ``"e_um"``; the actual functional point
-            ``"px_mm"``, ``"py_mm"``, ``"pz_mm"``; and ``"fault"`` (int64 bits, 0 = good).
-            Results of a faulty frame are NaN.
+            All SI: ``"t_s"``; per axis the six errors at the axis' functional point
+            (``"EXX_m"``, ``"EYX_m"``, ``"EZX_m"``, ``"EAX_rad"``, ``"EBX_rad"``, ``"ECX_rad"``,
+            ...); the scale positions ``"x_m"``, ``"z_m"``; the spatial error ``"ex_m"``,
+            ``"ey_m"``, ``"ez_m"`` and its length ``"e_m"``; the actual functional point
+            ``"px_m"``, ``"py_m"``, ``"pz_m"``; and ``"fault"`` (int64 bits of
+            :class:`~axiscal.measurement.faults.Fault`, 0 = good). Results of a faulty frame are
+            NaN. :func:`axiscal.measurement.display.to_display` gives the columns files and
+            screens show (``"EXX_um"``, ``"x_mm"``, ...).
+
+        Raises
+        ------
+        AxiscalError
+            If the frame columns differ in length or none is given.
         """
         n = _batch_size(frames)
         if n <= _CHUNK:
@@ -272,9 +297,9 @@ class MeasurementSystem:
         for row, name in enumerate(self.channels):
             column = frames.get(name)
             raw[row] = np.nan if column is None else column
-        fault = np.any(np.isnan(raw), axis=0).astype(np.int64)
+        fault = np.where(np.any(np.isnan(raw), axis=0), int(Fault.MISSING), 0).astype(np.int64)
         outside = np.any((raw < self._low) | (raw > self._high), axis=0)
-        fault |= outside.astype(np.int64) << 1
+        fault |= np.where(outside, int(Fault.RANGE), 0)
         si = raw * self._scale_si
         si += self._offset_si
         out: dict[str, np.ndarray] = {"t_s": np.asarray(frames.get("t_s", np.full(n, np.nan)), dtype=float)}
@@ -282,30 +307,31 @@ class MeasurementSystem:
         measured: dict[str, np.ndarray] = {}
         for plan in self._plans:
             cmd = si[plan.cmd_row]
-            fault |= ((cmd < plan.start_m) | (cmd > plan.end_m)).astype(np.int64) << 2
+            fault |= np.where((cmd < plan.start_m) | (cmd > plan.end_m), int(Fault.POSITION), 0)
             errors = si[plan.error_rows]
             errors[plan.index] -= cmd
             if plan.mirror is not None:
                 errors[plan.roll_index] -= plan.roll_sign * plan.mirror.evaluate(cmd)
-            _abbe_bryan(errors, plan.offsets_m)
+            errors[:3] = transfer_components(errors[:3].T, errors[3:].T, plan.offsets_m).T
             command[plan.letter] = cmd
             measured[plan.letter] = errors
-            scaled = errors * 1e6
-            for name, row in zip(plan.error_names, scaled):
+            for name, row in zip(plan.error_names, errors):
                 out[name] = row
-            out[plan.position_name] = si[plan.scale_row] * 1e3
+            out[plan.position_name] = si[plan.scale_row]
         bad = fault != 0
         if np.any(bad):
             command = {k: np.where(bad, self._travel[k][0], q) for k, q in command.items()}
         error = spatial_error(self.machine, command, measured)
         actual = self.machine.nominal_point(command) + error
-        error_um = error.T * 1e6
-        actual_mm = actual.T * 1e3
+        error_t = np.ascontiguousarray(error.T)
+        actual_t = np.ascontiguousarray(actual.T)
         for k, axis in enumerate("xyz"):
-            out[f"e{axis}_um"] = error_um[k]
-        out["e_um"] = np.sqrt(np.einsum("ij,ij->j", error_um, error_um))
+            out[f"e{axis}_m"] = error_t[k]
+        # element by element in a fixed order: a reduction (einsum) may round differently with the
+        # memory alignment of the batch, and a stream split anywhere must give the same numbers
+        out["e_m"] = np.sqrt(error_t[0] * error_t[0] + error_t[1] * error_t[1] + error_t[2] * error_t[2])
         for k, axis in enumerate("xyz"):
-            out[f"p{axis}_mm"] = actual_mm[k]
+            out[f"p{axis}_m"] = actual_t[k]
         if np.any(bad):
             for name, value in out.items():
                 if name != "t_s":
@@ -344,20 +370,6 @@ def _batch_size(frames: Mapping[str, np.ndarray]) -> int:
     if not sizes:
         raise AxiscalError("no frame columns given")
     return sizes.pop()
-
-
-def _abbe_bryan(errors: np.ndarray, offsets: np.ndarray) -> None:
-    """In place: ``delta_i += (eps x (P - M_i))_i`` for the rows tx, ty, tz of ``errors`` (6, N)."""
-    ea, eb, ec = errors[3], errors[4], errors[5]
-    rx, ry, rz = offsets[0]
-    if ry or rz:
-        errors[0] += eb * rz - ec * ry
-    rx, ry, rz = offsets[1]
-    if rx or rz:
-        errors[1] += ec * rx - ea * rz
-    rx, ry, rz = offsets[2]
-    if rx or ry:
-        errors[2] += ea * ry - eb * rx
 
 
 def diagonal_errors(

@@ -177,7 +177,7 @@ def plot_diagonal_experiment(result, path: str | Path) -> None:
     Parameters
     ----------
     result : axiscal.measurement.virtual.DiagonalExperiment
-        The simulated experiment (``x_mm``, ``z_mm``, ``before_um``, ``after_um``, ``scales_only_um``).
+        The simulated experiment (``x_m``, ``z_m``, ``before_m``, ``after_m``, ``scales_only_m``, SI).
     path : str or Path
         Figure file; the format follows the suffix.
 
@@ -193,10 +193,10 @@ def plot_diagonal_experiment(result, path: str | Path) -> None:
     """
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(7.0, 4.2))
-    diagonal_mm = np.hypot(result.x_mm, result.z_mm)
-    ax.plot(diagonal_mm, -np.asarray(result.before_um), "o-", label=f"before the model, E_BD (max {result.before_max_um:.1f} um)")
-    ax.plot(diagonal_mm, -np.asarray(result.scales_only_um), "^--", label=f"scales only (max {result.scales_only_max_um:.1f} um)")
-    ax.plot(diagonal_mm, -np.asarray(result.after_um), "s-", label=f"after the model, E_AD (max {result.after_max_um:.2f} um)")
+    diagonal_mm = np.hypot(result.x_m, result.z_m) / MM
+    ax.plot(diagonal_mm, -result.before_m / UM, "o-", label=f"before the model, E_BD (max {result.before_max_m / UM:.1f} um)")
+    ax.plot(diagonal_mm, -result.scales_only_m / UM, "^--", label=f"scales only (max {result.scales_only_max_m / UM:.1f} um)")
+    ax.plot(diagonal_mm, -result.after_m / UM, "s-", label=f"after the model, E_AD (max {result.after_max_m / UM:.2f} um)")
     ax.axhline(0.0, color="0.6", lw=0.8)
     ax.set_xlabel("position along the XZ diagonal (mm)")
     ax.set_ylabel("diagonal error, actual - nominal (um)")

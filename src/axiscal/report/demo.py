@@ -118,7 +118,11 @@ def _summary(machine: Machine, volumetric: VolumetricMap, diagonal: DiagonalResu
         "diagonal_E_BD_range_um": diagonal.range_before_m / UM,
         "diagonal_E_AD_range_um": diagonal.range_after_m / UM,
         "experiment": {
-            f"{load:g}kg": {"before_max_um": e.before_max_um, "after_max_um": e.after_max_um, "scales_only_max_um": e.scales_only_max_um}
+            f"{load:g}kg": {
+                "before_max_um": e.before_max_m / UM,
+                "after_max_um": e.after_max_m / UM,
+                "scales_only_max_um": e.scales_only_max_m / UM,
+            }
             for load, e in experiments.items()
         },
     }

@@ -1,0 +1,240 @@
+"""One live run set up from what a user names: machine, source, record, dashboard (what ``axiscal live`` does).
+
+:class:`LiveSession` checks the settings, builds the measurement system (a machine TOML or the
+built-in virtual module of paper 000), opens the source, the record (plain CSV with its JSON
+sidecar, :mod:`axiscal.live.recorder`) and the dashboard server, and runs the
+:class:`~axiscal.live.pipeline.Pipeline` until the duration has passed, a replay is finished or
+it is stopped.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from collections.abc import Callable
+from datetime import datetime, timezone
+from pathlib import Path
+
+from axiscal.errors import AxiscalError
+from axiscal.live.pipeline import Pipeline, RunSummary
+from axiscal.live.recorder import Recorder
+from axiscal.live.sources import open_source, parse_source
+from axiscal.live.state import LiveState, result_columns
+from axiscal.measurement.pipeline import MeasurementSystem
+from axiscal.measurement.virtual import PATHS, VirtualModule
+
+__all__ = ["build_system", "LiveSession"]
+
+
+def build_system(machine: str | Path | None, source_kind: str, *, seed: int = 0, load_kg: float = 0.0):
+    """The measurement system of a live run and a maker of the virtual module (built once, on first call).
+
+    Parameters
+    ----------
+    machine : str or Path, optional
+        Machine TOML with sensor sections; None: the built-in virtual module.
+    source_kind : str
+        ``"sim"``, ``"replay"``, ``"tcp"`` or ``"serial"`` (:func:`~axiscal.live.sources.parse_source`).
+    seed : int
+        Seed of the virtual module.
+    load_kg : float
+        Mass on the virtual module's Z slide, kg.
+
+    Returns
+    -------
+    system : MeasurementSystem
+    module : callable
+        Returns the (one) :class:`~axiscal.measurement.virtual.VirtualModule` of the sim source.
+
+    Raises
+    ------
+    AxiscalError
+        If the machine file is wrong, or the sim source cannot feed the machine's channels.
+    """
+    built: list[VirtualModule] = []
+
+    def module() -> VirtualModule:
+        if not built:
+            built.append(VirtualModule(seed=seed, load_kg=load_kg))
+        return built[0]
+
+    if machine is None:
+        return module().measurement_system(), module
+    system = MeasurementSystem.from_toml(machine)
+    if source_kind == "sim":
+        simulated = set(module().measurement_system().channels)
+        unknown = [name for name in system.channels if name not in simulated]
+        if unknown:
+            raise AxiscalError(
+                f"the sim source cannot feed channel(s) {', '.join(unknown)}: it emits the virtual module's channels; "
+                "use --source replay:FILE or tcp:HOST:PORT with this machine",
+                path=machine,
+            )
+    return system, module
+
+
+def _check(rate_hz: float, duration_s: float | None, port: int, update_hz: float, load_kg: float, path: str) -> None:
+    if not (rate_hz > 0 and math.isfinite(rate_hz)):
+        raise AxiscalError(f"--rate must be a positive number of frames per second, got {rate_hz:g}")
+    if duration_s is not None and not duration_s > 0:
+        raise AxiscalError(f"--duration must be positive seconds, got {duration_s:g}")
+    if not 0 <= port <= 65535:
+        raise AxiscalError(f"--port must be 0-65535, got {port}")
+    if not update_hz > 0:
+        raise AxiscalError(f"--update-hz must be positive, got {update_hz:g}")
+    if load_kg < 0:
+        raise AxiscalError(f"--load-kg must not be negative, got {load_kg:g}")
+    if path not in PATHS:
+        raise AxiscalError(f"unknown path '{path}'; use one of {', '.join(PATHS)}")
+
+
+class LiveSession:
+    """Everything of one live run: system, source, state, record, pipeline and (optionally) the dashboard.
+
+    Parameters
+    ----------
+    machine : str or Path, optional
+        Machine TOML with ``[axes.<L>.sensors]`` (default: the built-in virtual module).
+    source : str
+        ``sim``, ``replay:FILE``, ``tcp:HOST:PORT`` or ``serial:DEVICE[:BAUD]``.
+    rate_hz : float
+        Frames per second of the sim source, Hz.
+    path : str
+        Motion of the sim source (:data:`~axiscal.measurement.virtual.PATHS`).
+    seed : int
+        Seed of the virtual module.
+    load_kg : float
+        Mass on the virtual module's Z slide, kg.
+    pace : bool
+        Replay a file at its ``t_s`` pace (False: as fast as possible).
+    record : str or Path, optional
+        Record every frame and result here (plus a JSON sidecar).
+    server : bool
+        Serve the dashboard.
+    port : int
+        Dashboard port on 127.0.0.1 (0: any free port).
+    update_hz : float
+        Dashboard refreshes per second.
+    duration_s : float, optional
+        Only checked here; passed to :meth:`run`.
+
+    Raises
+    ------
+    AxiscalError
+        For a bad setting, a record that names the file replayed, or a record or source that
+        cannot be opened. Whatever was opened is closed again.
+    """
+
+    def __init__(
+        self,
+        *,
+        machine: str | Path | None = None,
+        source: str = "sim",
+        rate_hz: float = 1000.0,
+        path: str = "diagonal",
+        seed: int = 0,
+        load_kg: float = 0.0,
+        pace: bool = True,
+        record: str | Path | None = None,
+        server: bool = True,
+        port: int = 8765,
+        update_hz: float = 10.0,
+        duration_s: float | None = None,
+    ):
+        _check(rate_hz, duration_s, port, update_hz, load_kg, path)
+        kind, argument = parse_source(source)
+        if kind == "replay" and record is not None and Path(record).resolve() == Path(argument).resolve():
+            raise AxiscalError("--record names the file being replayed; record to another file", path=record)
+        self.system, module = build_system(machine, kind, seed=seed, load_kg=load_kg)
+        self.source = open_source(source, self.system.channels, virtual_module=module, rate_hz=rate_hz, path=path, pace=pace)
+        self.state = LiveState(self.system)
+        self.recorder: Recorder | None = None
+        self.server = None
+        try:
+            if record is not None:
+                try:
+                    Path(record).parent.mkdir(parents=True, exist_ok=True)
+                except OSError as exc:
+                    raise AxiscalError(f"cannot create the record's folder ({exc.strerror or exc})", path=record) from None
+                self.recorder = Recorder(
+                    record,
+                    self.system.channels,
+                    result_columns(tuple(self.system.axes)),
+                    metadata={
+                        "source": self.source.status.description,
+                        "machine": str(machine) if machine else f"built-in virtual module (seed {seed}, load {load_kg:g} kg)",
+                        "started": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+                    },
+                )
+            self.pipeline = Pipeline(self.system, self.source, recorder=self.recorder, state=self.state)
+            if server:
+                from axiscal.live.server import LiveServer, create_app
+
+                title = f"axiscal live: {self.source.status.description}"
+                self.server = LiveServer(create_app(self.state, update_hz=update_hz, title=title), port=port).start()
+        except BaseException:
+            self.close()
+            raise
+
+    @property
+    def url(self) -> str | None:
+        """The dashboard's address (None without a server)."""
+        return None if self.server is None else self.server.url
+
+    def run(
+        self,
+        *,
+        stop: threading.Event | None = None,
+        duration_s: float | None = None,
+        progress: Callable[[RunSummary], None] | None = None,
+        progress_interval_s: float = 1.0,
+    ) -> RunSummary:
+        """Run until ``stop``, ``duration_s`` or the end of a finite source; with a dashboard keep serving until ``stop`` or ``duration_s``.
+
+        Parameters
+        ----------
+        stop : threading.Event, optional
+            Set it to end the run cleanly.
+        duration_s : float, optional
+            Wall time of the run, s.
+        progress : callable, optional
+            Called with the running summary every ``progress_interval_s``.
+        progress_interval_s : float
+            Seconds between progress calls.
+
+        Returns
+        -------
+        RunSummary
+            The final summary; with a record, after every frame was made durable.
+        """
+        stop = stop or threading.Event()
+        start = time.monotonic()
+        try:
+            summary = self.pipeline.run(stop=stop, duration_s=duration_s, progress=progress, progress_interval_s=progress_interval_s)
+            if self.server is not None and not stop.is_set():
+                remaining = None if duration_s is None else duration_s - (time.monotonic() - start)
+                while not stop.is_set() and (remaining is None or remaining > 0):
+                    stop.wait(0.2 if remaining is None else min(0.2, remaining))
+                    remaining = None if duration_s is None else duration_s - (time.monotonic() - start)
+        except KeyboardInterrupt:
+            summary = self.pipeline.summary(time.monotonic() - start)
+        if self.recorder is not None:
+            self.recorder.close()
+            summary = self.pipeline.summary(summary.elapsed_s)
+        return summary
+
+    def close(self) -> None:
+        """Stop the server, close the record and the source (safe to call twice)."""
+        if self.server is not None:
+            self.server.stop()
+            self.server = None
+        if self.recorder is not None:
+            self.recorder.close()
+        self.source.close()
+
+    def __enter__(self) -> "LiveSession":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()

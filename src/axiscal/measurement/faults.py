@@ -1,0 +1,100 @@
+"""The fault bits of a measured frame: one flag set for the measurement system and the live pipeline.
+
+A frame's ``fault`` column is an integer made of these bits (0: good). The values are those of
+every record written so far, so old records keep their meaning:
+
+======  ==========  =========================================================================
+ bit     value       meaning
+======  ==========  =========================================================================
+ 0       1           a channel is missing (NaN, empty cell or absent column)
+ 1       2           a channel is outside its valid range
+ 2       4           an axis' commanded position is outside the travel the error model covers
+ 8       256         the line or row could not be read as a frame (no readable time stamp, or
+                     more fields than columns)
+======  ==========  =========================================================================
+"""
+
+from __future__ import annotations
+
+import enum
+
+__all__ = ["Fault", "FAULT_TEXT", "fault_text", "fault_legend"]
+
+
+class Fault(enum.IntFlag):
+    """Fault bits of one frame; combine with ``|``, test with ``&``.
+
+    Attributes
+    ----------
+    MISSING : int
+        1: a channel is missing.
+    RANGE : int
+        2: a channel is outside its valid range.
+    POSITION : int
+        4: a commanded position is outside the error model's travel.
+    MALFORMED : int
+        256: the line or row could not be read as a frame.
+
+    Examples
+    --------
+    >>> int(Fault.MISSING | Fault.POSITION)
+    5
+    >>> fault_text(Fault.MISSING | Fault.POSITION)
+    'missing channel; position outside the error model'
+    """
+
+    MISSING = 1
+    RANGE = 2
+    POSITION = 4
+    MALFORMED = 256
+
+
+#: each fault bit in words, in the order :func:`fault_text` names them (an unreadable frame first)
+FAULT_TEXT: dict[Fault, str] = {
+    Fault.MALFORMED: "malformed frame (no readable time stamp, or more fields than columns)",
+    Fault.MISSING: "missing channel",
+    Fault.RANGE: "channel out of range",
+    Fault.POSITION: "position outside the error model",
+}
+
+
+def fault_text(fault: int) -> str:
+    """The fault bits of a frame in words.
+
+    Parameters
+    ----------
+    fault : int
+        The frame's fault bits.
+
+    Returns
+    -------
+    str
+        ``"ok"`` for 0, otherwise the meaning of each bit set, joined by ``"; "`` (bits no
+        :class:`Fault` names are given in hexadecimal).
+
+    Examples
+    --------
+    >>> fault_text(0)
+    'ok'
+    >>> fault_text(2)
+    'channel out of range'
+    """
+    fault = int(fault)
+    if fault == 0:
+        return "ok"
+    words = [text for bit, text in FAULT_TEXT.items() if fault & bit]
+    unknown = fault & ~sum(int(bit) for bit in FAULT_TEXT)
+    if unknown:
+        words.append(f"unknown fault bits {unknown:#x}")
+    return "; ".join(words)
+
+
+def fault_legend() -> dict[str, str]:
+    """Every fault bit's value (as text, for JSON keys) and meaning, for a record's or result's metadata.
+
+    Returns
+    -------
+    dict of str to str
+        ``{"1": "missing channel", "2": ..., "4": ..., "256": ...}``.
+    """
+    return {str(int(bit)): FAULT_TEXT[bit] for bit in sorted(FAULT_TEXT)}
