@@ -34,3 +34,20 @@ __all__ = [
     "HeidenhainTable",
     "heidenhain_table",
 ]
+
+# firmware skew correction (axiscal.compensation.skew)
+from axiscal.compensation.skew import (  # noqa: E402
+    FIRMWARES,
+    SkewCorrection,
+    klipper_lengths,
+    skew_correction,
+    squareness_from_results,
+)
+
+__all__ += [
+    "FIRMWARES",
+    "SkewCorrection",
+    "skew_correction",
+    "klipper_lengths",
+    "squareness_from_results",
+]

@@ -19,3 +19,28 @@ __all__ = [
     "write_csv",
     "read_toml",
 ]
+
+# instrument importers (axiscal.io.importers)
+from axiscal.io.importers import (  # noqa: E402
+    ColumnMap,
+    ImportedReadings,
+    RtxCapture,
+    import_readings,
+    read_column_map,
+    read_rtx,
+    write_positioning_csv,
+    write_rtx,
+    write_rtx_csv,
+)
+
+__all__ += [
+    "ColumnMap",
+    "ImportedReadings",
+    "RtxCapture",
+    "import_readings",
+    "read_column_map",
+    "read_rtx",
+    "write_positioning_csv",
+    "write_rtx",
+    "write_rtx_csv",
+]
