@@ -227,7 +227,7 @@ def rtx_csv(capture: RtxCapture) -> str:
     factor = _unit_factor(capture.unit)
     column = f"reading_{capture.unit}"
     rows = [f"time_s,{column}"]
-    rows += [f"{t:.9g},{v:.10g}" for t, v in zip(capture.time_s, capture.samples_m / factor)]
+    rows += [f"{t:.12g},{v:.12g}" for t, v in zip(capture.time_s, capture.samples_m / factor)]
     return "\n".join(rows) + "\n"
 
 
