@@ -7,7 +7,8 @@ import math
 
 import pytest
 
-from axiscal.units import ARCSEC
+from axiscal.positioning import iso230_2, read_positioning_run
+from axiscal.units import ARCSEC, UM
 
 
 def _squareness_json(run_cli, examples, tmp_path):
@@ -58,3 +59,21 @@ def test_export_skew_errors(run_cli, tmp_path):
     assert status == 2 and err.startswith(f"axiscal: error: {bad}: not a squareness result") and err.count("\n") == 1
     status, _, err = run_cli("export", "skew", "--firmware", "rrf", "--from", bad, "--xy-arcsec", "3")
     assert status == 2 and "not both" in err
+
+
+def test_export_backlash(run_cli, examples):
+    status, out, err = run_cli("export", "backlash", examples / "positioning_run.csv", "--controller", "siemens", "--json")
+    assert status == 0, err
+    body = json.loads(out)
+    b_mean = iso230_2(read_positioning_run(examples / "positioning_run.csv").run).B_mean
+    assert body["backlash_um"] == pytest.approx(-b_mean / UM, abs=1e-9)
+    assert body["lines"][0].startswith("$MA_BACKLASH[0,AX1]=0.004")
+    status, out, _ = run_cli("export", "backlash", "--backlash-um", "12", "--controller", "grblhal", "--axis", "Y")
+    assert out.splitlines()[-1] == "$161=0.012"
+
+
+def test_export_backlash_errors(run_cli, examples):
+    status, _, err = run_cli("export", "backlash", "--controller", "rrf")
+    assert status == 2 and "either a positioning run CSV or --backlash-um" in err
+    status, _, err = run_cli("export", "backlash", "--backlash-um", "-3", "--controller", "rrf")
+    assert status == 2 and err.count("\n") == 1 and "only a positive distance" in err

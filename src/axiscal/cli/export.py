@@ -5,11 +5,18 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import echo_json
+from axiscal.compensation.backlash import (
+    BACKLASH_CONTROLLERS,
+    BACKLASH_METHODS,
+    backlash_from_run,
+    backlash_setting,
+)
 from axiscal.compensation.skew import FIRMWARES, SKEW_CONVENTIONS, skew_correction, squareness_from_results
 from axiscal.errors import AxiscalError
-from axiscal.units import ARCSEC, MM
+from axiscal.positioning import read_positioning_run
+from axiscal.units import ARCSEC, MM, UM
 
-__all__ = ["export_group", "export_skew_command", "register"]
+__all__ = ["export_group", "export_skew_command", "export_backlash_command", "register"]
 
 
 @click.group("export")
@@ -54,6 +61,41 @@ def export_skew_command(firmware, xy_arcsec, xz_arcsec, yz_arcsec, square_mm, co
         })
     else:
         click.echo(correction.text(), nl=False)
+
+
+@export_group.command("backlash")
+@click.argument("run_csv", required=False, type=click.Path(dir_okay=False))
+@click.option("--controller", type=click.Choice(tuple(BACKLASH_CONTROLLERS)), required=True,
+              help="The controller whose backlash parameter to write.")
+@click.option("--axis", default="X", show_default=True, help="Axis letter.")
+@click.option("--axis-number", type=int, default=None, help="1-based axis number (LinuxCNC joint + 1, SINUMERIK AXn) [X=1, Y=2, ...].")
+@click.option("--method", type=click.Choice(BACKLASH_METHODS), default="mean", show_default=True,
+              help="mean: -B_mean of ISO 230-2; max: -B_i where |B_i| is largest; target: -B_i at --target-mm.")
+@click.option("--target-mm", type=float, default=None, help="The target for --method target.")
+@click.option("--backlash-um", type=float, default=None, help="A backlash measured otherwise, instead of RUN_CSV.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def export_backlash_command(run_csv, controller, axis, axis_number, method, target_mm, backlash_um, as_json):
+    """A controller's backlash parameter from a positioning test (RUN_CSV) or a value."""
+    if (run_csv is None) == (backlash_um is None):
+        raise AxiscalError("give either a positioning run CSV or --backlash-um")
+    if backlash_um is not None:
+        setting = backlash_setting(controller, backlash_um * UM, axis=axis, axis_number=axis_number)
+    else:
+        run = read_positioning_run(run_csv).run
+        target_m = None if target_mm is None else target_mm * MM
+        setting = backlash_from_run(controller, run, method=method, target_m=target_m, axis=axis, axis_number=axis_number)
+    if as_json:
+        echo_json({
+            "controller": setting.controller,
+            "axis": setting.axis,
+            "parameter": setting.parameter,
+            "backlash_um": setting.backlash_m / UM,
+            "written_um": setting.written_m / UM,
+            "lines": list(setting.lines),
+            "notes": list(setting.notes),
+        })
+    else:
+        click.echo(setting.text(), nl=False)
 
 
 def register(group: click.Group) -> None:

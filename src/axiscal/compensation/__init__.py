@@ -51,3 +51,20 @@ __all__ += [
     "klipper_lengths",
     "squareness_from_results",
 ]
+
+# backlash parameters (axiscal.compensation.backlash)
+from axiscal.compensation.backlash import (  # noqa: E402
+    BACKLASH_CONTROLLERS,
+    BacklashSetting,
+    backlash_from_run,
+    backlash_setting,
+    reversal_backlash,
+)
+
+__all__ += [
+    "BACKLASH_CONTROLLERS",
+    "BacklashSetting",
+    "reversal_backlash",
+    "backlash_setting",
+    "backlash_from_run",
+]
