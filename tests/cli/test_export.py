@@ -77,3 +77,15 @@ def test_export_backlash_errors(run_cli, examples):
     assert status == 2 and "either a positioning run CSV or --backlash-um" in err
     status, _, err = run_cli("export", "backlash", "--backlash-um", "-3", "--controller", "rrf")
     assert status == 2 and err.count("\n") == 1 and "only a positive distance" in err
+
+
+def test_export_screwmap(run_cli, examples, tmp_path):
+    out = tmp_path / "X.lst"
+    status, _, err = run_cli("export", "screwmap", examples / "positioning_run.csv", "--controller", "twincat",
+                             "--interval-mm", "100", "-o", out)
+    assert status == 0, err
+    text = out.read_text()
+    assert "kw.ssfk.interval 1000000" in text and "kw.ssfk.kw_nr_max 9" in text
+    status, _, err = run_cli("export", "screwmap", examples / "positioning_run.csv", "--controller", "twincat",
+                             "--interval-mm", "1", "--max-points", "100")
+    assert status == 2 and "P-COMP-00059" in err and err.count("\n") == 1

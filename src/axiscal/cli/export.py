@@ -11,12 +11,15 @@ from axiscal.compensation.backlash import (
     backlash_from_run,
     backlash_setting,
 )
+from axiscal.compensation.screwmaps import twincat_table
 from axiscal.compensation.skew import FIRMWARES, SKEW_CONVENTIONS, skew_correction, squareness_from_results
 from axiscal.errors import AxiscalError
-from axiscal.positioning import read_positioning_run
+from axiscal.compensation.curve import error_curve
+from axiscal.io.atomic import write_text
+from axiscal.positioning import read_positioning_run, target_statistics
 from axiscal.units import ARCSEC, MM, UM
 
-__all__ = ["export_group", "export_skew_command", "export_backlash_command", "register"]
+__all__ = ["export_group", "export_skew_command", "export_backlash_command", "export_screwmap_command", "register"]
 
 
 @click.group("export")
@@ -96,6 +99,34 @@ def export_backlash_command(run_csv, controller, axis, axis_number, method, targ
         })
     else:
         click.echo(setting.text(), nl=False)
+
+
+@export_group.command("screwmap")
+@click.argument("run_csv", type=click.Path(dir_okay=False))
+@click.option("--controller", type=click.Choice(("twincat",)), required=True,
+              help="twincat: TwinCAT CNC leadscrew error compensation list (kw.ssfk).")
+@click.option("--axis", default="X", show_default=True, help="Logical axis name (kopf.log_achs_name).")
+@click.option("--axis-number", type=int, default=1, show_default=True, help="Logical axis number (kopf.achs_nr).")
+@click.option("--interval-mm", type=float, default=None,
+              help="Equidistant points this far apart (resampled) [the measured targets, listed].")
+@click.option("--unilateral", is_flag=True, help="One table of the bidirectional mean instead of one per direction.")
+@click.option("--max-points", type=int, default=None, help="Table entries the control reserves (P-COMP-00059).")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the list here instead of stdout.")
+def export_screwmap_command(run_csv, controller, axis, axis_number, interval_mm, unilateral, max_points, output):
+    """A lead-screw error table from a positioning test (RUN_CSV) in a controller's own format."""
+    curve = error_curve(target_statistics(read_positioning_run(run_csv).run))
+    table = twincat_table(
+        curve,
+        axis=axis,
+        axis_number=axis_number,
+        interval_m=None if interval_mm is None else interval_mm * MM,
+        bilateral=not unilateral,
+        max_points=max_points,
+    )
+    if output:
+        write_text(output, table.text())
+    else:
+        click.echo(table.text(), nl=False)
 
 
 def register(group: click.Group) -> None:

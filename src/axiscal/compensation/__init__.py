@@ -68,3 +68,8 @@ __all__ += [
     "backlash_setting",
     "backlash_from_run",
 ]
+
+# lead-screw tables of open and PC-based controllers (axiscal.compensation.screwmaps)
+from axiscal.compensation.screwmaps import TWINCAT_UNIT, TwincatTable, twincat_table  # noqa: E402
+
+__all__ += ["TWINCAT_UNIT", "TwincatTable", "twincat_table"]
