@@ -11,15 +11,17 @@ from axiscal.compensation.backlash import (
     backlash_from_run,
     backlash_setting,
 )
+from axiscal.compensation.sag import SAG_REFERENCES, sinumerik_sag_table
 from axiscal.compensation.screwmaps import twincat_table
 from axiscal.compensation.skew import FIRMWARES, SKEW_CONVENTIONS, skew_correction, squareness_from_results
 from axiscal.errors import AxiscalError
 from axiscal.compensation.curve import error_curve
 from axiscal.io.atomic import write_text
 from axiscal.positioning import read_positioning_run, target_statistics
+from axiscal.squareness import read_straightness_run
 from axiscal.units import ARCSEC, MM, UM
 
-__all__ = ["export_group", "export_skew_command", "export_backlash_command", "export_screwmap_command", "register"]
+__all__ = ["export_group", "export_skew_command", "export_backlash_command", "export_screwmap_command", "export_sag_command", "register"]
 
 
 @click.group("export")
@@ -123,10 +125,48 @@ def export_screwmap_command(run_csv, controller, axis, axis_number, interval_mm,
         bilateral=not unilateral,
         max_points=max_points,
     )
+    _write_table(table, output)
+
+
+@export_group.command("sag")
+@click.argument("run_csv", type=click.Path(dir_okay=False))
+@click.option("--controller", type=click.Choice(("siemens",)), required=True,
+              help="siemens: SINUMERIK sag compensation table ($AN_CEC, %_N_NC_CEC_INI).")
+@click.option("--base-axis", required=True, help="Machine axis the run moves ($AN_CEC_INPUT_AXIS, e.g. AX2).")
+@click.option("--compensation-axis", required=True, help="Machine axis the deviation is along ($AN_CEC_OUTPUT_AXIS, e.g. AX3).")
+@click.option("--step-mm", type=float, required=True, help="$AN_CEC_STEP: spacing of the table's points (the run is resampled).")
+@click.option("--table", "table_index", type=int, default=0, show_default=True, help="Table index t.")
+@click.option("--reference", type=click.Choice(SAG_REFERENCES), default="none", show_default=True,
+              help="none: the whole deviation; least-squares / end-points: the deviation about that line.")
+@click.option("--direction", type=click.IntRange(-1, 1), default=0, show_default=True,
+              help="$AN_CEC_DIRECTION: 0 both, 1 positive, -1 negative direction of the base axis.")
+@click.option("--max-points", type=int, default=None, help="MD18342 $MN_MM_CEC_MAX_POINTS of the table (200 on an 828D).")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the program here instead of stdout.")
+def export_sag_command(run_csv, controller, base_axis, compensation_axis, step_mm, table_index, reference, direction,
+                       max_points, output):
+    """A cross-axis (sag) table from a straightness run (position_mm, deviation_um) of the base axis."""
+    position_m, deviation_m = read_straightness_run(run_csv)
+    table = sinumerik_sag_table(
+        position_m,
+        deviation_m,
+        input_axis=base_axis,
+        output_axis=compensation_axis,
+        step_m=step_mm * MM,
+        table=table_index,
+        reference=reference,
+        direction=direction,
+        max_points=max_points,
+    )
+    _write_table(table, output)
+
+
+def _write_table(table, output) -> None:
     if output:
         write_text(output, table.text())
     else:
         click.echo(table.text(), nl=False)
+    if table.note:
+        click.echo(f"axiscal: note: {table.note}", err=True)
 
 
 def register(group: click.Group) -> None:

@@ -73,3 +73,8 @@ __all__ += [
 from axiscal.compensation.screwmaps import TWINCAT_UNIT, TwincatTable, twincat_table  # noqa: E402
 
 __all__ += ["TWINCAT_UNIT", "TwincatTable", "twincat_table"]
+
+# cross-axis (sag) tables (axiscal.compensation.sag)
+from axiscal.compensation.sag import SAG_REFERENCES, SinumerikSagTable, sinumerik_sag_table  # noqa: E402
+
+__all__ += ["SAG_REFERENCES", "SinumerikSagTable", "sinumerik_sag_table"]

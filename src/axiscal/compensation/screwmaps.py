@@ -48,6 +48,8 @@ class TwincatTable:
         Spacing of equidistant points, 0.1 um; 0 when the points are listed.
     bilateral : bool
         One table per direction.
+    resampled : bool
+        True when the measured targets were resampled onto equidistant points.
     """
 
     axis: str
@@ -57,6 +59,15 @@ class TwincatTable:
     neg: np.ndarray
     interval: int
     bilateral: bool
+    resampled: bool = False
+
+    @property
+    def note(self) -> str | None:
+        """A sentence saying the curve was resampled onto equidistant points, or None."""
+        if not self.resampled:
+            return None
+        return (f"the mean deviations were resampled onto {self.setpoints.size} points"
+                f" {self.interval * TWINCAT_UNIT / MM:g} mm apart (linear interpolation)")
 
     def correction(self, x, direction: str) -> np.ndarray:
         """What the control adds to a command at ``x`` (metres) moving in ``direction`` ("+" or "-"), metres."""
@@ -158,5 +169,7 @@ def twincat_table(
     if max(np.abs(setpoints).max(), np.abs(pos).max(), np.abs(neg).max()) > _SGN32:
         raise AxiscalError("a position or value is beyond the SGN32 range of the list (0.1 um units)")
     return TwincatTable(
-        axis=axis, axis_number=axis_number, setpoints=setpoints, pos=pos, neg=neg, interval=interval, bilateral=bilateral
+        axis=axis, axis_number=axis_number, setpoints=setpoints, pos=pos, neg=neg, interval=interval,
+        bilateral=bilateral,
+        resampled=interval != 0 and (nodes.size != positions.size or not np.allclose(nodes, positions, rtol=0, atol=1e-9)),
     )
