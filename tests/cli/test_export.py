@@ -94,11 +94,11 @@ def test_export_screwmap(run_cli, examples, tmp_path):
 def test_export_sag(run_cli, examples, tmp_path):
     out = tmp_path / "cec.ini"
     status, _, err = run_cli("export", "sag", examples / "squareness_y.csv", "--controller", "siemens",
-                             "--base-axis", "AX2", "--compensation-axis", "AX1", "--step-mm", "50",
+                             "--base-axis", "AX2", "--compensation-axis", "AX1", "--step-mm", "25",
                              "--reference", "least-squares", "-o", out)
     assert status == 0 and err == ""
     lines = out.read_text().splitlines()
-    assert lines[0] == "%_N_NC_CEC_INI" and "$AN_CEC_STEP[0]=50.0000" in lines and lines[-1] == "M17"
+    assert lines[0] == "%_N_NC_CEC_INI" and "$AN_CEC_STEP[0]=25.0000" in lines and lines[-1] == "M17"
     status, _, err = run_cli("export", "sag", examples / "squareness_y.csv", "--controller", "siemens",
                              "--base-axis", "AX2", "--compensation-axis", "AX1", "--step-mm", "30")
     assert status == 0 and err.startswith("axiscal: note: the run was resampled onto 18 points 30 mm apart")
