@@ -104,6 +104,14 @@ class ColumnMap:
         case); +, -, up, down, forward, reverse, fwd, rev, f, r are known already.
     run_labels : tuple of str
         Labels of the runs for layout ``"runs"`` (default 1, 2, ...).
+    source : str, optional
+        The map file, named in errors.
+
+    Raises
+    ------
+    AxiscalError
+        For an unknown layout, kind, unit or decimal mark, a missing reading column, a sign other
+        than +-1, or a column named by text in a file without a header.
     """
 
     layout: str
