@@ -188,3 +188,12 @@ def test_squareness_from_results(tmp_path):
     assert "bad.json" in str(info.value)
     with pytest.raises(AxiscalError, match="second XY"):
         squareness_from_results([xy, xy])
+
+
+def test_marlin_configuration_defaults_are_square():
+    # Marlin Configuration.h ships XY_DIAG_AC = XY_DIAG_BD = 282.8427124746 and XY_SIDE_AD = 200:
+    # a square of 200 mm, skew factor 0
+    assert klipper_calc_skew_factor(282.8427124746, 282.8427124746, 200.0) == pytest.approx(0.0, abs=1e-12)
+    ac, bd, ad = (v / MM for v in klipper_lengths(0.0, 200 * MM))
+    assert (round(ac, 10), round(bd, 10), ad) == (282.8427124746, 282.8427124746, 200.0)
+    assert skew_correction("klipper", xy_rad=0.0, square_m=200 * MM).lines == ("SET_SKEW XY=282.842712,282.842712,200.000000",)
