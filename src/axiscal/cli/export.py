@@ -18,7 +18,6 @@ from axiscal.errors import AxiscalError
 from axiscal.compensation.curve import error_curve
 from axiscal.io.atomic import write_text
 from axiscal.positioning import read_positioning_run, target_statistics
-from axiscal.squareness import read_straightness_run
 from axiscal.units import ARCSEC, MM, UM
 
 __all__ = ["export_group", "export_skew_command", "export_backlash_command", "export_screwmap_command", "export_sag_command", "register"]
@@ -145,7 +144,7 @@ def export_screwmap_command(run_csv, controller, axis, axis_number, interval_mm,
 def export_sag_command(run_csv, controller, base_axis, compensation_axis, step_mm, table_index, reference, direction,
                        max_points, output):
     """A cross-axis (sag) table from a straightness run (position_mm, deviation_um) of the base axis."""
-    position_m, deviation_m = read_straightness_run(run_csv)
+    position_m, deviation_m = _read_straightness_run(run_csv)
     table = sinumerik_sag_table(
         position_m,
         deviation_m,
@@ -158,6 +157,19 @@ def export_sag_command(run_csv, controller, base_axis, compensation_axis, step_m
         max_points=max_points,
     )
     _write_table(table, output)
+
+
+def _read_straightness_run(path):
+    # the straightness room's profile reader where it exists (axiscal.straightness.read_profile),
+    # else the squareness room's run reader it replaces: the same columns, errors and units
+    try:
+        from axiscal.straightness import read_profile
+    except ImportError:
+        from axiscal.squareness import read_straightness_run
+
+        return read_straightness_run(path)
+    profile = read_profile(path)
+    return profile.position_m, profile.deviation_m
 
 
 def _write_table(table, output) -> None:
