@@ -250,7 +250,22 @@ def backlash_from_run(
 ) -> BacklashSetting:
     """The backlash parameter of a controller from a bidirectional positioning test.
 
-    :func:`reversal_backlash` then :func:`backlash_setting`; see those for the parameters.
+    :func:`reversal_backlash` then :func:`backlash_setting`.
+
+    Parameters
+    ----------
+    controller : str
+        One of :data:`BACKLASH_CONTROLLERS`.
+    run : PositioningRun
+        The test (both directions at every target), metres.
+    method : str, keyword-only
+        ``"mean"``, ``"max"`` or ``"target"`` (see :func:`reversal_backlash`).
+    target_m : float, optional, keyword-only
+        The target for ``method="target"``, metres.
+    axis : str, keyword-only
+        Axis letter.
+    axis_number : int, optional, keyword-only
+        1-based axis number (default: X = 1, Y = 2, ...).
 
     Returns
     -------
