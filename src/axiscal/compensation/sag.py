@@ -139,6 +139,14 @@ def sinumerik_sag_table(
         For positions not strictly increasing, mismatched shapes, a non-positive step, an unknown
         reference or direction, a negative table index, the same axis as input and output, or more
         points than ``max_points``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> y = np.array([0.0, 0.1, 0.2])
+    >>> t = sinumerik_sag_table(y, np.array([0.0, -12e-6, 0.0]), input_axis="AX2", output_axis="AX3", step_m=0.1)
+    >>> t.text().splitlines()[2:5]
+    ['$AN_CEC[0,0]=0.0000', '$AN_CEC[0,1]=-0.0120', '$AN_CEC[0,2]=0.0000']
     """
     x = np.asarray(position_m, dtype=float)
     e = np.asarray(deviation_m, dtype=float)
