@@ -85,6 +85,14 @@ class BacklashSetting:
         return "".join(f"; {note}\n" for note in self.notes) + "".join(f"{line}\n" for line in self.lines)
 
 
+def _counts(value_m: float, unit_m: float, limit: int, unit: str, parameter: str) -> int:
+    """``value_m`` in whole ``unit_m``, refused beyond +-``limit`` (the parameter's range)."""
+    counts = round(value_m / unit_m)
+    if abs(counts) > limit:
+        raise AxiscalError(f"{counts} {unit} is beyond {parameter}'s range of +-{limit}")
+    return counts
+
+
 def reversal_backlash(run: PositioningRun, *, method: str = "mean", target_m: float | None = None) -> float:
     """The backlash to compensate from a bidirectional positioning test, metres (``-B``).
 
@@ -185,9 +193,7 @@ def backlash_setting(controller: str, backlash_m: float, *, axis: str = "X", axi
         lines = (f"[JOINT_{number - 1}]", f"BACKLASH = {written:.6f}")
         notes = ("LinuxCNC: machine units (mm assumed); 0 when a COMP_FILE of both directions already holds the reversal",)
     elif controller == "fanuc":
-        counts = round(backlash_m / UM)
-        if abs(counts) > _FANUC_RANGE:
-            raise AxiscalError(f"{counts} detection units is beyond parameter 1851's range of +-{_FANUC_RANGE}")
+        counts = _counts(backlash_m, UM, _FANUC_RANGE, "detection units", "parameter 1851")
         written = counts * UM / MM
         lines = (f"1851 {axis} {counts}",)
         notes = (
@@ -203,9 +209,7 @@ def backlash_setting(controller: str, backlash_m: float, *, axis: str = "X", axi
         lines = (f"MP_backLash {axis} {written:.4f}",)
         notes = ("HEIDENHAIN: MP_backLash of the axis (mm); MP_filterTime sets the time the reversal is made up in",)
     elif controller == "twincat":
-        counts = round(backlash_m / _TWINCAT_UNIT)
-        if abs(counts) > _TWINCAT_RANGE:
-            raise AxiscalError(f"{counts} x 0.1 um is beyond P-AXIS-00103's range of +-{_TWINCAT_RANGE}")
+        counts = _counts(backlash_m, _TWINCAT_UNIT, _TWINCAT_RANGE, "x 0.1 um", "P-AXIS-00103")
         written = counts * _TWINCAT_UNIT / MM
         lines = (f"getriebe[0].lose {counts}",)
         notes = (
