@@ -45,3 +45,11 @@ def test_examples_run(name):
 
     result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
     assert result.failed == 0 and result.attempted > 0
+
+
+@pytest.mark.parametrize("name", MODULES)
+def test_the_package_re_exports_every_public_name(name):
+    module = importlib.import_module(name)
+    package = importlib.import_module(name.rsplit(".", 1)[0])
+    for public in module.__all__:
+        assert public in package.__all__ and getattr(package, public) is getattr(module, public), public

@@ -38,6 +38,9 @@ __all__ = [
 # firmware skew correction (axiscal.compensation.skew)
 from axiscal.compensation.skew import (  # noqa: E402
     FIRMWARES,
+    MAX_SKEW_RAD,
+    SKEW_CONVENTIONS,
+    SKEW_PLANES,
     SkewCorrection,
     klipper_lengths,
     skew_correction,
@@ -46,6 +49,9 @@ from axiscal.compensation.skew import (  # noqa: E402
 
 __all__ += [
     "FIRMWARES",
+    "SKEW_PLANES",
+    "SKEW_CONVENTIONS",
+    "MAX_SKEW_RAD",
     "SkewCorrection",
     "skew_correction",
     "klipper_lengths",
@@ -55,6 +61,7 @@ __all__ += [
 # backlash parameters (axiscal.compensation.backlash)
 from axiscal.compensation.backlash import (  # noqa: E402
     BACKLASH_CONTROLLERS,
+    BACKLASH_METHODS,
     BacklashSetting,
     backlash_from_run,
     backlash_setting,
@@ -63,6 +70,7 @@ from axiscal.compensation.backlash import (  # noqa: E402
 
 __all__ += [
     "BACKLASH_CONTROLLERS",
+    "BACKLASH_METHODS",
     "BacklashSetting",
     "reversal_backlash",
     "backlash_setting",
