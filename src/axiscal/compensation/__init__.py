@@ -45,3 +45,55 @@ __all__ = [
     "CompensationResult",
     "compensation_table",
 ]
+
+# firmware skew correction (axiscal.compensation.skew)
+from axiscal.compensation.skew import (  # noqa: E402
+    FIRMWARES,
+    MAX_SKEW_RAD,
+    SKEW_CONVENTIONS,
+    SKEW_PLANES,
+    SkewCorrection,
+    klipper_lengths,
+    skew_correction,
+    squareness_from_results,
+)
+
+__all__ += [
+    "FIRMWARES",
+    "SKEW_PLANES",
+    "SKEW_CONVENTIONS",
+    "MAX_SKEW_RAD",
+    "SkewCorrection",
+    "skew_correction",
+    "klipper_lengths",
+    "squareness_from_results",
+]
+
+# backlash parameters (axiscal.compensation.backlash)
+from axiscal.compensation.backlash import (  # noqa: E402
+    BACKLASH_CONTROLLERS,
+    BACKLASH_METHODS,
+    BacklashSetting,
+    backlash_from_run,
+    backlash_setting,
+    reversal_backlash,
+)
+
+__all__ += [
+    "BACKLASH_CONTROLLERS",
+    "BACKLASH_METHODS",
+    "BacklashSetting",
+    "reversal_backlash",
+    "backlash_setting",
+    "backlash_from_run",
+]
+
+# lead-screw tables of open and PC-based controllers (axiscal.compensation.screwmaps)
+from axiscal.compensation.screwmaps import TWINCAT_UNIT, TwincatTable, twincat_table  # noqa: E402
+
+__all__ += ["TWINCAT_UNIT", "TwincatTable", "twincat_table"]
+
+# cross-axis (sag) tables (axiscal.compensation.sag)
+from axiscal.compensation.sag import SAG_REFERENCES, SinumerikSagTable, sinumerik_sag_table  # noqa: E402
+
+__all__ += ["SAG_REFERENCES", "SinumerikSagTable", "sinumerik_sag_table"]

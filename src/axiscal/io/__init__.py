@@ -37,3 +37,28 @@ __all__ = [
     "read_toml",
     "write_csv",
 ]
+
+# instrument importers (axiscal.io.importers)
+from axiscal.io.importers import (  # noqa: E402
+    ColumnMap,
+    ImportedReadings,
+    RtxCapture,
+    import_readings,
+    read_column_map,
+    read_rtx,
+    write_positioning_csv,
+    write_rtx,
+    write_rtx_csv,
+)
+
+__all__ += [
+    "ColumnMap",
+    "ImportedReadings",
+    "RtxCapture",
+    "import_readings",
+    "read_column_map",
+    "read_rtx",
+    "write_positioning_csv",
+    "write_rtx",
+    "write_rtx_csv",
+]

@@ -1,0 +1,185 @@
+"""``axiscal export``: corrections for firmware and controllers (skew correction lines)."""
+
+from __future__ import annotations
+
+import click
+
+from axiscal.cli.common import echo_json
+from axiscal.compensation.backlash import (
+    BACKLASH_CONTROLLERS,
+    BACKLASH_METHODS,
+    backlash_from_run,
+    backlash_setting,
+)
+from axiscal.compensation.sag import SAG_REFERENCES, sinumerik_sag_table
+from axiscal.compensation.screwmaps import twincat_table
+from axiscal.compensation.skew import FIRMWARES, SKEW_CONVENTIONS, skew_correction, squareness_from_results
+from axiscal.errors import AxiscalError
+from axiscal.compensation.curve import error_curve
+from axiscal.io.atomic import write_text
+from axiscal.positioning import read_positioning_run, target_statistics
+from axiscal.units import ARCSEC, MM, UM
+
+__all__ = ["export_group", "export_skew_command", "export_backlash_command", "export_screwmap_command", "export_sag_command", "register"]
+
+
+@click.group("export")
+def export_group() -> None:
+    """Write corrections in a firmware's or controller's own format (see docs/compensation.md)."""
+
+
+@export_group.command("skew")
+@click.option("--firmware", type=click.Choice(FIRMWARES), required=True, help="Klipper, Marlin or RepRapFirmware.")
+@click.option("--xy-arcsec", type=float, default=None, help="XY squareness (see --convention).")
+@click.option("--xz-arcsec", type=float, default=None, help="XZ squareness.")
+@click.option("--yz-arcsec", type=float, default=None, help="YZ squareness.")
+@click.option("--square-mm", type=float, default=100.0, show_default=True,
+              help="Side of the square the Klipper lengths and the RRF deviations refer to.")
+@click.option("--convention", type=click.Choice(SKEW_CONVENTIONS), default="included-angle", show_default=True,
+              help="included-angle: included angle of the positive axes - 90 deg (axiscal squareness); "
+              "iso: EC0Y, EB0Z, EA0Z of ISO 230-1.")
+@click.option("--from", "results", multiple=True, type=click.Path(dir_okay=False),
+              help="A result of 'axiscal squareness --json' (one per plane; may be repeated) instead of the angles.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object (lines, notes, factors).")
+def export_skew_command(firmware, xy_arcsec, xz_arcsec, yz_arcsec, square_mm, convention, results, as_json):
+    """Skew correction line(s) of a firmware for measured squareness, on standard output."""
+    given = {"xy_rad": xy_arcsec, "xz_rad": xz_arcsec, "yz_rad": yz_arcsec}
+    if results:
+        if any(v is not None for v in given.values()):
+            raise AxiscalError("give the squareness either with --from or with --xy/--xz/--yz-arcsec, not both")
+        planes = squareness_from_results(results)
+        angles = {f"{p.lower()}_rad": v for p, v in planes.items()}
+        convention = "included-angle"
+    else:
+        angles = {k: v * ARCSEC for k, v in given.items() if v is not None}
+    correction = skew_correction(firmware, square_m=square_mm * MM, convention=convention, **angles)
+    if as_json:
+        echo_json({
+            "firmware": correction.firmware,
+            "squareness_arcsec": {p: v / ARCSEC for p, v in correction.squareness_rad.items()},
+            "convention": "included-angle",
+            "factors": correction.factors,
+            "square_mm": correction.square_m / MM,
+            "lines": list(correction.lines),
+            "notes": list(correction.notes),
+        })
+    else:
+        click.echo(correction.text(), nl=False)
+
+
+@export_group.command("backlash")
+@click.argument("run_csv", required=False, type=click.Path(dir_okay=False))
+@click.option("--controller", type=click.Choice(tuple(BACKLASH_CONTROLLERS)), required=True,
+              help="The controller whose backlash parameter to write.")
+@click.option("--axis", default="X", show_default=True, help="Axis letter.")
+@click.option("--axis-number", type=int, default=None, help="1-based axis number (LinuxCNC joint + 1, SINUMERIK AXn) [X=1, Y=2, ...].")
+@click.option("--method", type=click.Choice(BACKLASH_METHODS), default="mean", show_default=True,
+              help="mean: -B_mean of ISO 230-2; max: -B_i where |B_i| is largest; target: -B_i at --target-mm.")
+@click.option("--target-mm", type=float, default=None, help="The target for --method target.")
+@click.option("--backlash-um", type=float, default=None, help="A backlash measured otherwise, instead of RUN_CSV.")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
+def export_backlash_command(run_csv, controller, axis, axis_number, method, target_mm, backlash_um, as_json):
+    """A controller's backlash parameter from a positioning test (RUN_CSV) or a value."""
+    if (run_csv is None) == (backlash_um is None):
+        raise AxiscalError("give either a positioning run CSV or --backlash-um")
+    if backlash_um is not None:
+        setting = backlash_setting(controller, backlash_um * UM, axis=axis, axis_number=axis_number)
+    else:
+        run = read_positioning_run(run_csv).run
+        target_m = None if target_mm is None else target_mm * MM
+        setting = backlash_from_run(controller, run, method=method, target_m=target_m, axis=axis, axis_number=axis_number)
+    if as_json:
+        echo_json({
+            "controller": setting.controller,
+            "axis": setting.axis,
+            "parameter": setting.parameter,
+            "backlash_um": setting.backlash_m / UM,
+            "written_um": setting.written_m / UM,
+            "lines": list(setting.lines),
+            "notes": list(setting.notes),
+        })
+    else:
+        click.echo(setting.text(), nl=False)
+
+
+@export_group.command("screwmap")
+@click.argument("run_csv", type=click.Path(dir_okay=False))
+@click.option("--controller", type=click.Choice(("twincat",)), required=True,
+              help="twincat: TwinCAT CNC leadscrew error compensation list (kw.ssfk).")
+@click.option("--axis", default="X", show_default=True, help="Logical axis name (kopf.log_achs_name).")
+@click.option("--axis-number", type=int, default=1, show_default=True, help="Logical axis number (kopf.achs_nr).")
+@click.option("--interval-mm", type=float, default=None,
+              help="Equidistant points this far apart (resampled) [the measured targets, listed].")
+@click.option("--unilateral", is_flag=True, help="One table of the bidirectional mean instead of one per direction.")
+@click.option("--max-points", type=int, default=None, help="Table entries the control reserves (P-COMP-00059).")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the list here instead of stdout.")
+def export_screwmap_command(run_csv, controller, axis, axis_number, interval_mm, unilateral, max_points, output):
+    """A lead-screw error table from a positioning test (RUN_CSV) in a controller's own format."""
+    curve = error_curve(target_statistics(read_positioning_run(run_csv).run))
+    table = twincat_table(
+        curve,
+        axis=axis,
+        axis_number=axis_number,
+        interval_m=None if interval_mm is None else interval_mm * MM,
+        bilateral=not unilateral,
+        max_points=max_points,
+    )
+    _write_table(table, output)
+
+
+@export_group.command("sag")
+@click.argument("run_csv", type=click.Path(dir_okay=False))
+@click.option("--controller", type=click.Choice(("siemens",)), required=True,
+              help="siemens: SINUMERIK sag compensation table ($AN_CEC, %_N_NC_CEC_INI).")
+@click.option("--base-axis", required=True, help="Machine axis the run moves ($AN_CEC_INPUT_AXIS, e.g. AX2).")
+@click.option("--compensation-axis", required=True, help="Machine axis the deviation is along ($AN_CEC_OUTPUT_AXIS, e.g. AX3).")
+@click.option("--step-mm", type=float, required=True, help="$AN_CEC_STEP: spacing of the table's points (the run is resampled).")
+@click.option("--table", "table_index", type=int, default=0, show_default=True, help="Table index t.")
+@click.option("--reference", type=click.Choice(SAG_REFERENCES), default="none", show_default=True,
+              help="none: the whole deviation; least-squares / end-points: the deviation about that line.")
+@click.option("--direction", type=click.IntRange(-1, 1), default=0, show_default=True,
+              help="$AN_CEC_DIRECTION: 0 both, 1 positive, -1 negative direction of the base axis.")
+@click.option("--max-points", type=int, default=None, help="MD18342 $MN_MM_CEC_MAX_POINTS of the table (200 on an 828D).")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the program here instead of stdout.")
+def export_sag_command(run_csv, controller, base_axis, compensation_axis, step_mm, table_index, reference, direction,
+                       max_points, output):
+    """A cross-axis (sag) table from a straightness run (position_mm, deviation_um) of the base axis."""
+    position_m, deviation_m = _read_straightness_run(run_csv)
+    table = sinumerik_sag_table(
+        position_m,
+        deviation_m,
+        input_axis=base_axis,
+        output_axis=compensation_axis,
+        step_m=step_mm * MM,
+        table=table_index,
+        reference=reference,
+        direction=direction,
+        max_points=max_points,
+    )
+    _write_table(table, output)
+
+
+def _read_straightness_run(path):
+    # the straightness room's profile reader where it exists (axiscal.straightness.read_profile),
+    # else the squareness room's run reader it replaces: the same columns, errors and units
+    try:
+        from axiscal.straightness import read_profile
+    except ImportError:
+        from axiscal.squareness import read_straightness_run
+
+        return read_straightness_run(path)
+    profile = read_profile(path)
+    return profile.position_m, profile.deviation_m
+
+
+def _write_table(table, output) -> None:
+    if output:
+        write_text(output, table.text())
+    else:
+        click.echo(table.text(), nl=False)
+    if table.note:
+        click.echo(f"axiscal: note: {table.note}", err=True)
+
+
+def register(group: click.Group) -> None:
+    group.add_command(export_group)

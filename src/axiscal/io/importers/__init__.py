@@ -1,0 +1,47 @@
+"""Importers of instrument files: a column map for any CSV or text export, and Renishaw's ``.rtx`` dynamic capture."""
+
+from __future__ import annotations
+
+from axiscal.io.importers.columnmap import (
+    IMPORT_UNITS,
+    INCH,
+    POSITIONING_COLUMNS,
+    ColumnMap,
+    ImportedReadings,
+    column_map,
+    import_readings,
+    positioning_csv,
+    read_column_map,
+    write_positioning_csv,
+)
+from axiscal.io.importers.rtx import (
+    RTX_DATA,
+    RTX_EOF,
+    RTX_HEADER,
+    RtxCapture,
+    read_rtx,
+    rtx_csv,
+    write_rtx,
+    write_rtx_csv,
+)
+
+__all__ = [
+    "INCH",
+    "IMPORT_UNITS",
+    "POSITIONING_COLUMNS",
+    "ColumnMap",
+    "ImportedReadings",
+    "column_map",
+    "read_column_map",
+    "import_readings",
+    "positioning_csv",
+    "write_positioning_csv",
+    "RTX_HEADER",
+    "RTX_DATA",
+    "RTX_EOF",
+    "RtxCapture",
+    "read_rtx",
+    "write_rtx",
+    "rtx_csv",
+    "write_rtx_csv",
+]

@@ -1,0 +1,259 @@
+"""Renishaw dynamic capture files (``.rtx``): read them into a time series, and write them (for tests).
+
+Layout as the public rtx2csv converter describes it (github.com/TanmayPani/rtx2csv,
+``rtx_to_csv.py``): the text line ``HEADER::``, then ``Key: value`` lines (``Owner``, ``Version
+no``, ``Sample rate``, ``Sample no``, ``Actual sample rate``, ``Trigger point``, ``Date``, ...), the
+line ``Data:``, the samples as little-endian IEEE 754 float64, and the trailer ``EOF::``; lines end
+in CR LF. Sample k is taken at ``k / Actual sample rate`` seconds. The header does not state the
+unit of the samples: the caller gives it. No file from the instrument was at hand: the reader is
+tested with files built to this layout.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.io.atomic import atomic_write, write_text
+from axiscal.io.importers.columnmap import IMPORT_UNITS
+from axiscal.io.jsonio import write_sidecar
+
+__all__ = ["RTX_HEADER", "RTX_DATA", "RTX_EOF", "RtxCapture", "read_rtx", "write_rtx", "rtx_csv", "write_rtx_csv"]
+
+RTX_HEADER = b"HEADER::\r\n"
+RTX_DATA = b"Data:\r\n"
+RTX_EOF = b"EOF::\r\n"
+_RATE_KEYS = ("Actual sample rate", "Sample rate")
+
+
+@dataclass(frozen=True)
+class RtxCapture:
+    """A dynamic capture: equally spaced samples of one reading.
+
+    Attributes
+    ----------
+    samples_m : ndarray, shape (n,)
+        The readings, metres.
+    sample_rate_hz : float
+        Samples per second (the header's ``Actual sample rate``, else ``Sample rate``).
+    header : dict of str to str
+        Every ``Key: value`` line of the header, as text.
+    unit : str
+        The unit the samples were stored in (``nm``, ``um``, ``mm``, ``m`` or ``in``).
+    source : str
+        The file read.
+    """
+
+    samples_m: np.ndarray
+    sample_rate_hz: float
+    header: Mapping[str, str] = field(default_factory=dict)
+    unit: str = "mm"
+    source: str = ""
+
+    @property
+    def time_s(self) -> np.ndarray:
+        """Time of each sample from the first, seconds (k / sample rate)."""
+        return np.arange(len(self.samples_m)) / self.sample_rate_hz
+
+
+def _unit_factor(unit: str, path: str | None = None) -> float:
+    if unit not in IMPORT_UNITS:
+        raise AxiscalError(f"unknown length unit '{unit}' for the samples; use one of {', '.join(IMPORT_UNITS)}", path=path)
+    return IMPORT_UNITS[unit]
+
+
+def read_rtx(path: str | Path, *, unit: str) -> RtxCapture:
+    """Read a Renishaw ``.rtx`` dynamic capture file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    unit : str, keyword-only
+        Unit of the stored samples (the file does not say): ``nm``, ``um``, ``mm``, ``m`` or ``in``.
+
+    Returns
+    -------
+    RtxCapture
+
+    Raises
+    ------
+    AxiscalError
+        Naming the file (and the header line where there is one): no ``HEADER::`` start, a header
+        line that is not ``Key: value``, no ``Data:`` marker, no ``EOF::`` trailer, a data block
+        that is not a whole number of float64 samples, a sample count other than the header's
+        ``Sample no``, a missing or non-positive sample rate, or a non-finite sample.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> f = pathlib.Path(tempfile.mkdtemp()) / "c.rtx"
+    >>> _ = write_rtx(f, [0.0, 0.001, 0.002], sample_rate_hz=1000.0, unit="mm")
+    >>> read_rtx(f, unit="mm").time_s.tolist()
+    [0.0, 0.001, 0.002]
+    """
+    factor = _unit_factor(unit)
+    path = Path(path)
+    source = str(path)
+    try:
+        blob = path.read_bytes()
+    except FileNotFoundError:
+        raise AxiscalError("file not found", path=path) from None
+    except OSError as exc:
+        raise AxiscalError(f"cannot read file ({exc.strerror or exc})", path=path) from None
+    if not blob.startswith(RTX_HEADER):
+        raise AxiscalError("not an .rtx capture: it does not start with 'HEADER::'", path=source, line=1)
+    data_at = blob.find(b"\r\n" + RTX_DATA)
+    if data_at < 0:
+        raise AxiscalError("no 'Data:' line after the header", path=source)
+    header_text = blob[len(RTX_HEADER) : data_at + 2]
+    header: dict[str, str] = {}
+    try:
+        lines = header_text.decode("utf-8").split("\r\n")
+    except UnicodeDecodeError:
+        raise AxiscalError("the header is not text", path=source) from None
+    for number, line in enumerate(lines[:-1], start=2):
+        if not line.strip() or line.rstrip().endswith("::"):
+            continue  # a blank line or a section marker ("NAME::")
+        key, sep, value = line.partition(":")
+        if not sep or not key.strip():
+            raise AxiscalError(f"header line '{line}' is not 'Key: value'", path=source, line=number)
+        header.setdefault(key.strip(), value.strip())
+    data_line = len(lines) + 1
+    body = blob[data_at + 2 + len(RTX_DATA) :]
+    if not body.endswith(RTX_EOF):
+        raise AxiscalError("no 'EOF::' trailer at the end: the file is cut short", path=source)
+    body = body[: -len(RTX_EOF)]
+    if len(body) % 8:
+        raise AxiscalError(
+            f"the data block holds {len(body)} bytes, not a whole number of 8-byte samples", path=source, line=data_line
+        )
+    samples = np.frombuffer(body, dtype="<f8").astype(float)
+    if "Sample no" in header:
+        try:
+            expected = int(float(header["Sample no"]))
+        except ValueError:
+            raise AxiscalError(f"'Sample no' is '{header['Sample no']}', not a number", path=source) from None
+        if expected != len(samples):
+            raise AxiscalError(
+                f"the header says {expected} samples (Sample no), the data block holds {len(samples)}", path=source
+            )
+    rate = None
+    for key in _RATE_KEYS:
+        if key in header:
+            try:
+                rate = float(header[key])
+            except ValueError:
+                raise AxiscalError(f"'{key}' is '{header[key]}', not a number", path=source) from None
+            break
+    if rate is None or not np.isfinite(rate) or rate <= 0:
+        raise AxiscalError("no positive 'Actual sample rate' or 'Sample rate' in the header", path=source)
+    bad = np.flatnonzero(~np.isfinite(samples))
+    if bad.size:
+        raise AxiscalError(f"sample {bad[0]} is not a finite number", path=source, line=data_line)
+    return RtxCapture(samples_m=samples * factor, sample_rate_hz=rate, header=header, unit=unit, source=source)
+
+
+def write_rtx(
+    path: str | Path,
+    samples: np.ndarray | list[float],
+    *,
+    sample_rate_hz: float,
+    unit: str,
+    header: Mapping[str, str] | None = None,
+) -> Path:
+    """Write an ``.rtx`` capture in the layout :func:`read_rtx` reads (atomically).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file to write.
+    samples : array_like, shape (n,)
+        The readings, in ``unit`` (written as they are, little-endian float64).
+    sample_rate_hz : float, keyword-only
+        Written as ``Sample rate`` and ``Actual sample rate``.
+    unit : str, keyword-only
+        Unit of ``samples`` (checked; the format itself does not record it).
+    header : mapping, optional, keyword-only
+        Further ``Key: value`` lines (``Owner``, ``Date``, ...).
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    Raises
+    ------
+    AxiscalError
+        For a non-positive rate, an unknown unit, or a header key or value holding ':' or a line break.
+    """
+    _unit_factor(unit)
+    if not np.isfinite(sample_rate_hz) or sample_rate_hz <= 0:
+        raise AxiscalError(f"the sample rate must be a positive number, not {sample_rate_hz}")
+    values = np.asarray(samples, dtype="<f8").ravel()
+    lines = {
+        "Owner": "axiscal",
+        "Sample rate": f"{sample_rate_hz:g}",
+        "Sample no": str(values.size),
+        "Actual sample rate": f"{sample_rate_hz:g}",
+        "Trigger point": "0",
+        "Trigger interval": f"{1.0 / sample_rate_hz:g}",
+        **dict(header or {}),
+    }
+    for key, value in lines.items():
+        if ":" in key or "\r" in key or "\n" in key or "\r" in str(value) or "\n" in str(value):
+            raise AxiscalError(f"header entry {key!r} cannot be written as one 'Key: value' line")
+    text = "".join(f"{key}: {value}\r\n" for key, value in lines.items())
+    blob = RTX_HEADER + text.encode("utf-8") + RTX_DATA + values.tobytes() + RTX_EOF
+    return atomic_write(path, lambda target: target.write_bytes(blob))
+
+
+def rtx_csv(capture: RtxCapture) -> str:
+    """The time series CSV of a capture: ``time_s`` and ``reading_<unit>`` (the unit it was stored in).
+
+    Parameters
+    ----------
+    capture : RtxCapture
+
+    Returns
+    -------
+    str
+        Plain CSV text, header first.
+    """
+    factor = _unit_factor(capture.unit)
+    column = f"reading_{capture.unit}"
+    rows = [f"time_s,{column}"]
+    rows += [f"{t:.12g},{v:.12g}" for t, v in zip(capture.time_s, capture.samples_m / factor)]
+    return "\n".join(rows) + "\n"
+
+
+def write_rtx_csv(capture: RtxCapture, path: str | Path) -> Path:
+    """Write the time series CSV of a capture (atomically) and its JSON sidecar with the capture's header.
+
+    Parameters
+    ----------
+    capture : RtxCapture
+    path : str or Path
+        The CSV to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
+    text = rtx_csv(capture)
+    write_text(path, text)
+    write_sidecar(
+        path,
+        kind="dynamic capture (rtx)",
+        units={"time_s": "s", f"reading_{capture.unit}": capture.unit},
+        sources=[capture.source] if capture.source else [],
+        sample_rate_hz=capture.sample_rate_hz,
+        samples=len(capture.samples_m),
+        rtx_header=dict(capture.header),
+    )
+    return Path(path)
