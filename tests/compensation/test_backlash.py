@@ -16,7 +16,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from axiscal.compensation.backlash import BACKLASH_CONTROLLERS, backlash_from_run, backlash_setting, reversal_backlash
+from axiscal.compensation.backlash import (
+    BACKLASH_CONTROLLERS,
+    backlash_from_run,
+    backlash_setting,
+    reversal_backlash,
+)
 from axiscal.errors import AxiscalError
 from axiscal.positioning import PositioningRun, iso230_2
 from axiscal.units import MM, UM

@@ -10,14 +10,18 @@ included angles) then runs the corrected commands of a square (a cube) and must 
 from __future__ import annotations
 
 import math
-import re
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from axiscal.compensation.skew import MAX_SKEW_RAD, klipper_lengths, skew_correction, squareness_from_results
+from axiscal.compensation.skew import (
+    MAX_SKEW_RAD,
+    klipper_lengths,
+    skew_correction,
+    squareness_from_results,
+)
 from axiscal.errors import AxiscalError
 from axiscal.io.jsonio import write_json
 from axiscal.units import ARCSEC, MM

@@ -7,7 +7,15 @@ import pandas as pd
 import pytest
 
 from axiscal.errors import AxiscalError
-from axiscal.io.importers import RTX_DATA, RTX_EOF, RTX_HEADER, read_rtx, rtx_csv, write_rtx, write_rtx_csv
+from axiscal.io.importers import (
+    RTX_DATA,
+    RTX_EOF,
+    RTX_HEADER,
+    read_rtx,
+    rtx_csv,
+    write_rtx,
+    write_rtx_csv,
+)
 from axiscal.units import MM, UM
 
 

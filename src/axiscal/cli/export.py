@@ -11,11 +11,16 @@ from axiscal.compensation.backlash import (
     backlash_from_run,
     backlash_setting,
 )
+from axiscal.compensation.curve import error_curve
 from axiscal.compensation.sag import SAG_REFERENCES, sinumerik_sag_table
 from axiscal.compensation.screwmaps import twincat_table
-from axiscal.compensation.skew import FIRMWARES, SKEW_CONVENTIONS, skew_correction, squareness_from_results
+from axiscal.compensation.skew import (
+    FIRMWARES,
+    SKEW_CONVENTIONS,
+    skew_correction,
+    squareness_from_results,
+)
 from axiscal.errors import AxiscalError
-from axiscal.compensation.curve import error_curve
 from axiscal.io.atomic import write_text
 from axiscal.positioning import read_positioning_run, target_statistics
 from axiscal.units import ARCSEC, MM, UM
@@ -160,14 +165,8 @@ def export_sag_command(run_csv, controller, base_axis, compensation_axis, step_m
 
 
 def _read_straightness_run(path):
-    # the straightness room's profile reader where it exists (axiscal.straightness.read_profile),
-    # else the squareness room's run reader it replaces: the same columns, errors and units
-    try:
-        from axiscal.straightness import read_profile
-    except ImportError:
-        from axiscal.squareness import read_straightness_run
+    from axiscal.straightness import read_profile
 
-        return read_straightness_run(path)
     profile = read_profile(path)
     return profile.position_m, profile.deviation_m
 

@@ -94,6 +94,10 @@ from axiscal.compensation.screwmaps import TWINCAT_UNIT, TwincatTable, twincat_t
 __all__ += ["TWINCAT_UNIT", "TwincatTable", "twincat_table"]
 
 # cross-axis (sag) tables (axiscal.compensation.sag)
-from axiscal.compensation.sag import SAG_REFERENCES, SinumerikSagTable, sinumerik_sag_table  # noqa: E402
+from axiscal.compensation.sag import (  # noqa: E402
+    SAG_REFERENCES,
+    SinumerikSagTable,
+    sinumerik_sag_table,
+)
 
 __all__ += ["SAG_REFERENCES", "SinumerikSagTable", "sinumerik_sag_table"]
