@@ -11,10 +11,9 @@ import click
 
 from axiscal.errors import AxiscalError
 from axiscal.io.atomic import atomic_write
-from axiscal.io.figures import pyplot
 from axiscal.io.jsonio import dumps
 
-__all__ = ["flags_named", "echo_json", "ensure_parent", "given_options", "pyplot", "write_output"]
+__all__ = ["flags_named", "echo_json", "given_options", "write_output"]
 
 
 def echo_json(payload: dict[str, Any]) -> None:
@@ -50,8 +49,3 @@ def write_output(path: str | Path, write: Callable[[Path], Any]) -> Path:
     """Produce ``path`` atomically with ``write``; a failure is an AxiscalError naming the file."""
     return atomic_write(path, write)
 
-
-def ensure_parent(path: str | Path) -> Path:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    return path
