@@ -31,6 +31,11 @@ from axiscal.campaign.runner import (
     run_test,
     svg_of,
 )
+from axiscal.campaign.volumetric import (
+    GRID_POINTS,
+    plot_volume,
+    volumetric_section,
+)
 
 __all__ = [
     "CAMPAIGN_FILE",
@@ -56,4 +61,7 @@ __all__ = [
     "run_campaign",
     "run_test",
     "svg_of",
+    "GRID_POINTS",
+    "volumetric_section",
+    "plot_volume",
 ]

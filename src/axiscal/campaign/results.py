@@ -91,7 +91,7 @@ class Figure:
     """
 
     label: str
-    value: float
+    value: float | str
     unit: str
 
 
@@ -272,5 +272,6 @@ def results_payload(results: CampaignResults) -> dict[str, Any]:
         "verdict": results.verdict,
         "tests": tests,
         "compensation": [{k: v for k, v in entry.items() if k != "text"} for entry in results.compensation],
+        **({"volumetric": results.model["figures"]} if results.model else {}),
         "warnings": [*results.warnings, *(f"{t.id}: {w}" for t in results.tests for w in t.warnings)],
     }

@@ -254,6 +254,74 @@ def _ballbar(campaign: Campaign, spec: TestSpec) -> TestResult:
     )
 
 
+def _diagonal(campaign: Campaign, spec: TestSpec) -> TestResult:
+    from axiscal.model.diagonal import diagonal_test
+
+    options = spec.options
+    readings = options.get("interferometer")
+    result = diagonal_test(
+        campaign.model, options["from"], options["to"], steps=options.get("steps"), readings=readings,
+        measure=options.get("measure", "projection"),
+    )
+    figures = result.summary()
+    figures.pop("points", None)
+    figures["diagonal_error_um"] = figures.get("E_BD_range_um", figures["model_error_range_um"])
+    checks = check_figures({"diagonal": figures["diagonal_error_um"]}, spec.tolerances, {"diagonal_um": "um"})
+    title = f"Diagonal {options['from']} to {options['to']}: displacement error (actual minus nominal)"
+    svg = svg_of(lambda p: result.plot(p, title=title))
+    table = [Figure("model error range", figures["model_error_range_um"], "um")]
+    if "E_BD_range_um" in figures:
+        table += [Figure("measured error range, before the model (E_BD)", figures["E_BD_range_um"], "um"),
+                  Figure("left after the model (E_AD)", figures["E_AD_range_um"], "um")]
+    files = [_relative(campaign, campaign.model)] + ([_relative(campaign, readings)] if readings is not None else [])
+    return TestResult(
+        id=spec.id, kind=spec.kind, axis=None, files=files, figures=figures, checks=checks,
+        plots=[Plot(title, svg)], table=table,
+        method=f"Diagonal displacement test (ISO 230-6), reading as {options.get('measure', 'projection')}",
+    )
+
+
+def _sixdof(campaign: Campaign, spec: TestSpec) -> TestResult:
+    from axiscal.measurement.offline import measure_file
+
+    path = spec.options["file"]
+    machine = spec.options.get("machine")
+    result = measure_file(path, machine=machine)
+    figures = result.summary()
+    svg = svg_of(lambda p: _plot_recording(result, p))
+    files = [_relative(campaign, path)] + ([_relative(campaign, machine)] if machine is not None else [])
+    return TestResult(
+        id=spec.id, kind=spec.kind, axis=spec.axis, files=files, figures=figures, checks=[],
+        plots=[Plot("Spatial error of the functional point during the recording", svg)],
+        table=[Figure("frames", figures["frames"], ""), Figure("faulty frames", figures["faulty_frames"], ""),
+               Figure("largest spatial error |e|", figures["max_e_um"], "um"),
+               Figure("mean spatial error |e|", figures["mean_e_um"], "um")],
+        method="6-DOF measurement from raw sensor frames (paper 000)",
+    )
+
+
+def _plot_recording(result, path: Path) -> None:
+    from axiscal.io.figures import pyplot, save_figure
+
+    plt = pyplot()
+    r = result.results
+    good = result.fault == 0
+    fig, ax = plt.subplots(figsize=(7.5, 3.4))
+    for name in ("ex_m", "ey_m", "ez_m", "e_m"):
+        if name in r:
+            ax.plot(r["t_s"][good], r[name][good] / UM, "k" if name == "e_m" else "-", lw=1.2 if name == "e_m" else 0.9,
+                    label="|e|" if name == "e_m" else name[:2])
+    bad = ~good
+    if bad.any():
+        ax.plot(r["t_s"][bad], np.zeros(int(bad.sum())), "rx", label="faulty frame")
+    ax.set_xlabel("time / s")
+    ax.set_ylabel("error / um")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, ncol=5)
+    fig.tight_layout()
+    save_figure(fig, path)
+
+
 #: kind -> the function that runs a test of that kind
 KIND_RUNNERS: dict[str, Callable[[Campaign, TestSpec], TestResult]] = {
     "positioning": _positioning,
@@ -261,6 +329,8 @@ KIND_RUNNERS: dict[str, Callable[[Campaign, TestSpec], TestResult]] = {
     "separation": _separation,
     "squareness": _squareness,
     "ballbar": _ballbar,
+    "diagonal": _diagonal,
+    "sixdof": _sixdof,
 }
 
 
@@ -320,6 +390,11 @@ def run_campaign(
         if progress is not None:
             progress(index, total, spec)
         results.append(run_test(campaign, spec))
+    model: dict[str, Any] = {}
+    if campaign.model is not None:
+        from axiscal.campaign.volumetric import volumetric_section
+
+        model = volumetric_section(campaign.model, svg_of)
     if progress is not None and total:
         progress(total, total, campaign.tests[-1])
-    return CampaignResults(campaign.campaign, campaign.machine, campaign.instrument, results)
+    return CampaignResults(campaign.campaign, campaign.machine, campaign.instrument, results, model=model)

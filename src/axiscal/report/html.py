@@ -226,7 +226,7 @@ def render_html(
         verdict_rows=verdict_rows(results, before),
         warnings=payload["warnings"],
         sections=sections(results.tests),
-        volumetric=volumetric,
+        volumetric=volumetric if volumetric is not None else (results.model or None),
         compensation=results.compensation,
         methods=methods,
         compare={"label": label} if compare is not None else None,
