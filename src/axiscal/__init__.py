@@ -30,6 +30,9 @@ _PUBLIC: dict[str, str] = {
     "ErrorTable": "axiscal.model.tables",
     "read_error_table": "axiscal.model.tables",
     "diagonal_check": "axiscal.model.diagonal",
+    "diagonal_test": "axiscal.model.diagonal",
+    "volumetric_map": "axiscal.model.volumetric",
+    "inverse_commands": "axiscal.model.inverse",
     # instruments (paper 003, Ciddor/Edlen, paper 002)
     "refractive_index": "axiscal.instruments.air",
     "length_from_fringes": "axiscal.instruments.interferometer",
@@ -42,24 +45,46 @@ _PUBLIC: dict[str, str] = {
     "vdi3441": "axiscal.positioning.evaluation",
     "target_statistics": "axiscal.positioning.evaluation",
     "plan_test": "axiscal.positioning.plan",
+    "evaluate_positioning_file": "axiscal.positioning.report",
     # straightness and error separation (paper 001)
     "reference_line": "axiscal.straightness.reference",
     "separate": "axiscal.straightness.separation",
     "reversal": "axiscal.straightness.separation",
     "ProbeReadings": "axiscal.straightness.separation",
+    "read_profile": "axiscal.straightness.files",
+    "evaluate_straightness_file": "axiscal.straightness.files",
+    "separate_file": "axiscal.straightness.files",
     # squareness (papers 002, 004)
     "squareness": "axiscal.squareness.evaluation",
     "squareness_from_slopes": "axiscal.squareness.evaluation",
     "prism_reversal": "axiscal.squareness.evaluation",
+    "squareness_from_files": "axiscal.squareness.evaluation",
+    # circular tests (ISO 230-4)
+    "evaluate_ballbar_file": "axiscal.circular.report",
     # compensation tables
     "error_curve": "axiscal.compensation.curve",
     "linuxcnc_table": "axiscal.compensation.linuxcnc",
     "fanuc_table": "axiscal.compensation.fanuc",
     "siemens_table": "axiscal.compensation.siemens",
     "heidenhain_table": "axiscal.compensation.heidenhain",
+    "compensation_table": "axiscal.compensation.formats",
+    "skew_correction": "axiscal.compensation.skew",
+    "backlash_setting": "axiscal.compensation.backlash",
+    # data in from instruments
+    "import_readings": "axiscal.io.importers.columnmap",
+    "read_rtx": "axiscal.io.importers.rtx",
+    # uncertainty (ISO 230-2 Annex A, GUM, GUM Supplement 1)
+    "read_budget": "axiscal.uncertainty.budget",
+    "positioning_uncertainty": "axiscal.uncertainty.positioning",
+    "volumetric_monte_carlo": "axiscal.uncertainty.volumetric",
     # measurement from raw sensor frames (paper 000)
     "MeasurementSystem": "axiscal.measurement.pipeline",
     "VirtualModule": "axiscal.measurement.virtual",
+    "measure_file": "axiscal.measurement.offline",
+    # campaigns and the report
+    "load_campaign": "axiscal.campaign.config",
+    "run_campaign": "axiscal.campaign.runner",
+    "report_campaign": "axiscal.report.writer",
 }
 
 __all__ = ["AxiscalError", "__version__", *_PUBLIC]
