@@ -13,7 +13,7 @@ from __future__ import annotations
 import datetime as _dt
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -137,6 +137,10 @@ class Campaign:
         The machine description (``[machine] model``), absolute.
     controller : str or None
         ``[machine] controller``.
+    budget : axiscal.uncertainty.Budget or None
+        The uncertainty budget (``uncertainty = "budget.toml"`` or an ``[uncertainty]`` table).
+    decision_rule : str
+        ``"simple"`` (default) or ``"guard-band"`` (ISO 14253-1), from ``[uncertainty] decision_rule``.
     """
 
     folder: Path
@@ -147,7 +151,8 @@ class Campaign:
     tests: tuple[TestSpec, ...]
     model: Path | None = None
     controller: str | None = None
-    extra: dict[str, Any] = field(default_factory=dict)
+    budget: Any = None
+    decision_rule: str = "simple"
 
 
 class _Lines:
@@ -227,7 +232,7 @@ def load_campaign(folder: str | Path) -> Campaign:
     def fail(message: str, table: str = "", index: int = 0, key: str | None = None) -> AxiscalError:
         return AxiscalError(message, path=path, line=lines.of(table, index, key))
 
-    known = {"campaign", "machine", "instrument", "tolerances", "tests"}
+    known = {"campaign", "machine", "instrument", "tolerances", "tests", "uncertainty"}
     for name in data:
         if name not in known:
             raise fail(f"unknown table or key '{name}' (known: {', '.join(sorted(known))})", name, 0, name)
@@ -259,6 +264,9 @@ def load_campaign(folder: str | Path) -> Campaign:
                                       "calibrated": (_dt.date, False), "vacuum_wavelength_nm": (float, False)})
     tolerances = _tolerances(data.get("tolerances", {}), lambda m, k=None: fail(m, "tolerances", 0, k), "[tolerances]")
 
+    budget, rule = _uncertainty(data.get("uncertainty"), folder, path, text, lambda m, k=None: fail(m, "uncertainty", 0, k),
+                                lambda m: fail(m, "", 0, "uncertainty"))
+
     controller = machine.get("controller")
     if controller is not None and controller not in CONTROLLERS:
         raise fail(f"[machine] controller '{controller}' is not one of {', '.join(CONTROLLERS)}", "machine", 0, "controller")
@@ -279,7 +287,8 @@ def load_campaign(folder: str | Path) -> Campaign:
     for index, test_id in enumerate(ids):
         if ids.index(test_id) != index:
             raise fail(f"two tests have the id '{test_id}'", "tests", index, "id")
-    return Campaign(folder, campaign, machine, instrument, tolerances, tuple(tests), model, controller)
+    return Campaign(folder, campaign, machine, instrument, tolerances, tuple(tests), model, controller,
+                    budget=budget, decision_rule=rule)
 
 
 def _test(raw, index, folder, campaign_tolerances, model, counters, fail) -> TestSpec:
@@ -326,6 +335,30 @@ def _test(raw, index, folder, campaign_tolerances, model, counters, fail) -> Tes
         counters[stem] = counters.get(stem, 0) + 1
         test_id = f"{stem}-{counters[stem]}"
     return TestSpec(test_id, kind, axis, options, merged, fail("", "tests", index).line or 0)
+
+
+def _uncertainty(value: Any, folder: Path, path: Path, text: str, fail, fail_top) -> tuple[Any, str]:
+    """The budget and the decision rule: ``uncertainty = "budget.toml"`` or an ``[uncertainty]`` table
+    holding the budget's tables and, optionally, ``decision_rule`` and ``budget = "file.toml"``."""
+    from axiscal.uncertainty.budget import budget_from_dict, read_budget
+    from axiscal.uncertainty.decision import DECISION_RULES
+
+    if value is None:
+        return None, "simple"
+    if isinstance(value, str):
+        return read_budget(_inside(folder, value, fail_top)), "simple"
+    if not isinstance(value, dict):
+        raise fail_top("uncertainty must be a budget file name or an [uncertainty] table")
+    table = dict(value)
+    rule = table.pop("decision_rule", "simple")
+    if rule not in DECISION_RULES:
+        raise fail(f"decision_rule must be one of {', '.join(DECISION_RULES)}, not {_show(rule)}", "decision_rule")
+    if "budget" in table:
+        name = table.pop("budget")
+        if table:
+            raise fail("give the budget as budget = \"file.toml\" or as tables here, not both", "budget")
+        return read_budget(_inside(folder, name, lambda m: fail(m, "budget"))), rule
+    return budget_from_dict(table, source=str(path)), rule
 
 
 def _merged_tolerances(kind: str, campaign: Mapping[str, Any], own: Mapping[str, Any]) -> dict[str, float]:

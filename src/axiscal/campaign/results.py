@@ -30,7 +30,7 @@ __all__ = [
 ]
 
 SCHEMA = "axiscal-results/1"
-VERDICTS = ("pass", "fail", "not assessed")
+VERDICTS = ("pass", "fail", "inconclusive", "not assessed")
 
 
 @dataclass(frozen=True)
@@ -49,6 +49,10 @@ class Check:
         The tolerance.
     unit : str
         ``"um"`` or ``"arcsec"``.
+    U : float or None
+        Expanded uncertainty (k = 2) of the figure in the same unit, when a budget gives it.
+    rule : str
+        The decision rule: ``"simple"`` or ``"guard-band"``.
     """
 
     figure: str
@@ -56,11 +60,30 @@ class Check:
     value: float
     limit: float
     unit: str
+    U: float | None = None
+    rule: str = "simple"
+
+    @property
+    def result(self) -> str:
+        """``"pass"``, ``"fail"`` or (guard band only) ``"inconclusive"``.
+
+        Simple acceptance: pass when ``|value| <= limit``. Guard band (ISO 14253-1): pass when
+        ``|value| + U <= limit``, fail when ``|value| - U > limit``, else inconclusive. A figure
+        that could not be computed does not pass.
+        """
+        if not math.isfinite(self.value):
+            return "fail"
+        value = abs(self.value)
+        if self.rule == "guard-band" and self.U is not None:
+            if value + self.U <= self.limit:
+                return "pass"
+            return "fail" if value - self.U > self.limit else "inconclusive"
+        return "pass" if value <= self.limit else "fail"
 
     @property
     def passed(self) -> bool:
-        """True when ``|value| <= limit`` (a figure that could not be computed does not pass)."""
-        return math.isfinite(self.value) and abs(self.value) <= self.limit
+        """True when the figure passes under its rule."""
+        return self.result == "pass"
 
 
 @dataclass(frozen=True)
@@ -121,6 +144,8 @@ class TestResult:
         ``{"controller", "axis", "file"}`` for each compensation file written.
     method : str
         The method and standard used, one line.
+    uncertainty : dict
+        Expanded uncertainty (k = 2) of figures, by figure key, in the figure's unit.
     """
 
     id: str
@@ -135,6 +160,7 @@ class TestResult:
     warnings: list[str] = field(default_factory=list)
     compensation: list[dict[str, str]] = field(default_factory=list)
     method: str = ""
+    uncertainty: dict[str, float] = field(default_factory=dict)
 
     __test__ = False  # not a pytest test class
 
@@ -143,7 +169,8 @@ class TestResult:
         """``"pass"``, ``"fail"`` or ``"not assessed"``."""
         if not self.checks:
             return "not assessed"
-        return "pass" if all(c.passed for c in self.checks) else "fail"
+        results = [c.result for c in self.checks]
+        return "fail" if "fail" in results else "inconclusive" if "inconclusive" in results else "pass"
 
     @property
     def tolerances(self) -> dict[str, float]:
@@ -165,6 +192,8 @@ class CampaignResults:
         Warnings about the campaign as a whole.
     model : dict
         The volumetric section when the campaign names a machine model.
+    decision_rule : str
+        How figures were held against tolerances: ``"simple"`` or ``"guard-band"``.
     """
 
     campaign: dict[str, Any]
@@ -173,6 +202,7 @@ class CampaignResults:
     tests: list[TestResult]
     warnings: list[str] = field(default_factory=list)
     model: dict[str, Any] = field(default_factory=dict)
+    decision_rule: str = "simple"
 
     @property
     def verdict(self) -> str:
@@ -185,7 +215,14 @@ class CampaignResults:
         return [entry for t in self.tests for entry in t.compensation]
 
 
-def check_figures(figures: Mapping[str, Any], tolerances: Mapping[str, float], units: Mapping[str, str]) -> list[Check]:
+def check_figures(
+    figures: Mapping[str, Any],
+    tolerances: Mapping[str, float],
+    units: Mapping[str, str],
+    *,
+    uncertainty: Mapping[str, float] | None = None,
+    rule: str = "simple",
+) -> list[Check]:
     """Hold figures against tolerances.
 
     Parameters
@@ -197,6 +234,10 @@ def check_figures(figures: Mapping[str, Any], tolerances: Mapping[str, float], u
         ``straightness_um``.
     units : mapping
         Tolerance key -> unit shown in the report.
+    uncertainty : mapping, keyword-only
+        Figure key -> expanded uncertainty in the figure's unit, where a budget gives one.
+    rule : {"simple", "guard-band"}, keyword-only
+        The decision rule.
 
     Returns
     -------
@@ -210,7 +251,8 @@ def check_figures(figures: Mapping[str, Any], tolerances: Mapping[str, float], u
             continue
         value = figures[figure]
         value = float("nan") if value is None else float(value)
-        out.append(Check(figure, key, value, float(limit), units.get(key, key.rsplit("_", 1)[-1])))
+        U = None if uncertainty is None else uncertainty.get(figure)
+        out.append(Check(figure, key, value, float(limit), units.get(key, key.rsplit("_", 1)[-1]), U, rule))
     return out
 
 
@@ -220,12 +262,13 @@ def overall_verdict(verdicts: Sequence[str]) -> str:
     Parameters
     ----------
     verdicts : sequence of str
-        Each test's ``"pass"``, ``"fail"`` or ``"not assessed"``.
+        Each test's ``"pass"``, ``"fail"``, ``"inconclusive"`` or ``"not assessed"``.
 
     Returns
     -------
     str
-        ``"fail"`` if any test failed, ``"pass"`` if any passed and none failed, else ``"not assessed"``.
+        ``"fail"`` if any test failed; else ``"inconclusive"`` if any test was (guard band); else
+        ``"pass"`` if any passed; else ``"not assessed"``.
 
     Examples
     --------
@@ -234,6 +277,8 @@ def overall_verdict(verdicts: Sequence[str]) -> str:
     """
     if "fail" in verdicts:
         return "fail"
+    if "inconclusive" in verdicts:
+        return "inconclusive"
     if "pass" in verdicts:
         return "pass"
     return "not assessed"
@@ -260,6 +305,8 @@ def results_payload(results: CampaignResults) -> dict[str, Any]:
             entry["axis"] = t.axis
         entry["file"] = t.files[0] if len(t.files) == 1 else t.files
         entry.update(figures=t.figures, tolerances=t.tolerances, verdict=t.verdict)
+        if t.uncertainty:
+            entry["uncertainty"] = {"k": 2, **t.uncertainty}
         if t.environment:
             entry["environment"] = t.environment
         if t.warnings:
@@ -270,6 +317,7 @@ def results_payload(results: CampaignResults) -> dict[str, Any]:
         "software": {"name": "axiscal", "version": __version__},
         "campaign": {"campaign": results.campaign, "machine": results.machine, "instrument": results.instrument},
         "verdict": results.verdict,
+        "decision_rule": results.decision_rule,
         "tests": tests,
         "compensation": [{k: v for k, v in entry.items() if k != "text"} for entry in results.compensation],
         **({"volumetric": results.model["figures"]} if results.model else {}),

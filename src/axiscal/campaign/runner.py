@@ -83,6 +83,7 @@ COMPENSATION_FILES = {
 
 def _positioning(campaign: Campaign, spec: TestSpec) -> TestResult:
     from axiscal.compensation.formats import compensation_table
+    from axiscal.positioning.evaluation import Iso230Result
     from axiscal.positioning.report import evaluate_positioning_file
 
     path = spec.options["file"]
@@ -96,7 +97,12 @@ def _positioning(campaign: Campaign, spec: TestSpec) -> TestResult:
     payload = evaluation.to_dict()
     figures = {k: v for k, v in payload.items()}
     axis_figures = {name: value / UM for name, value in evaluation.result.figures().items()}
-    checks = check_figures(axis_figures, spec.tolerances, {})
+    uncertainty = {}
+    if campaign.budget is not None and isinstance(evaluation.result, Iso230Result):
+        from axiscal.uncertainty.positioning import positioning_uncertainty
+
+        uncertainty = {k: v / UM for k, v in positioning_uncertainty(campaign.budget, evaluation.run).U.items()}
+    checks = check_figures(axis_figures, spec.tolerances, {}, uncertainty=uncertainty, rule=campaign.decision_rule)
     title = f"{spec.axis} axis positioning ({evaluation.result.standard})"
     svg = svg_of(lambda p: evaluation.plot(p, title=title))
     compensation = []
@@ -109,7 +115,7 @@ def _positioning(campaign: Campaign, spec: TestSpec) -> TestResult:
         id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, path)], figures=figures,
         checks=checks, plots=[Plot(title, svg)], table=[Figure(k, v, "um") for k, v in axis_figures.items()],
         environment=_environment(path), warnings=list(evaluation.warnings), compensation=compensation,
-        method=f"Positioning: {evaluation.result.standard}",
+        method=f"Positioning: {evaluation.result.standard}", uncertainty=uncertainty,
     )
 
 
@@ -145,14 +151,22 @@ def _straightness(campaign: Campaign, spec: TestSpec) -> TestResult:
     reference = spec.options.get("reference", "least-squares")
     evaluation, svg = _captured(lambda p: evaluate_straightness_file(path, reference=reference, plot_path=p))
     figures = evaluation.payload()
-    checks = check_figures(figures, spec.tolerances, {"straightness_um": "um"})
+    uncertainty = {}
+    if campaign.budget is not None:
+        from axiscal.uncertainty.straightness import straightness_uncertainty
+
+        line = straightness_uncertainty(campaign.budget, evaluation.profile.position_m, evaluation.profile.deviation_m,
+                                        reference=reference)
+        uncertainty = {"straightness_um": line.U / UM}
+    checks = check_figures(figures, spec.tolerances, {"straightness_um": "um"}, uncertainty=uncertainty,
+                           rule=campaign.decision_rule)
     direction = spec.options.get("direction")
     label = f"E{direction}{spec.axis}" if direction else f"straightness of {spec.axis}"
     return TestResult(
         id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, path)], figures=figures,
         checks=checks, plots=[Plot(f"{label}: profile and {reference} reference line", svg)],
         table=[Figure(f"straightness {label}", figures["straightness_um"], "um"), Figure("slope", figures["slope_urad"], "urad")],
-        method=f"Straightness: ISO 230-1 {reference} reference line",
+        method=f"Straightness: ISO 230-1 {reference} reference line", uncertainty=uncertainty,
     )
 
 
@@ -215,14 +229,26 @@ def _squareness(campaign: Campaign, spec: TestSpec) -> TestResult:
         plot_path=p,
     ))
     figures = evaluation.payload()
-    checks = check_figures(figures, spec.tolerances, {"squareness_arcsec": "arcsec"})
+    uncertainty = {}
+    if campaign.budget is not None:
+        from axiscal.uncertainty.straightness import squareness_uncertainty
+
+        first_run, second_run = evaluation.first, evaluation.second
+        line = squareness_uncertainty(
+            campaign.budget, first_run.position_m, first_run.deviation_m, second_run.position_m, second_run.deviation_m,
+            plane=spec.options["plane"], prism_deviation_rad=spec.options.get("prism_deviation_arcsec", 0.0) * ARCSEC,
+            reference=spec.options.get("reference", "least-squares"),
+        )
+        uncertainty = {"squareness_arcsec": line.U / ARCSEC}
+    checks = check_figures(figures, spec.tolerances, {"squareness_arcsec": "arcsec"}, uncertainty=uncertainty,
+                           rule=campaign.decision_rule)
     result = evaluation.result
     return TestResult(
         id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, first), _relative(campaign, second)],
         figures=figures, checks=checks, plots=[Plot(f"{result.plane} squareness: both runs and their lines", svg)],
         table=[Figure(f"squareness {result.plane} ({result.convention})", figures["squareness_arcsec"], "arcsec"),
                Figure(f"{result.iso_term} (ISO 230-1 sign)", figures["iso_value_arcsec"], "arcsec")],
-        method="Squareness: two straightness runs and a pentaprism (paper 002 eqs 1 and 21)",
+        method="Squareness: two straightness runs and a pentaprism (paper 002 eqs 1 and 21)", uncertainty=uncertainty,
     )
 
 
@@ -397,4 +423,5 @@ def run_campaign(
         model = volumetric_section(campaign.model, svg_of)
     if progress is not None and total:
         progress(total, total, campaign.tests[-1])
-    return CampaignResults(campaign.campaign, campaign.machine, campaign.instrument, results, model=model)
+    return CampaignResults(campaign.campaign, campaign.machine, campaign.instrument, results, model=model,
+                           decision_rule=campaign.decision_rule)

@@ -10,6 +10,7 @@ from axiscal.report.demo import (
     run_demo,
 )
 from axiscal.report.html import (
+    decision_statement,
     compare_label,
     format_number,
     previous_figures,
@@ -30,6 +31,7 @@ from axiscal.report.writer import (
 )
 
 __all__ = [
+    "decision_statement",
     "template_environment",
     "render_html",
     "format_number",

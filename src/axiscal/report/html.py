@@ -19,6 +19,7 @@ __all__ = [
     "template_environment",
     "render_html",
     "format_number",
+    "decision_statement",
     "previous_figures",
     "compare_label",
     "verdict_rows",
@@ -78,6 +79,23 @@ def format_number(value: Any, digits: int = 3) -> str:
     return f"{value:.{digits}f}"
 
 
+def decision_statement(rule: str) -> str:
+    """How the report states the decision rule it held the figures to.
+
+    Parameters
+    ----------
+    rule : {"simple", "guard-band"}
+
+    Returns
+    -------
+    str
+        One sentence, with the standard it comes from.
+    """
+    from axiscal.uncertainty.decision import DECISION_RULES
+
+    return "Decision rule: " + DECISION_RULES.get(rule, rule)
+
+
 def previous_figures(compare: Mapping[str, Any] | None) -> dict[str, Any] | None:
     """The figures of another campaign, by test id.
 
@@ -134,7 +152,7 @@ def verdict_rows(results: CampaignResults, before: Mapping[str, Any] | None) -> 
         old = (before or {}).get(test.id, {})
         if not test.checks:
             rows.append({"test_id": test.id, "axis": test.axis or "", "figure": "no tolerance given", "value": "",
-                         "limit": "", "before": "", "change": "", "result": "not assessed", "css": "na"})
+                         "U": "", "limit": "", "before": "", "change": "", "result": "not assessed", "css": "na"})
             continue
         for check in test.checks:
             previous = old.get(check.figure) if isinstance(old, Mapping) else None
@@ -143,8 +161,9 @@ def verdict_rows(results: CampaignResults, before: Mapping[str, Any] | None) -> 
                 "test_id": test.id, "axis": test.axis or "",
                 "figure": f"{check.figure.removesuffix('_' + check.unit)} / {check.unit}",
                 "value": format_number(abs(check.value)), "limit": format_number(check.limit),
+                "U": "" if check.U is None else format_number(check.U),
                 "before": "" if previous is None else format_number(abs(float(previous))), "change": change,
-                "result": "pass" if check.passed else "fail", "css": "pass" if check.passed else "fail",
+                "result": check.result, "css": check.result,
             })
     return rows
 
@@ -215,6 +234,7 @@ def render_html(
     label = compare_label(compare)
     payload = results_payload(results)
     methods = sorted({t.method for t in results.tests if t.method})
+    methods.append(decision_statement(results.decision_rule))
     env = template_environment()
     return env.get_template("report/report.html.j2").render(
         version=__version__,
@@ -224,6 +244,7 @@ def render_html(
         instrument=results.instrument,
         verdict=results.verdict,
         verdict_rows=verdict_rows(results, before),
+        has_u=any(c.U is not None for test in results.tests for c in test.checks),
         warnings=payload["warnings"],
         sections=sections(results.tests),
         volumetric=volumetric if volumetric is not None else (results.model or None),

@@ -19,6 +19,7 @@ from axiscal.campaign.results import CampaignResults, results_payload
 from axiscal.errors import AxiscalError
 from axiscal.report.html import (
     compare_label,
+    decision_statement,
     previous_figures,
     sections,
     template_environment,
@@ -133,7 +134,7 @@ def write_pdf(
             sections=section_list,
             volumetric=None,
             compensation=results.compensation,
-            methods=sorted({t.method for t in results.tests if t.method}),
+            methods=[*sorted({t.method for t in results.tests if t.method}), decision_statement(results.decision_rule)],
             compare={"label": compare_label(compare)} if compare is not None else None,
         )
         main = root / "report.typ"
