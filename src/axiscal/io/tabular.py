@@ -185,8 +185,7 @@ class CsvTable:
             values = self._frame[i].to_numpy(dtype=np.float64, copy=True)
             bad = ~np.isfinite(values)
         else:
-            values = self._convert(i, allow_empty)
-            bad = np.isinf(values)  # NaN only where a cell is empty and allowed to be
+            return self._convert(i, allow_empty)
         if bad.any():
             k = int(np.argmax(bad))
             cell = _shown(self._column_text(i)[k])
@@ -194,22 +193,24 @@ class CsvTable:
         return values
 
     def _convert(self, i: int, allow_empty: bool) -> np.ndarray:
+        """The strict grammar over the column's text: the first cell (in file order) that is not a
+        number, or a number too large for a float, is refused."""
         cells = self._column_text(i)
         empty = cells == ""
         match = (_NUMBER_COMMA if self._comma else NUMBER).fullmatch
-        good = np.fromiter((match(cell) is not None for cell in cells), dtype=bool, count=len(cells))
-        if allow_empty:
-            good |= empty
-        if not good.all():
-            k = int(np.argmax(~good))
-            cell = cells[k]
-            problem = f"{_shown(cell)} is not a finite number" if _NOT_FINITE.fullmatch(cell) else f"'{_shown(cell)}' is not a number"
-            raise AxiscalError(f"column '{self.header[i]}': {problem}", path=self.path, line=self.line_of(k))
+        number = np.fromiter((match(cell) is not None for cell in cells), dtype=bool, count=len(cells))
         values = np.full(len(cells), np.nan)
-        numbers = cells[~empty]
+        texts = cells[number]
         if self._comma:
-            numbers = [cell.replace(",", ".") for cell in numbers]
-        values[~empty] = np.fromiter((float(cell) for cell in numbers), dtype=np.float64, count=len(numbers))
+            texts = [cell.replace(",", ".") for cell in texts]
+        values[number] = np.fromiter((float(cell) for cell in texts), dtype=np.float64, count=len(texts))
+        bad = (~number & ~(empty & allow_empty)) | np.isinf(values)
+        if bad.any():
+            k = int(np.argmax(bad))
+            cell = cells[k]
+            problem = "is not a finite number" if number[k] or _NOT_FINITE.fullmatch(cell) else "is not a number"
+            shown = _shown(cell) if problem == "is not a finite number" else f"'{_shown(cell)}'"
+            raise AxiscalError(f"column '{self.header[i]}': {shown} {problem}", path=self.path, line=self.line_of(k))
         return values
 
     def _column_text(self, i: int) -> np.ndarray:
@@ -311,16 +312,16 @@ def _parse(data: bytes, path: str, min_rows: int) -> CsvTable:
     header_text = lines.text(kept[0])
     delimiter = next((d for d in (",", ";", "\t") if d in header_text), ",")
     header_line = int(kept[0]) + 1
-    if b'"' in data[lines.starts[kept[0]] :]:
-        header, cells = _split_quoted(lines, kept, delimiter, path)
+    quoted = b'"' in data[lines.starts[kept[0]] :]
+    if quoted:
+        header = _split_quoted(lines, kept[:1], delimiter, path)[0]
     else:
-        header, cells = [cell.strip() for cell in header_text.split(delimiter)], None
+        header = [cell.strip() for cell in header_text.split(delimiter)]
     table = CsvTable._parsed(path, _checked_header(header, path, header_line), kept[1:] + 1, header_line, comma=delimiter != ",")
-    if cells is None and len(kept) > 1:
-        cells = _read_frame(table, lines, kept, delimiter)
-    if cells is not None:
-        _check_cell_counts(table, [len(row) for row in cells])
-        table._rows = tuple(tuple(row) for row in cells)
+    if len(kept) > 1:
+        cells = _split_quoted(lines, kept[1:], delimiter, path, width=len(header)) if quoted else _read_frame(table, lines, kept, delimiter)
+        if cells is not None:
+            table._rows = tuple(tuple(row) for row in cells)
     if len(table) < min_rows:
         raise AxiscalError(f"{len(table)} data rows; at least {min_rows} needed", path=path, line=header_line)
     return table
@@ -374,7 +375,7 @@ def _read_frame(table: CsvTable, lines: Lines, kept: np.ndarray, delimiter: str)
     except (pd.errors.ParserError, ValueError):
         frame = None
     if frame is None or len(frame) != len(rows):
-        return _split_quoted(lines, kept, delimiter, table.path)[1]
+        return _split_quoted(lines, rows, delimiter, table.path, width=width)
 
     def reread(i: int) -> np.ndarray:
         column = pd.read_csv(io.BytesIO(region), usecols=[i], dtype=str, **options)[i]
@@ -394,16 +395,21 @@ def _check_cell_counts(table: CsvTable, counts: Sequence[int] | np.ndarray) -> N
         raise AxiscalError(f"{counts[k]} cells where the header has {len(table.header)}", path=table.path, line=table.line_of(k))
 
 
-def _split_quoted(lines: Lines, kept: np.ndarray, delimiter: str, path: str) -> tuple[list[str], list[list[str]]]:
-    """Stripped header and rows of the lines ``kept``, with quoted cells (which may not span lines)."""
+def _split_quoted(lines: Lines, indices: np.ndarray, delimiter: str, path: str, *, width: int | None = None) -> list[list[str]]:
+    """The stripped cells of the lines ``indices``, with quoted cells (which may not span lines).
+
+    With ``width``, a line with another number of cells is refused.
+    """
     out = []
-    for index in kept:
+    for index in indices:
         try:
             cells = next(csv.reader([lines.text(index)], delimiter=delimiter, strict=True), [""])
         except csv.Error as exc:
             raise AxiscalError(f"cannot split into cells ({exc})", path=path, line=int(index) + 1) from None
+        if width is not None and len(cells) != width:
+            raise AxiscalError(f"{len(cells)} cells where the header has {width}", path=path, line=int(index) + 1)
         out.append([cell.strip() for cell in cells])
-    return out[0], out[1:]
+    return out
 
 
 def read_text(path: str | Path) -> str:
