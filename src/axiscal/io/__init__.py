@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from axiscal.io.lines import Lines
 from axiscal.io.tabular import (
     CsvTable,
     parse_csv,
@@ -18,4 +19,5 @@ __all__ = [
     "parse_csv",
     "write_csv",
     "read_toml",
+    "Lines",
 ]

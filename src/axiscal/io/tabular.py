@@ -14,6 +14,7 @@ from __future__ import annotations
 import csv
 import io
 import re
+import warnings
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 
@@ -26,7 +27,7 @@ from axiscal.io.lines import Lines
 __all__ = ["CsvTable", "read_csv", "read_text", "parse_csv", "write_csv", "read_toml"]
 
 #: a number as a file may spell it: optional sign, decimal digits with an optional point, optional exponent
-NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
 _NUMBER_COMMA = re.compile(r"[+-]?(?:[0-9]+[.,]?[0-9]*|[.,][0-9]+)(?:[eE][+-]?[0-9]+)?")
 _NOT_FINITE = re.compile(r"[+-]?(?:nan|inf|infinity)", re.IGNORECASE)
 _MICRO = ("\u00b5", "\u03bc")  # micro sign and Greek mu, as in "µm"
@@ -197,7 +198,7 @@ class CsvTable:
         number, or a number too large for a float, is refused."""
         cells = self._column_text(i)
         empty = cells == ""
-        match = (_NUMBER_COMMA if self._comma else NUMBER).fullmatch
+        match = (_NUMBER_COMMA if self._comma else _NUMBER).fullmatch
         number = np.fromiter((match(cell) is not None for cell in cells), dtype=bool, count=len(cells))
         values = np.full(len(cells), np.nan)
         texts = cells[number]
@@ -303,7 +304,8 @@ def _parse(data: bytes, path: str, min_rows: int) -> CsvTable:
     if nul >= 0:
         raise AxiscalError("NUL character: this is not a text file", path=path, line=lines.number_at(nul))
     try:
-        data.decode("utf-8")
+        if not data.isascii():
+            data.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise AxiscalError(f"not UTF-8 text (byte 0x{data[exc.start]:02x})", path=path, line=lines.number_at(exc.start)) from None
     kept = lines.content()
@@ -367,11 +369,13 @@ def _read_frame(table: CsvTable, lines: Lines, kept: np.ndarray, delimiter: str)
         skip_blank_lines=False,
         decimal="," if table._comma else ".",
         engine="c",
-        low_memory=False,
         encoding="utf-8",
     )
     try:
-        frame = pd.read_csv(io.BytesIO(region), **options)
+        with warnings.catch_warnings():
+            # parsed in chunks, a column may mix numbers and text: numeric() then reads its text
+            warnings.simplefilter("ignore", pd.errors.DtypeWarning)
+            frame = pd.read_csv(io.BytesIO(region), **options)
     except (pd.errors.ParserError, ValueError):
         frame = None
     if frame is None or len(frame) != len(rows):
