@@ -371,3 +371,14 @@ def test_mutated_files_give_a_located_error_or_the_reference_parse(tmp_path_fact
                 assert info.value.line == refused.line and info.value.path == str(path)
             else:
                 np.testing.assert_array_equal(table.numeric(name, allow_empty=allow_empty), want)
+
+
+def test_replace_gives_a_table_of_chosen_rows():
+    import dataclasses
+
+    table = parse_csv(["a;b", "1;2,5", "# x", "3;4,5"])
+    kept = dataclasses.replace(table, rows=table.rows[1:], lines=table.lines[1:])
+    assert kept.rows == (("3", "4,5"),) and kept.lines == (4,) and len(kept) == 1
+    np.testing.assert_array_equal(kept.numeric("b"), [4.5])
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        table.path = "other"  # type: ignore[misc]

@@ -16,6 +16,7 @@ import io
 import re
 import warnings
 from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -34,10 +35,32 @@ _MICRO = ("\u00b5", "\u03bc")  # micro sign and Greek mu, as in "µm"
 _SHOWN = 40  # characters of a cell quoted in an error message
 
 
+class _Lazy:
+    """A field of :class:`CsvTable` that a table read from a file builds on first use."""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.slot = f"_{name}"
+        self.build = f"_build_{name}"
+
+    def __get__(self, table: CsvTable | None, owner: type | None = None):
+        if table is None:
+            return ()  # the field's default
+        value = table.__dict__.get(self.slot)
+        if value is None:
+            value = getattr(table, self.build)()
+            table.__dict__[self.slot] = value
+        return value
+
+    def __set__(self, table: CsvTable, value) -> None:
+        table.__dict__[self.slot] = value
+
+
+@dataclass(frozen=True, repr=False)
 class CsvTable:
     """A parsed CSV file: the header, the cells of each data row, and each row's line number.
 
-    Made by :func:`read_csv` or :func:`parse_csv`; columns are converted when asked for.
+    Made by :func:`read_csv` or :func:`parse_csv`; columns are converted when asked for. A
+    dataclass: ``dataclasses.replace(table, rows=..., lines=...)`` gives a table of chosen rows.
 
     Parameters
     ----------
@@ -46,16 +69,14 @@ class CsvTable:
     header : tuple of str
         Column names (stripped; a unit spelled ``µm`` or ``μm`` is ``um``).
     rows : tuple of tuple of str
-        The stripped cells of each data row.
+        The stripped cells of each data row (built on first use for a table read from a file).
     lines : tuple of int
-        The 1-based line number of each data row.
+        The 1-based line number of each data row (built on first use likewise).
+    decimal_comma : bool
+        Whether numbers may have a decimal comma (``;`` or tab between cells).
 
     Attributes
     ----------
-    path, header
-        As given.
-    rows, lines
-        As given; computed on first use for a table read from a file.
     header_line : int
         The line number of the header.
 
@@ -68,34 +89,35 @@ class CsvTable:
     array([ 1.5, -2. ])
     """
 
-    def __init__(
-        self,
-        path: str,
-        header: Sequence[str],
-        rows: Sequence[Sequence[str]] = (),
-        lines: Sequence[int] = (),
-    ):
-        self.path = path
-        self.header = tuple(header)
-        self._index = {name: i for i, name in enumerate(self.header)}
-        self._rows: tuple[tuple[str, ...], ...] | None = tuple(tuple(row) for row in rows)
-        self._row_lines = np.asarray(lines, dtype=np.int64)
-        self._header_line = int(self._row_lines[0]) - 1 if len(self._row_lines) else 1
-        self._n = len(self._rows)
-        self._comma = False
-        self._frame = None  # pandas' columns, with the dtypes its parser inferred
-        self._reread = None  # reads one column as text from the same bytes
-        self._strings: dict[int, np.ndarray] = {}
-        self._lines: tuple[int, ...] | None = None
+    path: str
+    header: tuple[str, ...]
+    rows: tuple[tuple[str, ...], ...] = _Lazy()  # type: ignore[assignment]
+    lines: tuple[int, ...] = _Lazy()  # type: ignore[assignment]
+    decimal_comma: bool = False
+
+    def __post_init__(self) -> None:
+        rows, lines = self.__dict__["_rows"], self.__dict__["_lines"]
+        if rows is not None:
+            self.__dict__["_rows"] = tuple(tuple(row) for row in rows)
+            self.__dict__["_lines"] = lines = tuple(lines)
+        self._set(
+            header=tuple(self.header),
+            _index={name: i for i, name in enumerate(self.header)},
+            _n=0 if rows is None else len(rows),
+            _row_lines=None if lines is None else np.asarray(lines, dtype=np.int64),
+            _header_line=lines[0] - 1 if lines else 1,
+            _frame=None,  # pandas' columns, with the dtypes its parser inferred
+            _reread=None,  # reads one column as text from the same bytes
+            _strings={},
+        )
+
+    def _set(self, **values) -> None:
+        self.__dict__.update(values)
 
     @classmethod
     def _parsed(cls, path: str, header: Sequence[str], row_lines: np.ndarray, header_line: int, *, comma: bool) -> CsvTable:
-        table = cls(path, header)
-        table._rows = None
-        table._row_lines = row_lines
-        table._header_line = header_line
-        table._n = len(row_lines)
-        table._comma = comma
+        table = cls(path, tuple(header), rows=None, lines=None, decimal_comma=comma)  # type: ignore[arg-type]
+        table._set(_row_lines=row_lines, _header_line=header_line, _n=len(row_lines))
         return table
 
     def __len__(self) -> int:
@@ -104,20 +126,12 @@ class CsvTable:
     def __repr__(self) -> str:
         return f"CsvTable(path={self.path!r}, header={self.header!r}, {self._n} rows)"
 
-    @property
-    def rows(self) -> tuple[tuple[str, ...], ...]:
-        """The stripped cells of each data row (built on first use)."""
-        if self._rows is None:
-            columns = [self._column_text(i) for i in range(len(self.header))]
-            self._rows = tuple(zip(*columns)) if columns else ()
-        return self._rows
+    def _build_rows(self) -> tuple[tuple[str, ...], ...]:
+        columns = [self._column_text(i) for i in range(len(self.header))]
+        return tuple(zip(*columns)) if columns and self._n else ()
 
-    @property
-    def lines(self) -> tuple[int, ...]:
-        """The 1-based line number of each data row (built on first use)."""
-        if self._lines is None:
-            self._lines = tuple(self._row_lines.tolist())
-        return self._lines
+    def _build_lines(self) -> tuple[int, ...]:
+        return tuple(self._row_lines.tolist())
 
     @property
     def header_line(self) -> int:
@@ -198,11 +212,11 @@ class CsvTable:
         number, or a number too large for a float, is refused."""
         cells = self._column_text(i)
         empty = cells == ""
-        match = (_NUMBER_COMMA if self._comma else _NUMBER).fullmatch
+        match = (_NUMBER_COMMA if self.decimal_comma else _NUMBER).fullmatch
         number = np.fromiter((match(cell) is not None for cell in cells), dtype=bool, count=len(cells))
         values = np.full(len(cells), np.nan)
         texts = cells[number]
-        if self._comma:
+        if self.decimal_comma:
             texts = [cell.replace(",", ".") for cell in texts]
         values[number] = np.fromiter((float(cell) for cell in texts), dtype=np.float64, count=len(texts))
         bad = (~number & ~(empty & allow_empty)) | np.isinf(values)
@@ -323,7 +337,7 @@ def _parse(data: bytes, path: str, min_rows: int) -> CsvTable:
     if len(kept) > 1:
         cells = _split_quoted(lines, kept[1:], delimiter, path, width=len(header)) if quoted else _read_frame(table, lines, kept, delimiter)
         if cells is not None:
-            table._rows = tuple(tuple(row) for row in cells)
+            table._set(_rows=tuple(tuple(row) for row in cells))
     if len(table) < min_rows:
         raise AxiscalError(f"{len(table)} data rows; at least {min_rows} needed", path=path, line=header_line)
     return table
@@ -367,7 +381,7 @@ def _read_frame(table: CsvTable, lines: Lines, kept: np.ndarray, delimiter: str)
         na_filter=False,
         quoting=csv.QUOTE_NONE,
         skip_blank_lines=False,
-        decimal="," if table._comma else ".",
+        decimal="," if table.decimal_comma else ".",
         engine="c",
         encoding="utf-8",
     )
@@ -385,8 +399,7 @@ def _read_frame(table: CsvTable, lines: Lines, kept: np.ndarray, delimiter: str)
         column = pd.read_csv(io.BytesIO(region), usecols=[i], dtype=str, **options)[i]
         return column.str.strip().to_numpy(dtype=object)
 
-    table._frame = frame
-    table._reread = reread
+    table._set(_frame=frame, _reread=reread)
     return None
 
 
