@@ -382,3 +382,22 @@ def test_replace_gives_a_table_of_chosen_rows():
     np.testing.assert_array_equal(kept.numeric("b"), [4.5])
     with pytest.raises(dataclasses.FrozenInstanceError):
         table.path = "other"  # type: ignore[misc]
+
+
+def test_a_file_rewritten_while_read_is_parsed_from_the_bytes_read_first(tmp_path, monkeypatch):
+    import axiscal.io.tabular as tabular
+
+    path = tmp_path / "f.csv"
+    path.write_text("# c\na,b\n1,2\n3,4\n")
+    stamps = iter([(1, 1, 1), (2, 2, 2)])
+    real_read_bytes = type(path).read_bytes
+
+    def read_then_rewrite(self):
+        data = real_read_bytes(self)
+        self.write_text("# c\na,b\n5,6\n7,8\n")  # same rows, other values
+        return data
+
+    monkeypatch.setattr(tabular, "_stamp", lambda _: next(stamps))
+    monkeypatch.setattr(type(path), "read_bytes", read_then_rewrite)
+    table = read_csv(path)
+    np.testing.assert_array_equal(table.numeric("a"), [1.0, 3.0])

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import csv
 import io
+import os
 import re
 import warnings
 from collections.abc import Iterable, Mapping, Sequence
@@ -275,6 +276,7 @@ def read_csv(path: str | Path, *, min_rows: int = 1) -> CsvTable:
     """
     path = Path(path)
     try:
+        stamp = _stamp(path)
         data = path.read_bytes()
     except FileNotFoundError:
         raise AxiscalError("file not found", path=path) from None
@@ -282,7 +284,7 @@ def read_csv(path: str | Path, *, min_rows: int = 1) -> CsvTable:
         raise AxiscalError("is a folder, not a file", path=path) from None
     except OSError as exc:
         raise AxiscalError(f"cannot read file ({exc.strerror or exc})", path=path) from None
-    return _parse(data, str(path), min_rows)
+    return _parse(data, str(path), min_rows, file=path, stamp=stamp)
 
 
 def parse_csv(lines: Iterable[str], *, path: str = "<input>", min_rows: int = 1) -> CsvTable:
@@ -310,7 +312,7 @@ def parse_csv(lines: Iterable[str], *, path: str = "<input>", min_rows: int = 1)
     return _parse(text.encode("utf-8", errors="surrogatepass"), path, min_rows)
 
 
-def _parse(data: bytes, path: str, min_rows: int) -> CsvTable:
+def _parse(data: bytes, path: str, min_rows: int, *, file: Path | None = None, stamp: tuple | None = None) -> CsvTable:
     if data.startswith(b"\xef\xbb\xbf"):
         data = data[3:]
     lines = Lines(data)
@@ -335,7 +337,7 @@ def _parse(data: bytes, path: str, min_rows: int) -> CsvTable:
         header = [cell.strip() for cell in header_text.split(delimiter)]
     table = CsvTable._parsed(path, _checked_header(header, path, header_line), kept[1:] + 1, header_line, comma=delimiter != ",")
     if len(kept) > 1:
-        cells = _split_quoted(lines, kept[1:], delimiter, path, width=len(header)) if quoted else _read_frame(table, lines, kept, delimiter)
+        cells = _split_quoted(lines, kept[1:], delimiter, path, width=len(header)) if quoted else _read_frame(table, lines, kept, delimiter, file, stamp)
         if cells is not None:
             table._set(_rows=tuple(tuple(row) for row in cells))
     if len(table) < min_rows:
@@ -359,19 +361,26 @@ def _checked_header(header: list[str], path: str, line: int) -> tuple[str, ...]:
     return tuple(out)
 
 
-def _read_frame(table: CsvTable, lines: Lines, kept: np.ndarray, delimiter: str) -> list[list[str]] | None:
+def _read_frame(
+    table: CsvTable, lines: Lines, kept: np.ndarray, delimiter: str, file: Path | None, stamp: tuple | None
+) -> list[list[str]] | None:
     """Give ``table`` pandas' columns of the data rows ``kept[1:]`` (in a file without quotes).
 
-    Returns None, or the rows' cells split here when pandas saw the rows differently.
+    When the rows run to the end of ``file``, pandas reads the file itself, skipping the lines
+    above them (its own buffered reading is faster than from memory). Returns None, or the rows'
+    cells split here when pandas saw the rows differently (or the file changed meanwhile).
     """
     import pandas as pd
 
     rows = kept[1:]
     width = len(table.header)
     sep = delimiter.encode()
-    region = lines.join(rows)
-    first = lines.data.count(sep, int(lines.starts[rows[0]]), int(lines.ends[rows[0]]))
-    if first != width - 1 or region.count(sep) != (width - 1) * len(rows):
+    contiguous = rows[-1] - rows[0] + 1 == len(rows)
+    arr = np.frombuffer(lines.data, dtype=np.uint8)
+    start, end = int(lines.starts[rows[0]]), int(lines.ends[rows[-1]])
+    seps = arr[start:end] if contiguous else np.frombuffer(lines.join(rows), dtype=np.uint8)
+    first = lines.data.count(sep, start, int(lines.ends[rows[0]]))
+    if first != width - 1 or np.count_nonzero(seps == ord(sep)) != (width - 1) * len(rows):
         _check_cell_counts(table, lines.count(sep, rows) + 1)
     options = dict(
         sep=delimiter,
@@ -389,18 +398,30 @@ def _read_frame(table: CsvTable, lines: Lines, kept: np.ndarray, delimiter: str)
         with warnings.catch_warnings():
             # parsed in chunks, a column may mix numbers and text: numeric() then reads its text
             warnings.simplefilter("ignore", pd.errors.DtypeWarning)
-            frame = pd.read_csv(io.BytesIO(region), **options)
-    except (pd.errors.ParserError, ValueError):
+            frame = None
+            if file is not None and contiguous and rows[-1] == len(lines) - 1:
+                frame = pd.read_csv(file, skiprows=int(rows[0]), **options)
+                if _stamp(file) != stamp or len(frame) != len(rows):  # changed since it was read, or
+                    frame = None  # pandas counted lines otherwise: parse the bytes that were read
+            if frame is None:
+                frame = pd.read_csv(io.BytesIO(lines.join(rows)), **options)
+    except (pd.errors.ParserError, ValueError, OSError):
         frame = None
     if frame is None or len(frame) != len(rows):
         return _split_quoted(lines, rows, delimiter, table.path, width=width)
 
     def reread(i: int) -> np.ndarray:
-        column = pd.read_csv(io.BytesIO(region), usecols=[i], dtype=str, **options)[i]
+        column = pd.read_csv(io.BytesIO(lines.join(rows)), usecols=[i], dtype=str, **options)[i]
         return column.str.strip().to_numpy(dtype=object)
 
     table._set(_frame=frame, _reread=reread)
     return None
+
+
+def _stamp(path: Path) -> tuple[int, int, int]:
+    """Size, modification time and inode of a file: a change means it was rewritten."""
+    found = os.stat(path)
+    return found.st_size, found.st_mtime_ns, found.st_ino
 
 
 def _check_cell_counts(table: CsvTable, counts: Sequence[int] | np.ndarray) -> None:
