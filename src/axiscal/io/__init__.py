@@ -1,5 +1,6 @@
 """The one tabular reader and writer (CSV with units in column names), TOML and JSON files, atomic
-writes, JSON sidecars, and the lazy entry to matplotlib for plots (:mod:`axiscal.io.figures`)."""
+writes, JSON sidecars, the importers of instrument exports, and the lazy entry to matplotlib for
+plots (:mod:`axiscal.io.figures`)."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from axiscal.io.jsonio import (
     write_json,
     write_sidecar,
 )
+from axiscal.io.lines import Lines
 from axiscal.io.tabular import (
     CsvTable,
     parse_csv,
@@ -30,6 +32,7 @@ __all__ = [
     "to_plain",
     "write_json",
     "write_sidecar",
+    "Lines",
     "CsvTable",
     "parse_csv",
     "read_csv",
@@ -38,7 +41,7 @@ __all__ = [
     "write_csv",
 ]
 
-# instrument importers (axiscal.io.importers)
+# instrument importers (axiscal.io.importers), which read through the names above
 from axiscal.io.importers import (  # noqa: E402
     ColumnMap,
     ImportedReadings,

@@ -1,99 +1,463 @@
-"""Reading and writing the project's CSV files, with errors that name the file and the line.
+"""The one tabular reader and writer: CSV files with units in column names, read with pandas' C parser.
 
-Readers validate once, at the boundary: every value a caller gets back is a finite float (or a
-stripped string for text columns). Lines starting with ``#`` and blank lines are skipped, but line
-numbers in errors are those of the file as a person sees it (the header is line 1 when it is the
+RFC 4180 CSV with the relaxations of docs/formats.md ("What a reader accepts"): UTF-8 with or
+without a byte-order mark; LF, CRLF or CR line ends; blank lines and lines whose first non-blank
+character is ``#`` skipped; ``,`` or, when the header says so, ``;`` or tab between cells (with a
+decimal comma allowed); cells stripped of white space. Readers validate once, at the boundary: every
+value a caller gets back is a finite float (or a stripped string for text columns), and every error
+names the file and the physical line as an editor numbers it (the header is line 1 when it is the
 first line).
 """
 
 from __future__ import annotations
 
 import csv
-import math
+import io
+import os
+import re
+import warnings
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.atomic import write_text
+from axiscal.io.lines import Lines
 
 __all__ = ["CsvTable", "read_csv", "read_text", "parse_csv", "write_csv", "read_toml"]
 
+#: a number as a file may spell it: optional sign, decimal digits with an optional point, optional exponent
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_NUMBER_COMMA = re.compile(r"[+-]?(?:[0-9]+[.,]?[0-9]*|[.,][0-9]+)(?:[eE][+-]?[0-9]+)?")
+_NOT_FINITE = re.compile(r"[+-]?(?:nan|inf|infinity)", re.IGNORECASE)
+_MICRO = ("\u00b5", "\u03bc")  # micro sign and Greek mu, as in "µm"
+_SHOWN = 40  # characters of a cell quoted in an error message
 
-@dataclass(frozen=True)
+
+class _Lazy:
+    """A field of :class:`CsvTable` that a table read from a file builds on first use."""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.slot = f"_{name}"
+        self.build = f"_build_{name}"
+
+    def __get__(self, table: CsvTable | None, owner: type | None = None):
+        if table is None:
+            return ()  # the field's default
+        value = table.__dict__.get(self.slot)
+        if value is None:
+            value = getattr(table, self.build)()
+            table.__dict__[self.slot] = value
+        return value
+
+    def __set__(self, table: CsvTable, value) -> None:
+        table.__dict__[self.slot] = value
+
+
+@dataclass(frozen=True, repr=False)
 class CsvTable:
-    """A parsed CSV file: header, the raw cells of each data row, and each row's line number."""
+    """A parsed CSV file: the header, the cells of each data row, and each row's line number.
+
+    Made by :func:`read_csv` or :func:`parse_csv`; columns are converted when asked for. A
+    dataclass: ``dataclasses.replace(table, rows=..., lines=...)`` gives a table of chosen rows.
+
+    Parameters
+    ----------
+    path : str
+        The file's name, for error messages.
+    header : tuple of str
+        Column names (stripped; a unit spelled ``µm`` or ``μm`` is ``um``).
+    rows : tuple of tuple of str
+        The stripped cells of each data row (built on first use for a table read from a file).
+    lines : tuple of int
+        The 1-based line number of each data row (built on first use likewise).
+    decimal_comma : bool
+        Whether numbers may have a decimal comma (``;`` or tab between cells).
+
+    Attributes
+    ----------
+    header_line : int
+        The line number of the header.
+
+    Examples
+    --------
+    >>> table = parse_csv(["# note", "position_mm, EXX_µm", "0, 1.5", "10, -2"])
+    >>> table.header, table.lines, table.header_line
+    (('position_mm', 'EXX_um'), (3, 4), 2)
+    >>> table.numeric("EXX_um")
+    array([ 1.5, -2. ])
+    """
 
     path: str
     header: tuple[str, ...]
-    rows: tuple[tuple[str, ...], ...]
-    lines: tuple[int, ...]
-    _index: dict[str, int] = field(repr=False, compare=False, default_factory=dict)
+    rows: tuple[tuple[str, ...], ...] = _Lazy()  # type: ignore[assignment]
+    lines: tuple[int, ...] = _Lazy()  # type: ignore[assignment]
+    decimal_comma: bool = False
 
     def __post_init__(self) -> None:
-        self._index.update({name: i for i, name in enumerate(self.header)})
+        rows, lines = self.__dict__["_rows"], self.__dict__["_lines"]
+        if rows is not None:
+            self.__dict__["_rows"] = tuple(tuple(row) for row in rows)
+            self.__dict__["_lines"] = lines = tuple(lines)
+        self._set(
+            header=tuple(self.header),
+            _index={name: i for i, name in enumerate(self.header)},
+            _n=0 if rows is None else len(rows),
+            _row_lines=None if lines is None else np.asarray(lines, dtype=np.int64),
+            _header_line=lines[0] - 1 if lines else 1,
+            _frame=None,  # pandas' columns, with the dtypes its parser inferred
+            _reread=None,  # reads one column as text from the same bytes
+            _strings={},
+        )
+
+    def _set(self, **values) -> None:
+        self.__dict__.update(values)
+
+    @classmethod
+    def _parsed(cls, path: str, header: Sequence[str], row_lines: np.ndarray, header_line: int, *, comma: bool) -> CsvTable:
+        table = cls(path, tuple(header), rows=None, lines=None, decimal_comma=comma)  # type: ignore[arg-type]
+        table._set(_row_lines=row_lines, _header_line=header_line, _n=len(row_lines))
+        return table
 
     def __len__(self) -> int:
-        return len(self.rows)
+        return self._n
+
+    def __repr__(self) -> str:
+        return f"CsvTable(path={self.path!r}, header={self.header!r}, {self._n} rows)"
+
+    def _build_rows(self) -> tuple[tuple[str, ...], ...]:
+        columns = [self._column_text(i) for i in range(len(self.header))]
+        return tuple(zip(*columns)) if columns and self._n else ()
+
+    def _build_lines(self) -> tuple[int, ...]:
+        return tuple(self._row_lines.tolist())
+
+    @property
+    def header_line(self) -> int:
+        """The 1-based line number of the header row."""
+        return self._header_line
+
+    def line_of(self, row: int) -> int:
+        """The 1-based line number of data row ``row`` (0-based)."""
+        return int(self._row_lines[row])
 
     def has(self, name: str) -> bool:
+        """Whether the header has a column ``name``."""
         return name in self._index
 
     def require(self, *names: str) -> None:
-        """Raise naming the first missing column."""
+        """Raise naming the first of ``names`` that is not a column.
+
+        Raises
+        ------
+        AxiscalError
+            Naming the missing column, the columns there are, the file and the header line.
+        """
         for name in names:
             if name not in self._index:
                 raise AxiscalError(
                     f"missing column '{name}' (columns are: {', '.join(self.header)})", path=self.path, line=self.header_line
                 )
 
-    @property
-    def header_line(self) -> int:
-        return self.lines[0] - 1 if self.lines else 1
-
     def text(self, name: str) -> list[str]:
-        """The stripped cells of column ``name``."""
+        """The stripped cells of column ``name``.
+
+        Raises
+        ------
+        AxiscalError
+            If there is no such column.
+        """
         self.require(name)
-        i = self._index[name]
-        return [row[i] for row in self.rows]
+        return self._column_text(self._index[name]).tolist()
 
     def numeric(self, name: str, *, allow_empty: bool = False) -> np.ndarray:
-        """Column ``name`` as finite floats; an empty cell is NaN only when ``allow_empty``."""
+        """Column ``name`` as finite floats.
+
+        Parameters
+        ----------
+        name : str
+            The column.
+        allow_empty : bool, keyword-only
+            Read an empty cell as NaN instead of refusing it.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (len(self),)
+            A new array, in the file's unit (the caller converts to SI).
+
+        Raises
+        ------
+        AxiscalError
+            If the column is missing, or a cell is not a number (``1_000``, ``0x1F``, ``nan``,
+            ``inf``, full-width digits, an empty cell unless ``allow_empty``), naming the column,
+            the cell and its line. Numbers are ``[+-]digits[.digits][e[+-]digits]`` (``-1.5``,
+            ``+.5``, ``1.``, ``2E-3``); with ``;`` or tab between cells a decimal comma is accepted.
+        """
         self.require(name)
         i = self._index[name]
-        out = np.empty(len(self.rows))
-        for k, row in enumerate(self.rows):
-            cell = row[i]
-            if cell == "" and allow_empty:
-                out[k] = math.nan
-                continue
-            try:
-                value = float(cell)
-            except ValueError:
-                raise AxiscalError(f"column '{name}': '{cell}' is not a number", path=self.path, line=self.lines[k]) from None
-            if not math.isfinite(value):
-                raise AxiscalError(f"column '{name}': {cell} is not a finite number", path=self.path, line=self.lines[k])
-            out[k] = value
-        return out
+        if self._frame is not None and self._frame[i].dtype.kind in "iuf":
+            values = self._frame[i].to_numpy(dtype=np.float64, copy=True)
+            bad = ~np.isfinite(values)
+        else:
+            return self._convert(i, allow_empty)
+        if bad.any():
+            k = int(np.argmax(bad))
+            cell = _shown(self._column_text(i)[k])
+            raise AxiscalError(f"column '{name}': {cell} is not a finite number", path=self.path, line=self.line_of(k))
+        return values
+
+    def _convert(self, i: int, allow_empty: bool) -> np.ndarray:
+        """The strict grammar over the column's text: the first cell (in file order) that is not a
+        number, or a number too large for a float, is refused."""
+        cells = self._column_text(i)
+        empty = cells == ""
+        match = (_NUMBER_COMMA if self.decimal_comma else _NUMBER).fullmatch
+        number = np.fromiter((match(cell) is not None for cell in cells), dtype=bool, count=len(cells))
+        values = np.full(len(cells), np.nan)
+        texts = cells[number]
+        if self.decimal_comma:
+            texts = [cell.replace(",", ".") for cell in texts]
+        values[number] = np.fromiter((float(cell) for cell in texts), dtype=np.float64, count=len(texts))
+        bad = (~number & ~(empty & allow_empty)) | np.isinf(values)
+        if bad.any():
+            k = int(np.argmax(bad))
+            cell = cells[k]
+            problem = "is not a finite number" if number[k] or _NOT_FINITE.fullmatch(cell) else "is not a number"
+            shown = _shown(cell) if problem == "is not a finite number" else f"'{_shown(cell)}'"
+            raise AxiscalError(f"column '{self.header[i]}': {shown} {problem}", path=self.path, line=self.line_of(k))
+        return values
+
+    def _column_text(self, i: int) -> np.ndarray:
+        found = self._strings.get(i)
+        if found is None:
+            if self._reread is not None:
+                found = self._reread(i)
+            else:
+                found = np.array([row[i] for row in self._rows or ()], dtype=object)
+            self._strings[i] = found
+        return found
+
+
+def _shown(cell: str) -> str:
+    return cell if len(cell) <= _SHOWN else cell[: _SHOWN - 3] + "..."
 
 
 def read_csv(path: str | Path, *, min_rows: int = 1) -> CsvTable:
-    """Read a CSV file with a header row; cells are stripped of white space.
+    """Read a CSV file with a header row (see docs/formats.md, "What a reader accepts").
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    min_rows : int, keyword-only
+        The fewest data rows accepted.
+
+    Returns
+    -------
+    CsvTable
+        The header and the rows; convert columns with :meth:`CsvTable.numeric` or :meth:`CsvTable.text`.
 
     Raises
     ------
     AxiscalError
-        If the file is missing or unreadable, has no header, has a row with a different number of
-        cells than the header, a repeated column name, or fewer than ``min_rows`` data rows.
+        If the file is missing or unreadable, is not UTF-8 text, has no header, an empty or repeated
+        column name, a row with a different number of cells than the header, or fewer than
+        ``min_rows`` data rows; it names the file and line.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "p.csv"
+    >>> _ = path.write_text("position_mm;deviation_µm\\n0;1,5\\n10;-2\\n")
+    >>> read_csv(path).numeric("deviation_um")
+    array([ 1.5, -2. ])
     """
-    text = read_text(path)
-    return parse_csv(text.splitlines(), path=str(path), min_rows=min_rows)
+    path = Path(path)
+    try:
+        stamp = _stamp(path)
+        data = path.read_bytes()
+    except FileNotFoundError:
+        raise AxiscalError("file not found", path=path) from None
+    except IsADirectoryError:
+        raise AxiscalError("is a folder, not a file", path=path) from None
+    except OSError as exc:
+        raise AxiscalError(f"cannot read file ({exc.strerror or exc})", path=path) from None
+    return _parse(data, str(path), min_rows, file=path, stamp=stamp)
+
+
+def parse_csv(lines: Iterable[str], *, path: str = "<input>", min_rows: int = 1) -> CsvTable:
+    """Parse CSV text given as lines, numbered from 1 (see :func:`read_csv`).
+
+    Parameters
+    ----------
+    lines : iterable of str
+        The lines, without or with their line ends.
+    path : str, keyword-only
+        The name errors give.
+    min_rows : int, keyword-only
+        The fewest data rows accepted.
+
+    Returns
+    -------
+    CsvTable
+
+    Raises
+    ------
+    AxiscalError
+        As :func:`read_csv`.
+    """
+    text = "\n".join(line[:-1] if line.endswith("\n") else line for line in lines)
+    return _parse(text.encode("utf-8", errors="surrogatepass"), path, min_rows)
+
+
+def _parse(data: bytes, path: str, min_rows: int, *, file: Path | None = None, stamp: tuple | None = None) -> CsvTable:
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]
+    lines = Lines(data)
+    nul = data.find(b"\0")
+    if nul >= 0:
+        raise AxiscalError("NUL character: this is not a text file", path=path, line=lines.number_at(nul))
+    try:
+        if not data.isascii():
+            data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise AxiscalError(f"not UTF-8 text (byte 0x{data[exc.start]:02x})", path=path, line=lines.number_at(exc.start)) from None
+    kept = lines.content()
+    if len(kept) == 0:
+        raise AxiscalError("empty file: expected a header row", path=path, line=1)
+    header_text = lines.text(kept[0])
+    delimiter = next((d for d in (",", ";", "\t") if d in header_text), ",")
+    header_line = int(kept[0]) + 1
+    quoted = b'"' in data[lines.starts[kept[0]] :]
+    if quoted:
+        header = _split_quoted(lines, kept[:1], delimiter, path)[0]
+    else:
+        header = [cell.strip() for cell in header_text.split(delimiter)]
+    table = CsvTable._parsed(path, _checked_header(header, path, header_line), kept[1:] + 1, header_line, comma=delimiter != ",")
+    if len(kept) > 1:
+        cells = _split_quoted(lines, kept[1:], delimiter, path, width=len(header)) if quoted else _read_frame(table, lines, kept, delimiter, file, stamp)
+        if cells is not None:
+            table._set(_rows=tuple(tuple(row) for row in cells))
+    if len(table) < min_rows:
+        raise AxiscalError(f"{len(table)} data rows; at least {min_rows} needed", path=path, line=header_line)
+    return table
+
+
+def _checked_header(header: list[str], path: str, line: int) -> tuple[str, ...]:
+    seen: set[str] = set()
+    out = []
+    for name in header:
+        stem, sep, unit = name.rpartition("_")
+        if sep and unit[:1] in _MICRO:
+            name = f"{stem}_u{unit[1:]}"
+        if not name:
+            raise AxiscalError("empty column name in header", path=path, line=line)
+        if name in seen:
+            raise AxiscalError(f"column '{name}' appears twice", path=path, line=line)
+        seen.add(name)
+        out.append(name)
+    return tuple(out)
+
+
+def _read_frame(
+    table: CsvTable, lines: Lines, kept: np.ndarray, delimiter: str, file: Path | None, stamp: tuple | None
+) -> list[list[str]] | None:
+    """Give ``table`` pandas' columns of the data rows ``kept[1:]`` (in a file without quotes).
+
+    When the rows run to the end of ``file``, pandas reads the file itself, skipping the lines
+    above them (its own buffered reading is faster than from memory). Returns None, or the rows'
+    cells split here when pandas saw the rows differently (or the file changed meanwhile).
+    """
+    import pandas as pd
+
+    rows = kept[1:]
+    width = len(table.header)
+    sep = delimiter.encode()
+    contiguous = rows[-1] - rows[0] + 1 == len(rows)
+    arr = np.frombuffer(lines.data, dtype=np.uint8)
+    start, end = int(lines.starts[rows[0]]), int(lines.ends[rows[-1]])
+    seps = arr[start:end] if contiguous else np.frombuffer(lines.join(rows), dtype=np.uint8)
+    first = lines.data.count(sep, start, int(lines.ends[rows[0]]))
+    if first != width - 1 or np.count_nonzero(seps == ord(sep)) != (width - 1) * len(rows):
+        _check_cell_counts(table, lines.count(sep, rows) + 1)
+    options = dict(
+        sep=delimiter,
+        header=None,
+        names=list(range(width)),
+        index_col=False,
+        na_filter=False,
+        quoting=csv.QUOTE_NONE,
+        skip_blank_lines=False,
+        decimal="," if table.decimal_comma else ".",
+        engine="c",
+        encoding="utf-8",
+    )
+    try:
+        with warnings.catch_warnings():
+            # parsed in chunks, a column may mix numbers and text: numeric() then reads its text
+            warnings.simplefilter("ignore", pd.errors.DtypeWarning)
+            frame = None
+            if file is not None and contiguous and rows[-1] == len(lines) - 1:
+                frame = pd.read_csv(file, skiprows=int(rows[0]), **options)
+                if _stamp(file) != stamp or len(frame) != len(rows):  # changed since it was read, or
+                    frame = None  # pandas counted lines otherwise: parse the bytes that were read
+            if frame is None:
+                frame = pd.read_csv(io.BytesIO(lines.join(rows)), **options)
+    except (pd.errors.ParserError, ValueError, OSError):
+        frame = None
+    if frame is None or len(frame) != len(rows):
+        return _split_quoted(lines, rows, delimiter, table.path, width=width)
+
+    def reread(i: int) -> np.ndarray:
+        column = pd.read_csv(io.BytesIO(lines.join(rows)), usecols=[i], dtype=str, **options)[i]
+        return column.str.strip().to_numpy(dtype=object)
+
+    table._set(_frame=frame, _reread=reread)
+    return None
+
+
+def _stamp(path: Path) -> tuple[int, int, int]:
+    """Size, modification time and inode of a file: a change means it was rewritten."""
+    found = os.stat(path)
+    return found.st_size, found.st_mtime_ns, found.st_ino
+
+
+def _check_cell_counts(table: CsvTable, counts: Sequence[int] | np.ndarray) -> None:
+    """Refuse the first row whose number of cells is not the header's."""
+    counts = np.asarray(counts)
+    wrong = np.flatnonzero(counts != len(table.header))
+    if len(wrong):
+        k = int(wrong[0])
+        raise AxiscalError(f"{counts[k]} cells where the header has {len(table.header)}", path=table.path, line=table.line_of(k))
+
+
+def _split_quoted(lines: Lines, indices: np.ndarray, delimiter: str, path: str, *, width: int | None = None) -> list[list[str]]:
+    """The stripped cells of the lines ``indices``, with quoted cells (which may not span lines).
+
+    With ``width``, a line with another number of cells is refused.
+    """
+    out = []
+    for index in indices:
+        try:
+            cells = next(csv.reader([lines.text(index)], delimiter=delimiter, strict=True), [""])
+        except csv.Error as exc:
+            raise AxiscalError(f"cannot split into cells ({exc})", path=path, line=int(index) + 1) from None
+        if width is not None and len(cells) != width:
+            raise AxiscalError(f"{len(cells)} cells where the header has {width}", path=path, line=int(index) + 1)
+        out.append([cell.strip() for cell in cells])
+    return out
 
 
 def read_text(path: str | Path) -> str:
-    """The text of a UTF-8 file (a byte-order mark is dropped); a missing or unreadable file raises
-    AxiscalError naming it."""
+    """The text of a UTF-8 file (a byte-order mark is dropped).
+
+    Raises
+    ------
+    AxiscalError
+        If the file is missing, unreadable or not UTF-8, naming it.
+    """
     path = Path(path)
     try:
         return path.read_text(encoding="utf-8-sig")
@@ -103,37 +467,6 @@ def read_text(path: str | Path) -> str:
         raise AxiscalError(f"cannot read file ({exc})", path=path) from None
 
 
-def parse_csv(lines: Iterable[str], *, path: str = "<input>", min_rows: int = 1) -> CsvTable:
-    """Parse CSV text given as lines (see :func:`read_csv`)."""
-    header: tuple[str, ...] | None = None
-    rows: list[tuple[str, ...]] = []
-    numbers: list[int] = []
-    header_line = 1
-    kept = [(n, line) for n, line in enumerate(lines, start=1) if line.strip() and not line.strip().startswith("#")]
-    # one reader over all kept lines (a line holds one record: quoted newlines are not supported)
-    for (lineno, _), raw in zip(kept, csv.reader(line for _, line in kept)):
-        cells = tuple(c.strip() for c in raw)
-        if header is None:
-            header, header_line = cells, lineno
-            seen: set[str] = set()
-            for name in header:
-                if not name:
-                    raise AxiscalError("empty column name in header", path=path, line=lineno)
-                if name in seen:
-                    raise AxiscalError(f"column '{name}' appears twice", path=path, line=lineno)
-                seen.add(name)
-            continue
-        if len(cells) != len(header):
-            raise AxiscalError(f"{len(cells)} cells where the header has {len(header)}", path=path, line=lineno)
-        rows.append(cells)
-        numbers.append(lineno)
-    if header is None:
-        raise AxiscalError("empty file: expected a header row", path=path)
-    if len(rows) < min_rows:
-        raise AxiscalError(f"{len(rows)} data rows; at least {min_rows} needed", path=path, line=header_line)
-    return CsvTable(path=path, header=header, rows=tuple(rows), lines=tuple(numbers))
-
-
 def write_csv(
     path: str | Path | None,
     columns: Mapping[str, Sequence[float] | np.ndarray],
@@ -141,31 +474,54 @@ def write_csv(
     fmt: str | Mapping[str, str] = "{:.6f}",
     comments: Sequence[str] = (),
 ) -> str:
-    """Write columns (all the same length) as CSV; return the text. ``path=None`` only returns it.
+    """Write columns (all the same length) as CSV, atomically; return the text.
 
-    ``fmt`` is one format for every column or a mapping from column name to format; non-float
-    values (strings) are written as they are.
+    Parameters
+    ----------
+    path : str, Path or None
+        The file; ``None`` only returns the text.
+    columns : mapping of str to sequence
+        Column name (with its unit) to values; strings are written as they are.
+    fmt : str or mapping of str to str, keyword-only
+        One format for every float column, or a format per column name (default ``{:.6f}``).
+    comments : sequence of str, keyword-only
+        Lines written as ``# ...`` above the header (deprecated: metadata belongs in a sidecar).
+
+    Returns
+    -------
+    str
+        The CSV text.
+
+    Raises
+    ------
+    AxiscalError
+        If the file cannot be written (the file that was there is left as it was).
     """
     names = list(columns)
     n = len(next(iter(columns.values()))) if names else 0
     out = [f"# {c}" for c in comments]
     out.append(",".join(names))
+    formats = [fmt.get(name, "{:.6f}") if isinstance(fmt, Mapping) else fmt for name in names]
     for k in range(n):
         cells = []
-        for name in names:
+        for name, f in zip(names, formats):
             value = columns[name][k]
-            f = fmt.get(name, "{:.6f}") if isinstance(fmt, Mapping) else fmt
             cells.append(value if isinstance(value, str) else f.format(float(value)))
         out.append(",".join(cells))
     text = "\n".join(out) + "\n"
     if path is not None:
-        Path(path).write_text(text, encoding="utf-8")
+        write_text(path, text)
     return text
 
 
 def read_toml(path: str | Path) -> dict:
-    """Parse a TOML file; a missing, unreadable or malformed file raises AxiscalError naming the line."""
-    import re
+    """Parse a TOML file.
+
+    Raises
+    ------
+    AxiscalError
+        If the file is missing, unreadable or malformed, naming the file and line.
+    """
     import tomllib
 
     text = read_text(path)
