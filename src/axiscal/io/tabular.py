@@ -472,9 +472,12 @@ def write_csv(
     columns: Mapping[str, Sequence[float] | np.ndarray],
     *,
     fmt: str | Mapping[str, str] = "{:.6f}",
-    comments: Sequence[str] = (),
 ) -> str:
-    """Write columns (all the same length) as CSV, atomically; return the text.
+    """Write columns (all the same length) as a plain CSV, atomically; return the text.
+
+    The header is the first line and there are no comment lines, so ``pandas.read_csv(path)``,
+    spreadsheets and ``csv.DictReader`` read the file as it is; what describes the data belongs in
+    a JSON sidecar (:func:`axiscal.io.write_sidecar`).
 
     Parameters
     ----------
@@ -484,8 +487,6 @@ def write_csv(
         Column name (with its unit) to values; strings are written as they are.
     fmt : str or mapping of str to str, keyword-only
         One format for every float column, or a format per column name (default ``{:.6f}``).
-    comments : sequence of str, keyword-only
-        Lines written as ``# ...`` above the header (deprecated: metadata belongs in a sidecar).
 
     Returns
     -------
@@ -499,8 +500,7 @@ def write_csv(
     """
     names = list(columns)
     n = len(next(iter(columns.values()))) if names else 0
-    out = [f"# {c}" for c in comments]
-    out.append(",".join(names))
+    out = [",".join(names)]
     formats = [fmt.get(name, "{:.6f}") if isinstance(fmt, Mapping) else fmt for name in names]
     for k in range(n):
         cells = []

@@ -10,8 +10,8 @@ from axiscal.report.demo import (
     run_demo,
 )
 from axiscal.report.html import (
-    decision_statement,
     compare_label,
+    decision_statement,
     format_number,
     previous_figures,
     render_html,
