@@ -20,6 +20,9 @@ __all__ = ["atomic_write", "write_text"]
 def atomic_write(path: str | Path, write: Callable[[Path], Any], *, make_parents: bool = True) -> Path:
     """Produce ``path`` atomically: ``write(tmp)`` fills a temporary file that then replaces ``path``.
 
+    A link is followed (the file it points to is replaced). A device or a pipe (``/dev/null``, a
+    FIFO) cannot be replaced and is written directly.
+
     Parameters
     ----------
     path : str or Path
@@ -40,13 +43,20 @@ def atomic_write(path: str | Path, write: Callable[[Path], Any], *, make_parents
     AxiscalError
         If the folder cannot be made or the file cannot be written; it names the file.
     """
+    shown = path
     path = Path(path)
     tmp: Path | None = None
     try:
+        if path.is_symlink():
+            path = path.resolve()  # replace the file the link points to, not the link
+        if path.exists() and not path.is_file():
+            if path.is_dir():
+                raise AxiscalError("is a folder, not a file", path=shown)
+            # a device or a pipe (/dev/null, /dev/stdout, a FIFO): nothing to replace, write to it
+            write(path)
+            return path
         if make_parents:
             path.parent.mkdir(parents=True, exist_ok=True)
-        if path.is_dir():
-            raise AxiscalError("is a folder, not a file", path=path)
         fd, name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix or ".tmp", dir=path.parent)
         os.close(fd)
         tmp = Path(name)
@@ -59,7 +69,7 @@ def atomic_write(path: str | Path, write: Callable[[Path], Any], *, make_parents
         tmp = None
         _sync_folder(path.parent)
     except OSError as exc:
-        raise AxiscalError(f"cannot write this file: {exc.strerror or exc}", path=path) from None
+        raise AxiscalError(f"cannot write this file: {exc.strerror or exc}", path=shown) from None
     finally:
         if tmp is not None:
             try:

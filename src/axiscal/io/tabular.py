@@ -26,7 +26,18 @@ from axiscal.errors import AxiscalError
 from axiscal.io.atomic import write_text
 from axiscal.io.lines import Lines
 
-__all__ = ["CsvTable", "read_csv", "read_text", "parse_csv", "write_csv", "read_toml"]
+#: the largest magnitude a numeric cell may hold, in its column's unit (1e12 mm is 1e9 m)
+MAX_MAGNITUDE = 1e12
+
+__all__ = [
+    "MAX_MAGNITUDE",
+    "CsvTable",
+    "read_csv",
+    "read_text",
+    "parse_csv",
+    "write_csv",
+    "read_toml",
+]
 
 #: a number as a file may spell it: optional sign, decimal digits with an optional point, optional exponent
 _NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
@@ -194,18 +205,65 @@ class CsvTable:
             ``inf``, full-width digits, an empty cell unless ``allow_empty``), naming the column,
             the cell and its line. Numbers are ``[+-]digits[.digits][e[+-]digits]`` (``-1.5``,
             ``+.5``, ``1.``, ``2E-3``); with ``;`` or tab between cells a decimal comma is accepted.
+            A magnitude above :data:`MAX_MAGNITUDE` (in the column's own unit) is refused too: no
+            length, angle, time or air condition axiscal reads comes near it, and such a value
+            would overflow the arithmetic that follows.
         """
         self.require(name)
         i = self._index[name]
         if self._frame is not None and self._frame[i].dtype.kind in "iuf":
             values = self._frame[i].to_numpy(dtype=np.float64, copy=True)
             bad = ~np.isfinite(values)
+            if bad.any():
+                k = int(np.argmax(bad))
+                cell = _shown(self._column_text(i)[k])
+                raise AxiscalError(f"column '{name}': {cell} is not a finite number", path=self.path, line=self.line_of(k))
         else:
-            return self._convert(i, allow_empty)
-        if bad.any():
-            k = int(np.argmax(bad))
+            values = self._convert(i, allow_empty)
+        with np.errstate(invalid="ignore"):
+            huge = np.abs(values) > MAX_MAGNITUDE
+        if huge.any():
+            k = int(np.argmax(huge))
             cell = _shown(self._column_text(i)[k])
-            raise AxiscalError(f"column '{name}': {cell} is not a finite number", path=self.path, line=self.line_of(k))
+            raise AxiscalError(
+                f"column '{name}': {cell} is beyond any physical value (more than {MAX_MAGNITUDE:g} in the column's unit)",
+                path=self.path, line=self.line_of(k),
+            )
+        return values
+
+    def numeric_or_missing(self, name: str) -> np.ndarray:
+        """Column ``name`` as floats, a cell that is not a number read as a missing value (NaN).
+
+        For channels where a bad reading is flagged downstream rather than refused (a sensor
+        that dropped out writes an empty cell or ``nan``).
+
+        Parameters
+        ----------
+        name : str
+            The column.
+
+        Returns
+        -------
+        numpy.ndarray of float, shape (len(self),)
+            The numbers; NaN where a cell is empty, not a number by the grammar of
+            :meth:`numeric`, not finite, or beyond :data:`MAX_MAGNITUDE`.
+
+        Raises
+        ------
+        AxiscalError
+            If the column is missing.
+        """
+        self.require(name)
+        cells = self._column_text(self._index[name])
+        match = (_NUMBER_COMMA if self.decimal_comma else _NUMBER).fullmatch
+        number = np.fromiter((match(cell) is not None for cell in cells), dtype=bool, count=len(cells))
+        values = np.full(len(cells), np.nan)
+        texts = cells[number]
+        if self.decimal_comma:
+            texts = [cell.replace(",", ".") for cell in texts]
+        values[number] = np.fromiter((float(cell) for cell in texts), dtype=np.float64, count=len(texts))
+        with np.errstate(invalid="ignore"):
+            values[~(np.abs(values) <= MAX_MAGNITUDE)] = np.nan
         return values
 
     def _convert(self, i: int, allow_empty: bool) -> np.ndarray:

@@ -8,7 +8,6 @@ with their metadata in a JSON sidecar (``<name>.json``); every write is atomic.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -144,15 +143,7 @@ def drop_cut_line(text: str) -> str:
 
 def _cells(table: CsvTable, name: str) -> np.ndarray:
     """Column ``name`` as floats; an empty, ``nan`` or unreadable cell is a missing value (NaN)."""
-    index = table.header.index(name)
-    out = np.empty(len(table.rows))
-    for k, row in enumerate(table.rows):
-        try:
-            out[k] = float(row[index])
-        except (ValueError, IndexError):
-            out[k] = math.nan
-    out[~np.isfinite(out)] = math.nan
-    return out
+    return table.numeric_or_missing(name)
 
 
 def read_frames(path: str | Path, channels: Sequence[str]) -> dict[str, np.ndarray]:
