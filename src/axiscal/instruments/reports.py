@@ -5,17 +5,11 @@ Commands print multi-line reports; their wording and layout live in template fil
 
 from __future__ import annotations
 
-from functools import lru_cache
 from typing import Any
 
+from axiscal.io.templates import render_template
+
 __all__ = ["render_report"]
-
-
-@lru_cache(maxsize=None)
-def _environment():
-    from jinja2 import Environment, PackageLoader, StrictUndefined
-
-    return Environment(loader=PackageLoader("axiscal", "templates"), undefined=StrictUndefined, keep_trailing_newline=True)
 
 
 def render_report(name: str, **context: Any) -> str:
@@ -38,4 +32,4 @@ def render_report(name: str, **context: Any) -> str:
     jinja2.UndefinedError
         If the template uses a value not given (a programming error, not a user's).
     """
-    return _environment().get_template(name).render(**context)
+    return render_template(name, keep_trailing_newline=True, trim_blocks=False, **context)

@@ -8,7 +8,6 @@ Multi-line text is rendered from the Jinja2 templates shipped in ``axiscal/templ
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -17,6 +16,7 @@ import numpy as np
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.tabular import write_csv
+from axiscal.io.templates import render_template as _render
 
 __all__ = ["SIGN_CONVENTION", "table_text", "write_table", "TableResult", "render_template"]
 
@@ -162,20 +162,6 @@ class TableResult:
         )
 
 
-@lru_cache(maxsize=1)
-def _environment():
-    from jinja2 import Environment, PackageLoader, StrictUndefined
-
-    return Environment(
-        loader=PackageLoader("axiscal", "templates"),
-        undefined=StrictUndefined,
-        keep_trailing_newline=True,
-        trim_blocks=True,
-        lstrip_blocks=True,
-        autoescape=False,
-    )
-
-
 def render_template(template: str, /, **context: Any) -> str:
     """Render the text template ``axiscal/templates/<template>`` with ``context``.
 
@@ -197,4 +183,4 @@ def render_template(template: str, /, **context: Any) -> str:
         A template that is not shipped, or a variable it uses that is not given (program errors,
         not user mistakes).
     """
-    return _environment().get_template(template).render(**context)
+    return _render(template, keep_trailing_newline=True, **context)

@@ -6,24 +6,11 @@ already in the unit it is printed in, so a template only lays out and formats.
 
 from __future__ import annotations
 
-from functools import lru_cache
 from typing import Any
 
+from axiscal.io.templates import render_template
+
 __all__ = ["render_report"]
-
-
-@lru_cache(maxsize=1)
-def _environment():
-    from jinja2 import Environment, PackageLoader, StrictUndefined
-
-    return Environment(
-        loader=PackageLoader("axiscal", "templates"),
-        undefined=StrictUndefined,
-        trim_blocks=True,
-        lstrip_blocks=True,
-        keep_trailing_newline=False,
-        autoescape=False,
-    )
 
 
 def render_report(template: str, **context: Any) -> str:
@@ -48,4 +35,4 @@ def render_report(template: str, **context: Any) -> str:
     >>> text.splitlines()[0]
     'straightness  1.0000 um  (least-squares reference line)'
     """
-    return _environment().get_template(template).render(**context).rstrip("\n")
+    return render_template(template, **context).rstrip("\n")
