@@ -16,6 +16,7 @@ __all__ = [
     "ARCSEC",
     "ARCMIN",
     "URAD",
+    "NM",
     "PPM",
     "UM",
     "MM",
@@ -41,6 +42,7 @@ ARCMIN = ANGLE_UNITS["arcmin"]
 URAD = ANGLE_UNITS["urad"]
 #: parts per million, for ratios (n - 1, expansion)
 PPM = 1e-6
+NM = LENGTH_UNITS["nm"]
 UM = LENGTH_UNITS["um"]
 MM = LENGTH_UNITS["mm"]
 

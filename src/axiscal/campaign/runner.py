@@ -23,7 +23,7 @@ from axiscal.campaign.results import (
     check_figures,
 )
 from axiscal.errors import AxiscalError
-from axiscal.units import ARCSEC, MM, UM
+from axiscal.units import ARCSEC, MM, UM, URAD
 
 __all__ = ["COMPENSATION_FILES", "KIND_RUNNERS", "evaluation_is_raw", "run_campaign", "run_test", "svg_of"]
 
@@ -199,7 +199,7 @@ def _separation(campaign: Campaign, spec: TestSpec) -> TestResult:
     figures = {
         "method": separation.method,
         "straightness_um": slide.straightness_m / UM,
-        "slope_urad": slide.slope / 1e-6,
+        "slope_urad": slide.slope / URAD,
         "profile_straightness_um": workpiece.straightness_m / UM,
         "reference": reference,
         "points": int(separation.position_m.size),

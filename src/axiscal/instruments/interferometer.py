@@ -26,7 +26,7 @@ from axiscal.errors import AxiscalError
 from axiscal.instruments.air import air_inputs, refractive_index
 from axiscal.instruments.reports import render_report
 from axiscal.materials import STEEL_EXPANSION_PER_K
-from axiscal.units import MM
+from axiscal.units import MM, NM
 
 __all__ = [
     "fringe_report",
@@ -107,7 +107,7 @@ def length_from_fringes(
     index = _finite("refractive index of air", index_of_air)
     if np.any(index < 1.0):
         raise AxiscalError("refractive index of air below 1 is not physical")
-    wavelength = _finite("wavelength", wavelength_nm) * 1e-9
+    wavelength = _finite("wavelength", wavelength_nm) * NM
     return _finite("fringe count", counts) * wavelength / (2.0 * optical_fold * interpolation * index)
 
 
