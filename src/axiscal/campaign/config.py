@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from axiscal.errors import AxiscalError
+from axiscal.io.schema import TomlLines
 from axiscal.io.tabular import read_text
 
 __all__ = [
@@ -155,38 +156,6 @@ class Campaign:
     decision_rule: str = "simple"
 
 
-class _Lines:
-    """Where each key of a TOML file stands, so that an error can name the line."""
-
-    _header = re.compile(r"^\s*(\[\[?)\s*([A-Za-z0-9_.\-\"' ]+?)\s*\]\]?\s*(#.*)?$")
-    _key = re.compile(r"^\s*([A-Za-z0-9_\-]+|\"[^\"]*\")\s*=")
-
-    def __init__(self, text: str):
-        self.tables: dict[tuple[str, int], int] = {}
-        self.keys: dict[tuple[str, int, str], int] = {}
-        counts: dict[str, int] = {}
-        table, index = "", 0
-        for number, line in enumerate(re.split(r"\r\n|\r|\n", text), start=1):
-            found = self._header.match(line)
-            if found:
-                table = found.group(2).strip()
-                if found.group(1) == "[[":
-                    index = counts.get(table, 0)
-                    counts[table] = index + 1
-                else:
-                    index = 0
-                self.tables[(table, index)] = number
-                continue
-            found = self._key.match(line)
-            if found:
-                self.keys.setdefault((table, index, found.group(1).strip('"')), number)
-
-    def of(self, table: str, index: int = 0, key: str | None = None) -> int | None:
-        if key is not None and (table, index, key) in self.keys:
-            return self.keys[(table, index, key)]
-        return self.tables.get((table, index))
-
-
 def load_campaign(folder: str | Path) -> Campaign:
     """Read and check a campaign folder.
 
@@ -227,7 +196,7 @@ def load_campaign(folder: str | Path) -> Campaign:
         raise AxiscalError(
             f"malformed TOML: {str(exc).split(' (at line')[0]}", path=path, line=int(found.group(1)) if found else None
         ) from None
-    lines = _Lines(text)
+    lines = TomlLines(text)
 
     def fail(message: str, table: str = "", index: int = 0, key: str | None = None) -> AxiscalError:
         return AxiscalError(message, path=path, line=lines.of(table, index, key))

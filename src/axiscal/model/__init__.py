@@ -28,6 +28,8 @@ from axiscal.model.kinematics import (
     volumetric_error,
 )
 from axiscal.model.machine import (
+    AXIS_FIELDS,
+    MACHINE_FIELDS,
     SQUARENESS_PLACEMENTS,
     Axis,
     Machine,
@@ -55,6 +57,8 @@ from axiscal.model.tables import INTERPOLATIONS, ErrorTable, read_error_table
 from axiscal.model.volumetric import VolumetricMap, volumetric_map
 
 __all__ = [
+    "AXIS_FIELDS",
+    "MACHINE_FIELDS",
     "INTERPOLATIONS",
     "ErrorTable",
     "read_error_table",

@@ -13,22 +13,32 @@ from collections.abc import Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from axiscal.conventions import SQUARENESS_TERMS
 from axiscal.errors import AxiscalError
-from axiscal.io.tabular import read_toml
+from axiscal.io.schema import (
+    Field,
+    TomlLines,
+    check_table,
+    confined_path,
+    finite_number,
+)
+from axiscal.io.tabular import read_text, read_toml
 from axiscal.model.kinematics import (
     AXIS_INDEX,
     ChainLink,
     reference_volumetric_error,
     volumetric_error,
 )
-from axiscal.model.tables import ErrorTable, read_error_table
+from axiscal.model.tables import INTERPOLATIONS, ErrorTable, read_error_table
 from axiscal.units import LENGTH_UNITS, MM, angle_factor, split_unit
 
 __all__ = [
+    "MACHINE_FIELDS",
+    "AXIS_FIELDS",
     "SQUARENESS_PLACEMENTS",
     "Axis",
     "parse_chain",
@@ -468,19 +478,37 @@ class Machine:
         raise AxiscalError(f"inverse kinematics did not converge (miss {worst / LENGTH_UNITS['nm']:.3g} nm)")
 
 
-_MACHINE_KEYS = {
-    "name", "chain", "tool_mm", "workpiece_mm", "axes", "squareness", "squareness_placement", "interpolation", "hold_ends"
+#: the keys of a machine file (docs/formats.md), checked by axiscal.io.schema
+MACHINE_FIELDS = {
+    "name": Field("str"),
+    "chain": Field("str", required=True),
+    "tool_mm": Field("vector3"),
+    "workpiece_mm": Field("vector3"),
+    "axes": Field("table"),
+    "squareness": Field("table"),
+    "squareness_placement": Field("str", choices=SQUARENESS_PLACEMENTS),
+    "interpolation": Field("str", choices=INTERPOLATIONS),
+    "hold_ends": Field("bool"),
 }
-_AXIS_KEYS = {"errors", "origin_mm", "interpolation", "hold_ends", "sensors"}
+#: the keys of an [axes.<letter>] section
+AXIS_FIELDS = {
+    "errors": Field("str", required=True),
+    "origin_mm": Field("vector3"),
+    "interpolation": Field("str", choices=INTERPOLATIONS),
+    "hold_ends": Field("bool"),
+    "sensors": Field("table"),
+}
 
 
 def _vector_mm(value: object, what: str) -> tuple[float, float, float]:
-    if not (isinstance(value, list) and len(value) == 3 and all(isinstance(v, (int, float)) for v in value)):
+    if not (isinstance(value, list) and len(value) == 3 and all(finite_number(v) for v in value)):
         raise AxiscalError(f"{what} must be a list of 3 numbers in mm, e.g. [0.0, -40.0, 0.0]")
     return tuple(float(v) * MM for v in value)  # type: ignore[return-value]
 
 
-def machine_from_dict(data: Mapping, *, base_dir: Path = Path("."), source: str = "<machine>") -> Machine:
+def machine_from_dict(
+    data: Mapping, *, base_dir: Path = Path("."), source: str = "<machine>", text: str | None = None
+) -> Machine:
     """Build a :class:`Machine` from the parsed TOML description (docs/formats.md).
 
     Parameters
@@ -491,6 +519,8 @@ def machine_from_dict(data: Mapping, *, base_dir: Path = Path("."), source: str 
         Folder the error table paths are relative to.
     source : str
         Name of the description in error messages (its file).
+    text : str, optional
+        The TOML text, so that errors can name the line of a key.
 
     Returns
     -------
@@ -499,60 +529,76 @@ def machine_from_dict(data: Mapping, *, base_dir: Path = Path("."), source: str 
     Raises
     ------
     AxiscalError
-        Unknown keys, a missing chain or axis section, a bad error table or squareness entry;
-        the message names ``source`` (or the table file and line).
+        Unknown keys, a value of the wrong type (checked against :data:`MACHINE_FIELDS` and
+        :data:`AXIS_FIELDS`), a missing chain or axis section, an error table outside
+        ``base_dir``, a bad error table, or a squareness term for an axis that is not in the chain;
+        the message names ``source`` and the line (or the table file and its line).
     """
+    lines = TomlLines(text) if text is not None else None
+
+    def checked(table_data: Any, fields: Mapping[str, Field], where: str, table: str = "") -> dict[str, Any]:
+        return check_table(table_data, fields, where=where, source=source, lines=lines, table=table)
+
+    def located(exc: AxiscalError, table: str = "", key: str | None = None) -> AxiscalError:
+        line = lines.of(table, key=key) if lines is not None else None
+        return exc.located(path=source, line=line)
+
     try:
-        unknown = sorted(set(data) - _MACHINE_KEYS)
-        if unknown:
-            raise AxiscalError(f"unknown key {', '.join(unknown)}; known keys: {', '.join(sorted(_MACHINE_KEYS))}")
-        if "chain" not in data:
-            raise AxiscalError("missing 'chain' (e.g. chain = \"FXZ\")")
-        chain = str(data["chain"])
+        data = checked(data, MACHINE_FIELDS, "the machine file")
+        chain = data["chain"]
         interpolation = data.get("interpolation", "linear")
-        hold_ends = bool(data.get("hold_ends", False))
+        hold_ends = data.get("hold_ends", False)
         axes_data = data.get("axes", {})
-        if not isinstance(axes_data, Mapping):
-            raise AxiscalError("'axes' must be a table of [axes.<letter>] sections")
-        workpiece_side, tool_side = parse_chain(chain)
+        try:
+            workpiece_side, tool_side = parse_chain(chain)
+        except AxiscalError as exc:
+            raise located(exc, key="chain") from None
         for letter in workpiece_side + tool_side:
             if letter not in axes_data:
-                raise AxiscalError(f"axis {letter} is in chain '{chain}' but has no [axes.{letter}] section")
+                raise located(AxiscalError(f"axis {letter} is in chain '{chain}' but has no [axes.{letter}] section"), key="chain")
         axes: dict[str, Axis] = {}
         for letter, section in axes_data.items():
             if letter not in workpiece_side + tool_side:
-                raise AxiscalError(f"[axes.{letter}] is not an axis of chain '{chain}'")
-            if not isinstance(section, Mapping):
-                raise AxiscalError(f"[axes.{letter}] must be a table")
-            unknown = sorted(set(section) - _AXIS_KEYS)
-            if unknown:
-                raise AxiscalError(f"[axes.{letter}]: unknown key {', '.join(unknown)}")
-            if "errors" not in section:
-                raise AxiscalError(f"[axes.{letter}] has no 'errors' table file")
+                raise located(AxiscalError(f"[axes.{letter}] is not an axis of chain '{chain}'"), f"axes.{letter}")
+            section = checked(section, AXIS_FIELDS, f"[axes.{letter}]", f"axes.{letter}")
+            try:
+                table_path = confined_path(base_dir, section["errors"])
+            except AxiscalError as exc:
+                raise located(exc, f"axes.{letter}", "errors") from None
             table = read_error_table(
-                base_dir / str(section["errors"]),
+                table_path,
                 letter,
                 interpolation=section.get("interpolation", interpolation),
-                hold_ends=bool(section.get("hold_ends", hold_ends)),
+                hold_ends=section.get("hold_ends", hold_ends),
             )
             origin = _vector_mm(section.get("origin_mm", [0.0, 0.0, 0.0]), f"[axes.{letter}] origin_mm")
             axes[letter] = Axis(letter, table, origin)
         squareness: dict[str, float] = {}
+        letters = set(workpiece_side + tool_side)
         for key, value in dict(data.get("squareness", {})).items():
-            stem, unit = split_unit(key)
-            if stem not in SQUARENESS_TERMS:
-                raise AxiscalError(f"[squareness] unknown term '{key}'; use EC0Y, EB0Z, EA0Z with a unit, e.g. EB0Z_arcsec")
-            if not isinstance(value, (int, float)):
-                raise AxiscalError(f"[squareness] {key} must be a number")
-            squareness[stem] = float(value) * angle_factor(unit, what=key)
+            try:
+                stem, unit = split_unit(key)
+                if stem not in SQUARENESS_TERMS:
+                    raise AxiscalError(f"[squareness] unknown term '{key}'; use EC0Y, EB0Z, EA0Z with a unit, e.g. EB0Z_arcsec")
+                if not finite_number(value):
+                    raise AxiscalError(f"[squareness] {key} must be a number, not {value!r}")
+                needs = set(_SQUARENESS_PLACE[stem][:2])
+                if not needs <= letters:
+                    raise AxiscalError(
+                        f"[squareness] {key}: {stem} is the squareness of {' and '.join(sorted(needs))}, but chain"
+                        f" '{chain}' has no axis {' or '.join(sorted(needs - letters))}"
+                    )
+                squareness[stem] = float(value) * angle_factor(unit, what=key)
+            except AxiscalError as exc:
+                raise located(exc, "squareness", key) from None
         return Machine(
             chain=chain,
             axes=axes,
             squareness_rad=squareness,
             tool_m=_vector_mm(data.get("tool_mm", [0.0, 0.0, 0.0]), "tool_mm"),
             workpiece_m=_vector_mm(data.get("workpiece_mm", [0.0, 0.0, 0.0]), "workpiece_mm"),
-            name=str(data.get("name", "")),
-            squareness_placement=str(data.get("squareness_placement", SQUARENESS_PLACEMENTS[0])),
+            name=data.get("name", ""),
+            squareness_placement=data.get("squareness_placement", SQUARENESS_PLACEMENTS[0]),
         )
     except AxiscalError as exc:
         raise exc.located(path=source) from None
@@ -584,7 +630,7 @@ def load_machine(path: str | Path) -> Machine:
     """
     path = Path(path)
     data = read_toml(path)
-    return machine_from_dict(data, base_dir=path.parent, source=str(path))
+    return machine_from_dict(data, base_dir=path.parent, source=str(path), text=read_text(path))
 
 
 def as_machine(machine: Machine | str | Path) -> Machine:

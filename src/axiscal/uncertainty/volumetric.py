@@ -31,6 +31,7 @@ from axiscal.conventions import AXIS_INDEX, SQUARENESS_TERMS, component_names
 from axiscal.errors import AxiscalError
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
+from axiscal.io.schema import confined_path
 from axiscal.io.tabular import read_csv, read_text, read_toml, write_csv
 from axiscal.model.machine import Machine, machine_from_dict
 from axiscal.uncertainty.budget import _line_of
@@ -171,7 +172,10 @@ def load_machine_uncertainty(path: str | Path) -> tuple[Machine, MachineUncertai
             for letter, section in axes.items():
                 if not isinstance(section, dict) or "errors" not in section:
                     continue
-                original = path.parent / str(section["errors"])
+                try:
+                    original = confined_path(path.parent, str(section["errors"]))
+                except AxiscalError as exc:
+                    raise exc.located(path=path) from None
                 if letter not in AXIS_INDEX:
                     continue  # machine_from_dict names the stray section
                 text, table, rows = _split_uncertainty_columns(original, letter)
@@ -179,9 +183,9 @@ def load_machine_uncertainty(path: str | Path) -> tuple[Machine, MachineUncertai
                 copy.write_text(text)
                 originals[str(copy)] = original
                 u_columns[letter] = (table, rows)
-                section["errors"] = str(copy)
+                section["errors"] = copy.name  # the copies lie together in the temporary folder
         try:
-            machine = machine_from_dict(data, base_dir=path.parent, source=str(path))
+            machine = machine_from_dict(data, base_dir=Path(folder), source=str(path))
         except AxiscalError as exc:
             for copy, original in originals.items():
                 if exc.path == copy:
