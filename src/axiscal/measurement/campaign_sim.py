@@ -121,7 +121,7 @@ def laser_run(module: VirtualModule, letter: str, *, runs: int = 5, targets: int
     Examples
     --------
     >>> run = laser_run(VirtualModule(seed=0), "X")
-    >>> sorted(set(run["direction"]))
+    >>> sorted(set(run["direction"].tolist()))
     ['+', '-']
     """
     if letter not in module.heads:
@@ -259,7 +259,7 @@ def diagonal_readings(module: VirtualModule) -> dict[str, np.ndarray]:
 
     Examples
     --------
-    >>> diagonal_readings(VirtualModule(seed=0))["measured_mm"][0]
+    >>> float(diagonal_readings(VirtualModule(seed=0))["measured_mm"][0])
     0.0
     """
     measured = module.laser_diagonal({"X": _DIAGONAL_Q_M, "Z": _DIAGONAL_Q_M.copy()})
