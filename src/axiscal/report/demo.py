@@ -17,7 +17,6 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from axiscal.errors import AxiscalError
 from axiscal.io.jsonio import write_json
 from axiscal.measurement.campaign_sim import DIAGONAL_LOADS_KG, SimulatedCampaign, write_campaign
 from axiscal.measurement.virtual import DiagonalExperiment, VirtualModule, diagonal_experiment
@@ -157,10 +156,6 @@ def run_demo(output_dir: str | Path = "axiscal-demo", *, seed: int = 0) -> DemoR
     56.4
     """
     folder = Path(output_dir)
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise AxiscalError(f"cannot make the output folder: {exc.strerror or exc}", path=folder) from None
     campaign = write_campaign(folder / "campaign", seed=seed)
     report = report_campaign(campaign.folder, folder / "report")
     experiments = {load: diagonal_experiment(VirtualModule(seed=seed, load_kg=load)) for load in DIAGONAL_LOADS_KG}
