@@ -5,9 +5,15 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from axiscal.errors import AxiscalError
+from axiscal.instruments.air import refractive_index
+from axiscal.materials import STEEL_EXPANSION_PER_K
 from axiscal.measurement.campaign_sim import (
+    PRISM_DEVIATION_RAD,
+    REPEATABILITY_M,
     REVERSAL_M,
     laser_run,
     probe_readings,
@@ -132,3 +138,33 @@ def test_mistakes_are_axiscal_errors(tmp_path, module):
     blocker.write_text("")
     with pytest.raises(AxiscalError, match="campaign folder"):
         write_campaign(blocker / "campaign")
+
+
+@settings(max_examples=8, deadline=None)
+@given(seed=st.integers(min_value=0, max_value=10_000))
+def test_any_seed_squareness_runs_give_the_module_s_squareness(seed, tmp_path_factory):
+    folder = tmp_path_factory.mktemp("square")
+    first, second = squareness_runs(VirtualModule(seed=seed), seed=seed)
+    for name, run in (("x.csv", first), ("z.csv", second)):
+        pd.DataFrame(run).to_csv(folder / name, index=False)
+    evaluation = squareness_from_files(folder / "x.csv", folder / "z.csv", plane="XZ",
+                                       prism_deviation_rad=PRISM_DEVIATION_RAD, convention="iso")
+    # 0.1 um reading noise on 20 points over 190 mm: about 0.11 arcsec (1 sigma) on the two slopes together
+    assert evaluation.payload()["iso_value_arcsec"] == pytest.approx(-42.4, abs=0.5)
+
+
+@settings(max_examples=8, deadline=None)
+@given(seed=st.integers(min_value=0, max_value=10_000), letter=st.sampled_from(["X", "Z"]))
+def test_any_seed_laser_readings_undo_to_the_true_position(seed, letter):
+    # reference implementation of the raw reading, undone: p20 = reading / ((1 + alpha dT) n_air)
+    module = VirtualModule(seed=seed, noise=False)
+    run = laser_run(module, letter, seed=seed)
+    n_air = refractive_index(run["air_temperature_c"], run["pressure_pa"], run["humidity_pct"], 632.99137)
+    p20 = run["actual_mm"] * MM / ((1 + STEEL_EXPANSION_PER_K * (run["material_temperature_c"] - 20.0)) * n_air)
+    target = run["target_mm"] * MM
+    e = module.true_errors(letter, target)
+    beam = np.asarray(module.heads[letter].scale_point_m) + INTERFEROMETER_BEAM_M
+    true = target + (e[:3].T + np.cross(e[3:].T, beam))[:, "XYZ".index(letter)]
+    sign = np.where(run["direction"] == "+", -1.0, 1.0)
+    left = p20 - true - sign * REVERSAL_M[letter] / 2 - 0.05 * UM * (run["run"] - 1)
+    assert np.max(np.abs(left)) < 6 * REPEATABILITY_M  # only the scatter is left
