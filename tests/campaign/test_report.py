@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import shutil
+from pathlib import Path
 
 import pytest
 
@@ -11,11 +12,14 @@ from axiscal.campaign import run_campaign
 
 pytestmark = pytest.mark.filterwarnings("ignore::UserWarning")
 
+#: a campaign of a 3-axis machining centre with every kind of file but the model's (test data)
+VMC850 = Path(__file__).parent / "data" / "vmc850"
+
 
 @pytest.fixture
-def campaign(tmp_path, examples):
+def campaign(tmp_path):
     folder = tmp_path / "campaign"
-    shutil.copytree(examples / "campaign", folder)
+    shutil.copytree(VMC850, folder)
     return folder
 
 

@@ -4,15 +4,20 @@ from __future__ import annotations
 
 import json
 
+import pytest
 
-def test_demo_writes_a_report(run_cli, tmp_path):
-    status, out, err = run_cli("demo", "--output", tmp_path / "demo")
+pytestmark = pytest.mark.filterwarnings("ignore::UserWarning")
+
+
+@pytest.mark.parametrize("flag", ["-o", "--output"])
+def test_demo_writes_the_campaign_and_its_report(run_cli, tmp_path, flag):
+    status, out, err = run_cli("demo", flag, tmp_path / "demo")
     assert status == 0, err
-    for name in ("report.md", "summary.json", "volumetric_map.csv", "volumetric_map.png", "diagonal.png", "error_motions.png"):
-        assert (tmp_path / "demo" / name).exists(), name
-    summary = json.loads((tmp_path / "demo" / "summary.json").read_text())
-    assert summary["diagonal_E_AD_range_um"] < summary["diagonal_E_BD_range_um"]
-    assert out.splitlines()[0] == f"wrote {tmp_path / 'demo' / 'report.md'}" and len(out.splitlines()) == 3
+    for name in ("campaign/campaign.toml", "report/report.html", "report/results.json", "summary.json"):
+        assert (tmp_path / "demo" / name).is_file(), name
+    assert json.loads((tmp_path / "demo" / "report" / "results.json").read_text())["verdict"] == "fail"
+    lines = out.splitlines()
+    assert lines[1] == f"report        {tmp_path / 'demo' / 'report' / 'report.html'}" and len(lines) == 8
 
 
 def test_demo_into_a_file_is_one_line_error(run_cli, tmp_path):

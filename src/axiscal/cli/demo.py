@@ -1,4 +1,4 @@
-"""``axiscal demo``: the main job on the built-in example (paper 000's XZ module); :func:`axiscal.report.run_demo` does it."""
+"""``axiscal demo``: a whole campaign on the virtual XZ module of paper 000, reported; :func:`axiscal.report.run_demo` does it."""
 
 from __future__ import annotations
 
@@ -10,13 +10,15 @@ __all__ = ["demo_command", "register"]
 
 
 @click.command("demo")
-@click.option("--output", type=click.Path(file_okay=False), default="axiscal-demo", show_default=True, help="Folder to write to.")
+@click.option("-o", "--output", type=click.Path(file_okay=False), default="axiscal-demo", show_default=True, help="Folder to write to.")
 def demo_command(output):
-    """Run the volumetric model of paper 000's XZ module and write a report.
+    """Simulate a whole calibration campaign of paper 000's XZ module and report it.
 
-    Writes the error motions plot, the volumetric error map (CSV and PNG) over the XZ plane, the
-    diagonal check against the (simulated) interferometer readings (CSV and PNG), paper 000's
-    diagonal experiment with the virtual module (0 and 2 kg), summary.json and report.md.
+    The virtual instrument (seeded, so every run is the same) calibrates the sensors, records the
+    6-DOF sensors, runs ISO 230-2 laser tests of X and Z with air and material sensors, separates
+    the straightness of X, measures the XZ squareness with a pentaprism and checks the diagonal
+    unloaded and with 2 kg. Writes OUTPUT/campaign/ (campaign.toml and its data),
+    OUTPUT/report/ (report.html, results.json, compensation files) and OUTPUT/summary.json.
     """
     click.echo(run_demo(output).text(), nl=False)
 

@@ -1,7 +1,22 @@
-"""From raw sensor frames to the error of the functional point (paper 000), and the virtual instrument that simulates them."""
+"""From raw sensor frames to the error of the functional point (paper 000), the virtual instrument that simulates them, and a whole campaign simulated on it."""
 
 from __future__ import annotations
 
+from axiscal.measurement.campaign_sim import (
+    AIR,
+    DIAGONAL_LOADS_KG,
+    PRISM_DEVIATION_RAD,
+    REPEATABILITY_M,
+    REVERSAL_M,
+    STRAIGHTEDGE_M,
+    VACUUM_WAVELENGTH_NM,
+    SimulatedCampaign,
+    diagonal_readings,
+    laser_run,
+    probe_readings,
+    squareness_runs,
+    write_campaign,
+)
 from axiscal.measurement.display import (
     display_factor,
     display_name,
@@ -96,4 +111,17 @@ __all__ = [
     "VirtualModule",
     "DiagonalExperiment",
     "diagonal_experiment",
+    "AIR",
+    "DIAGONAL_LOADS_KG",
+    "PRISM_DEVIATION_RAD",
+    "REPEATABILITY_M",
+    "REVERSAL_M",
+    "STRAIGHTEDGE_M",
+    "VACUUM_WAVELENGTH_NM",
+    "SimulatedCampaign",
+    "diagonal_readings",
+    "laser_run",
+    "probe_readings",
+    "squareness_runs",
+    "write_campaign",
 ]
