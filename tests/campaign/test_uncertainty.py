@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import shutil
+from pathlib import Path
 
 import pytest
 
@@ -16,7 +17,7 @@ from axiscal.errors import AxiscalError
 @pytest.fixture
 def campaign(tmp_path, examples):
     folder = tmp_path / "campaign"
-    shutil.copytree(examples / "campaign", folder)
+    shutil.copytree(Path(__file__).parent / "data" / "vmc850", folder)
     shutil.copy(examples / "uncertainty_budget.toml", folder / "budget.toml")
     return folder
 

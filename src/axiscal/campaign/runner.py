@@ -60,15 +60,16 @@ def _environment(path: Path) -> dict[str, Any]:
 
     table = read_csv(path)
     out: dict[str, Any] = {}
-    for column, name, unit in (
-        ("air_temperature_c", "air temperature", "degC"),
-        ("pressure_pa", "air pressure", "Pa"),
-        ("humidity_pct", "relative humidity", "%"),
-        ("material_temperature_c", "material temperature", "degC"),
+    for column, name, unit, digits in (
+        ("air_temperature_c", "air temperature", "degC", 2),
+        ("pressure_pa", "air pressure", "Pa", 0),
+        ("humidity_pct", "relative humidity", "%", 1),
+        ("material_temperature_c", "material temperature", "degC", 2),
     ):
         if table.has(column):
             values = table.numeric(column)
-            out[name] = {"mean": float(values.mean()), "min": float(values.min()), "max": float(values.max()), "unit": unit}
+            out[name] = {"mean": round(float(values.mean()), digits + 2), "min": float(values.min()),
+                         "max": float(values.max()), "unit": unit, "digits": digits}
     return out
 
 

@@ -28,6 +28,7 @@ from axiscal.instruments.air import refractive_index
 from axiscal.instruments.calibration import save_calibration
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
+from axiscal.io.templates import render_template
 from axiscal.materials import STEEL_EXPANSION_PER_K
 from axiscal.measurement.offline import write_data_csv
 from axiscal.measurement.virtual import (
@@ -36,7 +37,6 @@ from axiscal.measurement.virtual import (
     STROKE_M,
     VirtualModule,
 )
-from axiscal.model.output import render_template
 from axiscal.positioning.plan import plan_targets
 from axiscal.straightness.separation import simulate_readings
 from axiscal.units import ARCSEC, MM, UM
@@ -390,7 +390,7 @@ def write_campaign(folder: str | Path, *, seed: int = 0) -> SimulatedCampaign:
                {"nominal_mm": ".6f", "measured_mm": ".6f"}, kind="diagonal readings",
                description=f"laser interferometer on the XZ diagonal, {load_kg:g} kg on Z", load_kg=load_kg)
     write_text(folder / "campaign.toml", render_template(
-        "demo_campaign.toml.j2", seed=seed, wavelength_nm=VACUUM_WAVELENGTH_NM,
+        "demo_campaign.toml.j2", keep_trailing_newline=True, seed=seed, wavelength_nm=VACUUM_WAVELENGTH_NM,
         prism_deviation_arcsec=PRISM_DEVIATION_RAD / ARCSEC, spacing_mm=_SPACING_M / MM, loads_kg=DIAGONAL_LOADS_KG,
     ))
     files = tuple(sorted(p.name for p in folder.iterdir() if p.is_file()))

@@ -18,9 +18,17 @@ from pathlib import Path
 from typing import Any
 
 from axiscal.io.jsonio import write_json
-from axiscal.measurement.campaign_sim import DIAGONAL_LOADS_KG, SimulatedCampaign, write_campaign
-from axiscal.measurement.virtual import DiagonalExperiment, VirtualModule, diagonal_experiment
-from axiscal.model.output import render_template
+from axiscal.io.templates import render_template
+from axiscal.measurement.campaign_sim import (
+    DIAGONAL_LOADS_KG,
+    SimulatedCampaign,
+    write_campaign,
+)
+from axiscal.measurement.virtual import (
+    DiagonalExperiment,
+    VirtualModule,
+    diagonal_experiment,
+)
 from axiscal.report.writer import ReportFiles, report_campaign
 from axiscal.units import UM
 
@@ -96,7 +104,7 @@ class DemoResult:
         str
             Rendered from the template ``demo_summary.txt.j2``, ending in a newline.
         """
-        return render_template("demo_summary.txt.j2", files=self.files, summary=self.summary)
+        return render_template("demo_summary.txt.j2", keep_trailing_newline=True, files=self.files, summary=self.summary)
 
 
 def _summary(report: ReportFiles, experiments: dict[float, DiagonalExperiment]) -> dict[str, Any]:

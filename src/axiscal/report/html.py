@@ -12,6 +12,8 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
+import numpy as np
+
 from axiscal.campaign.results import CampaignResults, TestResult, results_payload
 from axiscal.version import __version__
 
@@ -73,6 +75,8 @@ def format_number(value: Any, digits: int = 3) -> str:
         return "n/a"
     if isinstance(value, str):
         return value
+    if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
+        return str(int(value))
     value = float(value)
     if not math.isfinite(value):
         return "n/a"
