@@ -165,3 +165,29 @@ def test_a_record_folder_that_cannot_be_made_is_one_error_line(run_cli, tmp_path
     blocker.write_text("not a folder\n")
     status, out, err = run_cli("live", "--no-server", "--duration", "0.1", "--record", str(blocker / "run.csv"))
     assert status == 2 and err.count("\n") == 1 and "cannot create the record's folder" in err
+
+
+def test_measure_and_replay_agree_on_unreadable_cells_and_line_ends(run_cli, tmp_path):
+    """A channel cell that is not a number is a missing reading, a t_s that is not one a malformed
+    frame -- in `measure` and in `live --source replay:` alike; CR-only line ends read as LF."""
+    status, out, err = run_cli("simulate", "frames", "--duration", "0.02", "-o", str(tmp_path / "f.csv"))
+    assert status == 0, err
+    lines = (tmp_path / "f.csv").read_text().splitlines()
+    cells = lines[5].split(",")
+    cells[1] = "abc"
+    lines[5] = ",".join(cells)
+    lines[9] = "late," + lines[9].split(",", 1)[1]
+    odd = tmp_path / "odd.csv"
+    odd.write_bytes(("\r".join(lines) + "\r").encode())
+    status, out, err = run_cli("measure", str(odd), "-o", str(tmp_path / "measured.csv"))
+    assert status == 0, err
+    replayed = tmp_path / "replayed.csv"
+    status, out, err = run_cli("live", "--no-server", "--no-pace", "--source", f"replay:{odd}", "--record", str(replayed))
+    assert status == 0, err
+    measured = pd.read_csv(tmp_path / "measured.csv")
+    record = pd.read_csv(replayed)
+    assert len(measured) == len(record) == 20
+    np.testing.assert_array_equal(measured["fault"], record["fault"])
+    assert measured["fault"][4] & 1 and measured["fault"][8] & 256
+    assert np.flatnonzero(measured["fault"]).tolist() == [4, 8]
+    np.testing.assert_allclose(measured["ex_um"], record["ex_um"], rtol=1e-8, atol=1e-9)

@@ -31,7 +31,7 @@ from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import read_json, sidecar_path, write_sidecar
 from axiscal.io.tabular import CsvTable, parse_csv, read_csv, read_text, write_csv
 from axiscal.measurement.display import to_display
-from axiscal.measurement.faults import Fault, fault_legend, fault_text
+from axiscal.measurement.faults import Fault, fault_legend, fault_text, mark_malformed
 from axiscal.measurement.pipeline import MeasurementSystem
 from axiscal.measurement.virtual import (
     PATHS,
@@ -48,6 +48,8 @@ __all__ = [
     "load_system",
     "is_live_record",
     "drop_cut_line",
+    "numeric_columns",
+    "read_frames_table",
     "read_frames",
     "columns_csv",
     "write_data_csv",
@@ -142,30 +144,94 @@ def drop_cut_line(text: str) -> str:
     return text
 
 
-def _cells(table: CsvTable, name: str) -> np.ndarray:
-    """Column ``name`` as floats; an empty, ``nan`` or unreadable cell is a missing value (NaN)."""
-    index = table.header.index(name)
-    out = np.empty(len(table.rows))
-    for k, row in enumerate(table.rows):
-        try:
-            out[k] = float(row[index])
-        except (ValueError, IndexError):
-            out[k] = math.nan
-    out[~np.isfinite(out)] = math.nan
-    return out
+def numeric_columns(table: CsvTable, names: Sequence[str]) -> dict[str, np.ndarray]:
+    """Columns of a frames table as floats: a cell that is empty, ``nan``, infinite or not a number is NaN.
+
+    The one rule for raw frames read from files (``axiscal measure``, the replay source of
+    ``axiscal live``, :func:`axiscal.live.recorder.read_record`), the same as the line protocol's:
+    an unreadable channel cell is a missing reading, an unreadable ``t_s`` a frame without a time
+    stamp; neither stops the reading.
+
+    Parameters
+    ----------
+    table : CsvTable
+        The parsed file.
+    names : sequence of str
+        Columns wanted (each must be in ``table.header``).
+
+    Returns
+    -------
+    dict of str to ndarray, shape (N,)
+        Each column, NaN where the cell is not a finite number.
+
+    Examples
+    --------
+    >>> table = parse_csv(["t_s,a", "0.1,oops", "0.2,"])
+    >>> numeric_columns(table, ["a"])["a"].tolist()
+    [nan, nan]
+    """
+    index = [table.header.index(name) for name in names]
+    try:
+        full = np.array(table.rows, dtype=float).reshape(len(table.rows), len(table.header))  # fast path: every cell a number
+    except ValueError:
+        full = np.full((len(table.rows), len(table.header)), math.nan)
+        for k, row in enumerate(table.rows):
+            for i in index:
+                try:
+                    full[k, i] = float(row[i])
+                except ValueError:
+                    pass
+    full[~np.isfinite(full)] = math.nan
+    return {name: np.ascontiguousarray(full[:, i]) for name, i in zip(names, index)}
+
+
+def read_frames_table(path: str | Path, *, min_rows: int = 1) -> tuple[CsvTable, bool]:
+    """A frames CSV parsed: line ends ``\\n``, ``\\r\\n`` or ``\\r``; in a live record a cut last line dropped.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file (``#`` comment lines before the header are allowed).
+    min_rows : int
+        Fewest data rows accepted.
+
+    Returns
+    -------
+    table : CsvTable
+        Header and raw cells.
+    truncated : bool
+        Whether a live record's last line, cut short by a crash, was dropped.
+
+    Raises
+    ------
+    AxiscalError
+        If the file is missing or unreadable, or a line has a different number of cells than the
+        header (naming file and line).
+    """
+    text = read_text(path)  # universal newlines: CR-only and CRLF files read as LF
+    first = text[: text.find("\n")] if "\n" in text else text
+    header = [c.strip() for c in first.split(",")]
+    truncated = False
+    if is_live_record(path, header) or text.startswith("# axiscal live record"):
+        kept = drop_cut_line(text)
+        truncated, text = kept != text, kept
+    return parse_csv(text.split("\n"), path=str(path), min_rows=min_rows), truncated
 
 
 def read_frames(path: str | Path, channels: Sequence[str]) -> dict[str, np.ndarray]:
     """Raw frames from a CSV with ``t_s`` and every channel (other columns are ignored).
 
-    A cell that is empty, ``nan`` or not a number is a missing reading: the frame is flagged by the
-    pipeline, not refused. In a live record (:func:`is_live_record`) a last line without its
-    newline (cut short by a crash) is dropped; in any other file it is a frame.
+    A cell that is empty, ``nan`` or not a number is a missing reading (:func:`numeric_columns`):
+    the frame is flagged by the pipeline, not refused; a ``t_s`` that cannot be read is NaN (the
+    frame is malformed, :data:`~axiscal.measurement.faults.Fault.MALFORMED`). In a live record
+    (:func:`is_live_record`) a last line without its newline (cut short by a crash) is dropped; in
+    any other file it is a frame.
 
     Parameters
     ----------
     path : str or Path
-        The frames file (``#`` comment lines before the header are allowed).
+        The frames file (``#`` comment lines before the header are allowed; lines end with LF,
+        CRLF or CR).
     channels : sequence of str
         The raw channels wanted (``MeasurementSystem.channels``).
 
@@ -177,19 +243,11 @@ def read_frames(path: str | Path, channels: Sequence[str]) -> dict[str, np.ndarr
     Raises
     ------
     AxiscalError
-        For a missing file or column or a time stamp that is not a number (naming file and line).
+        For a missing file or column or a line with a wrong number of cells (naming file and line).
     """
-    text = read_text(path)
-    first = text[: text.find("\n") + 1] if "\n" in text else text
-    header = [c.strip() for c in first.split(",")]
-    if is_live_record(path, header) or text.startswith("# axiscal live record"):
-        text = drop_cut_line(text)
-    table = parse_csv(text.split("\n"), path=str(path))
+    table, _ = read_frames_table(path)
     table.require("t_s", *channels)
-    frames = {"t_s": table.numeric("t_s")}
-    for name in channels:
-        frames[name] = _cells(table, name)
-    return frames
+    return numeric_columns(table, ["t_s", *channels])
 
 
 def columns_csv(columns: Mapping[str, np.ndarray]) -> str:
@@ -325,7 +383,9 @@ def measure_file(frames_path: str | Path, *, machine: str | Path | None = None, 
         For unreadable input or an output that cannot be written.
     """
     system = load_system(machine)
-    result = MeasureResult(str(frames_path), system.process(read_frames(frames_path, system.channels)))
+    frames = read_frames(frames_path, system.channels)
+    fault, results = mark_malformed(system.process(frames), ~np.isfinite(frames["t_s"]))
+    result = MeasureResult(str(frames_path), results | {"fault": fault})
     if output is not None:
         write_data_csv(
             output,
