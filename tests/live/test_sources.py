@@ -292,3 +292,26 @@ def test_serial_source_reads_the_line_protocol_and_retries_when_the_port_fails(m
         source.read(0.02)
     source.close()
     assert source.status.retries >= 1 and "serial" in source.status.description
+
+
+def test_tcp_source_memory_stays_bounded_under_a_line_without_end(module, system):
+    """32 MB without a line end: one malformed frame, the frames after it decoded, memory never holds the line."""
+    import tracemalloc
+
+    before, after = _frames(module, system, 50), _frames(module, system, 50, start=50)
+    flood = 32 << 20
+    payload = encode_lines(before.t_s, before.values) + b"7" * flood + b"\n" + encode_lines(after.t_s, after.values)
+    server = LineServer([payload])
+    source = TcpSource("127.0.0.1", server.port, system.channels)
+    tracemalloc.start()
+    try:
+        got = _drain(source, frames=101, timeout_s=30.0)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+        source.close()
+        server.join()
+    assert len(got) == 101 and np.flatnonzero(got.malformed).tolist() == [50]
+    np.testing.assert_array_equal(got.t_s[51:], after.t_s)
+    assert source.decoder.overlong_lines == 1
+    assert peak < 8 << 20, f"peak {peak / 2**20:.1f} MiB while {flood >> 20} MiB came without a line end"

@@ -21,6 +21,7 @@ from axiscal.live.pipeline import (
     RunSummary,
 )
 from axiscal.live.protocol import (
+    MAX_LINE_BYTES,
     FrameBatch,
     LineDecoder,
     encode_lines,
@@ -72,6 +73,7 @@ __all__ = [
     "RunSummary",
     "Pipeline",
     "FrameBatch",
+    "MAX_LINE_BYTES",
     "LineDecoder",
     "encode_lines",
     "header_line",
