@@ -30,8 +30,15 @@ def test_a_session_records_a_plain_csv_with_its_sidecar(tmp_path):
         ({"rate_hz": 0.0}, "--rate must be a positive"),
         ({"duration_s": -1.0}, "--duration must be positive"),
         ({"port": 70000}, "--port must be 0-65535"),
-        ({"update_hz": 0.0}, "--update-hz must be positive"),
-        ({"load_kg": -2.0}, "--load-kg must not be negative"),
+        ({"rate_hz": 1e9}, "up to 100000"),
+        ({"rate_hz": float("nan")}, "--rate must be a positive"),
+        ({"duration_s": float("inf")}, "--duration must be positive"),
+        ({"update_hz": 0.0}, "--update-hz must be 0.1 to 60"),
+        ({"update_hz": 1e300}, "--update-hz must be 0.1 to 60"),
+        ({"update_hz": float("nan")}, "--update-hz must be 0.1 to 60"),
+        ({"load_kg": -2.0}, "--load-kg must be a finite mass"),
+        ({"load_kg": float("inf")}, "--load-kg must be a finite mass"),
+        ({"seed": -1}, "--seed must not be negative"),
         ({"path": "circle"}, "unknown path"),
         ({"source": "udp:1"}, "unknown source"),
     ],
@@ -46,3 +53,19 @@ def test_recording_over_the_replayed_file_is_refused(tmp_path):
     run.write_text("t_s\n0\n")
     with pytest.raises(AxiscalError, match="names the file being replayed"):
         LiveSession(source=f"replay:{run}", record=run, server=False)
+
+
+def test_the_library_parts_refuse_unbounded_rates_before_allocating(system):
+    """The sim source and the broadcaster check their rates themselves (a Python user may call them directly)."""
+    from axiscal.live.server import Broadcaster
+    from axiscal.live.sources import SimSource
+    from axiscal.live.state import LiveState
+    from axiscal.measurement.virtual import VirtualModule
+
+    module = VirtualModule(seed=0)
+    for rate in (1e9, float("inf"), float("nan"), -1.0):
+        with pytest.raises(AxiscalError, match="rate must be"):
+            SimSource(module, system.channels, rate_hz=rate)
+    for update in (1e300, float("nan"), 0.0):
+        with pytest.raises(AxiscalError, match="update rate must be"):
+            Broadcaster(LiveState(system), update_hz=update)

@@ -39,6 +39,7 @@ from axiscal.live.session import (
     build_system,
 )
 from axiscal.live.sources import (
+    MAX_RATE_HZ,
     Backoff,
     ReplaySource,
     SerialSource,
@@ -51,6 +52,7 @@ from axiscal.live.sources import (
 from axiscal.live.state import (
     CORRECTED,
     SPATIAL,
+    UPDATE_HZ_RANGE,
     LiveState,
     axis_error_columns,
     result_columns,
@@ -84,6 +86,7 @@ __all__ = [
     "read_record",
     "build_system",
     "LiveSession",
+    "MAX_RATE_HZ",
     "SourceStatus",
     "Backoff",
     "SimSource",
@@ -92,6 +95,7 @@ __all__ = [
     "SerialSource",
     "parse_source",
     "open_source",
+    "UPDATE_HZ_RANGE",
     "SPATIAL",
     "CORRECTED",
     "axis_error_columns",

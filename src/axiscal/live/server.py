@@ -17,6 +17,7 @@ import asyncio
 import contextlib
 import json
 import logging
+import math
 import socket
 import threading
 from dataclasses import dataclass
@@ -30,7 +31,7 @@ from starlette.staticfiles import StaticFiles
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from axiscal.errors import AxiscalError
-from axiscal.live.state import LiveState
+from axiscal.live.state import UPDATE_HZ_RANGE, LiveState
 
 __all__ = ["WEB", "HOST", "ClientStats", "Broadcaster", "create_app", "LiveServer"]
 
@@ -74,8 +75,9 @@ class Broadcaster:
     """
 
     def __init__(self, state: LiveState, *, update_hz: float = 10.0, title: str = "axiscal live"):
-        if not update_hz > 0:
-            raise AxiscalError(f"update rate must be positive, got {update_hz}")
+        low, high = UPDATE_HZ_RANGE
+        if not (math.isfinite(update_hz) and low <= update_hz <= high):
+            raise AxiscalError(f"update rate must be {low:g} to {high:g} per second, got {update_hz}")
         self.state = state
         self.interval_s = 1.0 / update_hz
         self.title = title

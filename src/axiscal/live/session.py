@@ -19,8 +19,8 @@ from pathlib import Path
 from axiscal.errors import AxiscalError
 from axiscal.live.pipeline import Pipeline, RunSummary
 from axiscal.live.recorder import Recorder
-from axiscal.live.sources import open_source, parse_source
-from axiscal.live.state import LiveState, result_columns
+from axiscal.live.sources import MAX_RATE_HZ, open_source, parse_source
+from axiscal.live.state import UPDATE_HZ_RANGE, LiveState, result_columns
 from axiscal.measurement.pipeline import MeasurementSystem
 from axiscal.measurement.virtual import PATHS, VirtualModule
 
@@ -74,17 +74,25 @@ def build_system(machine: str | Path | None, source_kind: str, *, seed: int = 0,
     return system, module
 
 
-def _check(rate_hz: float, duration_s: float | None, port: int, update_hz: float, load_kg: float, path: str) -> None:
-    if not (rate_hz > 0 and math.isfinite(rate_hz)):
-        raise AxiscalError(f"--rate must be a positive number of frames per second, got {rate_hz:g}")
-    if duration_s is not None and not duration_s > 0:
+def _finite(value: float) -> bool:
+    return isinstance(value, (int, float)) and math.isfinite(value)
+
+
+def _check(rate_hz: float, duration_s: float | None, port: int, update_hz: float, load_kg: float, path: str, seed: int) -> None:
+    """Refuse a bad setting before anything is built or allocated (every number must be finite)."""
+    if not (_finite(rate_hz) and 0 < rate_hz <= MAX_RATE_HZ):
+        raise AxiscalError(f"--rate must be a positive number of frames per second up to {MAX_RATE_HZ:g}, got {rate_hz:g}")
+    if duration_s is not None and not (_finite(duration_s) and duration_s > 0):
         raise AxiscalError(f"--duration must be positive seconds, got {duration_s:g}")
     if not 0 <= port <= 65535:
         raise AxiscalError(f"--port must be 0-65535, got {port}")
-    if not update_hz > 0:
-        raise AxiscalError(f"--update-hz must be positive, got {update_hz:g}")
-    if load_kg < 0:
-        raise AxiscalError(f"--load-kg must not be negative, got {load_kg:g}")
+    low, high = UPDATE_HZ_RANGE
+    if not (_finite(update_hz) and low <= update_hz <= high):
+        raise AxiscalError(f"--update-hz must be {low:g} to {high:g} refreshes per second, got {update_hz:g}")
+    if not (_finite(load_kg) and load_kg >= 0):
+        raise AxiscalError(f"--load-kg must be a finite mass of 0 kg or more, got {load_kg:g}")
+    if seed < 0:
+        raise AxiscalError(f"--seed must not be negative, got {seed}")
     if path not in PATHS:
         raise AxiscalError(f"unknown path '{path}'; use one of {', '.join(PATHS)}")
 
@@ -142,7 +150,7 @@ class LiveSession:
         update_hz: float = 10.0,
         duration_s: float | None = None,
     ):
-        _check(rate_hz, duration_s, port, update_hz, load_kg, path)
+        _check(rate_hz, duration_s, port, update_hz, load_kg, path, seed)
         kind, argument = parse_source(source)
         if kind == "replay" and record is not None and Path(record).resolve() == Path(argument).resolve():
             raise AxiscalError("--record names the file being replayed; record to another file", path=record)

@@ -34,6 +34,7 @@ from axiscal.live.protocol import FrameBatch, LineDecoder
 from axiscal.live.recorder import read_record
 
 __all__ = [
+    "MAX_RATE_HZ",
     "SourceStatus",
     "Backoff",
     "SimSource",
@@ -43,6 +44,9 @@ __all__ = [
     "parse_source",
     "open_source",
 ]
+
+#: highest frame rate of the sim source, Hz (ten times the rate the benchmark keeps up with)
+MAX_RATE_HZ = 100_000.0
 
 
 @dataclass
@@ -115,14 +119,23 @@ class SimSource:
     channels : sequence of str
         Channel order of the measurement system.
     rate_hz : float
-        Frames per second.
+        Frames per second, at most :data:`MAX_RATE_HZ`.
     path : str
         Motion of the module (``"diagonal"``, ``"raster"``, ``"back-and-forth"``).
+    max_batch_s : float
+        Most stream time delivered by one read, s (at most 1).
+
+    Raises
+    ------
+    AxiscalError
+        For a rate that is not finite, not positive or above :data:`MAX_RATE_HZ`.
     """
 
     def __init__(self, module, channels: Sequence[str], *, rate_hz: float = 1000.0, path: str = "diagonal", max_batch_s: float = 0.05):
-        if not (rate_hz > 0 and np.isfinite(rate_hz)):
-            raise AxiscalError(f"rate must be a positive number of frames per second, got {rate_hz}")
+        if not (np.isfinite(rate_hz) and 0 < rate_hz <= MAX_RATE_HZ):
+            raise AxiscalError(f"rate must be a positive number of frames per second up to {MAX_RATE_HZ:g}, got {rate_hz}")
+        if not (np.isfinite(max_batch_s) and 0 < max_batch_s <= 1.0):
+            raise AxiscalError(f"the longest batch must be 0 to 1 s, got {max_batch_s}")
         self.module = module
         self.channels = tuple(channels)
         self.rate_hz = float(rate_hz)

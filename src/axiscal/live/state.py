@@ -22,8 +22,10 @@ from axiscal.live.protocol import FrameBatch
 from axiscal.measurement.faults import fault_text
 from axiscal.units import MM
 
-__all__ = ["SPATIAL", "CORRECTED", "axis_error_columns", "result_columns", "LiveState"]
+__all__ = ["UPDATE_HZ_RANGE", "SPATIAL", "CORRECTED", "axis_error_columns", "result_columns", "LiveState"]
 
+#: the dashboard's refresh rates allowed, per second: slower is useless, faster only burns the pipeline's core
+UPDATE_HZ_RANGE = (0.1, 60.0)
 SPATIAL = ("ex_um", "ey_um", "ez_um", "e_um")
 CORRECTED = ("px_mm", "py_mm", "pz_mm")
 
