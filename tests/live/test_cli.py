@@ -166,9 +166,19 @@ def test_shipped_frames_replayed_with_the_shipped_machine_keep_their_two_faults(
 
 def test_recording_over_the_file_being_replayed_is_refused(run_cli, recorded):
     before = recorded.read_bytes()
-    status, out, err = run_cli("live", "--no-server", "--source", f"replay:{recorded}", "--record", str(recorded))
-    assert status == 2 and "names the file being replayed" in err and err.count("\n") == 1
+    status, out, err = run_cli("live", "--no-server", "--source", f"replay:{recorded}", "--record", str(recorded), "--force")
+    assert status == 2 and "a file this run reads" in err and err.count("\n") == 1
     assert recorded.read_bytes() == before
+
+
+def test_an_existing_record_needs_force(run_cli, tmp_path):
+    record = tmp_path / "old.csv"
+    record.write_text("precious\n")
+    status, out, err = run_cli("live", "--no-server", "--duration", "0.1", "--record", str(record))
+    assert status == 2 and err.count("\n") == 1 and "--force" in err and record.read_text() == "precious\n"
+    status, out, err = run_cli("live", "--no-server", "--duration", "0.1", "--record", str(record), "--force")
+    assert status == 0, err
+    assert pd.read_csv(record).columns[0] == "t_s"
 
 
 def test_a_record_folder_that_cannot_be_made_is_one_error_line(run_cli, tmp_path):

@@ -51,8 +51,37 @@ def test_bad_settings_are_one_error(settings, message):
 def test_recording_over_the_replayed_file_is_refused(tmp_path):
     run = tmp_path / "run.csv"
     run.write_text("t_s\n0\n")
-    with pytest.raises(AxiscalError, match="names the file being replayed"):
-        LiveSession(source=f"replay:{run}", record=run, server=False)
+    for name in (run, tmp_path / "." / "run.csv"):
+        with pytest.raises(AxiscalError, match="would overwrite run.csv, a file this run reads"):
+            LiveSession(source=f"replay:{run}", record=name, server=False, force=True)
+    assert run.read_text() == "t_s\n0\n"
+
+
+def test_a_hard_or_symbolic_link_to_an_input_is_the_input(tmp_path, examples):
+    run = tmp_path / "run.csv"
+    run.write_text("t_s\n0\n")
+    (tmp_path / "hard.csv").hardlink_to(run)
+    (tmp_path / "soft.csv").symlink_to(run)
+    for name in ("hard.csv", "soft.csv"):
+        with pytest.raises(AxiscalError, match="a file this run reads"):
+            LiveSession(source=f"replay:{run}", record=tmp_path / name, server=False, force=True)
+    machine = tmp_path / "machine.toml"
+    machine.hardlink_to(examples / "xz_module" / "sensors_machine.toml")
+    (tmp_path / "rec.json").hardlink_to(machine)  # the record's sidecar would overwrite the machine file
+    with pytest.raises(AxiscalError, match="would overwrite rec.json"):
+        LiveSession(machine=machine, source=f"replay:{examples / 'xz_module' / 'sensors_frames.csv'}", record=tmp_path / "rec.csv", server=False)
+    assert run.read_text() == "t_s\n0\n"
+
+
+def test_an_existing_record_is_kept_unless_force(tmp_path):
+    record = tmp_path / "old.csv"
+    record.write_text("precious\n")
+    with pytest.raises(AxiscalError, match="the record file exists; choose another file, or give --force"):
+        LiveSession(record=record, server=False)
+    assert record.read_text() == "precious\n"
+    with LiveSession(record=record, server=False, force=True) as session:
+        summary = session.run(duration_s=0.1)
+    assert record.read_text().startswith("t_s,") and summary.frames > 0
 
 
 def test_the_library_parts_refuse_unbounded_rates_before_allocating(system):

@@ -38,7 +38,8 @@ class _OneLineCommand(click.Command):
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the virtual module.")
 @click.option("--load-kg", type=float, default=0.0, show_default=True, help="Mass on the Z slide of the virtual module (kg).")
 @click.option("--no-pace", is_flag=True, help="Replay a file as fast as possible instead of at its t_s pace.")
-@click.option("--record", "record_path", type=str, default=None, help="Write every frame and result to this CSV, with a .json sidecar (docs/live.md).")
+@click.option("--record", "record_path", type=str, default=None, help="Write every frame and result to this new CSV, with a .json sidecar (docs/live.md).")
+@click.option("--force", is_flag=True, help="Replace an existing --record file (never a file the run reads).")
 @click.option("--duration", "duration_s", type=float, default=None, help="Stop cleanly after this many seconds.")
 @click.option("--port", type=int, default=8765, show_default=True, help="Dashboard port on 127.0.0.1 (0: any free port).")
 @click.option("--no-server", is_flag=True, help="Run without the dashboard.")
@@ -52,6 +53,7 @@ def live(
     load_kg: float,
     no_pace: bool,
     record_path: str | None,
+    force: bool,
     duration_s: float | None,
     port: int,
     no_server: bool,
@@ -75,6 +77,7 @@ def live(
         port=port,
         update_hz=update_hz,
         duration_s=duration_s,
+        force=force,
     )
     stop = threading.Event()
     previous_term = signal.getsignal(signal.SIGTERM) if threading.current_thread() is threading.main_thread() else None

@@ -37,6 +37,7 @@ from axiscal.live.recorder import (
 from axiscal.live.session import (
     LiveSession,
     build_system,
+    check_record_target,
 )
 from axiscal.live.sources import (
     MAX_RATE_HZ,
@@ -85,6 +86,7 @@ __all__ = [
     "Record",
     "read_record",
     "build_system",
+    "check_record_target",
     "LiveSession",
     "MAX_RATE_HZ",
     "SourceStatus",

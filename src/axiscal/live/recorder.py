@@ -52,7 +52,8 @@ class Recorder:
     Parameters
     ----------
     path : str or Path
-        The record file; created (or emptied) when the recorder opens.
+        The record file; created when the recorder opens (an existing one is emptied when
+        ``overwrite``, else refused).
     channels : sequence of str
         Raw channel names, in frame order.
     result_columns : sequence of str
@@ -62,11 +63,14 @@ class Recorder:
     metadata : mapping, optional
         Entries of the record's JSON sidecar besides its kind, format, columns and fault bits
         (source, machine, start time).
+    overwrite : bool
+        Replace an existing file (False: refuse it, atomically with the creation).
 
     Raises
     ------
     AxiscalError
-        If the record or its sidecar cannot be created or written (naming the file).
+        If the record or its sidecar cannot be created or written, or the record exists and not
+        ``overwrite`` (naming the file).
     """
 
     def __init__(
@@ -77,6 +81,7 @@ class Recorder:
         *,
         sync_interval_s: float = 0.1,
         metadata: Mapping[str, object] | None = None,
+        overwrite: bool = True,
     ):
         if not sync_interval_s > 0:
             raise AxiscalError(f"sync interval must be positive, got {sync_interval_s}")
@@ -87,7 +92,9 @@ class Recorder:
         self.sync_interval_s = float(sync_interval_s)
         self._row_format = ",".join(["%.9f"] + ["%.15g"] * len(self.channels) + ["%d"] + ["%.9g"] * len(self.result_columns)) + "\n"
         try:
-            self._fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_APPEND, 0o644)
+            self._fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_APPEND | (os.O_TRUNC if overwrite else os.O_EXCL), 0o644)
+        except FileExistsError:
+            raise AxiscalError("the record file exists; choose another file, or give --force to replace it", path=self.path) from None
         except OSError as exc:
             raise AxiscalError(f"cannot open the record file ({exc.strerror})", path=self.path) from None
         try:

@@ -10,13 +10,15 @@ it is stopped.
 from __future__ import annotations
 
 import math
+import os
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from datetime import datetime, timezone
 from pathlib import Path
 
 from axiscal.errors import AxiscalError
+from axiscal.io.jsonio import sidecar_path
 from axiscal.live.pipeline import Pipeline, RunSummary
 from axiscal.live.recorder import Recorder
 from axiscal.live.sources import MAX_RATE_HZ, open_source, parse_source
@@ -24,7 +26,7 @@ from axiscal.live.state import UPDATE_HZ_RANGE, LiveState, result_columns
 from axiscal.measurement.pipeline import MeasurementSystem
 from axiscal.measurement.virtual import PATHS, VirtualModule
 
-__all__ = ["build_system", "LiveSession"]
+__all__ = ["build_system", "check_record_target", "LiveSession"]
 
 
 def build_system(machine: str | Path | None, source_kind: str, *, seed: int = 0, load_kg: float = 0.0):
@@ -97,6 +99,45 @@ def _check(rate_hz: float, duration_s: float | None, port: int, update_hz: float
         raise AxiscalError(f"unknown path '{path}'; use one of {', '.join(PATHS)}")
 
 
+def _identity(path: str | Path) -> tuple[int, int] | None:
+    """(st_dev, st_ino) of an existing file, None when there is none: a hard link or another name of
+    the same file has the same identity."""
+    try:
+        info = os.stat(path)
+    except OSError:
+        return None
+    return info.st_dev, info.st_ino
+
+
+def check_record_target(record: str | Path, inputs: Sequence[str | Path], *, force: bool = False) -> None:
+    """Refuse a record that would overwrite an input, or an existing file without ``force``.
+
+    Files are compared by (st_dev, st_ino), so another path, a symbolic link or a hard link to an
+    input is recognised. The record's JSON sidecar is checked the same way.
+
+    Parameters
+    ----------
+    record : str or Path
+        The record file to be written.
+    inputs : sequence of str or Path
+        Files the run reads (the replayed file, the machine TOML).
+    force : bool
+        Replace an existing record (never an input).
+
+    Raises
+    ------
+    AxiscalError
+        If the record or its sidecar is one of the inputs, or the record exists and ``force`` is
+        not given.
+    """
+    used = {identity for identity in map(_identity, inputs) if identity is not None}
+    for target in (Path(record), sidecar_path(record)):
+        if _identity(target) in used:
+            raise AxiscalError(f"--record would overwrite {target.name}, a file this run reads; record to another file", path=record)
+    if not force and Path(record).exists():
+        raise AxiscalError("the record file exists; choose another file, or give --force to replace it", path=record)
+
+
 class LiveSession:
     """Everything of one live run: system, source, state, record, pipeline and (optionally) the dashboard.
 
@@ -117,7 +158,8 @@ class LiveSession:
     pace : bool
         Replay a file at its ``t_s`` pace (False: as fast as possible).
     record : str or Path, optional
-        Record every frame and result here (plus a JSON sidecar).
+        Record every frame and result here (plus a JSON sidecar); an existing file is refused
+        unless ``force`` (:func:`check_record_target`).
     server : bool
         Serve the dashboard.
     port : int
@@ -126,11 +168,14 @@ class LiveSession:
         Dashboard refreshes per second.
     duration_s : float, optional
         Only checked here; passed to :meth:`run`.
+    force : bool
+        Replace an existing record file (never a file the run reads).
 
     Raises
     ------
     AxiscalError
-        For a bad setting, a record that names the file replayed, or a record or source that
+        For a bad setting, a record that names a file the run reads or (without ``force``) an
+        existing file, or a record or source that
         cannot be opened. Whatever was opened is closed again.
     """
 
@@ -149,11 +194,12 @@ class LiveSession:
         port: int = 8765,
         update_hz: float = 10.0,
         duration_s: float | None = None,
+        force: bool = False,
     ):
         _check(rate_hz, duration_s, port, update_hz, load_kg, path, seed)
         kind, argument = parse_source(source)
-        if kind == "replay" and record is not None and Path(record).resolve() == Path(argument).resolve():
-            raise AxiscalError("--record names the file being replayed; record to another file", path=record)
+        if record is not None:
+            check_record_target(record, [name for name in (argument if kind == "replay" else None, machine) if name], force=force)
         self.system, module = build_system(machine, kind, seed=seed, load_kg=load_kg)
         self.source = open_source(source, self.system.channels, virtual_module=module, rate_hz=rate_hz, path=path, pace=pace)
         self.state = LiveState(self.system)
@@ -174,6 +220,7 @@ class LiveSession:
                         "machine": str(machine) if machine else f"built-in virtual module (seed {seed}, load {load_kg:g} kg)",
                         "started": datetime.now(timezone.utc).isoformat(timespec="seconds"),
                     },
+                    overwrite=force,
                 )
             self.pipeline = Pipeline(self.system, self.source, recorder=self.recorder, state=self.state)
             if server:
