@@ -212,3 +212,14 @@ def test_measure_and_replay_agree_on_unreadable_cells_and_line_ends(run_cli, tmp
     assert measured["fault"][4] & 1 and measured["fault"][8] & 256
     assert np.flatnonzero(measured["fault"]).tolist() == [4, 8]
     np.testing.assert_allclose(measured["ex_um"], record["ex_um"], rtol=1e-8, atol=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [(["--bind", "256.1.1.1"], "cannot listen on 256.1.1.1"), (["--allow-host", "monitor:8765"], "without port or scheme")],
+)
+def test_bad_dashboard_addresses_are_one_error_line_and_leave_no_record(run_cli, tmp_path, args, message):
+    record = tmp_path / "run.csv"
+    status, out, err = run_cli("live", "--duration", "0.1", "--port", "0", "--record", str(record), *args)
+    assert status == 2 and err.count("\n") == 1 and message in err
+    assert not record.exists()

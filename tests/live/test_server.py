@@ -160,3 +160,39 @@ def test_faulty_frames_leave_a_gap_in_the_history_and_keep_the_last_good_values(
     assert snapshot["faults"] == 400 and snapshot["last_fault_text"] == "missing channel"
     psd = next(s for s in snapshot["sensors"] if s["name"] == "x_psd_y_um")
     assert psd["state"] == "missing" and psd["missing"] == 400 and psd["value"] is None
+
+
+def _handshake_status(port: int, host: str, origin: str | None = None) -> int:
+    """The HTTP status the real server answers a WebSocket handshake with (101: accepted)."""
+    with socket.create_connection(("127.0.0.1", port), timeout=5.0) as sock:
+        key = base64.b64encode(os.urandom(16)).decode()
+        request = (
+            f"GET /ws HTTP/1.1\r\nHost: {host}\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+            f"Sec-WebSocket-Key: {key}\r\nSec-WebSocket-Version: 13\r\n" + (f"Origin: {origin}\r\n" if origin else "") + "\r\n"
+        )
+        sock.sendall(request.encode())
+        return int(sock.recv(4096).split(b" ", 2)[1])
+
+
+def test_only_loopback_hosts_and_the_dashboards_own_origin_are_answered(module, system):
+    """DNS rebinding (a foreign Host reaching 127.0.0.1) and cross-site pages (a foreign Origin) get 403, on the real uvicorn server."""
+    state, _ = _fed_state(module, system)
+    server = LiveServer(create_app(state, update_hz=20.0, allowed_hosts=["monitor.lan"]), port=0).start()
+    port = server.port
+    with server, httpx.Client(base_url=server.url) as client:
+        for host in (f"127.0.0.1:{port}", f"localhost:{port}", f"LocalHost:{port}", f"[::1]:{port}", f"monitor.lan:{port}", "127.0.0.1"):
+            assert client.get("/api/state", headers={"Host": host}).status_code == 200, host
+            assert _handshake_status(port, host) == 101, host
+        for host in (f"evil.example:{port}", f"127.0.0.1.evil.example:{port}", f"localhost.:{port}", "", f"monitor.lan.evil:{port}"):
+            assert client.get("/", headers={"Host": host}).status_code in (400, 403), host
+            assert client.get("/api/state", headers={"Host": host}).status_code in (400, 403), host
+            assert _handshake_status(port, host) in (400, 403), host
+        own = f"127.0.0.1:{port}"
+        assert _handshake_status(port, own, origin=f"http://{own}") == 101
+        for origin in ("http://evil.example", f"http://localhost:{port}", f"http://127.0.0.1:{port + 1}", f"https://{own}", "null"):
+            assert _handshake_status(port, own, origin=origin) == 403, origin
+            assert client.get("/api/state", headers={"Origin": origin}).status_code == 403, origin
+        response = client.get("/api/state", headers={"Host": f"evil.example:{port}"})
+        assert "frames" not in response.text
+    with pytest.raises(AxiscalError, match="without port"):
+        create_app(state, allowed_hosts=["monitor.lan:8765"])

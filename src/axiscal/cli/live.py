@@ -41,7 +41,9 @@ class _OneLineCommand(click.Command):
 @click.option("--record", "record_path", type=str, default=None, help="Write every frame and result to this new CSV, with a .json sidecar (docs/live.md).")
 @click.option("--force", is_flag=True, help="Replace an existing --record file (never a file the run reads).")
 @click.option("--duration", "duration_s", type=float, default=None, help="Stop cleanly after this many seconds.")
-@click.option("--port", type=int, default=8765, show_default=True, help="Dashboard port on 127.0.0.1 (0: any free port).")
+@click.option("--port", type=int, default=8765, show_default=True, help="Dashboard port (0: any free port).")
+@click.option("--bind", default="127.0.0.1", show_default=True, help="Address the dashboard listens on; 0.0.0.0 exposes it to the network (docs/live.md).")
+@click.option("--allow-host", "allowed_hosts", multiple=True, help="A further Host name the dashboard answers (repeatable); default: loopback names only.")
 @click.option("--no-server", is_flag=True, help="Run without the dashboard.")
 @click.option("--update-hz", type=float, default=10.0, show_default=True, help="Dashboard refreshes per second.")
 def live(
@@ -56,6 +58,8 @@ def live(
     force: bool,
     duration_s: float | None,
     port: int,
+    bind: str,
+    allowed_hosts: tuple[str, ...],
     no_server: bool,
     update_hz: float,
 ) -> None:
@@ -78,6 +82,8 @@ def live(
         update_hz=update_hz,
         duration_s=duration_s,
         force=force,
+        bind=bind,
+        allowed_hosts=allowed_hosts,
     )
     stop = threading.Event()
     previous_term = signal.getsignal(signal.SIGTERM) if threading.current_thread() is threading.main_thread() else None

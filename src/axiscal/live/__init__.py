@@ -61,7 +61,7 @@ from axiscal.live.state import (
 
 #: the dashboard server's names, imported from :mod:`axiscal.live.server` only when first used
 #: (it imports starlette and uvicorn, which the rest of the live room and the CLI do without)
-_SERVER_NAMES = ("WEB", "HOST", "ClientStats", "Broadcaster", "create_app", "LiveServer")
+_SERVER_NAMES = ("WEB", "HOST", "LOOPBACK_HOSTS", "ClientStats", "Broadcaster", "request_allowed", "create_app", "LiveServer")
 
 
 def __getattr__(name: str):
@@ -105,8 +105,10 @@ __all__ = [
     "LiveState",
     "WEB",
     "HOST",
+    "LOOPBACK_HOSTS",
     "ClientStats",
     "Broadcaster",
+    "request_allowed",
     "create_app",
     "LiveServer",
 ]

@@ -163,13 +163,17 @@ class LiveSession:
     server : bool
         Serve the dashboard.
     port : int
-        Dashboard port on 127.0.0.1 (0: any free port).
+        Dashboard port (0: any free port).
     update_hz : float
         Dashboard refreshes per second.
     duration_s : float, optional
         Only checked here; passed to :meth:`run`.
     force : bool
         Replace an existing record file (never a file the run reads).
+    bind : str
+        Address the dashboard listens on (default loopback; ``0.0.0.0`` exposes it to the network).
+    allowed_hosts : sequence of str
+        Host names the dashboard answers besides the loopback names (DNS-rebinding guard).
 
     Raises
     ------
@@ -195,6 +199,8 @@ class LiveSession:
         update_hz: float = 10.0,
         duration_s: float | None = None,
         force: bool = False,
+        bind: str = "127.0.0.1",
+        allowed_hosts: Sequence[str] = (),
     ):
         _check(rate_hz, duration_s, port, update_hz, load_kg, path, seed)
         kind, argument = parse_source(source)
@@ -206,6 +212,12 @@ class LiveSession:
         self.recorder: Recorder | None = None
         self.server = None
         try:
+            if server:  # before the record: a port in use leaves no record file behind
+                from axiscal.live.server import LiveServer, create_app
+
+                title = f"axiscal live: {self.source.status.description}"
+                app = create_app(self.state, update_hz=update_hz, title=title, allowed_hosts=allowed_hosts)
+                self.server = LiveServer(app, port=port, host=bind).start()
             if record is not None:
                 try:
                     Path(record).parent.mkdir(parents=True, exist_ok=True)
@@ -223,11 +235,6 @@ class LiveSession:
                     overwrite=force,
                 )
             self.pipeline = Pipeline(self.system, self.source, recorder=self.recorder, state=self.state)
-            if server:
-                from axiscal.live.server import LiveServer, create_app
-
-                title = f"axiscal live: {self.source.status.description}"
-                self.server = LiveServer(create_app(self.state, update_hz=update_hz, title=title), port=port).start()
         except BaseException:
             self.close()
             raise
