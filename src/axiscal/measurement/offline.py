@@ -58,6 +58,7 @@ __all__ = [
     "measure_file",
     "calibrate_sensitivity",
     "calibrate_mirror",
+    "calibration_text",
     "simulate_frames",
     "simulate_laser",
     "DiagonalReport",
@@ -434,6 +435,76 @@ def _save(calibration: Calibration, output: str | Path | None, report: dict[str,
     return report
 
 
+def _line_fit_uncertainty(x: np.ndarray, residual_rms: float) -> tuple[float, float]:
+    """Standard uncertainties of gain and offset of a least-squares line ``y = gain * x + offset``.
+
+    The ordinary least-squares standard errors (those ``scipy.stats.linregress`` gives): with ``s``
+    the residual standard deviation on n - 2 degrees of freedom, u(gain) = s / sqrt(Sxx) and
+    u(offset) = s * sqrt(1/n + mean(x)^2 / Sxx).
+    """
+    x = np.asarray(x, dtype=float)
+    n = len(x)
+    if n <= 2:
+        return math.inf, math.inf
+    s = residual_rms * math.sqrt(n / (n - 2))
+    sxx = float(np.sum((x - x.mean()) ** 2))
+    if sxx == 0:
+        return math.inf, math.inf
+    return s / math.sqrt(sxx), s * math.sqrt(1.0 / n + float(x.mean()) ** 2 / sxx)
+
+
+def _significant_place(scale: float, digits: int = 2) -> int:
+    """Decimals that show ``digits`` significant digits of ``scale`` (0 for a zero or non-finite scale)."""
+    if not (math.isfinite(scale) and scale > 0):
+        return 6
+    return max(0, digits - 1 - math.floor(math.log10(scale)))
+
+
+def calibration_text(report: Mapping[str, Any]) -> str:
+    """A calibration report (:func:`calibrate_sensitivity`, :func:`calibrate_mirror`) as text, to the digits that mean something.
+
+    A value with a standard uncertainty (``gain`` and ``gain_u``, ``offset_<unit>`` and
+    ``offset_u_<unit>``) is rounded to the second significant digit of its uncertainty; an
+    uncertainty, a residual, a range and the cross-validation values are given to two significant
+    digits; counts and names as they are. Full precision is in the report itself (``--json``).
+
+    Parameters
+    ----------
+    report : mapping
+        The report dict.
+
+    Returns
+    -------
+    str
+        One ``name: value`` line per entry.
+
+    Examples
+    --------
+    >>> print(calibration_text({"channel": "x_psd_y_um", "gain": 0.9549890195972108, "gain_u": 0.000123456, "points": 21}), end="")
+    channel: x_psd_y_um
+    gain: 0.95499
+    gain_u: 0.00012
+    points: 21
+    """
+    lines = []
+    for key, value in report.items():
+        if isinstance(value, (list, tuple)):
+            shown = " ".join(f"{v:.{_significant_place(max(abs(x) for x in value))}f}" for v in value) if value else ""
+        elif isinstance(value, bool) or isinstance(value, (int, str)) or value is None:
+            shown = str(value)
+        else:
+            if key == "gain":
+                u = report.get("gain_u")
+            elif key.startswith("offset_") and not key.startswith("offset_u_"):
+                u = report.get("offset_u_" + key.removeprefix("offset_"))
+            else:
+                u = None
+            scale = u if isinstance(u, float) else abs(value)
+            shown = f"{value:.{_significant_place(scale)}f}"
+        lines.append((key, shown))
+    return render_report("measurement/calibration.txt.j2", lines=lines)
+
+
 def calibrate_sensitivity(
     run_path: str | Path,
     channel: str,
@@ -464,7 +535,8 @@ def calibrate_sensitivity(
     Returns
     -------
     dict
-        ``channel``, ``gain``, ``offset_<unit>``, ``residual_max_<unit>``,
+        ``channel``, ``gain``, ``gain_u`` and ``offset_<unit>``, ``offset_u_<unit>`` (each with
+        its standard uncertainty from the fit's residuals), ``residual_max_<unit>``,
         ``residual_rms_<unit>`` (the channel's unit), ``points``; for angle channels also
         ``residual_max_arcsec``; ``output`` when written.
 
@@ -498,10 +570,13 @@ def calibrate_sensitivity(
             reference = transfer_reference(reference * channel_unit, eps, offset, component) / channel_unit
     fit = fit_sensitivity(channel, raw, reference)
     unit_name = "mm" if kind == "scale" else "um"
+    u_gain, u_offset = _line_fit_uncertainty(raw, fit.residual_rms)
     report: dict[str, Any] = {
         "channel": channel,
         "gain": fit.gain,
+        "gain_u": u_gain,
         "offset_" + unit_name: fit.offset,
+        "offset_u_" + unit_name: u_offset,
         "residual_max_" + unit_name: fit.residual_max,
         "residual_rms_" + unit_name: fit.residual_rms,
         "points": fit.points,
