@@ -223,3 +223,25 @@ def test_bad_dashboard_addresses_are_one_error_line_and_leave_no_record(run_cli,
     status, out, err = run_cli("live", "--duration", "0.1", "--port", "0", "--record", str(record), *args)
     assert status == 2 and err.count("\n") == 1 and message in err
     assert not record.exists()
+
+
+def test_an_rtx_capture_through_the_command(run_cli, tmp_path, system):
+    """`--source rtx:FILE:UNIT:CHANNEL`: the capture's samples become the channel's readings in the record."""
+    from axiscal.io.importers.rtx import write_rtx
+
+    samples_mm = 100.0 + 0.001 * np.arange(300)
+    capture = tmp_path / "laser.rtx"
+    write_rtx(capture, samples_mm, sample_rate_hz=1000.0, unit="mm")
+    record_path = tmp_path / "rtx_run.csv"
+    status, out, err = run_cli(
+        "live", "--no-server", "--no-pace", "--source", f"rtx:{capture}:mm:x_scale_mm", "--record", str(record_path)
+    )
+    assert status == 0, err
+    assert "frames 300" in out
+    frame = pd.read_csv(record_path)
+    np.testing.assert_allclose(frame["t_s"], np.arange(300) / 1000.0, atol=1e-9)
+    np.testing.assert_allclose(frame["x_scale_mm"], samples_mm, rtol=1e-14)
+    assert (frame["fault"] & 1).all()  # the other channels are missing
+    assert read_record(record_path).metadata["source"].startswith(f"rtx {capture}")
+    status, out, err = run_cli("live", "--no-server", "--source", f"rtx:{capture}:mm:x_scale_mm", "--record", str(capture), "--force")
+    assert status == 2 and "a file this run reads" in err

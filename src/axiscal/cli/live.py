@@ -32,7 +32,7 @@ class _OneLineCommand(click.Command):
 
 @click.command("live", cls=_OneLineCommand)
 @click.option("--machine", type=str, default=None, help="Machine TOML with [axes.<L>.sensors] (default: the built-in virtual module).")
-@click.option("--source", "source_spec", default="sim", show_default=True, help="sim | replay:FILE | tcp:HOST:PORT | serial:DEVICE[:BAUD].")
+@click.option("--source", "source_spec", default="sim", show_default=True, help="sim | replay:FILE | rtx:FILE:UNIT:CHANNEL | tcp:HOST:PORT | serial:DEVICE[:BAUD].")
 @click.option("--rate", "rate_hz", type=float, default=1000.0, show_default=True, help="Frames per second of the sim source (Hz).")
 @click.option("--path", "motion", type=click.Choice(PATHS), default="diagonal", show_default=True, help="Motion of the sim source.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the virtual module.")

@@ -21,7 +21,7 @@ from axiscal.errors import AxiscalError
 from axiscal.io.jsonio import sidecar_path
 from axiscal.live.pipeline import Pipeline, RunSummary
 from axiscal.live.recorder import Recorder
-from axiscal.live.sources import MAX_RATE_HZ, open_source, parse_source
+from axiscal.live.sources import MAX_RATE_HZ, open_source, parse_source, rtx_parts
 from axiscal.live.state import UPDATE_HZ_RANGE, LiveState, result_columns
 from axiscal.measurement.pipeline import MeasurementSystem
 from axiscal.measurement.virtual import PATHS, VirtualModule
@@ -146,7 +146,7 @@ class LiveSession:
     machine : str or Path, optional
         Machine TOML with ``[axes.<L>.sensors]`` (default: the built-in virtual module).
     source : str
-        ``sim``, ``replay:FILE``, ``tcp:HOST:PORT`` or ``serial:DEVICE[:BAUD]``.
+        ``sim``, ``replay:FILE``, ``rtx:FILE:UNIT:CHANNEL``, ``tcp:HOST:PORT`` or ``serial:DEVICE[:BAUD]``.
     rate_hz : float
         Frames per second of the sim source, Hz.
     path : str
@@ -205,7 +205,8 @@ class LiveSession:
         _check(rate_hz, duration_s, port, update_hz, load_kg, path, seed)
         kind, argument = parse_source(source)
         if record is not None:
-            check_record_target(record, [name for name in (argument if kind == "replay" else None, machine) if name], force=force)
+            read = {"replay": argument, "rtx": rtx_parts(argument)[0]}.get(kind)
+            check_record_target(record, [name for name in (read, machine) if name], force=force)
         self.system, module = build_system(machine, kind, seed=seed, load_kg=load_kg)
         self.source = open_source(source, self.system.channels, virtual_module=module, rate_hz=rate_hz, path=path, pace=pace)
         self.state = LiveState(self.system)
