@@ -124,6 +124,11 @@ def check_record_target(record: str | Path, inputs: Sequence[str | Path], *, for
     force : bool
         Replace an existing record (never an input).
 
+    Returns
+    -------
+    None
+        Returns only when the record may be written.
+
     Raises
     ------
     AxiscalError
