@@ -1,4 +1,4 @@
-"""Where live frames come from: the virtual instrument, a recorded file, TCP, a serial port.
+"""Where live frames come from: the virtual instrument, a recorded file, a Renishaw .rtx capture, TCP, a serial port.
 
 Every source has the same small interface, used by :class:`axiscal.live.pipeline.Pipeline` from
 one thread:
@@ -30,8 +30,8 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.live.protocol import FrameBatch, LineDecoder
 from axiscal.io.importers.rtx import read_rtx
+from axiscal.live.protocol import FrameBatch, LineDecoder
 from axiscal.live.recorder import read_record
 from axiscal.units import length_factor, split_unit
 
