@@ -103,8 +103,19 @@ def test_with_the_dashboard_on_a_free_port(run_cli):
         (["--rate", "fast"], "'fast' is not a valid float"),
         (["--duration", "-1"], "--duration must be positive"),
         (["--port", "70000"], "--port must be 0-65535"),
-        (["--update-hz", "0"], "--update-hz must be positive"),
-        (["--load-kg", "-2"], "--load-kg must not be negative"),
+        (["--rate", "1e9"], "--rate must be a positive number of frames per second up to 100000"),
+        (["--rate", "inf"], "--rate must be a positive"),
+        (["--update-hz", "0"], "--update-hz must be 0.1 to 60"),
+        (["--update-hz", "1e300"], "--update-hz must be 0.1 to 60"),
+        (["--update-hz", "nan"], "--update-hz must be 0.1 to 60"),
+        (["--update-hz", "-inf"], "--update-hz must be 0.1 to 60"),
+        (["--duration", "inf"], "--duration must be positive"),
+        (["--duration", "nan"], "--duration must be positive"),
+        (["--load-kg", "-2"], "--load-kg must be a finite mass"),
+        (["--load-kg", "nan"], "--load-kg must be a finite mass"),
+        (["--load-kg", "inf"], "--load-kg must be a finite mass"),
+        (["--seed", "-1"], "--seed must not be negative"),
+        (["--port", "nan"], "'nan' is not a valid integer"),
         (["--path", "circle"], "'circle' is not one of"),
         (["--source", "camera"], "unknown source 'camera'"),
         (["--source", "tcp:localhost"], "expected tcp:HOST:PORT"),
@@ -155,9 +166,19 @@ def test_shipped_frames_replayed_with_the_shipped_machine_keep_their_two_faults(
 
 def test_recording_over_the_file_being_replayed_is_refused(run_cli, recorded):
     before = recorded.read_bytes()
-    status, out, err = run_cli("live", "--no-server", "--source", f"replay:{recorded}", "--record", str(recorded))
-    assert status == 2 and "names the file being replayed" in err and err.count("\n") == 1
+    status, out, err = run_cli("live", "--no-server", "--source", f"replay:{recorded}", "--record", str(recorded), "--force")
+    assert status == 2 and "a file this run reads" in err and err.count("\n") == 1
     assert recorded.read_bytes() == before
+
+
+def test_an_existing_record_needs_force(run_cli, tmp_path):
+    record = tmp_path / "old.csv"
+    record.write_text("precious\n")
+    status, out, err = run_cli("live", "--no-server", "--duration", "0.1", "--record", str(record))
+    assert status == 2 and err.count("\n") == 1 and "--force" in err and record.read_text() == "precious\n"
+    status, out, err = run_cli("live", "--no-server", "--duration", "0.1", "--record", str(record), "--force")
+    assert status == 0, err
+    assert pd.read_csv(record).columns[0] == "t_s"
 
 
 def test_a_record_folder_that_cannot_be_made_is_one_error_line(run_cli, tmp_path):
@@ -165,3 +186,62 @@ def test_a_record_folder_that_cannot_be_made_is_one_error_line(run_cli, tmp_path
     blocker.write_text("not a folder\n")
     status, out, err = run_cli("live", "--no-server", "--duration", "0.1", "--record", str(blocker / "run.csv"))
     assert status == 2 and err.count("\n") == 1 and "cannot create the record's folder" in err
+
+
+def test_measure_and_replay_agree_on_unreadable_cells_and_line_ends(run_cli, tmp_path):
+    """A channel cell that is not a number is a missing reading, a t_s that is not one a malformed
+    frame -- in `measure` and in `live --source replay:` alike; CR-only line ends read as LF."""
+    status, out, err = run_cli("simulate", "frames", "--duration", "0.02", "-o", str(tmp_path / "f.csv"))
+    assert status == 0, err
+    lines = (tmp_path / "f.csv").read_text().splitlines()
+    cells = lines[5].split(",")
+    cells[1] = "abc"
+    lines[5] = ",".join(cells)
+    lines[9] = "late," + lines[9].split(",", 1)[1]
+    odd = tmp_path / "odd.csv"
+    odd.write_bytes(("\r".join(lines) + "\r").encode())
+    status, out, err = run_cli("measure", str(odd), "-o", str(tmp_path / "measured.csv"))
+    assert status == 0, err
+    replayed = tmp_path / "replayed.csv"
+    status, out, err = run_cli("live", "--no-server", "--no-pace", "--source", f"replay:{odd}", "--record", str(replayed))
+    assert status == 0, err
+    measured = pd.read_csv(tmp_path / "measured.csv")
+    record = pd.read_csv(replayed)
+    assert len(measured) == len(record) == 20
+    np.testing.assert_array_equal(measured["fault"], record["fault"])
+    assert measured["fault"][4] & 1 and measured["fault"][8] & 256
+    assert np.flatnonzero(measured["fault"]).tolist() == [4, 8]
+    np.testing.assert_allclose(measured["ex_um"], record["ex_um"], rtol=1e-8, atol=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [(["--bind", "256.1.1.1"], "cannot listen on 256.1.1.1"), (["--allow-host", "monitor:8765"], "without port or scheme")],
+)
+def test_bad_dashboard_addresses_are_one_error_line_and_leave_no_record(run_cli, tmp_path, args, message):
+    record = tmp_path / "run.csv"
+    status, out, err = run_cli("live", "--duration", "0.1", "--port", "0", "--record", str(record), *args)
+    assert status == 2 and err.count("\n") == 1 and message in err
+    assert not record.exists()
+
+
+def test_an_rtx_capture_through_the_command(run_cli, tmp_path, system):
+    """`--source rtx:FILE:UNIT:CHANNEL`: the capture's samples become the channel's readings in the record."""
+    from axiscal.io.importers.rtx import write_rtx
+
+    samples_mm = 100.0 + 0.001 * np.arange(300)
+    capture = tmp_path / "laser.rtx"
+    write_rtx(capture, samples_mm, sample_rate_hz=1000.0, unit="mm")
+    record_path = tmp_path / "rtx_run.csv"
+    status, out, err = run_cli(
+        "live", "--no-server", "--no-pace", "--source", f"rtx:{capture}:mm:x_scale_mm", "--record", str(record_path)
+    )
+    assert status == 0, err
+    assert "frames 300" in out
+    frame = pd.read_csv(record_path)
+    np.testing.assert_allclose(frame["t_s"], np.arange(300) / 1000.0, atol=1e-9)
+    np.testing.assert_allclose(frame["x_scale_mm"], samples_mm, rtol=1e-14)
+    assert (frame["fault"] & 1).all()  # the other channels are missing
+    assert read_record(record_path).metadata["source"].startswith(f"rtx {capture}")
+    status, out, err = run_cli("live", "--no-server", "--source", f"rtx:{capture}:mm:x_scale_mm", "--record", str(capture), "--force")
+    assert status == 2 and "a file this run reads" in err

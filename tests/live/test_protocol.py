@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -89,3 +90,49 @@ def test_encode_then_decode_in_any_chunking_gives_the_frames_back(table, cuts, w
     batch = FrameBatch.concatenate([b for b in batches if len(b)], len(CHANNELS))
     np.testing.assert_array_equal(batch.t_s, values[:, 0])
     np.testing.assert_array_equal(batch.values, values[:, 1:])
+
+
+def test_a_line_longer_than_the_limit_is_one_malformed_frame_and_the_decoder_resynchronises():
+    decoder = LineDecoder(CHANNELS, max_line_bytes=64)
+    chunk = b"7" * 4096
+    got = [decoder.feed(b"0.1,1,2,3\n" + chunk)]
+    for _ in range(1000):  # 4 MB without a line end: nothing of it is kept
+        got.append(decoder.feed(chunk))
+        assert len(decoder._pending) <= 64
+    got.append(decoder.feed(b"7777\n0.2,4,5,6\n"))
+    batch = FrameBatch.concatenate(got, len(CHANNELS))
+    np.testing.assert_array_equal(batch.t_s, [0.1, np.nan, 0.2])
+    np.testing.assert_array_equal(batch.malformed, [False, True, False])
+    np.testing.assert_array_equal(batch.values[2], [4, 5, 6])
+    assert decoder.overlong_lines == 1 and decoder.malformed_lines == 1
+
+
+def test_an_overlong_line_inside_one_chunk_is_one_malformed_frame():
+    decoder = LineDecoder(CHANNELS, max_line_bytes=64)
+    batch = decoder.feed(b"0.1,1,2,3\n" + b"1," * 100 + b"\n0.2,4,5,6\n")
+    np.testing.assert_array_equal(batch.malformed, [False, True, False])
+    assert batch.t_s[2] == 0.2
+
+
+@pytest.mark.parametrize("end", [b"\r", b"\r\n", b"\n"])
+def test_every_line_end_reads_the_same_frames(end):
+    text = end.join([b"t_s,a_mm,b_um,c_um", b"0.1,1,2,3", b"0.2,4,5,6", b""])
+    decoder = LineDecoder(CHANNELS)
+    batch = FrameBatch.concatenate([decoder.feed(text[k : k + 3]) for k in range(0, len(text), 3)], len(CHANNELS))
+    np.testing.assert_array_equal(batch.t_s, [0.1, 0.2])
+    np.testing.assert_array_equal(batch.values, [[1, 2, 3], [4, 5, 6]])
+    assert not batch.malformed.any()
+
+
+@settings(max_examples=60, deadline=None)
+@given(cuts=st.lists(st.integers(0, 400), max_size=12), long=st.integers(0, 200))
+def test_the_frames_do_not_depend_on_how_the_bytes_are_cut(cuts, long):
+    """However the stream is split into reads, the decoded frames are the same (an overlong line included)."""
+    text = b"0.1,1,2,3\r\n" + b"5" * long + b"\n0.2,4,5,6\r0.3,7,8,9\n"
+    whole = LineDecoder(CHANNELS, max_line_bytes=50).feed(text)
+    decoder = LineDecoder(CHANNELS, max_line_bytes=50)
+    bounds = sorted({0, len(text), *(c % (len(text) + 1) for c in cuts)})
+    parts = FrameBatch.concatenate([decoder.feed(text[a:b]) for a, b in zip(bounds, bounds[1:])], len(CHANNELS))
+    np.testing.assert_array_equal(parts.t_s, whole.t_s)
+    np.testing.assert_array_equal(parts.malformed, whole.malformed)
+    assert len(whole) == (4 if long else 3)

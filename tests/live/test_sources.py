@@ -292,3 +292,54 @@ def test_serial_source_reads_the_line_protocol_and_retries_when_the_port_fails(m
         source.read(0.02)
     source.close()
     assert source.status.retries >= 1 and "serial" in source.status.description
+
+
+def test_tcp_source_memory_stays_bounded_under_a_line_without_end(module, system):
+    """32 MB without a line end: one malformed frame, the frames after it decoded, memory never holds the line."""
+    import tracemalloc
+
+    before, after = _frames(module, system, 50), _frames(module, system, 50, start=50)
+    flood = 32 << 20
+    payload = encode_lines(before.t_s, before.values) + b"7" * flood + b"\n" + encode_lines(after.t_s, after.values)
+    server = LineServer([payload])
+    source = TcpSource("127.0.0.1", server.port, system.channels)
+    tracemalloc.start()
+    try:
+        got = _drain(source, frames=101, timeout_s=30.0)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+        source.close()
+        server.join()
+    assert len(got) == 101 and np.flatnonzero(got.malformed).tolist() == [50]
+    np.testing.assert_array_equal(got.t_s[51:], after.t_s)
+    assert source.decoder.overlong_lines == 1
+    assert peak < 8 << 20, f"peak {peak / 2**20:.1f} MiB while {flood >> 20} MiB came without a line end"
+
+
+def test_an_rtx_capture_replays_as_the_reading_of_one_channel(tmp_path, system):
+    from axiscal.io.importers.rtx import write_rtx
+    from axiscal.live.sources import RtxSource
+
+    samples_nm = np.array([0.0, 1500.0, -250.0, 12.5, 7.0])
+    path = tmp_path / "x axis.rtx"
+    write_rtx(path, samples_nm, sample_rate_hz=200.0, unit="nm")
+    source = RtxSource(path, "nm", "x_psd_y_um", system.channels, pace=False)
+    batch = source.read(1.0)
+    assert source.finished and len(batch) == 5
+    np.testing.assert_allclose(batch.t_s, np.arange(5) / 200.0)
+    column = system.channels.index("x_psd_y_um")
+    np.testing.assert_allclose(batch.values[:, column], samples_nm / 1000.0)  # nm in the file, um in the channel
+    assert np.isnan(np.delete(batch.values, column, axis=1)).all() and not batch.malformed.any()
+    assert "200 Hz" in source.status.description and "as x_psd_y_um" in source.status.description
+    paced = RtxSource(path, "nm", "x_psd_y_um", system.channels)
+    start = time.monotonic()
+    assert len(_drain(paced, frames=5)) == 5 and time.monotonic() - start > 0.015  # at the capture's 200 Hz
+    with pytest.raises(AxiscalError, match="channel 'x_nope_um' is not one of"):
+        RtxSource(path, "nm", "x_nope_um", system.channels)
+    with pytest.raises(AxiscalError, match="unknown length unit 'parsec'"):
+        RtxSource(path, "parsec", "x_psd_y_um", system.channels)
+    with pytest.raises(AxiscalError, match="expected rtx:FILE:UNIT:CHANNEL"):
+        parse_source(f"rtx:{path}:nm")
+    with pytest.raises(AxiscalError, match="rtx capture not found"):
+        open_source("rtx:/no/such.rtx:mm:x_scale_mm", system.channels)

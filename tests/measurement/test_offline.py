@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
@@ -96,3 +98,37 @@ def test_the_example_data_are_plain_csvs_pandas_reads_with_no_options(examples):
         assert json.loads(path.with_suffix(".json").read_text())["file"] == path.name
     frames = pandas.read_csv(examples / "xz_module" / "sensors_frames.csv")
     assert len(frames) == 200 and frames["t_s"].iloc[-1] == pytest.approx(199 / 50.0)
+
+
+def test_fit_uncertainties_are_the_least_squares_standard_errors():
+    """Reference: scipy.stats.linregress's standard errors of slope and intercept."""
+    from scipy.stats import linregress
+
+    from axiscal.measurement.offline import _line_fit_uncertainty
+
+    rng = np.random.default_rng(3)
+    x = np.linspace(-80.0, 90.0, 17)
+    y = 0.97 * x + 4.0 + rng.normal(0.0, 0.3, x.size)
+    fit = linregress(x, y)
+    rms = float(np.sqrt(np.mean((y - (fit.slope * x + fit.intercept)) ** 2)))
+    u_gain, u_offset = _line_fit_uncertainty(x, rms)
+    assert u_gain == pytest.approx(fit.stderr, rel=1e-12) and u_offset == pytest.approx(fit.intercept_stderr, rel=1e-12)
+
+
+def test_calibrate_prints_the_digits_that_mean_something_and_json_keeps_all(examples, run_cli):
+    run = examples / "xz_module" / "sensors_psd_run.csv"
+    status, out, err = run_cli("calibrate", "sensitivity", run, "--channel", "x_psd_y_um")
+    assert status == 0, err
+    status, js, err = run_cli("calibrate", "sensitivity", run, "--channel", "x_psd_y_um", "--json")
+    report = json.loads(js)
+    shown = dict(line.split(": ", 1) for line in out.splitlines())
+    assert shown["gain"] == "0.95499" and shown["gain_u"] == "0.00073"  # the gain to the 2nd digit of its uncertainty
+    assert shown["offset_um"] == "-19.379" and shown["residual_rms_um"] == "0.18"
+    assert report["gain"] == pytest.approx(0.95499, abs=5e-6) and len(repr(report["gain"])) > 12  # --json: full precision
+    for key, value in shown.items():
+        if key == "channel":
+            continue
+        digits = value.lstrip("-").replace(".", "").lstrip("0")
+        assert len(digits) <= 7, value  # never the 16 digits of a float
+    status, out, err = run_cli("calibrate", "mirror", examples / "xz_module" / "sensors_mirror_run.csv", "--axis", "x")
+    assert status == 0 and "residual_rms_arcsec: 0.25\n" in out

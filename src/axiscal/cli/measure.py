@@ -38,10 +38,7 @@ def _echo_report(report: dict[str, Any], as_json: bool) -> None:
     if as_json:
         echo_json(report)
         return
-    for key, value in report.items():
-        if isinstance(value, list):
-            value = " ".join(f"{v:.3f}" for v in value)
-        click.echo(f"{key}: {value}")
+    click.echo(offline.calibration_text(report), nl=False)
 
 
 @click.command("measure")

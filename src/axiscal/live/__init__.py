@@ -21,6 +21,7 @@ from axiscal.live.pipeline import (
     RunSummary,
 )
 from axiscal.live.protocol import (
+    MAX_LINE_BYTES,
     FrameBatch,
     LineDecoder,
     encode_lines,
@@ -36,20 +37,25 @@ from axiscal.live.recorder import (
 from axiscal.live.session import (
     LiveSession,
     build_system,
+    check_record_target,
 )
 from axiscal.live.sources import (
+    MAX_RATE_HZ,
     Backoff,
     ReplaySource,
+    RtxSource,
     SerialSource,
     SimSource,
     SourceStatus,
     TcpSource,
     open_source,
     parse_source,
+    rtx_parts,
 )
 from axiscal.live.state import (
     CORRECTED,
     SPATIAL,
+    UPDATE_HZ_RANGE,
     LiveState,
     axis_error_columns,
     result_columns,
@@ -57,7 +63,7 @@ from axiscal.live.state import (
 
 #: the dashboard server's names, imported from :mod:`axiscal.live.server` only when first used
 #: (it imports starlette and uvicorn, which the rest of the live room and the CLI do without)
-_SERVER_NAMES = ("WEB", "HOST", "ClientStats", "Broadcaster", "create_app", "LiveServer")
+_SERVER_NAMES = ("WEB", "HOST", "LOOPBACK_HOSTS", "ClientStats", "Broadcaster", "request_allowed", "create_app", "LiveServer")
 
 
 def __getattr__(name: str):
@@ -72,6 +78,7 @@ __all__ = [
     "RunSummary",
     "Pipeline",
     "FrameBatch",
+    "MAX_LINE_BYTES",
     "LineDecoder",
     "encode_lines",
     "header_line",
@@ -81,15 +88,20 @@ __all__ = [
     "Record",
     "read_record",
     "build_system",
+    "check_record_target",
     "LiveSession",
+    "MAX_RATE_HZ",
     "SourceStatus",
     "Backoff",
     "SimSource",
     "ReplaySource",
+    "RtxSource",
     "TcpSource",
     "SerialSource",
     "parse_source",
+    "rtx_parts",
     "open_source",
+    "UPDATE_HZ_RANGE",
     "SPATIAL",
     "CORRECTED",
     "axis_error_columns",
@@ -97,8 +109,10 @@ __all__ = [
     "LiveState",
     "WEB",
     "HOST",
+    "LOOPBACK_HOSTS",
     "ClientStats",
     "Broadcaster",
+    "request_allowed",
     "create_app",
     "LiveServer",
 ]

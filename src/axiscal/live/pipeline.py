@@ -25,7 +25,7 @@ from axiscal.live.protocol import FrameBatch
 from axiscal.live.recorder import Recorder
 from axiscal.live.state import LiveState, result_columns
 from axiscal.measurement.display import to_display
-from axiscal.measurement.faults import Fault
+from axiscal.measurement.faults import mark_malformed
 
 #: seconds per millisecond (delays are shown in ms)
 MS = 1e-3
@@ -135,10 +135,7 @@ class Pipeline:
             The SI result columns of :meth:`MeasurementSystem.process` (NaN where faulty).
         """
         results = self.system.process(batch.frames(self.channels))
-        fault = np.asarray(results["fault"], dtype=np.int64) | np.where(batch.malformed, int(Fault.MALFORMED), 0)
-        if batch.malformed.any():
-            results = {name: np.where(batch.malformed, np.nan, value) if name not in ("t_s", "fault") else value for name, value in results.items()}
-        return fault, results
+        return mark_malformed(results, batch.malformed)
 
     def step(self, timeout_s: float = 0.02) -> int:
         """Read what the source has, process and record it.

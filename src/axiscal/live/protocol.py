@@ -1,6 +1,6 @@
 """The frame batch and the line protocol of the TCP and serial sources (docs/live.md, "Line protocol").
 
-One frame per line, UTF-8, fields separated by commas, ``\\n`` (or ``\\r\\n``) at the end::
+One frame per line, UTF-8, fields separated by commas, ``\\n``, ``\\r\\n`` or ``\\r`` at the end::
 
     t_s,x_scale_mm,x_psd_y_um,...          <- optional header (any line naming t_s): the columns of the lines after it
     0.000100,12.500031,0.8123,...          <- t_s, then the channels of MeasurementSystem.channels
@@ -11,7 +11,8 @@ missing in every frame); a column it names that the system does not know is igno
 starting with ``#`` and empty lines are skipped. An empty cell, ``nan`` or a cell that is not a
 number is a missing channel; a frame whose ``t_s`` cannot be read, or whose line has more fields
 than there are columns (the sender's columns are not the ones assumed: send a header), is kept but
-marked malformed.
+marked malformed. A line longer than :data:`MAX_LINE_BYTES` is not kept in memory: it counts as one
+malformed frame and the decoder resynchronises on the next line end.
 Nothing a sender writes can stop the stream: bad lines become faulty frames, never errors.
 """
 
@@ -22,7 +23,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["FrameBatch", "LineDecoder", "encode_lines", "header_line"]
+from axiscal.errors import AxiscalError
+
+__all__ = ["MAX_LINE_BYTES", "FrameBatch", "LineDecoder", "encode_lines", "header_line"]
+
+#: longest line the decoder keeps, bytes without its line end (a frame of 100 channels at 25 characters is 2.5 kB)
+MAX_LINE_BYTES = 65536
 
 
 @dataclass(frozen=True)
@@ -87,10 +93,32 @@ class LineDecoder:
     ----------
     channels : sequence of str
         The channel names of the measurement system, in frame order.
+    max_line_bytes : int, keyword-only
+        Longest line kept; a longer one is one malformed frame, the rest of it up to the next line
+        end is dropped as it arrives (memory stays bounded whatever a sender writes).
+
+    Attributes
+    ----------
+    lines, malformed_lines, overlong_lines : int
+        Lines decoded, of them malformed, of them too long.
+    ignored_columns : tuple of str
+        Columns the last header named that the system does not know.
+
+    Examples
+    --------
+    >>> decoder = LineDecoder(["a_mm"], max_line_bytes=16)
+    >>> batch = decoder.feed(b"0.1,1\\r" + b"9" * 40 + b"\\r0.2,2\\r")
+    >>> batch.t_s.tolist(), batch.malformed.tolist()
+    ([0.1, nan, 0.2], [False, True, False])
     """
 
-    def __init__(self, channels: Sequence[str]):
+    def __init__(self, channels: Sequence[str], *, max_line_bytes: int = MAX_LINE_BYTES):
+        if not max_line_bytes > 0:
+            raise AxiscalError(f"the longest line must be a positive number of bytes, got {max_line_bytes}")
         self.channels = tuple(channels)
+        self.max_line_bytes = int(max_line_bytes)
+        self._discarding = False
+        self.overlong_lines = 0
         self._pending = b""
         self._columns: tuple[str, ...] = ("t_s",) + self.channels
         self._order = np.arange(len(self._columns))
@@ -101,6 +129,7 @@ class LineDecoder:
     def reset(self) -> None:
         """Forget a partial line and any header (a new connection starts afresh)."""
         self._pending = b""
+        self._discarding = False
         self._set_columns(("t_s",) + self.channels)
 
     def _set_columns(self, columns: Sequence[str]) -> None:
@@ -111,25 +140,50 @@ class LineDecoder:
         self.ignored_columns = tuple(name for name in self._columns if name not in wanted)
 
     def feed(self, data: bytes) -> FrameBatch:
-        """Decode the complete lines in ``data`` (plus what was pending); keep the incomplete tail."""
+        """Decode the complete lines in ``data`` (plus what was pending); keep the incomplete tail.
+
+        ``\\n``, ``\\r\\n`` and ``\\r`` end a line. A line longer than ``max_line_bytes`` is one
+        malformed frame; what follows of it up to the next line end is dropped.
+        """
+        data = data.replace(b"\r", b"\n")  # CR-only and CRLF ends; the empty line a CRLF leaves is skipped
+        if self._discarding:  # inside an overlong line: drop up to its end
+            end = data.find(b"\n")
+            if end < 0:
+                return self.decode_lines(())
+            self._discarding = False
+            data = data[end + 1 :]
         data = self._pending + data
         cut = data.rfind(b"\n")
-        if cut < 0:
-            self._pending = data
-            return self.decode_lines(())
-        self._pending = data[cut + 1 :]
-        return self.decode_lines(data[:cut].decode("utf-8", errors="replace").split("\n"))
+        block, tail = (b"", data) if cut < 0 else (data[:cut], data[cut + 1 :])
+        cap = self.max_line_bytes
+        if len(block) <= cap:
+            lines: list[str | None] = block.decode("utf-8", errors="replace").split("\n") if cut >= 0 else []
+        else:
+            lines = [None if len(raw) > cap else raw.decode("utf-8", errors="replace") for raw in block.split(b"\n")]
+        if len(tail) > cap:
+            lines.append(None)
+            self._discarding = True
+            tail = b""
+        self._pending = tail
+        return self.decode_lines(lines)
 
     def flush(self) -> FrameBatch:
         """Decode a last line that had no newline (at the end of a stream)."""
         tail, self._pending = self._pending, b""
         return self.decode_lines([tail.decode("utf-8", errors="replace")] if tail.strip() else [])
 
-    def decode_lines(self, lines: Iterable[str]) -> FrameBatch:
-        """Decode text lines (without their newline) into frames; a header applies to the lines after it."""
+    def decode_lines(self, lines: Iterable[str | None]) -> FrameBatch:
+        """Decode text lines (without their newline) into frames; a header applies to the lines after it.
+
+        ``None`` stands for a line that was too long to keep: it becomes one malformed frame.
+        """
         segments: list[FrameBatch] = []
         rows: list[list[str]] = []
         for line in lines:
+            if line is None:
+                self.overlong_lines += 1
+                rows.append([])  # no readable time stamp: a malformed frame
+                continue
             line = line.strip()
             if not line or line.startswith("#"):
                 continue

@@ -25,7 +25,6 @@ missing cells at its end.
 from __future__ import annotations
 
 import contextlib
-import math
 import os
 import threading
 from collections.abc import Mapping, Sequence
@@ -36,9 +35,8 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.jsonio import read_json, sidecar_path, write_sidecar
-from axiscal.io.tabular import parse_csv
 from axiscal.measurement.faults import fault_legend
-from axiscal.measurement.offline import RECORD_KIND, drop_cut_line, is_live_record
+from axiscal.measurement.offline import RECORD_KIND, numeric_columns, read_frames_table
 
 __all__ = ["FORMAT_LINE", "RECORD_KIND", "Recorder", "Record", "read_record"]
 
@@ -54,7 +52,8 @@ class Recorder:
     Parameters
     ----------
     path : str or Path
-        The record file; created (or emptied) when the recorder opens.
+        The record file; created when the recorder opens (an existing one is emptied when
+        ``overwrite``, else refused).
     channels : sequence of str
         Raw channel names, in frame order.
     result_columns : sequence of str
@@ -64,11 +63,14 @@ class Recorder:
     metadata : mapping, optional
         Entries of the record's JSON sidecar besides its kind, format, columns and fault bits
         (source, machine, start time).
+    overwrite : bool
+        Replace an existing file (False: refuse it, atomically with the creation).
 
     Raises
     ------
     AxiscalError
-        If the record or its sidecar cannot be created or written (naming the file).
+        If the record or its sidecar cannot be created or written, or the record exists and not
+        ``overwrite`` (naming the file).
     """
 
     def __init__(
@@ -79,6 +81,7 @@ class Recorder:
         *,
         sync_interval_s: float = 0.1,
         metadata: Mapping[str, object] | None = None,
+        overwrite: bool = True,
     ):
         if not sync_interval_s > 0:
             raise AxiscalError(f"sync interval must be positive, got {sync_interval_s}")
@@ -89,7 +92,9 @@ class Recorder:
         self.sync_interval_s = float(sync_interval_s)
         self._row_format = ",".join(["%.9f"] + ["%.15g"] * len(self.channels) + ["%d"] + ["%.9g"] * len(self.result_columns)) + "\n"
         try:
-            self._fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_APPEND, 0o644)
+            self._fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_APPEND | (os.O_TRUNC if overwrite else os.O_EXCL), 0o644)
+        except FileExistsError:
+            raise AxiscalError("the record file exists; choose another file, or give --force to replace it", path=self.path) from None
         except OSError as exc:
             raise AxiscalError(f"cannot open the record file ({exc.strerror})", path=self.path) from None
         try:
@@ -233,7 +238,10 @@ class Record:
 
 
 def read_record(path: str | Path) -> Record:
-    """Read a live record (or any CSV with a ``t_s`` column): empty cells and ``nan`` are NaN.
+    """Read a live record (or any CSV with a ``t_s`` column): a cell that is empty, ``nan`` or not a number is NaN.
+
+    Cells are read as ``axiscal measure`` reads frames
+    (:func:`~axiscal.measurement.offline.numeric_columns`); lines may end with LF, CRLF or CR.
 
     In a live record (its sidecar says so, its columns are a record's, or it is in the earlier
     format), a last line without its newline (the process was killed while writing it) is dropped
@@ -252,50 +260,21 @@ def read_record(path: str | Path) -> Record:
     ------
     AxiscalError
         If the file is missing, has no header with ``t_s``, or a complete line has a wrong number of
-        cells or a cell that is not a number (naming the file and line).
+        cells (naming the file and line).
     """
     path = Path(path)
-    try:
-        data = path.read_bytes()
-    except FileNotFoundError:
-        raise AxiscalError("file not found", path=path) from None
-    except OSError as exc:
-        raise AxiscalError(f"cannot read file ({exc.strerror})", path=path) from None
-    text = data.decode("utf-8-sig", errors="replace")
-    first = text[: text.find("\n")] if "\n" in text else text
-    if text.startswith(FORMAT_LINE) or is_live_record(path, [c.strip() for c in first.split(",")]):
-        kept = drop_cut_line(text)
-        truncated, text = kept != text, kept
-    else:
-        truncated = False
-    lines = text.split("\n")
-    comments = [line.strip()[1:].strip() for line in lines if line.strip().startswith("#")]
-    parsed = parse_csv(lines, path=str(path), min_rows=0)
-    header, rows, numbers = list(parsed.header), parsed.rows, parsed.lines
-    if "t_s" not in header:
-        raise AxiscalError(f"no 't_s' column (columns are: {', '.join(header)})", path=path, line=parsed.header_line)
-    try:
-        table = np.array(rows, dtype=float).reshape(len(rows), len(header))  # fast path: all cells numbers
-    except ValueError:
-        table = _parse_cells(rows, header, numbers, path)
-    table[~np.isfinite(table)] = np.nan
-    columns = {name: np.ascontiguousarray(table[:, i]) for i, name in enumerate(header)}
+    table, truncated = read_frames_table(path, min_rows=0)
+    if "t_s" not in table.header:
+        raise AxiscalError(f"no 't_s' column (columns are: {', '.join(table.header)})", path=path, line=table.header_line)
+    comments = []
+    with open(path, encoding="utf-8-sig", errors="replace") as handle:
+        for line in handle:  # the earlier format's comment lines come before the header
+            if line.strip() and not line.startswith("#"):
+                break
+            if line.startswith("#"):
+                comments.append(line.strip()[1:].strip())
+    columns = numeric_columns(table, table.header)
     side = sidecar_path(path)
     metadata = read_json(side) if side.is_file() else {}
     return Record(str(path), tuple(comments), columns, truncated, metadata if isinstance(metadata, dict) else {})
-
-
-def _parse_cells(rows: Sequence[Sequence[str]], header: list[str], numbers: Sequence[int], path: Path) -> np.ndarray:
-    """The slow path of :func:`read_record`: empty cells allowed, a bad cell named by file and line."""
-    table = np.full((len(rows), len(header)), np.nan)
-    for k, cells in enumerate(rows):
-        for i, cell in enumerate(cells):
-            if cell == "" or cell.lower() == "nan":
-                continue
-            try:
-                value = float(cell)
-            except ValueError:
-                raise AxiscalError(f"column '{header[i]}': '{cell}' is not a number", path=path, line=numbers[k]) from None
-            table[k, i] = value if math.isfinite(value) else np.nan
-    return table
 

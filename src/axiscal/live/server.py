@@ -8,7 +8,13 @@ and the pipeline (which only writes the state) never waits for any client.
 
 Routes: ``/`` the page, ``/static/...`` its script and style (shipped in ``axiscal/live/web``),
 ``/api/config`` channels and axes, ``/api/state`` the newest state, ``/ws`` the stream.
-Only the loopback interface is served.
+The loopback interface is served unless another address is given.
+
+A web page the user opens elsewhere must not read the stream: every request (page, API and
+WebSocket) is refused with 403 unless its ``Host`` header names an allowed host (the loopback
+names :data:`LOOPBACK_HOSTS`, plus those given) -- so a DNS-rebound name pointing at 127.0.0.1 is
+refused -- and, when it carries an ``Origin`` (browsers send it on a WebSocket and on cross-site
+requests), that origin is the dashboard's own (``http://`` and the same host and port).
 """
 
 from __future__ import annotations
@@ -17,25 +23,90 @@ import asyncio
 import contextlib
 import json
 import logging
+import math
 import socket
 import threading
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 import uvicorn
 from starlette.applications import Starlette
+from starlette.middleware import Middleware
 from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Mount, Route, WebSocketRoute
 from starlette.staticfiles import StaticFiles
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from axiscal.errors import AxiscalError
-from axiscal.live.state import LiveState
+from axiscal.live.state import UPDATE_HZ_RANGE, LiveState
 
-__all__ = ["WEB", "HOST", "ClientStats", "Broadcaster", "create_app", "LiveServer"]
+__all__ = ["WEB", "HOST", "LOOPBACK_HOSTS", "ClientStats", "Broadcaster", "request_allowed", "create_app", "LiveServer"]
 
 WEB = Path(__file__).parent / "web"
 HOST = "127.0.0.1"
+#: host names a request may name by default (without the port)
+LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "[::1]")
+
+
+def _host_name(host: str) -> str:
+    """A ``Host`` value without its port, lower case (``[::1]:8765`` -> ``[::1]``)."""
+    host = host.strip().lower()
+    if host.startswith("["):
+        return host[: host.find("]") + 1] if "]" in host else host
+    return host.rsplit(":", 1)[0] if host.count(":") == 1 else host
+
+
+def request_allowed(headers: dict[str, str], allowed_hosts: tuple[str, ...] = LOOPBACK_HOSTS) -> bool:
+    """Whether a request to the dashboard may be answered: an allowed Host, and no Origin but its own.
+
+    Parameters
+    ----------
+    headers : dict of str to str
+        The request's headers, names in lower case.
+    allowed_hosts : tuple of str
+        Host names allowed (lower case, without port; IPv6 in brackets).
+
+    Returns
+    -------
+    bool
+        True when ``Host`` names an allowed host and ``Origin`` is absent or ``http://`` plus
+        exactly that ``Host``.
+
+    Examples
+    --------
+    >>> request_allowed({"host": "127.0.0.1:8765", "origin": "http://127.0.0.1:8765"})
+    True
+    >>> request_allowed({"host": "evil.example:8765"})
+    False
+    >>> request_allowed({"host": "localhost:8765", "origin": "http://evil.example"})
+    False
+    """
+    host = headers.get("host", "")
+    if not host or _host_name(host) not in allowed_hosts:
+        return False
+    origin = headers.get("origin")
+    return origin is None or origin.strip().lower() == f"http://{host.strip().lower()}"
+
+
+class _GuardHosts:
+    """ASGI middleware answering 403 to a request :func:`request_allowed` refuses (HTTP and WebSocket)."""
+
+    def __init__(self, app, allowed_hosts: tuple[str, ...]):
+        self.app = app
+        self.allowed_hosts = allowed_hosts
+
+    async def __call__(self, scope, receive, send) -> None:
+        if scope["type"] in ("http", "websocket"):
+            headers = {name.decode("latin-1").lower(): value.decode("latin-1") for name, value in scope["headers"]}
+            if not request_allowed(headers, self.allowed_hosts):
+                if scope["type"] == "websocket":
+                    await send({"type": "websocket.close", "code": 1008})  # before accept: the handshake gets 403
+                    return
+                await send({"type": "http.response.start", "status": 403, "headers": [(b"content-type", b"text/plain")]})
+                await send({"type": "http.response.body", "body": b"forbidden: host or origin not allowed\n"})
+                return
+        await self.app(scope, receive, send)
 
 
 @dataclass
@@ -74,8 +145,9 @@ class Broadcaster:
     """
 
     def __init__(self, state: LiveState, *, update_hz: float = 10.0, title: str = "axiscal live"):
-        if not update_hz > 0:
-            raise AxiscalError(f"update rate must be positive, got {update_hz}")
+        low, high = UPDATE_HZ_RANGE
+        if not (math.isfinite(update_hz) and low <= update_hz <= high):
+            raise AxiscalError(f"update rate must be {low:g} to {high:g} per second, got {update_hz}")
         self.state = state
         self.interval_s = 1.0 / update_hz
         self.title = title
@@ -102,7 +174,9 @@ class Broadcaster:
         return self.version, self.text
 
 
-def create_app(state: LiveState, *, update_hz: float = 10.0, title: str = "axiscal live") -> Starlette:
+def create_app(
+    state: LiveState, *, update_hz: float = 10.0, title: str = "axiscal live", allowed_hosts: Sequence[str] = ()
+) -> Starlette:
     """The dashboard app for ``state``.
 
     Parameters
@@ -113,6 +187,9 @@ def create_app(state: LiveState, *, update_hz: float = 10.0, title: str = "axisc
         Refreshes per second.
     title : str, keyword-only
         The page's title.
+    allowed_hosts : sequence of str, keyword-only
+        Host names allowed besides :data:`LOOPBACK_HOSTS` (as a browser sends them in ``Host``,
+        without port), e.g. the machine's name when the server listens on another interface.
 
     Returns
     -------
@@ -122,8 +199,13 @@ def create_app(state: LiveState, *, update_hz: float = 10.0, title: str = "axisc
     Raises
     ------
     AxiscalError
-        If ``update_hz`` is not positive.
+        If ``update_hz`` is outside :data:`~axiscal.live.state.UPDATE_HZ_RANGE` or a host name is
+        empty or holds a port.
     """
+    extra = tuple(name.strip().lower() for name in allowed_hosts)
+    for name in extra:
+        if not name or "/" in name or (":" in name and not name.startswith("[")):
+            raise AxiscalError(f"allowed host '{name}' must be a host name or address without port or scheme")
     broadcaster = Broadcaster(state, update_hz=update_hz, title=title)
 
     @contextlib.asynccontextmanager
@@ -174,13 +256,14 @@ def create_app(state: LiveState, *, update_hz: float = 10.0, title: str = "axisc
             Mount("/static", StaticFiles(directory=WEB), name="static"),
         ],
         lifespan=lifespan,
+        middleware=[Middleware(_GuardHosts, allowed_hosts=LOOPBACK_HOSTS + extra)],
     )
     app.state.broadcaster = broadcaster
     return app
 
 
 class LiveServer:
-    """uvicorn serving an app on 127.0.0.1 from a background thread.
+    """uvicorn serving an app from a background thread, on 127.0.0.1 unless told otherwise.
 
     Parameters
     ----------
@@ -188,12 +271,16 @@ class LiveServer:
         From :func:`create_app`.
     port : int
         TCP port; 0 picks a free one (see :attr:`port` after :meth:`start`).
+    host : str
+        Address to listen on (IPv4). Anything but loopback exposes the dashboard and its stream to
+        every computer that reaches this one (docs/live.md).
     """
 
-    def __init__(self, app: Starlette, *, port: int = 8765):
+    def __init__(self, app: Starlette, *, port: int = 8765, host: str = HOST):
         self.app = app
+        self.host = host
         config = uvicorn.Config(
-            app, host=HOST, port=port, log_level="warning", lifespan="on", ws_per_message_deflate=False, timeout_graceful_shutdown=1
+            app, host=host, port=port, log_level="warning", lifespan="on", ws_per_message_deflate=False, timeout_graceful_shutdown=1
         )
         self._server = uvicorn.Server(config)
         self._socket: socket.socket | None = None
@@ -205,17 +292,18 @@ class LiveServer:
 
     @property
     def url(self) -> str:
-        return f"http://{HOST}:{self.port}/"
+        return f"http://{HOST if self.host == '0.0.0.0' else self.host}:{self.port}/"
 
     def start(self, *, timeout_s: float = 10.0) -> "LiveServer":
         """Start serving; return once the socket listens (raise AxiscalError if it cannot)."""
         self._socket = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
         self._socket.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         try:
-            self._socket.bind((HOST, self.port))
-        except OSError as exc:
+            self._socket.bind((self.host, self.port))
+        except (OSError, OverflowError) as exc:
             self._socket.close()
-            raise AxiscalError(f"the dashboard cannot listen on {HOST}:{self.port} ({exc.strerror}); choose another --port") from None
+            reason = getattr(exc, "strerror", None) or exc
+            raise AxiscalError(f"the dashboard cannot listen on {self.host}:{self.port} ({reason}); choose another --port or --bind") from None
         self.port = self._socket.getsockname()[1]
         self._thread.start()
         waited = 0.0
@@ -224,7 +312,7 @@ class LiveServer:
             waited += 0.01
         if not self._server.started:
             self.stop()
-            raise AxiscalError(f"the dashboard server on {HOST}:{self.port} did not start")
+            raise AxiscalError(f"the dashboard server on {self.host}:{self.port} did not start")
         return self
 
     def stop(self, *, timeout_s: float = 5.0) -> None:

@@ -10,21 +10,23 @@ it is stopped.
 from __future__ import annotations
 
 import math
+import os
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from datetime import datetime, timezone
 from pathlib import Path
 
 from axiscal.errors import AxiscalError
+from axiscal.io.jsonio import sidecar_path
 from axiscal.live.pipeline import Pipeline, RunSummary
 from axiscal.live.recorder import Recorder
-from axiscal.live.sources import open_source, parse_source
-from axiscal.live.state import LiveState, result_columns
+from axiscal.live.sources import MAX_RATE_HZ, open_source, parse_source, rtx_parts
+from axiscal.live.state import UPDATE_HZ_RANGE, LiveState, result_columns
 from axiscal.measurement.pipeline import MeasurementSystem
 from axiscal.measurement.virtual import PATHS, VirtualModule
 
-__all__ = ["build_system", "LiveSession"]
+__all__ = ["build_system", "check_record_target", "LiveSession"]
 
 
 def build_system(machine: str | Path | None, source_kind: str, *, seed: int = 0, load_kg: float = 0.0):
@@ -74,19 +76,71 @@ def build_system(machine: str | Path | None, source_kind: str, *, seed: int = 0,
     return system, module
 
 
-def _check(rate_hz: float, duration_s: float | None, port: int, update_hz: float, load_kg: float, path: str) -> None:
-    if not (rate_hz > 0 and math.isfinite(rate_hz)):
-        raise AxiscalError(f"--rate must be a positive number of frames per second, got {rate_hz:g}")
-    if duration_s is not None and not duration_s > 0:
+def _finite(value: float) -> bool:
+    return isinstance(value, (int, float)) and math.isfinite(value)
+
+
+def _check(rate_hz: float, duration_s: float | None, port: int, update_hz: float, load_kg: float, path: str, seed: int) -> None:
+    """Refuse a bad setting before anything is built or allocated (every number must be finite)."""
+    if not (_finite(rate_hz) and 0 < rate_hz <= MAX_RATE_HZ):
+        raise AxiscalError(f"--rate must be a positive number of frames per second up to {MAX_RATE_HZ:g}, got {rate_hz:g}")
+    if duration_s is not None and not (_finite(duration_s) and duration_s > 0):
         raise AxiscalError(f"--duration must be positive seconds, got {duration_s:g}")
     if not 0 <= port <= 65535:
         raise AxiscalError(f"--port must be 0-65535, got {port}")
-    if not update_hz > 0:
-        raise AxiscalError(f"--update-hz must be positive, got {update_hz:g}")
-    if load_kg < 0:
-        raise AxiscalError(f"--load-kg must not be negative, got {load_kg:g}")
+    low, high = UPDATE_HZ_RANGE
+    if not (_finite(update_hz) and low <= update_hz <= high):
+        raise AxiscalError(f"--update-hz must be {low:g} to {high:g} refreshes per second, got {update_hz:g}")
+    if not (_finite(load_kg) and load_kg >= 0):
+        raise AxiscalError(f"--load-kg must be a finite mass of 0 kg or more, got {load_kg:g}")
+    if seed < 0:
+        raise AxiscalError(f"--seed must not be negative, got {seed}")
     if path not in PATHS:
         raise AxiscalError(f"unknown path '{path}'; use one of {', '.join(PATHS)}")
+
+
+def _identity(path: str | Path) -> tuple[int, int] | None:
+    """(st_dev, st_ino) of an existing file, None when there is none: a hard link or another name of
+    the same file has the same identity."""
+    try:
+        info = os.stat(path)
+    except OSError:
+        return None
+    return info.st_dev, info.st_ino
+
+
+def check_record_target(record: str | Path, inputs: Sequence[str | Path], *, force: bool = False) -> None:
+    """Refuse a record that would overwrite an input, or an existing file without ``force``.
+
+    Files are compared by (st_dev, st_ino), so another path, a symbolic link or a hard link to an
+    input is recognised. The record's JSON sidecar is checked the same way.
+
+    Parameters
+    ----------
+    record : str or Path
+        The record file to be written.
+    inputs : sequence of str or Path
+        Files the run reads (the replayed file, the machine TOML).
+    force : bool
+        Replace an existing record (never an input).
+
+    Returns
+    -------
+    None
+        Returns only when the record may be written.
+
+    Raises
+    ------
+    AxiscalError
+        If the record or its sidecar is one of the inputs, or the record exists and ``force`` is
+        not given.
+    """
+    used = {identity for identity in map(_identity, inputs) if identity is not None}
+    for target in (Path(record), sidecar_path(record)):
+        if _identity(target) in used:
+            raise AxiscalError(f"--record would overwrite {target.name}, a file this run reads; record to another file", path=record)
+    if not force and Path(record).exists():
+        raise AxiscalError("the record file exists; choose another file, or give --force to replace it", path=record)
 
 
 class LiveSession:
@@ -97,7 +151,7 @@ class LiveSession:
     machine : str or Path, optional
         Machine TOML with ``[axes.<L>.sensors]`` (default: the built-in virtual module).
     source : str
-        ``sim``, ``replay:FILE``, ``tcp:HOST:PORT`` or ``serial:DEVICE[:BAUD]``.
+        ``sim``, ``replay:FILE``, ``rtx:FILE:UNIT:CHANNEL``, ``tcp:HOST:PORT`` or ``serial:DEVICE[:BAUD]``.
     rate_hz : float
         Frames per second of the sim source, Hz.
     path : str
@@ -109,20 +163,28 @@ class LiveSession:
     pace : bool
         Replay a file at its ``t_s`` pace (False: as fast as possible).
     record : str or Path, optional
-        Record every frame and result here (plus a JSON sidecar).
+        Record every frame and result here (plus a JSON sidecar); an existing file is refused
+        unless ``force`` (:func:`check_record_target`).
     server : bool
         Serve the dashboard.
     port : int
-        Dashboard port on 127.0.0.1 (0: any free port).
+        Dashboard port (0: any free port).
     update_hz : float
         Dashboard refreshes per second.
     duration_s : float, optional
         Only checked here; passed to :meth:`run`.
+    force : bool
+        Replace an existing record file (never a file the run reads).
+    bind : str
+        Address the dashboard listens on (default loopback; ``0.0.0.0`` exposes it to the network).
+    allowed_hosts : sequence of str
+        Host names the dashboard answers besides the loopback names (DNS-rebinding guard).
 
     Raises
     ------
     AxiscalError
-        For a bad setting, a record that names the file replayed, or a record or source that
+        For a bad setting, a record that names a file the run reads or (without ``force``) an
+        existing file, or a record or source that
         cannot be opened. Whatever was opened is closed again.
     """
 
@@ -141,17 +203,27 @@ class LiveSession:
         port: int = 8765,
         update_hz: float = 10.0,
         duration_s: float | None = None,
+        force: bool = False,
+        bind: str = "127.0.0.1",
+        allowed_hosts: Sequence[str] = (),
     ):
-        _check(rate_hz, duration_s, port, update_hz, load_kg, path)
+        _check(rate_hz, duration_s, port, update_hz, load_kg, path, seed)
         kind, argument = parse_source(source)
-        if kind == "replay" and record is not None and Path(record).resolve() == Path(argument).resolve():
-            raise AxiscalError("--record names the file being replayed; record to another file", path=record)
+        if record is not None:
+            read = {"replay": argument, "rtx": rtx_parts(argument)[0]}.get(kind)
+            check_record_target(record, [name for name in (read, machine) if name], force=force)
         self.system, module = build_system(machine, kind, seed=seed, load_kg=load_kg)
         self.source = open_source(source, self.system.channels, virtual_module=module, rate_hz=rate_hz, path=path, pace=pace)
         self.state = LiveState(self.system)
         self.recorder: Recorder | None = None
         self.server = None
         try:
+            if server:  # before the record: a port in use leaves no record file behind
+                from axiscal.live.server import LiveServer, create_app
+
+                title = f"axiscal live: {self.source.status.description}"
+                app = create_app(self.state, update_hz=update_hz, title=title, allowed_hosts=allowed_hosts)
+                self.server = LiveServer(app, port=port, host=bind).start()
             if record is not None:
                 try:
                     Path(record).parent.mkdir(parents=True, exist_ok=True)
@@ -166,13 +238,9 @@ class LiveSession:
                         "machine": str(machine) if machine else f"built-in virtual module (seed {seed}, load {load_kg:g} kg)",
                         "started": datetime.now(timezone.utc).isoformat(timespec="seconds"),
                     },
+                    overwrite=force,
                 )
             self.pipeline = Pipeline(self.system, self.source, recorder=self.recorder, state=self.state)
-            if server:
-                from axiscal.live.server import LiveServer, create_app
-
-                title = f"axiscal live: {self.source.status.description}"
-                self.server = LiveServer(create_app(self.state, update_hz=update_hz, title=title), port=port).start()
         except BaseException:
             self.close()
             raise

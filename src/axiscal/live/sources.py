@@ -1,4 +1,4 @@
-"""Where live frames come from: the virtual instrument, a recorded file, TCP, a serial port.
+"""Where live frames come from: the virtual instrument, a recorded file, a Renishaw .rtx capture, TCP, a serial port.
 
 Every source has the same small interface, used by :class:`axiscal.live.pipeline.Pipeline` from
 one thread:
@@ -30,19 +30,27 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.importers.rtx import read_rtx
 from axiscal.live.protocol import FrameBatch, LineDecoder
 from axiscal.live.recorder import read_record
+from axiscal.units import length_factor, split_unit
 
 __all__ = [
+    "MAX_RATE_HZ",
     "SourceStatus",
     "Backoff",
     "SimSource",
     "ReplaySource",
+    "RtxSource",
     "TcpSource",
     "SerialSource",
     "parse_source",
+    "rtx_parts",
     "open_source",
 ]
+
+#: highest frame rate of the sim source, Hz (ten times the rate the benchmark keeps up with)
+MAX_RATE_HZ = 100_000.0
 
 
 @dataclass
@@ -115,14 +123,23 @@ class SimSource:
     channels : sequence of str
         Channel order of the measurement system.
     rate_hz : float
-        Frames per second.
+        Frames per second, at most :data:`MAX_RATE_HZ`.
     path : str
         Motion of the module (``"diagonal"``, ``"raster"``, ``"back-and-forth"``).
+    max_batch_s : float
+        Most stream time delivered by one read, s (at most 1).
+
+    Raises
+    ------
+    AxiscalError
+        For a rate that is not finite, not positive or above :data:`MAX_RATE_HZ`.
     """
 
     def __init__(self, module, channels: Sequence[str], *, rate_hz: float = 1000.0, path: str = "diagonal", max_batch_s: float = 0.05):
-        if not (rate_hz > 0 and np.isfinite(rate_hz)):
-            raise AxiscalError(f"rate must be a positive number of frames per second, got {rate_hz}")
+        if not (np.isfinite(rate_hz) and 0 < rate_hz <= MAX_RATE_HZ):
+            raise AxiscalError(f"rate must be a positive number of frames per second up to {MAX_RATE_HZ:g}, got {rate_hz}")
+        if not (np.isfinite(max_batch_s) and 0 < max_batch_s <= 1.0):
+            raise AxiscalError(f"the longest batch must be 0 to 1 s, got {max_batch_s}")
         self.module = module
         self.channels = tuple(channels)
         self.rate_hz = float(rate_hz)
@@ -174,12 +191,18 @@ class ReplaySource:
         missing = [name for name in channels if name not in record.columns]
         if missing:
             raise AxiscalError(f"replay file lacks channel column(s) {', '.join(missing)}", path=path)
+        t = record.columns["t_s"]
+        values = np.column_stack([record.columns[name] for name in channels]) if channels else np.empty((len(t), 0))
+        self._play(f"replay {path}", channels, t, values, pace=pace, max_batch=max_batch)
+
+    def _play(self, description: str, channels: Sequence[str], t: np.ndarray, values: np.ndarray, *, pace: bool, max_batch: int) -> None:
+        """Set up the playback of frames ``t`` (N,) and ``values`` (N, C)."""
         self.channels = tuple(channels)
-        self._t = record.columns["t_s"]
-        self._values = np.column_stack([record.columns[name] for name in channels]) if channels else np.empty((len(self._t), 0))
+        self._t = t
+        self._values = values
         self.pace = pace
         self.max_batch = max_batch
-        self.status = SourceStatus(f"replay {path}" + ("" if pace else " (as fast as possible)"), state="streaming", connections=1)
+        self.status = SourceStatus(description + ("" if pace else " (as fast as possible)"), state="streaming", connections=1)
         self.finished = len(self._t) == 0
         self.clock_offset_s: float | None = None
         self._start: float | None = None
@@ -215,6 +238,46 @@ class ReplaySource:
 
     def close(self) -> None:
         self.status.state = "finished"
+
+
+class RtxSource(ReplaySource):
+    """A Renishaw ``.rtx`` dynamic capture played back as the reading of one channel.
+
+    The capture holds one reading at a fixed sample rate (:func:`axiscal.io.importers.rtx.read_rtx`):
+    frame k has ``t_s = k / rate`` and carries the sample k in ``channel`` (converted to the unit
+    its name ends in); every other channel is missing, so those frames carry the missing-channel
+    fault unless the system has no other channel.
+
+    Parameters
+    ----------
+    path : str or Path
+        The ``.rtx`` file.
+    unit : str
+        Unit the samples were stored in (the file does not say): ``nm``, ``um``, ``mm``, ``m``, ``in``.
+    channel : str
+        The measurement system's channel the reading feeds (a length channel, e.g. ``x_scale_mm``).
+    channels : sequence of str
+        Channel order of the measurement system.
+    pace : bool
+        True: at the capture's sample rate; False: as fast as the pipeline takes them.
+
+    Raises
+    ------
+    AxiscalError
+        For an unreadable capture, an unknown unit, or a channel the system does not have or that
+        is not a length.
+    """
+
+    def __init__(self, path: str | Path, unit: str, channel: str, channels: Sequence[str], *, pace: bool = True, max_batch: int = 2000):
+        channels = tuple(channels)
+        if channel not in channels:
+            raise AxiscalError(f"channel '{channel}' is not one of the measurement system's: {', '.join(channels)}")
+        factor = length_factor(split_unit(channel)[1], allowed=("nm", "um", "mm"), what=f"channel {channel}")
+        capture = read_rtx(path, unit=unit)
+        values = np.full((len(capture.samples_m), len(channels)), np.nan)
+        values[:, channels.index(channel)] = capture.samples_m / factor
+        description = f"rtx {path} ({capture.sample_rate_hz:g} Hz, {unit}) as {channel}"
+        self._play(description, channels, capture.time_s, values, pace=pace, max_batch=max_batch)
 
 
 class _LineStreamSource(ABC):
@@ -416,12 +479,13 @@ def parse_source(spec: str) -> tuple[str, str]:
     Parameters
     ----------
     spec : str
-        ``sim``, ``replay:FILE``, ``tcp:HOST:PORT`` or ``serial:DEVICE[:BAUD]``.
+        ``sim``, ``replay:FILE``, ``rtx:FILE:UNIT:CHANNEL``, ``tcp:HOST:PORT`` or
+        ``serial:DEVICE[:BAUD]``.
 
     Returns
     -------
     kind : str
-        ``"sim"``, ``"replay"``, ``"tcp"`` or ``"serial"``.
+        ``"sim"``, ``"replay"``, ``"rtx"``, ``"tcp"`` or ``"serial"``.
     argument : str
         The rest (empty for ``sim``).
 
@@ -439,13 +503,41 @@ def parse_source(spec: str) -> tuple[str, str]:
     kind = kind.strip().lower()
     if kind == "sim" and not sep:
         return "sim", ""
-    if kind in ("replay", "tcp", "serial") and argument:
+    if kind in ("replay", "rtx", "tcp", "serial") and argument:
+        if kind == "rtx":
+            path, unit, channel = rtx_parts(argument)
+            if not (path and unit and channel):
+                raise AxiscalError(f"source '{spec}': expected rtx:FILE:UNIT:CHANNEL, e.g. rtx:run.rtx:mm:x_scale_mm")
         if kind == "tcp":
             host, _, port = argument.rpartition(":")
             if not host or not port.isdigit() or not 0 < int(port) < 65536:
                 raise AxiscalError(f"source '{spec}': expected tcp:HOST:PORT with a port 1-65535, e.g. tcp:127.0.0.1:9000")
         return kind, argument
-    raise AxiscalError(f"unknown source '{spec}'; use sim, replay:FILE, tcp:HOST:PORT or serial:DEVICE[:BAUD]")
+    raise AxiscalError(f"unknown source '{spec}'; use sim, replay:FILE, rtx:FILE:UNIT:CHANNEL, tcp:HOST:PORT or serial:DEVICE[:BAUD]")
+
+
+def rtx_parts(argument: str) -> tuple[str, str, str]:
+    """Split the argument of an ``rtx:`` source into (file, unit, channel); the file may hold ':'.
+
+    Parameters
+    ----------
+    argument : str
+        ``FILE:UNIT:CHANNEL``.
+
+    Returns
+    -------
+    tuple of str
+        File, unit, channel (empty strings where missing).
+
+    Examples
+    --------
+    >>> rtx_parts("runs/x axis.rtx:mm:x_scale_mm")
+    ('runs/x axis.rtx', 'mm', 'x_scale_mm')
+    """
+    parts = argument.rsplit(":", 2)
+    if len(parts) < 3:
+        return (parts[0], "", "") if len(parts) == 1 else (parts[0], parts[1], "")
+    return parts[0], parts[1].strip(), parts[2].strip()
 
 
 def open_source(
@@ -476,12 +568,12 @@ def open_source(
 
     Returns
     -------
-    SimSource, ReplaySource, TcpSource or SerialSource
+    SimSource, ReplaySource, RtxSource, TcpSource or SerialSource
 
     Raises
     ------
     AxiscalError
-        For a bad spec or a replay file that does not exist.
+        For a bad spec, or a replay file or capture that does not exist or cannot be read.
     """
     kind, argument = parse_source(spec)
     if kind == "sim":
@@ -492,6 +584,11 @@ def open_source(
         if not Path(argument).is_file():
             raise AxiscalError("replay file not found", path=argument)
         return ReplaySource(argument, channels, pace=pace)
+    if kind == "rtx":
+        file, unit, channel = rtx_parts(argument)
+        if not Path(file).is_file():
+            raise AxiscalError("rtx capture not found", path=file)
+        return RtxSource(file, unit, channel, channels, pace=pace)
     if kind == "tcp":
         host, _, port = argument.rpartition(":")
         return TcpSource(host.strip("[]"), int(port), channels)

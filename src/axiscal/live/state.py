@@ -22,8 +22,10 @@ from axiscal.live.protocol import FrameBatch
 from axiscal.measurement.faults import fault_text
 from axiscal.units import MM
 
-__all__ = ["SPATIAL", "CORRECTED", "axis_error_columns", "result_columns", "LiveState"]
+__all__ = ["UPDATE_HZ_RANGE", "SPATIAL", "CORRECTED", "axis_error_columns", "result_columns", "LiveState"]
 
+#: the dashboard's refresh rates allowed, per second: slower is useless, faster only burns the pipeline's core
+UPDATE_HZ_RANGE = (0.1, 60.0)
 SPATIAL = ("ex_um", "ey_um", "ez_um", "e_um")
 CORRECTED = ("px_mm", "py_mm", "pz_mm")
 
@@ -165,20 +167,40 @@ class LiveState:
                 self._profiles[letter][row, touched] = sums[touched] / count[touched]
 
     def _update_history(self, t: np.ndarray, spatial: Mapping[str, np.ndarray]) -> None:
+        """Keep one frame per slot of ``history_s / history_points`` seconds: the worst one.
+
+        The worst is a faulty frame (NaN results: the curve shows a gap) before any good one, else
+        the one with the largest ``e_um``; frames of a later batch in the slot already shown can
+        replace its entry. So a single faulty or extreme frame anywhere in a slot is drawn.
+        """
         bucket = np.floor(t / self._history_dt)
-        new, first = np.unique(bucket, return_index=True)
-        if new[-1] < self._history_bucket:  # the stream's clock went back (a new connection or replay): start afresh
+        if bucket.max() < self._history_bucket:  # the stream's clock went back (a new connection or replay): start afresh
             self._history[:] = np.nan
             self._history_next = 0
             self._history_bucket = -np.inf
-        keep = new > self._history_bucket
+        keep = bucket >= self._history_bucket
         if not keep.any():
             return
-        self._history_bucket = float(new[keep][-1])
+        t, bucket = t[keep], bucket[keep]
+        rows = np.column_stack([t] + [spatial[name][keep] for name in SPATIAL])
+        severity = np.where(np.isnan(rows[:, SPATIAL.index("e_um") + 1]), np.inf, rows[:, SPATIAL.index("e_um") + 1])
+        # the worst frame of each slot: sort by slot, then by severity (descending; the earliest on a tie)
+        order = np.lexsort((np.arange(len(t)), -severity, bucket))
+        slots, first = np.unique(bucket[order], return_index=True)
+        worst = order[first]
         size = len(self._history)
-        for index in first[keep][-size:]:
-            self._history[self._history_next % size] = [t[index]] + [spatial[name][index] for name in SPATIAL]
+        if slots[0] == self._history_bucket and self._history_next:  # the slot shown last goes on
+            last = (self._history_next - 1) % size
+            shown = self._history[last, SPATIAL.index("e_um") + 1]
+            shown = np.inf if np.isnan(shown) else shown
+            if severity[worst[0]] > shown:
+                self._history[last] = rows[worst[0]]
+            slots, worst = slots[1:], worst[1:]
+        for index in worst[-size:]:
+            self._history[self._history_next % size] = rows[index]
             self._history_next += 1
+        if len(slots):
+            self._history_bucket = float(slots[-1])
 
     def describe_fault(self, fault: int) -> str:
         """The fault bits in words: the measurement system's bits and the live pipeline's own."""

@@ -17,8 +17,11 @@ every record written so far, so old records keep their meaning:
 from __future__ import annotations
 
 import enum
+from collections.abc import Mapping
 
-__all__ = ["Fault", "FAULT_TEXT", "fault_text", "fault_legend"]
+import numpy as np
+
+__all__ = ["Fault", "FAULT_TEXT", "fault_text", "fault_legend", "mark_malformed"]
 
 
 class Fault(enum.IntFlag):
@@ -98,3 +101,34 @@ def fault_legend() -> dict[str, str]:
         ``{"1": "missing channel", "2": ..., "4": ..., "256": ...}``.
     """
     return {str(int(bit)): FAULT_TEXT[bit] for bit in sorted(FAULT_TEXT)}
+
+
+def mark_malformed(results: Mapping[str, np.ndarray], malformed: np.ndarray) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """Add :attr:`Fault.MALFORMED` to the frames that could not be read, and blank their results.
+
+    Parameters
+    ----------
+    results : mapping of str to ndarray, shape (N,)
+        What :meth:`~axiscal.measurement.pipeline.MeasurementSystem.process` returned (``"t_s"``,
+        ``"fault"`` and the SI results).
+    malformed : ndarray of bool, shape (N,)
+        Frames whose line or row could not be read as a frame.
+
+    Returns
+    -------
+    fault : ndarray of int64, shape (N,)
+        The fault bits with bit 256 where malformed.
+    results : dict of str to ndarray
+        The results, NaN where malformed (``t_s`` and ``fault`` as they were).
+
+    Examples
+    --------
+    >>> fault, out = mark_malformed({"t_s": np.array([0.0, np.nan]), "fault": np.array([0, 0]), "e_m": np.array([1e-6, 2e-6])}, np.array([False, True]))
+    >>> fault.tolist(), out["e_m"].tolist()
+    ([0, 256], [1e-06, nan])
+    """
+    malformed = np.asarray(malformed, dtype=bool)
+    fault = np.asarray(results["fault"], dtype=np.int64) | np.where(malformed, int(Fault.MALFORMED), 0)
+    if not malformed.any():
+        return fault, dict(results)
+    return fault, {name: value if name in ("t_s", "fault") else np.where(malformed, np.nan, value) for name, value in results.items()}

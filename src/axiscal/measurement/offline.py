@@ -8,6 +8,7 @@ with their metadata in a JSON sidecar (``<name>.json``); every write is atomic.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -30,7 +31,7 @@ from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import read_json, sidecar_path, write_sidecar
 from axiscal.io.tabular import CsvTable, parse_csv, read_csv, read_text, write_csv
 from axiscal.measurement.display import to_display
-from axiscal.measurement.faults import Fault, fault_legend, fault_text
+from axiscal.measurement.faults import Fault, fault_legend, fault_text, mark_malformed
 from axiscal.measurement.pipeline import MeasurementSystem
 from axiscal.measurement.virtual import (
     PATHS,
@@ -47,6 +48,8 @@ __all__ = [
     "load_system",
     "is_live_record",
     "drop_cut_line",
+    "numeric_columns",
+    "read_frames_table",
     "read_frames",
     "columns_csv",
     "write_data_csv",
@@ -55,6 +58,7 @@ __all__ = [
     "measure_file",
     "calibrate_sensitivity",
     "calibrate_mirror",
+    "calibration_text",
     "simulate_frames",
     "simulate_laser",
     "DiagonalReport",
@@ -141,22 +145,84 @@ def drop_cut_line(text: str) -> str:
     return text
 
 
-def _cells(table: CsvTable, name: str) -> np.ndarray:
-    """Column ``name`` as floats; an empty, ``nan`` or unreadable cell is a missing value (NaN)."""
-    return table.numeric_or_missing(name)
+def numeric_columns(table: CsvTable, names: Sequence[str]) -> dict[str, np.ndarray]:
+    """Columns of a frames table as floats: a cell that is empty, ``nan``, infinite or not a number is NaN.
+
+    The one rule for raw frames read from files (``axiscal measure``, the replay source of
+    ``axiscal live``, :func:`axiscal.live.recorder.read_record`), the same as the line protocol's:
+    an unreadable channel cell is a missing reading, an unreadable ``t_s`` a frame without a time
+    stamp; neither stops the reading.
+
+    Parameters
+    ----------
+    table : CsvTable
+        The parsed file.
+    names : sequence of str
+        Columns wanted (each must be in ``table.header``).
+
+    Returns
+    -------
+    dict of str to ndarray, shape (N,)
+        Each column, NaN where the cell is not a number by the grammar of
+        :meth:`axiscal.io.CsvTable.numeric`, not finite, or beyond its physical magnitude limit.
+
+    Examples
+    --------
+    >>> table = parse_csv(["t_s,a", "0.1,oops", "0.2,"])
+    >>> numeric_columns(table, ["a"])["a"].tolist()
+    [nan, nan]
+    """
+    return {name: table.numeric_or_missing(name) for name in names}
+
+
+
+def read_frames_table(path: str | Path, *, min_rows: int = 1) -> tuple[CsvTable, bool]:
+    """A frames CSV parsed: line ends ``\\n``, ``\\r\\n`` or ``\\r``; in a live record a cut last line dropped.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file (``#`` comment lines before the header are allowed).
+    min_rows : int
+        Fewest data rows accepted.
+
+    Returns
+    -------
+    table : CsvTable
+        Header and raw cells.
+    truncated : bool
+        Whether a live record's last line, cut short by a crash, was dropped.
+
+    Raises
+    ------
+    AxiscalError
+        If the file is missing or unreadable, or a line has a different number of cells than the
+        header (naming file and line).
+    """
+    text = read_text(path)  # universal newlines: CR-only and CRLF files read as LF
+    first = text[: text.find("\n")] if "\n" in text else text
+    header = [c.strip() for c in first.split(",")]
+    truncated = False
+    if is_live_record(path, header) or text.startswith("# axiscal live record"):
+        kept = drop_cut_line(text)
+        truncated, text = kept != text, kept
+    return parse_csv(text.split("\n"), path=str(path), min_rows=min_rows), truncated
 
 
 def read_frames(path: str | Path, channels: Sequence[str]) -> dict[str, np.ndarray]:
     """Raw frames from a CSV with ``t_s`` and every channel (other columns are ignored).
 
-    A cell that is empty, ``nan`` or not a number is a missing reading: the frame is flagged by the
-    pipeline, not refused. In a live record (:func:`is_live_record`) a last line without its
-    newline (cut short by a crash) is dropped; in any other file it is a frame.
+    A cell that is empty, ``nan`` or not a number is a missing reading (:func:`numeric_columns`):
+    the frame is flagged by the pipeline, not refused; a ``t_s`` that cannot be read is NaN (the
+    frame is malformed, :data:`~axiscal.measurement.faults.Fault.MALFORMED`). In a live record
+    (:func:`is_live_record`) a last line without its newline (cut short by a crash) is dropped; in
+    any other file it is a frame.
 
     Parameters
     ----------
     path : str or Path
-        The frames file (``#`` comment lines before the header are allowed).
+        The frames file (``#`` comment lines before the header are allowed; lines end with LF,
+        CRLF or CR).
     channels : sequence of str
         The raw channels wanted (``MeasurementSystem.channels``).
 
@@ -168,19 +234,11 @@ def read_frames(path: str | Path, channels: Sequence[str]) -> dict[str, np.ndarr
     Raises
     ------
     AxiscalError
-        For a missing file or column or a time stamp that is not a number (naming file and line).
+        For a missing file or column or a line with a wrong number of cells (naming file and line).
     """
-    text = read_text(path)
-    first = text[: text.find("\n") + 1] if "\n" in text else text
-    header = [c.strip() for c in first.split(",")]
-    if is_live_record(path, header) or text.startswith("# axiscal live record"):
-        text = drop_cut_line(text)
-    table = parse_csv(text.split("\n"), path=str(path))
+    table, _ = read_frames_table(path)
     table.require("t_s", *channels)
-    frames = {"t_s": table.numeric("t_s")}
-    for name in channels:
-        frames[name] = _cells(table, name)
-    return frames
+    return numeric_columns(table, ["t_s", *channels])
 
 
 def columns_csv(columns: Mapping[str, np.ndarray]) -> str:
@@ -316,7 +374,9 @@ def measure_file(frames_path: str | Path, *, machine: str | Path | None = None, 
         For unreadable input or an output that cannot be written.
     """
     system = load_system(machine)
-    result = MeasureResult(str(frames_path), system.process(read_frames(frames_path, system.channels)))
+    frames = read_frames(frames_path, system.channels)
+    fault, results = mark_malformed(system.process(frames), ~np.isfinite(frames["t_s"]))
+    result = MeasureResult(str(frames_path), results | {"fault": fault})
     if output is not None:
         write_data_csv(
             output,
@@ -365,6 +425,76 @@ def _save(calibration: Calibration, output: str | Path | None, report: dict[str,
     return report
 
 
+def _line_fit_uncertainty(x: np.ndarray, residual_rms: float) -> tuple[float, float]:
+    """Standard uncertainties of gain and offset of a least-squares line ``y = gain * x + offset``.
+
+    The ordinary least-squares standard errors (those ``scipy.stats.linregress`` gives): with ``s``
+    the residual standard deviation on n - 2 degrees of freedom, u(gain) = s / sqrt(Sxx) and
+    u(offset) = s * sqrt(1/n + mean(x)^2 / Sxx).
+    """
+    x = np.asarray(x, dtype=float)
+    n = len(x)
+    if n <= 2:
+        return math.inf, math.inf
+    s = residual_rms * math.sqrt(n / (n - 2))
+    sxx = float(np.sum((x - x.mean()) ** 2))
+    if sxx == 0:
+        return math.inf, math.inf
+    return s / math.sqrt(sxx), s * math.sqrt(1.0 / n + float(x.mean()) ** 2 / sxx)
+
+
+def _significant_place(scale: float, digits: int = 2) -> int:
+    """Decimals that show ``digits`` significant digits of ``scale`` (0 for a zero or non-finite scale)."""
+    if not (math.isfinite(scale) and scale > 0):
+        return 6
+    return max(0, digits - 1 - math.floor(math.log10(scale)))
+
+
+def calibration_text(report: Mapping[str, Any]) -> str:
+    """A calibration report (:func:`calibrate_sensitivity`, :func:`calibrate_mirror`) as text, to the digits that mean something.
+
+    A value with a standard uncertainty (``gain`` and ``gain_u``, ``offset_<unit>`` and
+    ``offset_u_<unit>``) is rounded to the second significant digit of its uncertainty; an
+    uncertainty, a residual, a range and the cross-validation values are given to two significant
+    digits; counts and names as they are. Full precision is in the report itself (``--json``).
+
+    Parameters
+    ----------
+    report : mapping
+        The report dict.
+
+    Returns
+    -------
+    str
+        One ``name: value`` line per entry.
+
+    Examples
+    --------
+    >>> print(calibration_text({"channel": "x_psd_y_um", "gain": 0.9549890195972108, "gain_u": 0.000123456, "points": 21}), end="")
+    channel: x_psd_y_um
+    gain: 0.95499
+    gain_u: 0.00012
+    points: 21
+    """
+    lines = []
+    for key, value in report.items():
+        if isinstance(value, (list, tuple)):
+            shown = " ".join(f"{v:.{_significant_place(max(abs(x) for x in value))}f}" for v in value) if value else ""
+        elif isinstance(value, bool) or isinstance(value, (int, str)) or value is None:
+            shown = str(value)
+        else:
+            if key == "gain":
+                u = report.get("gain_u")
+            elif key.startswith("offset_") and not key.startswith("offset_u_"):
+                u = report.get("offset_u_" + key.removeprefix("offset_"))
+            else:
+                u = None
+            scale = u if isinstance(u, float) else abs(value)
+            shown = f"{value:.{_significant_place(scale)}f}"
+        lines.append((key, shown))
+    return render_report("measurement/calibration.txt.j2", lines=lines)
+
+
 def calibrate_sensitivity(
     run_path: str | Path,
     channel: str,
@@ -395,7 +525,8 @@ def calibrate_sensitivity(
     Returns
     -------
     dict
-        ``channel``, ``gain``, ``offset_<unit>``, ``residual_max_<unit>``,
+        ``channel``, ``gain``, ``gain_u`` and ``offset_<unit>``, ``offset_u_<unit>`` (each with
+        its standard uncertainty from the fit's residuals), ``residual_max_<unit>``,
         ``residual_rms_<unit>`` (the channel's unit), ``points``; for angle channels also
         ``residual_max_arcsec``; ``output`` when written.
 
@@ -429,10 +560,13 @@ def calibrate_sensitivity(
             reference = transfer_reference(reference * channel_unit, eps, offset, component) / channel_unit
     fit = fit_sensitivity(channel, raw, reference)
     unit_name = "mm" if kind == "scale" else "um"
+    u_gain, u_offset = _line_fit_uncertainty(raw, fit.residual_rms)
     report: dict[str, Any] = {
         "channel": channel,
         "gain": fit.gain,
+        "gain_u": u_gain,
         "offset_" + unit_name: fit.offset,
+        "offset_u_" + unit_name: u_offset,
         "residual_max_" + unit_name: fit.residual_max,
         "residual_rms_" + unit_name: fit.residual_rms,
         "points": fit.points,
