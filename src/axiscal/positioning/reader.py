@@ -393,10 +393,9 @@ def _fold_circle(
     reading of the same run and direction at the start of the circle, that row -> the row it
     repeats. Any other two readings that fall on the same place of the circle raise.
     """
-    degrees = targets / DEG
-    folded = np.mod(degrees, _TURN_DEG)
-    folded[np.isclose(folded, _TURN_DEG, rtol=0.0, atol=1e-9)] = 0.0
-    folded[np.isclose(folded, 0.0, rtol=0.0, atol=1e-9)] = 0.0
+    degrees = np.round(targets / DEG, 9)  # to 1e-9 deg, so that 390 and 30 meet however they were converted
+    folded = np.round(np.mod(degrees, _TURN_DEG), 9)
+    folded[folded == _TURN_DEG] = 0.0
     texts = table.text(target_name)
     seen: dict[tuple[float, str, str], int] = {}
     closure: dict[int, int] = {}
