@@ -37,7 +37,12 @@ __all__ = [
     "STANDARDS",
     "iso_edition",
     "paper003_table4_run",
+    "TURN",
+    "covers_circle",
 ]
+
+#: one revolution, radians
+TURN = 2.0 * np.pi
 
 #: ISO 230-2 editions this module evaluates, and their coverage factor k
 ISO_EDITIONS: dict[str, int] = {"2014": 2, "2006": 2, "1997": 2, "1988": 3}
@@ -345,6 +350,33 @@ def _warnings(run: PositioningRun) -> tuple[str, ...]:
     if not run.rotary and run.targets[-1] - run.targets[0] > LONG_AXIS_M:
         return (NO_S_WARNING + " (one run each way is what ISO 230-2 asks for on axes longer than 2000 mm)", *notes)
     return (NO_S_WARNING, *notes)
+
+
+def covers_circle(targets: np.ndarray) -> bool:
+    """Whether the targets of a rotary axis (radians, in [0, 2 pi), increasing) go round the circle.
+
+    The circle counts as covered when the gap from the last target round to the first is no
+    more than twice the largest spacing between neighbouring targets (0, 30, ..., 330 deg covers
+    it; 0..90 deg does not).
+
+    Parameters
+    ----------
+    targets : ndarray, shape (m,), radians
+        Target positions, increasing, within one turn.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> covers_circle(np.radians(np.arange(0, 360, 30))), covers_circle(np.radians([0, 45, 90]))
+    (True, False)
+    """
+    targets = np.asarray(targets, dtype=float)
+    wrap = targets[0] + TURN - targets[-1]
+    return bool(wrap <= 2.0 * float(np.diff(targets).max()) * (1 + 1e-9))
 
 
 def _spread(*arrays: np.ndarray) -> float:

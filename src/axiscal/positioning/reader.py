@@ -28,7 +28,7 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.io.tabular import CsvTable, read_csv
 from axiscal.materials import STEEL_EXPANSION_PER_K
-from axiscal.positioning.evaluation import PositioningRun
+from axiscal.positioning.evaluation import PositioningRun, covers_circle
 from axiscal.units import ANGLE_UNITS, DEG, INCH, LENGTH_UNITS
 
 __all__ = [
@@ -418,13 +418,8 @@ def _fold_circle(
 
 
 def _coverage_warnings(targets_deg: np.ndarray) -> list[str]:
-    """A warning when the targets (degrees, in [0, 360), increasing) leave part of the circle untested.
-
-    The circle counts as covered when the gap from the last target round to the first is no
-    more than twice the largest spacing between neighbouring targets.
-    """
-    wrap = targets_deg[0] + _TURN_DEG - targets_deg[-1]
-    if wrap <= 2.0 * float(np.diff(targets_deg).max()) + 1e-9:
+    """A warning when the targets (degrees, in [0, 360), increasing) leave part of the circle untested (:func:`covers_circle`)."""
+    if covers_circle(targets_deg * DEG):
         return []
     return [
         f"the targets cover {targets_deg[0]:g}..{targets_deg[-1]:g} deg, not the full circle: ISO 230-2 tests a"
