@@ -28,7 +28,7 @@ from axiscal.compensation.heidenhain import heidenhain_table
 from axiscal.compensation.linuxcnc import linuxcnc_table
 from axiscal.compensation.siemens import siemens_table
 from axiscal.errors import AxiscalError
-from axiscal.positioning.evaluation import TURN, PositioningRun, covers_circle, target_statistics
+from axiscal.positioning.evaluation import TURN, PositioningRun, covers_circle, require_finite, target_statistics
 from axiscal.positioning.reader import read_positioning_run
 from axiscal.units import ARCSEC, DEG, MM, UM
 
@@ -124,12 +124,6 @@ def _refuse_options_of_other_formats(fmt: str, given: dict[str, Any]) -> None:
 def _default_interval(targets: np.ndarray, unit: float = MM) -> float:
     """The mean target spacing rounded to whole units (mm, or degrees for a rotary axis; at least 1), SI."""
     return max(1.0, round(np.ptp(targets) / (targets.size - 1) / unit)) * unit
-
-
-def _check_finite(options: dict[str, Any]) -> None:
-    for name, value in options.items():
-        if isinstance(value, float) and not np.isfinite(value):
-            raise AxiscalError(f"{name} must be a finite number, got {value}")
 
 
 def _axis_options(run: PositioningRun, given: dict[str, Any]) -> dict[str, float | None]:
@@ -250,7 +244,7 @@ def compensation_table(
                  backlash=backlash, interval_rad=interval_rad, detection_unit_rad=detection_unit_rad,
                  reference_position_rad=reference_position_rad)
     _refuse_options_of_other_formats(fmt, given)
-    _check_finite(given)
+    require_finite(**given)
     if not isinstance(run, PositioningRun):
         run = read_positioning_run(run).run
     si = _axis_options(run, given)

@@ -20,6 +20,7 @@ from axiscal.positioning.evaluation import (
     iso230_2,
     iso_edition,
     paper003_table4_run,
+    require_finite,
     target_statistics,
     vdi3441,
 )
@@ -74,6 +75,7 @@ __all__ = [
     "paper003_table4_run",
     "TURN",
     "covers_circle",
+    "require_finite",
     "DIRECTIONS",
     "ENVIRONMENT_REQUIRED",
     "ALLOWED_UNITS",

@@ -39,6 +39,7 @@ __all__ = [
     "paper003_table4_run",
     "TURN",
     "covers_circle",
+    "require_finite",
 ]
 
 #: one revolution, radians
@@ -350,6 +351,31 @@ def _warnings(run: PositioningRun) -> tuple[str, ...]:
     if not run.rotary and run.targets[-1] - run.targets[0] > LONG_AXIS_M:
         return (NO_S_WARNING + " (one run each way is what ISO 230-2 asks for on axes longer than 2000 mm)", *notes)
     return (NO_S_WARNING, *notes)
+
+
+def require_finite(**values: float | None) -> None:
+    """Refuse a NaN or infinite number given for an option, naming the option by its keyword.
+
+    Parameters
+    ----------
+    **values : float or None
+        Keyword -> value; None (an option not given) and non-numbers are passed over.
+
+    Raises
+    ------
+    AxiscalError
+        ``"<keyword> must be a finite number, got nan"`` for the first value that is not finite.
+
+    Examples
+    --------
+    >>> require_finite(start_m=0.0, end_m=None)
+    >>> require_finite(end_m=float("inf"))
+    Traceback (most recent call last):
+    axiscal.errors.AxiscalError: end_m must be a finite number, got inf
+    """
+    for name, value in values.items():
+        if isinstance(value, (int, float)) and not isinstance(value, bool) and not np.isfinite(value):
+            raise AxiscalError(f"{name} must be a finite number, got {value}")
 
 
 def covers_circle(targets: np.ndarray) -> bool:

@@ -25,6 +25,7 @@ from axiscal.positioning.evaluation import (
     Vdi3441Result,
     iso230_2,
     iso_edition,
+    require_finite,
     vdi3441,
 )
 from axiscal.positioning.reader import read_positioning_run
@@ -291,8 +292,8 @@ def evaluate_positioning_file(
     ------
     AxiscalError
         For an unknown standard; for a file the reader refuses (naming the file and line); for
-        ``wavelength_nm`` or ``expansion_per_k`` given with a file that holds no raw laser
-        readings (they would do nothing).
+        ``wavelength_nm`` or ``expansion_per_k`` that is NaN or infinite, or given with a file
+        that holds no raw laser readings (they would do nothing).
 
     Examples
     --------
@@ -300,6 +301,7 @@ def evaluate_positioning_file(
     >>> round(evaluation.result.A / UM, 3)  # doctest: +SKIP
     14.936
     """
+    require_finite(wavelength_nm=wavelength_nm, expansion_per_k=expansion_per_k)
     edition = None if standard == "vdi3441" else iso_edition(standard)
     data = read_positioning_run(
         path,
