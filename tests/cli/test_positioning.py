@@ -228,3 +228,15 @@ def test_compensate_a_one_direction_test_says_which_formats_need_both(run_cli, e
     assert status == 2 and "needs a test in both directions" in err and err.count("\n") == 1
     status, _, err = run_cli("compensate", path, "--format", "heidenhain", "--no-backlash")
     assert status == 0 and "from the + direction only" in err
+
+
+@pytest.mark.parametrize("kind", ["rotary", "one direction"])
+def test_a_length_budget_is_refused_for_a_rotary_or_one_direction_test(run_cli, examples, tmp_path, kind):
+    if kind == "rotary":
+        path = examples / "rotary_run.csv"
+    else:
+        lines = (examples / "positioning_run.csv").read_text().splitlines()
+        path = tmp_path / "up.csv"
+        path.write_text("\n".join([lines[0]] + [line for line in lines[1:] if ",+," in line]) + "\n")
+    status, out, err = run_cli("positioning", path, "--uncertainty", examples / "uncertainty_budget.toml")
+    assert status == 2 and out == "" and err.count("\n") == 1 and kind in err
