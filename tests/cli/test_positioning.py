@@ -161,6 +161,14 @@ def test_raw_reading_options_on_a_deviation_file_are_refused_not_ignored(run_cli
 # ------------------------------------------------------------- rotary axes, one-direction tests, bad numbers
 
 
+def one_direction_file(examples, tmp_path, sign):
+    """The shipped run with the rows of one direction only."""
+    lines = (examples / "positioning_run.csv").read_text().splitlines()
+    path = tmp_path / f"only{sign}.csv"
+    path.write_text("\n".join([lines[0]] + [line for line in lines[1:] if f",{sign}," in line]) + "\n")
+    return path
+
+
 def test_positioning_of_a_rotary_axis_speaks_arcseconds(run_cli, examples, tmp_path):
     status, out, err = run_cli("positioning", examples / "rotary_run.csv", "--json", "--plot", tmp_path / "r.png")
     assert status == 0 and (tmp_path / "r.png").exists()
@@ -173,9 +181,7 @@ def test_positioning_of_a_rotary_axis_speaks_arcseconds(run_cli, examples, tmp_p
 
 
 def test_positioning_of_a_one_direction_test_reports_n_a_and_null(run_cli, examples, tmp_path):
-    lines = (examples / "positioning_run.csv").read_text().splitlines()
-    path = tmp_path / "down.csv"
-    path.write_text("\n".join([lines[0]] + [line for line in lines[1:] if ",-," in line]) + "\n")
+    path = one_direction_file(examples, tmp_path, "-")
     status, out, err = run_cli("positioning", path, "--json")
     body = json.loads(out)
     assert status == 0 and body["directions"] == ["-"] and "one-direction test" in err
@@ -221,9 +227,7 @@ def test_compensate_a_rotary_axis(run_cli, examples, fmt, tmp_path):
 
 
 def test_compensate_a_one_direction_test_says_which_formats_need_both(run_cli, examples, tmp_path):
-    lines = (examples / "positioning_run.csv").read_text().splitlines()
-    path = tmp_path / "up.csv"
-    path.write_text("\n".join([lines[0]] + [line for line in lines[1:] if ",+," in line]) + "\n")
+    path = one_direction_file(examples, tmp_path, "+")
     status, _, err = run_cli("compensate", path, "--format", "linuxcnc")
     assert status == 2 and "needs a test in both directions" in err and err.count("\n") == 1
     status, _, err = run_cli("compensate", path, "--format", "heidenhain", "--no-backlash")
@@ -235,8 +239,6 @@ def test_a_length_budget_is_refused_for_a_rotary_or_one_direction_test(run_cli, 
     if kind == "rotary":
         path = examples / "rotary_run.csv"
     else:
-        lines = (examples / "positioning_run.csv").read_text().splitlines()
-        path = tmp_path / "up.csv"
-        path.write_text("\n".join([lines[0]] + [line for line in lines[1:] if ",+," in line]) + "\n")
+        path = one_direction_file(examples, tmp_path, "+")
     status, out, err = run_cli("positioning", path, "--uncertainty", examples / "uncertainty_budget.toml")
     assert status == 2 and out == "" and err.count("\n") == 1 and kind in err

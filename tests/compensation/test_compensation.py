@@ -26,7 +26,7 @@ from axiscal.compensation import (
 from axiscal.errors import AxiscalError
 from axiscal.positioning.evaluation import PositioningRun, target_statistics
 from axiscal.positioning.reader import read_positioning_run
-from axiscal.units import ARCSEC, DEG, MM, UM
+from axiscal.units import DEG, MM, UM
 
 EPS = 1e-12
 

@@ -361,6 +361,11 @@ def require_finite(**values: float | None) -> None:
     **values : float or None
         Keyword -> value; None (an option not given) and non-numbers are passed over.
 
+    Returns
+    -------
+    None
+        When every number is finite.
+
     Raises
     ------
     AxiscalError
