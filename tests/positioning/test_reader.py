@@ -5,10 +5,14 @@ from __future__ import annotations
 
 import json
 import random
+import tempfile
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from axiscal.errors import AxiscalError
 from axiscal.io.jsonio import dumps
@@ -237,3 +241,20 @@ def test_a_rotary_file_with_environment_columns_is_refused(tmp_path):
     with pytest.raises(AxiscalError, match="raw laser readings of a length") as info:
         read_positioning_run(write(tmp_path, rows))
     assert info.value.line == 1
+
+
+@settings(max_examples=15, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), turns=st.lists(st.integers(-2, 2), min_size=72, max_size=72))
+def test_whole_turns_added_to_rotary_targets_change_nothing(seed, turns):
+    rng = np.random.default_rng(seed)
+    rows = [(t, r, d, round(float(rng.normal(0, 4)), 3)) for r in (1, 2, 3) for d in "+-" for t in range(0, 360, 30)]
+    with tempfile.TemporaryDirectory() as folder:
+        folder = Path(folder)
+        plain = write(folder, ["target_deg,run,direction,deviation_arcsec"] + [f"{t},{r},{d},{v}" for t, r, d, v in rows], "a.csv")
+        turned = write(folder, ["target_deg,run,direction,deviation_arcsec"]
+                       + [f"{t + 360 * k},{r},{d},{v}" for (t, r, d, v), k in zip(rows, turns)], "b.csv")
+        a, b = read_positioning_run(plain), read_positioning_run(turned)
+    assert np.array_equal(a.run.targets, b.run.targets)
+    assert np.array_equal(a.run.deviations_up, b.run.deviations_up)
+    assert np.array_equal(a.run.deviations_down, b.run.deviations_down)
+    assert iso230_2(a.run).figures() == iso230_2(b.run).figures()
