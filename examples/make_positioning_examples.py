@@ -1,4 +1,4 @@
-"""Write examples/positioning_run.csv and examples/laser_raw_run.csv (run: python examples/make_positioning_examples.py).
+"""Write examples/positioning_run.csv, laser_raw_run.csv and rotary_run.csv (run: python examples/make_positioning_examples.py).
 
 A plausible 800 mm ball-screw axis, not a measurement: a scale error of +12 um/m, a periodic screw
 error of 1.2 um amplitude over the 10 mm lead, a reversal of about 3.5 um that grows slightly along
@@ -10,7 +10,12 @@ of an axis in air at about 21.4 degC and 100.9 kPa with the steel at 21.0 degC: 
 position_at_20C * (1 + alpha (t_material - 20)) * n_air. `axiscal positioning` must turn it back
 into the deviations of positioning_run.csv (to the rounding of the files).
 
-Both files are plain CSV (header first); what they are is in the JSON sidecar beside each.
+rotary_run.csv is a plausible worm-driven rotary table, not a measurement: targets every 30 deg
+from 0 to 360 deg (0 and 360 are the same target), 5 runs each way, a once-per-turn error of 6
+arcsec (eccentricity of the encoder), a 2 arcsec error eight times per turn, a reversal of about
+4 arcsec and 0.6 arcsec of random scatter.
+
+The files are plain CSV (header first); what they are is in the JSON sidecar beside each.
 """
 
 from __future__ import annotations
@@ -87,5 +92,28 @@ def main() -> None:
     )
 
 
+def rotary() -> None:
+    rng = np.random.default_rng(2302)
+    targets_deg = np.arange(0.0, 361.0, 30.0)
+    phase = np.radians(targets_deg)
+    systematic = 6.0 * np.sin(phase + 0.4) + 2.0 * np.sin(8 * phase) - 1.0
+    rows = ["target_deg,run,direction,deviation_arcsec"]
+    for run in range(1, RUNS + 1):
+        for direction, sign in (("+", -1.0), ("-", 1.0)):
+            values = systematic + sign * 2.0 + 0.1 * (run - 1) + rng.normal(0.0, 0.6, targets_deg.size)
+            order = range(targets_deg.size) if direction == "+" else range(targets_deg.size - 1, -1, -1)
+            rows += [f"{targets_deg[i]:.0f},{run},{direction},{values[i]:.2f}" for i in order]
+    write_text(HERE / "rotary_run.csv", "\n".join(rows) + "\n")
+    write_sidecar(
+        HERE / "rotary_run.csv",
+        kind="positioning run",
+        description="bidirectional ISO 230-2 test of a rotary table over the full circle (synthetic)",
+        synthetic=True,
+        made_by="examples/make_positioning_examples.py",
+        runs=RUNS,
+    )
+
+
 if __name__ == "__main__":
     main()
+    rotary()

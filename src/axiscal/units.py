@@ -20,6 +20,8 @@ __all__ = [
     "PPM",
     "UM",
     "MM",
+    "INCH",
+    "DEG",
     "split_unit",
     "length_factor",
     "angle_factor",
@@ -45,6 +47,10 @@ PPM = 1e-6
 NM = LENGTH_UNITS["nm"]
 UM = LENGTH_UNITS["um"]
 MM = LENGTH_UNITS["mm"]
+#: metres per inch (exactly 25.4 mm, the international inch of 1959)
+INCH = 25.4 * MM
+#: radians per degree
+DEG = ANGLE_UNITS["deg"]
 
 
 def split_unit(name: str) -> tuple[str, str]:

@@ -49,7 +49,7 @@ def test_an_option_of_another_format_is_refused_not_ignored(run_cli, examples, f
     ("option", "words"),
     [
         (("--detection-unit-um", "0"), "detection unit"),
-        (("--detection-unit-um", "nan"), "detection unit"),
+        (("--detection-unit-um", "nan"), "--detection-unit-um must be a finite number"),
         (("--reference-position-mm", "nan"), "finite"),
         (("--axis-number", "-1"), "axis number"),
         (("--axis-number", "0"), "axis number"),

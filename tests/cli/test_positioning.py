@@ -1,4 +1,4 @@
-"""End-to-end runs of `axiscal positioning` on the shipped examples and bad input (and output files of positioning, plan and compensate)."""
+"""End-to-end runs of `axiscal positioning` on the shipped examples and bad input (and output files and bad numbers of positioning, plan and compensate)."""
 
 from __future__ import annotations
 
@@ -156,3 +156,89 @@ def test_raw_reading_options_on_a_deviation_file_are_refused_not_ignored(run_cli
     assert status == 2 and out == "" and f"{option[0]} applies to raw laser readings" in err and err.count("\n") == 1
     status, _, _ = run_cli("positioning", examples / "laser_raw_run.csv", *option)
     assert status == 0
+
+
+# ------------------------------------------------------------- rotary axes, one-direction tests, bad numbers
+
+
+def one_direction_file(examples, tmp_path, sign):
+    """The shipped run with the rows of one direction only."""
+    lines = (examples / "positioning_run.csv").read_text().splitlines()
+    path = tmp_path / f"only{sign}.csv"
+    path.write_text("\n".join([lines[0]] + [line for line in lines[1:] if f",{sign}," in line]) + "\n")
+    return path
+
+
+def test_positioning_of_a_rotary_axis_speaks_arcseconds(run_cli, examples, tmp_path):
+    status, out, err = run_cli("positioning", examples / "rotary_run.csv", "--json", "--plot", tmp_path / "r.png")
+    assert status == 0 and (tmp_path / "r.png").exists()
+    body = json.loads(out)
+    assert body["unit"] == "arcsec" and body["axis"] == "rotary" and body["target_count"] == 12
+    assert len(body["targets"]["target_deg"]) == 12 and "B_arcsec" in body["targets"]
+    assert "axiscal: warning:" in err and "0 and 360 deg are the same target" in err
+    status, out, _ = run_cli("positioning", examples / "rotary_run.csv")
+    assert "axis figures (arcsec):" in out and "target_deg" in out
+
+
+def test_positioning_of_a_one_direction_test_reports_n_a_and_null(run_cli, examples, tmp_path):
+    path = one_direction_file(examples, tmp_path, "-")
+    status, out, err = run_cli("positioning", path, "--json")
+    body = json.loads(out)
+    assert status == 0 and body["directions"] == ["-"] and "one-direction test" in err
+    assert body["B"] is None and body["A"] is None and isinstance(body["A_down"], float) and body["A_up"] is None
+    status, out, _ = run_cli("positioning", path)
+    assert "5 runs in the - direction only" in out
+    assert [line.split()[1] for line in out.splitlines() if line.startswith("  B ")] == ["n/a"]
+
+
+@pytest.mark.parametrize("option", ["--wavelength-nm", "--expansion-per-k"])
+@pytest.mark.parametrize("value", ["nan", "inf", "-inf"])
+def test_positioning_refuses_non_finite_options(run_cli, examples, option, value):
+    status, _, err = run_cli("positioning", examples / "laser_raw_run.csv", option, value)
+    assert status == 2 and err == f"axiscal: error: {option} must be a finite number, got {value}\n"
+
+
+@pytest.mark.parametrize("option", ["--start-mm", "--end-mm", "--overrun-mm", "--dwell-s", "--feed-mm-min"])
+@pytest.mark.parametrize("value", ["nan", "inf"])
+def test_plan_refuses_non_finite_options(run_cli, tmp_path, option, value):
+    args = {"--start-mm": "0", "--end-mm": "500", "--overrun-mm": "5", "--dwell-s": "2", "--feed-mm-min": "2000"}
+    args[option] = value
+    argv = [item for pair in args.items() for item in pair]
+    status, _, err = run_cli("plan", *argv, "--targets", "6", "--gcode", tmp_path / "p.gcode", "-o", tmp_path / "p.csv")
+    assert status == 2 and err == f"axiscal: error: {option} must be a finite number, got {value}\n"
+    assert not (tmp_path / "p.csv").exists()
+
+
+@pytest.mark.parametrize(("run", "option"), [
+    ("positioning_run.csv", "--interval-mm"), ("positioning_run.csv", "--detection-unit-um"),
+    ("positioning_run.csv", "--reference-position-mm"), ("rotary_run.csv", "--interval-deg"),
+    ("rotary_run.csv", "--detection-unit-deg"), ("rotary_run.csv", "--reference-position-deg"),
+])
+@pytest.mark.parametrize("value", ["nan", "-inf"])
+def test_compensate_refuses_non_finite_options(run_cli, examples, run, option, value):
+    status, out, err = run_cli("compensate", examples / run, "--format", "fanuc", option, value)
+    assert status == 2 and out == "" and err == f"axiscal: error: {option} must be a finite number, got {value}\n"
+
+
+@pytest.mark.parametrize("fmt", ["linuxcnc", "fanuc", "siemens", "heidenhain"])
+def test_compensate_a_rotary_axis(run_cli, examples, fmt, tmp_path):
+    status, out, err = run_cli("compensate", examples / "rotary_run.csv", "--format", fmt, "-o", tmp_path / "t.txt")
+    assert status == 0 and out == "" and "arcsec" in err and (tmp_path / "t.txt").read_text()
+
+
+def test_compensate_a_one_direction_test_says_which_formats_need_both(run_cli, examples, tmp_path):
+    path = one_direction_file(examples, tmp_path, "+")
+    status, _, err = run_cli("compensate", path, "--format", "linuxcnc")
+    assert status == 2 and "needs a test in both directions" in err and err.count("\n") == 1
+    status, _, err = run_cli("compensate", path, "--format", "heidenhain", "--no-backlash")
+    assert status == 0 and "from the + direction only" in err
+
+
+@pytest.mark.parametrize("kind", ["rotary", "one direction"])
+def test_a_length_budget_is_refused_for_a_rotary_or_one_direction_test(run_cli, examples, tmp_path, kind):
+    if kind == "rotary":
+        path = examples / "rotary_run.csv"
+    else:
+        path = one_direction_file(examples, tmp_path, "+")
+    status, out, err = run_cli("positioning", path, "--uncertainty", examples / "uncertainty_budget.toml")
+    assert status == 2 and out == "" and err.count("\n") == 1 and kind in err

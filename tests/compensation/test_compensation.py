@@ -24,9 +24,9 @@ from axiscal.compensation import (
     siemens_table,
 )
 from axiscal.errors import AxiscalError
-from axiscal.positioning.evaluation import target_statistics
+from axiscal.positioning.evaluation import PositioningRun, target_statistics
 from axiscal.positioning.reader import read_positioning_run
-from axiscal.units import MM, UM
+from axiscal.units import DEG, MM, UM
 
 EPS = 1e-12
 
@@ -342,12 +342,12 @@ def test_fanuc_tape_applied_as_the_control_does(curve, bidirectional, seed):
     assert table.correction(nodes, "-") == pytest.approx(correction(nodes, "-"), abs=1e-15)
 
 
-def siemens_control(text: str):
-    """SINUMERIK MSEC from the INI text: correction(x) = -(value interpolated over MIN + i STEP), mm -> m."""
+def siemens_control(text: str, unit: float = MM):
+    """SINUMERIK MSEC from the INI text: correction(x) = -(value interpolated over MIN + i STEP), mm (deg) -> SI."""
     values, params = siemens_parse(text)
     nodes = params["MIN"] + params["STEP"] * np.arange(len(values))
     assert nodes[-1] == pytest.approx(params["MAX"])
-    return lambda x: -np.interp(x / MM, nodes, values) * MM, nodes * MM
+    return lambda x: -np.interp(x / unit, nodes, values) * unit, nodes * unit
 
 
 @pytest.mark.parametrize("seed", [None, 1, 2])
@@ -359,14 +359,14 @@ def test_siemens_file_applied_as_the_control_does(curve, seed):
     assert np.abs(c.at(nodes, "mean") + correction(nodes)).max() <= 0.05e-6 + EPS
 
 
-def heidenhain_control(text: str):
-    """HEIDENHAIN .COM from its text: the control subtracts the error column (plus BACKLASH in -)."""
+def heidenhain_control(text: str, unit: float = MM):
+    """HEIDENHAIN .COM from its text: the control subtracts the error column (plus BACKLASH in -), mm (deg) -> SI."""
     lines = text.splitlines()
     header = lines[1].split()
     rows = np.array([[float(cell) for cell in line.split()] for line in lines[2:-1]])
     position, error = rows[:, 1], rows[:, 2]
     extra = rows[:, 3] if "BACKLASH" in header else np.zeros_like(error)
-    return lambda x, d: -np.interp(x / MM, position, error + (extra if d == "-" else 0.0)) * MM
+    return lambda x, d: -np.interp(x / unit, position, error + (extra if d == "-" else 0.0)) * unit
 
 
 @pytest.mark.parametrize("backlash", [True, False])
@@ -443,3 +443,127 @@ def test_compensation_table_reads_a_run_file(examples, run):
     assert from_file.text == compensation_table(run, "siemens").text
     with pytest.raises(AxiscalError, match="file not found"):
         compensation_table(examples / "nope.csv", "siemens")
+
+
+# ------------------------------------------------------------------------------------- rotary axes
+# A run read from target_deg / deviation_arcsec: each table written in degrees, read back from its text
+# as the control reads it and applied to the measured means.
+
+
+@pytest.fixture
+def rotary_run(examples):
+    return read_positioning_run(examples / "rotary_run.csv").run
+
+
+def rotary_curve(run):
+    return error_curve(target_statistics(run))
+
+
+def test_linuxcnc_rotary_comp_file_runs_round_to_360_deg(rotary_run):
+    result = compensation_table(rotary_run, "linuxcnc")
+    rows = parse_linuxcnc(result.text)
+    assert rows[0, 0] == 0.0 and rows[-1, 0] == 360.0 and np.array_equal(rows[0, 1:], rows[-1, 1:])
+    curve = rotary_curve(rotary_run)
+    for d, forward in (("+", True), ("-", False)):
+        trims = np.array([linuxcnc_reference(rows, 1, t, forward) for t in curve.positions / DEG]) * DEG
+        assert np.abs(curve.at(curve.positions, d) + trims).max() <= 0.5e-6 * DEG + EPS
+    assert "degrees" in result.note and "arcsec" in result.note
+
+
+def test_fanuc_rotary_tape_from_a_run_keeps_the_rotary_rules(rotary_run):
+    result = compensation_table(rotary_run, "fanuc")
+    params, data = tape(result.text)
+    # FANUC rotary pitch error compensation: 3621 = 3620, the reference point repeats the last point,
+    # the values of one revolution sum to zero; interval 30 deg = 30000 input increments of 0.001 deg
+    assert params[3621] == params[3620] == 0 and params[3622] == 12 and params[3624] == 30_000
+    assert data[0] == data[12] and sum(data[p] for p in range(1, 13)) == 0
+    unit = 0.001 * DEG
+    correction, nodes = fanuc_control(result.text, reference_position_m=0.0, unit_m=unit, increment_m=unit)
+    curve = rotary_curve(rotary_run)
+    e = np.interp(nodes, np.append(curve.positions, 2 * np.pi), np.append(curve.mean, curve.mean[0]))
+    assert np.abs(e - e[0] + correction(nodes, "+")).max() <= unit / 2 + EPS
+    assert result.reference_offset_m == pytest.approx(curve.mean[0])
+
+
+def test_fanuc_rotary_needs_the_full_circle(tmp_path):
+    rows = ["target_deg,run,direction,deviation_arcsec"] + [
+        f"{t},{r},{d},{t / 30:.1f}" for r in (1, 2) for d in "+-" for t in range(0, 91, 15)
+    ]
+    path = tmp_path / "arc.csv"
+    path.write_text("\n".join(rows) + "\n")
+    with pytest.raises(AxiscalError, match="spans one revolution"):
+        compensation_table(path, "fanuc")
+    # the tables of a linear kind still take the arc tested, in degrees
+    result = compensation_table(path, "siemens")
+    assert "IS_MODULO[0,X1]=0" in result.text and result.table.nodes[-1] == pytest.approx(90 * DEG)
+
+
+def test_siemens_rotary_is_a_modulo_table_from_0_to_360_deg(rotary_run):
+    result = compensation_table(rotary_run, "siemens")
+    values, params = siemens_parse(result.text)
+    assert params["IS_MODULO"] == 1 and params["MIN"] == 0.0 and params["MAX"] == 360.0 and params["STEP"] == 30.0
+    assert values[0] == values[-1]
+    correction, nodes = siemens_control(result.text, unit=DEG)
+    curve = rotary_curve(rotary_run)
+    assert np.abs(curve.at(curve.positions, "mean") + correction(curve.positions)).max() <= 0.5e-6 * DEG + EPS
+    with pytest.raises(AxiscalError, match="divide"):
+        compensation_table(rotary_run, "siemens", interval_rad=7 * DEG)
+
+
+@pytest.mark.parametrize("backlash", [True, False])
+def test_heidenhain_rotary_com_in_degrees(rotary_run, backlash):
+    result = compensation_table(rotary_run, "heidenhain", backlash=backlash)
+    correction = heidenhain_control(result.text, unit=DEG)
+    curve = rotary_curve(rotary_run)
+    for d in "+-":
+        e = curve.at(curve.positions, d if backlash else "mean")
+        assert np.abs(e + correction(curve.positions, d)).max() <= 1e-6 * DEG + EPS
+    assert result.text.splitlines()[-2].split()[1] == "+360.000000"
+
+
+def test_rotary_and_linear_options_do_not_mix(run, rotary_run):
+    with pytest.raises(AxiscalError, match="interval_m does not apply: .* rotary axis"):
+        compensation_table(rotary_run, "fanuc", interval_m=0.01)
+    with pytest.raises(AxiscalError, match="interval_rad does not apply: .* linear axis"):
+        compensation_table(run, "fanuc", interval_rad=0.1)
+
+
+@pytest.mark.parametrize("option", ["interval_m", "detection_unit_m", "reference_position_m"])
+@pytest.mark.parametrize("value", [math.nan, math.inf, -math.inf])
+def test_non_finite_options_are_refused(run, option, value):
+    with pytest.raises(AxiscalError, match=f"{option} must be a finite number"):
+        compensation_table(run, "fanuc", **{option: value})
+
+
+# ------------------------------------------------------------------------------ one-direction tests
+
+
+@pytest.fixture
+def one_way(examples, tmp_path):
+    lines = (examples / "positioning_run.csv").read_text().splitlines()
+    path = tmp_path / "plus.csv"
+    path.write_text("\n".join([lines[0]] + [line for line in lines[1:] if line.split(",")[2] == "+"]) + "\n")
+    return read_positioning_run(path).run
+
+
+@pytest.mark.parametrize(("fmt", "options", "words"), [
+    ("linuxcnc", {}, "forward and a reverse column"),
+    ("fanuc", {"bidirectional": True}, "a table for each direction"),
+    ("heidenhain", {}, "BACKLASH column"),
+])
+def test_tables_that_need_both_directions_say_so(one_way, fmt, options, words):
+    with pytest.raises(AxiscalError, match=f"{words}.*needs a test in both directions.*\\+ direction only"):
+        compensation_table(one_way, fmt, **options)
+
+
+@pytest.mark.parametrize(("fmt", "options"), [("fanuc", {}), ("siemens", {}), ("heidenhain", {"backlash": False})])
+def test_one_curve_tables_hold_the_direction_tested(run, one_way, fmt, options):
+    result = compensation_table(one_way, fmt, **options)
+    assert "from the + direction only" in result.note
+    plus = error_curve(target_statistics(run))
+    plus = ErrorCurve(plus.positions, plus.up, plus.up)
+    left = np.abs(residuals(result.table, plus, plus.positions, "mean", offset=result.reference_offset_m)).max()
+    assert left == pytest.approx(result.largest_residual_m)
+    # the same table as from a run whose two directions are both the + direction
+    twin = PositioningRun(run.targets, run.deviations_up, run.deviations_up)
+    assert result.text == compensation_table(twin, fmt, **options).text

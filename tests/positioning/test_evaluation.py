@@ -361,7 +361,7 @@ BAD_FILES = {
     "text in a number": (rows()[:3] + ["200.0,1,+,abc"] + rows()[4:], "not a number", 4),
     "bad direction": (rows()[:2] + ["100.0,1,sideways,0.3"] + rows()[3:], "not a direction", 3),
     "duplicate": (rows() + ["0.0,1,+,0.5"], "appears twice", 20),
-    "unknown unit": (["target_mm,run,direction,deviation_in"] + rows()[1:], "unknown length unit", 1),
+    "unknown unit": (["target_mm,run,direction,deviation_ft"] + rows()[1:], "unknown unit .ft.", 1),
     "no deviation": (["target_mm,run,direction,value"] + rows()[1:], "no deviation or actual position column", 1),
     "env in part": (
         ["target_mm,run,direction,actual_mm,air_temperature_c"] + [r + ",20" for r in rows()[1:]],

@@ -6,7 +6,7 @@ import click
 
 from axiscal.cli.common import flags_named, given_options, write_output
 from axiscal.compensation.formats import FORMATS, compensation_table
-from axiscal.units import MM, UM
+from axiscal.units import DEG, MM, UM
 
 __all__ = ["compensate_command", "register"]
 
@@ -23,26 +23,35 @@ def _si(value: float | None, factor: float) -> float | None:
               help="linuxcnc: COMP_FILE_TYPE, 0 = positions reached, 1 = corrections.")
 @click.option("--interval-mm", type=float, default=None,
               help="fanuc/siemens: spacing of the compensation points [mean target spacing, whole mm].")
+@click.option("--interval-deg", type=float, default=None,
+              help="fanuc/siemens, rotary axis: spacing of the compensation points [mean target spacing, whole deg].")
 @click.option("--magnification", type=int, default=1, show_default=True, help="fanuc: parameter 3623 (1..100).")
 @click.option("--detection-unit-um", type=float, default=1.0, show_default=True, help="fanuc: detection unit.")
 @click.option("--reference-position-mm", type=float, default=None,
               help="fanuc: machine position of the reference position [first target]; siemens: value zero here.")
+@click.option("--detection-unit-deg", type=float, default=None, help="fanuc, rotary axis: detection unit [0.001].")
+@click.option("--reference-position-deg", type=float, default=None,
+              help="fanuc, rotary axis: position of the reference [first target]; siemens: value zero here.")
 @click.option("--reference-point", type=int, default=None, help="fanuc: compensation point number of the reference (3620).")
 @click.option("--bidirectional", is_flag=True, help="fanuc: separate table for travel in the - direction (3605#0).")
 @click.option("--axis", default=None, help="Axis name: siemens machine axis [X1], heidenhain axis [X].")
 @click.option("--axis-number", type=int, default=1, show_default=True, help="fanuc: axis number on the parameter tape.")
 @click.option("--no-backlash", is_flag=True, help="heidenhain: one mean column, no BACKLASH column.")
-def compensate_command(run_csv, fmt, output, comp_type, interval_mm, magnification, detection_unit_um,
-                       reference_position_mm, reference_point, bidirectional, axis, axis_number, no_backlash):
-    """Write a compensation table for the controller from the mean deviations of RUN_CSV."""
+def compensate_command(run_csv, fmt, output, comp_type, interval_mm, interval_deg, magnification, detection_unit_um,
+                       reference_position_mm, detection_unit_deg, reference_position_deg, reference_point, bidirectional,
+                       axis, axis_number, no_backlash):
+    """Write a compensation table for the controller from the mean deviations of RUN_CSV (a linear or rotary axis)."""
     options = given_options(
-        comp_type=comp_type, interval_mm=_si(interval_mm, MM), magnification=magnification,
-        detection_unit_um=_si(detection_unit_um, UM), reference_position_mm=_si(reference_position_mm, MM),
-        reference_point=reference_point, bidirectional=bidirectional, axis=axis, axis_number=axis_number,
-        no_backlash=not no_backlash,
+        comp_type=comp_type, interval_mm=_si(interval_mm, MM), interval_deg=_si(interval_deg, DEG),
+        magnification=magnification, detection_unit_um=_si(detection_unit_um, UM),
+        reference_position_mm=_si(reference_position_mm, MM), detection_unit_deg=_si(detection_unit_deg, DEG),
+        reference_position_deg=_si(reference_position_deg, DEG), reference_point=reference_point,
+        bidirectional=bidirectional, axis=axis, axis_number=axis_number, no_backlash=not no_backlash,
     )
     keywords = {"interval_mm": "interval_m", "detection_unit_um": "detection_unit_m",
-                "reference_position_mm": "reference_position_m", "no_backlash": "backlash"}
+                "reference_position_mm": "reference_position_m", "interval_deg": "interval_rad",
+                "detection_unit_deg": "detection_unit_rad", "reference_position_deg": "reference_position_rad",
+                "no_backlash": "backlash"}
     options = {keywords.get(name, name): value for name, value in options.items()}
     with flags_named({keyword: "--" + name.replace("_", "-") for name, keyword in
                       {**{n: n for n in options}, **keywords}.items()} | {"backlash": "--no-backlash"}):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from axiscal.cli.common import flags_named
 from axiscal.positioning.plan import CYCLES, cycle_csv, plan_test, write_plan
 from axiscal.units import MM
 
@@ -26,8 +27,10 @@ __all__ = ["plan_command", "register"]
               help="Write the cycle CSV (and its JSON sidecar) here instead of stdout.")
 def plan_command(start_mm, end_mm, count, runs, overrun_mm, seed, cycle, gcode_path, axis, dwell_s, feed_mm_min, output):
     """Plan an ISO 230-2 positioning test: uneven targets and the test cycle (CSV to fill in; G-code with --gcode)."""
-    plan = plan_test(start_mm * MM, end_mm * MM, count, runs=runs, overrun_m=overrun_mm * MM, seed=seed, cycle=cycle)
-    write_plan(plan, output, gcode_path=gcode_path, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_min)
+    with flags_named({"start_m": "--start-mm", "end_m": "--end-mm", "overrun_m": "--overrun-mm", "dwell_s": "--dwell-s",
+                      "feed_mm_per_min": "--feed-mm-min"}):
+        plan = plan_test(start_mm * MM, end_mm * MM, count, runs=runs, overrun_m=overrun_mm * MM, seed=seed, cycle=cycle)
+        write_plan(plan, output, gcode_path=gcode_path, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_min)
     if not output:
         click.echo(cycle_csv(plan), nl=False)
     click.echo(f"axiscal: note: {plan.description}", err=True)

@@ -18,7 +18,7 @@ __all__ = ["positioning_command", "register"]
 @click.argument("run_csv", type=click.Path(dir_okay=False))
 @click.option("--standard", type=click.Choice(STANDARDS), default="iso230-2:2014", show_default=True,
               help="Evaluation standard; jis-b6192 evaluates with the ISO 230-2:1988 (3 s) formulas.")
-@click.option("--json", "as_json", is_flag=True, help="Print one JSON object (figures in um, per-target arrays).")
+@click.option("--json", "as_json", is_flag=True, help="Print one JSON object (figures in um, arcsec for a rotary axis; per-target arrays).")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write the positioning plot to this file.")
 @click.option("--wavelength-nm", type=float, default=None, help="Vacuum wavelength for raw laser readings [632.991].")
 @click.option("--expansion-per-k", type=float, default=STEEL_EXPANSION_PER_K, show_default=True,
@@ -28,7 +28,8 @@ __all__ = ["positioning_command", "register"]
 @click.option("--monte-carlo", type=click.IntRange(min=1), default=None,
               help="Also propagate the budget by Monte Carlo with this many draws (95 % coverage intervals).")
 def positioning_command(run_csv, standard, as_json, plot_path, wavelength_nm, expansion_per_k, budget_path, monte_carlo):
-    """Evaluate a bidirectional positioning test (RUN_CSV: target_mm, run, direction, deviation_um or actual_mm)."""
+    """Evaluate a positioning test (RUN_CSV: target_mm, run, direction, deviation_um or actual_mm; target_deg and
+    deviation_arcsec for a rotary axis; one direction or both)."""
     raw_options = given_options(wavelength_nm=wavelength_nm, expansion_per_k=expansion_per_k)
     if monte_carlo and not budget_path:
         raise AxiscalError("--monte-carlo propagates a budget: give it with --uncertainty BUDGET.toml")

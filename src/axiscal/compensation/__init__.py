@@ -5,8 +5,10 @@ from __future__ import annotations
 from axiscal.compensation.curve import DIRECTIONS, ErrorCurve, error_curve, residuals
 from axiscal.compensation.fanuc import MAX_AXIS_NUMBER, FanucTable, fanuc_table
 from axiscal.compensation.formats import (
+    FANUC_ROTARY_INCREMENT,
     FORMAT_OPTIONS,
     FORMATS,
+    ROTARY_OPTIONS,
     CompensationResult,
     compensation_table,
 )
@@ -42,6 +44,8 @@ __all__ = [
     "heidenhain_table",
     "FORMATS",
     "FORMAT_OPTIONS",
+    "ROTARY_OPTIONS",
+    "FANUC_ROTARY_INCREMENT",
     "CompensationResult",
     "compensation_table",
 ]

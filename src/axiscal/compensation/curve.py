@@ -42,14 +42,17 @@ class ErrorCurve:
     """Mean positional deviation per approach direction against nominal position (metres).
 
     Between the measured positions the error is taken as piecewise linear; beyond the end
-    positions it is held at the end values.
+    positions it is held at the end values, or, for a rotary axis tested round the circle
+    (``period`` = 2 pi), interpolated round the circle from the last position to the first.
 
     Attributes
     ----------
-    positions : ndarray, shape (m,), metres
+    positions : ndarray, shape (m,), metres (radians for a rotary axis)
         Nominal positions, strictly increasing.
-    up, down : ndarray, shape (m,), metres
+    up, down : ndarray, shape (m,), metres (radians)
         Mean deviation (actual - target) approaching in the + and - direction.
+    period : float or None
+        One revolution (2 pi) for a rotary axis tested round the circle; None otherwise.
 
     Examples
     --------
@@ -63,6 +66,7 @@ class ErrorCurve:
     positions: np.ndarray
     up: np.ndarray
     down: np.ndarray
+    period: float | None = None
 
     @property
     def mean(self) -> np.ndarray:
@@ -91,16 +95,46 @@ class ErrorCurve:
         values = {"+": self.up, "-": self.down, "mean": self.mean}.get(direction)
         if values is None:
             raise AxiscalError(f"unknown direction '{direction}'; use +, - or mean")
-        return np.interp(np.asarray(x, dtype=float), self.positions, values)
+        return np.interp(np.asarray(x, dtype=float), self.positions, values, period=self.period)
+
+    def closed(self) -> ErrorCurve:
+        """The curve with one more position a turn after the first, holding the first values (rotary axes).
+
+        A table written at the positions of the closed curve runs from the first target round to
+        it again (0 .. 360 deg), so that a control interpolating between its rows goes back to
+        the first value. A curve without a ``period`` is returned as it is.
+
+        Returns
+        -------
+        ErrorCurve
+            Without ``period``; one position more when it had one.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> c = ErrorCurve(np.array([0.0, np.pi]), np.array([1.0, 2.0]), np.array([1.0, 2.0]), period=2 * np.pi)
+        >>> c.closed().positions.round(3).tolist(), c.closed().up.tolist()
+        ([0.0, 3.142, 6.283], [1.0, 2.0, 1.0])
+        """
+        if self.period is None:
+            return self
+        x = np.append(self.positions, self.positions[0] + self.period)
+        return ErrorCurve(x, np.append(self.up, self.up[0]), np.append(self.down, self.down[0]))
 
 
-def error_curve(stats: TargetStatistics) -> ErrorCurve:
+def error_curve(stats: TargetStatistics, *, period: float | None = None) -> ErrorCurve:
     """The mean deviations of a positioning test as an :class:`ErrorCurve`.
+
+    For a one-direction test (the other direction's means are NaN) both curves are the means of
+    the direction tested: the reversal was not measured, and a table from it holds that
+    direction's deviations.
 
     Parameters
     ----------
     stats : TargetStatistics
         From :func:`axiscal.positioning.evaluation.target_statistics`, metres.
+    period : float, optional, keyword-only
+        2 pi for a rotary axis tested round the circle (see :attr:`ErrorCurve.period`).
 
     Returns
     -------
@@ -113,7 +147,12 @@ def error_curve(stats: TargetStatistics) -> ErrorCurve:
     >>> error_curve(target_statistics(paper003_table4_run())).positions.tolist()
     [0.0, 0.02]
     """
-    return ErrorCurve(np.asarray(stats.targets), np.asarray(stats.mean_up), np.asarray(stats.mean_down))
+    up, down = np.asarray(stats.mean_up), np.asarray(stats.mean_down)
+    if np.all(np.isnan(down)):
+        down = up
+    elif np.all(np.isnan(up)):
+        up = down
+    return ErrorCurve(np.asarray(stats.targets), up, down, period)
 
 
 def _check_direction(direction: str) -> None:

@@ -14,7 +14,7 @@ import numpy as np
 
 from axiscal.compensation.curve import ErrorCurve, _check_direction
 from axiscal.errors import AxiscalError
-from axiscal.units import MM, UM
+from axiscal.units import DEG, MM, UM
 
 #: the largest axis number a FANUC parameter tape carries (Series 30i: 32 axes)
 MAX_AXIS_NUMBER = 32
@@ -247,14 +247,16 @@ def fanuc_table(
     """
     if not 1 <= magnification <= 100:
         raise AxiscalError(f"FANUC pitch error magnification (parameter 3623) is 1..100, got {magnification}")
+    # messages in the units of the axis: mm and um, or degrees for a rotary axis
+    big, big_unit, small, small_unit = (DEG, "deg", DEG, "deg") if rotary else (MM, "mm", UM, "um")
     if not (math.isfinite(input_increment_m) and input_increment_m > 0):
-        raise AxiscalError(f"the input increment must be a positive length, got {input_increment_m / UM:g} um")
+        raise AxiscalError(f"the input increment must be positive, got {input_increment_m / small:g} {small_unit}")
     if not (math.isfinite(interval_m) and interval_m > 0):
-        raise AxiscalError(f"the compensation interval must be positive, got {interval_m / MM:g} mm")
+        raise AxiscalError(f"the compensation interval must be positive, got {interval_m / big:g} {big_unit}")
     if abs(interval_m / input_increment_m - round(interval_m / input_increment_m)) > 1e-6:
-        raise AxiscalError(f"the interval {interval_m / MM:g} mm is not a whole number of input increments")
+        raise AxiscalError(f"the interval {interval_m / big:g} {big_unit} is not a whole number of input increments")
     if not (math.isfinite(detection_unit_m) and detection_unit_m > 0):
-        raise AxiscalError(f"the detection unit must be a positive length, got {detection_unit_m / UM:g} um")
+        raise AxiscalError(f"the detection unit must be positive, got {detection_unit_m / small:g} {small_unit}")
     if not 1 <= axis_number <= MAX_AXIS_NUMBER:
         raise AxiscalError(f"the axis number on the parameter tape is 1..{MAX_AXIS_NUMBER}, got {axis_number}")
     if not math.isfinite(reference_position_m):
@@ -262,7 +264,7 @@ def fanuc_table(
     unit = magnification * detection_unit_m
     lo, hi = float(curve.positions[0]), float(curve.positions[-1])
     if rotary:
-        if travel_per_revolution is None or travel_per_revolution <= 0:
+        if travel_per_revolution is None or not (math.isfinite(travel_per_revolution) and travel_per_revolution > 0):
             raise AxiscalError("a rotary axis needs the travel per revolution (parameter 3625)")
         sections = travel_per_revolution / interval_m
         if abs(sections - round(sections)) > 1e-9:

@@ -29,7 +29,8 @@ class HeidenhainTable:
     HEIDENHAIN's linear axis error parameter); the BACKLASH column the additional error when
     traversing in the - direction (``mean_down - mean_up`` = -B_i). The control subtracts the
     error, interpolating linearly between rows. Without BACKLASH the axis column holds the
-    bidirectional mean.
+    bidirectional mean. For a rotary axis (``unit_m`` = one degree) AXISPOS and the error columns
+    are in degrees, as the control gives rotary axis positions; the header keeps the table's MM.
 
     Attributes
     ----------
@@ -40,7 +41,10 @@ class HeidenhainTable:
     backlash_mm : ndarray, shape (k,), mm, or None
         The BACKLASH column (None: one mean column).
     decimals : int
-        Decimals of mm written.
+        Decimals written.
+    unit_m : float
+        Metres per unit of the columns (1e-3: mm); radians per degree for a rotary axis, whose
+        columns ``positions_mm``, ``error_mm`` and ``backlash_mm`` then hold degrees.
 
     Examples
     --------
@@ -60,16 +64,17 @@ class HeidenhainTable:
     error_mm: np.ndarray
     backlash_mm: np.ndarray | None
     decimals: int = 4
+    unit_m: float = MM
 
     @property
     def resolution(self) -> float:
-        """Smallest step of a written value, metres."""
-        return 10.0 ** (-self.decimals) * MM
+        """Smallest step of a written value, metres (radians)."""
+        return 10.0 ** (-self.decimals) * self.unit_m
 
     @property
     def nodes(self) -> np.ndarray:
-        """The AXISPOS of the rows, metres, shape (k,)."""
-        return self.positions_mm * MM
+        """The AXISPOS of the rows, metres (radians), shape (k,)."""
+        return self.positions_mm * self.unit_m
 
     def correction(self, x, direction: str) -> np.ndarray:
         """The correction at commanded positions ``x`` (metres): minus the interpolated error.
@@ -89,7 +94,7 @@ class HeidenhainTable:
         error = self.error_mm
         if direction == "-" and self.backlash_mm is not None:
             error = error + self.backlash_mm
-        return -np.interp(np.asarray(x, dtype=float), self.nodes, error * MM)
+        return -np.interp(np.asarray(x, dtype=float), self.nodes, error * self.unit_m)
 
     def text(self) -> str:
         """The ``.COM`` file."""
@@ -105,7 +110,9 @@ class HeidenhainTable:
         return "\n".join(lines) + "\n"
 
 
-def heidenhain_table(curve: ErrorCurve, *, axis: str = "X", backlash: bool = True, decimals: int = 4) -> HeidenhainTable:
+def heidenhain_table(
+    curve: ErrorCurve, *, axis: str = "X", backlash: bool = True, decimals: int = 4, unit_m: float = MM
+) -> HeidenhainTable:
     """HEIDENHAIN ``.COM`` table at the measured targets (see :class:`HeidenhainTable`).
 
     Parameters
@@ -117,12 +124,15 @@ def heidenhain_table(curve: ErrorCurve, *, axis: str = "X", backlash: bool = Tru
     backlash : bool, keyword-only
         Write the BACKLASH column (default True); False writes the bidirectional mean alone.
     decimals : int, keyword-only
-        Decimals of mm written (default 4: 0.1 um).
+        Decimals written (default 4: 0.1 um in mm).
+    unit_m : float, keyword-only
+        Metres per unit of the columns (default 1e-3: mm); one degree in radians for a rotary
+        axis (give a closed curve, :meth:`ErrorCurve.closed`, to run the table round to 360 deg).
 
     Returns
     -------
     HeidenhainTable
-        One row per measured target.
+        One row per position of the curve.
 
     Raises
     ------
@@ -141,10 +151,10 @@ def heidenhain_table(curve: ErrorCurve, *, axis: str = "X", backlash: bool = Tru
         raise AxiscalError(f"'{axis}' is not an axis name")
     if curve.positions.size > HEIDENHAIN_MAX_ENTRIES:
         raise AxiscalError(f"{curve.positions.size} targets: a .COM table holds at most {HEIDENHAIN_MAX_ENTRIES} rows")
-    positions = np.round(curve.positions / MM, decimals)
+    positions = np.round(curve.positions / unit_m, decimals)
     if backlash:
-        error = np.round(curve.up / MM, decimals) + 0.0
-        extra = np.round((curve.down - curve.up) / MM, decimals) + 0.0
+        error = np.round(curve.up / unit_m, decimals) + 0.0
+        extra = np.round((curve.down - curve.up) / unit_m, decimals) + 0.0
     else:
-        error, extra = np.round(curve.mean / MM, decimals) + 0.0, None
-    return HeidenhainTable(axis.upper(), positions, error, extra, decimals)
+        error, extra = np.round(curve.mean / unit_m, decimals) + 0.0, None
+    return HeidenhainTable(axis.upper(), positions, error, extra, decimals, unit_m)

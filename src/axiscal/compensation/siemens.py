@@ -6,6 +6,7 @@ i $AA_ENC_COMP_STEP``, interpolated linearly; a positive value moves the axis ne
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -28,18 +29,26 @@ class SiemensTable:
     (``+e``) and the correction applied to the command is its negative. Linear interpolation
     between points, end values held beyond MIN and MAX. One curve for both directions.
 
+    A rotary axis (``unit_m`` = one degree) has its positions, step and values in degrees; tested
+    round the circle it is written as a modulo compensation (``$AA_ENC_COMP_IS_MODULO = 1``) from
+    0 to 360 deg, MIN and MAX the ends of the modulo range, whose first and last values are equal.
+
     Attributes
     ----------
     axis : str
         Machine axis name.
     start_m, step_m : float, metres
         ``$AA_ENC_COMP_MIN`` and ``$AA_ENC_COMP_STEP``.
-    values_mm : ndarray, shape (k,), mm
+    values_mm : ndarray, shape (k,), mm (degrees for a rotary axis)
         The compensation values as written.
     encoder : int
         Encoder index.
     decimals : int
-        Decimals of mm written.
+        Decimals written.
+    unit_m : float
+        Metres per unit of the values (1e-3: mm); radians per degree for a rotary axis.
+    modulo : bool
+        ``$AA_ENC_COMP_IS_MODULO``: a rotary axis compensated round the circle.
 
     Examples
     --------
@@ -56,11 +65,13 @@ class SiemensTable:
     values_mm: np.ndarray
     encoder: int = 0
     decimals: int = 4
+    unit_m: float = MM
+    modulo: bool = False
 
     @property
     def resolution(self) -> float:
-        """Smallest step of a written value, metres."""
-        return 10.0 ** (-self.decimals) * MM
+        """Smallest step of a written value, metres (radians)."""
+        return 10.0 ** (-self.decimals) * self.unit_m
 
     @property
     def nodes(self) -> np.ndarray:
@@ -87,7 +98,7 @@ class SiemensTable:
         ndarray, shape of ``x``, metres
         """
         _check_direction(direction)
-        return -np.interp(np.asarray(x, dtype=float), self.nodes, self.values_mm * MM)
+        return -np.interp(np.asarray(x, dtype=float), self.nodes, self.values_mm * self.unit_m)
 
     def text(self) -> str:
         """The ``%_N_AX_EEC_INI`` program that loads the table."""
@@ -95,10 +106,10 @@ class SiemensTable:
         lines = ["%_N_AX_EEC_INI", "CHANDATA(1)"]
         lines += [f"$AA_ENC_COMP[{e},{i},{a}]={v:.{d}f}" for i, v in enumerate(self.values_mm)]
         lines += [
-            f"$AA_ENC_COMP_STEP[{e},{a}]={self.step_m / MM:.4f}",
-            f"$AA_ENC_COMP_MIN[{e},{a}]={self.start_m / MM:.4f}",
-            f"$AA_ENC_COMP_MAX[{e},{a}]={self.end_m / MM:.4f}",
-            f"$AA_ENC_COMP_IS_MODULO[{e},{a}]=0",
+            f"$AA_ENC_COMP_STEP[{e},{a}]={self.step_m / self.unit_m:.4f}",
+            f"$AA_ENC_COMP_MIN[{e},{a}]={self.start_m / self.unit_m:.4f}",
+            f"$AA_ENC_COMP_MAX[{e},{a}]={self.end_m / self.unit_m:.4f}",
+            f"$AA_ENC_COMP_IS_MODULO[{e},{a}]={int(self.modulo)}",
             "M17",
         ]
         return "\n".join(lines) + "\n"
@@ -114,6 +125,7 @@ def siemens_table(
     encoder: int = 0,
     decimals: int = 4,
     max_points: int = 1000,
+    unit_m: float = MM,
 ) -> SiemensTable:
     """SINUMERIK ``$AA_ENC_COMP`` table on an even grid from the first measured target.
 
@@ -137,17 +149,21 @@ def siemens_table(
         Decimals of mm written (default 4: 0.1 um).
     max_points : int, keyword-only
         MD38000 $MA_MM_ENC_COMP_MAX_POINTS of the control (default 1000).
+    unit_m : float, keyword-only
+        Metres per unit written (default 1e-3: mm); one degree in radians for a rotary axis. A
+        rotary curve with a ``period`` (tested round the circle) is written as a modulo
+        compensation from 0 to 360 deg.
 
     Returns
     -------
     SiemensTable
-        Values at ``first target + i step_m`` up to the last target.
+        Values at ``first target + i step_m`` up to the last target (modulo: 0 .. 360 deg).
 
     Raises
     ------
     AxiscalError
-        For an axis name that is not alphanumeric, a step that is not positive, or more points
-        than ``max_points``.
+        For an axis name that is not alphanumeric, a step that is not positive, more points
+        than ``max_points``, or a modulo step that does not divide the circle into whole steps.
 
     Examples
     --------
@@ -159,10 +175,23 @@ def siemens_table(
     """
     if not axis or not axis.replace("_", "").isalnum():
         raise AxiscalError(f"'{axis}' is not a machine axis name")
-    nodes = _grid(float(curve.positions[0]), float(curve.positions[-1]), step_m)
+    modulo = curve.period is not None
+    if modulo:
+        steps = curve.period / step_m if step_m > 0 else math.nan
+        if not (math.isfinite(steps) and abs(steps - round(steps)) <= 1e-9 * steps):
+            raise AxiscalError(
+                f"a modulo compensation steps through the circle: the step {step_m / unit_m:g} must divide"
+                f" {curve.period / unit_m:g} into whole steps"
+            )
+        nodes = step_m * np.arange(round(steps) + 1)
+    else:
+        nodes = _grid(float(curve.positions[0]), float(curve.positions[-1]), step_m)
     if nodes.size > max_points:
         raise AxiscalError(f"{nodes.size} compensation points exceed MD38000 = {max_points}: use a larger step")
     e = curve.at(nodes, direction)
     if zero_at_m is not None:
         e = e - curve.at(zero_at_m, direction)
-    return SiemensTable(axis, float(nodes[0]), step_m, np.round(e / MM, decimals) + 0.0, encoder, decimals)
+    values = np.round(e / unit_m, decimals) + 0.0
+    if modulo:
+        values[-1] = values[0]  # 360 deg is 0 deg again
+    return SiemensTable(axis, float(nodes[0]), step_m, values, encoder, decimals, unit_m, modulo)

@@ -1,21 +1,26 @@
-"""Positioning accuracy and repeatability of numerically controlled axes: ISO 230-2 (and VDI/DGQ 3441), test planning, the reader of test runs, the report and the plot."""
+"""Positioning accuracy and repeatability of numerically controlled linear and rotary axes: ISO 230-2 (and VDI/DGQ 3441), test planning, the reader of test runs, the report and the plot."""
 
 from __future__ import annotations
 
 from axiscal.positioning.evaluation import (
+    BIDIRECTIONAL_SYMBOLS,
     ISO_EDITIONS,
     ISO_SYMBOLS,
     LONG_AXIS_M,
     NO_S_WARNING,
+    ONE_DIRECTION_WARNING,
     STANDARDS,
     VDI_SYMBOLS,
     Iso230Result,
     PositioningRun,
     TargetStatistics,
+    TURN,
     Vdi3441Result,
+    covers_circle,
     iso230_2,
     iso_edition,
     paper003_table4_run,
+    require_finite,
     target_statistics,
     vdi3441,
 )
@@ -36,12 +41,15 @@ from axiscal.positioning.plan import (
 from axiscal.positioning.plot import plot_positioning
 from axiscal.positioning.reader import (
     ALLOWED_UNITS,
+    ANGLE_DEVIATION_UNITS,
+    ANGLE_TARGET_UNITS,
     DIRECTIONS,
     ENVIRONMENT_REQUIRED,
     RunFile,
     read_positioning_run,
 )
 from axiscal.positioning.report import (
+    DISPLAY_UNITS,
     PositioningEvaluation,
     evaluate_positioning_file,
     render_template,
@@ -51,6 +59,8 @@ __all__ = [
     "ISO_EDITIONS",
     "LONG_AXIS_M",
     "NO_S_WARNING",
+    "ONE_DIRECTION_WARNING",
+    "BIDIRECTIONAL_SYMBOLS",
     "PositioningRun",
     "TargetStatistics",
     "Iso230Result",
@@ -63,9 +73,14 @@ __all__ = [
     "STANDARDS",
     "iso_edition",
     "paper003_table4_run",
+    "TURN",
+    "covers_circle",
+    "require_finite",
     "DIRECTIONS",
     "ENVIRONMENT_REQUIRED",
     "ALLOWED_UNITS",
+    "ANGLE_TARGET_UNITS",
+    "ANGLE_DEVIATION_UNITS",
     "RunFile",
     "read_positioning_run",
     "CYCLES",
@@ -81,6 +96,7 @@ __all__ = [
     "gcode_program",
     "write_plan",
     "plot_positioning",
+    "DISPLAY_UNITS",
     "PositioningEvaluation",
     "evaluate_positioning_file",
     "render_template",

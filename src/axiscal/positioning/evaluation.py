@@ -23,6 +23,8 @@ __all__ = [
     "ISO_EDITIONS",
     "LONG_AXIS_M",
     "NO_S_WARNING",
+    "ONE_DIRECTION_WARNING",
+    "BIDIRECTIONAL_SYMBOLS",
     "PositioningRun",
     "TargetStatistics",
     "Iso230Result",
@@ -35,13 +37,27 @@ __all__ = [
     "STANDARDS",
     "iso_edition",
     "paper003_table4_run",
+    "TURN",
+    "covers_circle",
+    "require_finite",
 ]
+
+#: one revolution, radians
+TURN = 2.0 * np.pi
 
 #: ISO 230-2 editions this module evaluates, and their coverage factor k
 ISO_EDITIONS: dict[str, int] = {"2014": 2, "2006": 2, "1997": 2, "1988": 3}
 
 #: travel above which ISO 230-2 tests with one run each way (no R, no A), metres
 LONG_AXIS_M = 2.0
+
+#: ISO 230-2 figures that need both directions: NaN (null, "n/a") for a unidirectional test
+BIDIRECTIONAL_SYMBOLS = ("A", "B", "B_mean", "E", "M", "R")
+
+ONE_DIRECTION_WARNING = (
+    "one-direction test ({direction} only): the reversal value B and the bidirectional figures A, E, M and R"
+    " do not apply (n/a)"
+)
 
 NO_S_WARNING = (
     "only one run per direction: the standard uncertainty s cannot be estimated, "
@@ -51,66 +67,92 @@ NO_S_WARNING = (
 
 @dataclass(frozen=True)
 class PositioningRun:
-    """Deviations of a bidirectional positioning test, checked and arranged per target.
+    """Deviations of a positioning test, checked and arranged per target.
+
+    A bidirectional test holds both arrays; a unidirectional test (ISO 230-2 figures for one
+    direction only) holds one of them and None for the other. A rotary axis (``rotary=True``)
+    holds its targets and deviations in radians, a linear axis in metres.
 
     Attributes
     ----------
-    targets : ndarray, shape (m,), metres
+    targets : ndarray, shape (m,), metres (radians for a rotary axis)
         Target positions P_i, strictly increasing.
-    deviations_up : ndarray, shape (m, n), metres
-        ``x_ij`` for the approach in the positive direction (run j = 0..n-1).
-    deviations_down : ndarray, shape (m, n), metres
-        ``x_ij`` for the approach in the negative direction.
+    deviations_up : ndarray, shape (m, n), metres (radians), or None
+        ``x_ij`` for the approach in the positive direction (run j = 0..n-1); None for a test in
+        the - direction only.
+    deviations_down : ndarray, shape (m, n), metres (radians), or None
+        ``x_ij`` for the approach in the negative direction; None for a test in the + direction only.
     source : str
         Where the data came from (a file name), for messages.
+    rotary : bool
+        True for a rotary axis: targets and deviations in radians.
 
     Raises
     ------
     AxiscalError
-        Fewer than 2 targets, arrays of the wrong shape, unequal run counts per direction, a
-        non-finite value, or targets that do not strictly increase.
+        Fewer than 2 targets, arrays of the wrong shape, unequal run counts per direction, no
+        direction at all, a non-finite value, or targets that do not strictly increase.
 
     Examples
     --------
     >>> import numpy as np
     >>> PositioningRun(np.array([0.0, 0.1]), np.zeros((2, 5)), np.zeros((2, 5))).runs
     5
+    >>> PositioningRun(np.array([0.0, 0.1]), np.zeros((2, 3)), None).directions
+    ('+',)
     """
 
     targets: np.ndarray
-    deviations_up: np.ndarray
-    deviations_down: np.ndarray
+    deviations_up: np.ndarray | None
+    deviations_down: np.ndarray | None
     source: str = "<data>"
+    rotary: bool = False
 
     def __post_init__(self) -> None:
         targets = np.array(self.targets, dtype=float)
-        up = np.array(self.deviations_up, dtype=float)
-        down = np.array(self.deviations_down, dtype=float)
+        if self.deviations_up is None and self.deviations_down is None:
+            raise AxiscalError(f"{self.source}: no deviations in either direction")
+        up = None if self.deviations_up is None else np.array(self.deviations_up, dtype=float)
+        down = None if self.deviations_down is None else np.array(self.deviations_down, dtype=float)
+        given = [a for a in (up, down) if a is not None]
         if targets.ndim != 1 or targets.size < 2:
             raise AxiscalError(f"{self.source}: at least 2 target positions are needed, got {targets.size}")
-        if up.ndim != 2 or down.ndim != 2 or up.shape[0] != targets.size or down.shape[0] != targets.size:
+        if any(a.ndim != 2 or a.shape[0] != targets.size for a in given):
+            shapes = " and ".join(str(a.shape) for a in given)
             raise AxiscalError(
                 f"{self.source}: deviations must have shape (targets, runs) = ({targets.size}, n) for each direction,"
-                f" got {up.shape} and {down.shape}"
+                f" got {shapes}"
             )
-        if up.shape[1] != down.shape[1]:
+        if up is not None and down is not None and up.shape[1] != down.shape[1]:
             raise AxiscalError(
                 f"{self.source}: unequal run counts: {up.shape[1]} runs in + direction, {down.shape[1]} in - direction"
             )
-        if up.shape[1] < 1:
+        if given[0].shape[1] < 1:
             raise AxiscalError(f"{self.source}: no runs")
-        if not (np.all(np.isfinite(targets)) and np.all(np.isfinite(up)) and np.all(np.isfinite(down))):
+        if not (np.all(np.isfinite(targets)) and all(np.all(np.isfinite(a)) for a in given)):
             raise AxiscalError(f"{self.source}: targets and deviations must be finite numbers (found NaN or infinity)")
         if np.any(np.diff(targets) <= 0):
             raise AxiscalError(f"{self.source}: target positions must be strictly increasing")
         for name, value in (("targets", targets), ("deviations_up", up), ("deviations_down", down)):
-            value.setflags(write=False)
+            if value is not None:
+                value.setflags(write=False)
             object.__setattr__(self, name, value)
 
     @property
     def runs(self) -> int:
         """Number of runs n in each direction."""
-        return int(self.deviations_up.shape[1])
+        present = self.deviations_up if self.deviations_up is not None else self.deviations_down
+        return int(present.shape[1])
+
+    @property
+    def directions(self) -> tuple[str, ...]:
+        """The directions tested: ``("+", "-")``, ``("+",)`` or ``("-",)``."""
+        return tuple(d for d, a in (("+", self.deviations_up), ("-", self.deviations_down)) if a is not None)
+
+    @property
+    def bidirectional(self) -> bool:
+        """True when both directions were tested."""
+        return len(self.directions) == 2
 
 
 @dataclass(frozen=True)
@@ -263,7 +305,8 @@ def target_statistics(run: PositioningRun) -> TargetStatistics:
 
     ISO 230-2 mean unidirectional and bidirectional positional deviations, reversal value
     ``B_i = mean_up - mean_down`` and the estimator of the unidirectional standard uncertainty
-    ``s_i`` (n - 1 in the denominator). With one run s is NaN.
+    ``s_i`` (n - 1 in the denominator). With one run s is NaN; for a unidirectional test the
+    values of the direction not tested, the bidirectional mean and B_i are NaN.
 
     Parameters
     ----------
@@ -282,7 +325,9 @@ def target_statistics(run: PositioningRun) -> TargetStatistics:
     >>> (st.mean_up / UM).round(3).tolist(), (st.s_up / UM).round(3).tolist()
     ([0.733, 1.6], [0.643, 0.458])
     """
-    up, down = run.deviations_up, run.deviations_down
+    missing = np.full((run.targets.size, run.runs), np.nan)
+    up = missing if run.deviations_up is None else run.deviations_up
+    down = missing if run.deviations_down is None else run.deviations_down
     mean_up = up.mean(axis=1)
     mean_down = down.mean(axis=1)
     if run.runs >= 2:
@@ -298,11 +343,77 @@ def target_statistics(run: PositioningRun) -> TargetStatistics:
 
 
 def _warnings(run: PositioningRun) -> tuple[str, ...]:
+    notes = []
+    if not run.bidirectional:
+        notes.append(ONE_DIRECTION_WARNING.format(direction=run.directions[0]))
     if run.runs >= 2:
-        return ()
-    if run.targets[-1] - run.targets[0] > LONG_AXIS_M:
-        return (NO_S_WARNING + " (one run each way is what ISO 230-2 asks for on axes longer than 2000 mm)",)
-    return (NO_S_WARNING,)
+        return tuple(notes)
+    if not run.rotary and run.targets[-1] - run.targets[0] > LONG_AXIS_M:
+        return (NO_S_WARNING + " (one run each way is what ISO 230-2 asks for on axes longer than 2000 mm)", *notes)
+    return (NO_S_WARNING, *notes)
+
+
+def require_finite(**values: float | None) -> None:
+    """Refuse a NaN or infinite number given for an option, naming the option by its keyword.
+
+    Parameters
+    ----------
+    **values : float or None
+        Keyword -> value; None (an option not given) and non-numbers are passed over.
+
+    Returns
+    -------
+    None
+        When every number is finite.
+
+    Raises
+    ------
+    AxiscalError
+        ``"<keyword> must be a finite number, got nan"`` for the first value that is not finite.
+
+    Examples
+    --------
+    >>> require_finite(start_m=0.0, end_m=None)
+    >>> require_finite(end_m=float("inf"))
+    Traceback (most recent call last):
+    axiscal.errors.AxiscalError: end_m must be a finite number, got inf
+    """
+    for name, value in values.items():
+        if isinstance(value, (int, float)) and not isinstance(value, bool) and not np.isfinite(value):
+            raise AxiscalError(f"{name} must be a finite number, got {value}")
+
+
+def covers_circle(targets: np.ndarray) -> bool:
+    """Whether the targets of a rotary axis (radians, in [0, 2 pi), increasing) go round the circle.
+
+    The circle counts as covered when the gap from the last target round to the first is no
+    more than twice the largest spacing between neighbouring targets (0, 30, ..., 330 deg covers
+    it; 0..90 deg does not).
+
+    Parameters
+    ----------
+    targets : ndarray, shape (m,), radians
+        Target positions, increasing, within one turn.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> covers_circle(np.radians(np.arange(0, 360, 30))), covers_circle(np.radians([0, 45, 90]))
+    (True, False)
+    """
+    targets = np.asarray(targets, dtype=float)
+    wrap = targets[0] + TURN - targets[-1]
+    return bool(wrap <= 2.0 * float(np.diff(targets).max()) * (1 + 1e-9))
+
+
+def _spread(*arrays: np.ndarray) -> float:
+    """max - min over the arrays, NaN if any value is NaN (a figure that does not apply)."""
+    values = np.concatenate(arrays)
+    return float(values.max() - values.min())
 
 
 def iso230_2(run: PositioningRun, *, edition: str = "2014") -> Iso230Result:
@@ -321,7 +432,10 @@ def iso230_2(run: PositioningRun, *, edition: str = "2014") -> Iso230Result:
     Returns
     -------
     Iso230Result
-        Axis figures in metres; figures needing s are NaN (with a warning) for one run.
+        Axis figures in metres (radians for a rotary axis); figures needing s are NaN (with a
+        warning) for one run; for a unidirectional test the figures of the direction tested are
+        given and those of the other direction, B and the bidirectional figures
+        (:data:`BIDIRECTIONAL_SYMBOLS`) are NaN, with a warning.
 
     Raises
     ------
@@ -345,7 +459,6 @@ def iso230_2(run: PositioningRun, *, edition: str = "2014") -> Iso230Result:
     _readonly(r_up, r_down, r_bi)
     hi_up, lo_up = st.mean_up + k * st.s_up, st.mean_up - k * st.s_up
     hi_down, lo_down = st.mean_down + k * st.s_down, st.mean_down - k * st.s_down
-    both_means = np.concatenate([st.mean_up, st.mean_down])
     return Iso230Result(
         edition=edition,
         coverage=k,
@@ -353,12 +466,12 @@ def iso230_2(run: PositioningRun, *, edition: str = "2014") -> Iso230Result:
         repeatability_up=r_up,
         repeatability_down=r_down,
         repeatability=r_bi,
-        A=float(max(hi_up.max(), hi_down.max()) - min(lo_up.min(), lo_down.min())),
+        A=float(np.concatenate([hi_up, hi_down]).max() - np.concatenate([lo_up, lo_down]).min()),
         A_up=float(hi_up.max() - lo_up.min()),
         A_down=float(hi_down.max() - lo_down.min()),
         B=float(np.abs(st.reversal).max()),
         B_mean=float(st.reversal.mean()),
-        E=float(both_means.max() - both_means.min()),
+        E=_spread(st.mean_up, st.mean_down),
         E_up=float(np.ptp(st.mean_up)),
         E_down=float(np.ptp(st.mean_down)),
         M=float(np.ptp(st.mean)),
@@ -388,6 +501,11 @@ def vdi3441(run: PositioningRun) -> Vdi3441Result:
     Vdi3441Result
         Axis figures in metres; with one run the scatter and P are NaN (with a warning).
 
+    Raises
+    ------
+    AxiscalError
+        For a unidirectional test: VDI/DGQ 3441 defines its figures from both directions.
+
     Examples
     --------
     >>> from axiscal.units import UM
@@ -395,6 +513,11 @@ def vdi3441(run: PositioningRun) -> Vdi3441Result:
     >>> round(result.Pa / UM, 3), round(result.P / UM, 3)
     (0.683, 9.767)
     """
+    if not run.bidirectional:
+        raise AxiscalError(
+            f"{run.source}: VDI/DGQ 3441 evaluates a bidirectional test; this one goes in the {run.directions[0]}"
+            " direction only (evaluate it to ISO 230-2)"
+        )
     st = target_statistics(run)
     u = np.abs(st.reversal)
     s_mean = 0.5 * (st.s_up + st.s_down)

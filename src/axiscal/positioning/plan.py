@@ -25,6 +25,7 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
+from axiscal.positioning.evaluation import require_finite
 from axiscal.units import MM, UM
 
 #: largest plan accepted (checked before anything is allocated)
@@ -152,7 +153,8 @@ def plan_targets(start_m: float, end_m: float, count: int, *, seed: int | None =
     >>> (plan_targets(0.0, 0.4, 5, seed=1) / MM).round(3).tolist()
     [0.0, 122.523, 182.208, 322.432, 400.0]
     """
-    if not (math.isfinite(start_m) and math.isfinite(end_m)) or end_m <= start_m:
+    require_finite(start_m=start_m, end_m=end_m)
+    if end_m <= start_m:
         raise AxiscalError(f"the end ({end_m / MM:g} mm) must be beyond the start ({start_m / MM:g} mm)")
     need = minimum_targets(end_m - start_m)
     if count > MAX_TARGETS:
@@ -226,7 +228,8 @@ def plan_test(
         raise AxiscalError(f"runs must be at least 1, got {runs}")
     if runs > MAX_RUNS:
         raise AxiscalError(f"{runs} runs: a plan holds at most {MAX_RUNS} runs in each direction")
-    if not math.isfinite(overrun_m) or overrun_m <= 0:
+    require_finite(overrun_m=overrun_m)
+    if overrun_m <= 0:
         raise AxiscalError(f"the overrun must be positive, got {overrun_m / MM:g} mm")
     if seed is None:
         seed = int(np.random.SeedSequence().generate_state(1)[0])
@@ -329,9 +332,10 @@ def gcode_program(plan: PositioningTestPlan, *, axis: str = "X", dwell_s: float 
     """
     if not axis or not axis.isalpha() or len(axis) != 1:
         raise AxiscalError(f"axis must be one letter (X, Y, Z, ...), got '{axis}'")
-    if not math.isfinite(dwell_s) or dwell_s < 0:
+    require_finite(dwell_s=dwell_s, feed_mm_per_min=feed_mm_per_min)
+    if dwell_s < 0:
         raise AxiscalError(f"the dwell must be zero or positive, got {dwell_s:g} s")
-    if not math.isfinite(feed_mm_per_min) or feed_mm_per_min <= 0:
+    if feed_mm_per_min <= 0:
         raise AxiscalError(f"the feed must be positive, got {feed_mm_per_min:g} mm/min")
     axis = axis.upper()
     out = [

@@ -16,7 +16,7 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.io.figures import pyplot, save_figure
 from axiscal.positioning.evaluation import Iso230Result, PositioningRun, Vdi3441Result
-from axiscal.units import MM, UM
+from axiscal.units import ARCSEC, DEG, MM, UM
 
 __all__ = ["plot_positioning"]
 
@@ -29,8 +29,8 @@ _LABELS = {
 }
 
 
-def _format_um(value: float) -> str:
-    return "n/a" if not np.isfinite(value) else f"{value / UM:.2f}"
+def _format(value: float, factor: float) -> str:
+    return "n/a" if not np.isfinite(value) else f"{value / factor:.2f}"
 
 
 def plot_positioning(
@@ -38,7 +38,8 @@ def plot_positioning(
 ) -> Path:
     """Write the positioning plot to ``path`` (format from its suffix, e.g. .png, .svg, .pdf).
 
-    Mean deviation per direction against target (um over mm), bands of mean +- k s (k = 2 for
+    Mean deviation per direction against target (um over mm; arcsec over degrees for a rotary
+    axis; the directions tested only), bands of mean +- k s (k = 2 for
     ISO 230-2:1997 and later, 3 for 1988 and VDI/DGQ 3441), each run as faint points, and the
     axis figures in a table on the figure. Bands are left out, and the plot says so, when s
     cannot be estimated (one run).
@@ -46,7 +47,8 @@ def plot_positioning(
     Parameters
     ----------
     run : PositioningRun
-        Targets and deviations, metres (plotted in mm and um).
+        Targets and deviations, metres (plotted in mm and um), or radians for a rotary axis
+        (plotted in degrees and arcseconds).
     result : Iso230Result or Vdi3441Result
         The evaluation of ``run`` whose means, s and figures are drawn.
     path : str or Path
@@ -81,25 +83,34 @@ def plot_positioning(
         raise AxiscalError(f"cannot write a plot as '.{suffix}'; use one of .{', '.join(sorted(supported))}", path=path)
     st = result.stats
     k = result.coverage if isinstance(result, Iso230Result) else 3
-    has_s = bool(np.all(np.isfinite(st.s_up)) and np.all(np.isfinite(st.s_down)))
-    x = run.targets / MM
+    x_factor, unit, factor = (DEG, "″", ARCSEC) if run.rotary else (MM, "µm", UM)
+    lines = [
+        (devs, mean, s, color, arrow)
+        for devs, mean, s, color, arrow in (
+            (run.deviations_up, st.mean_up, st.s_up, "tab:red", "↑ (+)"),
+            (run.deviations_down, st.mean_down, st.s_down, "tab:blue", "↓ (−)"),
+        )
+        if devs is not None
+    ]
+    has_s = bool(all(np.all(np.isfinite(s)) for _, _, s, _, _ in lines))
+    x = run.targets / x_factor
     fig, (ax, tab) = plt.subplots(1, 2, figsize=(11.5, 5.4), gridspec_kw={"width_ratios": [3.2, 1]})
-    for devs, mean, s, color, arrow in (
-        (run.deviations_up, st.mean_up, st.s_up, "tab:red", "↑ (+)"),
-        (run.deviations_down, st.mean_down, st.s_down, "tab:blue", "↓ (−)"),
-    ):
-        ax.plot(np.repeat(x, devs.shape[1]), devs.ravel() / UM, ".", color=color, alpha=0.3, markersize=4)
-        ax.plot(x, mean / UM, "-o", color=color, markersize=3, label=f"mean x̄{arrow}")
+    for devs, mean, s, color, arrow in lines:
+        ax.plot(np.repeat(x, devs.shape[1]), devs.ravel() / factor, ".", color=color, alpha=0.3, markersize=4)
+        ax.plot(x, mean / factor, "-o", color=color, markersize=3, label=f"mean x̄{arrow}")
         if has_s:
-            ax.fill_between(x, (mean - k * s) / UM, (mean + k * s) / UM, color=color, alpha=0.12, label=f"x̄{arrow[0]} ± {k}s")
-    ax.plot(x, st.mean / UM, "--", color="0.3", linewidth=1, label="bidirectional mean x̄")
+            ax.fill_between(x, (mean - k * s) / factor, (mean + k * s) / factor, color=color, alpha=0.12,
+                            label=f"x̄{arrow[0]} ± {k}s")
+    if run.bidirectional:
+        ax.plot(x, st.mean / factor, "--", color="0.3", linewidth=1, label="bidirectional mean x̄")
     ax.plot([], [], ".", color="0.5", label="single runs")
     ax.axhline(0.0, color="0.6", linewidth=0.6)
-    ax.set_xlabel("target position / mm")
-    ax.set_ylabel("positional deviation (actual − target) / µm")
+    ax.set_xlabel(f"target position / {'degree' if run.rotary else 'mm'}")
+    ax.set_ylabel(f"positional deviation (actual − target) / {'arcsec' if run.rotary else 'µm'}")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8, loc="best", framealpha=0.85)
-    runs = f"{run.runs} run{'s' if run.runs != 1 else ''} each way"
+    way = "each way" if run.bidirectional else f"{run.directions[0]} only"
+    runs = f"{run.runs} run{'s' if run.runs != 1 else ''} {way}"
     coverage = f", k = {k}" if isinstance(result, Iso230Result) else ""
     ax.set_title(title or f"{Path(run.source).name}: {result.standard}{coverage}, {run.targets.size} targets, {runs}", fontsize=11)
     notes = []
@@ -109,9 +120,9 @@ def plot_positioning(
         notes.append("raw laser readings compensated for air index and material temperature")
     if notes:
         ax.text(0.01, 0.01, "\n".join(notes), transform=ax.transAxes, fontsize=8, va="bottom", color="0.25")
-    rows = [[_LABELS.get(name, name), _format_um(value)] for name, value in result.figures().items()]
+    rows = [[_LABELS.get(name, name), _format(value, factor)] for name, value in result.figures().items()]
     tab.axis("off")
-    table = tab.table(cellText=rows, colLabels=["figure", "µm"], loc="center", cellLoc="right", colLoc="center")
+    table = tab.table(cellText=rows, colLabels=["figure", unit], loc="center", cellLoc="right", colLoc="center")
     table.auto_set_font_size(False)
     table.set_fontsize(9)
     table.scale(1.0, 1.3)

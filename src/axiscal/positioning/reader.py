@@ -1,10 +1,13 @@
-"""Reading bidirectional positioning runs from CSV, with errors that name the file and the line.
+"""Reading positioning runs of linear and rotary axes from CSV, with errors that name the file and the line.
 
 The data of an ISO 230-2 test: target P_i, run j, direction and the deviation x_ij = P_ij - P_i.
 
-Columns (see docs/positioning.md): ``target_<unit>``, ``run``, ``direction`` (``+``/``-`` or
-``up``/``down``) and exactly one of ``deviation_<unit>`` (actual - target) or ``actual_<unit>``
-(position reached). Units are nm, um or mm. A row whose target and value cells are both empty is
+Columns (see docs/positioning.md): ``target_<unit>``, ``run`` (a whole number), ``direction``
+(``+``/``-`` or ``up``/``down``) and exactly one of ``deviation_<unit>`` (actual - target) or
+``actual_<unit>`` (position reached). Length units are nm, um, mm or in (a linear axis); a target
+in deg with the deviation in deg, arcmin or arcsec is a rotary axis (ISO 230-2, rotary axes), whose
+targets are taken round the circle: 0 and 360 deg are the same target. Rows may come in any order
+(runs interleaved); a test may go in both directions or in one. A row whose target and value cells are both empty is
 a move without a reading (the overrun moves of a plan written by :func:`axiscal.positioning.plan.write_plan`)
 and is passed over, so a plan with its readings typed in is a run file as it is. When the environment columns ``air_temperature_c``,
 ``pressure_pa`` and ``humidity_pct`` (and optionally ``material_temperature_c``) are present,
@@ -16,6 +19,7 @@ with :func:`axiscal.instruments.interferometer.compensated_length` (paper 003 eq
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -24,14 +28,32 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.io.tabular import CsvTable, read_csv
 from axiscal.materials import STEEL_EXPANSION_PER_K
-from axiscal.positioning.evaluation import PositioningRun
-from axiscal.units import LENGTH_UNITS
+from axiscal.positioning.evaluation import PositioningRun, covers_circle
+from axiscal.units import ANGLE_UNITS, DEG, INCH, LENGTH_UNITS
 
-__all__ = ["DIRECTIONS", "ENVIRONMENT_REQUIRED", "ALLOWED_UNITS", "RunFile", "read_positioning_run"]
+__all__ = [
+    "DIRECTIONS",
+    "ENVIRONMENT_REQUIRED",
+    "ALLOWED_UNITS",
+    "ANGLE_TARGET_UNITS",
+    "ANGLE_DEVIATION_UNITS",
+    "RunFile",
+    "read_positioning_run",
+]
 
 DIRECTIONS = {"+": "+", "up": "+", "-": "-", "down": "-"}
 ENVIRONMENT_REQUIRED = ("air_temperature_c", "pressure_pa", "humidity_pct")
-ALLOWED_UNITS = ("nm", "um", "mm")
+#: length units of the columns of a linear axis, and metres per unit
+ALLOWED_UNITS = ("nm", "um", "mm", "in")
+#: angle unit of the targets of a rotary axis
+ANGLE_TARGET_UNITS = ("deg",)
+#: angle units of the deviations (or positions reached) of a rotary axis
+ANGLE_DEVIATION_UNITS = ("deg", "arcmin", "arcsec")
+_FACTORS = {**{u: LENGTH_UNITS[u] for u in ("nm", "um", "mm")}, "in": INCH,
+            **{u: ANGLE_UNITS[u] for u in ANGLE_DEVIATION_UNITS}}
+_ALL_UNITS = ALLOWED_UNITS + ANGLE_DEVIATION_UNITS
+#: one revolution, degrees (the unit of rotary targets in files)
+_TURN_DEG = 360.0
 
 
 @dataclass(frozen=True)
@@ -41,12 +63,15 @@ class RunFile:
     Attributes
     ----------
     run : PositioningRun
-        Deviations per target, metres.
+        Deviations per target, metres (radians for a rotary axis).
     compensated : bool
         True when the file held raw laser readings that were compensated for the air (and the
         material temperature, if given).
     run_labels : tuple of str
-        The ``run`` identifiers in column order of the deviation arrays.
+        The ``run`` numbers in column order of the deviation arrays.
+    warnings : tuple of str
+        What the reader should know about the file (a rotary test that does not cover the
+        circle, readings at 360 deg taken as those at 0 deg).
 
     Examples
     --------
@@ -58,6 +83,7 @@ class RunFile:
     run: PositioningRun
     compensated: bool
     run_labels: tuple[str, ...]
+    warnings: tuple[str, ...] = ()
 
 
 def _unit_column(table: CsvTable, stem: str) -> list[tuple[str, float]]:
@@ -65,13 +91,14 @@ def _unit_column(table: CsvTable, stem: str) -> list[tuple[str, float]]:
     for name in table.header:
         head, sep, unit = name.rpartition("_")
         if sep and head == stem:
-            if unit not in ALLOWED_UNITS:
+            if unit not in _ALL_UNITS:
                 raise AxiscalError(
-                    f"column '{name}': unknown length unit '{unit}'; use one of {', '.join(ALLOWED_UNITS)}",
+                    f"column '{name}': unknown unit '{unit}'; use a length ({', '.join(ALLOWED_UNITS)}) or, for a"
+                    f" rotary axis, an angle ({', '.join(ANGLE_DEVIATION_UNITS)})",
                     path=table.path,
                     line=table.header_line,
                 )
-            found.append((name, LENGTH_UNITS[unit]))
+            found.append((name, _FACTORS[unit]))
     return found
 
 
@@ -80,7 +107,8 @@ def _one_column(table: CsvTable, stems: tuple[str, ...], what: str) -> tuple[str
     if not found:
         wanted = " or ".join(f"{stem}_<unit>" for stem in stems)
         raise AxiscalError(
-            f"no {what} column: expected {wanted} with unit nm, um or mm (columns are: {', '.join(table.header)})",
+            f"no {what} column: expected {wanted} with unit {', '.join(ALLOWED_UNITS)} or, for a rotary axis,"
+            f" {', '.join(ANGLE_DEVIATION_UNITS)} (columns are: {', '.join(table.header)})",
             path=table.path,
             line=table.header_line,
         )
@@ -124,13 +152,6 @@ def _readings_only(table: CsvTable, target_name: str, value_name: str) -> CsvTab
     return replace(table, rows=tuple(table.rows[k] for k in keep), lines=tuple(table.lines[k] for k in keep))
 
 
-def _sort_key(label: str) -> tuple[int, float, str]:
-    try:
-        return (0, float(label), label)
-    except ValueError:
-        return (1, 0.0, label)
-
-
 def _first_refused_line(table: CsvTable, readings_m: np.ndarray, environment: dict, settings: dict) -> int | None:
     """Line of the first row whose environment values the compensation refuses (None: not row-specific).
 
@@ -159,7 +180,7 @@ def read_positioning_run(
     expansion_per_k: float = STEEL_EXPANSION_PER_K,
     method: str = "ciddor",
 ) -> RunFile:
-    """Read a bidirectional positioning test from CSV.
+    """Read a positioning test (linear or rotary axis, one direction or both) from CSV.
 
     Parameters
     ----------
@@ -179,16 +200,20 @@ def read_positioning_run(
     Returns
     -------
     RunFile
-        The deviations in metres, whether they were compensated and the run labels.
+        The deviations in metres (radians for a rotary axis), whether they were compensated,
+        the run numbers and the warnings about the file.
 
     Raises
     ------
     AxiscalError
         Naming the file and line: a missing or ambiguous column (two deviation columns in
-        different units, deviation and actual both given), an unknown direction, a repeated
-        (target, run, direction), a target measured in one direction only, a run missing at
-        some target, a non-numeric or non-finite cell, environment columns given only in part, or
-        a row with a target but no reading (or a reading but no target).
+        different units, deviation and actual both given, a length target with an angle
+        deviation), a missing or unknown direction, a run number that is not a whole number, a
+        repeated (target, run, direction) however the target is spelled (for a rotary axis: two
+        targets at the same place of the circle other than 0 and 360 deg), a target measured in
+        one direction only where others have both, a run missing at some target, a non-numeric
+        or non-finite cell, environment columns given only in part, or a row with a target but
+        no reading (or a reading but no target).
 
     Examples
     --------
@@ -200,6 +225,16 @@ def read_positioning_run(
     table.require("run", "direction")
     target_name, target_factor = _one_column(table, ("target",), "target position")[1:]
     stem, value_name, value_factor = _one_column(table, ("deviation", "actual"), "deviation or actual position")
+    target_unit, value_unit = target_name.rpartition("_")[2], value_name.rpartition("_")[2]
+    rotary = target_unit in ANGLE_TARGET_UNITS
+    if rotary != (value_unit in ANGLE_DEVIATION_UNITS) or (target_unit in ANGLE_DEVIATION_UNITS and not rotary):
+        raise AxiscalError(
+            f"columns {target_name} and {value_name}: a linear axis gives both in lengths ({', '.join(ALLOWED_UNITS)}),"
+            f" a rotary axis its targets in {', '.join(ANGLE_TARGET_UNITS)} and its deviations in"
+            f" {', '.join(ANGLE_DEVIATION_UNITS)}",
+            path=table.path,
+            line=table.header_line,
+        )
     material_columns = [c for c in table.header if c.startswith("material_temperature") and c.endswith("_c")]
     env_present = [c for c in ENVIRONMENT_REQUIRED if table.has(c)] + material_columns
     compensate = bool(env_present)
@@ -212,10 +247,10 @@ def read_positioning_run(
                 path=table.path,
                 line=table.header_line,
             )
-        if stem != "actual":
+        if stem != "actual" or rotary:
             raise AxiscalError(
-                f"environment columns compensate raw laser readings: give actual_<unit> (the raw reading),"
-                f" not '{value_name}'",
+                f"environment columns compensate raw laser readings of a length: give actual_<unit> in"
+                f" {', '.join(ALLOWED_UNITS)} (the raw reading), not '{value_name}'",
                 path=table.path,
                 line=table.header_line,
             )
@@ -243,52 +278,65 @@ def read_positioning_run(
             raise exc.located(path=table.path, line=_first_refused_line(table, values_m, environment, settings)) from None
     deviations_m = values_m - targets_m if stem == "actual" else values_m
 
-    runs = [r.strip() for r in table.text("run")]
-    directions = []
-    for k, text in enumerate(table.text("direction")):
-        d = DIRECTIONS.get(text.lower())
-        if d is None:
-            raise AxiscalError(
-                f"column 'direction': '{text}' is not a direction; use +, -, up or down", path=table.path, line=table.lines[k]
+    runs = [_run_number(text, table, k) for k, text in enumerate(table.text("run"))]
+    directions = [_direction(text, table, k) for k, text in enumerate(table.text("direction"))]
+    notes: list[str] = []
+    if rotary:
+        targets_m, closure = _fold_circle(table, target_name, targets_m, runs, directions, deviations_m)
+        keep = [k for k in range(len(table)) if k not in closure]
+        if closure:
+            worst = max(abs(deviations_m[k] - deviations_m[j]) for k, j in closure.items()) / ANGLE_UNITS["arcsec"]
+            notes.append(
+                f"0 and 360 deg are the same target: the readings at 360 deg are taken as those at 0 deg and left"
+                f" out (they differ from the readings at 0 deg by up to {worst:.2f} arcsec)"
             )
-        if not runs[k]:
-            raise AxiscalError("column 'run': empty run identifier", path=table.path, line=table.lines[k])
-        directions.append(d)
+    else:
+        keep = list(range(len(table)))
 
     cells: dict[tuple[float, str, str], float] = {}
     first_line: dict[tuple[float, str, str], int] = {}
+    first_text: dict[tuple[float, str, str], str] = {}
     target_line: dict[float, int] = {}
-    for k in range(len(table)):
+    target_texts = table.text(target_name)
+    for k in keep:
         key = (float(targets_m[k]), runs[k], directions[k])
         if key in cells:
+            spelled = (
+                f" (written '{target_texts[k]}' here and '{first_text[key]}' there)"
+                if target_texts[k] != first_text[key] else ""
+            )
             raise AxiscalError(
-                f"target {targets_m[k] / target_factor:g}, run {runs[k]}, direction {directions[k]} appears twice"
-                f" (first on line {first_line[key]})",
+                f"target {target_texts[k]}, run {runs[k]}, direction {directions[k]} appears twice"
+                f" (first on line {first_line[key]}){spelled}",
                 path=table.path,
                 line=table.lines[k],
             )
         cells[key] = float(deviations_m[k])
         first_line[key] = table.lines[k]
+        first_text[key] = target_texts[k]
         target_line.setdefault(key[0], table.lines[k])
 
     targets = sorted(target_line)
-    run_labels = sorted(set(runs), key=_sort_key)
+    run_labels = sorted(set(runs), key=int)
     expected = set(run_labels)
+    tested = sorted({d for _, _, d in cells}, reverse=True)  # "+" before "-"
     runs_at: dict[tuple[float, str], set[str]] = {}
     for t, r, d in cells:
         runs_at.setdefault((t, d), set()).add(r)
     for target in targets:
-        for d, other in (("+", "-"), ("-", "+")):
+        label = f"target {target / target_factor:g} {target_unit}"
+        for d in tested:
             present = runs_at.get((target, d), set())
-            label = f"target {target / target_factor:g} {target_name.rpartition('_')[2]}"
             if not present:
+                other = "-" if d == "+" else "+"
                 raise AxiscalError(
-                    f"{label} is measured in the {other} direction only; ISO 230-2 needs both directions at every target",
+                    f"{label} is measured in the {other} direction only, other targets in both; ISO 230-2 needs both"
+                    " directions at every target (or, for a one-direction test, the same direction at every target)",
                     path=table.path,
                     line=target_line[target],
                 )
             if present != expected:
-                missing = ", ".join(sorted(expected - present, key=_sort_key))
+                missing = ", ".join(sorted(expected - present, key=int))
                 raise AxiscalError(
                     f"unequal run counts: {label}, direction {d} has {len(present)} of {len(expected)} runs"
                     f" (missing run {missing})",
@@ -296,9 +344,84 @@ def read_positioning_run(
                     line=target_line[target],
                 )
 
-    up = np.array([[cells[(t, r, "+")] for r in run_labels] for t in targets])
-    down = np.array([[cells[(t, r, "-")] for r in run_labels] for t in targets])
     if len(targets) < 2:
         raise AxiscalError("at least 2 target positions are needed", path=table.path, line=header_line)
-    run = PositioningRun(np.array(targets), up, down, source=str(path))
-    return RunFile(run=run, compensated=compensate, run_labels=tuple(run_labels))
+    arrays = {d: np.array([[cells[(t, r, d)] for r in run_labels] for t in targets]) for d in tested}
+    if rotary:
+        notes.extend(_coverage_warnings(np.array(targets) / DEG))
+    run = PositioningRun(np.array(targets), arrays.get("+"), arrays.get("-"), source=str(path), rotary=rotary)
+    return RunFile(run=run, compensated=compensate, run_labels=tuple(run_labels), warnings=tuple(notes))
+
+
+def _run_number(text: str, table: CsvTable, k: int) -> str:
+    """The run number of row ``k`` as a whole number's digits ("2.0" -> "2"); anything else raises."""
+    if not text:
+        raise AxiscalError("column 'run': empty run number", path=table.path, line=table.lines[k])
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value == int(value) and value >= 0):
+        raise AxiscalError(
+            f"column 'run': '{text}' is not a run number (a whole number such as 1, 2, 3)",
+            path=table.path,
+            line=table.lines[k],
+        )
+    return str(int(value))
+
+
+def _direction(text: str, table: CsvTable, k: int) -> str:
+    """The direction of row ``k``, "+" or "-"; an empty cell or an unknown word raises."""
+    if not text:
+        raise AxiscalError(
+            "column 'direction': missing direction; write +, -, up or down", path=table.path, line=table.lines[k]
+        )
+    d = DIRECTIONS.get(text.lower())
+    if d is None:
+        raise AxiscalError(
+            f"column 'direction': '{text}' is not a direction; use +, -, up or down", path=table.path, line=table.lines[k]
+        )
+    return d
+
+
+def _fold_circle(
+    table: CsvTable, target_name: str, targets: np.ndarray, runs: list[str], directions: list[str], deviations: np.ndarray
+) -> tuple[np.ndarray, dict[int, int]]:
+    """Rotary targets taken round the circle into [0, 360) deg, radians; rows at 360 deg that repeat 0 deg.
+
+    Returns the folded targets and, for every row whose target is a whole turn away from a
+    reading of the same run and direction at the start of the circle, that row -> the row it
+    repeats. Any other two readings that fall on the same place of the circle raise.
+    """
+    degrees = np.round(targets / DEG, 9)  # to 1e-9 deg, so that 390 and 30 meet however they were converted
+    folded = np.round(np.mod(degrees, _TURN_DEG), 9)
+    folded[folded == _TURN_DEG] = 0.0
+    texts = table.text(target_name)
+    seen: dict[tuple[float, str, str], int] = {}
+    closure: dict[int, int] = {}
+    order = sorted(range(len(table)), key=lambda k: degrees[k])
+    for k in order:
+        key = (float(folded[k]), runs[k], directions[k])
+        j = seen.get(key)
+        if j is None:
+            seen[key] = k
+        elif folded[k] == 0.0 and not np.isclose(degrees[k], degrees[j], rtol=0.0, atol=1e-9):
+            closure[k] = j
+        elif not np.isclose(degrees[k], degrees[j], rtol=0.0, atol=1e-9):
+            raise AxiscalError(
+                f"target {texts[k]} deg is {folded[k]:g} deg on the circle, which run {runs[k]}, direction"
+                f" {directions[k]} already measured on line {table.lines[j]}",
+                path=table.path,
+                line=table.lines[k],
+            )
+    return folded * DEG, closure
+
+
+def _coverage_warnings(targets_deg: np.ndarray) -> list[str]:
+    """A warning when the targets (degrees, in [0, 360), increasing) leave part of the circle untested (:func:`covers_circle`)."""
+    if covers_circle(targets_deg * DEG):
+        return []
+    return [
+        f"the targets cover {targets_deg[0]:g}..{targets_deg[-1]:g} deg, not the full circle: ISO 230-2 tests a"
+        " rotary axis over 360 deg, so the figures hold for the arc tested only"
+    ]

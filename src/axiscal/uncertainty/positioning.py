@@ -382,7 +382,8 @@ def evaluate_positioning_with_uncertainty(
     Raises
     ------
     AxiscalError
-        For a bad file or budget, or a standard other than ISO 230-2.
+        For a bad file or budget, a standard other than ISO 230-2, or a test of a rotary axis or
+        in one direction only (the budget is in lengths, for the bidirectional figures).
     """
     from axiscal.positioning.report import evaluate_positioning_file
 
@@ -391,4 +392,10 @@ def evaluate_positioning_with_uncertainty(
     )
     if not isinstance(evaluation.result, Iso230Result):
         raise AxiscalError("the uncertainty budget gives U of the ISO 230-2 figures; use an iso230-2 standard")
+    if evaluation.run.rotary or not evaluation.run.bidirectional:
+        kind = "a rotary axis" if evaluation.run.rotary else f"one direction ({evaluation.run.directions[0]} only)"
+        raise AxiscalError(
+            f"the uncertainty budget is that of a bidirectional test of a linear axis (lengths); this test is of {kind}",
+            path=evaluation.run.source,
+        )
     return PositioningWithUncertainty(evaluation, positioning_uncertainty(budget, evaluation.run, monte_carlo=monte_carlo))
