@@ -79,7 +79,10 @@ def coverage_interval(samples, probability: float = 0.95, *, shortest: bool = Fa
     """
     if not 0.0 < probability < 1.0:
         raise AxiscalError(f"coverage probability must lie between 0 and 1, got {probability:g}")
-    x = np.moveaxis(np.asarray(samples, dtype=float), axis, 0)
+    x = np.asarray(samples)
+    if not np.issubdtype(x.dtype, np.floating):
+        x = x.astype(float)  # float32 draws stay float32: half the memory, quantiles to 6e-8 relative
+    x = np.moveaxis(x, axis, 0)
     m = x.shape[0]
     if m < 1.0 / (1.0 - probability):
         raise AxiscalError(f"{m} draws are too few for a {probability:.0%} coverage interval; use at least {int(np.ceil(1 / (1 - probability)))}")
