@@ -93,3 +93,15 @@ def test_bad_input(machine_path, tmp_path):
         volumetric_uncertainty_map(machine_path, grid=GRID, draws=int(1e12))
     with pytest.raises(AxiscalError, match="positive whole number"):
         volumetric_uncertainty_map(machine_path, grid=GRID, draws=0)
+
+
+def test_the_shipped_example_is_what_its_generator_writes(machine_path, tmp_path):
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("make_uncertainty_examples", machine_path.parents[1] / "make_uncertainty_examples.py")
+    generator = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(generator)
+    generator.TARGET = tmp_path
+    generator.main()
+    for path in machine_path.parent.iterdir():
+        assert (tmp_path / path.name).read_text() == path.read_text(), path.name
