@@ -19,6 +19,7 @@ from axiscal.uncertainty.montecarlo import CoverageInterval, coverage_interval
 from axiscal.uncertainty.positioning import (
     COVERAGE_FACTOR,
     FIGURE_COMPONENTS,
+    MAX_POSITIONING_DRAWS,
     FIGURES,
     PositioningUncertainty,
     PositioningWithUncertainty,
@@ -68,6 +69,7 @@ __all__ = [
     "FIGURES",
     "FIGURE_COMPONENTS",
     "COVERAGE_FACTOR",
+    "MAX_POSITIONING_DRAWS",
     "PositioningUncertainty",
     "PositioningWithUncertainty",
     "evaluate_positioning_with_uncertainty",

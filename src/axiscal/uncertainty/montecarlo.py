@@ -16,6 +16,16 @@ from axiscal.errors import AxiscalError
 __all__ = ["CoverageInterval", "coverage_interval"]
 
 
+def _whole_draws(value, what: str = "the number of Monte Carlo draws", *, at_most: int | None = None) -> int:
+    """``value`` as a positive int; AxiscalError for a bool, a fraction, nan, anything below 1 or above ``at_most``."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
+            or not np.isfinite(value) or int(value) != value or value < 1:
+        raise AxiscalError(f"{what} must be a positive whole number, got {value!r}")
+    if at_most is not None and value > at_most:
+        raise AxiscalError(f"{what} must be at most {at_most:.0e} (memory), got {value:.3g}")
+    return int(value)
+
+
 @dataclass(frozen=True)
 class CoverageInterval:
     """A coverage interval of an output quantity from Monte Carlo draws (units of the draws).

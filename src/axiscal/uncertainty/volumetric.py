@@ -34,7 +34,7 @@ from axiscal.io.jsonio import write_sidecar
 from axiscal.io.tabular import read_csv, read_text, read_toml, write_csv
 from axiscal.model.machine import Machine, machine_from_dict
 from axiscal.uncertainty.budget import _line_of
-from axiscal.uncertainty.montecarlo import coverage_interval
+from axiscal.uncertainty.montecarlo import _whole_draws, coverage_interval
 from axiscal.units import MM, UM, angle_factor, length_factor
 
 __all__ = [
@@ -327,8 +327,8 @@ def volumetric_monte_carlo(
         :data:`MAX_DRAW_POINTS` draw-points, a scheduler given without dask installed or one
         that does not answer within ``timeout_s``.
     """
-    draws = _whole_number(draws, "the number of Monte Carlo draws")
-    chunk_draws = _whole_number(chunk_draws, "chunk_draws")
+    draws = _whole_draws(draws, "the number of Monte Carlo draws")
+    chunk_draws = _whole_draws(chunk_draws, "chunk_draws")
     if not 0.0 < probability < 1.0:
         raise AxiscalError(f"the coverage probability must lie between 0 and 1, got {probability!r}")
     if draws < 1.0 / (1.0 - probability):
@@ -383,14 +383,6 @@ def volumetric_monte_carlo(
         magnitude_low=np.asarray(length_low, dtype=float),
         magnitude_high=np.asarray(length_high, dtype=float),
     )
-
-
-def _whole_number(value, what: str) -> int:
-    """``value`` as a positive int; AxiscalError for a bool, a fraction, nan or anything below 1."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
-            or not np.isfinite(value) or int(value) != value or value < 1:
-        raise AxiscalError(f"{what} must be a positive whole number, got {value!r}")
-    return int(value)
 
 
 class _Progress:
