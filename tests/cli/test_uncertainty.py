@@ -55,3 +55,16 @@ def test_raw_laser_run_has_the_same_travel_and_U(run_cli, examples):
     assert body["compensated"] is True
     assert set(body["uncertainty"]) == {"k", "E", "R", "B", "A", "M", "components_um"}
     assert body["uncertainty"]["E"]["U"] == pytest.approx(6.874, abs=1e-3)
+
+
+def test_a_huge_monte_carlo_is_one_line_not_an_allocation(run_cli, examples):
+    status, _, err = run_cli("positioning", examples / "positioning_run.csv", "--uncertainty",
+                             examples / "uncertainty_budget.toml", "--monte-carlo", "1000000000000")
+    assert status == 2 and "at most 1e+07" in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_budget_value_that_is_nan_names_its_line(run_cli, examples, tmp_path):
+    bad = tmp_path / "b.toml"
+    bad.write_text("[instrument]\nlength_U_ppm = 0.5\n\n[air]\npressure_u_Pa = nan\n")
+    status, _, err = run_cli("positioning", examples / "positioning_run.csv", "--uncertainty", bad)
+    assert status == 2 and err.startswith(f"axiscal: error: {bad}:5:") and "finite number" in err

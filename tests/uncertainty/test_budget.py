@@ -127,8 +127,30 @@ def test_unknown_section_and_negative_value(tmp_path):
         read_budget(path)
     assert info.value.line == 3 and "negative" in info.value.message
     path.write_text("[setup]\neve_um = 'one'\n")
-    with pytest.raises(AxiscalError, match="must be a number"):
+    with pytest.raises(AxiscalError, match="must be a finite number"):
         read_budget(path)
+
+
+@pytest.mark.parametrize("text,line,words", [
+    ("[setup]\neve_um = 'one'\n", 2, "finite number"),
+    ("[setup]\neve_um = true\n", 2, "finite number"),
+    ("[setup]\neve_um = [1.0]\n", 2, "finite number"),
+    ("[setup]\nmisalignment_urad = 5\neve_um = nan\n", 3, "finite number"),
+    ("[air]\ntemperature_u_K = inf\n", 2, "finite number"),
+    ("[air]\ntemperature_u_K = -inf\n", 2, "finite number"),
+    ("[machine]\nexpansion_u_per_K = -1e-6\n", 2, "negative"),
+    ("[instrument]\nlength_U_ppm = 0.5\nmethod = 3\n", 3, "method"),
+    ("[instrument]\nlength_u_ppm = 0.5\n", 2, "unknown key"),
+    ("setup = 1\n", 1, "table"),
+    ("[[setup]]\neve_um = 1\n", 1, "table"),
+])
+def test_every_bad_value_is_one_error_naming_file_and_line(tmp_path, text, line, words):
+    path = tmp_path / "b.toml"
+    path.write_text(text)
+    with pytest.raises(AxiscalError, match=words) as info:
+        read_budget(path)
+    assert info.value.path == str(path) and info.value.line == line
+    assert "\n" not in str(info.value)
 
 
 def test_malformed_toml_is_one_error(tmp_path):

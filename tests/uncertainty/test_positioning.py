@@ -151,6 +151,17 @@ def test_bad_arguments():
         positioning_uncertainty("/nonexistent/budget.toml", 1.0)
 
 
+@pytest.mark.parametrize("draws,words", [
+    (1e12, "at most 1e\\+07"), (10**8, "at most"), (2.5, "whole number"), (True, "whole number"),
+    (float("nan"), "whole number"), (None, "whole number"), ("100", "whole number"),
+])
+def test_bad_numbers_of_draws_are_one_error_not_an_allocation(draws, words):
+    with pytest.raises(AxiscalError, match=words):
+        positioning_uncertainty(Budget(), 1.0, monte_carlo=draws)
+    with pytest.raises(AxiscalError, match=words):
+        positioning_monte_carlo(Budget(), 1.0, draws)
+
+
 def test_decisions_for_a_campaign(examples):
     from axiscal.positioning import iso230_2
 

@@ -161,10 +161,12 @@ def test_written_map_reads_with_plain_pandas(machine, tmp_path):
     result = volumetric_monte_carlo(machine, u, q, 200, seed=1)
     path = write_volumetric_uncertainty(tmp_path / "map.csv", q, result)
     frame = pd.read_csv(path)
-    expected = ["X_mm", "Y_mm", "Z_mm"] + [f"{e}_{s}um" for e in ("ex", "ey", "ez") for s in ("", "u_", "low_", "high_")]
+    expected = ["X_mm", "Y_mm", "Z_mm"] + [f"{e}_{s}um" for e in ("ex", "ey", "ez", "e") for s in ("", "u_", "low_", "high_")]
     assert list(frame.columns) == expected and len(frame) == 7
     np.testing.assert_allclose(frame["ex_high_um"], result.high[:, 0] * 1e6, atol=1e-6)
     np.testing.assert_allclose(frame["X_mm"], q["X"] * 1e3, atol=1e-6)
+    np.testing.assert_allclose(frame["e_um"], np.linalg.norm(result.error, axis=1) * 1e6, atol=1e-6)
+    assert np.all(frame["e_low_um"] <= frame["e_high_um"])
     side = json.loads((tmp_path / "map.json").read_text())
     assert side["draws"] == 200 and side["probability"] == 0.95
     with pytest.raises(AxiscalError, match="points"):
@@ -181,3 +183,56 @@ def test_bad_squareness_u_key_names_its_line(examples, tmp_path):
     path.write_text(path.read_text().replace("EC0Y_arcsec_u = -1.0", "EQ0Y_arcsec_u = 1.0"))
     with pytest.raises(AxiscalError, match="no squareness term"):
         load_machine_uncertainty(path)
+
+
+def test_interval_of_the_length_follows_a_single_uncertain_component(machine):
+    """u on EXX alone: |e| = sqrt(ex^2 + ey^2 + ez^2) is monotone in ex where ex stays on one side
+    of zero, so the interval of |e| is the interval of ex carried through that function."""
+    tables = zero_u(machine)
+    tables["X"] = tables["X"].copy()
+    tables["X"][0] = 0.2e-6
+    q = points(machine, 30, seed=5)
+    result = volumetric_monte_carlo(machine, MachineUncertainty(tables, {}), q, 4000, seed=2)
+    far = np.abs(result.error[:, 0]) > 1.5e-6  # ex keeps its sign in every draw
+    assert far.sum() > 5
+    rest = np.hypot(result.error[far, 1], result.error[far, 2])
+    ends = np.sort(np.stack([np.hypot(result.low[far, 0], rest), np.hypot(result.high[far, 0], rest)]), axis=0)
+    np.testing.assert_allclose(result.magnitude_low[far], ends[0], rtol=1e-4)
+    np.testing.assert_allclose(result.magnitude_high[far], ends[1], rtol=1e-4)
+    np.testing.assert_allclose(result.magnitude, np.linalg.norm(result.error, axis=1))
+
+
+def test_progress_is_told_every_chunk(machine):
+    calls = []
+    q = points(machine, 4)
+    u = MachineUncertainty({k: np.full_like(v, 1e-6) for k, v in zero_u(machine).items()}, {})
+    volumetric_monte_carlo(machine, u, q, 250, chunk_draws=100, progress=lambda done, total: calls.append((done, total)))
+    assert calls == [(0, 250), (100, 250), (200, 250), (250, 250)]
+
+
+@pytest.mark.parametrize("draws,words", [
+    (0, "positive whole number"), (-5, "positive whole number"), (2.5, "positive whole number"),
+    (True, "positive whole number"), (float("nan"), "positive whole number"), ("100", "positive whole number"),
+    (10, "too few"), (1e12, "draw-points"), (10**7, "draw-points"),
+])
+def test_bad_numbers_of_draws(machine, draws, words):
+    q = points(machine, 20)
+    with pytest.raises(AxiscalError, match=words):
+        volumetric_monte_carlo(machine, MachineUncertainty(zero_u(machine), {}), q, draws)
+
+
+def test_a_scheduler_that_does_not_answer_is_one_error_within_the_stated_time(machine):
+    pytest.importorskip("dask.distributed")
+    import time
+
+    q = points(machine, 3)
+    u = MachineUncertainty(zero_u(machine), {})
+    start = time.monotonic()
+    with pytest.raises(AxiscalError, match="no dask scheduler answered at 'tcp://127.0.0.1:9' within 1 s") as info:
+        volumetric_monte_carlo(machine, u, q, 100, scheduler="tcp://127.0.0.1:9", timeout_s=1.0)
+    assert time.monotonic() - start < 10.0
+    assert "\n" not in str(info.value)
+    with pytest.raises(AxiscalError, match="cannot use 'nonsense://nowhere' as a dask scheduler"):
+        volumetric_monte_carlo(machine, u, q, 100, scheduler="nonsense://nowhere", timeout_s=1.0)
+    with pytest.raises(AxiscalError, match="timeout_s"):
+        volumetric_monte_carlo(machine, u, q, 100, scheduler="tcp://127.0.0.1:9", timeout_s=0.0)

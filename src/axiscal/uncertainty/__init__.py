@@ -1,4 +1,4 @@
-"""Measurement uncertainty: the budget file, U of the ISO 230-2 figures (GTC), Monte Carlo (GUM Supplement 1) and decision rules (ISO 14253-1), straightness and squareness, the volumetric map with uncertainty."""
+"""Measurement uncertainty: the budget file, U of the ISO 230-2 figures (GTC), Monte Carlo (GUM Supplement 1) and decision rules (ISO 14253-1), straightness and squareness, the volumetric map with uncertainty, the U and verdict of a campaign test's figures."""
 
 from __future__ import annotations
 
@@ -14,10 +14,12 @@ from axiscal.uncertainty.budget import (
     read_budget,
 )
 from axiscal.uncertainty.decision import DECISION_RULES, Decision, decide
+from axiscal.uncertainty.figures import UNCERTAINTY_KINDS, figure_uncertainties, figure_verdicts
 from axiscal.uncertainty.montecarlo import CoverageInterval, coverage_interval
 from axiscal.uncertainty.positioning import (
     COVERAGE_FACTOR,
     FIGURE_COMPONENTS,
+    MAX_POSITIONING_DRAWS,
     FIGURES,
     PositioningUncertainty,
     PositioningWithUncertainty,
@@ -28,18 +30,23 @@ from axiscal.uncertainty.positioning import (
     positioning_uncertainty,
     uncertainty_payload,
 )
+from axiscal.uncertainty.plot import plot_volumetric_uncertainty
 from axiscal.uncertainty.straightness import (
     LineUncertainty,
     squareness_uncertainty,
     straightness_uncertainty,
 )
 from axiscal.uncertainty.volumetric import (
+    MAX_DRAW_POINTS,
+    SCHEDULER_TIMEOUT_S,
     MachineUncertainty,
     VolumetricUncertainty,
     load_machine_uncertainty,
     volumetric_monte_carlo,
+    volumetric_uncertainty_columns,
     write_volumetric_uncertainty,
 )
+from axiscal.uncertainty.volumetric_map import VolumetricUncertaintyMap, volumetric_uncertainty_map
 
 __all__ = [
     "COMPONENTS",
@@ -54,11 +61,15 @@ __all__ = [
     "DECISION_RULES",
     "Decision",
     "decide",
+    "UNCERTAINTY_KINDS",
+    "figure_uncertainties",
+    "figure_verdicts",
     "CoverageInterval",
     "coverage_interval",
     "FIGURES",
     "FIGURE_COMPONENTS",
     "COVERAGE_FACTOR",
+    "MAX_POSITIONING_DRAWS",
     "PositioningUncertainty",
     "PositioningWithUncertainty",
     "evaluate_positioning_with_uncertainty",
@@ -75,4 +86,10 @@ __all__ = [
     "load_machine_uncertainty",
     "volumetric_monte_carlo",
     "write_volumetric_uncertainty",
+    "volumetric_uncertainty_columns",
+    "MAX_DRAW_POINTS",
+    "SCHEDULER_TIMEOUT_S",
+    "VolumetricUncertaintyMap",
+    "volumetric_uncertainty_map",
+    "plot_volumetric_uncertainty",
 ]

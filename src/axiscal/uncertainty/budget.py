@@ -158,17 +158,23 @@ _FIELDS: dict[tuple[str, str], tuple[str, float]] = {
 
 
 def _line_of(text: str, section: str, key: str | None = None) -> int | None:
-    """1-based line of ``[section]`` (or of ``key`` inside it) in a TOML text; None when not found."""
-    inside = False
+    """1-based line of ``[section]`` (or of ``key`` inside it) in a TOML text; None when not found.
+
+    A section written as a plain key (``setup = 1``) or an array of tables (``[[setup]]``) is
+    found too.
+    """
+    inside, top = False, True
     for number, line in enumerate(text.splitlines(), start=1):
         stripped = line.strip()
-        header = re.match(r"^\[\s*([^\]]+?)\s*\]", stripped)
+        header = re.match(r"^\[\[?\s*([^\]]+?)\s*\]", stripped)
         if header:
-            inside = header.group(1) == section
+            inside, top = header.group(1) == section, False
             if inside and key is None:
                 return number
             continue
         if inside and key is not None and re.match(rf"^{re.escape(key)}\s*=", stripped):
+            return number
+        if top and key is None and re.match(rf"^{re.escape(section)}\s*=", stripped):
             return number
     return None
 
@@ -221,10 +227,12 @@ def budget_from_dict(data: dict, *, source: str = "<budget>", text: str | None =
                     path=source, line=line(section, key),
                 )
             if key == "method":
-                values["method"] = str(value)
+                if not isinstance(value, str):
+                    raise AxiscalError(f"[{section}] method must be a name in quotes, got {value!r}", path=source, line=line(section, key))
+                values["method"] = value
                 continue
-            if not isinstance(value, (int, float)) or isinstance(value, bool):
-                raise AxiscalError(f"[{section}] {key} must be a number, got {value!r}", path=source, line=line(section, key))
+            if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
+                raise AxiscalError(f"[{section}] {key} must be a finite number, got {value!r}", path=source, line=line(section, key))
             name, factor = _FIELDS[(section, key)]
             if name in _UNCERTAINTIES and value < 0:
                 raise AxiscalError(f"[{section}] {key} must not be negative, got {value:g}", path=source, line=line(section, key))

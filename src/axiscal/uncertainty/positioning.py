@@ -33,7 +33,7 @@ from axiscal.uncertainty.budget import (
     read_budget,
 )
 from axiscal.uncertainty.decision import Decision, decide
-from axiscal.uncertainty.montecarlo import CoverageInterval, coverage_interval
+from axiscal.uncertainty.montecarlo import CoverageInterval, _whole_draws, coverage_interval
 from axiscal.units import UM
 
 __all__ = [
@@ -42,6 +42,7 @@ __all__ = [
     "FIGURES",
     "FIGURE_COMPONENTS",
     "COVERAGE_FACTOR",
+    "MAX_POSITIONING_DRAWS",
     "PositioningUncertainty",
     "positioning_uncertainty",
     "positioning_monte_carlo",
@@ -62,6 +63,8 @@ FIGURE_COMPONENTS: dict[str, tuple[str, ...]] = {
 }
 #: coverage factor of the expanded uncertainties
 COVERAGE_FACTOR = 2.0
+#: the most Monte Carlo draws of a positioning budget (about 100 bytes each are held at once)
+MAX_POSITIONING_DRAWS = 10**7
 
 
 @dataclass(frozen=True)
@@ -130,7 +133,8 @@ def positioning_uncertainty(
     Raises
     ------
     AxiscalError
-        A negative or non-finite length, a negative number of draws, a bad budget file.
+        A negative or non-finite length, a number of draws that is not 0 or a whole number up to
+        :data:`MAX_POSITIONING_DRAWS`, a bad budget file.
 
     Examples
     --------
@@ -141,8 +145,8 @@ def positioning_uncertainty(
     """
     if not isinstance(budget, Budget):
         budget = read_budget(budget)
-    if int(monte_carlo) != monte_carlo or monte_carlo < 0:
-        raise AxiscalError(f"the number of Monte Carlo draws must be a whole number >= 0, got {monte_carlo!r}")
+    if isinstance(monte_carlo, bool) or monte_carlo != 0:  # 0: no Monte Carlo
+        monte_carlo = _whole_draws(monte_carlo, at_most=MAX_POSITIONING_DRAWS)
     length = _travel(run)
     components = length_components(budget, length)
     U = {
@@ -207,12 +211,11 @@ def positioning_monte_carlo(
     Raises
     ------
     AxiscalError
-        Too few draws, a negative length.
+        Too few draws or more than :data:`MAX_POSITIONING_DRAWS`, a negative length.
     """
     length = _travel(length_m)
-    if int(draws) != draws or draws < 1:
-        raise AxiscalError(f"the number of Monte Carlo draws must be a positive whole number, got {draws!r}")
-    parts = _draw_errors(budget, length, int(draws), np.random.default_rng(seed))
+    draws = _whole_draws(draws, at_most=MAX_POSITIONING_DRAWS)
+    parts = _draw_errors(budget, length, draws, np.random.default_rng(seed))
     out = {}
     for figure in FIGURES:
         total = sum(parts[c] for c in FIGURE_COMPONENTS[figure])

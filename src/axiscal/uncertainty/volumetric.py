@@ -35,18 +35,25 @@ from axiscal.io.schema import confined_path
 from axiscal.io.tabular import read_csv, read_text, read_toml, write_csv
 from axiscal.model.machine import Machine, machine_from_dict
 from axiscal.uncertainty.budget import _line_of
-from axiscal.uncertainty.montecarlo import coverage_interval
+from axiscal.uncertainty.montecarlo import _whole_draws, coverage_interval
 from axiscal.units import MM, UM, angle_factor, length_factor
 
 __all__ = [
+    "MAX_DRAW_POINTS",
+    "SCHEDULER_TIMEOUT_S",
     "MachineUncertainty",
     "VolumetricUncertainty",
     "load_machine_uncertainty",
     "volumetric_monte_carlo",
     "write_volumetric_uncertainty",
+    "volumetric_uncertainty_columns",
 ]
 
 _SUFFIX = "_u"
+#: the most draws x points one run holds in memory (16 bytes each: three components and |e|, float32)
+MAX_DRAW_POINTS = 10**8
+#: seconds to wait for a Dask scheduler given by address before giving up
+SCHEDULER_TIMEOUT_S = 10.0
 _SQUARENESS_STEP_RAD = 1e-6
 
 
@@ -80,7 +87,13 @@ class VolumetricUncertainty:
     low, high : ndarray, shape (N, 3)
         Ends of the probabilistically symmetric coverage interval per component.
     draws : int
+        Number of Monte Carlo draws.
     probability : float
+        Coverage probability of the intervals.
+    magnitude_std : ndarray, shape (N,)
+        Standard deviation of the draws of the error's length |e|.
+    magnitude_low, magnitude_high : ndarray, shape (N,)
+        Ends of the coverage interval of |e|.
     """
 
     error: np.ndarray
@@ -90,6 +103,14 @@ class VolumetricUncertainty:
     high: np.ndarray
     draws: int
     probability: float
+    magnitude_std: np.ndarray
+    magnitude_low: np.ndarray
+    magnitude_high: np.ndarray
+
+    @property
+    def magnitude(self) -> np.ndarray:
+        """Length |e| of the nominal model's error at each point, shape (N,), metres."""
+        return np.linalg.norm(self.error, axis=1)
 
 
 def _split_uncertainty_columns(path: Path, letter: str):
@@ -267,6 +288,8 @@ def volumetric_monte_carlo(
     probability: float = 0.95,
     chunk_draws: int = 250,
     scheduler=None,
+    timeout_s: float = SCHEDULER_TIMEOUT_S,
+    progress=None,
 ) -> VolumetricUncertainty:
     """Propagate the uncertainties of the error motions and squareness to the volumetric error.
 
@@ -290,6 +313,11 @@ def volumetric_monte_carlo(
         None: run here. ``"local"``: a ``dask.distributed`` LocalCluster; an address string
         (``"tcp://host:8786"``) or a ``dask.distributed.Client``: that cluster. Needs the optional
         extra ``axiscal[dask]``.
+    timeout_s : float, keyword-only
+        Seconds to wait for a scheduler given by address (default :data:`SCHEDULER_TIMEOUT_S`).
+    progress : callable, optional, keyword-only
+        Called as ``progress(done, total)`` with the number of draws done, once before the first
+        chunk and after each (the command line draws a progress bar with it).
 
     Returns
     -------
@@ -298,19 +326,24 @@ def volumetric_monte_carlo(
     Raises
     ------
     AxiscalError
-        Positions outside a table, uncertainties that do not fit the tables, too few draws, a
-        scheduler given without dask installed.
+        Positions outside a table, uncertainties that do not fit the tables, a number of draws
+        that is not a whole number, too few for the coverage probability or more than
+        :data:`MAX_DRAW_POINTS` draw-points, a scheduler given without dask installed or one
+        that does not answer within ``timeout_s``.
     """
-    if int(draws) != draws or draws < 1:
-        raise AxiscalError(f"the number of Monte Carlo draws must be a positive whole number, got {draws!r}")
-    if int(chunk_draws) != chunk_draws or chunk_draws < 1:
-        raise AxiscalError(f"chunk_draws must be a positive whole number, got {chunk_draws!r}")
-    draws, chunk_draws = int(draws), int(chunk_draws)
+    draws = _whole_draws(draws, "the number of Monte Carlo draws")
+    chunk_draws = _whole_draws(chunk_draws, "chunk_draws")
+    if not 0.0 < probability < 1.0:
+        raise AxiscalError(f"the coverage probability must lie between 0 and 1, got {probability!r}")
     if draws < 1.0 / (1.0 - probability):
-        raise AxiscalError(f"{draws} draws are too few for a {probability:.0%} coverage interval")
+        raise AxiscalError(f"{draws} draws are too few for a {probability:.0%} coverage interval;"
+                           f" use at least {int(np.ceil(1.0 / (1.0 - probability)))}")
     error = machine.volumetric_error(positions)  # also checks the positions
     q = {k: np.atleast_1d(np.asarray(positions[k], dtype=float)) for k in machine.letters}
     n = error.shape[0]
+    if draws * n > MAX_DRAW_POINTS:
+        raise AxiscalError(f"{draws:,d} draws x {n:,d} points exceed the {MAX_DRAW_POINTS:.0e} draw-points one run"
+                           " holds in memory; use fewer draws or points")
     setup: dict = {"positions": q, "n": n, "mean": {}, "u": {}, "weights": {}, "squareness": {}}
     for letter in machine.letters:
         table = machine.table(letter)
@@ -333,12 +366,15 @@ def volumetric_monte_carlo(
         setup["squareness"][term] = (float(u), (shifted[0] - shifted[1]) / (2 * _SQUARENESS_STEP_RAD))
     sizes = [min(chunk_draws, draws - start) for start in range(0, draws, chunk_draws)]
     seeds = np.random.SeedSequence(seed).spawn(len(sizes))
+    report = _Progress(progress, draws)
     if scheduler is None:
-        parts = [_chunk(machine, setup, s, m) for s, m in zip(seeds, sizes)]
+        parts = [report.after(_chunk(machine, setup, s, m)) for s, m in zip(seeds, sizes)]
     else:
-        parts = _run_on_dask(scheduler, machine, setup, seeds, sizes)
+        parts = _run_on_dask(scheduler, machine, setup, seeds, sizes, timeout_s, report)
     samples = np.concatenate(parts, axis=0)
     low, high = coverage_interval(samples, probability)
+    length = np.linalg.norm(samples, axis=2)
+    length_low, length_high = coverage_interval(length, probability)
     return VolumetricUncertainty(
         error=error,
         mean=samples.mean(axis=0, dtype=float),
@@ -347,12 +383,30 @@ def volumetric_monte_carlo(
         high=np.asarray(high, dtype=float),
         draws=draws,
         probability=probability,
+        magnitude_std=length.std(axis=0, ddof=1, dtype=float),
+        magnitude_low=np.asarray(length_low, dtype=float),
+        magnitude_high=np.asarray(length_high, dtype=float),
     )
 
 
-def _run_on_dask(scheduler, machine, setup, seeds, sizes) -> list[np.ndarray]:
+class _Progress:
+    """Counts the draws done and tells the caller's ``progress(done, total)``."""
+
+    def __init__(self, callback, total: int):
+        self.callback, self.total, self.done = callback, total, 0
+        if callback is not None:
+            callback(0, total)
+
+    def after(self, part: np.ndarray) -> np.ndarray:
+        self.done += part.shape[0]
+        if self.callback is not None:
+            self.callback(self.done, self.total)
+        return part
+
+
+def _run_on_dask(scheduler, machine, setup, seeds, sizes, timeout_s, report: _Progress) -> list[np.ndarray]:
     try:
-        from dask.distributed import Client, LocalCluster
+        from dask.distributed import Client, LocalCluster, as_completed
     except ImportError:
         raise AxiscalError("running on a cluster needs dask: pip install 'axiscal[dask]'") from None
     own = None
@@ -361,16 +415,26 @@ def _run_on_dask(scheduler, machine, setup, seeds, sizes) -> list[np.ndarray]:
             own = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None)
             client = Client(own)
         else:
+            if not (isinstance(timeout_s, (int, float)) and np.isfinite(timeout_s) and timeout_s > 0):
+                raise AxiscalError(f"timeout_s must be a positive number of seconds, got {timeout_s!r}")
             try:
-                client = Client(scheduler, timeout=10)
-            except OSError as exc:
-                raise AxiscalError(f"cannot reach the dask scheduler at {scheduler}: {exc}") from None
+                client = Client(scheduler, timeout=float(timeout_s))
+            except (OSError, TimeoutError) as exc:
+                raise AxiscalError(f"no dask scheduler answered at '{scheduler}' within {timeout_s:g} s"
+                                   f" ({' '.join(str(exc).split()) or type(exc).__name__})") from None
+            except Exception as exc:  # not an address, or something else listening there
+                raise AxiscalError(f"cannot use '{scheduler}' as a dask scheduler: {type(exc).__name__}"
+                                   f" {' '.join(str(exc).split())[:200]}".rstrip()) from None
     else:
         client = scheduler
     try:
         machine_f, setup_f = client.scatter([machine, setup], broadcast=True)
         futures = [client.submit(_chunk, machine_f, setup_f, s, m, pure=False) for s, m in zip(seeds, sizes)]
-        return client.gather(futures)
+        order = {future.key: i for i, future in enumerate(futures)}
+        parts: list = [None] * len(futures)
+        for future in as_completed(futures):
+            parts[order[future.key]] = report.after(future.result())
+        return parts
     finally:
         if own is not None:
             client.close()
@@ -378,14 +442,14 @@ def _run_on_dask(scheduler, machine, setup, seeds, sizes) -> list[np.ndarray]:
 
 
 def write_volumetric_uncertainty(
-    path: str | Path, positions: Mapping[str, np.ndarray], result: VolumetricUncertainty, *, sources=()
+    path: str | Path, positions: Mapping[str, np.ndarray], result: VolumetricUncertainty, *, sources=(), **metadata
 ) -> Path:
     """Write the volumetric map with its coverage intervals as a plain CSV and its JSON sidecar.
 
-    Columns: ``<axis>_mm`` for each axis of ``positions``, then for each of ex, ey, ez:
-    ``e?_um`` (the model's error), ``e?_u_um`` (standard deviation of the draws), ``e?_low_um`` and
-    ``e?_high_um`` (the coverage interval). The sidecar (``path`` with ``.json``) holds the number
-    of draws and the coverage probability. The write is atomic.
+    Columns: ``<axis>_mm`` for each axis of ``positions``, then for each of ex, ey, ez and the
+    length e = |e|: ``e?_um`` (the model's error), ``e?_u_um`` (standard deviation of the draws),
+    ``e?_low_um`` and ``e?_high_um`` (the coverage interval). The sidecar (``path`` with ``.json``)
+    holds the number of draws and the coverage probability. The write is atomic.
 
     Parameters
     ----------
@@ -396,6 +460,8 @@ def write_volumetric_uncertainty(
     result : VolumetricUncertainty
     sources : sequence of paths, keyword-only
         Input files, for the sidecar.
+    **metadata
+        More for the sidecar (the seed, the machine's name ...).
 
     Returns
     -------
@@ -406,6 +472,34 @@ def write_volumetric_uncertainty(
     ------
     AxiscalError
         Positions that do not match the result's points, or a file that cannot be written.
+    """
+    written = write_text(path, write_csv(None, volumetric_uncertainty_columns(positions, result), fmt="{:.6f}"))
+    write_sidecar(written, kind="volumetric uncertainty", sources=list(sources), method="Monte Carlo (JCGM 101)",
+                  frame="tool point relative to the workpiece, workpiece frame; actual minus nominal",
+                  draws=result.draws, probability=result.probability, **metadata)
+    return written
+
+
+def volumetric_uncertainty_columns(positions: Mapping[str, np.ndarray], result: VolumetricUncertainty) -> dict[str, np.ndarray]:
+    """The columns of :func:`write_volumetric_uncertainty`, in mm and um.
+
+    Parameters
+    ----------
+    positions : mapping of str to ndarray, shape (N,)
+        The points' axis positions, metres.
+    result : VolumetricUncertainty
+        The Monte Carlo result at those points.
+
+    Returns
+    -------
+    dict of str to ndarray, shape (N,)
+        ``<axis>_mm``, then ``e?_um``, ``e?_u_um``, ``e?_low_um``, ``e?_high_um`` for ex, ey, ez
+        and the length e.
+
+    Raises
+    ------
+    AxiscalError
+        Positions that do not match the result's points.
     """
     n = result.error.shape[0]
     columns: dict[str, np.ndarray] = {}
@@ -419,7 +513,8 @@ def write_volumetric_uncertainty(
         columns[f"{name}_u_um"] = result.std[:, i] / UM
         columns[f"{name}_low_um"] = result.low[:, i] / UM
         columns[f"{name}_high_um"] = result.high[:, i] / UM
-    written = write_text(path, write_csv(None, columns, fmt="{:.6f}"))
-    write_sidecar(written, kind="volumetric uncertainty", sources=list(sources), method="Monte Carlo (JCGM 101)",
-                  draws=result.draws, probability=result.probability)
-    return written
+    columns["e_um"] = result.magnitude / UM
+    columns["e_u_um"] = result.magnitude_std / UM
+    columns["e_low_um"] = result.magnitude_low / UM
+    columns["e_high_um"] = result.magnitude_high / UM
+    return columns
