@@ -23,6 +23,7 @@ from axiscal.campaign.results import (
     check_figures,
 )
 from axiscal.errors import AxiscalError
+from axiscal.positioning.evaluation import Iso230Result
 from axiscal.units import ARCSEC, MM, UM, URAD
 
 __all__ = ["COMPENSATION_FILES", "KIND_RUNNERS", "evaluation_is_raw", "run_campaign", "run_test", "svg_of"]
@@ -82,9 +83,22 @@ COMPENSATION_FILES = {
 }
 
 
+def _uncertainty(campaign: Campaign, spec: TestSpec, evaluation: Any) -> dict[str, float]:
+    """U (k = 2) of the test's figures from the campaign's budget, in their display units (none
+    without a budget, or for a rotary, one-direction or VDI 3441 positioning test)."""
+    if campaign.budget is None:
+        return {}
+    from axiscal.uncertainty.figures import figure_uncertainties
+
+    if spec.kind == "positioning":
+        run = evaluation.run
+        if not isinstance(evaluation.result, Iso230Result) or getattr(run, "rotary", False) or not getattr(run, "bidirectional", True):
+            return {}
+    return figure_uncertainties(spec.kind, evaluation, campaign.budget)
+
+
 def _positioning(campaign: Campaign, spec: TestSpec) -> TestResult:
     from axiscal.compensation.formats import compensation_table
-    from axiscal.positioning.evaluation import Iso230Result
     from axiscal.positioning.report import evaluate_positioning_file
 
     path = spec.options["file"]
@@ -98,11 +112,7 @@ def _positioning(campaign: Campaign, spec: TestSpec) -> TestResult:
     payload = evaluation.to_dict()
     figures = {k: v for k, v in payload.items()}
     axis_figures = {name: value / UM for name, value in evaluation.result.figures().items()}
-    uncertainty = {}
-    if campaign.budget is not None and isinstance(evaluation.result, Iso230Result):
-        from axiscal.uncertainty.positioning import positioning_uncertainty
-
-        uncertainty = {k: v / UM for k, v in positioning_uncertainty(campaign.budget, evaluation.run).U.items()}
+    uncertainty = _uncertainty(campaign, spec, evaluation)
     checks = check_figures(axis_figures, spec.tolerances, {}, uncertainty=uncertainty, rule=campaign.decision_rule)
     title = f"{spec.axis} axis positioning ({evaluation.result.standard})"
     svg = svg_of(lambda p: evaluation.plot(p, title=title))
@@ -152,13 +162,7 @@ def _straightness(campaign: Campaign, spec: TestSpec) -> TestResult:
     reference = spec.options.get("reference", "least-squares")
     evaluation, svg = _captured(lambda p: evaluate_straightness_file(path, reference=reference, plot_path=p))
     figures = evaluation.payload()
-    uncertainty = {}
-    if campaign.budget is not None:
-        from axiscal.uncertainty.straightness import straightness_uncertainty
-
-        line = straightness_uncertainty(campaign.budget, evaluation.profile.position_m, evaluation.profile.deviation_m,
-                                        reference=reference)
-        uncertainty = {"straightness_um": line.U / UM}
+    uncertainty = _uncertainty(campaign, spec, evaluation)
     checks = check_figures(figures, spec.tolerances, {"straightness_um": "um"}, uncertainty=uncertainty,
                            rule=campaign.decision_rule)
     direction = spec.options.get("direction")
@@ -230,17 +234,7 @@ def _squareness(campaign: Campaign, spec: TestSpec) -> TestResult:
         plot_path=p,
     ))
     figures = evaluation.payload()
-    uncertainty = {}
-    if campaign.budget is not None:
-        from axiscal.uncertainty.straightness import squareness_uncertainty
-
-        first_run, second_run = evaluation.first, evaluation.second
-        line = squareness_uncertainty(
-            campaign.budget, first_run.position_m, first_run.deviation_m, second_run.position_m, second_run.deviation_m,
-            plane=spec.options["plane"], prism_deviation_rad=spec.options.get("prism_deviation_arcsec", 0.0) * ARCSEC,
-            reference=spec.options.get("reference", "least-squares"),
-        )
-        uncertainty = {"squareness_arcsec": line.U / ARCSEC}
+    uncertainty = _uncertainty(campaign, spec, evaluation)
     checks = check_figures(figures, spec.tolerances, {"squareness_arcsec": "arcsec"}, uncertainty=uncertainty,
                            rule=campaign.decision_rule)
     result = evaluation.result

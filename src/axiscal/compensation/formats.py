@@ -28,7 +28,13 @@ from axiscal.compensation.heidenhain import heidenhain_table
 from axiscal.compensation.linuxcnc import linuxcnc_table
 from axiscal.compensation.siemens import siemens_table
 from axiscal.errors import AxiscalError
-from axiscal.positioning.evaluation import TURN, PositioningRun, covers_circle, require_finite, target_statistics
+from axiscal.positioning.evaluation import (
+    TURN,
+    PositioningRun,
+    covers_circle,
+    require_finite,
+    target_statistics,
+)
 from axiscal.positioning.reader import read_positioning_run
 from axiscal.units import ARCSEC, DEG, MM, UM
 

@@ -14,13 +14,18 @@ from axiscal.uncertainty.budget import (
     read_budget,
 )
 from axiscal.uncertainty.decision import DECISION_RULES, Decision, decide
-from axiscal.uncertainty.figures import UNCERTAINTY_KINDS, figure_uncertainties, figure_verdicts
+from axiscal.uncertainty.figures import (
+    UNCERTAINTY_KINDS,
+    figure_uncertainties,
+    figure_verdicts,
+)
 from axiscal.uncertainty.montecarlo import CoverageInterval, coverage_interval
+from axiscal.uncertainty.plot import plot_volumetric_uncertainty
 from axiscal.uncertainty.positioning import (
     COVERAGE_FACTOR,
     FIGURE_COMPONENTS,
-    MAX_POSITIONING_DRAWS,
     FIGURES,
+    MAX_POSITIONING_DRAWS,
     PositioningUncertainty,
     PositioningWithUncertainty,
     budget_report,
@@ -30,7 +35,6 @@ from axiscal.uncertainty.positioning import (
     positioning_uncertainty,
     uncertainty_payload,
 )
-from axiscal.uncertainty.plot import plot_volumetric_uncertainty
 from axiscal.uncertainty.straightness import (
     LineUncertainty,
     squareness_uncertainty,
@@ -46,7 +50,10 @@ from axiscal.uncertainty.volumetric import (
     volumetric_uncertainty_columns,
     write_volumetric_uncertainty,
 )
-from axiscal.uncertainty.volumetric_map import VolumetricUncertaintyMap, volumetric_uncertainty_map
+from axiscal.uncertainty.volumetric_map import (
+    VolumetricUncertaintyMap,
+    volumetric_uncertainty_map,
+)
 
 __all__ = [
     "COMPONENTS",

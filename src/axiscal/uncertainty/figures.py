@@ -33,7 +33,10 @@ from axiscal.straightness.files import StraightnessEvaluation
 from axiscal.uncertainty.budget import Budget, read_budget
 from axiscal.uncertainty.decision import DECISION_RULES, Decision, decide
 from axiscal.uncertainty.positioning import FIGURES, positioning_uncertainty
-from axiscal.uncertainty.straightness import squareness_uncertainty, straightness_uncertainty
+from axiscal.uncertainty.straightness import (
+    squareness_uncertainty,
+    straightness_uncertainty,
+)
 from axiscal.units import ARCSEC, UM
 
 __all__ = ["UNCERTAINTY_KINDS", "figure_uncertainties", "figure_verdicts"]

@@ -33,7 +33,11 @@ from axiscal.uncertainty.budget import (
     read_budget,
 )
 from axiscal.uncertainty.decision import Decision, decide
-from axiscal.uncertainty.montecarlo import CoverageInterval, _whole_draws, coverage_interval
+from axiscal.uncertainty.montecarlo import (
+    CoverageInterval,
+    _whole_draws,
+    coverage_interval,
+)
 from axiscal.units import UM
 
 __all__ = [
