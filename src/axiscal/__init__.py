@@ -77,6 +77,7 @@ _PUBLIC: dict[str, str] = {
     "read_budget": "axiscal.uncertainty.budget",
     "positioning_uncertainty": "axiscal.uncertainty.positioning",
     "volumetric_monte_carlo": "axiscal.uncertainty.volumetric",
+    "volumetric_uncertainty_map": "axiscal.uncertainty.volumetric_map",
     # measurement from raw sensor frames (paper 000)
     "MeasurementSystem": "axiscal.measurement.pipeline",
     "VirtualModule": "axiscal.measurement.virtual",
