@@ -27,7 +27,8 @@ def random_table(letter, rng, *, translation=10e-6, rotation=100e-6, rows=12, st
 def random_machine(chain, rng, **table_options):
     letters = [c for c in chain if c != "F"]
     axes = {k: Axis(k, random_table(k, rng, **table_options), tuple(rng.normal(size=3) * 0.1)) for k in letters}
-    squareness = {t: float(rng.normal() * 50 * ARCSEC) for t in ("EC0Y", "EB0Z", "EA0Z")}
+    pairs = {"EC0Y": "XY", "EB0Z": "XZ", "EA0Z": "YZ"}  # a term needs both its axes in the chain
+    squareness = {t: float(rng.normal() * 50 * ARCSEC) for t, axes_of in pairs.items() if set(axes_of) <= set(letters)}
     return Machine(
         chain, axes, squareness_rad=squareness, tool_m=tuple(rng.normal(size=3) * 0.1), workpiece_m=tuple(rng.normal(size=3) * 0.1)
     )

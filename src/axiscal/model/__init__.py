@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from axiscal.model.diagonal import (
+    MAX_DIAGONAL_STEPS,
     DEFAULT_STEPS,
     MEASURES,
     DiagonalResult,
@@ -28,6 +29,8 @@ from axiscal.model.kinematics import (
     volumetric_error,
 )
 from axiscal.model.machine import (
+    MAX_GRID_POINTS,
+    MAX_MACHINE_SIZE_MM,
     SQUARENESS_PLACEMENTS,
     Axis,
     Machine,
@@ -51,11 +54,22 @@ from axiscal.model.plot import (
     plot_error_tables,
     plot_volumetric,
 )
-from axiscal.model.tables import INTERPOLATIONS, ErrorTable, read_error_table
+from axiscal.model.tables import (
+    INTERPOLATIONS,
+    MAX_ANGLE_ERROR_RAD,
+    MAX_TRANSLATION_ERROR_M,
+    ErrorTable,
+    read_error_table,
+)
 from axiscal.model.volumetric import VolumetricMap, volumetric_map
 
 __all__ = [
     "INTERPOLATIONS",
+    "MAX_ANGLE_ERROR_RAD",
+    "MAX_TRANSLATION_ERROR_M",
+    "MAX_DIAGONAL_STEPS",
+    "MAX_GRID_POINTS",
+    "MAX_MACHINE_SIZE_MM",
     "ErrorTable",
     "read_error_table",
     "ChainLink",

@@ -8,7 +8,9 @@ carries Y and Z. The volumetric error is the tool point relative to the workpiec
 
 from __future__ import annotations
 
+import math
 import os
+import re
 from collections.abc import Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
@@ -18,18 +20,20 @@ import numpy as np
 
 from axiscal.conventions import SQUARENESS_TERMS
 from axiscal.errors import AxiscalError
-from axiscal.io.tabular import read_toml
+from axiscal.io.tabular import read_text, read_toml
 from axiscal.model.kinematics import (
     AXIS_INDEX,
     ChainLink,
     reference_volumetric_error,
     volumetric_error,
 )
-from axiscal.model.tables import ErrorTable, read_error_table
+from axiscal.model.tables import INTERPOLATIONS, MAX_ANGLE_ERROR_RAD, ErrorTable, read_error_table
 from axiscal.units import LENGTH_UNITS, MM, angle_factor, split_unit
 
 __all__ = [
     "SQUARENESS_PLACEMENTS",
+    "MAX_GRID_POINTS",
+    "MAX_MACHINE_SIZE_MM",
     "Axis",
     "parse_chain",
     "Machine",
@@ -90,6 +94,8 @@ def parse_chain(chain: str) -> tuple[tuple[str, ...], tuple[str, ...]]:
     >>> parse_chain("YXFZ")
     (('X', 'Y'), ('Z',))
     """
+    if not isinstance(chain, str):
+        raise AxiscalError(f"a chain is a string such as 'XFYZ', not {chain!r}")
     chain = chain.strip().upper()
     if chain.count("F") != 1:
         raise AxiscalError(f"chain '{chain}' must contain exactly one 'F' (the frame), e.g. 'XFYZ'")
@@ -156,6 +162,8 @@ class Machine:
     def __post_init__(self) -> None:
         workpiece_side, tool_side = parse_chain(self.chain)
         letters = set(workpiece_side + tool_side)
+        if not isinstance(self.axes, Mapping) or not isinstance(self.squareness_rad, Mapping):
+            raise AxiscalError("axes and squareness_rad must be mappings by axis letter and term")
         missing = sorted(letters - set(self.axes))
         if missing:
             raise AxiscalError(f"chain '{self.chain}' has axis {', '.join(missing)} but no axis description for it")
@@ -171,9 +179,11 @@ class Machine:
             )
         rotation = {letter: np.zeros(3) for letter in AXIS_INDEX}
         for term, value in self.squareness_rad.items():
-            if not np.isfinite(value):
-                raise AxiscalError(f"squareness {term} is not finite")
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) or not np.isfinite(value):
+                raise AxiscalError(f"squareness {term} must be a finite number of radians, not {value!r}")
             letter, reference, component = _SQUARENESS_PLACE[term]
+            if letter not in letters or reference not in letters:
+                raise AxiscalError(f"squareness {term} needs axes {reference} and {letter}, which chain '{self.chain}' does not have")
             sign = 1.0
             if self.squareness_placement == "relative":
                 for branch in (workpiece_side, tool_side):
@@ -468,29 +478,135 @@ class Machine:
         raise AxiscalError(f"inverse kinematics did not converge (miss {worst / LENGTH_UNITS['nm']:.3g} nm)")
 
 
-_MACHINE_KEYS = {
-    "name", "chain", "tool_mm", "workpiece_mm", "axes", "squareness", "squareness_placement", "interpolation", "hold_ends"
+#: the declared schema of a machine file: key -> kind (docs/formats.md); every value is checked against it
+_MACHINE_SCHEMA = {
+    "name": "text",
+    "chain": "text",
+    "tool_mm": "vector",
+    "workpiece_mm": "vector",
+    "axes": "table",
+    "squareness": "table",
+    "squareness_placement": "text",
+    "interpolation": "text",
+    "hold_ends": "bool",
 }
-_AXIS_KEYS = {"errors", "origin_mm", "interpolation", "hold_ends", "sensors"}
+#: schema of each ``[axes.<letter>]`` section
+_AXIS_SCHEMA = {"errors": "text", "origin_mm": "vector", "interpolation": "text", "hold_ends": "bool", "sensors": "table"}
+_KIND_TEXT = {
+    "text": "a string in quotes",
+    "bool": "true or false",
+    "number": "a finite number",
+    "vector": "a list of 3 finite numbers in mm, e.g. [0.0, -40.0, 0.0]",
+    "table": "a table",
+}
+#: most points a grid may name (about 1 GB of positions and errors)
+MAX_GRID_POINTS = 20_000_000
+#: largest length accepted in a machine file (tool, workpiece, origins), mm
+MAX_MACHINE_SIZE_MM = 1.0e5
+
+
+def _is_number(value: object) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def _check_kind(value: object, kind: str) -> bool:
+    if kind == "text":
+        return isinstance(value, str)
+    if kind == "bool":
+        return isinstance(value, bool)
+    if kind == "number":
+        return _is_number(value)
+    if kind == "vector":
+        return (
+            isinstance(value, list)
+            and len(value) == 3
+            and all(_is_number(v) and abs(v) <= MAX_MACHINE_SIZE_MM for v in value)
+        )
+    return isinstance(value, Mapping)
+
+
+def _key_lines(text: str) -> dict[tuple[str, str], int]:
+    """Line of each ``key =`` in a TOML text, by (section, key); the header line for a section."""
+    lines: dict[tuple[str, str], int] = {}
+    section = ""
+    for number, raw in enumerate(text.splitlines(), start=1):
+        line = raw.strip()
+        header = re.match(r"^\[\s*([^\[\]]+?)\s*\]", line)
+        if header:
+            section = re.sub(r"\s*\.\s*", ".", header.group(1)).replace('"', "")
+            parent, _, last = section.rpartition(".")
+            lines.setdefault((parent, last), number)
+            continue
+        key = re.match(r"^\"?([A-Za-z0-9_\-]+)\"?\s*=", line)
+        if key:
+            lines.setdefault((section, key.group(1)), number)
+    return lines
+
+
+class _Where:
+    """Locates keys of the machine file for error messages."""
+
+    def __init__(self, source: str, text: str | None):
+        self.source = source
+        self.lines = _key_lines(text) if text is not None else {}
+
+    def error(self, message: str, section: str = "", key: str | None = None) -> AxiscalError:
+        line = self.lines.get((section, key)) if key is not None else None
+        if line is None and section:
+            parent, _, last = section.rpartition(".")
+            line = self.lines.get((parent, last))
+        return AxiscalError(message, path=self.source, line=line)
+
+    def check(self, data: Mapping, schema: Mapping[str, str], section: str = "") -> None:
+        label = f"[{section}] " if section else ""
+        for key, value in data.items():
+            if key not in schema:
+                raise self.error(f"{label}unknown key '{key}'; known keys: {', '.join(sorted(schema))}", section, key)
+            if not _check_kind(value, schema[key]):
+                raise self.error(f"{label}{key} must be {_KIND_TEXT[schema[key]]}, not {value!r}", section, key)
 
 
 def _vector_mm(value: object, what: str) -> tuple[float, float, float]:
-    if not (isinstance(value, list) and len(value) == 3 and all(isinstance(v, (int, float)) for v in value)):
-        raise AxiscalError(f"{what} must be a list of 3 numbers in mm, e.g. [0.0, -40.0, 0.0]")
-    return tuple(float(v) * MM for v in value)  # type: ignore[return-value]
+    if not _check_kind(value, "vector"):
+        raise AxiscalError(f"{what} must be {_KIND_TEXT['vector']}")
+    return tuple(float(v) * MM for v in value)  # type: ignore[return-value, union-attr]
 
 
-def machine_from_dict(data: Mapping, *, base_dir: Path = Path("."), source: str = "<machine>") -> Machine:
+def _confined(base_dir: Path, name: str, tables_dir: Path | None) -> Path | None:
+    """``name`` resolved inside ``base_dir`` (or ``tables_dir``), or None if it points elsewhere."""
+    for folder in (base_dir,) if tables_dir is None else (base_dir, tables_dir):
+        root = folder.resolve()
+        candidate = (root / name).resolve()
+        if candidate.is_relative_to(root) and not Path(name).is_absolute():
+            return candidate
+    return None
+
+
+def machine_from_dict(
+    data: Mapping,
+    *,
+    base_dir: Path = Path("."),
+    source: str = "<machine>",
+    text: str | None = None,
+    tables_dir: str | Path | None = None,
+) -> Machine:
     """Build a :class:`Machine` from the parsed TOML description (docs/formats.md).
+
+    Every key is checked against the declared schema of the file (its kind: text, true/false,
+    a list of 3 numbers, a table); the error names the key and, given ``text``, its line.
 
     Parameters
     ----------
     data : mapping
         The parsed TOML (lengths in mm, angles with their unit in the key).
     base_dir : Path
-        Folder the error table paths are relative to.
+        Folder the error table paths are relative to; they must stay inside it.
     source : str
         Name of the description in error messages (its file).
+    text : str, optional
+        The TOML text ``data`` was parsed from, to name the line of a bad key.
+    tables_dir : str or Path, optional
+        A second folder error table paths may point into (relative paths only).
 
     Returns
     -------
@@ -499,72 +615,107 @@ def machine_from_dict(data: Mapping, *, base_dir: Path = Path("."), source: str 
     Raises
     ------
     AxiscalError
-        Unknown keys, a missing chain or axis section, a bad error table or squareness entry;
-        the message names ``source`` (or the table file and line).
+        Unknown keys, a value of the wrong kind, a missing chain or axis section, an error table
+        path outside ``base_dir`` (and ``tables_dir``), a bad error table or squareness entry;
+        the message names ``source`` (or the table file) and the line.
+
+    Examples
+    --------
+    >>> machine_from_dict({"chain": "FX", "hold_ends": "false"})
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.AxiscalError: <machine>: hold_ends must be true or false, not 'false'
     """
+    where = _Where(source, text)
+    if not isinstance(data, Mapping):
+        raise where.error("a machine description must be a table of keys")
+    where.check(data, _MACHINE_SCHEMA)
+    if "chain" not in data:
+        raise where.error("missing 'chain' (e.g. chain = \"FXZ\")")
+    chain = data["chain"]
     try:
-        unknown = sorted(set(data) - _MACHINE_KEYS)
-        if unknown:
-            raise AxiscalError(f"unknown key {', '.join(unknown)}; known keys: {', '.join(sorted(_MACHINE_KEYS))}")
-        if "chain" not in data:
-            raise AxiscalError("missing 'chain' (e.g. chain = \"FXZ\")")
-        chain = str(data["chain"])
-        interpolation = data.get("interpolation", "linear")
-        hold_ends = bool(data.get("hold_ends", False))
-        axes_data = data.get("axes", {})
-        if not isinstance(axes_data, Mapping):
-            raise AxiscalError("'axes' must be a table of [axes.<letter>] sections")
         workpiece_side, tool_side = parse_chain(chain)
-        for letter in workpiece_side + tool_side:
-            if letter not in axes_data:
-                raise AxiscalError(f"axis {letter} is in chain '{chain}' but has no [axes.{letter}] section")
-        axes: dict[str, Axis] = {}
-        for letter, section in axes_data.items():
-            if letter not in workpiece_side + tool_side:
-                raise AxiscalError(f"[axes.{letter}] is not an axis of chain '{chain}'")
-            if not isinstance(section, Mapping):
-                raise AxiscalError(f"[axes.{letter}] must be a table")
-            unknown = sorted(set(section) - _AXIS_KEYS)
-            if unknown:
-                raise AxiscalError(f"[axes.{letter}]: unknown key {', '.join(unknown)}")
-            if "errors" not in section:
-                raise AxiscalError(f"[axes.{letter}] has no 'errors' table file")
-            table = read_error_table(
-                base_dir / str(section["errors"]),
-                letter,
-                interpolation=section.get("interpolation", interpolation),
-                hold_ends=bool(section.get("hold_ends", hold_ends)),
+    except AxiscalError as exc:
+        raise where.error(exc.message, "", "chain") from None
+    interpolation = data.get("interpolation", "linear")
+    if interpolation not in INTERPOLATIONS:
+        raise where.error(f"unknown interpolation '{interpolation}'; use one of {', '.join(INTERPOLATIONS)}", "", "interpolation")
+    hold_ends = data.get("hold_ends", False)
+    axes_data = data.get("axes", {})
+    for letter in workpiece_side + tool_side:
+        if letter not in axes_data:
+            raise where.error(f"axis {letter} is in chain '{chain}' but has no [axes.{letter}] section", "", "chain")
+    axes: dict[str, Axis] = {}
+    for letter, section in axes_data.items():
+        label = f"axes.{letter}"
+        if letter not in workpiece_side + tool_side:
+            raise where.error(f"[{label}] is not an axis of chain '{chain}'", label)
+        if not isinstance(section, Mapping):
+            raise where.error(f"[{label}] must be a table", "axes", letter)
+        where.check(section, _AXIS_SCHEMA, label)
+        if "errors" not in section:
+            raise where.error(f"[{label}] has no 'errors' table file", label)
+        axis_interpolation = section.get("interpolation", interpolation)
+        if axis_interpolation not in INTERPOLATIONS:
+            raise where.error(
+                f"[{label}] unknown interpolation '{axis_interpolation}'; use one of {', '.join(INTERPOLATIONS)}", label, "interpolation"
             )
-            origin = _vector_mm(section.get("origin_mm", [0.0, 0.0, 0.0]), f"[axes.{letter}] origin_mm")
-            axes[letter] = Axis(letter, table, origin)
-        squareness: dict[str, float] = {}
-        for key, value in dict(data.get("squareness", {})).items():
-            stem, unit = split_unit(key)
-            if stem not in SQUARENESS_TERMS:
-                raise AxiscalError(f"[squareness] unknown term '{key}'; use EC0Y, EB0Z, EA0Z with a unit, e.g. EB0Z_arcsec")
-            if not isinstance(value, (int, float)):
-                raise AxiscalError(f"[squareness] {key} must be a number")
+        table_path = _confined(base_dir, section["errors"], None if tables_dir is None else Path(tables_dir))
+        if table_path is None:
+            raise where.error(
+                f"[{label}] errors: the error table must be a relative path inside the machine file's folder", label, "errors"
+            )
+        table = read_error_table(
+            table_path, letter, interpolation=axis_interpolation, hold_ends=section.get("hold_ends", hold_ends)
+        )
+        origin = _vector_mm(section.get("origin_mm", [0.0, 0.0, 0.0]), f"[{label}] origin_mm")
+        axes[letter] = Axis(letter, table, origin)
+    squareness: dict[str, float] = {}
+    for key, value in data.get("squareness", {}).items():
+        stem, unit = split_unit(key) if "_" in key else (key, "")
+        if stem not in SQUARENESS_TERMS:
+            raise where.error(
+                f"[squareness] unknown term '{key}'; use EC0Y, EB0Z, EA0Z with a unit, e.g. EB0Z_arcsec", "squareness", key
+            )
+        if not _is_number(value):
+            raise where.error(f"[squareness] {key} must be {_KIND_TEXT['number']}, not {value!r}", "squareness", key)
+        try:
             squareness[stem] = float(value) * angle_factor(unit, what=key)
+        except AxiscalError as exc:
+            raise where.error(exc.message, "squareness", key) from None
+        if abs(squareness[stem]) > MAX_ANGLE_ERROR_RAD:
+            raise where.error(f"[squareness] {key} = {value} is not a squareness error (over {MAX_ANGLE_ERROR_RAD} rad)", "squareness", key)
+        letter, reference, _ = _SQUARENESS_PLACE[stem]
+        if letter not in workpiece_side + tool_side or reference not in workpiece_side + tool_side:
+            raise where.error(f"[squareness] {key}: chain '{chain}' has no axes {reference} and {letter} to be square", "squareness", key)
+    placement = data.get("squareness_placement", SQUARENESS_PLACEMENTS[0])
+    if placement not in SQUARENESS_PLACEMENTS:
+        raise where.error(
+            f"unknown squareness placement '{placement}'; use {' or '.join(SQUARENESS_PLACEMENTS)}", "", "squareness_placement"
+        )
+    try:
         return Machine(
             chain=chain,
             axes=axes,
             squareness_rad=squareness,
             tool_m=_vector_mm(data.get("tool_mm", [0.0, 0.0, 0.0]), "tool_mm"),
             workpiece_m=_vector_mm(data.get("workpiece_mm", [0.0, 0.0, 0.0]), "workpiece_mm"),
-            name=str(data.get("name", "")),
-            squareness_placement=str(data.get("squareness_placement", SQUARENESS_PLACEMENTS[0])),
+            name=data.get("name", ""),
+            squareness_placement=placement,
         )
     except AxiscalError as exc:
         raise exc.located(path=source) from None
 
 
-def load_machine(path: str | Path) -> Machine:
+def load_machine(path: str | Path, *, tables_dir: str | Path | None = None) -> Machine:
     """Read a machine description (TOML, docs/formats.md) and its error tables.
 
     Parameters
     ----------
     path : str or Path
-        The TOML file; the error table paths in it are relative to its folder.
+        The TOML file; the error table paths in it are relative to its folder and must stay inside it.
+    tables_dir : str or Path, optional
+        A second folder the error table paths may point into.
 
     Returns
     -------
@@ -584,7 +735,7 @@ def load_machine(path: str | Path) -> Machine:
     """
     path = Path(path)
     data = read_toml(path)
-    return machine_from_dict(data, base_dir=path.parent, source=str(path))
+    return machine_from_dict(data, base_dir=path.parent, source=str(path), text=read_text(path), tables_dir=tables_dir)
 
 
 def as_machine(machine: Machine | str | Path) -> Machine:
@@ -624,24 +775,30 @@ def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
     Raises
     ------
     AxiscalError
-        A part that is not of that form, an axis named twice, ``end < start`` or ``step <= 0``.
+        A part that is not of that form, a number that is not finite, an axis named twice,
+        ``end < start``, ``step <= 0``, or more than :data:`MAX_GRID_POINTS` points.
 
     Examples
     --------
     >>> {k: v.tolist() for k, v in axis_positions_from_grid("X=0:20:10,Z=5").items()}
     {'X': [0.0, 0.01, 0.02], 'Z': [0.005, 0.005, 0.005]}
     """
+    if not isinstance(spec, str):
+        raise AxiscalError(f"a grid is a string such as 'X=0:190:10,Z=5', not {spec!r}")
     ranges: dict[str, np.ndarray] = {}
+    total = 1
     for part in spec.split(","):
         letter, sep, rng = part.partition("=")
         letter = letter.strip().upper()
-        bits = rng.split(":")
+        bits = [b.strip() for b in rng.split(":")]
         if not sep or letter not in AXIS_INDEX or len(bits) not in (1, 3):
             raise AxiscalError(f"grid '{spec}': expected parts like 'X=0:190:10' (start:end:step in mm) or 'Y=50'")
         try:
             numbers = [float(b) for b in bits]
         except ValueError:
             raise AxiscalError(f"grid '{spec}': '{rng}' is not numbers") from None
+        if not all(math.isfinite(v) and abs(v) <= MAX_MACHINE_SIZE_MM for v in numbers):
+            raise AxiscalError(f"grid '{spec}': axis {letter} needs finite numbers within ±{MAX_MACHINE_SIZE_MM:g} mm")
         if letter in ranges:
             raise AxiscalError(f"grid '{spec}' names axis {letter} twice")
         if len(numbers) == 1:
@@ -650,8 +807,13 @@ def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
         start, end, step = numbers
         if step <= 0 or end < start:
             raise AxiscalError(f"grid '{spec}': need start <= end and step > 0 for axis {letter}")
-        count = int(np.floor((end - start) / step + 1e-9)) + 1
-        ranges[letter] = start + step * np.arange(count)
+        count = math.floor((end - start) / step + 1e-9) + 1
+        total *= count
+        if total > MAX_GRID_POINTS:
+            raise AxiscalError(f"grid '{spec}' has more than {MAX_GRID_POINTS} points; use a coarser step")
+        # the grid's resolution is that of its numbers as written: 0.1 * 3 is 0.3, not 0.30000000000000004
+        decimals = max(len(b.lower().split("e")[0].partition(".")[2]) for b in bits) + 3
+        ranges[letter] = np.round(start + step * np.arange(count), decimals)
     mesh = np.meshgrid(*ranges.values(), indexing="ij")
     return {letter: grid.ravel() * MM for letter, grid in zip(ranges, mesh)}
 

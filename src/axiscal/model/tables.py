@@ -21,9 +21,25 @@ from axiscal.errors import AxiscalError
 from axiscal.io.tabular import CsvTable, read_csv
 from axiscal.units import MM, angle_factor, length_factor, split_unit
 
-__all__ = ["INTERPOLATIONS", "ErrorTable", "read_error_table"]
+__all__ = ["INTERPOLATIONS", "MAX_TRANSLATION_ERROR_M", "MAX_ANGLE_ERROR_RAD", "ErrorTable", "read_error_table"]
 
 INTERPOLATIONS = ("linear", "cubic")
+#: largest translation error motion accepted in a table (10 mm): beyond it a value has no physical meaning
+MAX_TRANSLATION_ERROR_M = 0.01
+#: largest rotation error motion accepted (0.01 rad, about 2000 arcsec): the model is first order in angles
+MAX_ANGLE_ERROR_RAD = 0.01
+#: largest position accepted in a table (1 km, the range of an ideal axis)
+_MAX_POSITION_M = 1000.0
+
+
+def _first_too_large(values: np.ndarray) -> tuple[int, int] | None:
+    """(row, sample) of the first error motion over its limit, or None."""
+    limits = np.array([MAX_TRANSLATION_ERROR_M] * 3 + [MAX_ANGLE_ERROR_RAD] * 3)[:, None]
+    over = np.abs(values) > limits
+    if not np.any(over):
+        return None
+    row, sample = np.argwhere(over)[0]
+    return int(row), int(sample)
 
 
 @dataclass(frozen=True)
@@ -78,10 +94,21 @@ class ErrorTable:
             raise AxiscalError(f"axis {self.letter}: an error table needs at least 2 rows")
         if not (np.all(np.isfinite(position)) and np.all(np.isfinite(values))):
             raise AxiscalError(f"axis {self.letter}: error table holds non-finite values")
+        if np.any(np.abs(position) > _MAX_POSITION_M):
+            raise AxiscalError(f"axis {self.letter}: positions beyond {_MAX_POSITION_M:g} m have no physical meaning")
+        over = _first_too_large(values)
+        if over is not None:
+            row, sample = over
+            raise AxiscalError(
+                f"axis {self.letter}: {component_names(self.letter)[row]} at row {sample + 1} is beyond the largest "
+                f"error motion accepted ({MAX_TRANSLATION_ERROR_M} m, {MAX_ANGLE_ERROR_RAD} rad)"
+            )
         steps = np.diff(position)
         if np.any(steps <= 0):
             k = int(np.argmax(steps <= 0)) + 1
             raise AxiscalError(f"axis {self.letter}: positions not strictly increasing at row {k + 1}")
+        if not isinstance(self.hold_ends, (bool, np.bool_)):
+            raise AxiscalError(f"hold_ends must be True or False, not {self.hold_ends!r}")
         if self.interpolation not in INTERPOLATIONS:
             raise AxiscalError(f"unknown interpolation '{self.interpolation}'; use one of {', '.join(INTERPOLATIONS)}")
         object.__setattr__(self, "position_m", position)
@@ -209,7 +236,7 @@ class ErrorTable:
         """
         if self.hold_ends:
             return None
-        outside = (q_m < self.start_m) | (q_m > self.end_m)
+        outside = ~((q_m >= self.start_m) & (q_m <= self.end_m))
         return int(np.argmax(outside)) if np.any(outside) else None
 
     def check_range(self, q_m: np.ndarray, *, path: str | None = None, lines: Sequence[int] | None = None) -> None:
@@ -258,6 +285,8 @@ class ErrorTable:
         """
         q = np.asarray(q_m, dtype=float)
         self.check_range(q)
+        if self.hold_ends and np.isnan(q).any():
+            raise AxiscalError(f"positions of axis {self.letter} hold NaN")
         q = np.clip(q, self.start_m, self.end_m)
         if self._spline is not None:
             return self._spline(q)
@@ -345,4 +374,14 @@ def _table_from_csv(table: CsvTable, letter: str, *, interpolation: str, hold_en
         except AxiscalError as exc:
             raise exc.located(line=table.header_line) from None
         values[row] = table.numeric(column) * factor
+        over = _first_too_large(values)
+        if over is not None:
+            raise AxiscalError(
+                f"{column} = {values[over] / factor:g} has no physical meaning (limits: "
+                f"{MAX_TRANSLATION_ERROR_M / MM:g} mm, {MAX_ANGLE_ERROR_RAD:g} rad)",
+                line=table.lines[over[1]],
+            )
+    if np.any(np.abs(position) > _MAX_POSITION_M):
+        k = int(np.argmax(np.abs(position) > _MAX_POSITION_M))
+        raise AxiscalError(f"position_mm beyond {_MAX_POSITION_M / MM:g} mm has no physical meaning", line=table.lines[k])
     return ErrorTable(letter, position, values, interpolation=interpolation, hold_ends=hold_ends)
