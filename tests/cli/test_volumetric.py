@@ -182,3 +182,25 @@ def test_diagonal_readings_that_do_not_match(run_cli, module, tmp_path):
     assert status == 2 and "r.csv:3: nominal_mm" in err
     status, _, err = run_cli("diagonal", "--machine", module / "machine.toml", "--from", "X=0;Z=0", "--to", "X=190,Z=190")
     assert status == 2 and "--from" in err
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (("volumetric", "--grid", "X=nan,Z=0"), "finite"),
+        (("volumetric", "--grid", "X=0:190:1e-9,Z=0"), "more than"),
+        (("diagonal", "--from", "X=0,Z=0", "--to", "X=190,Z=190", "--steps", "100000000"), "steps from 1 to"),
+    ],
+)
+def test_unbounded_or_non_finite_requests_are_one_line_errors(run_cli, module, args, words):
+    status, out, err = run_cli(args[0], "--machine", module / "machine.toml", *args[1:])
+    assert status == 2 and out == ""
+    assert err.startswith("axiscal: error: ") and words in err and len(err.strip().splitlines()) == 1
+
+
+def test_inverse_names_the_line_of_an_unreachable_point(run_cli, module, tmp_path):
+    points = tmp_path / "targets.csv"
+    points.write_text("x_mm,y_mm,z_mm\n10,0,100\n10,0,900\n")
+    status, _, err = run_cli("inverse", "--machine", module / "machine.toml", "--points", points)
+    assert status == 2
+    assert f"{points}:3: " in err and "outside the error table of axis Z" in err

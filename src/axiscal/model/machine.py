@@ -270,12 +270,17 @@ class Machine:
         return table.start_m, table.end_m
 
     def _positions(self, positions: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+        if not isinstance(positions, Mapping):
+            raise AxiscalError(f"positions must map the axis letters of chain '{self.chain}' to arrays of metres")
         out: dict[str, np.ndarray] = {}
         size = None
         for letter in self.letters:
             if letter not in positions:
                 raise AxiscalError(f"no positions given for axis {letter} of chain '{self.chain}'")
-            q = np.atleast_1d(np.asarray(positions[letter], dtype=float))
+            try:
+                q = np.atleast_1d(np.asarray(positions[letter], dtype=float))
+            except (TypeError, ValueError):
+                raise AxiscalError(f"positions of axis {letter} must be numbers in metres") from None
             if q.ndim != 1:
                 raise AxiscalError(f"positions of axis {letter} must be one-dimensional")
             if not np.all(np.isfinite(q)):
@@ -454,31 +459,59 @@ class Machine:
         Raises
         ------
         AxiscalError
-            Targets that are not finite or not of shape (N, 3), commands outside an error table,
-            or no convergence within ``max_iterations``.
+            Targets that are not finite or not of shape (N, 3), a tolerance that is not positive,
+            ``max_iterations < 1``, commands outside an error table, or no convergence within
+            ``max_iterations``; the message names the first bad point (1-based).
 
         Examples
         --------
         >>> command = machine.command_for(machine.actual_point({"X": [0.1], "Z": [0.05]}))  # doctest: +SKIP
         >>> command["X"]  # array([0.1]) to better than 1e-12 m  # doctest: +SKIP
         """
-        target = np.atleast_2d(np.asarray(target_m, dtype=float))
-        if target.shape[1:] != (3,) or not np.all(np.isfinite(target)):
-            raise AxiscalError("target points must be finite, shape (N, 3)")
+        command, bad, message = self._solve(target_m, tolerance_m, max_iterations)
+        if bad is not None:
+            raise AxiscalError(f"point {bad + 1}: {message}")
+        return command
+
+    def _solve(
+        self, target_m: np.ndarray, tolerance_m: float, max_iterations: int
+    ) -> tuple[dict[str, np.ndarray], int | None, str]:
+        """:meth:`command_for`, returning (commands, index of the first bad point or None, why)."""
+        if isinstance(max_iterations, bool) or not isinstance(max_iterations, (int, np.integer)) or max_iterations < 1:
+            raise AxiscalError(f"max_iterations must be a whole number >= 1, not {max_iterations!r}")
+        if not _is_number(tolerance_m) or tolerance_m <= 0:
+            raise AxiscalError(f"tolerance_m must be a positive number of metres, not {tolerance_m!r}")
+        try:
+            target = np.atleast_2d(np.asarray(target_m, dtype=float))
+        except (TypeError, ValueError):
+            raise AxiscalError("target points must be numbers, shape (N, 3)") from None
+        if target.ndim != 2 or target.shape[1] != 3:
+            raise AxiscalError(f"target points must have shape (N, 3), not {target.shape}")
+        finite = np.all(np.isfinite(target), axis=1)
+        if not np.all(finite):
+            return {}, int(np.argmin(finite)), "target is not a finite point"
         sign = {link.letter: 1.0 for link in self._tool_links} | {link.letter: -1.0 for link in self._workpiece_links}
         zero = {letter: np.zeros(len(target)) for letter in self.letters}
         offset = self.nominal_point(zero)
         command = {k: sign[k] * (target[:, AXIS_INDEX[k]] - offset[:, AXIS_INDEX[k]]) for k in self.letters}
         for _ in range(max_iterations):
+            for letter in self.letters:
+                k = self.table(letter).first_outside(command[letter])
+                if k is not None:
+                    table = self.table(letter)
+                    return command, k, (
+                        f"needs {letter} = {command[letter][k] / MM:.6g} mm, outside the error table of axis "
+                        f"{letter} ({table.start_m / MM:.6g} to {table.end_m / MM:.6g} mm)"
+                    )
             miss = self.actual_point(command) - target
-            worst = max(float(np.max(np.abs(miss[:, AXIS_INDEX[k]]), initial=0.0)) for k in self.letters)
-            if worst <= tolerance_m:
-                return command
+            axis_miss = np.max(np.abs(np.column_stack([miss[:, AXIS_INDEX[k]] for k in self.letters])), axis=1)
+            if not np.any(axis_miss > tolerance_m):
+                return command, None, ""
             command = {k: command[k] - sign[k] * miss[:, AXIS_INDEX[k]] for k in self.letters}
-        raise AxiscalError(f"inverse kinematics did not converge (miss {worst / LENGTH_UNITS['nm']:.3g} nm)")
+        worst = int(np.argmax(axis_miss))
+        return command, worst, f"inverse kinematics did not converge (miss {axis_miss[worst] / LENGTH_UNITS['nm']:.3g} nm)"
 
 
-#: the declared schema of a machine file: key -> kind (docs/formats.md); every value is checked against it
 _MACHINE_SCHEMA = {
     "name": "text",
     "chain": "text",
@@ -573,13 +606,16 @@ def _vector_mm(value: object, what: str) -> tuple[float, float, float]:
 
 
 def _confined(base_dir: Path, name: str, tables_dir: Path | None) -> Path | None:
-    """``name`` resolved inside ``base_dir`` (or ``tables_dir``), or None if it points elsewhere."""
+    """``name`` resolved inside ``base_dir`` (or else ``tables_dir``), or None if it points elsewhere."""
+    if Path(name).is_absolute():
+        return None
+    found = []
     for folder in (base_dir,) if tables_dir is None else (base_dir, tables_dir):
         root = folder.resolve()
         candidate = (root / name).resolve()
-        if candidate.is_relative_to(root) and not Path(name).is_absolute():
-            return candidate
-    return None
+        if candidate.is_relative_to(root):
+            found.append(candidate)
+    return next((c for c in found if c.is_file()), found[0] if found else None)
 
 
 def machine_from_dict(
@@ -665,6 +701,8 @@ def machine_from_dict(
             raise where.error(
                 f"[{label}] errors: the error table must be a relative path inside the machine file's folder", label, "errors"
             )
+        if not table_path.is_file():
+            raise where.error(f"[{label}] errors: no file '{section['errors']}' in the machine file's folder", label, "errors")
         table = read_error_table(
             table_path, letter, interpolation=axis_interpolation, hold_ends=section.get("hold_ends", hold_ends)
         )
