@@ -86,8 +86,9 @@ def test_cubic_interpolation_passes_through_the_rows_and_is_smooth():
 
 def test_component_names():
     assert component_names("Z") == ("EXZ", "EYZ", "EZZ", "EAZ", "EBZ", "ECZ")
+    assert component_names("A") == ("EXA", "EYA", "EZA", "EAA", "EBA", "ECA")
     with pytest.raises(AxiscalError):
-        component_names("A")
+        component_names("U")
 
 
 @settings(max_examples=40, deadline=None)
