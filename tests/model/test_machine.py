@@ -51,7 +51,9 @@ def test_chain_parsing():
     assert parse_chain("XFYZ") == (("X",), ("Y", "Z"))
     assert parse_chain("YXFZ") == (("X", "Y"), ("Z",))
     assert parse_chain("FXZ") == ((), ("X", "Z"))
-    for bad in ("XYZ", "FXFZ", "XFX", "AFX", "F", "WXFYZ"):
+    assert parse_chain("CAFXYZ") == (("A", "C"), ("X", "Y", "Z"))
+    assert parse_chain("FXYZBC") == ((), ("X", "Y", "Z", "B", "C"))
+    for bad in ("XYZ", "FXFZ", "XFX", "AFA", "F", "WXFYZ", "UFX"):
         with pytest.raises(AxiscalError):
             parse_chain(bad)
 

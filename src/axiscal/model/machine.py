@@ -1,4 +1,4 @@
-"""A machine with 1 to 3 linear axes: its kinematic chain, error tables and squareness (paper 000 §3).
+"""A machine with 1 to 3 linear and up to 3 rotary axes: its kinematic chain, error tables, squareness and location errors (paper 000 §3; ISO 230-1, ISO 230-7).
 
 :class:`Machine` is the model (:mod:`axiscal.model.kinematics` has the contract); :func:`load_machine`
 reads the TOML description of docs/formats.md. Chain notation as ISO 10791 / ISO 230-1 use it:
@@ -18,17 +18,20 @@ from pathlib import Path
 
 import numpy as np
 
-from axiscal.conventions import SQUARENESS_TERMS
+from axiscal.conventions import ROTARY_LETTERS, SQUARENESS_TERMS, location_names
 from axiscal.errors import AxiscalError
 from axiscal.io.tabular import read_text, read_toml
 from axiscal.model.kinematics import (
     AXIS_INDEX,
     ChainLink,
+    RotaryLink,
+    _through_chain,
+    pose_error,
     reference_volumetric_error,
     volumetric_error,
 )
 from axiscal.model.tables import INTERPOLATIONS, MAX_ANGLE_ERROR_RAD, ErrorTable, read_error_table
-from axiscal.units import LENGTH_UNITS, MM, angle_factor, split_unit
+from axiscal.units import ANGLE_UNITS, LENGTH_UNITS, MM, angle_factor, length_factor, split_unit
 
 __all__ = [
     "SQUARENESS_PLACEMENTS",
@@ -76,8 +79,9 @@ def parse_chain(chain: str) -> tuple[tuple[str, ...], tuple[str, ...]]:
     Parameters
     ----------
     chain : str
-        Workpiece-side axes, ``F`` (the frame), tool-side axes, e.g. ``"XFYZ"``; 1 to 3 of the
-        letters X, Y, Z, each at most once (case and surrounding blanks are ignored).
+        Workpiece-side axes, ``F`` (the frame), tool-side axes, e.g. ``"XFYZ"`` or ``"CAFXYZ"`` (a
+        trunnion); up to 3 linear axes X, Y, Z and up to 3 rotary axes A, B, C, each at most once,
+        at least one axis (case and surrounding blanks are ignored).
 
     Returns
     -------
@@ -87,7 +91,8 @@ def parse_chain(chain: str) -> tuple[tuple[str, ...], tuple[str, ...]]:
     Raises
     ------
     AxiscalError
-        No or several ``F``, a letter that is not X, Y or Z, an axis named twice, or no axis.
+        Not a string, no or several ``F``, a letter that is not an axis, an axis named twice,
+        or no axis.
 
     Examples
     --------
@@ -102,12 +107,12 @@ def parse_chain(chain: str) -> tuple[tuple[str, ...], tuple[str, ...]]:
     left, right = chain.split("F")
     letters = left + right
     for letter in letters:
-        if letter not in AXIS_INDEX:
-            raise AxiscalError(f"chain '{chain}': '{letter}' is not a linear axis (X, Y or Z)")
+        if letter not in AXIS_INDEX and letter not in ROTARY_LETTERS:
+            raise AxiscalError(f"chain '{chain}': '{letter}' is not a linear axis (X, Y, Z) or a rotary axis (A, B, C)")
     if len(set(letters)) != len(letters):
         raise AxiscalError(f"chain '{chain}' names an axis twice")
-    if not 1 <= len(letters) <= 3:
-        raise AxiscalError(f"chain '{chain}' must have 1 to 3 axes")
+    if not letters:
+        raise AxiscalError(f"chain '{chain}' must have at least one axis")
     return tuple(reversed(left)), tuple(right)
 
 
@@ -127,6 +132,9 @@ class Machine:
         Functional point in the frame of the last tool-side carriage, metres.
     workpiece_m : sequence of 3 floats
         Point of the workpiece frame the error is measured from, metres.
+    location : mapping of str to float
+        Location errors of the rotary axes' average lines (ISO 230-7, docs/conventions.md):
+        ``EX0C``, ``EY0C`` in metres, ``EA0C``, ``EB0C`` in radians (missing: zero).
     squareness_placement : {"relative", "guideway"}
         A squareness term is what was measured: the included angle between two axes
         (docs/conventions.md). ``"relative"`` (default) keeps that angle in every chain: the term
@@ -142,7 +150,8 @@ class Machine:
     ------
     AxiscalError
         An axis of the chain without a description or a description not in the chain, an
-        unknown squareness term or placement, a non-finite value, or a table of the wrong axis.
+        unknown squareness or location term or placement, a term for an axis not in the chain,
+        a non-finite value, or a table of the wrong axis.
 
     Examples
     --------
@@ -158,12 +167,25 @@ class Machine:
     workpiece_m: tuple[float, float, float] = (0.0, 0.0, 0.0)
     name: str = ""
     squareness_placement: str = "relative"
+    location: Mapping[str, float] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         workpiece_side, tool_side = parse_chain(self.chain)
         letters = set(workpiece_side + tool_side)
-        if not isinstance(self.axes, Mapping) or not isinstance(self.squareness_rad, Mapping):
-            raise AxiscalError("axes and squareness_rad must be mappings by axis letter and term")
+        if not all(isinstance(m, Mapping) for m in (self.axes, self.squareness_rad, self.location)):
+            raise AxiscalError("axes, squareness_rad and location must be mappings by axis letter and term")
+        offsets = {letter: np.zeros(3) for letter in ROTARY_LETTERS}
+        tilts = {letter: np.zeros(3) for letter in ROTARY_LETTERS}
+        for term, value in self.location.items():
+            letter = term[-1:] if isinstance(term, str) else ""
+            if letter not in ROTARY_LETTERS or term not in location_names(letter):
+                raise AxiscalError(f"unknown location term {term!r}; e.g. {', '.join(location_names('C'))}")
+            if letter not in letters:
+                raise AxiscalError(f"location {term}: chain '{self.chain}' has no axis {letter}")
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) or not np.isfinite(value):
+                raise AxiscalError(f"location {term} must be a finite number, not {value!r}")
+            target = offsets if term[1] in AXIS_INDEX else tilts
+            target[letter]["XYZABC".index(term[1]) % 3] = float(value)
         missing = sorted(letters - set(self.axes))
         if missing:
             raise AxiscalError(f"chain '{self.chain}' has axis {', '.join(missing)} but no axis description for it")
@@ -191,7 +213,7 @@ class Machine:
                         letter, sign = reference, -1.0
             rotation[letter][component] += sign * float(value)
 
-        def link(letter: str) -> ChainLink:
+        def link(letter: str) -> ChainLink | RotaryLink:
             axis = self.axes[letter]
             if axis.letter != letter:
                 raise AxiscalError(f"axis description under '{letter}' is for axis '{axis.letter}'")
@@ -201,6 +223,8 @@ class Machine:
             origin = np.asarray(axis.origin_m, dtype=float)
             if origin.shape != (3,) or not np.all(np.isfinite(origin)):
                 raise AxiscalError(f"axis {letter}: origin must be 3 finite numbers")
+            if letter in ROTARY_LETTERS:
+                return RotaryLink(letter, table, origin, offsets[letter], tilts[letter])
             return ChainLink(letter, table, origin, rotation[letter])
 
         object.__setattr__(self, "_workpiece_links", tuple(link(k) for k in workpiece_side))
@@ -215,6 +239,11 @@ class Machine:
     def letters(self) -> tuple[str, ...]:
         """Axis letters in chain order (workpiece side from F outward, then tool side)."""
         return tuple(link.letter for link in self._workpiece_links + self._tool_links)
+
+    @property
+    def rotary(self) -> tuple[str, ...]:
+        """The rotary axes of the chain (empty for a linear machine)."""
+        return tuple(k for k in self.letters if k in ROTARY_LETTERS)
 
     @property
     def tool_side(self) -> tuple[str, ...]:
@@ -297,7 +326,7 @@ class Machine:
         Parameters
         ----------
         positions : mapping of str to ndarray, shape (N,)
-            Position of every axis of the chain, metres.
+            Position of every axis of the chain: metres, radians for rotary axes.
 
         Returns
         -------
@@ -311,6 +340,10 @@ class Machine:
         """
         q = self._positions(positions)
         n = len(next(iter(q.values())))
+        if self.rotary:
+            start = tuple(np.full(n, c) for c in self.tool_m)
+            p = _through_chain(self._tool_links, self._workpiece_links, q, None, start, True, False)
+            return np.column_stack(p) - np.array(self.workpiece_m)
         p = np.tile(np.subtract(self.tool_m, self.workpiece_m), (n, 1))
         for link in self._tool_links:
             p += link.origin_m
@@ -368,14 +401,68 @@ class Machine:
         def run(start: int, stop: int) -> np.ndarray:
             part = {k: v[start:stop] for k, v in q.items()}
             given = None if errors is None else {k: v[:, start:stop] for k, v in errors.items()}
+            if self.rotary:
+                pose = pose_error(self._tool_links, self._workpiece_links, tool, part, given)
+                return np.column_stack(pose)
             return volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, part, given)
 
+        return self._chunked(run, q, n, errors is None, workers, 5 if self.rotary else 3)[:, :3]
+
+    def pose_error(
+        self, positions: Mapping[str, np.ndarray], *, workers: int | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Position error of the functional point and orientation error of the tool axis.
+
+        The orientation error is the turn of the tool direction (+Z of the last tool-side
+        carriage) about the X and Y axes of the nominal tool frame, seen from the workpiece
+        (``ei``, ``ej``; docs/conventions.md). It is zero for a chain of linear axes only when
+        their angular errors cancel; it is computed for every chain.
+
+        Parameters
+        ----------
+        positions : mapping of str to ndarray, shape (N,)
+            Position of every axis of the chain: metres, radians for rotary axes.
+        workers : int, optional
+            Threads for large N (default: the number of cores).
+
+        Returns
+        -------
+        error_m : ndarray, shape (N, 3)
+            As :meth:`volumetric_error`, metres.
+        orientation_rad : ndarray, shape (N, 2)
+            ``(ei, ej)``, radians.
+
+        Raises
+        ------
+        AxiscalError
+            As :meth:`volumetric_error`.
+
+        Examples
+        --------
+        >>> machine = Machine("CFZ", {"C": Axis("C"), "Z": Axis("Z")}, location={"EX0C": 1e-5})
+        >>> error, tilt = machine.pose_error({"C": [np.pi], "Z": [0.0]})
+        >>> error.round(9).tolist()  # a 10 um offset of the C axis line, turned half a turn
+        [[2e-05, 0.0, 0.0]]
+        """
+        q = self._positions(positions)
+        n = len(next(iter(q.values())))
+        tool = np.array(self.tool_m)
+
+        def run(start: int, stop: int) -> np.ndarray:
+            part = {k: v[start:stop] for k, v in q.items()}
+            return np.column_stack(pose_error(self._tool_links, self._workpiece_links, tool, part))
+
+        out = self._chunked(run, q, n, True, workers, 5)
+        return out[:, :3], out[:, 3:]
+
+    def _chunked(self, run, q: dict[str, np.ndarray], n: int, check: bool, workers: int | None, width: int) -> np.ndarray:
+        """``run(start, stop)`` over chunks of points, in threads; the results stacked."""
         if n <= _CHUNK:
             return run(0, n)
-        if errors is None:
+        if check:
             for letter in self.letters:
                 self.table(letter).check_range(q[letter])
-        out = np.empty((n, 3))
+        out = np.empty((n, width))
 
         def fill(start: int) -> None:
             out[start : start + _CHUNK] = run(start, start + _CHUNK)
@@ -408,6 +495,8 @@ class Machine:
             As :meth:`volumetric_error`.
         """
         q = self._positions(positions)
+        if self.rotary:
+            raise AxiscalError("the 4x4 reference model is written for linear chains; use volumetric_error")
         return reference_volumetric_error(
             self._tool_links, self._workpiece_links, np.array(self.tool_m), np.array(self.workpiece_m), q
         )
@@ -468,6 +557,8 @@ class Machine:
         >>> command = machine.command_for(machine.actual_point({"X": [0.1], "Z": [0.05]}))  # doctest: +SKIP
         >>> command["X"]  # array([0.1]) to better than 1e-12 m  # doctest: +SKIP
         """
+        if self.rotary:
+            raise AxiscalError(f"inverse kinematics is solved for linear chains only, not '{self.chain}'")
         command, bad, message = self._solve(target_m, tolerance_m, max_iterations)
         if bad is not None:
             raise AxiscalError(f"point {bad + 1}: {message}")
@@ -477,6 +568,8 @@ class Machine:
         self, target_m: np.ndarray, tolerance_m: float, max_iterations: int
     ) -> tuple[dict[str, np.ndarray], int | None, str]:
         """:meth:`command_for`, returning (commands, index of the first bad point or None, why)."""
+        if self.rotary:
+            raise AxiscalError(f"inverse kinematics is solved for linear chains only, not '{self.chain}'")
         if isinstance(max_iterations, bool) or not isinstance(max_iterations, (int, np.integer)) or max_iterations < 1:
             raise AxiscalError(f"max_iterations must be a whole number >= 1, not {max_iterations!r}")
         if not _is_number(tolerance_m) or tolerance_m <= 0:
