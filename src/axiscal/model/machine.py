@@ -30,11 +30,18 @@ from axiscal.model.kinematics import (
     reference_volumetric_error,
     volumetric_error,
 )
-from axiscal.model.tables import INTERPOLATIONS, MAX_ANGLE_ERROR_RAD, ErrorTable, read_error_table
+from axiscal.model.tables import (
+    INTERPOLATIONS,
+    MAX_ANGLE_ERROR_RAD,
+    MAX_TRANSLATION_ERROR_M,
+    ErrorTable,
+    read_error_table,
+)
 from axiscal.units import ANGLE_UNITS, LENGTH_UNITS, MM, angle_factor, length_factor, split_unit
 
 __all__ = [
     "SQUARENESS_PLACEMENTS",
+    "AXIS_UNITS",
     "MAX_GRID_POINTS",
     "MAX_MACHINE_SIZE_MM",
     "Axis",
@@ -615,9 +622,12 @@ _MACHINE_SCHEMA = {
     "squareness_placement": "text",
     "interpolation": "text",
     "hold_ends": "bool",
+    "location": "table",
 }
 #: schema of each ``[axes.<letter>]`` section
-_AXIS_SCHEMA = {"errors": "text", "origin_mm": "vector", "interpolation": "text", "hold_ends": "bool", "sensors": "table"}
+_AXIS_SCHEMA = {
+    "errors": "text", "origin_mm": "vector", "interpolation": "text", "hold_ends": "bool", "periodic": "bool", "sensors": "table"
+}
 _KIND_TEXT = {
     "text": "a string in quotes",
     "bool": "true or false",
@@ -625,6 +635,8 @@ _KIND_TEXT = {
     "vector": "a list of 3 finite numbers in mm, e.g. [0.0, -40.0, 0.0]",
     "table": "a table",
 }
+#: factor to SI and display unit of each axis' positions in files and on the command line
+AXIS_UNITS = {letter: (MM, "mm") for letter in AXIS_INDEX} | {letter: (ANGLE_UNITS["deg"], "deg") for letter in ROTARY_LETTERS}
 #: most points a grid may name (about 1 GB of positions and errors)
 MAX_GRID_POINTS = 20_000_000
 #: largest length accepted in a machine file (tool, workpiece, origins), mm
@@ -796,8 +808,14 @@ def machine_from_dict(
             )
         if not table_path.is_file():
             raise where.error(f"[{label}] errors: no file '{section['errors']}' in the machine file's folder", label, "errors")
+        if "periodic" in section and letter not in ROTARY_LETTERS:
+            raise where.error(f"[{label}] periodic: only a rotary axis (A, B, C) is periodic", label, "periodic")
         table = read_error_table(
-            table_path, letter, interpolation=axis_interpolation, hold_ends=section.get("hold_ends", hold_ends)
+            table_path,
+            letter,
+            interpolation=axis_interpolation,
+            hold_ends=section.get("hold_ends", hold_ends),
+            periodic=section.get("periodic"),
         )
         origin = _vector_mm(section.get("origin_mm", [0.0, 0.0, 0.0]), f"[{label}] origin_mm")
         axes[letter] = Axis(letter, table, origin)
@@ -819,6 +837,31 @@ def machine_from_dict(
         letter, reference, _ = _SQUARENESS_PLACE[stem]
         if letter not in workpiece_side + tool_side or reference not in workpiece_side + tool_side:
             raise where.error(f"[squareness] {key}: chain '{chain}' has no axes {reference} and {letter} to be square", "squareness", key)
+    location: dict[str, float] = {}
+    for key, value in data.get("location", {}).items():
+        stem, unit = split_unit(key) if "_" in key else (key, "")
+        letter = stem[-1:]
+        if letter not in ROTARY_LETTERS or stem not in location_names(letter):
+            raise where.error(
+                f"[location] unknown term '{key}'; e.g. {', '.join(n + '_um' for n in location_names('C')[:2])}, "
+                f"{', '.join(n + '_urad' for n in location_names('C')[2:])}",
+                "location",
+                key,
+            )
+        if letter not in workpiece_side + tool_side:
+            raise where.error(f"[location] {key}: chain '{chain}' has no axis {letter}", "location", key)
+        if not _is_number(value):
+            raise where.error(f"[location] {key} must be {_KIND_TEXT['number']}, not {value!r}", "location", key)
+        try:
+            if stem[1] in AXIS_INDEX:
+                factor, limit = length_factor(unit, what=key), MAX_TRANSLATION_ERROR_M
+            else:
+                factor, limit = angle_factor(unit, what=key), MAX_ANGLE_ERROR_RAD
+        except AxiscalError as exc:
+            raise where.error(exc.message, "location", key) from None
+        if abs(value * factor) > limit:
+            raise where.error(f"[location] {key} = {value} has no physical meaning (limits: 10 mm, 0.01 rad)", "location", key)
+        location[stem] = float(value) * factor
     placement = data.get("squareness_placement", SQUARENESS_PLACEMENTS[0])
     if placement not in SQUARENESS_PLACEMENTS:
         raise where.error(
@@ -833,6 +876,7 @@ def machine_from_dict(
             workpiece_m=_vector_mm(data.get("workpiece_mm", [0.0, 0.0, 0.0]), "workpiece_mm"),
             name=data.get("name", ""),
             squareness_placement=placement,
+            location=location,
         )
     except AxiscalError as exc:
         raise exc.located(path=source) from None
@@ -895,13 +939,14 @@ def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
     Parameters
     ----------
     spec : str
-        ``"X=0:190:10,Z=0:190:10"``: per axis ``start:end:step`` in mm (ends inclusive) or a single
-        value ``"Y=50"``.
+        ``"X=0:190:10,Z=0:190:10"``: per axis ``start:end:step`` in mm, or degrees for a rotary
+        axis (``"C=0:360:15"``), ends inclusive, or a single value ``"Y=50"``.
 
     Returns
     -------
     dict of str to ndarray, shape (N,)
-        Position of each named axis, metres, N the product of the axes' counts.
+        Position of each named axis (metres; radians for rotary axes), N the product of the
+        axes' counts.
 
     Raises
     ------
@@ -922,8 +967,10 @@ def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
         letter, sep, rng = part.partition("=")
         letter = letter.strip().upper()
         bits = [b.strip() for b in rng.split(":")]
-        if not sep or letter not in AXIS_INDEX or len(bits) not in (1, 3):
-            raise AxiscalError(f"grid '{spec}': expected parts like 'X=0:190:10' (start:end:step in mm) or 'Y=50'")
+        if not sep or letter not in AXIS_UNITS or len(bits) not in (1, 3):
+            raise AxiscalError(
+                f"grid '{spec}': expected parts like 'X=0:190:10' (start:end:step in mm, deg for A, B, C) or 'Y=50'"
+            )
         try:
             numbers = [float(b) for b in bits]
         except ValueError:
@@ -946,7 +993,7 @@ def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
         decimals = max(len(b.lower().split("e")[0].partition(".")[2]) for b in bits) + 3
         ranges[letter] = np.round(start + step * np.arange(count), decimals)
     mesh = np.meshgrid(*ranges.values(), indexing="ij")
-    return {letter: grid.ravel() * MM for letter, grid in zip(ranges, mesh)}
+    return {letter: grid.ravel() * AXIS_UNITS[letter][0] for letter, grid in zip(ranges, mesh)}
 
 
 def positions_from_points(sequence: Sequence[Mapping[str, float]]) -> dict[str, np.ndarray]:
