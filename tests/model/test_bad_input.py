@@ -260,3 +260,40 @@ def test_mutated_error_tables_parse_or_fail_with_file_and_line(machine_dir, data
         else:
             q = {k: np.linspace(*machine.travel_m(k), 5) for k in machine.letters}
             assert np.all(np.isfinite(machine.volumetric_error(q)))
+
+
+@pytest.fixture
+def trunnion_dir(tmp_path, examples):
+    folder = tmp_path / "trunnion"
+    shutil.copytree(examples / "trunnion_machine", folder)
+    return folder
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "needle", "words"),
+    [
+        ("EX0C_um = 8.0", "EX0C_um = true", "EX0C_um", "finite number"),
+        ("EX0C_um = 8.0", "EZ0C_um = 8.0", "EZ0C_um", "unknown term"),
+        ("EX0C_um = 8.0", "EX0B_um = 8.0", "EX0B_um", "no axis B"),
+        ("EX0C_um = 8.0", "EX0C_urad = 8.0", "EX0C_urad", "unit"),
+        ("EA0C_urad = 15.0", "EA0C_urad = 1e9", "EA0C_urad", "no physical meaning"),
+        ("periodic = false", 'periodic = "no"', "periodic", "true or false"),
+        ('errors = "x_errors.csv"', 'errors = "x_errors.csv"\nperiodic = true', "periodic = true", "only a rotary axis"),
+        ('chain = "CAFXYZ"', 'chain = "CAFXYZQ"', "chain", "not a linear axis"),
+    ],
+)
+def test_five_axis_machine_file_mistakes_name_key_and_line(trunnion_dir, old, new, needle, words):
+    path = edit(trunnion_dir, old, new)
+    with pytest.raises(AxiscalError) as caught:
+        load_machine(path)
+    assert (caught.value.path, caught.value.line) == (str(path), line_of(path, needle))
+    assert words in caught.value.message
+
+
+def test_a_periodic_table_longer_than_a_turn_names_the_file(trunnion_dir):
+    edit(trunnion_dir, "position_deg", "position_deg", name="c_errors.csv")
+    path = trunnion_dir / "c_errors.csv"
+    path.write_text(path.read_text() + "400.000,0,0,0,0,0,0\n")
+    with pytest.raises(AxiscalError, match="at most 360 deg") as caught:
+        load_machine(trunnion_dir / "machine.toml")
+    assert caught.value.path == str(path)
