@@ -384,10 +384,10 @@ def _table_from_csv(
     table: CsvTable, letter: str, *, interpolation: str, hold_ends: bool, periodic: bool | None
 ) -> ErrorTable:
     names = component_names(letter)
-    first, unit = ("position_deg", _DEG) if letter in ROTARY_LETTERS else ("position_mm", MM)
+    first, scale = ("position_deg", _DEG) if letter in ROTARY_LETTERS else ("position_mm", MM)
     if table.header[0] != first:
         raise AxiscalError(f"first column must be '{first}', found '{table.header[0]}'", line=table.header_line)
-    position = table.numeric(first) * unit
+    position = table.numeric(first) * scale
     steps = np.diff(position)
     if np.any(steps <= 0):
         k = int(np.argmax(steps <= 0)) + 1
@@ -422,5 +422,5 @@ def _table_from_csv(
             )
     if np.any(np.abs(position) > _MAX_POSITION_M):
         k = int(np.argmax(np.abs(position) > _MAX_POSITION_M))
-        raise AxiscalError(f"{first} beyond {_MAX_POSITION_M / unit:g} has no physical meaning", line=table.lines[k])
+        raise AxiscalError(f"{first} beyond {_MAX_POSITION_M / scale:g} has no physical meaning", line=table.lines[k])
     return ErrorTable(letter, position, values, interpolation=interpolation, hold_ends=hold_ends, periodic=periodic)
