@@ -387,23 +387,26 @@ def test_simulate_laser_command(run_cli, tmp_path):
 def _xfyz_system(tmp_path, examples, extra: str = ""):
     from axiscal.measurement.pipeline import MeasurementSystem
 
-    folder = examples / "xfyz_machine"
+    import shutil
+
+    for name in ("x_errors.csv", "y_errors.csv", "z_errors.csv"):  # tables must sit beside the machine file
+        shutil.copy(examples / "xfyz_machine" / name, tmp_path / name)
     text = f"""
 chain = "XFYZ"
 tool_mm = [0.0, 0.0, -150.0]
 [axes.X]
-errors = "{folder / 'x_errors.csv'}"
+errors = "x_errors.csv"
 [axes.X.sensors]
 scale_point_mm = [0.0, -40.0, -60.0]
 psd_point_mm = [10.0, 30.0, 20.0]
 [axes.Y]
-errors = "{folder / 'y_errors.csv'}"
+errors = "y_errors.csv"
 [axes.Y.sensors]
 scale_point_mm = [25.0, 0.0, -30.0]
 psd_point_mm = [-20.0, 5.0, 40.0]
 qd_focal_mm = 150.0
 [axes.Z]
-errors = "{folder / 'z_errors.csv'}"
+errors = "z_errors.csv"
 [axes.Z.sensors]
 scale_point_mm = [30.0, 15.0, 0.0]
 psd_point_mm = [-10.0, 25.0, 5.0]

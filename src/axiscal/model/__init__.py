@@ -22,6 +22,8 @@ from axiscal.model.inputs import (
 from axiscal.model.inverse import InverseResult, inverse_commands
 from axiscal.model.kinematics import (
     ChainLink,
+    RotaryLink,
+    pose_error,
     error_matrix,
     link_matrix,
     reference_volumetric_error,
@@ -29,6 +31,7 @@ from axiscal.model.kinematics import (
     volumetric_error,
 )
 from axiscal.model.machine import (
+    AXIS_UNITS,
     MAX_GRID_POINTS,
     MAX_MACHINE_SIZE_MM,
     SQUARENESS_PLACEMENTS,
@@ -68,11 +71,14 @@ __all__ = [
     "MAX_ANGLE_ERROR_RAD",
     "MAX_TRANSLATION_ERROR_M",
     "MAX_DIAGONAL_STEPS",
+    "AXIS_UNITS",
     "MAX_GRID_POINTS",
     "MAX_MACHINE_SIZE_MM",
     "ErrorTable",
     "read_error_table",
     "ChainLink",
+    "RotaryLink",
+    "pose_error",
     "volumetric_error",
     "translation_matrix",
     "error_matrix",

@@ -699,7 +699,7 @@ class _Where:
         label = f"[{section}] " if section else ""
         for key, value in data.items():
             if key not in schema:
-                raise self.error(f"{label}unknown key '{key}'; known keys: {', '.join(sorted(schema))}", section, key)
+                raise self.error(f"{label}unknown key {key}; known keys: {', '.join(sorted(schema))}", section, key)
             if not _check_kind(value, schema[key]):
                 raise self.error(f"{label}{key} must be {_KIND_TEXT[schema[key]]}, not {value!r}", section, key)
 
@@ -712,8 +712,6 @@ def _vector_mm(value: object, what: str) -> tuple[float, float, float]:
 
 def _confined(base_dir: Path, name: str, tables_dir: Path | None) -> Path | None:
     """``name`` resolved inside ``base_dir`` (or else ``tables_dir``), or None if it points elsewhere."""
-    if Path(name).is_absolute():
-        return None
     found = []
     for folder in (base_dir,) if tables_dir is None else (base_dir, tables_dir):
         root = folder.resolve()
@@ -747,7 +745,7 @@ def machine_from_dict(
     text : str, optional
         The TOML text ``data`` was parsed from, to name the line of a bad key.
     tables_dir : str or Path, optional
-        A second folder error table paths may point into (relative paths only).
+        A second folder error table paths may point into.
 
     Returns
     -------
@@ -804,7 +802,7 @@ def machine_from_dict(
         table_path = _confined(base_dir, section["errors"], None if tables_dir is None else Path(tables_dir))
         if table_path is None:
             raise where.error(
-                f"[{label}] errors: the error table must be a relative path inside the machine file's folder", label, "errors"
+                f"[{label}] errors: the error table must be inside the machine file's folder", label, "errors"
             )
         if not table_path.is_file():
             raise where.error(f"[{label}] errors: no file '{section['errors']}' in the machine file's folder", label, "errors")

@@ -181,7 +181,7 @@ def load_machine_uncertainty(path: str | Path) -> tuple[Machine, MachineUncertai
                 u_columns[letter] = (table, rows)
                 section["errors"] = str(copy)
         try:
-            machine = machine_from_dict(data, base_dir=path.parent, source=str(path))
+            machine = machine_from_dict(data, base_dir=path.parent, source=str(path), tables_dir=folder)
         except AxiscalError as exc:
             for copy, original in originals.items():
                 if exc.path == copy:
