@@ -44,9 +44,21 @@ def line_of(path, needle):
     return next(i for i, line in enumerate(path.read_text().splitlines(), start=1) if needle in line)
 
 
+_FIVE_AXIS = [  # (example folder, text, its replacement, text of the line named, words of the message)
+    ("EX0C_um = 8.0", "EX0C_um = true", "EX0C_um", "finite number"),
+    ("EX0C_um = 8.0", "EZ0C_um = 8.0", "EZ0C_um", "unknown term"),
+    ("EX0C_um = 8.0", "EX0B_um = 8.0", "EX0B_um", "no axis B"),
+    ("EX0C_um = 8.0", "EX0C_urad = 8.0", "EX0C_urad", "unit"),
+    ("EA0C_urad = 15.0", "EA0C_urad = 1e9", "EA0C_urad", "no physical meaning"),
+    ("periodic = false", 'periodic = "no"', "periodic", "true or false"),
+    ('errors = "x_errors.csv"', 'errors = "x_errors.csv"\nperiodic = true', "periodic = true", "only a rotary axis"),
+    ('chain = "CAFXYZ"', 'chain = "CAFXYZQ"', "chain", "not a linear axis"),
+]
+
+
 @pytest.mark.parametrize(
-    ("old", "new", "needle", "words"),
-    [
+    ("example", "old", "new", "needle", "words"),
+    [("trunnion_machine", *case) for case in _FIVE_AXIS] + [("xfyz_machine", *case) for case in [
         ('errors = "x_errors.csv"', 'errors = "x_errors.csv"\nhold_ends = "false"', "hold_ends", "true or false"),
         ("tool_mm = [0.0, 0.0, -150.0]", "tool_mm = [true, 0, 0]", "tool_mm", "3 finite numbers"),
         ("tool_mm = [0.0, 0.0, -150.0]", 'tool_mm = "150"', "tool_mm", "3 finite numbers"),
@@ -63,10 +75,12 @@ def line_of(path, needle):
         ('errors = "z_errors.csv"', "errors = 7", 'errors = 7', "string"),
         ('errors = "z_errors.csv"', 'errors = "z_errors.csv"\ninterpolation = "quintic"', "interpolation", "interpolation"),
         ('errors = "z_errors.csv"', 'errors = "z_errors.csv"\nspeed = 3', "speed", "unknown key"),
-    ],
+    ]],
 )
-def test_machine_file_values_of_the_wrong_kind_name_key_and_line(machine_dir, old, new, needle, words):
-    path = edit(machine_dir, old, new)
+def test_machine_file_values_of_the_wrong_kind_name_key_and_line(tmp_path, examples, example, old, new, needle, words):
+    folder = tmp_path / example
+    shutil.copytree(examples / example, folder)
+    path = edit(folder, old, new)
     with pytest.raises(AxiscalError) as caught:
         load_machine(path)
     assert caught.value.path == str(path)
@@ -267,27 +281,6 @@ def trunnion_dir(tmp_path, examples):
     folder = tmp_path / "trunnion"
     shutil.copytree(examples / "trunnion_machine", folder)
     return folder
-
-
-@pytest.mark.parametrize(
-    ("old", "new", "needle", "words"),
-    [
-        ("EX0C_um = 8.0", "EX0C_um = true", "EX0C_um", "finite number"),
-        ("EX0C_um = 8.0", "EZ0C_um = 8.0", "EZ0C_um", "unknown term"),
-        ("EX0C_um = 8.0", "EX0B_um = 8.0", "EX0B_um", "no axis B"),
-        ("EX0C_um = 8.0", "EX0C_urad = 8.0", "EX0C_urad", "unit"),
-        ("EA0C_urad = 15.0", "EA0C_urad = 1e9", "EA0C_urad", "no physical meaning"),
-        ("periodic = false", 'periodic = "no"', "periodic", "true or false"),
-        ('errors = "x_errors.csv"', 'errors = "x_errors.csv"\nperiodic = true', "periodic = true", "only a rotary axis"),
-        ('chain = "CAFXYZ"', 'chain = "CAFXYZQ"', "chain", "not a linear axis"),
-    ],
-)
-def test_five_axis_machine_file_mistakes_name_key_and_line(trunnion_dir, old, new, needle, words):
-    path = edit(trunnion_dir, old, new)
-    with pytest.raises(AxiscalError) as caught:
-        load_machine(path)
-    assert (caught.value.path, caught.value.line) == (str(path), line_of(path, needle))
-    assert words in caught.value.message
 
 
 def test_a_periodic_table_longer_than_a_turn_names_the_file(trunnion_dir):
