@@ -128,10 +128,12 @@ def _turn(index, c, s, px, py, pz):
 
 
 def _carry(link, q, v, p, forward, errors, point):
-    """Apply link ``A_k`` (forward) or its inverse to p (a point, or a direction if not ``point``)."""
+    """Apply link ``A_k`` (forward) or its inverse to p (a point, or a direction if not ``point``).
+
+    For a rotary link ``q`` is the pair (cos θ, sin θ)."""
     px, py, pz = p
     if isinstance(link, RotaryLink):
-        c, s = np.cos(q), np.sin(q)
+        c, s = q
         d = link.offset_m if errors else np.zeros(3)
         tilt = link.tilt_rad if errors else np.zeros(3)
         o = link.origin_m if point else np.zeros(3)
@@ -175,15 +177,26 @@ def _carry(link, q, v, p, forward, errors, point):
     return _unrotate(v[3], v[4], v[5], *p) if errors else tuple(p)
 
 
-def _through_chain(tool_links, workpiece_links, positions_m, motions, start, point, errors):
-    """``T_wp⁻¹ · T_tool`` applied to ``start`` (a point or a direction), with or without errors."""
+def _link_inputs(links, positions_m):
+    """Per link: its position, or (cos θ, sin θ) for a rotary link (computed once for every pass)."""
+    out = {}
+    for link in links:
+        q = positions_m[link.letter]
+        out[link.letter] = (np.cos(q), np.sin(q)) if isinstance(link, RotaryLink) else q
+    return out
+
+
+def _through_chain(tool_links, workpiece_links, positions_m, motions, start, point, errors, inputs=None):
+    """``T_wp⁻¹ · T_tool`` applied to ``start`` (a point or a direction), with or without errors.
+
+    ``motions``: the error motions (6, N) of each axis letter (unused without errors)."""
+    if inputs is None:
+        inputs = _link_inputs(tuple(tool_links) + tuple(workpiece_links), positions_m)
     p = start
     for link in reversed(tool_links):
-        q = positions_m[link.letter]
-        p = _carry(link, q, motions(link, q) if errors else None, p, True, errors, point)
+        p = _carry(link, inputs[link.letter], motions[link.letter] if errors else None, p, True, errors, point)
     for link in workpiece_links:
-        q = positions_m[link.letter]
-        p = _carry(link, q, motions(link, q) if errors else None, p, False, errors, point)
+        p = _carry(link, inputs[link.letter], motions[link.letter] if errors else None, p, False, errors, point)
     return p
 
 
@@ -193,7 +206,9 @@ def pose_error(
     tool_m: np.ndarray,
     positions_m: dict[str, np.ndarray],
     errors: Mapping[str, np.ndarray] | None = None,
-) -> tuple[np.ndarray, np.ndarray]:
+    *,
+    orientation: bool = True,
+) -> tuple[np.ndarray, np.ndarray | None]:
     """Position error of the functional point and orientation error of the tool axis, any chain.
 
     Parameters
@@ -206,12 +221,14 @@ def pose_error(
         Axis positions: metres for linear axes, radians for rotary axes.
     errors : mapping of str to ndarray, shape (6, N), optional
         Error motions of the axes given per point, instead of read from the links' tables.
+    orientation : bool
+        False: skip the orientation error (returned as None), for speed.
 
     Returns
     -------
     error_m : ndarray, shape (N, 3)
         Actual minus nominal functional point relative to the workpiece, in the workpiece frame, m.
-    orientation_rad : ndarray, shape (N, 2)
+    orientation_rad : ndarray, shape (N, 2) or None
         Rotation ``(ei, ej)`` of the tool direction (+Z of the last tool-side carriage) about the
         X and Y axes of the nominal tool frame, seen from the workpiece, radians.
 
@@ -221,23 +238,30 @@ def pose_error(
         A position outside an error table (unless it holds its ends or is periodic).
     """
     n = len(next(iter(positions_m.values())))
-
-    def motions(link, q):
-        return link.table.evaluate(q) if errors is None else errors[link.letter]
+    links = tuple(tool_links) + tuple(workpiece_links)
+    if errors is None:
+        motions = {link.letter: link.table.evaluate(positions_m[link.letter]) for link in links}
+    else:
+        motions = errors
+    inputs = _link_inputs(links, positions_m)
 
     def run(vector, point, with_errors):
         start = tuple(np.full(n, float(c)) for c in vector)
-        return np.column_stack(_through_chain(tool_links, workpiece_links, positions_m, motions, start, point, with_errors))
+        return np.column_stack(
+            _through_chain(tool_links, workpiece_links, positions_m, motions, start, point, with_errors, inputs)
+        )
 
     error = run(tool_m, True, True) - run(tool_m, True, False)
+    if not orientation:
+        return error, None
     tool = run((0.0, 0.0, 1.0), False, True)
     nominal = run((0.0, 0.0, 1.0), False, False)
     cross = np.cross(nominal, tool)
-    orientation = np.column_stack([
+    turn = np.column_stack([
         np.einsum("ij,ij->i", run((1.0, 0.0, 0.0), False, False), cross),
         np.einsum("ij,ij->i", run((0.0, 1.0, 0.0), False, False), cross),
     ])
-    return error, orientation
+    return error, turn
 
 
 def _rotate(ex, ey, ez, px, py, pz):

@@ -349,7 +349,7 @@ class Machine:
         n = len(next(iter(q.values())))
         if self.rotary:
             start = tuple(np.full(n, c) for c in self.tool_m)
-            p = _through_chain(self._tool_links, self._workpiece_links, q, None, start, True, False)
+            p = _through_chain(self._tool_links, self._workpiece_links, q, {}, start, True, False)
             return np.column_stack(p) - np.array(self.workpiece_m)
         p = np.tile(np.subtract(self.tool_m, self.workpiece_m), (n, 1))
         for link in self._tool_links:
@@ -409,11 +409,10 @@ class Machine:
             part = {k: v[start:stop] for k, v in q.items()}
             given = None if errors is None else {k: v[:, start:stop] for k, v in errors.items()}
             if self.rotary:
-                pose = pose_error(self._tool_links, self._workpiece_links, tool, part, given)
-                return np.column_stack(pose)
+                return pose_error(self._tool_links, self._workpiece_links, tool, part, given, orientation=False)[0]
             return volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, part, given)
 
-        return self._chunked(run, q, n, errors is None, workers, 5 if self.rotary else 3)[:, :3]
+        return self._chunked(run, q, n, errors is None, workers, 3)
 
     def pose_error(
         self, positions: Mapping[str, np.ndarray], *, workers: int | None = None
