@@ -341,8 +341,9 @@ def diagonal_test(
     >>> result.range_after_m  # doctest: +SKIP
     """
     model = as_machine(machine)
-    start_m = parse_point(start, "start") if isinstance(start, str) else dict(start)
-    end_m = parse_point(end, "end") if isinstance(end, str) else dict(end)
+    start_m = parse_point(start, "start") if isinstance(start, str) else start
+    end_m = parse_point(end, "end") if isinstance(end, str) else end
+    diagonal_positions(start_m, end_m, 1)  # the end points: mappings of finite numbers, same axes
     sources = [str(machine)] if isinstance(machine, (str, Path)) else []
     measured = None
     if readings is not None and not isinstance(readings, (str, Path)):

@@ -35,6 +35,7 @@ from axiscal.model.tables import (
     MAX_ANGLE_ERROR_RAD,
     MAX_TRANSLATION_ERROR_M,
     ErrorTable,
+    _floats,
     read_error_table,
 )
 from axiscal.units import ANGLE_UNITS, LENGTH_UNITS, MM, angle_factor, length_factor, split_unit
@@ -222,12 +223,14 @@ class Machine:
 
         def link(letter: str) -> ChainLink | RotaryLink:
             axis = self.axes[letter]
+            if not isinstance(axis, Axis):
+                raise AxiscalError(f"axis description under '{letter}' must be an Axis, not {axis!r:.40}")
             if axis.letter != letter:
                 raise AxiscalError(f"axis description under '{letter}' is for axis '{axis.letter}'")
             table = axis.table if axis.table is not None else ErrorTable.zeros(letter)
             if table.letter != letter:
                 raise AxiscalError(f"axis {letter} was given the error table of axis {table.letter}")
-            origin = np.asarray(axis.origin_m, dtype=float)
+            origin = _floats(axis.origin_m, f"axis {letter}: origin")
             if origin.shape != (3,) or not np.all(np.isfinite(origin)):
                 raise AxiscalError(f"axis {letter}: origin must be 3 finite numbers")
             if letter in ROTARY_LETTERS:
@@ -237,7 +240,7 @@ class Machine:
         object.__setattr__(self, "_workpiece_links", tuple(link(k) for k in workpiece_side))
         object.__setattr__(self, "_tool_links", tuple(link(k) for k in tool_side))
         for label in ("tool_m", "workpiece_m"):
-            value = np.asarray(getattr(self, label), dtype=float)
+            value = _floats(getattr(self, label), label)
             if value.shape != (3,) or not np.all(np.isfinite(value)):
                 raise AxiscalError(f"{label} must be 3 finite numbers")
             object.__setattr__(self, label, tuple(float(v) for v in value))
@@ -313,10 +316,7 @@ class Machine:
         for letter in self.letters:
             if letter not in positions:
                 raise AxiscalError(f"no positions given for axis {letter} of chain '{self.chain}'")
-            try:
-                q = np.atleast_1d(np.asarray(positions[letter], dtype=float))
-            except (TypeError, ValueError):
-                raise AxiscalError(f"positions of axis {letter} must be numbers in metres") from None
+            q = np.atleast_1d(_floats(positions[letter], f"positions of axis {letter}"))
             if q.ndim != 1:
                 raise AxiscalError(f"positions of axis {letter} must be one-dimensional")
             if not np.all(np.isfinite(q)):
@@ -399,7 +399,9 @@ class Machine:
         q = self._positions(positions)
         n = len(next(iter(q.values())))
         if errors is not None:
-            errors = {k: np.asarray(errors[k], dtype=float) for k in self.letters if k in errors}
+            if not isinstance(errors, Mapping):
+                raise AxiscalError("errors must map axis letters to arrays of shape (6, N)")
+            errors = {k: _floats(errors[k], f"errors of axis {k}") for k in self.letters if k in errors}
             wrong = [k for k in self.letters if errors.get(k, np.empty(0)).shape != (6, n)]
             if wrong:
                 raise AxiscalError(f"errors of axis {', '.join(wrong)} must have shape (6, {n})")
@@ -580,10 +582,7 @@ class Machine:
             raise AxiscalError(f"max_iterations must be a whole number >= 1, not {max_iterations!r}")
         if not _is_number(tolerance_m) or tolerance_m <= 0:
             raise AxiscalError(f"tolerance_m must be a positive number of metres, not {tolerance_m!r}")
-        try:
-            target = np.atleast_2d(np.asarray(target_m, dtype=float))
-        except (TypeError, ValueError):
-            raise AxiscalError("target points must be numbers, shape (N, 3)") from None
+        target = np.atleast_2d(_floats(target_m, "target points"))
         if target.ndim != 2 or target.shape[1] != 3:
             raise AxiscalError(f"target points must have shape (N, 3), not {target.shape}")
         finite = np.all(np.isfinite(target), axis=1)
@@ -925,9 +924,13 @@ def as_machine(machine: Machine | str | Path) -> Machine:
     Raises
     ------
     AxiscalError
-        If the file is missing or malformed (see :func:`load_machine`).
+        Neither a Machine nor a path, or a missing or malformed file (see :func:`load_machine`).
     """
-    return machine if isinstance(machine, Machine) else load_machine(machine)
+    if isinstance(machine, Machine):
+        return machine
+    if not isinstance(machine, (str, Path)):
+        raise AxiscalError(f"a machine is a Machine or the path of its TOML file, not {machine!r:.40}")
+    return load_machine(machine)
 
 
 def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
@@ -1005,6 +1008,16 @@ def positions_from_points(sequence: Sequence[Mapping[str, float]]) -> dict[str, 
     -------
     dict of str to ndarray, shape (N,)
         Metres.
+
+    Raises
+    ------
+    AxiscalError
+        Points that are not mappings, name different axes, or hold values that are not numbers.
     """
+    if not isinstance(sequence, Sequence) or not all(isinstance(p, Mapping) for p in sequence):
+        raise AxiscalError("points must be a list of mappings such as {'X': 0.1, 'Z': 0.05}")
     letters = list(sequence[0]) if sequence else []
-    return {k: np.array([p[k] for p in sequence], dtype=float) for k in letters}
+    for k, point in enumerate(sequence):
+        if set(point) != set(letters):
+            raise AxiscalError(f"point {k + 1} names axes {sorted(point)}, the first point {sorted(letters)}")
+    return {k: _floats([p[k] for p in sequence], f"positions of axis {k}") for k in letters}

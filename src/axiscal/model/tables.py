@@ -36,6 +36,21 @@ MAX_ANGLE_ERROR_RAD = 0.01
 _MAX_POSITION_M = 1000.0
 
 
+def _floats(value: object, what: str) -> np.ndarray:
+    """``value`` as a float array; anything that is not numbers (text, true/false) raises AxiscalError."""
+    try:
+        if isinstance(value, (bool, np.bool_, str)):
+            raise TypeError
+        if isinstance(value, (list, tuple)):  # true/false would pass as 1/0
+            if any(isinstance(v, (bool, np.bool_)) for v in np.asarray(value, dtype=object).ravel()):
+                raise TypeError
+        elif np.asarray(value).dtype == bool:
+            raise TypeError
+        return np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise AxiscalError(f"{what} must be numbers, not {value!r:.60}") from None
+
+
 def _first_too_large(values: np.ndarray) -> tuple[int, int] | None:
     """(row, sample) of the first error motion over its limit, or None."""
     limits = np.array([MAX_TRANSLATION_ERROR_M] * 3 + [MAX_ANGLE_ERROR_RAD] * 3)[:, None]
@@ -96,11 +111,8 @@ class ErrorTable:
 
     def __post_init__(self) -> None:
         component_names(self.letter)
-        try:
-            position = np.ascontiguousarray(self.position_m, dtype=float)
-            values = np.ascontiguousarray(self.values, dtype=float)
-        except (TypeError, ValueError):
-            raise AxiscalError(f"axis {self.letter}: positions and values must be numbers") from None
+        position = np.ascontiguousarray(_floats(self.position_m, f"axis {self.letter}: positions"))
+        values = np.ascontiguousarray(_floats(self.values, f"axis {self.letter}: values"))
         rotary = self.letter in ROTARY_LETTERS
         periodic = rotary if self.periodic is None else self.periodic
         if not isinstance(periodic, (bool, np.bool_)) or (periodic and not rotary):
@@ -209,11 +221,14 @@ class ErrorTable:
         unknown = set(components) - set(names)
         if unknown:
             raise AxiscalError(f"axis {letter}: unknown components {sorted(unknown)}; expected {', '.join(names)}")
-        position = np.asarray(position_m, dtype=float)
+        position = _floats(position_m, f"axis {letter}: positions")
         values = np.zeros((6, position.size))
         for row, name in enumerate(names):
             if name in components:
-                values[row] = components[name]
+                component = _floats(components[name], name)
+                if component.shape != position.shape:
+                    raise AxiscalError(f"{name} has shape {component.shape}; the positions have {position.shape}")
+                values[row] = component
         return cls(letter, position, values, **options)
 
     @property
@@ -316,7 +331,7 @@ class ErrorTable:
         AxiscalError
             A position outside the table (unless ``hold_ends``).
         """
-        q = np.asarray(q_m, dtype=float)
+        q = _floats(q_m, f"positions of axis {self.letter}")
         self.check_range(q)
         if self.periodic:
             q = self.start_m + np.mod(q - self.start_m, _TURN)

@@ -17,6 +17,7 @@ from axiscal.errors import AxiscalError
 from axiscal.model.inputs import check_travel, read_points
 from axiscal.model.machine import AXIS_UNITS, Machine, as_machine, axis_positions_from_grid
 from axiscal.model.output import TableResult
+from axiscal.model.tables import _floats
 from axiscal.units import ANGLE_UNITS, UM
 
 __all__ = ["VolumetricMap", "volumetric_map"]
@@ -186,7 +187,12 @@ def volumetric_map(
         q, _ = read_points(points, model)
         sources.append(str(points))
     else:
-        q = axis_positions_from_grid(grid) if grid is not None else {k: np.atleast_1d(np.asarray(v, dtype=float)) for k, v in positions.items()}
+        if grid is not None:
+            q = axis_positions_from_grid(grid)
+        elif isinstance(positions, Mapping):
+            q = {k: np.atleast_1d(_floats(v, f"positions of axis {k}")) for k, v in positions.items()}
+        else:
+            raise AxiscalError("positions must map axis letters to arrays of positions")
         what = f"grid '{grid}'" if grid is not None else "positions"
         missing = sorted(set(model.letters) - set(q))
         if missing:
