@@ -182,3 +182,64 @@ def test_diagonal_readings_that_do_not_match(run_cli, module, tmp_path):
     assert status == 2 and "r.csv:3: nominal_mm" in err
     status, _, err = run_cli("diagonal", "--machine", module / "machine.toml", "--from", "X=0;Z=0", "--to", "X=190,Z=190")
     assert status == 2 and "--from" in err
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (("volumetric", "--grid", "X=nan,Z=0"), "finite"),
+        (("volumetric", "--grid", "X=0:190:1e-9,Z=0"), "more than"),
+        (("diagonal", "--from", "X=0,Z=0", "--to", "X=190,Z=190", "--steps", "100000000"), "steps from 1 to"),
+    ],
+)
+def test_unbounded_or_non_finite_requests_are_one_line_errors(run_cli, module, args, words):
+    status, out, err = run_cli(args[0], "--machine", module / "machine.toml", *args[1:])
+    assert status == 2 and out == ""
+    assert err.startswith("axiscal: error: ") and words in err and len(err.strip().splitlines()) == 1
+
+
+def test_inverse_names_the_line_of_an_unreachable_point(run_cli, module, tmp_path):
+    points = tmp_path / "targets.csv"
+    points.write_text("x_mm,y_mm,z_mm\n10,0,100\n10,0,900\n")
+    status, _, err = run_cli("inverse", "--machine", module / "machine.toml", "--points", points)
+    assert status == 2
+    assert f"{points}:3: " in err and "outside the error table of axis Z" in err
+
+
+def test_five_axis_trunnion_map_in_degrees_with_tool_axis_orientation(run_cli, examples, tmp_path):
+    import pandas
+
+    out = tmp_path / "trunnion.csv"
+    machine = examples / "trunnion_machine" / "machine.toml"
+    status, _, err = run_cli(
+        "volumetric", "--machine", machine, "--grid", "A=-90:30:30,C=0:360:90,X=100,Y=50,Z=-200", "-o", out, "--plot", tmp_path / "t.png"
+    )
+    assert status == 0, err
+    frame = pandas.read_csv(out)
+    assert list(frame.columns) == [
+        "a_deg", "c_deg", "x_mm", "y_mm", "z_mm", "ex_um", "ey_um", "ez_um", "e_um", "ei_urad", "ej_urad"
+    ]
+    assert len(frame) == 5 * 5 and frame["c_deg"].max() == 360.0
+    import axiscal
+
+    model = axiscal.load_machine(machine)
+    q = {"A": np.radians(frame["a_deg"]), "C": np.radians(frame["c_deg"])}
+    q |= {k: frame[f"{k.lower()}_mm"].to_numpy() * 1e-3 for k in "XYZ"}
+    error, orientation = model.pose_error(q)
+    np.testing.assert_allclose(frame["ex_um"], error[:, 0] * 1e6, atol=1e-4)
+    np.testing.assert_allclose(frame["ej_urad"], orientation[:, 1] * 1e6, atol=1e-4)
+    # the periodic C table: 0 and 360 deg are the same place
+    at = frame.set_index(["a_deg", "c_deg"])
+    np.testing.assert_allclose(at.xs(0.0, level="c_deg")["e_um"], at.xs(360.0, level="c_deg")["e_um"], atol=1e-4)
+    assert (tmp_path / "t.png").stat().st_size > 10_000
+
+
+def test_five_axis_points_file_takes_degree_columns(run_cli, examples, tmp_path):
+    points = tmp_path / "p.csv"
+    points.write_text("a_deg,c_deg,x_mm,y_mm,z_mm\n0,0,0,0,-100\n-45,90,10,20,-100\n")
+    status, out, err = run_cli("volumetric", "--machine", examples / "trunnion_machine" / "machine.toml", "--points", points)
+    assert status == 0, err
+    assert out.splitlines()[0].endswith("e_um,ei_urad,ej_urad") and len(out.splitlines()) == 3
+    points.write_text("a_deg,c_deg,x_mm,y_mm,z_mm\n-150,0,0,0,-100\n")
+    status, _, err = run_cli("volumetric", "--machine", examples / "trunnion_machine" / "machine.toml", "--points", points)
+    assert status == 2 and f"{points}:2: A = -150 deg is outside the error table of axis A" in err

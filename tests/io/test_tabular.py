@@ -17,7 +17,6 @@ from axiscal.errors import AxiscalError
 from axiscal.io.tabular import CsvTable, parse_csv, read_csv, write_csv
 
 
-
 def test_reads_numbers_skipping_comments_and_blank_lines():
     table = parse_csv(["# made by hand", "position_mm, EXX_um", "", "0, 1.5", "10, -2"])
     assert table.header == ("position_mm", "EXX_um")

@@ -27,7 +27,8 @@ def random_table(letter, rng, *, translation=10e-6, rotation=100e-6, rows=12, st
 def random_machine(chain, rng, **table_options):
     letters = [c for c in chain if c != "F"]
     axes = {k: Axis(k, random_table(k, rng, **table_options), tuple(rng.normal(size=3) * 0.1)) for k in letters}
-    squareness = {t: float(rng.normal() * 50 * ARCSEC) for t in ("EC0Y", "EB0Z", "EA0Z")}
+    pairs = {"EC0Y": "XY", "EB0Z": "XZ", "EA0Z": "YZ"}  # a term needs both its axes in the chain
+    squareness = {t: float(rng.normal() * 50 * ARCSEC) for t, axes_of in pairs.items() if set(axes_of) <= set(letters)}
     return Machine(
         chain, axes, squareness_rad=squareness, tool_m=tuple(rng.normal(size=3) * 0.1), workpiece_m=tuple(rng.normal(size=3) * 0.1)
     )
@@ -50,7 +51,9 @@ def test_chain_parsing():
     assert parse_chain("XFYZ") == (("X",), ("Y", "Z"))
     assert parse_chain("YXFZ") == (("X", "Y"), ("Z",))
     assert parse_chain("FXZ") == ((), ("X", "Z"))
-    for bad in ("XYZ", "FXFZ", "XFX", "AFX", "F", "WXFYZ"):
+    assert parse_chain("CAFXYZ") == (("A", "C"), ("X", "Y", "Z"))
+    assert parse_chain("FXYZBC") == ((), ("X", "Y", "Z", "B", "C"))
+    for bad in ("XYZ", "FXFZ", "XFX", "AFA", "F", "WXFYZ", "UFX"):
         with pytest.raises(AxiscalError):
             parse_chain(bad)
 
@@ -321,5 +324,5 @@ def test_machine_file_placement_defaults_to_relative(tmp_path):
     assert included_angles(machine)["XY"] - np.pi / 2 == pytest.approx(20 * ARCSEC, rel=1e-6)
     guideway = machine_from_dict(data | {"squareness_placement": "guideway"}, base_dir=tmp_path)
     assert included_angles(guideway)["XY"] == pytest.approx(np.pi / 2, abs=1e-12)
-    with pytest.raises(AxiscalError, match="machine.toml: the machine file squareness_placement must be one of relative, guideway"):
+    with pytest.raises(AxiscalError, match="machine.toml: unknown squareness placement .sideways."):
         machine_from_dict(data | {"squareness_placement": "sideways"}, base_dir=tmp_path, source="machine.toml")

@@ -16,15 +16,16 @@ __all__ = ["volumetric_command", "diagonal_command", "inverse_command", "registe
 
 @click.command("volumetric")
 @click.option("--machine", "machine_path", required=True, type=click.Path(dir_okay=False), help="Machine description (TOML).")
-@click.option("--points", "points_path", type=click.Path(dir_okay=False), help="CSV with one <axis>_mm column per axis.")
-@click.option("--grid", help='Grid of axis positions in mm, e.g. "X=0:190:10,Z=0:190:10" (start:end:step, inclusive).')
+@click.option("--points", "points_path", type=click.Path(dir_okay=False), help="CSV with one <axis>_mm column per linear axis, <axis>_deg per rotary axis.")
+@click.option("--grid", help='Grid of axis positions in mm (deg for A, B, C), e.g. "X=0:190:10,C=0:360:15" (start:end:step, inclusive).')
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV here (and its JSON sidecar) instead of standard output.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Write a map of the volumetric error (PNG).")
 def volumetric_command(machine_path, points_path, grid, output, plot):
     """Volumetric error of the functional point at given axis positions.
 
-    Output columns: the axis positions (<axis>_mm), then ex_um, ey_um, ez_um (tool point relative
-    to the workpiece, actual minus nominal, in the workpiece frame) and e_um = |e|.
+    Output columns: the axis positions (<axis>_mm, <axis>_deg), then ex_um, ey_um, ez_um (tool
+    point relative to the workpiece, actual minus nominal, in the workpiece frame) and e_um = |e|;
+    with rotary axes also ei_urad, ej_urad (orientation error of the tool axis).
     """
     if (points_path is None) == (grid is None):
         raise AxiscalError("give exactly one of --points FILE or --grid SPEC")

@@ -1,24 +1,21 @@
-"""Checking TOML and JSON input against one declared schema per format, naming the key and line.
+"""What the readers of TOML and JSON files share: where each key stands (to name its line in an
+error), what counts as a number (a bool does not, nor NaN), and file names confined to a folder.
 
-A hand-edited file gets wrong types in ways Python would silently accept: ``hold_ends = "false"``
-(a non-empty string is true), ``tool_mm = [true, 0, 0]`` (a bool is an int), a number written as a
-string. Each format declares its keys once as :class:`Field` entries and :func:`check_table`
-refuses anything else with one :class:`~axiscal.errors.AxiscalError` naming the file, the line and
-the key.
+A hand-edited file gets wrong types in ways Python would silently accept (``hold_ends = "false"``
+is a true string, ``True`` is an int); every reader checks its keys against its declared schema
+with these helpers and names the file, the line and the key.
 """
 
 from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from axiscal.errors import AxiscalError
 
-__all__ = ["TomlLines", "Field", "check_table", "finite_number", "confined_path"]
+__all__ = ["TomlLines", "finite_number", "confined_path"]
 
 
 class TomlLines:
@@ -85,123 +82,10 @@ class TomlLines:
         return self.tables.get((table, index))
 
 
-@dataclass(frozen=True)
-class Field:
-    """One key of a format.
-
-    Attributes
-    ----------
-    kind : str
-        ``"str"``, ``"bool"``, ``"number"`` (finite int or float, not bool), ``"int"``,
-        ``"vector3"`` (a list of three numbers), ``"table"`` or ``"any"``.
-    required : bool
-        Whether the key must be there.
-    choices : tuple of str
-        The allowed values of a ``"str"`` key (empty: any text).
-    check : callable, optional
-        Called with the value after the type check; returns an error message or None.
-    """
-
-    kind: str
-    required: bool = False
-    choices: tuple[str, ...] = ()
-    check: Callable[[Any], str | None] | None = None
-
-
-_KIND_NAMES = {
-    "str": "a text in quotes",
-    "bool": "true or false",
-    "number": "a number",
-    "int": "a whole number",
-    "vector3": "a list of 3 numbers, e.g. [0.0, -40.0, 0.0]",
-    "table": "a table",
-}
-
-
 def _is(kind: str, value: Any) -> bool:
-    if kind == "any":
-        return True
-    if kind == "str":
-        return isinstance(value, str)
-    if kind == "bool":
-        return isinstance(value, bool)
     if kind == "number":
         return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
-    if kind == "int":
-        return isinstance(value, int) and not isinstance(value, bool)
-    if kind == "vector3":
-        return isinstance(value, list) and len(value) == 3 and all(_is("number", v) for v in value)
-    if kind == "table":
-        return isinstance(value, Mapping)
     raise ValueError(kind)
-
-
-def _show(value: Any) -> str:
-    text = repr(value)
-    return text if len(text) <= 40 else text[:37] + "..."
-
-
-def check_table(
-    data: Any,
-    fields: Mapping[str, Field],
-    *,
-    where: str,
-    source: str | Path | None = None,
-    lines: TomlLines | None = None,
-    table: str = "",
-    index: int = 0,
-) -> dict[str, Any]:
-    """Check one table of a TOML or JSON file against its declared fields.
-
-    Parameters
-    ----------
-    data : mapping
-        The parsed table.
-    fields : mapping of str to Field
-        The keys the table may carry.
-    where : str
-        How messages name the table (``"[axes.X]"``, ``"the machine file"``).
-    source : str or Path, keyword-only
-        The file, for messages.
-    lines : TomlLines, keyword-only
-        To name the line of a key.
-    table, index : keyword-only
-        The table's dotted name and array index in ``lines``.
-
-    Returns
-    -------
-    dict
-        ``data`` as a plain dict, every value checked.
-
-    Raises
-    ------
-    AxiscalError
-        An unknown key, a missing required key, a value of the wrong type or out of its choices,
-        naming the file, the line and the key.
-    """
-
-    def fail(message: str, key: str | None = None) -> AxiscalError:
-        line = lines.of(table, index, key) if lines is not None else None
-        return AxiscalError(message, path=source, line=line)
-
-    if not isinstance(data, Mapping):
-        raise fail(f"{where} must be a table")
-    for key, value in data.items():
-        field = fields.get(key)
-        if field is None:
-            raise fail(f"{where}: unknown key '{key}' (known: {', '.join(fields)})", key)
-        if not _is(field.kind, value):
-            raise fail(f"{where} {key} must be {_KIND_NAMES.get(field.kind, field.kind)}, not {_show(value)}", key)
-        if field.choices and value not in field.choices:
-            raise fail(f"{where} {key} must be one of {', '.join(field.choices)}, not {_show(value)}", key)
-        if field.check is not None:
-            problem = field.check(value)
-            if problem:
-                raise fail(f"{where} {key}: {problem}", key)
-    for key, field in fields.items():
-        if field.required and key not in data:
-            raise fail(f"{where} needs '{key}'")
-    return dict(data)
 
 
 def finite_number(value: Any) -> bool:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from axiscal.model.diagonal import (
     DEFAULT_STEPS,
+    MAX_DIAGONAL_STEPS,
     MEASURES,
     DiagonalResult,
     diagonal_check,
@@ -21,15 +22,18 @@ from axiscal.model.inputs import (
 from axiscal.model.inverse import InverseResult, inverse_commands
 from axiscal.model.kinematics import (
     ChainLink,
+    RotaryLink,
     error_matrix,
     link_matrix,
+    pose_error,
     reference_volumetric_error,
     translation_matrix,
     volumetric_error,
 )
 from axiscal.model.machine import (
-    AXIS_FIELDS,
-    MACHINE_FIELDS,
+    AXIS_UNITS,
+    MAX_GRID_POINTS,
+    MAX_MACHINE_SIZE_MM,
     SQUARENESS_PLACEMENTS,
     Axis,
     Machine,
@@ -53,16 +57,28 @@ from axiscal.model.plot import (
     plot_error_tables,
     plot_volumetric,
 )
-from axiscal.model.tables import INTERPOLATIONS, ErrorTable, read_error_table
+from axiscal.model.tables import (
+    INTERPOLATIONS,
+    MAX_ANGLE_ERROR_RAD,
+    MAX_TRANSLATION_ERROR_M,
+    ErrorTable,
+    read_error_table,
+)
 from axiscal.model.volumetric import VolumetricMap, volumetric_map
 
 __all__ = [
-    "AXIS_FIELDS",
-    "MACHINE_FIELDS",
     "INTERPOLATIONS",
+    "MAX_ANGLE_ERROR_RAD",
+    "MAX_TRANSLATION_ERROR_M",
+    "MAX_DIAGONAL_STEPS",
+    "AXIS_UNITS",
+    "MAX_GRID_POINTS",
+    "MAX_MACHINE_SIZE_MM",
     "ErrorTable",
     "read_error_table",
     "ChainLink",
+    "RotaryLink",
+    "pose_error",
     "volumetric_error",
     "translation_matrix",
     "error_matrix",

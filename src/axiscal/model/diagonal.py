@@ -28,11 +28,13 @@ from axiscal.model.machine import Machine, as_machine
 from axiscal.model.output import SIGN_CONVENTION, TableResult, render_template
 from axiscal.units import MM, UM
 
-__all__ = ["MEASURES", "DEFAULT_STEPS", "DiagonalResult", "diagonal_positions", "diagonal_check", "diagonal_test"]
+__all__ = ["MEASURES", "DEFAULT_STEPS", "MAX_DIAGONAL_STEPS", "DiagonalResult", "diagonal_positions", "diagonal_check", "diagonal_test"]
 
 MEASURES = ("projection", "length")
 #: intervals of a diagonal test when neither the caller nor the readings say
 DEFAULT_STEPS = 10
+#: most intervals of a diagonal test (a laser takes minutes per thousand points; more is a typing mistake)
+MAX_DIAGONAL_STEPS = 1_000_000
 
 
 @dataclass(frozen=True)
@@ -200,12 +202,19 @@ def diagonal_positions(start_m: Mapping[str, float], end_m: Mapping[str, float],
     Raises
     ------
     AxiscalError
-        Different axes in start and end, or fewer than 1 step.
+        Different axes in start and end, a position that is not a finite number, or a number of
+        steps that is not an integer from 1 to :data:`MAX_DIAGONAL_STEPS`.
     """
+    if not isinstance(start_m, Mapping) or not isinstance(end_m, Mapping):
+        raise AxiscalError("start and end must map axis letters to positions in metres")
     if set(start_m) != set(end_m):
         raise AxiscalError(f"start and end name different axes ({sorted(start_m)} vs {sorted(end_m)})")
-    if steps < 1:
-        raise AxiscalError("a diagonal needs at least 1 step")
+    for point in (start_m, end_m):
+        for letter, value in point.items():
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.number)) or not np.isfinite(value):
+                raise AxiscalError(f"position of axis {letter} must be a finite number of metres, not {value!r}")
+    if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or not 1 <= steps <= MAX_DIAGONAL_STEPS:
+        raise AxiscalError(f"a diagonal needs a whole number of steps from 1 to {MAX_DIAGONAL_STEPS}, not {steps!r}")
     fraction = np.linspace(0.0, 1.0, steps + 1)
     return {k: start_m[k] + (end_m[k] - start_m[k]) * fraction for k in start_m}
 
@@ -332,8 +341,9 @@ def diagonal_test(
     >>> result.range_after_m  # doctest: +SKIP
     """
     model = as_machine(machine)
-    start_m = parse_point(start, "start") if isinstance(start, str) else dict(start)
-    end_m = parse_point(end, "end") if isinstance(end, str) else dict(end)
+    start_m = parse_point(start, "start") if isinstance(start, str) else start
+    end_m = parse_point(end, "end") if isinstance(end, str) else end
+    diagonal_positions(start_m, end_m, 1)  # the end points: mappings of finite numbers, same axes
     sources = [str(machine)] if isinstance(machine, (str, Path)) else []
     measured = None
     if readings is not None and not isinstance(readings, (str, Path)):

@@ -15,7 +15,7 @@ import numpy as np
 from axiscal.conventions import AXIS_INDEX
 from axiscal.errors import AxiscalError
 from axiscal.io.tabular import read_csv
-from axiscal.model.machine import Machine
+from axiscal.model.machine import AXIS_UNITS, Machine
 from axiscal.units import MM, UM
 
 __all__ = [
@@ -37,15 +37,16 @@ def read_points(path: str | Path, machine: Machine) -> tuple[dict[str, np.ndarra
     Parameters
     ----------
     path : str or Path
-        CSV with columns ``x_mm``, ``y_mm``, ``z_mm`` (those of the machine's chain; ``X_mm`` is
-        accepted too; other columns are ignored).
+        CSV with columns ``x_mm``, ``y_mm``, ``z_mm`` and, for rotary axes, ``a_deg``, ``b_deg``,
+        ``c_deg`` (those of the machine's chain; ``X_mm`` is accepted too; other columns are
+        ignored).
     machine : Machine
         The machine whose axes are read; every position must lie inside its error tables.
 
     Returns
     -------
     positions : dict of str to ndarray, shape (N,)
-        Position of every axis of the chain, metres.
+        Position of every axis of the chain: metres, radians for rotary axes.
     lines : tuple of int
         The file's line number of each point.
 
@@ -62,10 +63,13 @@ def read_points(path: str | Path, machine: Machine) -> tuple[dict[str, np.ndarra
     table = read_csv(path)
     positions = {}
     for letter in machine.letters:
-        column = f"{letter.lower()}_mm" if table.has(f"{letter.lower()}_mm") else f"{letter}_mm"
+        factor, unit = AXIS_UNITS[letter]
+        column = f"{letter.lower()}_{unit}" if table.has(f"{letter.lower()}_{unit}") else f"{letter}_{unit}"
         if not table.has(column):
-            raise AxiscalError(f"missing column '{letter.lower()}_mm' for axis {letter}", path=str(path), line=table.header_line)
-        positions[letter] = table.numeric(column) * MM
+            raise AxiscalError(
+                f"missing column '{letter.lower()}_{unit}' for axis {letter}", path=str(path), line=table.header_line
+            )
+        positions[letter] = table.numeric(column) * factor
     check_travel(machine, positions, path=str(path), lines=table.lines)
     return positions, table.lines
 

@@ -74,8 +74,8 @@ def inverse_commands(machine: Machine | str | Path, targets: np.ndarray | str | 
     Raises
     ------
     AxiscalError
-        A bad machine or targets file (naming file and line), or points the solution does not
-        converge for (outside the error tables, for instance).
+        A bad machine or targets file, or points the solution does not converge for (outside
+        the error tables, for instance), naming the file and the point's line.
 
     Examples
     --------
@@ -85,12 +85,12 @@ def inverse_commands(machine: Machine | str | Path, targets: np.ndarray | str | 
     model = as_machine(machine)
     sources = [str(machine)] if isinstance(machine, (str, Path)) else []
     if isinstance(targets, (str, Path)):
-        target, _ = read_targets(targets)
+        target, lines = read_targets(targets)
         sources.append(str(targets))
+        command, bad, message = model._solve(target, 1e-12, 50)
+        if bad is not None:
+            raise AxiscalError(message, path=str(targets), line=lines[bad])
     else:
+        command = model.command_for(targets)
         target = np.atleast_2d(np.asarray(targets, dtype=float))
-    try:
-        command = model.command_for(target)
-    except AxiscalError as exc:
-        raise exc.located(path=str(targets)) if isinstance(targets, (str, Path)) else exc from None
     return InverseResult(target, {k: command[k] for k in model.letters}, sources=tuple(sources))

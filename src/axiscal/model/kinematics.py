@@ -1,4 +1,4 @@
-"""Homogeneous-transformation (HTM) chain of a machine with linear axes (paper 000, eqs 6-10).
+"""Homogeneous-transformation (HTM) chain of a machine with linear and rotary axes (paper 000, eqs 6-10; ISO 230-7).
 
 Each axis k contributes ``A_k(q) = M_k · Trans(o_k) · Trans(q · u_k) · E_k(q)``:
 
@@ -23,6 +23,21 @@ through the chain as three coordinate arrays, which is exact (no linearisation: 
 ``I + [eps]x`` is applied in closed form) and vectorised over points.
 :func:`reference_volumetric_error` is the plain per-point product of 4x4 matrices, kept for tests
 and benchmarks.
+
+A rotary axis R (A, B, C: about X, Y, Z, right-hand rule, ISO 841) contributes
+``A_k(θ) = Trans(o_k) · L_k · E_k(θ) · Rot(u_k, θ) · L_k⁻¹``:
+
+- ``Rot(u_k, θ)``: the exact nominal rotation about the axis;
+- ``E_k(θ)``: its six error motions (``EXC, EYC, EZC, EAC, EBC, ECC`` for C) in the same first-order
+  form as a linear axis, expressed in the body that carries the rotary axis (they are measured
+  there, ISO 230-7);
+- ``L_k = Trans(d) · (I + [s]x)``: the location of the axis average line (ISO 230-1/-7), its
+  position ``d`` (``EX0C, EY0C``) and orientation ``s`` (``EA0C, EB0C``) relative to the nominal
+  line through ``o_k``. A pure offset ``d`` moves a point turned by θ by ``(I - R(θ)) d``.
+
+:func:`pose_error` carries the functional point and the tool direction (+Z of the last tool-side
+carriage) through such a chain, vectorised; the orientation error of the tool axis is returned as
+its rotation about the nominal tool frame's X and Y axes.
 """
 
 from __future__ import annotations
@@ -32,11 +47,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from axiscal.conventions import AXIS_INDEX
+from axiscal.conventions import AXIS_INDEX, ROTARY_INDEX
 from axiscal.model.tables import ErrorTable
 
 __all__ = [
     "ChainLink",
+    "RotaryLink",
+    "pose_error",
     "volumetric_error",
     "translation_matrix",
     "error_matrix",
@@ -69,6 +86,182 @@ class ChainLink:
     def index(self) -> int:
         """0, 1 or 2: the coordinate the axis moves along."""
         return AXIS_INDEX[self.letter]
+
+
+@dataclass(frozen=True)
+class RotaryLink:
+    """One rotary axis in a kinematic chain (SI units).
+
+    Parameters
+    ----------
+    letter : str
+        A, B or C (turning about X, Y, Z).
+    table : ErrorTable
+        Its six error motions against its angle (radians).
+    origin_m : ndarray, shape (3,)
+        Nominal pivot: a point of the axis line in its parent's frame, metres.
+    offset_m : ndarray, shape (3,)
+        Position error ``d`` of the axis average line, metres (its component along the axis is zero).
+    tilt_rad : ndarray, shape (3,)
+        Orientation error ``s`` of the average line, radians (its component about the axis is zero).
+    """
+
+    letter: str
+    table: ErrorTable
+    origin_m: np.ndarray
+    offset_m: np.ndarray
+    tilt_rad: np.ndarray
+
+    @property
+    def index(self) -> int:
+        """0, 1 or 2: the coordinate axis the rotary axis turns about."""
+        return ROTARY_INDEX[self.letter]
+
+
+def _turn(index, c, s, px, py, pz):
+    """Exact rotation of p about coordinate axis ``index`` by the angle with cosine c and sine s."""
+    if index == 0:
+        return px, c * py - s * pz, s * py + c * pz
+    if index == 1:
+        return c * px + s * pz, py, -s * px + c * pz
+    return c * px - s * py, s * px + c * py, pz
+
+
+def _carry(link, q, v, p, forward, errors, point):
+    """Apply link ``A_k`` (forward) or its inverse to p (a point, or a direction if not ``point``).
+
+    For a rotary link ``q`` is the pair (cos θ, sin θ)."""
+    px, py, pz = p
+    if isinstance(link, RotaryLink):
+        c, s = q
+        d = link.offset_m if errors else np.zeros(3)
+        tilt = link.tilt_rad if errors else np.zeros(3)
+        o = link.origin_m if point else np.zeros(3)
+        if not point:
+            d = np.zeros(3)
+        if forward:
+            px, py, pz = _unrotate(*tilt, px - d[0], py - d[1], pz - d[2])
+            px, py, pz = _turn(link.index, c, s, px, py, pz)
+            if errors:
+                px, py, pz = _rotate(v[3], v[4], v[5], px, py, pz)
+                if point:
+                    px, py, pz = px + v[0], py + v[1], pz + v[2]
+            px, py, pz = _rotate(*tilt, px, py, pz)
+            return px + d[0] + o[0], py + d[1] + o[1], pz + d[2] + o[2]
+        px, py, pz = _unrotate(*tilt, px - d[0] - o[0], py - d[1] - o[1], pz - d[2] - o[2])
+        if errors:
+            if point:
+                px, py, pz = px - v[0], py - v[1], pz - v[2]
+            px, py, pz = _unrotate(v[3], v[4], v[5], px, py, pz)
+        px, py, pz = _turn(link.index, c, -s, px, py, pz)
+        px, py, pz = _rotate(*tilt, px, py, pz)
+        return px + d[0], py + d[1], pz + d[2]
+    square = link.squareness_rad if errors else np.zeros(3)
+    shift = np.zeros(3) if not point else link.origin_m
+    if forward:
+        if errors:
+            px, py, pz = _rotate(v[3], v[4], v[5], px, py, pz)
+            if point:
+                px, py, pz = px + v[0], py + v[1], pz + v[2]
+        p = [px + shift[0], py + shift[1], pz + shift[2]]
+        if point:
+            p[link.index] = p[link.index] + q
+        return _rotate(*square, *p) if errors else tuple(p)
+    if errors:
+        px, py, pz = _unrotate(*square, px, py, pz)
+    p = [px - shift[0], py - shift[1], pz - shift[2]]
+    if point:
+        p[link.index] = p[link.index] - q
+        if errors:
+            p = [p[0] - v[0], p[1] - v[1], p[2] - v[2]]
+    return _unrotate(v[3], v[4], v[5], *p) if errors else tuple(p)
+
+
+def _link_inputs(links, positions_m):
+    """Per link: its position, or (cos θ, sin θ) for a rotary link (computed once for every pass)."""
+    out = {}
+    for link in links:
+        q = positions_m[link.letter]
+        out[link.letter] = (np.cos(q), np.sin(q)) if isinstance(link, RotaryLink) else q
+    return out
+
+
+def _through_chain(tool_links, workpiece_links, positions_m, motions, start, point, errors, inputs=None):
+    """``T_wp⁻¹ · T_tool`` applied to ``start`` (a point or a direction), with or without errors.
+
+    ``motions``: the error motions (6, N) of each axis letter (unused without errors)."""
+    if inputs is None:
+        inputs = _link_inputs(tuple(tool_links) + tuple(workpiece_links), positions_m)
+    p = start
+    for link in reversed(tool_links):
+        p = _carry(link, inputs[link.letter], motions[link.letter] if errors else None, p, True, errors, point)
+    for link in workpiece_links:
+        p = _carry(link, inputs[link.letter], motions[link.letter] if errors else None, p, False, errors, point)
+    return p
+
+
+def pose_error(
+    tool_links: Sequence[ChainLink | RotaryLink],
+    workpiece_links: Sequence[ChainLink | RotaryLink],
+    tool_m: np.ndarray,
+    positions_m: dict[str, np.ndarray],
+    errors: Mapping[str, np.ndarray] | None = None,
+    *,
+    orientation: bool = True,
+) -> tuple[np.ndarray, np.ndarray | None]:
+    """Position error of the functional point and orientation error of the tool axis, any chain.
+
+    Parameters
+    ----------
+    tool_links, workpiece_links : sequence of ChainLink or RotaryLink
+        Each branch ordered from the frame outward.
+    tool_m : ndarray, shape (3,)
+        The functional point in the last tool-side carriage, metres.
+    positions_m : dict of str to ndarray, shape (N,)
+        Axis positions: metres for linear axes, radians for rotary axes.
+    errors : mapping of str to ndarray, shape (6, N), optional
+        Error motions of the axes given per point, instead of read from the links' tables.
+    orientation : bool
+        False: skip the orientation error (returned as None), for speed.
+
+    Returns
+    -------
+    error_m : ndarray, shape (N, 3)
+        Actual minus nominal functional point relative to the workpiece, in the workpiece frame, m.
+    orientation_rad : ndarray, shape (N, 2) or None
+        Rotation ``(ei, ej)`` of the tool direction (+Z of the last tool-side carriage) about the
+        X and Y axes of the nominal tool frame, seen from the workpiece, radians.
+
+    Raises
+    ------
+    AxiscalError
+        A position outside an error table (unless it holds its ends or is periodic).
+    """
+    n = len(next(iter(positions_m.values())))
+    links = tuple(tool_links) + tuple(workpiece_links)
+    if errors is None:
+        motions = {link.letter: link.table.evaluate(positions_m[link.letter]) for link in links}
+    else:
+        motions = errors
+    inputs = _link_inputs(links, positions_m)
+
+    def run(vector, point, with_errors):
+        start = tuple(np.full(n, float(c)) for c in vector)
+        return np.column_stack(
+            _through_chain(tool_links, workpiece_links, positions_m, motions, start, point, with_errors, inputs)
+        )
+
+    error = run(tool_m, True, True) - run(tool_m, True, False)
+    if not orientation:
+        return error, None
+    tool = run((0.0, 0.0, 1.0), False, True)
+    nominal = run((0.0, 0.0, 1.0), False, False)
+    cross = np.cross(nominal, tool)
+    turn = np.column_stack([
+        np.einsum("ij,ij->i", run((1.0, 0.0, 0.0), False, False), cross),
+        np.einsum("ij,ij->i", run((0.0, 1.0, 0.0), False, False), cross),
+    ])
+    return error, turn
 
 
 def _rotate(ex, ey, ez, px, py, pz):

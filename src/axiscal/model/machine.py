@@ -1,4 +1,4 @@
-"""A machine with 1 to 3 linear axes: its kinematic chain, error tables and squareness (paper 000 §3).
+"""A machine with 1 to 3 linear and up to 3 rotary axes: its kinematic chain, error tables, squareness and location errors (paper 000 §3; ISO 230-1, ISO 230-7).
 
 :class:`Machine` is the model (:mod:`axiscal.model.kinematics` has the contract); :func:`load_machine`
 reads the TOML description of docs/formats.md. Chain notation as ISO 10791 / ISO 230-1 use it:
@@ -8,38 +8,50 @@ carries Y and Z. The volumetric error is the tool point relative to the workpiec
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 
-from axiscal.conventions import SQUARENESS_TERMS
+from axiscal.conventions import ROTARY_LETTERS, SQUARENESS_TERMS, location_names
 from axiscal.errors import AxiscalError
-from axiscal.io.schema import (
-    Field,
-    TomlLines,
-    check_table,
-    confined_path,
-    finite_number,
-)
+from axiscal.io.schema import TomlLines, finite_number
 from axiscal.io.tabular import read_text, read_toml
 from axiscal.model.kinematics import (
     AXIS_INDEX,
     ChainLink,
+    RotaryLink,
+    _through_chain,
+    pose_error,
     reference_volumetric_error,
     volumetric_error,
 )
-from axiscal.model.tables import INTERPOLATIONS, ErrorTable, read_error_table
-from axiscal.units import LENGTH_UNITS, MM, angle_factor, split_unit
+from axiscal.model.tables import (
+    INTERPOLATIONS,
+    MAX_ANGLE_ERROR_RAD,
+    MAX_TRANSLATION_ERROR_M,
+    ErrorTable,
+    _floats,
+    read_error_table,
+)
+from axiscal.units import (
+    ANGLE_UNITS,
+    LENGTH_UNITS,
+    MM,
+    angle_factor,
+    length_factor,
+    split_unit,
+)
 
 __all__ = [
-    "MACHINE_FIELDS",
-    "AXIS_FIELDS",
     "SQUARENESS_PLACEMENTS",
+    "AXIS_UNITS",
+    "MAX_GRID_POINTS",
+    "MAX_MACHINE_SIZE_MM",
     "Axis",
     "parse_chain",
     "Machine",
@@ -82,8 +94,9 @@ def parse_chain(chain: str) -> tuple[tuple[str, ...], tuple[str, ...]]:
     Parameters
     ----------
     chain : str
-        Workpiece-side axes, ``F`` (the frame), tool-side axes, e.g. ``"XFYZ"``; 1 to 3 of the
-        letters X, Y, Z, each at most once (case and surrounding blanks are ignored).
+        Workpiece-side axes, ``F`` (the frame), tool-side axes, e.g. ``"XFYZ"`` or ``"CAFXYZ"`` (a
+        trunnion); up to 3 linear axes X, Y, Z and up to 3 rotary axes A, B, C, each at most once,
+        at least one axis (case and surrounding blanks are ignored).
 
     Returns
     -------
@@ -93,25 +106,28 @@ def parse_chain(chain: str) -> tuple[tuple[str, ...], tuple[str, ...]]:
     Raises
     ------
     AxiscalError
-        No or several ``F``, a letter that is not X, Y or Z, an axis named twice, or no axis.
+        Not a string, no or several ``F``, a letter that is not an axis, an axis named twice,
+        or no axis.
 
     Examples
     --------
     >>> parse_chain("YXFZ")
     (('X', 'Y'), ('Z',))
     """
+    if not isinstance(chain, str):
+        raise AxiscalError(f"a chain is a string such as 'XFYZ', not {chain!r}")
     chain = chain.strip().upper()
     if chain.count("F") != 1:
         raise AxiscalError(f"chain '{chain}' must contain exactly one 'F' (the frame), e.g. 'XFYZ'")
     left, right = chain.split("F")
     letters = left + right
     for letter in letters:
-        if letter not in AXIS_INDEX:
-            raise AxiscalError(f"chain '{chain}': '{letter}' is not a linear axis (X, Y or Z)")
+        if letter not in AXIS_INDEX and letter not in ROTARY_LETTERS:
+            raise AxiscalError(f"chain '{chain}': '{letter}' is not a linear axis (X, Y, Z) or a rotary axis (A, B, C)")
     if len(set(letters)) != len(letters):
         raise AxiscalError(f"chain '{chain}' names an axis twice")
-    if not 1 <= len(letters) <= 3:
-        raise AxiscalError(f"chain '{chain}' must have 1 to 3 axes")
+    if not letters:
+        raise AxiscalError(f"chain '{chain}' must have at least one axis")
     return tuple(reversed(left)), tuple(right)
 
 
@@ -131,6 +147,9 @@ class Machine:
         Functional point in the frame of the last tool-side carriage, metres.
     workpiece_m : sequence of 3 floats
         Point of the workpiece frame the error is measured from, metres.
+    location : mapping of str to float
+        Location errors of the rotary axes' average lines (ISO 230-7, docs/conventions.md):
+        ``EX0C``, ``EY0C`` in metres, ``EA0C``, ``EB0C`` in radians (missing: zero).
     squareness_placement : {"relative", "guideway"}
         A squareness term is what was measured: the included angle between two axes
         (docs/conventions.md). ``"relative"`` (default) keeps that angle in every chain: the term
@@ -146,7 +165,8 @@ class Machine:
     ------
     AxiscalError
         An axis of the chain without a description or a description not in the chain, an
-        unknown squareness term or placement, a non-finite value, or a table of the wrong axis.
+        unknown squareness or location term or placement, a term for an axis not in the chain,
+        a non-finite value, or a table of the wrong axis.
 
     Examples
     --------
@@ -162,10 +182,25 @@ class Machine:
     workpiece_m: tuple[float, float, float] = (0.0, 0.0, 0.0)
     name: str = ""
     squareness_placement: str = "relative"
+    location: Mapping[str, float] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         workpiece_side, tool_side = parse_chain(self.chain)
         letters = set(workpiece_side + tool_side)
+        if not all(isinstance(m, Mapping) for m in (self.axes, self.squareness_rad, self.location)):
+            raise AxiscalError("axes, squareness_rad and location must be mappings by axis letter and term")
+        offsets = {letter: np.zeros(3) for letter in ROTARY_LETTERS}
+        tilts = {letter: np.zeros(3) for letter in ROTARY_LETTERS}
+        for term, value in self.location.items():
+            letter = term[-1:] if isinstance(term, str) else ""
+            if letter not in ROTARY_LETTERS or term not in location_names(letter):
+                raise AxiscalError(f"unknown location term {term!r}; e.g. {', '.join(location_names('C'))}")
+            if letter not in letters:
+                raise AxiscalError(f"location {term}: chain '{self.chain}' has no axis {letter}")
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) or not np.isfinite(value):
+                raise AxiscalError(f"location {term} must be a finite number, not {value!r}")
+            target = offsets if term[1] in AXIS_INDEX else tilts
+            target[letter]["XYZABC".index(term[1]) % 3] = float(value)
         missing = sorted(letters - set(self.axes))
         if missing:
             raise AxiscalError(f"chain '{self.chain}' has axis {', '.join(missing)} but no axis description for it")
@@ -181,9 +216,11 @@ class Machine:
             )
         rotation = {letter: np.zeros(3) for letter in AXIS_INDEX}
         for term, value in self.squareness_rad.items():
-            if not np.isfinite(value):
-                raise AxiscalError(f"squareness {term} is not finite")
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) or not np.isfinite(value):
+                raise AxiscalError(f"squareness {term} must be a finite number of radians, not {value!r}")
             letter, reference, component = _SQUARENESS_PLACE[term]
+            if letter not in letters or reference not in letters:
+                raise AxiscalError(f"squareness {term} needs axes {reference} and {letter}, which chain '{self.chain}' does not have")
             sign = 1.0
             if self.squareness_placement == "relative":
                 for branch in (workpiece_side, tool_side):
@@ -191,22 +228,26 @@ class Machine:
                         letter, sign = reference, -1.0
             rotation[letter][component] += sign * float(value)
 
-        def link(letter: str) -> ChainLink:
+        def link(letter: str) -> ChainLink | RotaryLink:
             axis = self.axes[letter]
+            if not isinstance(axis, Axis):
+                raise AxiscalError(f"axis description under '{letter}' must be an Axis, not {axis!r:.40}")
             if axis.letter != letter:
                 raise AxiscalError(f"axis description under '{letter}' is for axis '{axis.letter}'")
             table = axis.table if axis.table is not None else ErrorTable.zeros(letter)
             if table.letter != letter:
                 raise AxiscalError(f"axis {letter} was given the error table of axis {table.letter}")
-            origin = np.asarray(axis.origin_m, dtype=float)
+            origin = _floats(axis.origin_m, f"axis {letter}: origin")
             if origin.shape != (3,) or not np.all(np.isfinite(origin)):
                 raise AxiscalError(f"axis {letter}: origin must be 3 finite numbers")
+            if letter in ROTARY_LETTERS:
+                return RotaryLink(letter, table, origin, offsets[letter], tilts[letter])
             return ChainLink(letter, table, origin, rotation[letter])
 
         object.__setattr__(self, "_workpiece_links", tuple(link(k) for k in workpiece_side))
         object.__setattr__(self, "_tool_links", tuple(link(k) for k in tool_side))
         for label in ("tool_m", "workpiece_m"):
-            value = np.asarray(getattr(self, label), dtype=float)
+            value = _floats(getattr(self, label), label)
             if value.shape != (3,) or not np.all(np.isfinite(value)):
                 raise AxiscalError(f"{label} must be 3 finite numbers")
             object.__setattr__(self, label, tuple(float(v) for v in value))
@@ -215,6 +256,11 @@ class Machine:
     def letters(self) -> tuple[str, ...]:
         """Axis letters in chain order (workpiece side from F outward, then tool side)."""
         return tuple(link.letter for link in self._workpiece_links + self._tool_links)
+
+    @property
+    def rotary(self) -> tuple[str, ...]:
+        """The rotary axes of the chain (empty for a linear machine)."""
+        return tuple(k for k in self.letters if k in ROTARY_LETTERS)
 
     @property
     def tool_side(self) -> tuple[str, ...]:
@@ -270,12 +316,14 @@ class Machine:
         return table.start_m, table.end_m
 
     def _positions(self, positions: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+        if not isinstance(positions, Mapping):
+            raise AxiscalError(f"positions must map the axis letters of chain '{self.chain}' to arrays of metres")
         out: dict[str, np.ndarray] = {}
         size = None
         for letter in self.letters:
             if letter not in positions:
                 raise AxiscalError(f"no positions given for axis {letter} of chain '{self.chain}'")
-            q = np.atleast_1d(np.asarray(positions[letter], dtype=float))
+            q = np.atleast_1d(_floats(positions[letter], f"positions of axis {letter}"))
             if q.ndim != 1:
                 raise AxiscalError(f"positions of axis {letter} must be one-dimensional")
             if not np.all(np.isfinite(q)):
@@ -292,7 +340,7 @@ class Machine:
         Parameters
         ----------
         positions : mapping of str to ndarray, shape (N,)
-            Position of every axis of the chain, metres.
+            Position of every axis of the chain: metres, radians for rotary axes.
 
         Returns
         -------
@@ -306,6 +354,10 @@ class Machine:
         """
         q = self._positions(positions)
         n = len(next(iter(q.values())))
+        if self.rotary:
+            start = tuple(np.full(n, c) for c in self.tool_m)
+            p = _through_chain(self._tool_links, self._workpiece_links, q, {}, start, True, False)
+            return np.column_stack(p) - np.array(self.workpiece_m)
         p = np.tile(np.subtract(self.tool_m, self.workpiece_m), (n, 1))
         for link in self._tool_links:
             p += link.origin_m
@@ -354,7 +406,9 @@ class Machine:
         q = self._positions(positions)
         n = len(next(iter(q.values())))
         if errors is not None:
-            errors = {k: np.asarray(errors[k], dtype=float) for k in self.letters if k in errors}
+            if not isinstance(errors, Mapping):
+                raise AxiscalError("errors must map axis letters to arrays of shape (6, N)")
+            errors = {k: _floats(errors[k], f"errors of axis {k}") for k in self.letters if k in errors}
             wrong = [k for k in self.letters if errors.get(k, np.empty(0)).shape != (6, n)]
             if wrong:
                 raise AxiscalError(f"errors of axis {', '.join(wrong)} must have shape (6, {n})")
@@ -363,14 +417,67 @@ class Machine:
         def run(start: int, stop: int) -> np.ndarray:
             part = {k: v[start:stop] for k, v in q.items()}
             given = None if errors is None else {k: v[:, start:stop] for k, v in errors.items()}
+            if self.rotary:
+                return pose_error(self._tool_links, self._workpiece_links, tool, part, given, orientation=False)[0]
             return volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, part, given)
 
+        return self._chunked(run, q, n, errors is None, workers, 3)
+
+    def pose_error(
+        self, positions: Mapping[str, np.ndarray], *, workers: int | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Position error of the functional point and orientation error of the tool axis.
+
+        The orientation error is the turn of the tool direction (+Z of the last tool-side
+        carriage) about the X and Y axes of the nominal tool frame, seen from the workpiece
+        (``ei``, ``ej``; docs/conventions.md). It is zero for a chain of linear axes only when
+        their angular errors cancel; it is computed for every chain.
+
+        Parameters
+        ----------
+        positions : mapping of str to ndarray, shape (N,)
+            Position of every axis of the chain: metres, radians for rotary axes.
+        workers : int, optional
+            Threads for large N (default: the number of cores).
+
+        Returns
+        -------
+        error_m : ndarray, shape (N, 3)
+            As :meth:`volumetric_error`, metres.
+        orientation_rad : ndarray, shape (N, 2)
+            ``(ei, ej)``, radians.
+
+        Raises
+        ------
+        AxiscalError
+            As :meth:`volumetric_error`.
+
+        Examples
+        --------
+        >>> machine = Machine("CFZ", {"C": Axis("C"), "Z": Axis("Z")}, location={"EX0C": 1e-5})
+        >>> error, tilt = machine.pose_error({"C": [np.pi], "Z": [0.0]})
+        >>> error.round(9).tolist()  # a 10 um offset of the C axis line, turned half a turn
+        [[2e-05, 0.0, 0.0]]
+        """
+        q = self._positions(positions)
+        n = len(next(iter(q.values())))
+        tool = np.array(self.tool_m)
+
+        def run(start: int, stop: int) -> np.ndarray:
+            part = {k: v[start:stop] for k, v in q.items()}
+            return np.column_stack(pose_error(self._tool_links, self._workpiece_links, tool, part))
+
+        out = self._chunked(run, q, n, True, workers, 5)
+        return out[:, :3], out[:, 3:]
+
+    def _chunked(self, run, q: dict[str, np.ndarray], n: int, check: bool, workers: int | None, width: int) -> np.ndarray:
+        """``run(start, stop)`` over chunks of points, in threads; the results stacked."""
         if n <= _CHUNK:
             return run(0, n)
-        if errors is None:
+        if check:
             for letter in self.letters:
                 self.table(letter).check_range(q[letter])
-        out = np.empty((n, 3))
+        out = np.empty((n, width))
 
         def fill(start: int) -> None:
             out[start : start + _CHUNK] = run(start, start + _CHUNK)
@@ -403,6 +510,8 @@ class Machine:
             As :meth:`volumetric_error`.
         """
         q = self._positions(positions)
+        if self.rotary:
+            raise AxiscalError("the 4x4 reference model is written for linear chains; use volumetric_error")
         return reference_volumetric_error(
             self._tool_links, self._workpiece_links, np.array(self.tool_m), np.array(self.workpiece_m), q
         )
@@ -454,73 +563,169 @@ class Machine:
         Raises
         ------
         AxiscalError
-            Targets that are not finite or not of shape (N, 3), commands outside an error table,
-            or no convergence within ``max_iterations``.
+            Targets that are not finite or not of shape (N, 3), a tolerance that is not positive,
+            ``max_iterations < 1``, commands outside an error table, or no convergence within
+            ``max_iterations``; the message names the first bad point (1-based).
 
         Examples
         --------
         >>> command = machine.command_for(machine.actual_point({"X": [0.1], "Z": [0.05]}))  # doctest: +SKIP
         >>> command["X"]  # array([0.1]) to better than 1e-12 m  # doctest: +SKIP
         """
-        target = np.atleast_2d(np.asarray(target_m, dtype=float))
-        if target.shape[1:] != (3,) or not np.all(np.isfinite(target)):
-            raise AxiscalError("target points must be finite, shape (N, 3)")
+        if self.rotary:
+            raise AxiscalError(f"inverse kinematics is solved for linear chains only, not '{self.chain}'")
+        command, bad, message = self._solve(target_m, tolerance_m, max_iterations)
+        if bad is not None:
+            raise AxiscalError(f"point {bad + 1}: {message}")
+        return command
+
+    def _solve(
+        self, target_m: np.ndarray, tolerance_m: float, max_iterations: int
+    ) -> tuple[dict[str, np.ndarray], int | None, str]:
+        """:meth:`command_for`, returning (commands, index of the first bad point or None, why)."""
+        if self.rotary:
+            raise AxiscalError(f"inverse kinematics is solved for linear chains only, not '{self.chain}'")
+        if isinstance(max_iterations, bool) or not isinstance(max_iterations, (int, np.integer)) or max_iterations < 1:
+            raise AxiscalError(f"max_iterations must be a whole number >= 1, not {max_iterations!r}")
+        if not finite_number(tolerance_m) or tolerance_m <= 0:
+            raise AxiscalError(f"tolerance_m must be a positive number of metres, not {tolerance_m!r}")
+        target = np.atleast_2d(_floats(target_m, "target points"))
+        if target.ndim != 2 or target.shape[1] != 3:
+            raise AxiscalError(f"target points must have shape (N, 3), not {target.shape}")
+        finite = np.all(np.isfinite(target), axis=1)
+        if not np.all(finite):
+            return {}, int(np.argmin(finite)), "target is not a finite point"
         sign = {link.letter: 1.0 for link in self._tool_links} | {link.letter: -1.0 for link in self._workpiece_links}
         zero = {letter: np.zeros(len(target)) for letter in self.letters}
         offset = self.nominal_point(zero)
         command = {k: sign[k] * (target[:, AXIS_INDEX[k]] - offset[:, AXIS_INDEX[k]]) for k in self.letters}
         for _ in range(max_iterations):
+            for letter in self.letters:
+                k = self.table(letter).first_outside(command[letter])
+                if k is not None:
+                    table = self.table(letter)
+                    return command, k, (
+                        f"needs {letter} = {command[letter][k] / MM:.6g} mm, outside the error table of axis "
+                        f"{letter} ({table.start_m / MM:.6g} to {table.end_m / MM:.6g} mm)"
+                    )
             miss = self.actual_point(command) - target
-            worst = max(float(np.max(np.abs(miss[:, AXIS_INDEX[k]]), initial=0.0)) for k in self.letters)
-            if worst <= tolerance_m:
-                return command
+            axis_miss = np.max(np.abs(np.column_stack([miss[:, AXIS_INDEX[k]] for k in self.letters])), axis=1)
+            if not np.any(axis_miss > tolerance_m):
+                return command, None, ""
             command = {k: command[k] - sign[k] * miss[:, AXIS_INDEX[k]] for k in self.letters}
-        raise AxiscalError(f"inverse kinematics did not converge (miss {worst / LENGTH_UNITS['nm']:.3g} nm)")
+        worst = int(np.argmax(axis_miss))
+        return command, worst, f"inverse kinematics did not converge (miss {axis_miss[worst] / LENGTH_UNITS['nm']:.3g} nm)"
 
 
-#: the keys of a machine file (docs/formats.md), checked by axiscal.io.schema
-MACHINE_FIELDS = {
-    "name": Field("str"),
-    "chain": Field("str", required=True),
-    "tool_mm": Field("vector3"),
-    "workpiece_mm": Field("vector3"),
-    "axes": Field("table"),
-    "squareness": Field("table"),
-    "squareness_placement": Field("str", choices=SQUARENESS_PLACEMENTS),
-    "interpolation": Field("str", choices=INTERPOLATIONS),
-    "hold_ends": Field("bool"),
+_MACHINE_SCHEMA = {
+    "name": "text",
+    "chain": "text",
+    "tool_mm": "vector",
+    "workpiece_mm": "vector",
+    "axes": "table",
+    "squareness": "table",
+    "squareness_placement": "text",
+    "interpolation": "text",
+    "hold_ends": "bool",
+    "location": "table",
 }
-#: the keys of an [axes.<letter>] section
-AXIS_FIELDS = {
-    "errors": Field("str", required=True),
-    "origin_mm": Field("vector3"),
-    "interpolation": Field("str", choices=INTERPOLATIONS),
-    "hold_ends": Field("bool"),
-    "sensors": Field("table"),
+#: schema of each ``[axes.<letter>]`` section
+_AXIS_SCHEMA = {
+    "errors": "text", "origin_mm": "vector", "interpolation": "text", "hold_ends": "bool", "periodic": "bool", "sensors": "table"
 }
+_KIND_TEXT = {
+    "text": "a string in quotes",
+    "bool": "true or false",
+    "number": "a finite number",
+    "vector": "a list of 3 finite numbers in mm, e.g. [0.0, -40.0, 0.0]",
+    "table": "a table",
+}
+#: factor to SI and display unit of each axis' positions in files and on the command line
+AXIS_UNITS = {letter: (MM, "mm") for letter in AXIS_INDEX} | {letter: (ANGLE_UNITS["deg"], "deg") for letter in ROTARY_LETTERS}
+#: most points a grid may name (about 1 GB of positions and errors)
+MAX_GRID_POINTS = 20_000_000
+#: largest length accepted in a machine file (tool, workpiece, origins), mm
+MAX_MACHINE_SIZE_MM = 1.0e5
+
+
+def _check_kind(value: object, kind: str) -> bool:
+    if kind == "text":
+        return isinstance(value, str)
+    if kind == "bool":
+        return isinstance(value, bool)
+    if kind == "number":
+        return finite_number(value)
+    if kind == "vector":
+        return (
+            isinstance(value, list)
+            and len(value) == 3
+            and all(finite_number(v) and abs(v) <= MAX_MACHINE_SIZE_MM for v in value)
+        )
+    return isinstance(value, Mapping)
+
+
+class _Where:
+    """Locates keys of the machine file for error messages."""
+
+    def __init__(self, source: str, text: str | None):
+        self.source = source
+        self.lines = TomlLines(text) if text is not None else None
+
+    def error(self, message: str, section: str = "", key: str | None = None) -> AxiscalError:
+        line = self.lines.of(section, key=key) if self.lines is not None else None
+        return AxiscalError(message, path=self.source, line=line)
+
+    def check(self, data: Mapping, schema: Mapping[str, str], section: str = "") -> None:
+        label = f"[{section}] " if section else ""
+        for key, value in data.items():
+            if key not in schema:
+                raise self.error(f"{label}unknown key {key}; known keys: {', '.join(sorted(schema))}", section, key)
+            if not _check_kind(value, schema[key]):
+                raise self.error(f"{label}{key} must be {_KIND_TEXT[schema[key]]}, not {value!r}", section, key)
 
 
 def _vector_mm(value: object, what: str) -> tuple[float, float, float]:
-    if not (isinstance(value, list) and len(value) == 3 and all(finite_number(v) for v in value)):
-        raise AxiscalError(f"{what} must be a list of 3 numbers in mm, e.g. [0.0, -40.0, 0.0]")
-    return tuple(float(v) * MM for v in value)  # type: ignore[return-value]
+    if not _check_kind(value, "vector"):
+        raise AxiscalError(f"{what} must be {_KIND_TEXT['vector']}")
+    return tuple(float(v) * MM for v in value)  # type: ignore[return-value, union-attr]
+
+
+def _confined(base_dir: Path, name: str, tables_dir: Path | None) -> Path | None:
+    """``name`` resolved inside ``base_dir`` (or else ``tables_dir``), or None if it points elsewhere."""
+    found = []
+    for folder in (base_dir,) if tables_dir is None else (base_dir, tables_dir):
+        root = folder.resolve()
+        candidate = (root / name).resolve()
+        if candidate.is_relative_to(root):
+            found.append(candidate)
+    return next((c for c in found if c.is_file()), found[0] if found else None)
 
 
 def machine_from_dict(
-    data: Mapping, *, base_dir: Path = Path("."), source: str = "<machine>", text: str | None = None
+    data: Mapping,
+    *,
+    base_dir: Path = Path("."),
+    source: str = "<machine>",
+    text: str | None = None,
+    tables_dir: str | Path | None = None,
 ) -> Machine:
     """Build a :class:`Machine` from the parsed TOML description (docs/formats.md).
+
+    Every key is checked against the declared schema of the file (its kind: text, true/false,
+    a list of 3 numbers, a table); the error names the key and, given ``text``, its line.
 
     Parameters
     ----------
     data : mapping
         The parsed TOML (lengths in mm, angles with their unit in the key).
     base_dir : Path
-        Folder the error table paths are relative to.
+        Folder the error table paths are relative to; they must stay inside it.
     source : str
         Name of the description in error messages (its file).
     text : str, optional
-        The TOML text, so that errors can name the line of a key.
+        The TOML text ``data`` was parsed from, to name the line of a bad key.
+    tables_dir : str or Path, optional
+        A second folder error table paths may point into.
 
     Returns
     -------
@@ -529,68 +734,118 @@ def machine_from_dict(
     Raises
     ------
     AxiscalError
-        Unknown keys, a value of the wrong type (checked against :data:`MACHINE_FIELDS` and
-        :data:`AXIS_FIELDS`), a missing chain or axis section, an error table outside
-        ``base_dir``, a bad error table, or a squareness term for an axis that is not in the chain;
-        the message names ``source`` and the line (or the table file and its line).
+        Unknown keys, a value of the wrong kind, a missing chain or axis section, an error table
+        path outside ``base_dir`` (and ``tables_dir``), a bad error table or squareness entry;
+        the message names ``source`` (or the table file) and the line.
+
+    Examples
+    --------
+    >>> machine_from_dict({"chain": "FX", "hold_ends": "false"})
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.AxiscalError: <machine>: hold_ends must be true or false, not 'false'
     """
-    lines = TomlLines(text) if text is not None else None
-
-    def checked(table_data: Any, fields: Mapping[str, Field], where: str, table: str = "") -> dict[str, Any]:
-        return check_table(table_data, fields, where=where, source=source, lines=lines, table=table)
-
-    def located(exc: AxiscalError, table: str = "", key: str | None = None) -> AxiscalError:
-        line = lines.of(table, key=key) if lines is not None else None
-        return exc.located(path=source, line=line)
-
+    where = _Where(source, text)
+    if not isinstance(data, Mapping):
+        raise where.error("a machine description must be a table of keys")
+    where.check(data, _MACHINE_SCHEMA)
+    if "chain" not in data:
+        raise where.error("missing 'chain' (e.g. chain = \"FXZ\")")
+    chain = data["chain"]
     try:
-        data = checked(data, MACHINE_FIELDS, "the machine file")
-        chain = data["chain"]
-        interpolation = data.get("interpolation", "linear")
-        hold_ends = data.get("hold_ends", False)
-        axes_data = data.get("axes", {})
-        try:
-            workpiece_side, tool_side = parse_chain(chain)
-        except AxiscalError as exc:
-            raise located(exc, key="chain") from None
-        for letter in workpiece_side + tool_side:
-            if letter not in axes_data:
-                raise located(AxiscalError(f"axis {letter} is in chain '{chain}' but has no [axes.{letter}] section"), key="chain")
-        axes: dict[str, Axis] = {}
-        for letter, section in axes_data.items():
-            if letter not in workpiece_side + tool_side:
-                raise located(AxiscalError(f"[axes.{letter}] is not an axis of chain '{chain}'"), f"axes.{letter}")
-            section = checked(section, AXIS_FIELDS, f"[axes.{letter}]", f"axes.{letter}")
-            try:
-                table_path = confined_path(base_dir, section["errors"])
-            except AxiscalError as exc:
-                raise located(exc, f"axes.{letter}", "errors") from None
-            table = read_error_table(
-                table_path,
-                letter,
-                interpolation=section.get("interpolation", interpolation),
-                hold_ends=section.get("hold_ends", hold_ends),
+        workpiece_side, tool_side = parse_chain(chain)
+    except AxiscalError as exc:
+        raise where.error(exc.message, "", "chain") from None
+    interpolation = data.get("interpolation", "linear")
+    if interpolation not in INTERPOLATIONS:
+        raise where.error(f"unknown interpolation '{interpolation}'; use one of {', '.join(INTERPOLATIONS)}", "", "interpolation")
+    hold_ends = data.get("hold_ends", False)
+    axes_data = data.get("axes", {})
+    for letter in workpiece_side + tool_side:
+        if letter not in axes_data:
+            raise where.error(f"axis {letter} is in chain '{chain}' but has no [axes.{letter}] section", "", "chain")
+    axes: dict[str, Axis] = {}
+    for letter, section in axes_data.items():
+        label = f"axes.{letter}"
+        if letter not in workpiece_side + tool_side:
+            raise where.error(f"[{label}] is not an axis of chain '{chain}'", label)
+        if not isinstance(section, Mapping):
+            raise where.error(f"[{label}] must be a table", "axes", letter)
+        where.check(section, _AXIS_SCHEMA, label)
+        if "errors" not in section:
+            raise where.error(f"[{label}] has no 'errors' table file", label)
+        axis_interpolation = section.get("interpolation", interpolation)
+        if axis_interpolation not in INTERPOLATIONS:
+            raise where.error(
+                f"[{label}] unknown interpolation '{axis_interpolation}'; use one of {', '.join(INTERPOLATIONS)}", label, "interpolation"
             )
-            origin = _vector_mm(section.get("origin_mm", [0.0, 0.0, 0.0]), f"[axes.{letter}] origin_mm")
-            axes[letter] = Axis(letter, table, origin)
-        squareness: dict[str, float] = {}
-        letters = set(workpiece_side + tool_side)
-        for key, value in dict(data.get("squareness", {})).items():
-            try:
-                stem, unit = split_unit(key)
-                if stem not in SQUARENESS_TERMS:
-                    raise AxiscalError(f"[squareness] unknown term '{key}'; use EC0Y, EB0Z, EA0Z with a unit, e.g. EB0Z_arcsec")
-                if not finite_number(value):
-                    raise AxiscalError(f"[squareness] {key} must be a number, not {value!r}")
-                needs = set(_SQUARENESS_PLACE[stem][:2])
-                if not needs <= letters:
-                    raise AxiscalError(
-                        f"[squareness] {key}: {stem} is the squareness of {' and '.join(sorted(needs))}, but chain"
-                        f" '{chain}' has no axis {' or '.join(sorted(needs - letters))}"
-                    )
-                squareness[stem] = float(value) * angle_factor(unit, what=key)
-            except AxiscalError as exc:
-                raise located(exc, "squareness", key) from None
+        table_path = _confined(base_dir, section["errors"], None if tables_dir is None else Path(tables_dir))
+        if table_path is None:
+            raise where.error(
+                f"[{label}] errors: the error table must be inside the machine file's folder", label, "errors"
+            )
+        if not table_path.is_file():
+            raise where.error(f"[{label}] errors: no file '{section['errors']}' in the machine file's folder", label, "errors")
+        if "periodic" in section and letter not in ROTARY_LETTERS:
+            raise where.error(f"[{label}] periodic: only a rotary axis (A, B, C) is periodic", label, "periodic")
+        table = read_error_table(
+            table_path,
+            letter,
+            interpolation=axis_interpolation,
+            hold_ends=section.get("hold_ends", hold_ends),
+            periodic=section.get("periodic"),
+        )
+        origin = _vector_mm(section.get("origin_mm", [0.0, 0.0, 0.0]), f"[{label}] origin_mm")
+        axes[letter] = Axis(letter, table, origin)
+    squareness: dict[str, float] = {}
+    for key, value in data.get("squareness", {}).items():
+        stem, unit = split_unit(key) if "_" in key else (key, "")
+        if stem not in SQUARENESS_TERMS:
+            raise where.error(
+                f"[squareness] unknown term '{key}'; use EC0Y, EB0Z, EA0Z with a unit, e.g. EB0Z_arcsec", "squareness", key
+            )
+        if not finite_number(value):
+            raise where.error(f"[squareness] {key} must be {_KIND_TEXT['number']}, not {value!r}", "squareness", key)
+        try:
+            squareness[stem] = float(value) * angle_factor(unit, what=key)
+        except AxiscalError as exc:
+            raise where.error(exc.message, "squareness", key) from None
+        if abs(squareness[stem]) > MAX_ANGLE_ERROR_RAD:
+            raise where.error(f"[squareness] {key} = {value} is not a squareness error (over {MAX_ANGLE_ERROR_RAD} rad)", "squareness", key)
+        letter, reference, _ = _SQUARENESS_PLACE[stem]
+        if letter not in workpiece_side + tool_side or reference not in workpiece_side + tool_side:
+            raise where.error(f"[squareness] {key}: chain '{chain}' has no axes {reference} and {letter} to be square", "squareness", key)
+    location: dict[str, float] = {}
+    for key, value in data.get("location", {}).items():
+        stem, unit = split_unit(key) if "_" in key else (key, "")
+        letter = stem[-1:]
+        if letter not in ROTARY_LETTERS or stem not in location_names(letter):
+            raise where.error(
+                f"[location] unknown term '{key}'; e.g. {', '.join(n + '_um' for n in location_names('C')[:2])}, "
+                f"{', '.join(n + '_urad' for n in location_names('C')[2:])}",
+                "location",
+                key,
+            )
+        if letter not in workpiece_side + tool_side:
+            raise where.error(f"[location] {key}: chain '{chain}' has no axis {letter}", "location", key)
+        if not finite_number(value):
+            raise where.error(f"[location] {key} must be {_KIND_TEXT['number']}, not {value!r}", "location", key)
+        try:
+            if stem[1] in AXIS_INDEX:
+                factor, limit = length_factor(unit, what=key), MAX_TRANSLATION_ERROR_M
+            else:
+                factor, limit = angle_factor(unit, what=key), MAX_ANGLE_ERROR_RAD
+        except AxiscalError as exc:
+            raise where.error(exc.message, "location", key) from None
+        if abs(value * factor) > limit:
+            raise where.error(f"[location] {key} = {value} has no physical meaning (limits: 10 mm, 0.01 rad)", "location", key)
+        location[stem] = float(value) * factor
+    placement = data.get("squareness_placement", SQUARENESS_PLACEMENTS[0])
+    if placement not in SQUARENESS_PLACEMENTS:
+        raise where.error(
+            f"unknown squareness placement '{placement}'; use {' or '.join(SQUARENESS_PLACEMENTS)}", "", "squareness_placement"
+        )
+    try:
         return Machine(
             chain=chain,
             axes=axes,
@@ -598,19 +853,22 @@ def machine_from_dict(
             tool_m=_vector_mm(data.get("tool_mm", [0.0, 0.0, 0.0]), "tool_mm"),
             workpiece_m=_vector_mm(data.get("workpiece_mm", [0.0, 0.0, 0.0]), "workpiece_mm"),
             name=data.get("name", ""),
-            squareness_placement=data.get("squareness_placement", SQUARENESS_PLACEMENTS[0]),
+            squareness_placement=placement,
+            location=location,
         )
     except AxiscalError as exc:
         raise exc.located(path=source) from None
 
 
-def load_machine(path: str | Path) -> Machine:
+def load_machine(path: str | Path, *, tables_dir: str | Path | None = None) -> Machine:
     """Read a machine description (TOML, docs/formats.md) and its error tables.
 
     Parameters
     ----------
     path : str or Path
-        The TOML file; the error table paths in it are relative to its folder.
+        The TOML file; the error table paths in it are relative to its folder and must stay inside it.
+    tables_dir : str or Path, optional
+        A second folder the error table paths may point into.
 
     Returns
     -------
@@ -630,7 +888,7 @@ def load_machine(path: str | Path) -> Machine:
     """
     path = Path(path)
     data = read_toml(path)
-    return machine_from_dict(data, base_dir=path.parent, source=str(path), text=read_text(path))
+    return machine_from_dict(data, base_dir=path.parent, source=str(path), text=read_text(path), tables_dir=tables_dir)
 
 
 def as_machine(machine: Machine | str | Path) -> Machine:
@@ -648,9 +906,13 @@ def as_machine(machine: Machine | str | Path) -> Machine:
     Raises
     ------
     AxiscalError
-        If the file is missing or malformed (see :func:`load_machine`).
+        Neither a Machine nor a path, or a missing or malformed file (see :func:`load_machine`).
     """
-    return machine if isinstance(machine, Machine) else load_machine(machine)
+    if isinstance(machine, Machine):
+        return machine
+    if not isinstance(machine, (str, Path)):
+        raise AxiscalError(f"a machine is a Machine or the path of its TOML file, not {machine!r:.40}")
+    return load_machine(machine)
 
 
 def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
@@ -659,35 +921,44 @@ def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
     Parameters
     ----------
     spec : str
-        ``"X=0:190:10,Z=0:190:10"``: per axis ``start:end:step`` in mm (ends inclusive) or a single
-        value ``"Y=50"``.
+        ``"X=0:190:10,Z=0:190:10"``: per axis ``start:end:step`` in mm, or degrees for a rotary
+        axis (``"C=0:360:15"``), ends inclusive, or a single value ``"Y=50"``.
 
     Returns
     -------
     dict of str to ndarray, shape (N,)
-        Position of each named axis, metres, N the product of the axes' counts.
+        Position of each named axis (metres; radians for rotary axes), N the product of the
+        axes' counts.
 
     Raises
     ------
     AxiscalError
-        A part that is not of that form, an axis named twice, ``end < start`` or ``step <= 0``.
+        A part that is not of that form, a number that is not finite, an axis named twice,
+        ``end < start``, ``step <= 0``, or more than :data:`MAX_GRID_POINTS` points.
 
     Examples
     --------
     >>> {k: v.tolist() for k, v in axis_positions_from_grid("X=0:20:10,Z=5").items()}
     {'X': [0.0, 0.01, 0.02], 'Z': [0.005, 0.005, 0.005]}
     """
+    if not isinstance(spec, str):
+        raise AxiscalError(f"a grid is a string such as 'X=0:190:10,Z=5', not {spec!r}")
     ranges: dict[str, np.ndarray] = {}
+    total = 1
     for part in spec.split(","):
         letter, sep, rng = part.partition("=")
         letter = letter.strip().upper()
-        bits = rng.split(":")
-        if not sep or letter not in AXIS_INDEX or len(bits) not in (1, 3):
-            raise AxiscalError(f"grid '{spec}': expected parts like 'X=0:190:10' (start:end:step in mm) or 'Y=50'")
+        bits = [b.strip() for b in rng.split(":")]
+        if not sep or letter not in AXIS_UNITS or len(bits) not in (1, 3):
+            raise AxiscalError(
+                f"grid '{spec}': expected parts like 'X=0:190:10' (start:end:step in mm, deg for A, B, C) or 'Y=50'"
+            )
         try:
             numbers = [float(b) for b in bits]
         except ValueError:
             raise AxiscalError(f"grid '{spec}': '{rng}' is not numbers") from None
+        if not all(math.isfinite(v) and abs(v) <= MAX_MACHINE_SIZE_MM for v in numbers):
+            raise AxiscalError(f"grid '{spec}': axis {letter} needs finite numbers within ±{MAX_MACHINE_SIZE_MM:g} mm")
         if letter in ranges:
             raise AxiscalError(f"grid '{spec}' names axis {letter} twice")
         if len(numbers) == 1:
@@ -696,10 +967,15 @@ def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
         start, end, step = numbers
         if step <= 0 or end < start:
             raise AxiscalError(f"grid '{spec}': need start <= end and step > 0 for axis {letter}")
-        count = int(np.floor((end - start) / step + 1e-9)) + 1
-        ranges[letter] = start + step * np.arange(count)
+        count = math.floor((end - start) / step + 1e-9) + 1
+        total *= count
+        if total > MAX_GRID_POINTS:
+            raise AxiscalError(f"grid '{spec}' has more than {MAX_GRID_POINTS} points; use a coarser step")
+        # the grid's resolution is that of its numbers as written: 0.1 * 3 is 0.3, not 0.30000000000000004
+        decimals = max(len(b.lower().split("e")[0].partition(".")[2]) for b in bits) + 3
+        ranges[letter] = np.round(start + step * np.arange(count), decimals)
     mesh = np.meshgrid(*ranges.values(), indexing="ij")
-    return {letter: grid.ravel() * MM for letter, grid in zip(ranges, mesh)}
+    return {letter: grid.ravel() * AXIS_UNITS[letter][0] for letter, grid in zip(ranges, mesh)}
 
 
 def positions_from_points(sequence: Sequence[Mapping[str, float]]) -> dict[str, np.ndarray]:
@@ -714,6 +990,16 @@ def positions_from_points(sequence: Sequence[Mapping[str, float]]) -> dict[str, 
     -------
     dict of str to ndarray, shape (N,)
         Metres.
+
+    Raises
+    ------
+    AxiscalError
+        Points that are not mappings, name different axes, or hold values that are not numbers.
     """
+    if not isinstance(sequence, Sequence) or not all(isinstance(p, Mapping) for p in sequence):
+        raise AxiscalError("points must be a list of mappings such as {'X': 0.1, 'Z': 0.05}")
     letters = list(sequence[0]) if sequence else []
-    return {k: np.array([p[k] for p in sequence], dtype=float) for k in letters}
+    for k, point in enumerate(sequence):
+        if set(point) != set(letters):
+            raise AxiscalError(f"point {k + 1} names axes {sorted(point)}, the first point {sorted(letters)}")
+    return {k: _floats([p[k] for p in sequence], f"positions of axis {k}") for k in letters}

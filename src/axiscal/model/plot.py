@@ -12,7 +12,7 @@ import numpy as np
 
 from axiscal.io.figures import pyplot, save_figure
 from axiscal.model.diagonal import DiagonalResult
-from axiscal.model.machine import Machine
+from axiscal.model.machine import AXIS_UNITS, Machine
 from axiscal.units import ANGLE_UNITS, MM, UM
 
 __all__ = ["plot_error_tables", "plot_volumetric", "plot_diagonal", "plot_diagonal_experiment"]
@@ -45,7 +45,8 @@ def plot_error_tables(machine: Machine, path: str | Path) -> None:
     fig, axes = plt.subplots(len(letters), 2, figsize=(11, 3.2 * len(letters)), squeeze=False)
     for row, letter in enumerate(letters):
         table = machine.table(letter)
-        q_mm = table.position_m / MM
+        factor, unit = AXIS_UNITS[letter]
+        q_mm = table.position_m / factor
         for k, name in enumerate(table.names):
             target = axes[row, 0] if k < 3 else axes[row, 1]
             scale = 1.0 / UM if k < 3 else 1.0 / _URAD
@@ -53,7 +54,7 @@ def plot_error_tables(machine: Machine, path: str | Path) -> None:
         axes[row, 0].set_ylabel("translation error / um")
         axes[row, 1].set_ylabel("rotation error / urad")
         for ax in axes[row]:
-            ax.set_xlabel(f"{letter} position / mm")
+            ax.set_xlabel(f"{letter} position / {unit}")
             ax.grid(True, alpha=0.3)
             ax.legend(fontsize=8, ncol=3)
     fig.suptitle(f"Error motions: {machine.name or machine.chain}")
@@ -61,22 +62,32 @@ def plot_error_tables(machine: Machine, path: str | Path) -> None:
     save_figure(fig, path, dpi=120)
 
 
-def plot_volumetric(positions_m: dict[str, np.ndarray], error_m: np.ndarray, path: str | Path, *, title: str = "") -> None:
-    """Map of the volumetric error.
+def plot_volumetric(
+    positions_m: dict[str, np.ndarray],
+    error_m: np.ndarray,
+    path: str | Path,
+    *,
+    title: str = "",
+    orientation_rad: np.ndarray | None = None,
+) -> None:
+    """Map of the volumetric error and, for a chain with rotary axes, of the tool axis orientation error.
 
-    On a 2-axis grid a colour map of |e| with arrows of the in-plane components; otherwise |e| and
-    its components against point number.
+    On a 2-axis grid a colour map of |e| (with arrows of the in-plane components when both axes
+    are linear) and, given ``orientation_rad``, a second map of its length; otherwise the
+    components against point number.
 
     Parameters
     ----------
     positions_m : dict of str to ndarray, shape (N,)
-        Axis positions, metres.
+        Axis positions: metres, radians for rotary axes (plotted in degrees).
     error_m : ndarray, shape (N, 3)
         Volumetric error (actual minus nominal), metres.
     path : str or Path
         Figure file; the format follows the suffix.
     title : str, optional
         Figure title.
+    orientation_rad : ndarray, shape (N, 2), optional
+        Orientation error ``(ei, ej)`` of the tool axis, radians.
 
     Returns
     -------
@@ -90,37 +101,45 @@ def plot_volumetric(positions_m: dict[str, np.ndarray], error_m: np.ndarray, pat
     """
     plt = pyplot()
     error_um = np.asarray(error_m) / UM
-    magnitude_um = np.linalg.norm(error_um, axis=1)
+    panels = [("|e| / um", error_um, ("ex", "ey", "ez"))]
+    if orientation_rad is not None:
+        panels.append(("|(ei, ej)| / urad", np.asarray(orientation_rad) / _URAD, ("ei", "ej")))
     moving = [k for k, q in positions_m.items() if np.ptp(q) > 0]
-    fig, ax = plt.subplots(figsize=(8, 6.5))
-    if len(moving) == 2:
-        a, b = moving
-        qa, qb = positions_m[a] / MM, positions_m[b] / MM
-        ua, ub = np.unique(qa), np.unique(qb)
-        if ua.size * ub.size == qa.size:
-            order = np.lexsort((qb, qa))
-            grid = magnitude_um[order].reshape(ua.size, ub.size)
-            mesh = ax.pcolormesh(ua, ub, grid.T, shading="auto", cmap="viridis")
-            fig.colorbar(mesh, ax=ax, label="|e| / um")
+    fig, axes = plt.subplots(1, len(panels), figsize=(8 * len(panels), 6.5), squeeze=False)
+    for ax, (label, values, names) in zip(axes[0], panels):
+        magnitude = np.linalg.norm(values, axis=1)
+        if len(moving) == 2:
+            a, b = moving
+            (fa, unit_a), (fb, unit_b) = AXIS_UNITS[a], AXIS_UNITS[b]
+            qa, qb = positions_m[a] / fa, positions_m[b] / fb
+            ua, ub = np.unique(qa), np.unique(qb)
+            if ua.size * ub.size == qa.size:
+                order = np.lexsort((qb, qa))
+                grid = magnitude[order].reshape(ua.size, ub.size)
+                mesh = ax.pcolormesh(ua, ub, grid.T, shading="auto", cmap="viridis")
+                fig.colorbar(mesh, ax=ax, label=label)
+            else:
+                sc = ax.scatter(qa, qb, c=magnitude, cmap="viridis")
+                fig.colorbar(sc, ax=ax, label=label)
+            if len(names) == 3 and a in "XYZ" and b in "XYZ":
+                ia, ib = "XYZ".index(a), "XYZ".index(b)
+                arrows = slice(None, None, max(1, qa.size // 150))
+                ax.quiver(qa[arrows], qb[arrows], values[arrows, ia], values[arrows, ib], color="white", alpha=0.8)
+                ax.set_aspect("equal")
+                ax.set_title(f"arrows: e{a.lower()}, e{b.lower()}")
+            else:
+                ax.set_title("tool point position error" if len(names) == 3 else "tool axis orientation error")
+            ax.set_xlabel(f"{a} / {unit_a}")
+            ax.set_ylabel(f"{b} / {unit_b}")
         else:
-            sc = ax.scatter(qa, qb, c=magnitude_um, cmap="viridis")
-            fig.colorbar(sc, ax=ax, label="|e| / um")
-        ia, ib = "XYZ".index(a), "XYZ".index(b)
-        arrows = slice(None, None, max(1, qa.size // 150))
-        ax.quiver(qa[arrows], qb[arrows], error_um[arrows, ia], error_um[arrows, ib], color="white", alpha=0.8)
-        ax.set_xlabel(f"{a} / mm")
-        ax.set_ylabel(f"{b} / mm")
-        ax.set_aspect("equal")
-        ax.set_title(title or f"Volumetric error (arrows: e{a.lower()}, e{b.lower()})")
-    else:
-        for i, label in enumerate(("ex", "ey", "ez")):
-            ax.plot(error_um[:, i], label=label)
-        ax.plot(magnitude_um, "k", label="|e|")
-        ax.set_xlabel("point")
-        ax.set_ylabel("error / um")
-        ax.legend()
-        ax.grid(True, alpha=0.3)
-        ax.set_title(title or "Volumetric error")
+            for i, name in enumerate(names):
+                ax.plot(values[:, i], label=name)
+            ax.plot(magnitude, "k", label=label.split(" /")[0])
+            ax.set_xlabel("point")
+            ax.set_ylabel(label.replace("|e|", "error").replace("|(ei, ej)|", "orientation error"))
+            ax.legend()
+            ax.grid(True, alpha=0.3)
+    fig.suptitle(title or "Volumetric error")
     fig.tight_layout()
     save_figure(fig, path, dpi=120)
 

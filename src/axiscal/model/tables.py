@@ -1,11 +1,13 @@
-"""Per-axis error tables: the six error motions of one linear axis against its position.
+"""Per-axis error tables: the six error motions of one axis (linear or rotary) against its position.
 
 An axis moving along letter ``L`` has six error motions named after ISO 230-1: ``ELL`` (positioning),
 the two straightness errors ``E<M>L`` across the motion, and the rotations ``EAL``, ``EBL``, ``ECL``
 about X, Y and Z. They are those of the moving carriage relative to the body that carries it (see
 docs/conventions.md). File format (docs/formats.md): CSV, first column ``position_mm``, then any of
 the six columns with a unit suffix (``_nm|_um|_mm`` for translations, ``_urad|_mrad|_arcsec`` for
-rotations); missing columns are zero; positions strictly increasing.
+rotations); missing columns are zero; positions strictly increasing. A rotary axis A, B or C
+(ISO 230-7) has ``position_deg`` instead and, by default, a periodic table: it interpolates across
+360 degrees, from its last row back to its first.
 """
 
 from __future__ import annotations
@@ -16,14 +18,47 @@ from pathlib import Path
 
 import numpy as np
 
-from axiscal.conventions import component_names
+from axiscal.conventions import ROTARY_LETTERS, component_names
 from axiscal.errors import AxiscalError
 from axiscal.io.tabular import CsvTable, read_csv
-from axiscal.units import MM, angle_factor, length_factor, split_unit
+from axiscal.units import ANGLE_UNITS, MM, angle_factor, length_factor, split_unit
 
-__all__ = ["INTERPOLATIONS", "ErrorTable", "read_error_table"]
+__all__ = ["INTERPOLATIONS", "MAX_TRANSLATION_ERROR_M", "MAX_ANGLE_ERROR_RAD", "ErrorTable", "read_error_table"]
 
 INTERPOLATIONS = ("linear", "cubic")
+_DEG = ANGLE_UNITS["deg"]
+_TURN = 360.0 * _DEG
+#: largest translation error motion accepted in a table (10 mm): beyond it a value has no physical meaning
+MAX_TRANSLATION_ERROR_M = 0.01
+#: largest rotation error motion accepted (0.01 rad, about 2000 arcsec): the model is first order in angles
+MAX_ANGLE_ERROR_RAD = 0.01
+#: largest position accepted in a table (1 km, the range of an ideal axis)
+_MAX_POSITION_M = 1000.0
+
+
+def _floats(value: object, what: str) -> np.ndarray:
+    """``value`` as a float array; anything that is not numbers (text, true/false) raises AxiscalError."""
+    try:
+        if isinstance(value, (bool, np.bool_, str)):
+            raise TypeError
+        if isinstance(value, (list, tuple)):  # true/false would pass as 1/0
+            if any(isinstance(v, (bool, np.bool_)) for v in np.asarray(value, dtype=object).ravel()):
+                raise TypeError
+        elif np.asarray(value).dtype == bool:
+            raise TypeError
+        return np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise AxiscalError(f"{what} must be numbers, not {value!r:.60}") from None
+
+
+def _first_too_large(values: np.ndarray) -> tuple[int, int] | None:
+    """(row, sample) of the first error motion over its limit, or None."""
+    limits = np.array([MAX_TRANSLATION_ERROR_M] * 3 + [MAX_ANGLE_ERROR_RAD] * 3)[:, None]
+    over = np.abs(values) > limits
+    if not np.any(over):
+        return None
+    row, sample = np.argwhere(over)[0]
+    return int(row), int(sample)
 
 
 @dataclass(frozen=True)
@@ -33,9 +68,9 @@ class ErrorTable:
     Parameters
     ----------
     letter : str
-        The axis letter, X, Y or Z.
+        The axis letter: X, Y, Z, or a rotary axis A, B, C.
     position_m : ndarray, shape (n,)
-        Strictly increasing positions, metres.
+        Strictly increasing positions: metres, or radians for a rotary axis.
     values : ndarray, shape (6, n)
         Rows tx, ty, tz (metres) and ea, eb, ec (radians): e.g. for X the rows are EXX, EYX, EZX,
         EAX, EBX, ECX.
@@ -43,12 +78,17 @@ class ErrorTable:
         Between rows: linear (default) or a not-a-knot cubic spline.
     hold_ends : bool
         Outside the table, hold the end values instead of raising (default False).
+    periodic : bool, optional
+        Positions repeat every 360 degrees: between the last row and the first plus 360 degrees
+        the table interpolates towards the first row. Default: True for a rotary axis, False for
+        a linear one (where it is refused).
 
     Raises
     ------
     AxiscalError
         An unknown axis letter or interpolation, values of the wrong shape, fewer than 2 rows,
-        non-finite values, or positions not strictly increasing.
+        non-finite values, positions not strictly increasing, or a periodic table that spans
+        more than 360 degrees.
 
     Examples
     --------
@@ -62,6 +102,7 @@ class ErrorTable:
     values: np.ndarray
     interpolation: str = "linear"
     hold_ends: bool = False
+    periodic: bool | None = None
     _slopes: np.ndarray = field(init=False, repr=False, compare=False)
     _uniform_step: float | None = field(init=False, repr=False, compare=False)
     _bin_width: float = field(init=False, repr=False, compare=False)
@@ -70,20 +111,46 @@ class ErrorTable:
 
     def __post_init__(self) -> None:
         component_names(self.letter)
-        position = np.ascontiguousarray(self.position_m, dtype=float)
-        values = np.ascontiguousarray(self.values, dtype=float)
+        position = np.ascontiguousarray(_floats(self.position_m, f"axis {self.letter}: positions"))
+        values = np.ascontiguousarray(_floats(self.values, f"axis {self.letter}: values"))
+        rotary = self.letter in ROTARY_LETTERS
+        periodic = rotary if self.periodic is None else self.periodic
+        if not isinstance(periodic, (bool, np.bool_)) or (periodic and not rotary):
+            raise AxiscalError(f"axis {self.letter}: periodic must be True or False, and only a rotary axis is periodic")
+        object.__setattr__(self, "periodic", bool(periodic))
         if position.ndim != 1 or values.shape != (6, position.size):
             raise AxiscalError(f"axis {self.letter}: values must have shape (6, {position.size}), got {values.shape}")
         if position.size < 2:
             raise AxiscalError(f"axis {self.letter}: an error table needs at least 2 rows")
         if not (np.all(np.isfinite(position)) and np.all(np.isfinite(values))):
             raise AxiscalError(f"axis {self.letter}: error table holds non-finite values")
+        if np.any(np.abs(position) > _MAX_POSITION_M):
+            raise AxiscalError(f"axis {self.letter}: positions beyond {_MAX_POSITION_M:g} m have no physical meaning")
+        over = _first_too_large(values)
+        if over is not None:
+            row, sample = over
+            raise AxiscalError(
+                f"axis {self.letter}: {component_names(self.letter)[row]} at row {sample + 1} is beyond the largest "
+                f"error motion accepted ({MAX_TRANSLATION_ERROR_M} m, {MAX_ANGLE_ERROR_RAD} rad)"
+            )
         steps = np.diff(position)
         if np.any(steps <= 0):
             k = int(np.argmax(steps <= 0)) + 1
             raise AxiscalError(f"axis {self.letter}: positions not strictly increasing at row {k + 1}")
+        if not isinstance(self.hold_ends, (bool, np.bool_)):
+            raise AxiscalError(f"hold_ends must be True or False, not {self.hold_ends!r}")
         if self.interpolation not in INTERPOLATIONS:
             raise AxiscalError(f"unknown interpolation '{self.interpolation}'; use one of {', '.join(INTERPOLATIONS)}")
+        if self.periodic:
+            span = position[-1] - position[0]
+            if span > _TURN * (1 + 1e-12):
+                raise AxiscalError(f"axis {self.letter}: a periodic table spans at most 360 deg, not {span / _DEG:.6g} deg")
+            if span < _TURN * (1 - 1e-12):  # close the circle: interpolate back to the first row
+                position = np.append(position, position[0] + _TURN)
+                values = np.column_stack([values, values[:, :1]])
+                steps = np.diff(position)
+            if self.interpolation == "cubic":
+                raise AxiscalError(f"axis {self.letter}: a periodic table interpolates linearly")
         object.__setattr__(self, "position_m", position)
         object.__setattr__(self, "values", values)
         object.__setattr__(self, "_slopes", np.diff(values, axis=1) / steps)
@@ -112,14 +179,16 @@ class ErrorTable:
         Parameters
         ----------
         letter : str
-            X, Y or Z.
+            X, Y, Z, or A, B, C (a periodic table over a full turn).
         start_m, end_m : float
-            Range of the table, metres.
+            Range of a linear table, metres.
 
         Returns
         -------
         ErrorTable
         """
+        if letter in ROTARY_LETTERS:
+            return cls(letter, np.array([0.0, _TURN]), np.zeros((6, 2)), periodic=True)
         return cls(letter, np.array([start_m, end_m]), np.zeros((6, 2)), hold_ends=True)
 
     @classmethod
@@ -152,11 +221,14 @@ class ErrorTable:
         unknown = set(components) - set(names)
         if unknown:
             raise AxiscalError(f"axis {letter}: unknown components {sorted(unknown)}; expected {', '.join(names)}")
-        position = np.asarray(position_m, dtype=float)
+        position = _floats(position_m, f"axis {letter}: positions")
         values = np.zeros((6, position.size))
         for row, name in enumerate(names):
             if name in components:
-                values[row] = components[name]
+                component = _floats(components[name], name)
+                if component.shape != position.shape:
+                    raise AxiscalError(f"{name} has shape {component.shape}; the positions have {position.shape}")
+                values[row] = component
         return cls(letter, position, values, **options)
 
     @property
@@ -205,11 +277,13 @@ class ErrorTable:
         Returns
         -------
         int or None
-            None when all are inside (always None with ``hold_ends``).
+            None when all are inside (with ``hold_ends`` or a periodic table: when none is NaN).
         """
-        if self.hold_ends:
+        if self.hold_ends or self.periodic:
+            if np.isnan(q_m).any():
+                return int(np.argmax(np.isnan(q_m)))
             return None
-        outside = (q_m < self.start_m) | (q_m > self.end_m)
+        outside = ~((q_m >= self.start_m) & (q_m <= self.end_m))
         return int(np.argmax(outside)) if np.any(outside) else None
 
     def check_range(self, q_m: np.ndarray, *, path: str | None = None, lines: Sequence[int] | None = None) -> None:
@@ -231,9 +305,10 @@ class ErrorTable:
         """
         k = self.first_outside(q_m)
         if k is not None:
+            factor, unit = (_DEG, "deg") if self.letter in ROTARY_LETTERS else (MM, "mm")
             raise AxiscalError(
-                f"{self.letter} = {q_m[k] / MM:.6g} mm is outside the error table of axis {self.letter} "
-                f"({self.start_m / MM:.6g} to {self.end_m / MM:.6g} mm)",
+                f"{self.letter} = {q_m[k] / factor:.6g} {unit} is outside the error table of axis {self.letter} "
+                f"({self.start_m / factor:.6g} to {self.end_m / factor:.6g} {unit})",
                 path=path,
                 line=lines[k] if lines else None,
             )
@@ -256,8 +331,10 @@ class ErrorTable:
         AxiscalError
             A position outside the table (unless ``hold_ends``).
         """
-        q = np.asarray(q_m, dtype=float)
+        q = _floats(q_m, f"positions of axis {self.letter}")
         self.check_range(q)
+        if self.periodic:
+            q = self.start_m + np.mod(q - self.start_m, _TURN)
         q = np.clip(q, self.start_m, self.end_m)
         if self._spline is not None:
             return self._spline(q)
@@ -276,21 +353,24 @@ class ErrorTable:
 
 
 def read_error_table(
-    path: str | Path, letter: str, *, interpolation: str = "linear", hold_ends: bool = False
+    path: str | Path, letter: str, *, interpolation: str = "linear", hold_ends: bool = False, periodic: bool | None = None
 ) -> ErrorTable:
     """Read the error table of one axis from a CSV file (docs/formats.md).
 
     Parameters
     ----------
     path : str or Path
-        CSV: ``position_mm`` first, strictly increasing, then any of the axis' six components
-        with a unit suffix (``EXX_um``, ``EBX_arcsec``, ...); missing components are zero.
+        CSV: ``position_mm`` (``position_deg`` for a rotary axis) first, strictly increasing, then
+        any of the axis' six components with a unit suffix (``EXX_um``, ``EBX_arcsec``, ...);
+        missing components are zero.
     letter : str
-        The axis, X, Y or Z.
+        The axis, X, Y, Z, A, B or C.
     interpolation : {"linear", "cubic"}
         Between rows.
     hold_ends : bool
         Hold the end values outside the table instead of raising.
+    periodic : bool, optional
+        Interpolate across 360 degrees (default: True for a rotary axis).
 
     Returns
     -------
@@ -310,20 +390,23 @@ def read_error_table(
     """
     table = read_csv(path, min_rows=2)
     try:
-        return _table_from_csv(table, letter, interpolation=interpolation, hold_ends=hold_ends)
+        return _table_from_csv(table, letter, interpolation=interpolation, hold_ends=hold_ends, periodic=periodic)
     except AxiscalError as exc:
         raise exc.located(path=str(path)) from None
 
 
-def _table_from_csv(table: CsvTable, letter: str, *, interpolation: str, hold_ends: bool) -> ErrorTable:
+def _table_from_csv(
+    table: CsvTable, letter: str, *, interpolation: str, hold_ends: bool, periodic: bool | None
+) -> ErrorTable:
     names = component_names(letter)
-    if table.header[0] != "position_mm":
-        raise AxiscalError(f"first column must be 'position_mm', found '{table.header[0]}'", line=table.header_line)
-    position = table.numeric("position_mm") * MM
+    first, scale = ("position_deg", _DEG) if letter in ROTARY_LETTERS else ("position_mm", MM)
+    if table.header[0] != first:
+        raise AxiscalError(f"first column must be '{first}', found '{table.header[0]}'", line=table.header_line)
+    position = table.numeric(first) * scale
     steps = np.diff(position)
     if np.any(steps <= 0):
         k = int(np.argmax(steps <= 0)) + 1
-        raise AxiscalError("position_mm is not strictly increasing", line=table.lines[k])
+        raise AxiscalError(f"{first} is not strictly increasing", line=table.lines[k])
     values = np.zeros((6, position.size))
     seen: dict[str, str] = {}
     for column in table.header[1:]:
@@ -345,4 +428,14 @@ def _table_from_csv(table: CsvTable, letter: str, *, interpolation: str, hold_en
         except AxiscalError as exc:
             raise exc.located(line=table.header_line) from None
         values[row] = table.numeric(column) * factor
-    return ErrorTable(letter, position, values, interpolation=interpolation, hold_ends=hold_ends)
+        over = _first_too_large(values)
+        if over is not None:
+            raise AxiscalError(
+                f"{column} = {values[over] / factor:g} has no physical meaning (limits: "
+                f"{MAX_TRANSLATION_ERROR_M / MM:g} mm, {MAX_ANGLE_ERROR_RAD:g} rad)",
+                line=table.lines[over[1]],
+            )
+    if np.any(np.abs(position) > _MAX_POSITION_M):
+        k = int(np.argmax(np.abs(position) > _MAX_POSITION_M))
+        raise AxiscalError(f"{first} beyond {_MAX_POSITION_M / scale:g} has no physical meaning", line=table.lines[k])
+    return ErrorTable(letter, position, values, interpolation=interpolation, hold_ends=hold_ends, periodic=periodic)

@@ -1,4 +1,4 @@
-"""Volumetric error map of a machine at given axis positions (paper 000 eqs 9-10; docs/conventions.md).
+"""Volumetric error map of a machine at given axis positions (paper 000 eqs 9-10; ISO 230-7; docs/conventions.md).
 
 The volumetric error is the actual minus the nominal tool point relative to the workpiece, in the
 workpiece frame (:meth:`axiscal.model.machine.Machine.volumetric_error`). :func:`volumetric_map`
@@ -15,9 +15,15 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.model.inputs import check_travel, read_points
-from axiscal.model.machine import Machine, as_machine, axis_positions_from_grid
+from axiscal.model.machine import (
+    AXIS_UNITS,
+    Machine,
+    as_machine,
+    axis_positions_from_grid,
+)
 from axiscal.model.output import TableResult
-from axiscal.units import MM, UM
+from axiscal.model.tables import _floats
+from axiscal.units import ANGLE_UNITS, UM
 
 __all__ = ["VolumetricMap", "volumetric_map"]
 
@@ -30,8 +36,8 @@ class VolumetricMap(TableResult):
 
     Attributes
     ----------
-    positions_m : dict of str to ndarray, shape (N,)
-        Position of every axis, in the machine's chain order, metres.
+    positions_m: dict of str to ndarray, shape (N,)
+        Position of every axis, in the machine's chain order: metres, radians for rotary axes.
     error_m : ndarray, shape (N, 3)
         Volumetric error (ex, ey, ez): actual minus nominal tool point relative to the workpiece,
         in the workpiece frame, metres.
@@ -39,12 +45,16 @@ class VolumetricMap(TableResult):
         The machine's name (or chain), for titles.
     sources : tuple of str
         Files the map was computed from.
+    orientation_rad : ndarray, shape (N, 2), optional
+        For a chain with rotary axes: the orientation error ``(ei, ej)`` of the tool axis, radians
+        (docs/conventions.md).
     """
 
     positions_m: dict[str, np.ndarray]
     error_m: np.ndarray
     name: str = ""
     sources: tuple[str, ...] = field(default=())
+    orientation_rad: np.ndarray | None = None
 
     csv_format = "{:.4f}"
     csv_kind = "volumetric error"
@@ -71,15 +81,22 @@ class VolumetricMap(TableResult):
         return float(np.sqrt(np.mean(self.magnitude_m**2)))
 
     def columns(self) -> dict[str, np.ndarray]:
-        """Columns in display units: ``<axis>_mm``, then ``ex_um, ey_um, ez_um`` and ``e_um`` (the length).
+        """Columns in display units: ``<axis>_mm`` (``<axis>_deg``), ``ex_um, ey_um, ez_um``, ``e_um``
+        (the length) and, for a chain with rotary axes, ``ei_urad, ej_urad``.
 
         Returns
         -------
         dict of str to ndarray, shape (N,)
         """
-        columns = {f"{k.lower()}_mm": q / MM for k, q in self.positions_m.items()}
+        columns = {}
+        for k, q in self.positions_m.items():
+            factor, unit = AXIS_UNITS[k]
+            columns[f"{k.lower()}_{unit}"] = q / factor
         columns |= {f"{c}_um": self.error_m[:, i] / UM for i, c in enumerate(_COMPONENTS)}
         columns["e_um"] = self.magnitude_m / UM
+        if self.orientation_rad is not None:
+            columns["ei_urad"] = self.orientation_rad[:, 0] / ANGLE_UNITS["urad"]
+            columns["ej_urad"] = self.orientation_rad[:, 1] / ANGLE_UNITS["urad"]
         return columns
 
     def sidecar_metadata(self) -> dict[str, str]:
@@ -89,7 +106,10 @@ class VolumetricMap(TableResult):
         -------
         dict
         """
-        return {"frame": "tool point relative to the workpiece, workpiece frame"}
+        meta = {"frame": "tool point relative to the workpiece, workpiece frame"}
+        if self.orientation_rad is not None:
+            meta["orientation"] = "ei, ej: turn of the tool axis about the nominal tool frame's X and Y axes"
+        return meta
 
     def plot(self, path: str | Path, *, title: str | None = None) -> Path:
         """Write the map of :func:`axiscal.model.plot.plot_volumetric` to ``path``.
@@ -113,7 +133,13 @@ class VolumetricMap(TableResult):
         """
         from axiscal.model.plot import plot_volumetric
 
-        plot_volumetric(self.positions_m, self.error_m, path, title=f"Volumetric error: {self.name}" if title is None else title)
+        plot_volumetric(
+            self.positions_m,
+            self.error_m,
+            path,
+            title=f"Volumetric error: {self.name}" if title is None else title,
+            orientation_rad=self.orientation_rad,
+        )
         return Path(path)
 
 
@@ -133,16 +159,18 @@ def volumetric_map(
     machine : Machine, str or Path
         The machine, or its description file (TOML, docs/formats.md).
     points : str or Path, optional
-        CSV with one ``<axis>_mm`` column per axis of the chain.
+        CSV with one ``<axis>_mm`` column per linear axis of the chain, ``<axis>_deg`` per rotary axis.
     grid : str, optional
-        Grid of positions in mm, ``"X=0:190:10,Z=0:190:10"`` (start:end:step, ends inclusive).
+        Grid of positions in mm (deg for rotary axes), ``"X=0:190:10,C=0:360:15"``
+        (start:end:step, ends inclusive).
     positions : mapping of str to ndarray, shape (N,), optional
-        Position of every axis of the chain, metres.
+        Position of every axis of the chain: metres, radians for rotary axes.
 
     Returns
     -------
     VolumetricMap
-        Positions and errors in SI.
+        Positions and errors in SI; with the tool axis orientation error when the chain has
+        rotary axes.
 
     Raises
     ------
@@ -164,7 +192,12 @@ def volumetric_map(
         q, _ = read_points(points, model)
         sources.append(str(points))
     else:
-        q = axis_positions_from_grid(grid) if grid is not None else {k: np.atleast_1d(np.asarray(v, dtype=float)) for k, v in positions.items()}
+        if grid is not None:
+            q = axis_positions_from_grid(grid)
+        elif isinstance(positions, Mapping):
+            q = {k: np.atleast_1d(_floats(v, f"positions of axis {k}")) for k, v in positions.items()}
+        else:
+            raise AxiscalError("positions must map axis letters to arrays of positions")
         what = f"grid '{grid}'" if grid is not None else "positions"
         missing = sorted(set(model.letters) - set(q))
         if missing:
@@ -174,4 +207,7 @@ def volumetric_map(
             raise AxiscalError(f"{what} names axis {', '.join(extra)}, which is not in chain '{model.chain}'")
         check_travel(model, q, path=what if grid is not None else None)
     q = {k: q[k] for k in model.letters}
+    if model.rotary:
+        error, orientation = model.pose_error(q)
+        return VolumetricMap(q, error, name=model.name or model.chain, sources=tuple(sources), orientation_rad=orientation)
     return VolumetricMap(q, model.volumetric_error(q), name=model.name or model.chain, sources=tuple(sources))
