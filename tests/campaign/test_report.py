@@ -143,3 +143,22 @@ def test_ballbar_figures_equal_the_ballbar_command(run_cli, campaign):
     single = json.loads(out)
     for key in ("G_ccw_um", "G_cw_um", "H_um", "squareness_urad", "scale_mismatch_ppm", "servo_mismatch_ms"):
         assert results["ballbar-XY-1"][key] == pytest.approx(single[key], rel=1e-12), key
+
+
+def test_a_rotary_positioning_test_is_judged_in_arcseconds(tmp_path, examples):
+    folder = tmp_path / "rotary"
+    folder.mkdir()
+    shutil.copy(examples / "rotary_run.csv", folder / "c_axis.csv")
+    shutil.copy(examples / "positioning_run.csv", folder / "x_axis.csv")
+    (folder / "campaign.toml").write_text(
+        '[campaign]\ntitle = "Rotary table"\ndate = 2026-11-20\noperator = "A. Technician"\n\n'
+        '[machine]\nname = "4-axis mill"\ncontroller = "heidenhain"\n\n'
+        "[tolerances]\npositioning = { E_um = 20.0, E_arcsec = 15.0 }\n\n"
+        '[[tests]]\nkind = "positioning"\naxis = "C"\nfile = "c_axis.csv"\n\n'
+        '[[tests]]\nkind = "positioning"\naxis = "X"\nfile = "x_axis.csv"\n'
+    )
+    rotary, linear = run_campaign(folder).tests
+    assert rotary.tolerances == {"E_arcsec": 15.0} and linear.tolerances == {"E_um": 20.0}
+    assert rotary.figures["unit"] == "arcsec" and rotary.figures["E"] == pytest.approx(18.746, abs=5e-4)
+    assert rotary.verdict == "fail" and linear.verdict == "pass"
+    assert rotary.compensation[0]["file"] == "compensation/C.COM"

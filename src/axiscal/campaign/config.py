@@ -33,10 +33,9 @@ __all__ = [
 
 CAMPAIGN_FILE = "campaign.toml"
 CONTROLLERS = ("linuxcnc", "fanuc", "siemens", "heidenhain")
-#: figure keys a positioning tolerance may name (um), those of ``axiscal positioning --json``
-POSITIONING_TOLERANCE_KEYS = tuple(
-    f"{k}_um" for k in ("A", "A_up", "A_down", "B", "B_mean", "E", "E_up", "E_down", "M", "R", "R_up", "R_down")
-)
+_FIGURES = ("A", "A_up", "A_down", "B", "B_mean", "E", "E_up", "E_down", "M", "R", "R_up", "R_down")
+#: figure keys a positioning tolerance may name: um for a linear axis, arcsec for a rotary one
+POSITIONING_TOLERANCE_KEYS = tuple(f"{k}_um" for k in _FIGURES) + tuple(f"{k}_arcsec" for k in _FIGURES)
 _TOLERANCE_KEYS = {
     "positioning": dict,
     "straightness_um": float,
@@ -292,7 +291,7 @@ def _test(raw, index, folder, campaign_tolerances, model, counters, fail) -> Tes
         options.pop("plane", None)
         options["plane"] = plane
     own = _tolerances(options.pop("tolerances", {}), lambda m, k=None: bad(m, k or "tolerances"), "tolerances of this test")
-    merged = _merged_tolerances(kind, campaign_tolerances, own)
+    merged = _merged_tolerances(kind, campaign_tolerances, own, options.get("axis"))
     axis = options.pop("axis", None) if kind not in ("squareness", "ballbar") else options["plane"]
     options.pop("kind")
     test_id = options.pop("id", None)
@@ -330,11 +329,18 @@ def _uncertainty(value: Any, folder: Path, path: Path, text: str, fail, fail_top
     return budget_from_dict(table, source=str(path)), rule
 
 
-def _merged_tolerances(kind: str, campaign: Mapping[str, Any], own: Mapping[str, Any]) -> dict[str, float]:
-    """The limits that apply to a test of ``kind``: the campaign's, overridden by the test's own."""
+def _merged_tolerances(
+    kind: str, campaign: Mapping[str, Any], own: Mapping[str, Any], axis: str | None = None
+) -> dict[str, float]:
+    """The limits that apply to a test of ``kind``: the campaign's, overridden by the test's own.
+
+    Positioning limits are in um for a linear axis (X, Y, Z) and in arcsec for a rotary one (A, B,
+    C); the campaign's limits of the other kind do not apply to the axis.
+    """
     out: dict[str, float] = {}
     if kind == "positioning":
-        out.update(campaign.get("positioning", {}))
+        unit = "_arcsec" if axis in ("A", "B", "C") else "_um"
+        out.update({k: v for k, v in campaign.get("positioning", {}).items() if k.endswith(unit)})
         out.update(own.get("positioning", {}))
         out.update({k: v for k, v in own.items() if k in POSITIONING_TOLERANCE_KEYS})
     elif kind in ("straightness", "separation"):

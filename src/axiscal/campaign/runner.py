@@ -111,7 +111,16 @@ def _positioning(campaign: Campaign, spec: TestSpec) -> TestResult:
     )
     payload = evaluation.to_dict()
     figures = {k: v for k, v in payload.items()}
-    axis_figures = {name: value / UM for name, value in evaluation.result.figures().items()}
+    rotary = bool(getattr(evaluation.run, "rotary", False))
+    unit, factor = ("arcsec", ARCSEC) if rotary else ("um", UM)
+    wrong = [k for k in spec.tolerances if k.endswith("_arcsec" if not rotary else "_um")]
+    if wrong:
+        kind = "rotary" if rotary else "linear"
+        raise AxiscalError(
+            f"{spec.id}: tolerance {wrong[0]} does not fit a {kind} axis; its figures are in {unit}"
+            f" (e.g. E_{unit})", path=campaign.folder / "campaign.toml", line=spec.line,
+        )
+    axis_figures = {name: value / factor for name, value in evaluation.result.figures().items()}
     uncertainty = _uncertainty(campaign, spec, evaluation)
     checks = check_figures(axis_figures, spec.tolerances, {}, uncertainty=uncertainty, rule=campaign.decision_rule)
     title = f"{spec.axis} axis positioning ({evaluation.result.standard})"
@@ -124,7 +133,7 @@ def _positioning(campaign: Campaign, spec: TestSpec) -> TestResult:
         compensation.append({"controller": campaign.controller, "axis": spec.axis, "file": name, "text": table.text})
     return TestResult(
         id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, path)], figures=figures,
-        checks=checks, plots=[Plot(title, svg)], table=[Figure(k, v, "um") for k, v in axis_figures.items()],
+        checks=checks, plots=[Plot(title, svg)], table=[Figure(k, v, unit) for k, v in axis_figures.items()],
         environment=_environment(path), warnings=list(evaluation.warnings), compensation=compensation,
         method=f"Positioning: {evaluation.result.standard}", uncertainty=uncertainty,
     )
