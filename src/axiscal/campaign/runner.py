@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import re
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -97,7 +97,7 @@ def _uncertainty(campaign: Campaign, spec: TestSpec, evaluation: Any) -> dict[st
     return figure_uncertainties(spec.kind, evaluation, campaign.budget)
 
 
-def _positioning(campaign: Campaign, spec: TestSpec) -> TestResult:
+def _positioning(campaign: Campaign, spec: TestSpec, campaign_compare: Mapping[str, Any] | None = None) -> TestResult:
     from axiscal.compensation.formats import compensation_table
     from axiscal.positioning.report import evaluate_positioning_file
 
@@ -124,7 +124,11 @@ def _positioning(campaign: Campaign, spec: TestSpec) -> TestResult:
     uncertainty = _uncertainty(campaign, spec, evaluation)
     checks = check_figures(axis_figures, spec.tolerances, {}, uncertainty=uncertainty, rule=campaign.decision_rule)
     title = f"{spec.axis} axis positioning ({evaluation.result.standard})"
-    svg = svg_of(lambda p: evaluation.plot(p, title=title))
+    overlay = None
+    previous = (campaign_compare or {}).get(spec.id)
+    if previous and isinstance(previous.get("targets"), dict):
+        overlay = {**previous["targets"], "label": "compared"}
+    svg = svg_of(lambda p: evaluation.plot(p, title=title, overlay=overlay))
     compensation = []
     if campaign.controller is not None:
         options = {"axis": spec.axis} if campaign.controller in ("siemens", "heidenhain") else {}
@@ -364,7 +368,7 @@ KIND_RUNNERS: dict[str, Callable[[Campaign, TestSpec], TestResult]] = {
 }
 
 
-def run_test(campaign: Campaign, spec: TestSpec) -> TestResult:
+def run_test(campaign: Campaign, spec: TestSpec, *, compare: Mapping[str, Any] | None = None) -> TestResult:
     """Run one test of a campaign through the library call of its kind.
 
     Parameters
@@ -372,6 +376,9 @@ def run_test(campaign: Campaign, spec: TestSpec) -> TestResult:
     campaign : Campaign
     spec : TestSpec
         One of ``campaign.tests``.
+    compare : mapping, keyword-only
+        Figures of another campaign by test id (its results.json): a positioning plot draws the
+        other campaign's mean deviations behind this one's.
 
     Returns
     -------
@@ -385,6 +392,8 @@ def run_test(campaign: Campaign, spec: TestSpec) -> TestResult:
     runner = KIND_RUNNERS.get(spec.kind)
     if runner is None:
         raise AxiscalError(f"tests of kind '{spec.kind}' cannot be run yet", path=campaign.folder / "campaign.toml", line=spec.line)
+    if spec.kind == "positioning":
+        return runner(campaign, spec, compare)
     return runner(campaign, spec)
 
 
@@ -392,6 +401,7 @@ def run_campaign(
     campaign: Campaign | str | Path,
     *,
     progress: Callable[[int, int, TestSpec], None] | None = None,
+    compare: Mapping[str, Any] | None = None,
 ) -> CampaignResults:
     """Run every test of a campaign.
 
@@ -402,6 +412,8 @@ def run_campaign(
     progress : callable, keyword-only
         Called as ``progress(done, total, spec)`` before each test and once at the end with
         ``done == total`` (the command line draws a progress bar with it).
+    compare : mapping, keyword-only
+        Another campaign's results.json: its positioning means are drawn in this one's plots.
 
     Returns
     -------
@@ -415,11 +427,14 @@ def run_campaign(
     if not isinstance(campaign, Campaign):
         campaign = load_campaign(campaign)
     results = []
+    previous = None
+    if compare is not None:
+        previous = {t.get("id"): t.get("figures", {}) for t in compare.get("tests", []) if isinstance(t, Mapping)}
     total = len(campaign.tests)
     for index, spec in enumerate(campaign.tests):
         if progress is not None:
             progress(index, total, spec)
-        results.append(run_test(campaign, spec))
+        results.append(run_test(campaign, spec, compare=previous))
     model: dict[str, Any] = {}
     if campaign.model is not None:
         from axiscal.campaign.volumetric import volumetric_section

@@ -9,7 +9,9 @@ is asked for.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -34,7 +36,13 @@ def _format(value: float, factor: float) -> str:
 
 
 def plot_positioning(
-    run: PositioningRun, result: Iso230Result | Vdi3441Result, path: str | Path, *, title: str = "", compensated: bool = False
+    run: PositioningRun,
+    result: Iso230Result | Vdi3441Result,
+    path: str | Path,
+    *,
+    title: str = "",
+    compensated: bool = False,
+    overlay: Mapping[str, Any] | None = None,
 ) -> Path:
     """Write the positioning plot to ``path`` (format from its suffix, e.g. .png, .svg, .pdf).
 
@@ -58,6 +66,10 @@ def plot_positioning(
     compensated : bool, keyword-only
         Note on the plot that raw laser readings were compensated for the air and the material
         temperature.
+    overlay : mapping, keyword-only
+        Another test of the same axis to draw behind this one (e.g. before compensation): the
+        ``targets`` object of its ``axiscal positioning --json`` (``target_mm`` or ``target_deg``,
+        ``mean_up_um``/``mean_down_um`` or the ``_arcsec`` forms) and an optional ``label``.
 
     Returns
     -------
@@ -103,6 +115,16 @@ def plot_positioning(
                             label=f"x̄{arrow[0]} ± {k}s")
     if run.bidirectional:
         ax.plot(x, st.mean / factor, "--", color="0.3", linewidth=1, label="bidirectional mean x̄")
+    if overlay:
+        unit = "arcsec" if run.rotary else "um"
+        targets = overlay.get("target_deg" if run.rotary else "target_mm")
+        for key, style in ((f"mean_up_{unit}", (0, (4, 2))), (f"mean_down_{unit}", (0, (1, 1.5)))):
+            values = overlay.get(key)
+            if targets is not None and values is not None:
+                arrow = "↑" if "up" in key else "↓"
+                ax.plot(np.asarray(targets, dtype=float), np.asarray([np.nan if v is None else v for v in values], dtype=float),
+                        linestyle=style, color="0.45", linewidth=1.2,
+                        label=f"{overlay.get('label', 'compared')}: mean x̄{arrow}")
     ax.plot([], [], ".", color="0.5", label="single runs")
     ax.axhline(0.0, color="0.6", linewidth=0.6)
     ax.set_xlabel(f"target position / {'degree' if run.rotary else 'mm'}")

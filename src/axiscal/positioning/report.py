@@ -10,6 +10,7 @@ their names say.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -233,7 +234,7 @@ class PositioningEvaluation:
             unit=unit,
         )
 
-    def plot(self, path: str | Path, *, title: str = "") -> Path:
+    def plot(self, path: str | Path, *, title: str = "", overlay: Mapping[str, Any] | None = None) -> Path:
         """Write the positioning plot (see :func:`axiscal.positioning.plot.plot_positioning`).
 
         Parameters
@@ -242,6 +243,8 @@ class PositioningEvaluation:
             The figure file; its suffix gives the format (.png, .svg, .pdf, ...).
         title : str, keyword-only
             Title of the plot (default: file, standard, k, targets and runs).
+        overlay : mapping, keyword-only
+            Another test's per-target means to draw behind (see :func:`plot_positioning`).
 
         Returns
         -------
@@ -255,7 +258,7 @@ class PositioningEvaluation:
         """
         from axiscal.positioning.plot import plot_positioning
 
-        return plot_positioning(self.run, self.result, path, title=title, compensated=self.compensated)
+        return plot_positioning(self.run, self.result, path, title=title, compensated=self.compensated, overlay=overlay)
 
 
 def evaluate_positioning_file(
