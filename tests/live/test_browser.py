@@ -1,24 +1,17 @@
 """The dashboard in a real browser: headless Chromium shows live values equal to the pipeline's own numbers.
 
-Chromium is driven over the DevTools protocol (``--remote-debugging-port``) with the ``websockets``
+Chromium is driven over the DevTools protocol by the ``chromium_page`` fixture of tests/conftest.py, with the ``websockets``
 package; nothing else is needed. Without Chromium this test fails (CI installs it: .ci/run).
 """
 
 from __future__ import annotations
 
 import json
-import os
-import shutil
-import signal
-import subprocess
 import threading
 import time
-from pathlib import Path
 
-import httpx
 import numpy as np
 import pytest
-from websockets.sync.client import connect
 
 from axiscal.live.pipeline import Pipeline
 from axiscal.live.recorder import Recorder, read_record
@@ -27,20 +20,6 @@ from axiscal.live.sources import SimSource
 from axiscal.live.state import LiveState, result_columns
 from axiscal.measurement.display import to_display
 from axiscal.measurement.virtual import VirtualModule
-
-CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
-FLAGS = (
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--remote-debugging-address=127.0.0.1",
-    "--remote-debugging-port=0",
-)
 
 READ_PAGE = """(() => {
   if (!document.getElementById("v-t_s")) return "null";
@@ -77,60 +56,6 @@ ERROR_KINDS = """JSON.stringify(Object.fromEntries(
   ["EXX", "EYX", "EZX", "EAX", "EBX", "ECX", "EXZ", "EYZ", "EZZ", "EAZ", "EBZ", "ECZ"].map(s => [s, errorKind(s, s[2])])))"""
 
 
-class DevTools:
-    """A minimal DevTools-protocol client for one page: commands with ids, events kept."""
-
-    def __init__(self, socket):
-        self.socket = socket
-        self.next_id = 0
-        self.events: list[dict] = []
-
-    def call(self, method: str, **params) -> dict:
-        self.next_id += 1
-        self.socket.send(json.dumps({"id": self.next_id, "method": method, "params": params}))
-        deadline = time.monotonic() + 10.0
-        while time.monotonic() < deadline:
-            message = json.loads(self.socket.recv(timeout=10.0))
-            if message.get("id") == self.next_id:
-                assert "error" not in message, message
-                return message["result"]
-            self.events.append(message)
-        raise TimeoutError(method)
-
-    def evaluate(self, expression: str):
-        result = self.call("Runtime.evaluate", expression=expression, returnByValue=True)
-        assert "exceptionDetails" not in result, result
-        return result["result"].get("value")
-
-
-def _start_chromium(profile: Path) -> tuple[subprocess.Popen, int]:
-    assert Path(CHROMIUM).exists(), "headless Chromium is needed for the dashboard test: apt-get install chromium"
-    process = subprocess.Popen(
-        [CHROMIUM, *FLAGS, f"--user-data-dir={profile}", "about:blank"],
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-        start_new_session=True,
-    )
-    port_file = profile / "DevToolsActivePort"
-    deadline = time.monotonic() + 20.0
-    while time.monotonic() < deadline and process.poll() is None:
-        if port_file.exists() and port_file.read_text().count("\n") >= 1:
-            return process, int(port_file.read_text().split("\n")[0])
-        time.sleep(0.05)
-    _stop_chromium(process)
-    raise AssertionError("Chromium did not open its DevTools port")
-
-
-def _stop_chromium(process: subprocess.Popen) -> None:
-    if process.poll() is None:
-        os.killpg(process.pid, signal.SIGTERM)
-        try:
-            process.wait(timeout=5)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
-            process.wait(timeout=5)
-
-
 class PsdDropsOut:
     """The virtual module, but the X axis' PSD (channel x_psd_y_um) reads nothing from ``from_s`` on."""
 
@@ -150,7 +75,7 @@ def module():
     return VirtualModule(seed=0)
 
 
-def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, module):
+def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, module, chromium_page):
     system = module.measurement_system()
     record_path = tmp_path / "live.csv"
     recorder = Recorder(record_path, system.channels, result_columns(system.axes))
@@ -162,37 +87,32 @@ def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, mod
     runner = threading.Thread(target=pipeline.run, kwargs={"stop": stop, "duration_s": 30.0})
     server = LiveServer(create_app(state, update_hz=10.0), port=0).start()
     runner.start()
-    browser, debug_port = _start_chromium(tmp_path / "profile")
     seen: list[dict] = []
     try:
-        targets = httpx.get(f"http://127.0.0.1:{debug_port}/json/list", timeout=10).json()
-        page = next(t for t in targets if t["type"] == "page")
-        with connect(page["webSocketDebuggerUrl"], max_size=None, open_timeout=10) as socket:
-            tools = DevTools(socket)
-            tools.call("Runtime.enable")
-            tools.call("Page.navigate", url=server.url)
-            deadline = time.monotonic() + 20.0
-            while time.monotonic() < deadline:
-                shown = json.loads(tools.evaluate(READ_PAGE))
-                if shown and shown["version"] > 0 and shown["values"]["t_s"] and shown["historyInk"] > 50 and shown["profileInk"] > 50:
-                    seen.append(shown)
-                    if len(seen) >= 2 and seen[-1]["values"]["t_s"] != seen[0]["values"]["t_s"]:
-                        break
-                time.sleep(0.2)
-            kinds = json.loads(tools.evaluate(ERROR_KINDS))
-            # then a sensor drops out: the page must say so and mark the point's values as old
-            instrument.from_s = time.monotonic() - source.clock_offset_s
-            faulty = None
-            deadline = time.monotonic() + 20.0
-            while time.monotonic() < deadline:
-                shown = json.loads(tools.evaluate(READ_PAGE))
-                if shown["stale"] and shown["sensorSummary"].startswith("1 of"):
-                    faulty = shown
+        tools = chromium_page
+        tools.call("Runtime.enable")
+        tools.call("Page.navigate", url=server.url)
+        deadline = time.monotonic() + 20.0
+        while time.monotonic() < deadline:
+            shown = json.loads(tools.evaluate(READ_PAGE))
+            if shown and shown["version"] > 0 and shown["values"]["t_s"] and shown["historyInk"] > 50 and shown["profileInk"] > 50:
+                seen.append(shown)
+                if len(seen) >= 2 and seen[-1]["values"]["t_s"] != seen[0]["values"]["t_s"]:
                     break
-                time.sleep(0.2)
+            time.sleep(0.2)
+        kinds = json.loads(tools.evaluate(ERROR_KINDS))
+        # then a sensor drops out: the page must say so and mark the point's values as old
+        instrument.from_s = time.monotonic() - source.clock_offset_s
+        faulty = None
+        deadline = time.monotonic() + 20.0
+        while time.monotonic() < deadline:
+            shown = json.loads(tools.evaluate(READ_PAGE))
+            if shown["stale"] and shown["sensorSummary"].startswith("1 of"):
+                faulty = shown
+                break
+            time.sleep(0.2)
         errors = [e for e in tools.events if e.get("method") == "Runtime.exceptionThrown"]
     finally:
-        _stop_chromium(browser)
         stop.set()
         runner.join(timeout=5)
         server.stop()
