@@ -23,6 +23,7 @@ __all__ = [
     "ROTARY_INDEX",
     "COMPONENT_KINDS",
     "SQUARENESS_TERMS",
+    "PLANES",
     "component_names",
     "location_names",
 ]
@@ -39,6 +40,13 @@ ROTARY_INDEX = {"A": 0, "B": 1, "C": 2}
 COMPONENT_KINDS = ("tx", "ty", "tz", "ea", "eb", "ec")
 #: squareness terms of a linear machine: rotation of the second axis about Z, Y, X
 SQUARENESS_TERMS = ("EC0Y", "EB0Z", "EA0Z")
+#: plane -> (first axis, second axis, its ISO 230-1 squareness term, sign of that term against
+#: the included angle minus 90 degrees; docs/conventions.md)
+PLANES: dict[str, tuple[str, str, str, int]] = {
+    "XY": ("X", "Y", "EC0Y", 1),
+    "XZ": ("X", "Z", "EB0Z", -1),
+    "YZ": ("Y", "Z", "EA0Z", 1),
+}
 
 
 def component_names(letter: str) -> tuple[str, ...]:

@@ -287,7 +287,8 @@ def reference_read(data: bytes, min_rows: int = 1):
 
 
 def reference_numeric(rows, numbers, column: int, delimiter: str, allow_empty: bool = False) -> list[float]:
-    """The column as floats, or Refused(line) at its first cell that is not a finite number."""
+    """The column as floats, or Refused(line) at its first cell that is not a finite number of at
+    most 1e12 in magnitude."""
     grammar = REF_NUMBER if delimiter == "," else REF_NUMBER_COMMA
     out = []
     for row, number in zip(rows, numbers):
@@ -298,7 +299,7 @@ def reference_numeric(rows, numbers, column: int, delimiter: str, allow_empty: b
         if not grammar.fullmatch(cell):
             raise Refused(number)
         value = float(cell.replace(",", "."))
-        if not math.isfinite(value):
+        if not math.isfinite(value) or abs(value) > 1e12:  # beyond any physical value (io.tabular.MAX_MAGNITUDE)
             raise Refused(number)
         out.append(value)
     return out

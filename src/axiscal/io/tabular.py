@@ -213,23 +213,14 @@ class CsvTable:
         i = self._index[name]
         if self._frame is not None and self._frame[i].dtype.kind in "iuf":
             values = self._frame[i].to_numpy(dtype=np.float64, copy=True)
-            bad = ~np.isfinite(values)
+            with np.errstate(invalid="ignore"):
+                bad = ~(np.abs(values) <= MAX_MAGNITUDE)
             if bad.any():
                 k = int(np.argmax(bad))
                 cell = _shown(self._column_text(i)[k])
-                raise AxiscalError(f"column '{name}': {cell} is not a finite number", path=self.path, line=self.line_of(k))
-        else:
-            values = self._convert(i, allow_empty)
-        with np.errstate(invalid="ignore"):
-            huge = np.abs(values) > MAX_MAGNITUDE
-        if huge.any():
-            k = int(np.argmax(huge))
-            cell = _shown(self._column_text(i)[k])
-            raise AxiscalError(
-                f"column '{name}': {cell} is beyond any physical value (more than {MAX_MAGNITUDE:g} in the column's unit)",
-                path=self.path, line=self.line_of(k),
-            )
-        return values
+                raise AxiscalError(f"column '{name}': {cell} {_beyond(values[k])}", path=self.path, line=self.line_of(k))
+            return values
+        return self._convert(i, allow_empty)
 
     def numeric_or_missing(self, name: str) -> np.ndarray:
         """Column ``name`` as floats, a cell that is not a number read as a missing value (NaN).
@@ -278,11 +269,16 @@ class CsvTable:
         if self.decimal_comma:
             texts = [cell.replace(",", ".") for cell in texts]
         values[number] = np.fromiter((float(cell) for cell in texts), dtype=np.float64, count=len(texts))
-        bad = (~number & ~(empty & allow_empty)) | np.isinf(values)
+        with np.errstate(invalid="ignore"):
+            huge = np.abs(values) > MAX_MAGNITUDE
+        bad = (~number & ~(empty & allow_empty)) | huge
         if bad.any():
             k = int(np.argmax(bad))
             cell = cells[k]
-            problem = "is not a finite number" if number[k] or _NOT_FINITE.fullmatch(cell) else "is not a number"
+            if number[k]:
+                raise AxiscalError(f"column '{self.header[i]}': {_shown(cell)} {_beyond(values[k])}", path=self.path,
+                                   line=self.line_of(k))
+            problem = "is not a finite number" if _NOT_FINITE.fullmatch(cell) else "is not a number"
             shown = _shown(cell) if problem == "is not a finite number" else f"'{_shown(cell)}'"
             raise AxiscalError(f"column '{self.header[i]}': {shown} {problem}", path=self.path, line=self.line_of(k))
         return values
@@ -296,6 +292,13 @@ class CsvTable:
                 found = np.array([row[i] for row in self._rows or ()], dtype=object)
             self._strings[i] = found
         return found
+
+
+def _beyond(value: float) -> str:
+    """Why a number that parsed is refused: not finite, or beyond any physical magnitude."""
+    if not np.isfinite(value):
+        return "is not a finite number"
+    return f"is beyond any physical value (more than {MAX_MAGNITUDE:g} in the column's unit)"
 
 
 def _shown(cell: str) -> str:

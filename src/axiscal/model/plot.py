@@ -7,13 +7,16 @@ Every error plotted is actual minus nominal (docs/conventions.md), in um (transl
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from axiscal.io.figures import pyplot, save_figure
-from axiscal.model.diagonal import DiagonalResult
 from axiscal.model.machine import AXIS_UNITS, Machine
 from axiscal.units import ANGLE_UNITS, MM, UM
+
+if TYPE_CHECKING:  # the result types only annotate: their modules import this one to plot
+    from axiscal.model.diagonal import DiagonalResult
 
 __all__ = ["plot_error_tables", "plot_volumetric", "plot_diagonal", "plot_diagonal_experiment"]
 

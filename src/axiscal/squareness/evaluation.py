@@ -42,6 +42,7 @@ from typing import Any
 
 import numpy as np
 
+from axiscal.conventions import PLANES
 from axiscal.errors import AxiscalError
 from axiscal.straightness.files import Profile, read_profile
 from axiscal.straightness.reference import ReferenceLine, reference_line
@@ -67,11 +68,6 @@ __all__ = [
 ]
 
 #: plane -> (first axis, second axis, ISO 230-1 term, sign of the ISO term against the included-angle value)
-PLANES: dict[str, tuple[str, str, str, int]] = {
-    "XY": ("X", "Y", "EC0Y", 1),
-    "XZ": ("X", "Z", "EB0Z", -1),
-    "YZ": ("Y", "Z", "EA0Z", 1),
-}
 CONVENTIONS = ("included-angle", "iso")
 #: Beyond this the two "axes" are not two crossing axes (lines parallel or nearly so), rad.
 _MAX_SQUARENESS = math.pi / 4.0

@@ -8,13 +8,17 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from axiscal.conventions import PLANES
 from axiscal.instruments.optics import PentaprismSensitivity
 from axiscal.io.figures import pyplot, save_figure
-from axiscal.squareness.evaluation import PLANES, SquarenessResult
 from axiscal.units import ARCMIN, ARCSEC, MM, UM
+
+if TYPE_CHECKING:  # the result type only annotates: its module imports this one to plot
+    from axiscal.squareness.evaluation import SquarenessResult
 
 __all__ = ["plot_squareness", "plot_pentaprism"]
 
