@@ -501,8 +501,11 @@ def _split_quoted(lines: Lines, indices: np.ndarray, delimiter: str, path: str, 
     """
     out = []
     for index in indices:
+        text = lines.text(index)
+        if len(text) >= csv.field_size_limit():  # a cell may be as long as its line (the csv module stops at 128 kB)
+            csv.field_size_limit(len(text) + 1)
         try:
-            cells = next(csv.reader([lines.text(index)], delimiter=delimiter, strict=True), [""])
+            cells = next(csv.reader([text], delimiter=delimiter, strict=True), [""])
         except csv.Error as exc:
             raise AxiscalError(f"cannot split into cells ({exc})", path=path, line=int(index) + 1) from None
         if width is not None and len(cells) != width:
