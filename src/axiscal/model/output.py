@@ -7,6 +7,7 @@ Multi-line text is rendered from the Jinja2 templates shipped in ``axiscal/templ
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -87,7 +88,7 @@ def write_table(
     return path
 
 
-class TableResult:
+class TableResult(ABC):
     """What the model room's result objects share: their table as CSV text, or as a file with its sidecar.
 
     A subclass gives :meth:`columns` (display units in names and values), the class attributes
@@ -107,6 +108,7 @@ class TableResult:
     csv_kind = "table"
     sources: tuple[str, ...] = ()
 
+    @abstractmethod
     def columns(self) -> dict[str, np.ndarray]:
         """The table: column name (with its unit) to values in that unit.
 
@@ -114,7 +116,6 @@ class TableResult:
         -------
         dict of str to ndarray, shape (N,)
         """
-        raise NotImplementedError
 
     def sidecar_metadata(self) -> dict[str, Any]:
         """Entries of the JSON sidecar besides kind, sign and sources.
