@@ -86,6 +86,12 @@ def _batch(vectors: np.ndarray | Sequence[float], what: str) -> np.ndarray:
     return array
 
 
+def _cos_sin(angle_rad: float | np.ndarray) -> tuple[np.ndarray, ...]:
+    """cos, sin, ones and zeros of the angle(s), the entries of a rotation matrix."""
+    a = np.asarray(angle_rad, dtype=float)
+    return np.cos(a), np.sin(a), np.ones_like(a), np.zeros_like(a)
+
+
 def rotation_x(angle_rad: float | np.ndarray) -> np.ndarray:
     """S_X(alpha) of paper 002 eq (8): rotation about X.
 
@@ -99,9 +105,7 @@ def rotation_x(angle_rad: float | np.ndarray) -> np.ndarray:
     ndarray, shape ``angle.shape + (3, 3)``
         The rotation matrix (matrices).
     """
-    a = np.asarray(angle_rad, dtype=float)
-    c, s = np.cos(a), np.sin(a)
-    one, zero = np.ones_like(a), np.zeros_like(a)
+    c, s, one, zero = _cos_sin(angle_rad)
     return np.stack([np.stack([one, zero, zero], -1), np.stack([zero, c, -s], -1), np.stack([zero, s, c], -1)], -2)
 
 
@@ -118,9 +122,7 @@ def rotation_y(angle_rad: float | np.ndarray) -> np.ndarray:
     ndarray, shape ``angle.shape + (3, 3)``
         The rotation matrix (matrices).
     """
-    a = np.asarray(angle_rad, dtype=float)
-    c, s = np.cos(a), np.sin(a)
-    one, zero = np.ones_like(a), np.zeros_like(a)
+    c, s, one, zero = _cos_sin(angle_rad)
     return np.stack([np.stack([c, zero, s], -1), np.stack([zero, one, zero], -1), np.stack([-s, zero, c], -1)], -2)
 
 
@@ -137,9 +139,7 @@ def rotation_z(angle_rad: float | np.ndarray) -> np.ndarray:
     ndarray, shape ``angle.shape + (3, 3)``
         The rotation matrix (matrices).
     """
-    a = np.asarray(angle_rad, dtype=float)
-    c, s = np.cos(a), np.sin(a)
-    one, zero = np.ones_like(a), np.zeros_like(a)
+    c, s, one, zero = _cos_sin(angle_rad)
     return np.stack([np.stack([c, -s, zero], -1), np.stack([s, c, zero], -1), np.stack([zero, zero, one], -1)], -2)
 
 
