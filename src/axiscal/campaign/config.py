@@ -11,7 +11,6 @@ leaves the folder, a kind with no data) is an :class:`~axiscal.errors.AxiscalErr
 from __future__ import annotations
 
 import datetime as _dt
-import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,7 +18,7 @@ from typing import Any
 
 from axiscal.errors import AxiscalError
 from axiscal.io.schema import TomlLines
-from axiscal.io.tabular import read_text
+from axiscal.io.tabular import parse_toml, read_text
 
 __all__ = [
     "CAMPAIGN_FILE",
@@ -180,21 +179,13 @@ def load_campaign(folder: str | Path) -> Campaign:
     >>> [t.id for t in campaign.tests]  # doctest: +SKIP
     ['positioning-X-1', ...]
     """
-    import tomllib
-
     folder = Path(folder)
     path = folder if folder.name == CAMPAIGN_FILE and folder.is_file() else folder / CAMPAIGN_FILE
     folder = path.parent.resolve()
     if not path.parent.is_dir():
         raise AxiscalError("no such campaign folder", path=path.parent)
     text = read_text(path)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        found = re.search(r"\(at line (\d+)", str(exc))
-        raise AxiscalError(
-            f"malformed TOML: {str(exc).split(' (at line')[0]}", path=path, line=int(found.group(1)) if found else None
-        ) from None
+    data = parse_toml(text, path=path)
     lines = TomlLines(text)
 
     def fail(message: str, table: str = "", index: int = 0, key: str | None = None) -> AxiscalError:
@@ -203,7 +194,8 @@ def load_campaign(folder: str | Path) -> Campaign:
     known = {"campaign", "machine", "instrument", "tolerances", "tests", "uncertainty"}
     for name in data:
         if name not in known:
-            raise fail(f"unknown table or key '{name}' (known: {', '.join(sorted(known))})", name, 0, name)
+            raise AxiscalError(f"unknown table or key '{name}' (known: {', '.join(sorted(known))})", path=path,
+                               line=lines.of("", 0, name) or lines.of(name))
 
     def table(name: str, spec: Mapping[str, tuple[type, bool]]) -> dict[str, Any]:
         value = data.get(name, {})
@@ -232,8 +224,13 @@ def load_campaign(folder: str | Path) -> Campaign:
                                       "calibrated": (_dt.date, False), "vacuum_wavelength_nm": (float, False)})
     tolerances = _tolerances(data.get("tolerances", {}), lambda m, k=None: fail(m, "tolerances", 0, k), "[tolerances]")
 
-    budget, rule = _uncertainty(data.get("uncertainty"), folder, path, text, lambda m, k=None: fail(m, "uncertainty", 0, k),
-                                lambda m: fail(m, "", 0, "uncertainty"))
+    def budget_line(section: str, key: str | None = None) -> int | None:
+        if key is not None:
+            return lines.of(f"uncertainty.{section}", 0, key) or lines.of("uncertainty", 0, section)
+        return lines.of("uncertainty", 0, section) or lines.of(f"uncertainty.{section}") or lines.of("uncertainty")
+
+    budget, rule = _uncertainty(data.get("uncertainty"), folder, path, budget_line,
+                                lambda m, k=None: fail(m, "uncertainty", 0, k), lambda m: fail(m, "", 0, "uncertainty"))
 
     controller = machine.get("controller")
     if controller is not None and controller not in CONTROLLERS:
@@ -266,8 +263,8 @@ def _test(raw, index, folder, campaign_tolerances, model, counters, fail) -> Tes
     kind = raw.get("kind")
     if kind is None:
         raise bad(f"[[tests]] number {index + 1} needs 'kind' ({' | '.join(KINDS)})")
-    if kind not in KINDS:
-        raise bad(f"unknown kind '{kind}' (kinds: {', '.join(KINDS)})", "kind")
+    if not isinstance(kind, str) or kind not in KINDS:
+        raise bad(f"unknown kind {_show(kind)} (kinds: {', '.join(KINDS)})", "kind")
     spec = {**_COMMON, **KINDS[kind]}
     options: dict[str, Any] = {}
     for key, value in raw.items():
@@ -305,7 +302,7 @@ def _test(raw, index, folder, campaign_tolerances, model, counters, fail) -> Tes
     return TestSpec(test_id, kind, axis, options, merged, fail("", "tests", index).line or 0)
 
 
-def _uncertainty(value: Any, folder: Path, path: Path, text: str, fail, fail_top) -> tuple[Any, str]:
+def _uncertainty(value: Any, folder: Path, path: Path, locate, fail, fail_top) -> tuple[Any, str]:
     """The budget and the decision rule: ``uncertainty = "budget.toml"`` or an ``[uncertainty]`` table
     holding the budget's tables and, optionally, ``decision_rule`` and ``budget = "file.toml"``."""
     from axiscal.uncertainty.budget import budget_from_dict, read_budget
@@ -326,7 +323,7 @@ def _uncertainty(value: Any, folder: Path, path: Path, text: str, fail, fail_top
         if table:
             raise fail("give the budget as budget = \"file.toml\" or as tables here, not both", "budget")
         return read_budget(_inside(folder, name, lambda m: fail(m, "budget"))), rule
-    return budget_from_dict(table, source=str(path)), rule
+    return budget_from_dict(table, source=str(path), locate=locate), rule
 
 
 def _merged_tolerances(

@@ -20,6 +20,7 @@ from axiscal.io.tabular import (
     read_csv,
     read_text,
     read_toml,
+    parse_toml,
     write_csv,
 )
 
@@ -38,6 +39,7 @@ __all__ = [
     "read_csv",
     "read_text",
     "read_toml",
+    "parse_toml",
     "write_csv",
 ]
 

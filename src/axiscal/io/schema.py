@@ -58,7 +58,7 @@ class TomlLines:
 
     def of(self, table: str, index: int = 0, key: str | None = None) -> int | None:
         """The line of ``key`` in ``[table]`` (the ``index``-th for an array of tables), else of the
-        table's header, else None.
+        table's header (or of its first sub-table's, for a table made only by sub-tables), else None.
 
         Parameters
         ----------
@@ -79,7 +79,10 @@ class TomlLines:
             dotted = key.split(".")
             if len(dotted) > 1:
                 return self.of(".".join([table, *dotted[:-1]]).strip("."), index, dotted[-1])
-        return self.tables.get((table, index))
+        found = self.tables.get((table, index))
+        if found is None and table:  # a table made only by its sub-tables ([a.b] makes a): the first of them
+            found = min((n for (t, _), n in self.tables.items() if t.startswith(table + ".")), default=None)
+        return found
 
 
 def _is(kind: str, value: Any) -> bool:

@@ -37,6 +37,7 @@ __all__ = [
     "parse_csv",
     "write_csv",
     "read_toml",
+    "parse_toml",
 ]
 
 #: a number as a file may spell it: optional sign, decimal digits with an optional point, optional exponent
@@ -520,15 +521,22 @@ def read_text(path: str | Path) -> str:
     Raises
     ------
     AxiscalError
-        If the file is missing, unreadable or not UTF-8, naming it.
+        If the file is missing or unreadable, naming it; if it is not UTF-8, naming the line of the
+        first byte that is not.
     """
     path = Path(path)
     try:
-        return path.read_text(encoding="utf-8-sig")
+        data = path.read_bytes()
     except FileNotFoundError:
         raise AxiscalError("file not found", path=path) from None
-    except (OSError, UnicodeDecodeError) as exc:
+    except OSError as exc:
         raise AxiscalError(f"cannot read file ({exc})", path=path) from None
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        before = data[: exc.start]
+        line = before.count(b"\n") + before.count(b"\r") - before.count(b"\r\n") + 1
+        raise AxiscalError(f"not UTF-8 text (byte 0x{data[exc.start]:02x})", path=path, line=line) from None
 
 
 def write_csv(
@@ -586,13 +594,43 @@ def read_toml(path: str | Path) -> dict:
     AxiscalError
         If the file is missing, unreadable or malformed, naming the file and line.
     """
+    return parse_toml(read_text(path), path=path)
+
+
+def parse_toml(text: str, *, path: str | Path | None = None) -> dict:
+    """Parse TOML text, a malformed text refused naming its line.
+
+    Parameters
+    ----------
+    text : str
+        The TOML text (as :func:`read_text` returns it).
+    path : str or Path, optional, keyword-only
+        The file's name, for messages.
+
+    Returns
+    -------
+    dict
+
+    Raises
+    ------
+    AxiscalError
+        For malformed TOML, naming the line (the last line for a text cut short).
+
+    Examples
+    --------
+    >>> parse_toml("a = 1")
+    {'a': 1}
+    """
     import tomllib
 
-    text = read_text(path)
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         # Python 3.11 has no lineno attribute: the line is only in the message
         found = re.search(r"\(at line (\d+)", str(exc))
-        message = str(exc).split(" (at line")[0]
-        raise AxiscalError(f"malformed TOML: {message}", path=path, line=int(found.group(1)) if found else None) from None
+        message = re.split(r" \(at (?:line|end of document)", str(exc))[0]
+        if found:
+            line = int(found.group(1))
+        else:  # "at end of document": the last line
+            line = len(re.split(r"\r\n|\r|\n", text.rstrip("\r\n"))) if "end of document" in str(exc) else None
+        raise AxiscalError(f"malformed TOML: {message}", path=path, line=line) from None

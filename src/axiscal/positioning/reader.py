@@ -20,6 +20,7 @@ with :func:`axiscal.instruments.interferometer.compensated_length` (paper 003 eq
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -42,6 +43,7 @@ __all__ = [
 ]
 
 DIRECTIONS = {"+": "+", "up": "+", "-": "-", "down": "-"}
+_RUN_NUMBER = re.compile(r"\+?[0-9]+(?:\.0*)?")
 ENVIRONMENT_REQUIRED = ("air_temperature_c", "pressure_pa", "humidity_pct")
 #: length units of the columns of a linear axis, and metres per unit
 ALLOWED_UNITS = ("nm", "um", "mm", "in")
@@ -357,10 +359,9 @@ def _run_number(text: str, table: CsvTable, k: int) -> str:
     """The run number of row ``k`` as a whole number's digits ("2.0" -> "2"); anything else raises."""
     if not text:
         raise AxiscalError("column 'run': empty run number", path=table.path, line=table.lines[k])
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
+    # ASCII digits only, as a spreadsheet writes them (Python's float() would take "1_0" or full-width digits)
+    whole = _RUN_NUMBER.fullmatch(text)
+    value = float(text) if whole else math.nan
     if not (math.isfinite(value) and value == int(value) and value >= 0):
         raise AxiscalError(
             f"column 'run': '{text}' is not a run number (a whole number such as 1, 2, 3)",

@@ -21,6 +21,8 @@ with its name, and the components are its budget.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import math
 import re
 from dataclasses import dataclass, fields
@@ -179,7 +181,10 @@ def _line_of(text: str, section: str, key: str | None = None) -> int | None:
     return None
 
 
-def budget_from_dict(data: dict, *, source: str = "<budget>", text: str | None = None) -> Budget:
+def budget_from_dict(
+    data: dict, *, source: str = "<budget>", text: str | None = None,
+    locate: Callable[[str, str | None], int | None] | None = None,
+) -> Budget:
     """Build a :class:`Budget` from the parsed TOML tables (keys of docs/uncertainty.md).
 
     Parameters
@@ -192,6 +197,9 @@ def budget_from_dict(data: dict, *, source: str = "<budget>", text: str | None =
         File name for messages.
     text : str, optional, keyword-only
         The TOML text, to name the line of a bad key.
+    locate : callable, optional, keyword-only
+        ``locate(section, key)`` -> line, for a budget held inside another file (the
+        ``[uncertainty]`` table of campaign.toml); takes precedence over ``text``.
 
     Returns
     -------
@@ -209,6 +217,8 @@ def budget_from_dict(data: dict, *, source: str = "<budget>", text: str | None =
     1e-06
     """
     def line(section: str, key: str | None = None) -> int | None:
+        if locate is not None:
+            return locate(section, key)
         return None if text is None else _line_of(text, section, key)
 
     values: dict[str, object] = {}
