@@ -102,3 +102,15 @@ def test_export_sag(run_cli, examples, tmp_path):
     status, _, err = run_cli("export", "sag", examples / "squareness_y.csv", "--controller", "siemens",
                              "--base-axis", "AX2", "--compensation-axis", "AX1", "--step-mm", "30")
     assert status == 0 and err.startswith("axiscal: note: the run was resampled onto 18 points 30 mm apart")
+
+
+def test_export_sag_heidenhain(run_cli, examples, tmp_path):
+    out = tmp_path / "YX.COM"
+    status, _, err = run_cli("export", "sag", examples / "squareness_y.csv", "--controller", "heidenhain",
+                             "--base-axis", "Y", "--compensation-axis", "X", "--reference", "least-squares", "-o", out)
+    assert status == 0 and err.count("\n") == 1 and "enter YX.COM in column Y of the .CMA table" in err
+    lines = out.read_text().splitlines()
+    assert lines[0] == "BEGIN YX.COM MM" and lines[1].split() == ["NR", "AXISPOS", "X"] and lines[-1] == "[END]"
+    status, _, err = run_cli("export", "sag", examples / "squareness_y.csv", "--controller", "heidenhain",
+                             "--base-axis", "Y", "--compensation-axis", "X", "--table", "2")
+    assert status == 2 and err.count("\n") == 1 and "SINUMERIK settings" in err

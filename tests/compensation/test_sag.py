@@ -74,3 +74,76 @@ def test_refusals():
         sinumerik_sag_table(y, e, input_axis="AX2", output_axis="AX1", step_m=-1.0)
     with pytest.raises(AxiscalError, match="DIRECTION"):
         sinumerik_sag_table(y, e, input_axis="AX2", output_axis="AX1", step_m=0.1, direction=2)
+
+
+# ---- HEIDENHAIN dependent-axis .COM (Z = F(Y))
+
+
+def read_com(text):
+    """A .COM table as the TNC 407 / MANUALplus 620 technical manuals describe it:
+    ``BEGIN NAME.COM MM``, a header ``NR AXISPOS <axis>... [BACKLASH]``, numbered rows, ``[END]``."""
+    lines = text.splitlines()
+    begin = re.fullmatch(r"BEGIN (\w+)\.COM (MM|INCH)", lines[0])
+    assert begin and lines[-1] == "[END]"
+    header = lines[1].split()
+    assert header[:2] == ["NR", "AXISPOS"]
+    rows = [line.split() for line in lines[2:-1]]
+    assert [int(r[0]) for r in rows] == list(range(len(rows)))
+    columns = {name: np.array([float(r[k]) for r in rows]) * MM for k, name in enumerate(header) if k}
+    assert np.all(np.diff(columns["AXISPOS"]) > 0) and len(rows) <= 256
+    return begin.group(1), columns
+
+
+def test_heidenhain_dependent_axis_round_trip_and_the_rail_comes_back_straight():
+    from axiscal.compensation.sag import heidenhain_sag_table
+
+    y = np.linspace(-0.09, 0.41, 41)  # the manual's example: Y from -90 mm, over 500 mm
+    table = heidenhain_sag_table(y, sag(y + 0.09), base_axis="y", compensation_axis="z")
+    name, columns = read_com(table.text())
+    assert name == "YZ" and set(columns) == {"AXISPOS", "Z"}
+    np.testing.assert_allclose(columns["AXISPOS"], y, atol=1e-12)
+    np.testing.assert_allclose(columns["Z"], table.error_mm * MM, atol=1e-12)
+    # the control subtracts the interpolated error of Z at the commanded Y
+    left = sag(y + 0.09) + table.correction(y, "+")
+    assert np.abs(left).max() <= 0.05 * UM + 1e-12
+    assert not table.resampled
+    assert "enter YZ.COM in column Y of the .CMA table (Z = F(Y))" in table.note
+
+
+def test_heidenhain_dependent_axis_resampling_limit_and_refusals():
+    from axiscal.compensation.sag import heidenhain_sag_table
+
+    y = np.linspace(0.0, 0.8, 801)
+    with pytest.raises(AxiscalError, match="at most 256.*at least 3.137 mm"):
+        heidenhain_sag_table(y, sag(y), base_axis="Y", compensation_axis="Z")
+    table = heidenhain_sag_table(y, sag(y), base_axis="Y", compensation_axis="Z", step_m=5 * MM, name="sag_z")
+    name, columns = read_com(table.text())
+    assert name == "sag_z" and columns["AXISPOS"].size == 161 and table.resampled
+    assert "resampled onto 161 rows" in table.note
+    np.testing.assert_allclose(columns["Z"], sag(columns["AXISPOS"]), atol=0.05 * UM + 1e-12)
+    for kwargs, message in [
+        ({"base_axis": "Y", "compensation_axis": "y"}, "must differ"),
+        ({"base_axis": "Y1", "compensation_axis": "Z"}, "not an axis key"),
+        ({"base_axis": "Y", "compensation_axis": "Z", "step_m": 0.0}, "positive length"),
+        ({"base_axis": "Y", "compensation_axis": "Z", "step_m": 1e-12}, "10\\^6 points"),
+        ({"base_axis": "Y", "compensation_axis": "Z", "name": "../x"}, "plain file name"),
+        ({"base_axis": "Y", "compensation_axis": "Z", "reference": "best"}, "unknown reference"),
+    ]:
+        with pytest.raises(AxiscalError, match=message):
+            heidenhain_sag_table(y[::100], sag(y[::100]), **kwargs)
+    with pytest.raises(AxiscalError, match="finite"):
+        heidenhain_sag_table(np.array([0.0, np.nan]), np.zeros(2), base_axis="Y", compensation_axis="Z")
+
+
+def test_sag_table_file_refuses_options_of_the_other_controller(examples):
+    from axiscal.compensation.sag import sag_table_file
+
+    run = examples / "squareness_y.csv"
+    with pytest.raises(AxiscalError, match="needs the step"):
+        sag_table_file(run, controller="siemens", base_axis="AX2", compensation_axis="AX1")
+    with pytest.raises(AxiscalError, match="SINUMERIK settings"):
+        sag_table_file(run, controller="heidenhain", base_axis="Y", compensation_axis="X", direction=1)
+    with pytest.raises(AxiscalError, match="HEIDENHAIN setting"):
+        sag_table_file(run, controller="siemens", base_axis="AX2", compensation_axis="AX1", step_m=0.01, name="x")
+    with pytest.raises(AxiscalError, match="unknown controller"):
+        sag_table_file(run, controller="fanuc", base_axis="Y", compensation_axis="X")

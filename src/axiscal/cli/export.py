@@ -12,7 +12,7 @@ from axiscal.compensation.backlash import (
     backlash_setting,
 )
 from axiscal.compensation.curve import error_curve
-from axiscal.compensation.sag import SAG_REFERENCES, sinumerik_sag_table
+from axiscal.compensation.sag import SAG_CONTROLLERS, SAG_REFERENCES, sag_table_file
 from axiscal.compensation.screwmaps import twincat_table
 from axiscal.compensation.skew import (
     FIRMWARES,
@@ -134,41 +134,40 @@ def export_screwmap_command(run_csv, controller, axis, axis_number, interval_mm,
 
 @export_group.command("sag")
 @click.argument("run_csv", type=click.Path(dir_okay=False))
-@click.option("--controller", type=click.Choice(("siemens",)), required=True,
-              help="siemens: SINUMERIK sag compensation table ($AN_CEC, %_N_NC_CEC_INI).")
-@click.option("--base-axis", required=True, help="Machine axis the run moves ($AN_CEC_INPUT_AXIS, e.g. AX2).")
-@click.option("--compensation-axis", required=True, help="Machine axis the deviation is along ($AN_CEC_OUTPUT_AXIS, e.g. AX3).")
-@click.option("--step-mm", type=float, required=True, help="$AN_CEC_STEP: spacing of the table's points (the run is resampled).")
-@click.option("--table", "table_index", type=int, default=0, show_default=True, help="Table index t.")
+@click.option("--controller", type=click.Choice(SAG_CONTROLLERS), required=True,
+              help="siemens: SINUMERIK sag compensation table ($AN_CEC, %_N_NC_CEC_INI); "
+              "heidenhain: .COM table of a dependent axis (compensation axis = F(base axis)).")
+@click.option("--base-axis", required=True,
+              help="Axis the run moves: $AN_CEC_INPUT_AXIS (e.g. AX2) or the .CMA column (e.g. Y).")
+@click.option("--compensation-axis", required=True,
+              help="Axis the deviation is along: $AN_CEC_OUTPUT_AXIS (e.g. AX3) or the .COM column (e.g. Z).")
+@click.option("--step-mm", type=float, default=None,
+              help="Spacing of the table's points, the run resampled on it: $AN_CEC_STEP (required for siemens); "
+              "for heidenhain, default one row per measured position.")
+@click.option("--table", "table_index", type=int, default=0, show_default=True, help="siemens: table index t.")
 @click.option("--reference", type=click.Choice(SAG_REFERENCES), default="none", show_default=True,
               help="none: the whole deviation; least-squares / end-points: the deviation about that line.")
 @click.option("--direction", type=click.IntRange(-1, 1), default=0, show_default=True,
-              help="$AN_CEC_DIRECTION: 0 both, 1 positive, -1 negative direction of the base axis.")
-@click.option("--max-points", type=int, default=None, help="MD18342 $MN_MM_CEC_MAX_POINTS of the table (200 on an 828D).")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the program here instead of stdout.")
+              help="siemens: $AN_CEC_DIRECTION: 0 both, 1 positive, -1 negative direction of the base axis.")
+@click.option("--max-points", type=int, default=None, help="siemens: MD18342 $MN_MM_CEC_MAX_POINTS of the table (200 on an 828D).")
+@click.option("--name", default=None, help="heidenhain: the .COM file's name without extension (default BASE+COMPENSATION, e.g. YZ).")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the table here instead of stdout.")
 def export_sag_command(run_csv, controller, base_axis, compensation_axis, step_mm, table_index, reference, direction,
-                       max_points, output):
+                       max_points, name, output):
     """A cross-axis (sag) table from a straightness run (position_mm, deviation_um) of the base axis."""
-    position_m, deviation_m = _read_straightness_run(run_csv)
-    table = sinumerik_sag_table(
-        position_m,
-        deviation_m,
-        input_axis=base_axis,
-        output_axis=compensation_axis,
-        step_m=step_mm * MM,
+    table = sag_table_file(
+        run_csv,
+        controller=controller,
+        base_axis=base_axis,
+        compensation_axis=compensation_axis,
+        step_m=None if step_mm is None else step_mm * MM,
         table=table_index,
         reference=reference,
         direction=direction,
         max_points=max_points,
+        name=name,
     )
     _write_table(table, output)
-
-
-def _read_straightness_run(path):
-    from axiscal.straightness import read_profile
-
-    profile = read_profile(path)
-    return profile.position_m, profile.deviation_m
 
 
 def _write_table(table, output) -> None:

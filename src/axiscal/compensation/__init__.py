@@ -99,9 +99,13 @@ __all__ += ["TWINCAT_UNIT", "TwincatTable", "twincat_table"]
 
 # cross-axis (sag) tables (axiscal.compensation.sag)
 from axiscal.compensation.sag import (  # noqa: E402
+    SAG_CONTROLLERS,
     SAG_REFERENCES,
     SinumerikSagTable,
+    heidenhain_sag_table,
+    sag_table_file,
     sinumerik_sag_table,
 )
 
-__all__ += ["SAG_REFERENCES", "SinumerikSagTable", "sinumerik_sag_table"]
+__all__ += ["SAG_CONTROLLERS", "SAG_REFERENCES", "SinumerikSagTable", "heidenhain_sag_table", "sag_table_file",
+            "sinumerik_sag_table"]

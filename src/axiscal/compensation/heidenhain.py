@@ -1,7 +1,10 @@
 """HEIDENHAIN compensation table: nonlinear axis error compensation, ``<axis>.COM``.
 
 After the technical manuals of the TNC 407 and MANUALplus 620: rows ``NR AXISPOS <axis> BACKLASH``,
-at most 256, the error subtracted by the control with linear interpolation between rows.
+at most 256, the error subtracted by the control with linear interpolation between rows. A table
+entered in the ``.CMA`` column of one axis may hold the errors of another axis (a dependent axis:
+``[axis of the .COM column] = F(axis of the .CMA column)``, e.g. sag of Z as Y travels); AXISPOS
+then holds positions of the .CMA column's axis.
 """
 
 from __future__ import annotations
@@ -45,6 +48,13 @@ class HeidenhainTable:
     unit_m : float
         Metres per unit of the columns (1e-3: mm); radians per degree for a rotary axis, whose
         columns ``positions_mm``, ``error_mm`` and ``backlash_mm`` then hold degrees.
+    base_axis : str or None
+        For a dependent-axis table, the axis whose positions AXISPOS holds (the ``.CMA`` column
+        the table is entered in); None when it is ``axis`` itself.
+    name : str or None
+        The file's name without ``.COM`` (default: the axis letter).
+    resampled : bool
+        True when the measured positions were resampled onto the table's rows.
 
     Examples
     --------
@@ -65,6 +75,28 @@ class HeidenhainTable:
     backlash_mm: np.ndarray | None
     decimals: int = 4
     unit_m: float = MM
+    base_axis: str | None = None
+    name: str | None = None
+    resampled: bool = False
+
+    @property
+    def file_name(self) -> str:
+        """The file's name, ``<name>.COM``."""
+        return f"{self.name or self.axis}.COM"
+
+    @property
+    def note(self) -> str | None:
+        """What to do with a dependent-axis table (and whether it was resampled), or None."""
+        notes = []
+        if self.resampled:
+            notes.append(f"the run was resampled onto {self.positions_mm.size} rows"
+                         " (linear interpolation; at most 256 rows)")
+        if self.base_axis is not None:
+            notes.append(f"enter {self.file_name} in column {self.base_axis} of the .CMA table"
+                         f" ({self.axis} = F({self.base_axis})); if that column already holds a table for"
+                         f" {self.base_axis} = F({self.base_axis}), add this {self.axis} column to it instead"
+                         " (one line of the .CMA activates one table per column)")
+        return "; ".join(notes) or None
 
     @property
     def resolution(self) -> float:
@@ -82,7 +114,7 @@ class HeidenhainTable:
         Parameters
         ----------
         x : float or array_like, metres
-            Commanded positions.
+            Commanded positions (of ``base_axis`` for a dependent-axis table).
         direction : {"+", "-"}
             Direction of travel ("-" adds the BACKLASH column to the error).
 
@@ -100,7 +132,7 @@ class HeidenhainTable:
         """The ``.COM`` file."""
         d = self.decimals
         header = f"{'NR':<6}{'AXISPOS':>14}{self.axis:>14}" + (f"{'BACKLASH':>14}" if self.backlash_mm is not None else "")
-        lines = [f"BEGIN {self.axis}.COM MM", header]
+        lines = [f"BEGIN {self.file_name} MM", header]
         for k, (p, e) in enumerate(zip(self.positions_mm, self.error_mm)):
             row = f"{k:<6}{p:>+14.{d}f}{e:>+14.{d}f}"
             if self.backlash_mm is not None:
