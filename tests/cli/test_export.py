@@ -114,3 +114,15 @@ def test_export_sag_heidenhain(run_cli, examples, tmp_path):
     status, _, err = run_cli("export", "sag", examples / "squareness_y.csv", "--controller", "heidenhain",
                              "--base-axis", "Y", "--compensation-axis", "X", "--table", "2")
     assert status == 2 and err.count("\n") == 1 and "SINUMERIK settings" in err
+
+
+def test_export_screwmap_mach4(run_cli, examples):
+    status, out, err = run_cli("export", "screwmap", examples / "positioning_run.csv", "--controller", "mach4",
+                               "--points", "17")
+    assert status == 0 and "resampled onto 17 evenly spaced points" in err
+    lines = out.splitlines()
+    assert lines[1].split()[-2:] == ["0.0000", "mm"] and lines[2].split()[-2:] == ["800.0000", "mm"]
+    assert lines[3].split()[-1] == "17" and len(lines) == 5 + 17
+    status, _, err = run_cli("export", "screwmap", examples / "positioning_run.csv", "--controller", "mach4",
+                             "--interval-mm", "50")
+    assert status == 2 and err.count("\n") == 1 and "TwinCAT settings" in err

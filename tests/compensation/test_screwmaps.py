@@ -88,3 +88,62 @@ def test_refusals():
         twincat_table(curve, interval_m=0.0)
     with pytest.raises(AxiscalError, match="axis numbers"):
         twincat_table(curve, axis_number=0)
+
+
+# ---- Mach4 screw map (MachMotion, "Mach 4 Screw Mapping")
+
+
+def read_mach4(text):
+    """The values as MachMotion's page defines them: Start Point, Length, Number of Points (evenly
+    spaced, both ends included) and the Error at each point (expected - actual position)."""
+    lines = text.splitlines()
+    assert lines[0].startswith("Mach4 screw map, axis ")
+    fields = {}
+    for line in lines[1:4]:
+        name, value = re.fullmatch(r"(Start Point|Length|Number of Points)\s+(\S+)(?: (mm|in))?", line).group(1, 2)
+        fields[name] = float(value)
+    n = int(fields["Number of Points"])
+    head = lines[4].split()
+    rows = [line.split() for line in lines[5:]]
+    assert len(rows) == n and [int(r[0]) for r in rows] == list(range(1, n + 1))
+    positions = fields["Start Point"] + fields["Length"] * np.arange(n) / (n - 1)
+    np.testing.assert_allclose([float(r[1]) for r in rows], positions, atol=1e-4 + 1e-9)
+    up = np.array([float(r[2]) for r in rows])
+    down = np.array([float(r[3]) for r in rows]) if "-" in head[-1] else up
+    return positions, up, down
+
+
+@pytest.mark.parametrize("points, bidirectional, unit", [(None, True, "mm"), (33, True, "mm"), (9, False, "in")])
+def test_mach4_round_trip_and_the_axis_comes_back(examples, points, bidirectional, unit):
+    from axiscal.compensation.screwmaps import mach4_screw_map
+
+    curve = error_curve(target_statistics(read_positioning_run(examples / "positioning_run.csv").run))
+    m = mach4_screw_map(curve, points=points, bidirectional=bidirectional, unit=unit)
+    positions, up, down = read_mach4(m.text())
+    scale = MM if unit == "mm" else 25.4 * MM
+    step = 10.0 ** -m.decimals
+    assert abs(positions[0] - curve.positions[0] / scale) <= step and abs(positions[-1] - curve.positions[-1] / scale) <= step
+    # the error is expected - actual: the map adds it to the command, which cancels the deviation
+    for direction, errors in (("+", up), ("-", down)):
+        x = positions * scale
+        want = curve.at(x, direction if bidirectional else "mean")
+        reached = want + np.interp(x, positions * scale, errors * scale)
+        assert np.abs(reached).max() <= 0.5 * 10.0 ** -m.decimals * scale + 1e-12
+        np.testing.assert_allclose(m.correction(x, direction), errors * scale, atol=1e-15)
+    # the example's targets are not evenly spaced: they are resampled, and the note says so
+    assert m.resampled and "evenly spaced points" in m.note
+
+
+def test_mach4_refusals():
+    from axiscal.compensation.screwmaps import mach4_screw_map
+
+    curve = ErrorCurve(np.array([0.0, 0.1]), np.zeros(2), np.zeros(2))
+    for kwargs, message in [({"points": 1}, "2 to 10\\^5 points"), ({"points": 10**9}, "2 to 10\\^5 points"),
+                            ({"unit": "cm"}, "unknown unit"), ({"decimals": 9}, "decimals")]:
+        with pytest.raises(AxiscalError, match=message):
+            mach4_screw_map(curve, **kwargs)
+    rotary = ErrorCurve(np.array([0.0, 1.0]), np.zeros(2), np.zeros(2), period=2 * np.pi)
+    with pytest.raises(AxiscalError, match="linear axis"):
+        mach4_screw_map(rotary)
+    evenly = mach4_screw_map(curve)
+    assert not evenly.resampled and evenly.note is None

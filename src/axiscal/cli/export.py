@@ -1,4 +1,4 @@
-"""``axiscal export``: corrections for firmware and controllers (skew correction lines)."""
+"""``axiscal export``: corrections for firmware and controllers (skew lines, backlash, screw maps, sag tables)."""
 
 from __future__ import annotations
 
@@ -11,9 +11,8 @@ from axiscal.compensation.backlash import (
     backlash_from_run,
     backlash_setting,
 )
-from axiscal.compensation.curve import error_curve
 from axiscal.compensation.sag import SAG_CONTROLLERS, SAG_REFERENCES, sag_table_file
-from axiscal.compensation.screwmaps import twincat_table
+from axiscal.compensation.screwmaps import SCREWMAP_CONTROLLERS, screwmap_file
 from axiscal.compensation.skew import (
     FIRMWARES,
     SKEW_CONVENTIONS,
@@ -22,7 +21,6 @@ from axiscal.compensation.skew import (
 )
 from axiscal.errors import AxiscalError
 from axiscal.io.atomic import write_text
-from axiscal.positioning import read_positioning_run, target_statistics
 from axiscal.units import ARCSEC, MM, UM
 
 __all__ = ["export_group", "export_skew_command", "export_backlash_command", "export_screwmap_command", "export_sag_command", "register"]
@@ -90,9 +88,8 @@ def export_backlash_command(run_csv, controller, axis, axis_number, method, targ
     if backlash_um is not None:
         setting = backlash_setting(controller, backlash_um * UM, axis=axis, axis_number=axis_number)
     else:
-        run = read_positioning_run(run_csv).run
         target_m = None if target_mm is None else target_mm * MM
-        setting = backlash_from_run(controller, run, method=method, target_m=target_m, axis=axis, axis_number=axis_number)
+        setting = backlash_from_run(controller, run_csv, method=method, target_m=target_m, axis=axis, axis_number=axis_number)
     if as_json:
         echo_json({
             "controller": setting.controller,
@@ -109,25 +106,33 @@ def export_backlash_command(run_csv, controller, axis, axis_number, method, targ
 
 @export_group.command("screwmap")
 @click.argument("run_csv", type=click.Path(dir_okay=False))
-@click.option("--controller", type=click.Choice(("twincat",)), required=True,
-              help="twincat: TwinCAT CNC leadscrew error compensation list (kw.ssfk).")
-@click.option("--axis", default="X", show_default=True, help="Logical axis name (kopf.log_achs_name).")
-@click.option("--axis-number", type=int, default=1, show_default=True, help="Logical axis number (kopf.achs_nr).")
+@click.option("--controller", type=click.Choice(SCREWMAP_CONTROLLERS), required=True,
+              help="twincat: TwinCAT CNC leadscrew error compensation list (kw.ssfk); "
+              "mach4: the values of a Mach4 screw map (Machine Calibration plugin).")
+@click.option("--axis", default="X", show_default=True, help="Axis name (TwinCAT: kopf.log_achs_name).")
+@click.option("--axis-number", type=int, default=1, show_default=True, help="twincat: logical axis number (kopf.achs_nr).")
 @click.option("--interval-mm", type=float, default=None,
-              help="Equidistant points this far apart (resampled) [the measured targets, listed].")
+              help="twincat: equidistant points this far apart (resampled) [the measured targets, listed].")
+@click.option("--points", type=int, default=None,
+              help="mach4: number of evenly spaced points, both ends included [the number of targets].")
+@click.option("--unit", type=click.Choice(("mm", "in")), default="mm", show_default=True,
+              help="mach4: machine units of the profile.")
 @click.option("--unilateral", is_flag=True, help="One table of the bidirectional mean instead of one per direction.")
-@click.option("--max-points", type=int, default=None, help="Table entries the control reserves (P-COMP-00059).")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the list here instead of stdout.")
-def export_screwmap_command(run_csv, controller, axis, axis_number, interval_mm, unilateral, max_points, output):
+@click.option("--max-points", type=int, default=None, help="twincat: table entries the control reserves (P-COMP-00059).")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the table here instead of stdout.")
+def export_screwmap_command(run_csv, controller, axis, axis_number, interval_mm, points, unit, unilateral, max_points,
+                            output):
     """A lead-screw error table from a positioning test (RUN_CSV) in a controller's own format."""
-    curve = error_curve(target_statistics(read_positioning_run(run_csv).run))
-    table = twincat_table(
-        curve,
+    table = screwmap_file(
+        run_csv,
+        controller=controller,
         axis=axis,
         axis_number=axis_number,
         interval_m=None if interval_mm is None else interval_mm * MM,
-        bilateral=not unilateral,
+        points=points,
+        bidirectional=not unilateral,
         max_points=max_points,
+        unit=unit,
     )
     _write_table(table, output)
 

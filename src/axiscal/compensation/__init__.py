@@ -93,9 +93,18 @@ __all__ += [
 ]
 
 # lead-screw tables of open and PC-based controllers (axiscal.compensation.screwmaps)
-from axiscal.compensation.screwmaps import TWINCAT_UNIT, TwincatTable, twincat_table  # noqa: E402
+from axiscal.compensation.screwmaps import (  # noqa: E402
+    SCREWMAP_CONTROLLERS,
+    TWINCAT_UNIT,
+    Mach4ScrewMap,
+    TwincatTable,
+    mach4_screw_map,
+    screwmap_file,
+    twincat_table,
+)
 
-__all__ += ["TWINCAT_UNIT", "TwincatTable", "twincat_table"]
+__all__ += ["SCREWMAP_CONTROLLERS", "TWINCAT_UNIT", "Mach4ScrewMap", "TwincatTable", "mach4_screw_map", "screwmap_file",
+            "twincat_table"]
 
 # cross-axis (sag) tables (axiscal.compensation.sag)
 from axiscal.compensation.sag import (  # noqa: E402

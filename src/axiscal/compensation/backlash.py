@@ -16,11 +16,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.positioning import PositioningRun, target_statistics
+from axiscal.positioning import PositioningRun, read_positioning_run, target_statistics
 from axiscal.units import MM, UM
 
 __all__ = [
@@ -245,7 +246,7 @@ def backlash_setting(controller: str, backlash_m: float, *, axis: str = "X", axi
 
 def backlash_from_run(
     controller: str,
-    run: PositioningRun,
+    run: PositioningRun | str | Path,
     *,
     method: str = "mean",
     target_m: float | None = None,
@@ -260,8 +261,9 @@ def backlash_from_run(
     ----------
     controller : str
         One of :data:`BACKLASH_CONTROLLERS`.
-    run : PositioningRun
-        The test (both directions at every target), metres.
+    run : PositioningRun, or str or Path
+        The test (both directions at every target), metres; or a positioning run file, read with
+        :func:`axiscal.positioning.read_positioning_run`.
     method : str, keyword-only
         ``"mean"``, ``"max"`` or ``"target"`` (see :func:`reversal_backlash`).
     target_m : float, optional, keyword-only
@@ -278,7 +280,9 @@ def backlash_from_run(
     Raises
     ------
     AxiscalError
-        As the two functions do.
+        As the two functions do, and as the reader does for a file.
     """
+    if isinstance(run, (str, Path)):
+        run = read_positioning_run(run).run
     value = reversal_backlash(run, method=method, target_m=target_m)
     return backlash_setting(controller, value, axis=axis, axis_number=axis_number)
