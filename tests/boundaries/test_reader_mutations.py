@@ -115,7 +115,7 @@ def plain_rows(data: bytes) -> tuple[list[str], list[list[str]]]:
     """Header and data rows of a comma CSV as a spreadsheet would see them (comment and blank lines skipped)."""
     text = data.decode("utf-8-sig")
     rows = [r for r in csv.reader(io.StringIO(text, newline="")) if r and "".join(r).strip() and not r[0].lstrip().startswith("#")]
-    return [h.strip() for h in rows[0]], rows[1:]
+    return [h.strip().lstrip("\ufeff") for h in rows[0]], rows[1:]
 
 
 def run(reader, path):
@@ -351,3 +351,222 @@ def test_campaign_refusals_found_by_mutation(tmp_path, examples, edit, words):
     assert isinstance(info.value.line, int)
     named = changed[info.value.line - 1]
     assert named.split("=")[0].strip() in edit[1] or named.strip("[] ") in edit[1]
+
+
+# ---- the other readers: instrument imports, sensor frames and calibration, error tables, laser readings
+
+
+def pandas_columns(raw: bytes, names) -> dict[str, np.ndarray]:
+    """Numeric columns of a comma CSV as pandas reads it (comment and blank lines, blanks included, skipped)."""
+    import pandas as pd
+
+    header, rows = plain_rows(raw)
+    frame = pd.read_csv(io.StringIO("\n".join([",".join(header)] + [",".join(r) for r in rows])), dtype=str)
+    # cells are stripped of what Python calls white space (the file grammar does the same)
+    return {n: np.array([float(v.strip()) for v in frame[n]]) for n in names}
+
+
+def _frames(path):
+    from axiscal.measurement.offline import read_frames
+
+    return read_frames(path, ("x_cmd_mm", "x_scale_mm", "x_psd_y_um"))
+
+
+def _error_table(path):
+    from axiscal.model.tables import read_error_table
+
+    return read_error_table(path, "X")
+
+
+def _laser(path):
+    from axiscal.model.inputs import read_interferometer
+
+    return read_interferometer(path)
+
+
+def frames_reference(raw: bytes) -> dict[str, np.ndarray]:
+    """Raw frames as their rule says: a cell that is not a number (by the file grammar) is a missing reading."""
+    from axiscal.io.tabular import parse_number
+
+    header, rows = plain_rows(raw)
+    out = {}
+    for name in ("t_s", "x_cmd_mm", "x_scale_mm", "x_psd_y_um"):
+        k = header.index(name)
+        values = [parse_number(row[k]) if k < len(row) else None for row in rows]
+        out[name] = np.array([np.nan if v is None else v for v in values])
+    return out
+
+
+CSV_READERS = {  # name: (example, reader, lines kept, check of a parse against a reference)
+    "frames": ("xz_module/sensors_frames.csv", _frames, 40,
+               lambda got, raw: [np.testing.assert_array_equal(got[k], want) for k, want in frames_reference(raw).items()]),
+    "error table": ("xfyz_machine/x_errors.csv", _error_table, 30,
+                    lambda got, raw: np.testing.assert_allclose(
+                        got.position_m / MM, pandas_columns(raw, ["position_mm"])["position_mm"], rtol=1e-15)),
+    "laser readings": ("xz_module/diagonal_laser.csv", _laser, 30,
+                       lambda got, raw: np.testing.assert_allclose(
+                           np.asarray(got) / MM, pandas_columns(raw, ["measured_mm"])["measured_mm"], rtol=1e-15, atol=1e-15)),
+}
+
+
+@SETTINGS
+@pytest.mark.parametrize("name", sorted(CSV_READERS))
+@given(data=st.data())
+def test_mutated_files_of_the_other_csv_readers(tmp_path, examples, name, data):
+    example, reader, keep, check = CSV_READERS[name]
+    lines = (examples / example).read_text(encoding="utf-8").splitlines()[:keep]
+    text = "\n".join(lines) + "\n"
+    raw = mutate(text, data.draw(mutations(len(lines), len(lines[0].split(",")))))
+    path = tmp_path / "f.csv"
+    path.write_bytes(raw)
+    try:
+        result = run(reader, path)
+    except AxiscalError as exc:
+        located(exc, path, physical_line_count(raw))
+        event("refused")
+        return
+    event("read")
+    check(result, raw)
+
+
+@SETTINGS
+@given(data=st.data())
+def test_mutated_rtx_captures(tmp_path, examples, data):
+    from axiscal.io.importers.rtx import read_rtx
+
+    blob = bytearray((examples / "imports" / "capture.rtx").read_bytes())
+    for _ in range(data.draw(st.integers(1, 3))):
+        at = data.draw(st.integers(0, len(blob)))
+        kind = data.draw(st.sampled_from(["flip", "truncate", "insert"]))
+        if kind == "flip" and at < len(blob):
+            blob[at] ^= data.draw(st.integers(1, 255))
+        elif kind == "truncate":
+            del blob[at:]
+        else:
+            blob[at:at] = data.draw(st.sampled_from(BYTES + [b"Sample no: 1_0\r\n", b"Sample rate: inf\r\n", b"::\r\n"]))
+    path = tmp_path / "c.rtx"
+    path.write_bytes(bytes(blob))
+    try:
+        capture = run(lambda p: read_rtx(p, unit="um"), path)
+    except AxiscalError as exc:
+        assert exc.path == str(path) and isinstance(exc.line, int) and exc.line >= 1, str(exc)
+        event("refused")
+        return
+    event("read")
+    assert np.isfinite(capture.samples_m).all() and capture.sample_rate_hz > 0
+
+
+@SETTINGS
+@pytest.mark.parametrize("which", ["map", "data"])
+@given(data=st.data())
+def test_mutated_column_maps_and_exports(tmp_path, examples, which, data):
+    from axiscal.io.importers.columnmap import import_readings
+
+    folder = examples / "imports"
+    map_text = (folder / "reading_per_row.toml").read_text(encoding="utf-8")
+    data_text = (folder / "reading_per_row.txt").read_text(encoding="utf-8")
+    if which == "map":
+        map_bytes = mutate_toml(map_text, data.draw(toml_mutations(len(map_text.splitlines()))))
+        data_bytes = data_text.encode()
+    else:
+        map_bytes = map_text.encode()
+        tabbed = data_text.replace("\t", ",")  # mutate cells, then restore the tab delimiter
+        steps = data.draw(mutations(len(tabbed.splitlines()), 4))
+        data_bytes = mutate(tabbed, steps).replace(b",", b"\t")
+    map_path, data_path = tmp_path / "map.toml", tmp_path / "export.txt"
+    map_path.write_bytes(map_bytes)
+    data_path.write_bytes(data_bytes)
+    try:
+        readings = run(lambda p: import_readings(map_path, p), data_path)
+    except AxiscalError as exc:
+        named = map_path if exc.path == str(map_path) else data_path
+        located(exc, named, physical_line_count(map_bytes if named == map_path else data_bytes))
+        event("refused")
+        return
+    event("read")
+    assert np.isfinite(readings.deviations_m).all() and np.isfinite(readings.targets_m).all()
+
+
+@SETTINGS
+@given(data=st.data())
+def test_mutated_sensor_calibrations(tmp_path, examples, data):
+    from axiscal.instruments.calibration import load_calibration
+
+    text = (examples / "xz_module" / "sensors_calibration.json").read_text(encoding="utf-8")
+    lines = text.splitlines()
+    steps = data.draw(st.lists(st.tuples(st.sampled_from(["value", "drop_line", "duplicate_line", "bytes"]),
+                                         st.integers(0, len(lines)),
+                                         st.sampled_from(['"x"', "true", "null", "[]", "{}", "-1", "1e999", "NaN",
+                                                          "0", "1e12", '"1_0"', "[1, 2]"]),
+                                         st.sampled_from(BYTES), st.floats(0.0, 1.0)), min_size=1, max_size=3))
+    for kind, row, value, chunk, where in steps:
+        k = row % len(lines)
+        if kind == "value" and ":" in lines[k]:
+            key, _, rest = lines[k].partition(":")
+            lines[k] = key + ": " + value + ("," if rest.rstrip().endswith(",") else "")
+        elif kind == "drop_line":
+            del lines[k]
+        elif kind == "duplicate_line":
+            lines.insert(k, lines[k])
+        elif kind == "bytes":
+            joined = "\n".join(lines)
+            at = int(where * len(joined))
+            lines = (joined[:at] + chunk.decode("utf-8", "replace") + joined[at:]).split("\n")
+    raw = ("\n".join(lines) + "\n").encode("utf-8")
+    path = tmp_path / "cal.json"
+    path.write_bytes(raw)
+    try:
+        calibration = run(load_calibration, path)
+    except AxiscalError as exc:
+        located(exc, path, physical_line_count(raw))
+        event("refused")
+        return
+    event("read")
+    assert calibration is not None
+
+
+@pytest.mark.parametrize("entry, words", [(b"Sample no: inf", "not a whole number"), (b"Sample no: 1_0", "not a whole number"),
+                                          (b"Actual sample rate: 1_000", "not a positive number")])
+def test_rtx_header_numbers_follow_the_file_grammar_and_name_their_line(tmp_path, examples, entry, words):
+    from axiscal.io.importers.rtx import read_rtx
+
+    blob = (examples / "imports" / "capture.rtx").read_bytes()
+    key = entry.split(b":")[0]
+    lines = blob.split(b"\r\n")
+    k = next(i for i, line in enumerate(lines) if line.startswith(key + b":"))
+    lines[k] = entry
+    path = tmp_path / "c.rtx"
+    path.write_bytes(b"\r\n".join(lines))
+    with pytest.raises(AxiscalError) as info:
+        read_rtx(path, unit="um")
+    assert words in info.value.message and info.value.line == k + 1
+
+
+def test_column_map_errors_name_the_key_line(tmp_path, examples):
+    from axiscal.io.importers.columnmap import read_column_map
+
+    text = (examples / "imports" / "reading_per_row.toml").read_text()
+    for old, new, words in [('target = "in"', 'target = "furlong"', "units.target"), ("sign = -1", "sign = 2", "sign"),
+                            ('layout = "rows"', 'layout = "rows"\nspeed = 3', "unknown key 'speed'")]:
+        path = tmp_path / "map.toml"
+        changed = text.replace(old, new, 1)
+        path.write_text(changed)
+        with pytest.raises(AxiscalError) as info:
+            read_column_map(path)
+        assert words in info.value.message
+        named = changed.splitlines()[info.value.line - 1]
+        assert new.splitlines()[-1] == named.split("#")[0].strip() or new.splitlines()[-1] in named
+
+
+def test_sensor_calibration_errors_name_the_key_line(tmp_path, examples):
+    from axiscal.instruments.calibration import load_calibration
+
+    text = (examples / "xz_module" / "sensors_calibration.json").read_text()
+    path = tmp_path / "cal.json"
+    first_gain = text.index('"gain"')
+    changed = text[:first_gain] + '"gain": "x",' + text[text.index("\n", first_gain):]
+    path.write_text(changed)
+    with pytest.raises(AxiscalError) as info:
+        load_calibration(path)
+    assert "'gain' must be a finite number" in info.value.message
+    assert '"gain": "x"' in changed.splitlines()[info.value.line - 1]

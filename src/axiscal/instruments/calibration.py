@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -32,6 +32,7 @@ from numpy.polynomial import legendre
 from axiscal.errors import AxiscalError
 from axiscal.instruments.abbe import transfer_point
 from axiscal.io.atomic import write_text
+from axiscal.io.jsonio import json_line
 from axiscal.io.tabular import read_text
 from axiscal.units import MM, URAD
 
@@ -377,20 +378,23 @@ def save_calibration(calibration: Calibration, path: str | Path) -> None:
     write_text(path, json.dumps(calibration.to_dict(), indent=2) + "\n")
 
 
-def _number(entry: Mapping, key: str, where: str, *, default: float | None = None) -> float:
+def _number(entry: Mapping, key: str, fail, *, default: float | None = None) -> float:
     value = entry.get(key, default)
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise AxiscalError(f"{where}: '{key}' must be a finite number")
+        raise fail(f"'{key}' must be a finite number", key)
     return float(value)
 
 
-def calibration_from_dict(data: Mapping) -> Calibration:
+def calibration_from_dict(data: Mapping, *, locate: Callable[..., int | None] | None = None) -> Calibration:
     """Build a :class:`Calibration` from the parsed JSON (see :func:`save_calibration`).
 
     Parameters
     ----------
     data : mapping
         The parsed calibration file.
+    locate : callable, optional, keyword-only
+        ``locate(*keys)`` -> the line of that key path in the file (:func:`axiscal.io.json_line`),
+        so that an error names its line.
 
     Returns
     -------
@@ -401,47 +405,68 @@ def calibration_from_dict(data: Mapping) -> Calibration:
     AxiscalError
         If it is not a calibration file of this version, or an entry is not a finite number.
     """
+    def error(message: str, *keys: str) -> AxiscalError:
+        return AxiscalError(message, line=None if locate is None else (locate(*keys) or 1))
+
     if not isinstance(data, Mapping) or data.get("format") != FORMAT:
-        raise AxiscalError(f"not a sensor calibration file (expected \"format\": \"{FORMAT}\")")
+        raise error(f"not a sensor calibration file (expected \"format\": \"{FORMAT}\")", "format")
     if data.get("version") != VERSION:
-        raise AxiscalError(f"calibration file version {data.get('version')!r} is not supported (expected {VERSION})")
+        raise error(f"calibration file version {data.get('version')!r} is not supported (expected {VERSION})", "version")
+    sections = {}
+    for section in ("channels", "mirrors"):
+        sections[section] = data.get(section, {})
+        if not isinstance(sections[section], Mapping):
+            raise error(f"'{section}' must be an object", section)
     channels: dict[str, ChannelCalibration] = {}
-    for name, entry in dict(data.get("channels", {})).items():
+    for name, entry in sections["channels"].items():
         where = f"channel '{name}'"
+
+        def fail(message: str, key: str | None = None, where=where, name=name) -> AxiscalError:
+            return error(f"{where}: {message}", "channels", name, *([key] if key else []))
+
         if not isinstance(entry, Mapping):
-            raise AxiscalError(f"{where}: expected an object with gain and offset")
-        gain = _number(entry, "gain", where)
+            raise fail("expected an object with gain and offset")
+        gain = _number(entry, "gain", fail)
         if gain == 0.0:
-            raise AxiscalError(f"{where}: gain must not be zero")
+            raise fail("gain must not be zero", "gain")
         channels[name] = ChannelCalibration(
             channel=name,
             gain=gain,
-            offset=_number(entry, "offset", where),
-            residual_max=_number(entry, "residual_max", where, default=0.0),
-            residual_rms=_number(entry, "residual_rms", where, default=0.0),
-            points=int(_number(entry, "points", where, default=0)),
+            offset=_number(entry, "offset", fail),
+            residual_max=_number(entry, "residual_max", fail, default=0.0),
+            residual_rms=_number(entry, "residual_rms", fail, default=0.0),
+            points=int(_number(entry, "points", fail, default=0)),
         )
     mirrors: dict[str, MirrorCorrection] = {}
-    for letter, entry in dict(data.get("mirrors", {})).items():
+    for letter, entry in sections["mirrors"].items():
         where = f"mirror of axis '{letter}'"
+
+        def fail(message: str, key: str | None = None, where=where, letter=letter) -> AxiscalError:
+            return error(f"{where}: {message}", "mirrors", letter, *([key] if key else []))
+
         if letter not in ("X", "Y", "Z") or not isinstance(entry, Mapping):
-            raise AxiscalError(f"{where}: expected an axis letter X, Y or Z with an object")
-        start, end = _number(entry, "start_mm", where) * MM, _number(entry, "end_mm", where) * MM
+            raise fail("expected an axis letter X, Y or Z with an object")
+        start, end = _number(entry, "start_mm", fail) * MM, _number(entry, "end_mm", fail) * MM
         if not end > start:
-            raise AxiscalError(f"{where}: end_mm must be greater than start_mm")
+            raise fail("end_mm must be greater than start_mm", "end_mm")
         coefficients = entry.get("legendre_urad")
-        if not (isinstance(coefficients, list) and coefficients and all(isinstance(c, (int, float)) for c in coefficients)):
-            raise AxiscalError(f"{where}: 'legendre_urad' must be a non-empty list of numbers")
-        cv = [math.inf if v is None else float(v) * URAD for v in entry.get("cv_rms_urad", [])]
+        if not (isinstance(coefficients, list) and coefficients
+                and all(isinstance(c, (int, float)) and not isinstance(c, bool) and math.isfinite(c) for c in coefficients)):
+            raise fail("'legendre_urad' must be a non-empty list of finite numbers", "legendre_urad")
+        cv_values = entry.get("cv_rms_urad", [])
+        if not (isinstance(cv_values, list)
+                and all(v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)) for v in cv_values)):
+            raise fail("'cv_rms_urad' must be a list of numbers (null: not resolved)", "cv_rms_urad")
+        cv = [math.inf if v is None else float(v) * URAD for v in cv_values]
         mirrors[letter] = MirrorCorrection(
             letter=letter,
             start_m=start,
             end_m=end,
             coefficients_rad=tuple(float(c) * URAD for c in coefficients),
-            residual_max_rad=_number(entry, "residual_max_urad", where, default=0.0) * URAD,
-            residual_rms_rad=_number(entry, "residual_rms_urad", where, default=0.0) * URAD,
+            residual_max_rad=_number(entry, "residual_max_urad", fail, default=0.0) * URAD,
+            residual_rms_rad=_number(entry, "residual_rms_urad", fail, default=0.0) * URAD,
             cv_rms_rad=tuple(cv),
-            points=int(_number(entry, "points", where, default=0)),
+            points=int(_number(entry, "points", fail, default=0)),
         )
     return Calibration(channels, mirrors)
 
@@ -470,6 +495,6 @@ def load_calibration(path: str | Path) -> Calibration:
     except json.JSONDecodeError as exc:
         raise AxiscalError(f"malformed JSON: {exc.msg}", path=path, line=exc.lineno) from None
     try:
-        return calibration_from_dict(data)
+        return calibration_from_dict(data, locate=lambda *keys: json_line(text, *keys))
     except AxiscalError as exc:
         raise exc.located(path=path) from None

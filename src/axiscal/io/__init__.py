@@ -8,6 +8,7 @@ from axiscal.io.atomic import atomic_write, write_text
 from axiscal.io.jsonio import (
     dumps,
     read_json,
+    json_line,
     sidecar_path,
     to_plain,
     write_json,
@@ -29,6 +30,7 @@ __all__ = [
     "write_text",
     "dumps",
     "read_json",
+    "json_line",
     "sidecar_path",
     "to_plain",
     "write_json",

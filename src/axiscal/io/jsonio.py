@@ -18,7 +18,7 @@ from axiscal.errors import AxiscalError
 from axiscal.io.atomic import write_text
 from axiscal.version import __version__
 
-__all__ = ["to_plain", "dumps", "write_json", "read_json", "sidecar_path", "write_sidecar"]
+__all__ = ["to_plain", "dumps", "write_json", "read_json", "json_line", "sidecar_path", "write_sidecar"]
 
 
 def to_plain(value: Any) -> Any:
@@ -49,6 +49,40 @@ def dumps(payload: Any) -> str:
 def write_json(path: str | Path, payload: Any) -> Path:
     """Write ``payload`` as JSON to ``path`` atomically."""
     return write_text(path, dumps(payload))
+
+
+def json_line(text: str, *keys: str) -> int | None:
+    """The line of a key path (``"channels", "x_psd_y_um", "gain"``) in a JSON text, so an error can name it.
+
+    Each key is looked for after the one before, as ``"key":``; the line of the deepest key found
+    is returned (None when not even the first is there). Exact for files where a key path is
+    spelled once in order, as axiscal writes them.
+
+    Parameters
+    ----------
+    text : str
+        The JSON text.
+    *keys : str
+        The path of object keys.
+
+    Returns
+    -------
+    int or None
+
+    Examples
+    --------
+    >>> json_line('{\n  "a": {\n    "b": 1,\n    "c": 2\n  }\n}', "a", "c")
+    4
+    """
+    import re
+
+    at, found = 0, None
+    for key in keys:
+        match = re.compile(re.escape(json.dumps(str(key), ensure_ascii=False)) + r"\s*:").search(text, at)
+        if match is None:
+            break
+        at, found = match.end(), match.start()
+    return None if found is None else text.count("\n", 0, found) + 1
 
 
 def read_json(path: str | Path) -> Any:

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 import os
 import re
 import warnings
@@ -38,6 +39,7 @@ __all__ = [
     "write_csv",
     "read_toml",
     "parse_toml",
+    "parse_number",
 ]
 
 #: a number as a file may spell it: optional sign, decimal digits with an optional point, optional exponent
@@ -513,6 +515,34 @@ def _split_quoted(lines: Lines, indices: np.ndarray, delimiter: str, path: str, 
             raise AxiscalError(f"{len(cells)} cells where the header has {width}", path=path, line=int(index) + 1)
         out.append([cell.strip() for cell in cells])
     return out
+
+
+def parse_number(text: str) -> float | None:
+    """A number as a file spells it (the grammar of :meth:`CsvTable.numeric`), or None.
+
+    Plain decimals with an optional sign and exponent, surrounding blanks allowed; not ``1_000``,
+    full-width digits, ``nan``, ``inf`` or a value beyond :data:`MAX_MAGNITUDE`, which Python's
+    ``float()`` would take.
+
+    Parameters
+    ----------
+    text : str
+
+    Returns
+    -------
+    float or None
+        None when the text is not such a number.
+
+    Examples
+    --------
+    >>> parse_number(" 1.5e3 "), parse_number("1_000"), parse_number("inf")
+    (1500.0, None, None)
+    """
+    cell = text.strip()
+    if not _NUMBER.fullmatch(cell):
+        return None
+    value = float(cell)
+    return value if math.isfinite(value) and abs(value) <= MAX_MAGNITUDE else None
 
 
 def read_text(path: str | Path) -> str:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import csv
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -21,7 +21,8 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
-from axiscal.io.tabular import read_text, read_toml
+from axiscal.io.schema import TomlLines
+from axiscal.io.tabular import parse_toml, read_text
 from axiscal.units import LENGTH_UNITS, MM, UM
 
 __all__ = [
@@ -106,6 +107,8 @@ class ColumnMap:
         Labels of the runs for layout ``"runs"`` (default 1, 2, ...).
     source : str, optional
         The map file, named in errors.
+    locate : callable, optional
+        ``locate("units.target")`` -> the line of that key in the map file, named in errors.
 
     Raises
     ------
@@ -131,51 +134,55 @@ class ColumnMap:
     direction_values: Mapping[str, str] = field(default_factory=dict)
     run_labels: tuple[str, ...] = ()
     source: str | None = None
+    locate: Callable[[str], int | None] | None = field(default=None, compare=False, repr=False)
+
+    def _at(self, key: str) -> dict[str, Any]:
+        """Where an error about ``key`` (dotted, as in the map file) points: the file and the key's line."""
+        return {"path": self.source, "line": None if self.locate is None else self.locate(key)}
 
     def __post_init__(self) -> None:
-        where = {"path": self.source}
         if self.layout not in _LAYOUTS:
-            raise AxiscalError(f"layout must be one of {', '.join(_LAYOUTS)}, not '{self.layout}'", **where)
+            raise AxiscalError(f"layout must be one of {', '.join(_LAYOUTS)}, not '{self.layout}'", **self._at("layout"))
         if self.layout == "rows" and self.reading is None:
-            raise AxiscalError("layout 'rows' needs columns.reading (the reading column)", **where)
+            raise AxiscalError("layout 'rows' needs columns.reading (the reading column)", **self._at("columns.reading"))
         if self.layout == "runs":
             if not self.readings:
-                raise AxiscalError("layout 'runs' needs columns.readings (one reading column per run)", **where)
+                raise AxiscalError("layout 'runs' needs columns.readings (one reading column per run)", **self._at("columns.readings"))
             if self.run is not None:
-                raise AxiscalError("layout 'runs' takes the run from the column: drop columns.run", **where)
+                raise AxiscalError("layout 'runs' takes the run from the column: drop columns.run", **self._at("columns.run"))
             if self.run_labels and len(self.run_labels) != len(self.readings):
                 raise AxiscalError(
-                    f"{len(self.run_labels)} run labels for {len(self.readings)} reading columns", **where
+                    f"{len(self.run_labels)} run labels for {len(self.readings)} reading columns", **self._at("runs")
                 )
         for name, unit in (("target", self.target_unit), ("reading", self.reading_unit)):
             if unit not in IMPORT_UNITS:
                 raise AxiscalError(
-                    f"units.{name}: unknown length unit '{unit}'; use one of {', '.join(IMPORT_UNITS)}", **where
+                    f"units.{name}: unknown length unit '{unit}'; use one of {', '.join(IMPORT_UNITS)}", **self._at(f"units.{name}")
                 )
         if self.kind not in _KINDS:
-            raise AxiscalError(f"reading must be one of {', '.join(_KINDS)}, not '{self.kind}'", **where)
+            raise AxiscalError(f"reading must be one of {', '.join(_KINDS)}, not '{self.kind}'", **self._at("reading"))
         if self.sign not in (1, -1):
-            raise AxiscalError(f"sign must be 1 or -1, not {self.sign!r}", **where)
+            raise AxiscalError(f"sign must be 1 or -1, not {self.sign!r}", **self._at("sign"))
         if self.decimal not in (".", ","):
-            raise AxiscalError(f"decimal must be '.' or ',', not '{self.decimal}'", **where)
+            raise AxiscalError(f"decimal must be '.' or ',', not '{self.decimal}'", **self._at("decimal"))
         if self.decimal == "," and self.delimiter == ",":
-            raise AxiscalError("a decimal comma needs another delimiter (';', 'tab' or 'whitespace')", **where)
+            raise AxiscalError("a decimal comma needs another delimiter (';', 'tab' or 'whitespace')", **self._at("decimal"))
         if not isinstance(self.skip_lines, int) or isinstance(self.skip_lines, bool) or self.skip_lines < 0:
-            raise AxiscalError(f"skip_lines must be a whole number >= 0, not {self.skip_lines!r}", **where)
+            raise AxiscalError(f"skip_lines must be a whole number >= 0, not {self.skip_lines!r}", **self._at("skip_lines"))
         for word, d in self.direction_values.items():
             if d not in ("+", "-"):
-                raise AxiscalError(f"direction_values.{word}: map to '+' or '-', not '{d}'", **where)
+                raise AxiscalError(f"direction_values.{word}: map to '+' or '-', not '{d}'", **self._at(f"direction_values.{word}"))
         for ref in (self.target, self.reading, self.run, self.direction, *self.readings):
             if ref is None:
                 continue
             if isinstance(ref, bool) or not isinstance(ref, (str, int)):
-                raise AxiscalError(f"a column is named by its header text or its number, not {ref!r}", **where)
+                raise AxiscalError(f"a column is named by its header text or its number, not {ref!r}", **self._at("columns"))
             if isinstance(ref, int) and ref < 1:
-                raise AxiscalError(f"column numbers start at 1, not {ref}", **where)
+                raise AxiscalError(f"column numbers start at 1, not {ref}", **self._at("columns"))
             if ref in ("+", "-"):
                 continue
             if isinstance(ref, str) and not self.header:
-                raise AxiscalError(f"column '{ref}': the file has no header (header = false), give its number", **where)
+                raise AxiscalError(f"column '{ref}': the file has no header (header = false), give its number", **self._at("header"))
 
 
 @dataclass(frozen=True)
@@ -209,7 +216,9 @@ class ImportedReadings:
         return len(self.runs)
 
 
-def column_map(settings: Mapping[str, Any], *, source: str | None = None) -> ColumnMap:
+def column_map(
+    settings: Mapping[str, Any], *, source: str | None = None, locate: Callable[[str], int | None] | None = None
+) -> ColumnMap:
     """Build a :class:`ColumnMap` from the parsed TOML of a map file (see docs/importing.md).
 
     Parameters
@@ -219,6 +228,8 @@ def column_map(settings: Mapping[str, Any], *, source: str | None = None) -> Col
         ``delimiter``, ``decimal``, ``skip_lines``, ``header``, ``[direction_values]``, ``runs``.
     source : str, optional, keyword-only
         The map file, named in errors.
+    locate : callable, optional, keyword-only
+        ``locate("units.target")`` -> the line of that dotted key in the map file, named in errors.
 
     Returns
     -------
@@ -237,25 +248,27 @@ def column_map(settings: Mapping[str, Any], *, source: str | None = None) -> Col
     >>> m.direction is None
     True
     """
-    where = {"path": source}
+    def at(key: str) -> dict[str, Any]:
+        return {"path": source, "line": None if locate is None else locate(key)}
+
     for section, known in _KNOWN.items():
         table = settings if section == "top" else settings.get(section, {})
         if not isinstance(table, Mapping):
-            raise AxiscalError(f"'{section}' must be a table ([{section}])", **where)
+            raise AxiscalError(f"'{section}' must be a table ([{section}])", **at(section))
         unknown = sorted(set(table) - known)
         if unknown:
             prefix = "" if section == "top" else f"{section}."
             raise AxiscalError(
-                f"unknown key '{prefix}{unknown[0]}' (known: {', '.join(sorted(known))})", **where
+                f"unknown key '{prefix}{unknown[0]}' (known: {', '.join(sorted(known))})", **at(prefix + unknown[0])
             )
     columns = settings.get("columns", {})
     units = settings.get("units", {})
     if "target" not in columns:
-        raise AxiscalError("columns.target is missing (the target position column)", **where)
+        raise AxiscalError("columns.target is missing (the target position column)", **at("columns"))
     delimiter_text = settings.get("delimiter", ",")
-    if delimiter_text not in _DELIMITERS:
+    if not isinstance(delimiter_text, str) or delimiter_text not in _DELIMITERS:
         raise AxiscalError(
-            f"delimiter must be one of ',', ';', 'tab', 'whitespace', not {delimiter_text!r}", **where
+            f"delimiter must be one of ',', ';', 'tab', 'whitespace', not {delimiter_text!r}", **at("delimiter")
         )
     direction = columns.get("direction")
     if direction == "infer":
@@ -285,6 +298,7 @@ def column_map(settings: Mapping[str, Any], *, source: str | None = None) -> Col
         direction_values={str(k).lower(): str(v) for k, v in settings.get("direction_values", {}).items()},
         run_labels=run_labels,
         source=source,
+        locate=locate,
     )
 
 
@@ -305,7 +319,14 @@ def read_column_map(path: str | Path) -> ColumnMap:
     AxiscalError
         Naming the file (and the line for malformed TOML); see :func:`column_map`.
     """
-    return column_map(read_toml(path), source=str(path))
+    text = read_text(path)
+    lines = TomlLines(text)
+
+    def locate(key: str) -> int:
+        table, _, name = key.rpartition(".")
+        return lines.of(table, 0, name) or lines.of(key) or lines.of(table) or 1
+
+    return column_map(parse_toml(text, path=path), source=str(path), locate=locate)
 
 
 def _split_lines(text: str, cmap: ColumnMap) -> list[tuple[int, list[str]]]:
@@ -430,7 +451,7 @@ def import_readings(cmap: ColumnMap | str | Path, path: str | Path) -> ImportedR
     header_line = cmap.skip_lines + 1
     if cmap.header:
         if not rows:
-            raise AxiscalError("empty file: expected a header line", path=source)
+            raise AxiscalError("empty file: expected a header line", path=source, line=max(1, cmap.skip_lines + 1))
         header_line, header = rows[0]
         rows = rows[1:]
     if not rows:

@@ -21,6 +21,7 @@ from axiscal.errors import AxiscalError
 from axiscal.io.atomic import atomic_write, write_text
 from axiscal.io.importers.columnmap import IMPORT_UNITS
 from axiscal.io.jsonio import write_sidecar
+from axiscal.io.tabular import parse_number
 
 __all__ = ["RTX_HEADER", "RTX_DATA", "RTX_EOF", "RtxCapture", "read_rtx", "write_rtx", "rtx_csv", "write_rtx_csv"]
 
@@ -109,13 +110,16 @@ def read_rtx(path: str | Path, *, unit: str) -> RtxCapture:
         raise AxiscalError("not an .rtx capture: it does not start with 'HEADER::'", path=source, line=1)
     data_at = blob.find(b"\r\n" + RTX_DATA)
     if data_at < 0:
-        raise AxiscalError("no 'Data:' line after the header", path=source)
+        last = blob.count(b"\r\n") + 1
+        raise AxiscalError("no 'Data:' line after the header", path=source, line=last)
     header_text = blob[len(RTX_HEADER) : data_at + 2]
     header: dict[str, str] = {}
+    where: dict[str, int] = {}  # header key -> its line
     try:
         lines = header_text.decode("utf-8").split("\r\n")
-    except UnicodeDecodeError:
-        raise AxiscalError("the header is not text", path=source) from None
+    except UnicodeDecodeError as exc:
+        line = header_text[: exc.start].count(b"\r\n") + 2
+        raise AxiscalError("the header is not text", path=source, line=line) from None
     for number, line in enumerate(lines[:-1], start=2):
         if not line.strip() or line.rstrip().endswith("::"):
             continue  # a blank line or a section marker ("NAME::")
@@ -123,10 +127,11 @@ def read_rtx(path: str | Path, *, unit: str) -> RtxCapture:
         if not sep or not key.strip():
             raise AxiscalError(f"header line '{line}' is not 'Key: value'", path=source, line=number)
         header.setdefault(key.strip(), value.strip())
+        where.setdefault(key.strip(), number)
     data_line = len(lines) + 1
     body = blob[data_at + 2 + len(RTX_DATA) :]
     if not body.endswith(RTX_EOF):
-        raise AxiscalError("no 'EOF::' trailer at the end: the file is cut short", path=source)
+        raise AxiscalError("no 'EOF::' trailer at the end: the file is cut short", path=source, line=data_line)
     body = body[: -len(RTX_EOF)]
     if len(body) % 8:
         raise AxiscalError(
@@ -134,24 +139,24 @@ def read_rtx(path: str | Path, *, unit: str) -> RtxCapture:
         )
     samples = np.frombuffer(body, dtype="<f8").astype(float)
     if "Sample no" in header:
-        try:
-            expected = int(float(header["Sample no"]))
-        except ValueError:
-            raise AxiscalError(f"'Sample no' is '{header['Sample no']}', not a number", path=source) from None
+        expected = parse_number(header["Sample no"])
+        if expected is None or expected != int(expected):
+            raise AxiscalError(f"'Sample no' is '{header['Sample no']}', not a whole number", path=source,
+                               line=where["Sample no"])
         if expected != len(samples):
             raise AxiscalError(
-                f"the header says {expected} samples (Sample no), the data block holds {len(samples)}", path=source
+                f"the header says {int(expected)} samples (Sample no), the data block holds {len(samples)}", path=source,
+                line=where["Sample no"],
             )
     rate = None
     for key in _RATE_KEYS:
         if key in header:
-            try:
-                rate = float(header[key])
-            except ValueError:
-                raise AxiscalError(f"'{key}' is '{header[key]}', not a number", path=source) from None
+            rate = parse_number(header[key])
+            if rate is None or rate <= 0:
+                raise AxiscalError(f"'{key}' is '{header[key]}', not a positive number", path=source, line=where[key])
             break
-    if rate is None or not np.isfinite(rate) or rate <= 0:
-        raise AxiscalError("no positive 'Actual sample rate' or 'Sample rate' in the header", path=source)
+    if rate is None:
+        raise AxiscalError("no 'Actual sample rate' or 'Sample rate' in the header", path=source, line=data_line)
     bad = np.flatnonzero(~np.isfinite(samples))
     if bad.size:
         raise AxiscalError(f"sample {bad[0]} is not a finite number", path=source, line=data_line)
