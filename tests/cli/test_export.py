@@ -126,3 +126,22 @@ def test_export_screwmap_mach4(run_cli, examples):
     status, _, err = run_cli("export", "screwmap", examples / "positioning_run.csv", "--controller", "mach4",
                              "--interval-mm", "50")
     assert status == 2 and err.count("\n") == 1 and "TwinCAT settings" in err
+
+
+@pytest.mark.parametrize("command", [
+    ["sag", "--controller", "heidenhain", "--base-axis", "Y", "--compensation-axis", "Z"],
+    ["sag", "--controller", "siemens", "--base-axis", "AX2", "--compensation-axis", "AX3", "--step-mm", "10"],
+    ["screwmap", "--controller", "mach4"],
+    ["screwmap", "--controller", "twincat"],
+])
+def test_export_writers_refuse_a_bad_file_in_one_line_and_keep_the_old_output(run_cli, tmp_path, command):
+    bad = tmp_path / "bad.csv"
+    if command[0] == "sag":
+        bad.write_text("position_mm,deviation_um\n0,1.0\n10,abc\n20,0.5\n")
+    else:
+        bad.write_text("target_mm,run,direction,deviation_um\n0,1,+,1.0\n10,1,+,1_0\n")
+    out = tmp_path / "table.txt"
+    out.write_text("the old table\n")
+    status, stdout, err = run_cli("export", command[0], bad, *command[1:], "-o", out)
+    assert status == 2 and stdout == "" and err.count("\n") == 1 and f"{bad}:3:" in err and "Traceback" not in err
+    assert out.read_text() == "the old table\n"
