@@ -97,7 +97,8 @@ def cli() -> None:
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit status (tests call this directly)."""
     try:
-        cli.main(args=list(argv) if argv is not None else None, prog_name="axiscal", standalone_mode=False)
+        # outside standalone mode click returns ctx.exit(N)'s status (commands themselves return None)
+        status = cli.main(args=list(argv) if argv is not None else None, prog_name="axiscal", standalone_mode=False)
     except AxiscalError as exc:
         click.echo(f"axiscal: error: {exc}", err=True)
         return 2
@@ -119,7 +120,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return exc.exit_code
     except BrokenPipeError:
         return 0
-    return 0
+    return status if isinstance(status, int) and not isinstance(status, bool) else 0
 
 
 if __name__ == "__main__":

@@ -42,7 +42,9 @@ def _progress(enabled: bool):
 @click.option("-o", "--output", "out_dir", type=click.Path(file_okay=False), help="Report folder [CAMPAIGN_DIR/report].")
 @click.option("--compare", type=click.Path(dir_okay=False), help="results.json of another campaign (e.g. before compensation).")
 @click.option("--pdf", is_flag=True, help="Also write report.pdf.")
-def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, pdf: bool) -> None:
+@click.option("--exit-code", is_flag=True,
+              help="Exit with status 1 when the verdict is fail, or inconclusive under a guard-band rule (for scripts and CI).")
+def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, pdf: bool, exit_code: bool) -> None:
     """Run every test of CAMPAIGN_DIR (campaign.toml) and write report.html, results.json and the compensation files."""
     with _progress(sys.stderr.isatty()) as progress:
         files = report_campaign(campaign_dir, out_dir, compare=compare, pdf=pdf, progress=progress)
@@ -53,6 +55,8 @@ def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, 
         click.echo(f"compensation {path}")
     if files.pdf is not None:
         click.echo(f"pdf {files.pdf}")
+    if exit_code and verdict in ("fail", "inconclusive"):
+        click.get_current_context().exit(1)
 
 
 def register(group: click.Group) -> None:
