@@ -83,6 +83,13 @@ def test_plot_method_writes_the_figure(examples, tmp_path):
     evaluation = evaluate_positioning_file(examples / "positioning_run.csv")
     out = evaluation.plot(tmp_path / "p.svg")
     assert out.read_text().lstrip().startswith("<?xml")
+    # with another test drawn behind, the figures table still names the unit as the plot does
+    targets = evaluation.to_dict()["targets"]
+    with_overlay = evaluation.plot(tmp_path / "o.svg", overlay=targets).read_text()
+    assert "µm" in with_overlay
+    # a report that shows the figures itself draws the plot alone
+    alone = evaluation.plot(tmp_path / "a.svg", figures_table=False).read_text()
+    assert ">figure<" not in alone.replace(" ", "") and len(alone) < len(out.read_text())
 
 
 def test_render_template_shipped_with_the_package():

@@ -128,7 +128,8 @@ def _positioning(campaign: Campaign, spec: TestSpec, campaign_compare: Mapping[s
     previous = (campaign_compare or {}).get(spec.id)
     if previous and isinstance(previous.get("targets"), dict):
         overlay = {**previous["targets"], "label": "compared"}
-    svg = svg_of(lambda p: evaluation.plot(p, title=title, overlay=overlay))
+    # the report shows the figures in its own table beside the plot
+    svg = svg_of(lambda p: evaluation.plot(p, title=title, overlay=overlay, figures_table=False))
     compensation = []
     if campaign.controller is not None:
         options = {"axis": spec.axis} if campaign.controller in ("siemens", "heidenhain") else {}

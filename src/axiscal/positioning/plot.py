@@ -43,6 +43,7 @@ def plot_positioning(
     title: str = "",
     compensated: bool = False,
     overlay: Mapping[str, Any] | None = None,
+    figures_table: bool = True,
 ) -> Path:
     """Write the positioning plot to ``path`` (format from its suffix, e.g. .png, .svg, .pdf).
 
@@ -70,6 +71,8 @@ def plot_positioning(
         Another test of the same axis to draw behind this one (e.g. before compensation): the
         ``targets`` object of its ``axiscal positioning --json`` (``target_mm`` or ``target_deg``,
         ``mean_up_um``/``mean_down_um`` or the ``_arcsec`` forms) and an optional ``label``.
+    figures_table : bool, keyword-only
+        Draw the axis figures in a table beside the plot (default True).
 
     Returns
     -------
@@ -106,7 +109,10 @@ def plot_positioning(
     ]
     has_s = bool(all(np.all(np.isfinite(s)) for _, _, s, _, _ in lines))
     x = run.targets / x_factor
-    fig, (ax, tab) = plt.subplots(1, 2, figsize=(11.5, 5.4), gridspec_kw={"width_ratios": [3.2, 1]})
+    if figures_table:
+        fig, (ax, tab) = plt.subplots(1, 2, figsize=(11.5, 5.4), gridspec_kw={"width_ratios": [3.2, 1]})
+    else:
+        fig, ax = plt.subplots(figsize=(9.5, 5.0))
     for devs, mean, s, color, arrow in lines:
         ax.plot(np.repeat(x, devs.shape[1]), devs.ravel() / factor, ".", color=color, alpha=0.3, markersize=4)
         ax.plot(x, mean / factor, "-o", color=color, markersize=3, label=f"mean x̄{arrow}")
@@ -116,9 +122,9 @@ def plot_positioning(
     if run.bidirectional:
         ax.plot(x, st.mean / factor, "--", color="0.3", linewidth=1, label="bidirectional mean x̄")
     if overlay:
-        unit = "arcsec" if run.rotary else "um"
+        key_unit = "arcsec" if run.rotary else "um"
         targets = overlay.get("target_deg" if run.rotary else "target_mm")
-        for key, style in ((f"mean_up_{unit}", (0, (4, 2))), (f"mean_down_{unit}", (0, (1, 1.5)))):
+        for key, style in ((f"mean_up_{key_unit}", (0, (4, 2))), (f"mean_down_{key_unit}", (0, (1, 1.5)))):
             values = overlay.get(key)
             if targets is not None and values is not None:
                 arrow = "↑" if "up" in key else "↓"
@@ -142,6 +148,13 @@ def plot_positioning(
         notes.append("raw laser readings compensated for air index and material temperature")
     if notes:
         ax.text(0.01, 0.01, "\n".join(notes), transform=ax.transAxes, fontsize=8, va="bottom", color="0.25")
+    if figures_table:
+        _figures_table(tab, result, unit, factor)
+    fig.tight_layout()
+    return save_figure(fig, path, dpi=120)
+
+
+def _figures_table(tab, result: Iso230Result | Vdi3441Result, unit: str, factor: float) -> None:
     rows = [[_LABELS.get(name, name), _format(value, factor)] for name, value in result.figures().items()]
     tab.axis("off")
     table = tab.table(cellText=rows, colLabels=["figure", unit], loc="center", cellLoc="right", colLoc="center")
@@ -152,5 +165,3 @@ def plot_positioning(
         if col == 0 and row > 0:
             cell.set_text_props(ha="left")
             cell.PAD = 0.08
-    fig.tight_layout()
-    return save_figure(fig, path, dpi=120)

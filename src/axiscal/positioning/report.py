@@ -234,7 +234,9 @@ class PositioningEvaluation:
             unit=unit,
         )
 
-    def plot(self, path: str | Path, *, title: str = "", overlay: Mapping[str, Any] | None = None) -> Path:
+    def plot(
+        self, path: str | Path, *, title: str = "", overlay: Mapping[str, Any] | None = None, figures_table: bool = True
+    ) -> Path:
         """Write the positioning plot (see :func:`axiscal.positioning.plot.plot_positioning`).
 
         Parameters
@@ -245,6 +247,9 @@ class PositioningEvaluation:
             Title of the plot (default: file, standard, k, targets and runs).
         overlay : mapping, keyword-only
             Another test's per-target means to draw behind (see :func:`plot_positioning`).
+        figures_table : bool, keyword-only
+            Draw the table of axis figures beside the plot (default True; a report that shows
+            the figures itself leaves it out).
 
         Returns
         -------
@@ -258,7 +263,8 @@ class PositioningEvaluation:
         """
         from axiscal.positioning.plot import plot_positioning
 
-        return plot_positioning(self.run, self.result, path, title=title, compensated=self.compensated, overlay=overlay)
+        return plot_positioning(self.run, self.result, path, title=title, compensated=self.compensated, overlay=overlay,
+                                figures_table=figures_table)
 
 
 def evaluate_positioning_file(
