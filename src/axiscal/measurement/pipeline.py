@@ -302,6 +302,11 @@ class MeasurementSystem:
         fault |= np.where(outside, int(Fault.RANGE), 0)
         si = raw * self._scale_si
         si += self._offset_si
+        if np.any(fault):
+            # a missing or out-of-range reading faults its frame, whose results all become NaN below;
+            # zero stands in for it meanwhile so that the shared transfer and mirror map, which
+            # refuse non-finite input, still see only numbers
+            si[:, fault != 0] = np.where(np.isfinite(si[:, fault != 0]), si[:, fault != 0], 0.0)
         out: dict[str, np.ndarray] = {"t_s": np.asarray(frames.get("t_s", np.full(n, np.nan)), dtype=float)}
         command: dict[str, np.ndarray] = {}
         measured: dict[str, np.ndarray] = {}

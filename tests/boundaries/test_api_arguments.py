@@ -1,0 +1,227 @@
+"""Every public callable of the instruments, straightness, squareness, circular and measurement rooms
+refuses bad arguments with AxiscalError naming the argument: never an IndexError, a TypeError from
+deep inside, a NumPy broadcast error, a division by zero, a stray RuntimeWarning or a silent NaN.
+
+The table lists, per public name, calls with the kinds of bad values a user passes: NaN and inf,
+empty and mismatched arrays, wrong shapes, a string, None or a bool for a number, zero or negative
+counts and sizes, unknown option strings, values out of physical range. A coverage check fails when
+a public callable of these rooms has no case (or an explicit exemption below).
+"""
+
+from __future__ import annotations
+
+import inspect
+import warnings
+from collections.abc import Callable
+from importlib import import_module
+
+import numpy as np
+import pytest
+
+from axiscal.errors import AxiscalError
+
+ROOMS = ("instruments", "straightness", "squareness", "circular", "measurement")
+NAN, INF = float("nan"), float("inf")
+
+CASES: list[tuple[str, str, Callable[[], object], str]] = []  # (room, public name, call, words of the message)
+
+
+def bad(room: str, name: str, words: str, *calls: Callable[[], object]) -> None:
+    """Add one case per call: each must raise AxiscalError whose message holds ``words``."""
+    CASES.extend((room, name, call, words) for call in calls)
+
+
+def api(room: str):
+    return import_module(f"axiscal.{room}")
+
+
+# ---------------------------------------------------------------- instruments
+ins = api("instruments")
+I = "instruments"
+P3 = np.zeros(3)
+
+bad(I, "transfer_point", "delta_m", lambda: ins.transfer_point([NAN, 0, 0], P3, P3), lambda: ins.transfer_point("a", P3, P3))
+bad(I, "transfer_point", "eps_rad", lambda: ins.transfer_point(P3, np.zeros(2), P3), lambda: ins.transfer_point(P3, None, P3))
+bad(I, "transfer_point", "offset_m", lambda: ins.transfer_point(P3, P3, [0, INF, 0]))
+bad(I, "transfer_point", "do not match", lambda: ins.transfer_point(np.zeros((4, 3)), np.zeros((5, 3)), P3))
+bad(I, "transfer_components", "offsets_m", lambda: ins.transfer_components(P3, P3, np.zeros((3, 2))), lambda: ins.transfer_components(P3, P3, np.full((3, 3), NAN)))
+bad(I, "transfer_components", "eps_rad", lambda: ins.transfer_components(P3, [NAN, 0, 0], np.zeros((3, 3))))
+bad(I, "transfer_components", "delta_m", lambda: ins.transfer_components("x", P3, np.zeros((3, 3))))
+bad(I, "saturation_vapour_pressure", "temperature_c", lambda: ins.saturation_vapour_pressure(NAN), lambda: ins.saturation_vapour_pressure("20"),
+    lambda: ins.saturation_vapour_pressure(-300.0), lambda: ins.saturation_vapour_pressure(None))
+bad(I, "saturation_vapour_pressure", "phase", lambda: ins.saturation_vapour_pressure(20.0, over="steam"))
+bad(I, "water_vapour_mole_fraction", "temperature_c", lambda: ins.water_vapour_mole_fraction(NAN, 101325.0, 50.0), lambda: ins.water_vapour_mole_fraction(-274.0, 101325.0, 50.0))
+bad(I, "water_vapour_mole_fraction", "pressure_pa", lambda: ins.water_vapour_mole_fraction(20.0, 0.0, 50.0), lambda: ins.water_vapour_mole_fraction(20.0, -1.0, 50.0), lambda: ins.water_vapour_mole_fraction(20.0, INF, 50.0))
+bad(I, "water_vapour_mole_fraction", "humidity_pct", lambda: ins.water_vapour_mole_fraction(20.0, 101325.0, 101.0), lambda: ins.water_vapour_mole_fraction(20.0, 101325.0, True))
+bad(I, "water_vapour_mole_fraction", "do not match", lambda: ins.water_vapour_mole_fraction([20.0, 21.0], [101325.0] * 3, 50.0))
+bad(I, "refractive_index", "temperature", lambda: ins.refractive_index(NAN, 101325.0, 50.0, 633.0), lambda: ins.refractive_index(-300.0, 101325.0, 50.0, 633.0))
+bad(I, "refractive_index", "pressure", lambda: ins.refractive_index(20.0, 0.0, 50.0, 633.0), lambda: ins.refractive_index(20.0, -5.0, 50.0, 633.0))
+bad(I, "refractive_index", "humidity", lambda: ins.refractive_index(20.0, 101325.0, -1.0, 633.0), lambda: ins.refractive_index(20.0, 101325.0, 100.5, 633.0))
+bad(I, "refractive_index", "wavelength", lambda: ins.refractive_index(20.0, 101325.0, 50.0, 0.0), lambda: ins.refractive_index(20.0, 101325.0, 50.0, -633.0))
+bad(I, "refractive_index", "method", lambda: ins.refractive_index(20.0, 101325.0, 50.0, 633.0, method="magic"), lambda: ins.refractive_index(20.0, 101325.0, 50.0, 633.0, method=None))
+bad(I, "refractive_index", "numbers", lambda: ins.refractive_index("warm", 101325.0, 50.0, 633.0), lambda: ins.refractive_index(None, 101325.0, 50.0, 633.0))
+bad(I, "refractive_index", "do not match", lambda: ins.refractive_index([20.0, 21.0], [101325.0] * 3, 50.0, 633.0))
+bad(I, "air_report", "temperature", lambda: ins.air_report(NAN, 101325.0, 50.0), lambda: ins.air_report(True, 101325.0, 50.0))
+bad(I, "air_report", "pressure", lambda: ins.air_report(20.0, 0.0, 50.0))
+bad(I, "air_report", "method", lambda: ins.air_report(20.0, 101325.0, 50.0, method="x"))
+bad(I, "air_inputs", "method", lambda: ins.air_inputs(20.0, 101325.0, 50.0, 633.0, 450.0, "magic"))
+bad(I, "air_inputs", "temperature_c", lambda: ins.air_inputs(NAN, 101325.0, 50.0, 633.0, 450.0, "ciddor"))
+bad(I, "air_text", "report", lambda: ins.air_text({}), lambda: ins.air_text(None))
+bad(I, "ChannelCalibration", "gain", lambda: ins.ChannelCalibration("u", 0.0, 0.0), lambda: ins.ChannelCalibration("u", NAN, 0.0), lambda: ins.ChannelCalibration("u", "1", 0.0))
+bad(I, "ChannelCalibration", "offset", lambda: ins.ChannelCalibration("u", 1.0, INF), lambda: ins.ChannelCalibration("u", 1.0, None))
+bad(I, "ChannelCalibration", "channel", lambda: ins.ChannelCalibration(5, 1.0, 0.0))
+bad(I, "ChannelCalibration", "raw", lambda: ins.ChannelCalibration("u", 1.0, 0.0).apply("x"))
+bad(I, "fit_sensitivity", "same length", lambda: ins.fit_sensitivity("u", [1, 2, 3], [1, 2]))
+bad(I, "fit_sensitivity", "at least 3", lambda: ins.fit_sensitivity("u", [1, 2], [1, 2]), lambda: ins.fit_sensitivity("u", [], []))
+bad(I, "fit_sensitivity", "non-finite", lambda: ins.fit_sensitivity("u", [1, NAN, 3], [1, 2, 3]))
+bad(I, "fit_sensitivity", "raw", lambda: ins.fit_sensitivity("u", "abc", [1, 2, 3]), lambda: ins.fit_sensitivity("u", None, [1, 2, 3]))
+bad(I, "fit_sensitivity", "do not vary", lambda: ins.fit_sensitivity("u", [1, 1, 1], [1, 2, 3]))
+bad(I, "transfer_reference", "eps_rad", lambda: ins.transfer_reference([0.0], np.zeros((1, 2)), P3, 0), lambda: ins.transfer_reference([0.0], [[NAN, 0, 0]], P3, 0))
+bad(I, "transfer_reference", "component", lambda: ins.transfer_reference([0.0], np.zeros((1, 3)), P3, 3), lambda: ins.transfer_reference([0.0], np.zeros((1, 3)), P3, "x"))
+bad(I, "transfer_reference", "reference_m", lambda: ins.transfer_reference([0.0, 1.0], np.zeros((1, 3)), P3, 0), lambda: ins.transfer_reference([NAN], np.zeros((1, 3)), P3, 0))
+bad(I, "MirrorCorrection", "end_m", lambda: ins.MirrorCorrection("X", 0.5, 0.5, (0.0,)), lambda: ins.MirrorCorrection("X", 0.0, NAN, (0.0,)))
+bad(I, "MirrorCorrection", "coefficients_rad", lambda: ins.MirrorCorrection("X", 0.0, 1.0, ()), lambda: ins.MirrorCorrection("X", 0.0, 1.0, (NAN,)))
+bad(I, "MirrorCorrection", "q_m", lambda: ins.MirrorCorrection("X", 0.0, 1.0, (0.0,)).evaluate([NAN]), lambda: ins.MirrorCorrection("X", 0.0, 1.0, (0.0,)).evaluate("a"))
+bad(I, "fit_mirror", "same length", lambda: ins.fit_mirror("X", np.linspace(0, 1, 6), np.zeros(6), np.zeros(5)))
+bad(I, "fit_mirror", "non-finite", lambda: ins.fit_mirror("X", np.linspace(0, 1, 6), np.full(6, NAN), np.zeros(6)))
+bad(I, "fit_mirror", "at least 4", lambda: ins.fit_mirror("X", [0.0, 0.1], [0.0, 0.0], [0.0, 0.0]))
+bad(I, "fit_mirror", "max_order", lambda: ins.fit_mirror("X", np.linspace(0, 1, 6), np.zeros(6), np.zeros(6), max_order=-1),
+    lambda: ins.fit_mirror("X", np.linspace(0, 1, 6), np.zeros(6), np.zeros(6), max_order=2.5))
+bad(I, "fit_mirror", "position_m", lambda: ins.fit_mirror("X", "abc", np.zeros(6), np.zeros(6)))
+bad(I, "Calibration", "channels", lambda: ins.Calibration(channels={"u": 5}), lambda: ins.Calibration(channels=5))
+bad(I, "Calibration", "mirrors", lambda: ins.Calibration(mirrors={"X": "m"}))
+bad(I, "save_calibration", "calibration", lambda: ins.save_calibration({"u": 1}, "/tmp/never-written.json"))
+bad(I, "calibration_from_dict", "not a sensor calibration", lambda: ins.calibration_from_dict({}), lambda: ins.calibration_from_dict([]))
+bad(I, "load_calibration", "path", lambda: ins.load_calibration(None), lambda: ins.load_calibration(5))
+bad(I, "fringe_report", "optical_fold", lambda: ins.fringe_report(1000, optical_fold=0, temperature_c=20, pressure_pa=101325, humidity_pct=50))
+bad(I, "fringe_report", "counts", lambda: ins.fringe_report(NAN, temperature_c=20, pressure_pa=101325, humidity_pct=50), lambda: ins.fringe_report("10", temperature_c=20, pressure_pa=101325, humidity_pct=50))
+bad(I, "fringe_report", "pressure", lambda: ins.fringe_report(1000, temperature_c=20, pressure_pa=-1, humidity_pct=50))
+bad(I, "fringe_report", "material_temperature_c", lambda: ins.fringe_report(1000, temperature_c=20, pressure_pa=101325, humidity_pct=50, material_temperature_c=[NAN]),
+    lambda: ins.fringe_report(1000, temperature_c=20, pressure_pa=101325, humidity_pct=50, material_temperature_c=5.0))
+bad(I, "fringe_text", "report", lambda: ins.fringe_text({}), lambda: ins.fringe_text(None))
+bad(I, "length_from_fringes", "counts", lambda: ins.length_from_fringes(NAN), lambda: ins.length_from_fringes("a"), lambda: ins.length_from_fringes(None))
+bad(I, "length_from_fringes", "optical_fold", lambda: ins.length_from_fringes(1.0, optical_fold=0), lambda: ins.length_from_fringes(1.0, optical_fold=True), lambda: ins.length_from_fringes(1.0, optical_fold=1.5))
+bad(I, "length_from_fringes", "interpolation", lambda: ins.length_from_fringes(1.0, interpolation=-4))
+bad(I, "length_from_fringes", "wavelength_nm", lambda: ins.length_from_fringes(1.0, wavelength_nm=0.0), lambda: ins.length_from_fringes(1.0, wavelength_nm=-633.0))
+bad(I, "length_from_fringes", "index_of_air", lambda: ins.length_from_fringes(1.0, index_of_air=0.5), lambda: ins.length_from_fringes(1.0, index_of_air=NAN))
+bad(I, "length_from_fringes", "do not match", lambda: ins.length_from_fringes([1.0, 2.0], wavelength_nm=[633.0] * 3))
+bad(I, "fringes_from_length", "length_m", lambda: ins.fringes_from_length(INF), lambda: ins.fringes_from_length("a"))
+bad(I, "fringes_from_length", "wavelength_nm", lambda: ins.fringes_from_length(1.0, wavelength_nm=0.0))
+bad(I, "fringes_from_length", "optical_fold", lambda: ins.fringes_from_length(1.0, optical_fold=0))
+bad(I, "normalise_to_20c", "length_m", lambda: ins.normalise_to_20c(NAN, 20.0))
+bad(I, "normalise_to_20c", "material_temperature_c", lambda: ins.normalise_to_20c(1.0, NAN), lambda: ins.normalise_to_20c(1.0, -300.0), lambda: ins.normalise_to_20c(1.0, []))
+bad(I, "normalise_to_20c", "expansion_per_k", lambda: ins.normalise_to_20c(1.0, 21.0, expansion_per_k=NAN), lambda: ins.normalise_to_20c(1.0, 21.0, expansion_per_k="steel"))
+bad(I, "normalise_to_20c", "do not match", lambda: ins.normalise_to_20c([1.0, 2.0], [20.0, 21.0, 22.0]))
+bad(I, "compensated_length", "reading_m", lambda: ins.compensated_length(NAN, air_temperature_c=20, pressure_pa=101325, humidity_pct=50), lambda: ins.compensated_length(None, air_temperature_c=20, pressure_pa=101325, humidity_pct=50))
+bad(I, "compensated_length", "pressure", lambda: ins.compensated_length(1.0, air_temperature_c=20, pressure_pa=0, humidity_pct=50))
+bad(I, "compensated_length", "humidity", lambda: ins.compensated_length(1.0, air_temperature_c=20, pressure_pa=101325, humidity_pct=150))
+bad(I, "compensated_length", "do not match", lambda: ins.compensated_length([1.0, 2.0], air_temperature_c=[20, 21, 22], pressure_pa=101325, humidity_pct=50))
+bad(I, "compensated_length", "material", lambda: ins.compensated_length(1.0, air_temperature_c=20, pressure_pa=101325, humidity_pct=50, material_temperature_c=NAN))
+bad(I, "dead_path_error", "dead_path_m", lambda: ins.dead_path_error(NAN, index_at_datum=1.0003, index_now=1.0002))
+bad(I, "dead_path_error", "index_now", lambda: ins.dead_path_error(0.1, index_at_datum=1.0003, index_now=0.0), lambda: ins.dead_path_error(0.1, index_at_datum=1.0003, index_now=0.5))
+bad(I, "dead_path_error", "index_at_datum", lambda: ins.dead_path_error(0.1, index_at_datum="n", index_now=1.0))
+bad(I, "dead_path_error", "do not match", lambda: ins.dead_path_error([0.1, 0.2], index_at_datum=[1.0, 1.0, 1.0], index_now=1.0))
+bad(I, "cosine_error", "length_m", lambda: ins.cosine_error(NAN, 0.001), lambda: ins.cosine_error("1", 0.001))
+bad(I, "cosine_error", "misalignment_rad", lambda: ins.cosine_error(1.0, INF))
+bad(I, "cosine_error", "do not match", lambda: ins.cosine_error([1.0, 2.0], [0.1, 0.2, 0.3]))
+bad(I, "misalignment_for_cosine_error", "relative", lambda: ins.misalignment_for_cosine_error(NAN), lambda: ins.misalignment_for_cosine_error(-0.1), lambda: ins.misalignment_for_cosine_error(3.0))
+bad(I, "abbe_error", "arm_m", lambda: ins.abbe_error(NAN, 0.001), lambda: ins.abbe_error(None, 0.001))
+bad(I, "abbe_error", "angle_rad", lambda: ins.abbe_error(0.1, INF))
+bad(I, "abbe_error", "do not match", lambda: ins.abbe_error([0.1, 0.2], [0.1, 0.2, 0.3]))
+for _rot in ("rotation_x", "rotation_y", "rotation_z"):
+    bad(I, _rot, "angle_rad", lambda _f=getattr(ins, _rot): _f(NAN), lambda _f=getattr(ins, _rot): _f("a"), lambda _f=getattr(ins, _rot): _f(None))
+bad(I, "rotation_xyz", "rx_rad", lambda: ins.rotation_xyz(NAN, 0.0, 0.0))
+bad(I, "rotation_xyz", "rz_rad", lambda: ins.rotation_xyz(0.0, 0.0, "a"))
+bad(I, "rotation_xyz", "do not match", lambda: ins.rotation_xyz([0.0, 0.1], [0.0, 0.1, 0.2], 0.0))
+bad(I, "reflection_matrix", "normal", lambda: ins.reflection_matrix([0, 0, 0]), lambda: ins.reflection_matrix([NAN, 0, 1]), lambda: ins.reflection_matrix([0, 1]), lambda: ins.reflection_matrix("z"))
+bad(I, "reflect", "directions", lambda: ins.reflect([[1, 0]], [0, 0, 1]), lambda: ins.reflect([NAN, 0, 1], [0, 0, 1]), lambda: ins.reflect("x", [0, 0, 1]))
+bad(I, "reflect", "normal", lambda: ins.reflect([1, 0, 0], [0, 0, 0]))
+bad(I, "refract", "index_ratio", lambda: ins.refract([1, 0, 0], [1, 0, 0], 0.0), lambda: ins.refract([1, 0, 0], [1, 0, 0], NAN), lambda: ins.refract([1, 0, 0], [1, 0, 0], "glass"))
+bad(I, "refract", "directions", lambda: ins.refract([1, 0], [1, 0, 0], 1.5))
+bad(I, "refract", "normal", lambda: ins.refract([1, 0, 0], [0, 0, 0], 1.5))
+bad(I, "Face", "face kind", lambda: ins.Face([0, 0, 1], P3, "absorb"))
+bad(I, "Face", "normal", lambda: ins.Face([0, 0], P3, "reflect"), lambda: ins.Face([0, 0, 0], P3, "reflect"))
+bad(I, "Face", "point_m", lambda: ins.Face([0, 0, 1], [0, 0], "reflect"), lambda: ins.Face([0, 0, 1], [NAN, 0, 0], "reflect"))
+_face = ins.Face([0, 0, 1], P3, "reflect")
+bad(I, "Prism", "index", lambda: ins.Prism((_face,), 0.5), lambda: ins.Prism((_face,), "glass"), lambda: ins.Prism((_face,), NAN))
+bad(I, "Prism", "face", lambda: ins.Prism((), 1.5), lambda: ins.Prism(("a",), 1.5))
+bad(I, "Prism", "pivot_m", lambda: ins.Prism((_face,), 1.5, pivot_m=[0, 0]), lambda: ins.Prism((_face,), 1.5, pivot_m=[NAN, 0, 0]))
+bad(I, "Prism", "rotation", lambda: ins.Prism((_face,), 1.5).rotated(np.eye(2)))
+bad(I, "Prism", "offset_m", lambda: ins.Prism((_face,), 1.5).translated([NAN, 0, 0]))
+bad(I, "trace", "prism", lambda: ins.trace("prism", P3, [0, 0, 1]))
+bad(I, "trace", "origins_m", lambda: ins.trace(ins.pentaprism(), [NAN, 0, 0], [0, 0, 1]), lambda: ins.trace(ins.pentaprism(), [0, 0], [0, 0, 1]))
+bad(I, "trace", "directions", lambda: ins.trace(ins.pentaprism(), P3, [0, 0, 0]))
+bad(I, "trace", "ambient_index", lambda: ins.trace(ins.pentaprism(), P3, [1, 0, 0], ambient_index=0.0), lambda: ins.trace(ins.pentaprism(), P3, [1, 0, 0], ambient_index=NAN))
+bad(I, "angle_between", "a", lambda: ins.angle_between([0, 0], [0, 0, 1]), lambda: ins.angle_between([0, 0, 0], [0, 0, 1]), lambda: ins.angle_between([NAN, 0, 1], [0, 0, 1]))
+bad(I, "angle_between", "b", lambda: ins.angle_between([0, 0, 1], "b"))
+bad(I, "pentaprism", "index", lambda: ins.pentaprism(index=0.9), lambda: ins.pentaprism(index=NAN), lambda: ins.pentaprism(index="bk7"))
+bad(I, "pentaprism", "size_m", lambda: ins.pentaprism(size_m=0.0), lambda: ins.pentaprism(size_m=NAN), lambda: ins.pentaprism(size_m=None))
+bad(I, "pentaprism", "mirror_angle_error_rad", lambda: ins.pentaprism(mirror_angle_error_rad=NAN), lambda: ins.pentaprism(mirror_angle_error_rad="small"))
+bad(I, "mirror_angle_error_for_deviation", "deviation_error_rad", lambda: ins.mirror_angle_error_for_deviation(NAN), lambda: ins.mirror_angle_error_for_deviation("a"))
+bad(I, "mirror_angle_error_for_deviation", "index", lambda: ins.mirror_angle_error_for_deviation(0.0, index=0.5))
+bad(I, "pentaprism_deviation", "rx_rad", lambda: ins.pentaprism_deviation(NAN, 0.0, 0.0), lambda: ins.pentaprism_deviation("a", 0.0, 0.0))
+bad(I, "pentaprism_deviation", "index", lambda: ins.pentaprism_deviation(0.0, 0.0, 0.0, index=0.0))
+bad(I, "pentaprism_deviation", "translation_m", lambda: ins.pentaprism_deviation(0.0, 0.0, 0.0, translation_m=[0.0, 0.0]), lambda: ins.pentaprism_deviation(0.0, 0.0, 0.0, translation_m=[NAN, 0, 0]))
+bad(I, "pentaprism_deviation", "deviation_error_rad", lambda: ins.pentaprism_deviation(0.0, 0.0, 0.0, deviation_error_rad=NAN))
+bad(I, "pentaprism_deviation", "do not match", lambda: ins.pentaprism_deviation([0.0, 0.1], [0.0, 0.1, 0.2], 0.0))
+bad(I, "pentaprism_sensitivity", "rotation_rad", lambda: ins.pentaprism_sensitivity([]), lambda: ins.pentaprism_sensitivity([NAN, 0.0]), lambda: ins.pentaprism_sensitivity([[0.0, 0.1]]))
+bad(I, "pentaprism_sensitivity", "translation_m", lambda: ins.pentaprism_sensitivity([0.0, 0.001], []), lambda: ins.pentaprism_sensitivity([0.0, 0.001], [INF]))
+bad(I, "pentaprism_sensitivity", "index", lambda: ins.pentaprism_sensitivity([0.0, 0.001], index=0.0))
+bad(I, "render_report", "template", lambda: ins.render_report("instruments/none.txt.j2"), lambda: ins.render_report(None))
+bad(I, "straightness_from_psd", "shift_m", lambda: ins.straightness_from_psd([NAN]), lambda: ins.straightness_from_psd("a"), lambda: ins.straightness_from_psd(None))
+for _fn, _arg in (("angle_from_quadrant", "shift_m"), ("roll_from_autocollimation", "shift_m"), ("quadrant_shift", "angle_rad"), ("autocollimation_shift", "roll_rad")):
+    _f = getattr(ins, _fn)
+    bad(I, _fn, "focal_m", lambda _f=_f: _f([0.001], 0.0), lambda _f=_f: _f([0.001], -0.1), lambda _f=_f: _f([0.001], NAN), lambda _f=_f: _f([0.001], "f"))
+    bad(I, _fn, _arg, lambda _f=_f: _f([NAN], 0.1), lambda _f=_f: _f("x", 0.1))
+bad(I, "SignedComponent", "index", lambda: ins.SignedComponent(7, 1.0), lambda: ins.SignedComponent(-1, 1.0))
+bad(I, "SignedComponent", "sign", lambda: ins.SignedComponent(0, 0.5))
+bad(I, "parse_signed_component", "expected one of", lambda: ins.parse_signed_component("EQX", "X", what="qd_u"), lambda: ins.parse_signed_component(5, "X", what="qd_u"))
+bad(I, "parse_signed_component", "letter", lambda: ins.parse_signed_component("EAX", "Q", what="qd_u"))
+_sc = ins.SignedComponent(3, 1.0)
+bad(I, "SensorHead", "qd_focal_m", lambda: ins.SensorHead("X", "x", (0, 0, 0), (0, 0, 0), 0.0, 0.1, ins.SignedComponent(4, 1.0), ins.SignedComponent(5, 1.0), _sc))
+bad(I, "SensorHead", "psd_point_m", lambda: ins.SensorHead("X", "x", (0, 0, 0), (0, NAN), 0.1, 0.1, ins.SignedComponent(4, 1.0), ins.SignedComponent(5, 1.0), _sc))
+bad(I, "sensor_head_from_dict", "must be a table", lambda: ins.sensor_head_from_dict("X", 5))
+bad(I, "sensor_head_from_dict", "letter", lambda: ins.sensor_head_from_dict("Q", {}))
+bad(I, "sensor_head_from_dict", "qd_focal", lambda: ins.sensor_head_from_dict("X", {"qd_focal_mm": -1.0}), lambda: ins.sensor_head_from_dict("X", {"qd_focal_mm": NAN}))
+
+
+# ---------------------------------------------------------------- the check
+EXEMPT = {
+    # result records: the library fills them with what a function computed; a user reads them and
+    # does not build them, so they take no user values to check
+    "instruments": {"RayTrace", "PentaprismSensitivity"},
+}
+
+
+def _public_callables(room: str) -> set[str]:
+    module = api(room)
+    names = set()
+    for name in module.__all__:
+        value = getattr(module, name)
+        if callable(value) and not (inspect.isclass(value) and issubclass(value, (int, str))):
+            names.add(name)
+    return names
+
+
+def _ids():
+    counts: dict[str, int] = {}
+    for room, name, _, _ in CASES:
+        key = f"{room}.{name}"
+        counts[key] = counts.get(key, 0) + 1
+        yield f"{key}-{counts[key]}"
+
+
+@pytest.mark.parametrize(("room", "name", "call", "words"), CASES, ids=list(_ids()))
+def test_bad_arguments_raise_axiscal_error_naming_them(room, name, call, words):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(AxiscalError) as caught:
+            call()
+    assert words.lower() in caught.value.message.lower(), caught.value.message
+
+
+@pytest.mark.parametrize("room", ROOMS)
+def test_every_public_callable_has_a_bad_argument_case(room):
+    covered = {name for r, name, _, _ in CASES if r == room}
+    missing = sorted(_public_callables(room) - covered - EXEMPT.get(room, set()))
+    assert not missing, f"public callables of axiscal.{room} without a bad-argument case: {missing}"
