@@ -14,11 +14,14 @@ import inspect
 import warnings
 from collections.abc import Callable
 from importlib import import_module
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from axiscal.errors import AxiscalError
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 ROOMS = ("instruments", "straightness", "squareness", "circular", "measurement")
 NAN, INF = float("nan"), float("inf")
@@ -183,6 +186,119 @@ bad(I, "SensorHead", "psd_point_m", lambda: ins.SensorHead("X", "x", (0, 0, 0), 
 bad(I, "sensor_head_from_dict", "must be a table", lambda: ins.sensor_head_from_dict("X", 5))
 bad(I, "sensor_head_from_dict", "letter", lambda: ins.sensor_head_from_dict("Q", {}))
 bad(I, "sensor_head_from_dict", "qd_focal", lambda: ins.sensor_head_from_dict("X", {"qd_focal_mm": -1.0}), lambda: ins.sensor_head_from_dict("X", {"qd_focal_mm": NAN}))
+
+
+# ---------------------------------------------------------------- straightness
+st_ = api("straightness")
+S = "straightness"
+X = np.arange(12) * 1e-3
+Z12 = np.zeros(12)
+RD = st_.ProbeReadings(X, Z12, Z12, Z12, 3e-3, 3e-3)
+LINE = st_.reference_line([0.0, 0.1], [0.0, 1e-6])
+FLAT = lambda p: 0.0 * p  # noqa: E731
+
+
+bad(S, "reference_line", "position_m", lambda: st_.reference_line([0.0, NAN], [0.0, 0.0]), lambda: st_.reference_line("ab", [0.0, 0.0]),
+    lambda: st_.reference_line([[0.0, 1.0]], [[0.0, 1.0]]), lambda: st_.reference_line([0.0, 1e300], [0.0, 0.0]),
+    lambda: st_.reference_line([0.0, 1e-320], [0.0, 1.0]))
+bad(S, "reference_line", "same length", lambda: st_.reference_line([0.0, 1.0, 2.0], [0.0, 1.0]))
+bad(S, "reference_line", "at least 2", lambda: st_.reference_line([], []), lambda: st_.reference_line([0.0], [0.0]))
+bad(S, "reference_line", "distinct positions", lambda: st_.reference_line([1.0, 1.0], [0.0, 1.0]))
+bad(S, "reference_line", "deviation_m", lambda: st_.reference_line([0.0, 1.0], [None, 1.0]), lambda: st_.reference_line([0.0, 1.0], [INF, 1.0]))
+bad(S, "reference_line", "unknown reference", lambda: st_.reference_line([0.0, 1.0], [0.0, 1.0], reference="best"),
+    lambda: st_.reference_line([0.0, 1.0], [0.0, 1.0], reference=None))
+bad(S, "ReferenceLine", "slope", lambda: st_.ReferenceLine(NAN, 0.0, 0.0, "least-squares"), lambda: st_.ReferenceLine("1", 0.0, 0.0, "least-squares"))
+bad(S, "ReferenceLine", "reference", lambda: st_.ReferenceLine(0.0, 0.0, 0.0, "best"))
+bad(S, "ReferenceLine", "position_m", lambda: LINE.residuals([NAN], [0.0]))
+bad(S, "ReferenceLine", "same length", lambda: LINE.residuals([0.0, 1.0], [0.0]))
+bad(S, "ProbeReadings", "position_m", lambda: st_.ProbeReadings([NAN] * 12, Z12, Z12, None, 3e-3), lambda: st_.ProbeReadings("x", Z12, Z12, None, 3e-3),
+    lambda: st_.ProbeReadings(np.zeros((2, 6)), Z12, Z12, None, 3e-3))
+bad(S, "ProbeReadings", "same length", lambda: st_.ProbeReadings(X, Z12, Z12[:5], None, 3e-3), lambda: st_.ProbeReadings(X, Z12, Z12, Z12[:3], 3e-3, 3e-3))
+bad(S, "ProbeReadings", "b_m", lambda: st_.ProbeReadings(X, Z12, [NAN] * 12, None, 3e-3), lambda: st_.ProbeReadings(X, Z12, None, None, 3e-3))
+bad(S, "ProbeReadings", "spacing_ab_m", lambda: st_.ProbeReadings(X, Z12, Z12, None, 0.0), lambda: st_.ProbeReadings(X, Z12, Z12, None, NAN),
+    lambda: st_.ProbeReadings(X, Z12, Z12, None, "3"), lambda: st_.ProbeReadings(X, Z12, Z12, None, True))
+bad(S, "ProbeReadings", "spacing_bc_m", lambda: st_.ProbeReadings(X, Z12, Z12, Z12, 3e-3, "3"))
+bad(S, "simulate_readings", "position_m", lambda: st_.simulate_readings([], FLAT, FLAT, spacing_ab_m=1e-3), lambda: st_.simulate_readings([NAN], FLAT, FLAT, spacing_ab_m=1e-3))
+bad(S, "simulate_readings", "spacing_ab_m", lambda: st_.simulate_readings(X, FLAT, FLAT, spacing_ab_m=-1e-3), lambda: st_.simulate_readings(X, FLAT, FLAT, spacing_ab_m=None))
+bad(S, "simulate_readings", "spacing_bc_m", lambda: st_.simulate_readings(X, FLAT, FLAT, spacing_ab_m=1e-3, spacing_bc_m=0.0))
+bad(S, "simulate_readings", "noise_m", lambda: st_.simulate_readings(X, FLAT, FLAT, spacing_ab_m=1e-3, noise_m=-1.0), lambda: st_.simulate_readings(X, FLAT, FLAT, spacing_ab_m=1e-3, noise_m=NAN))
+bad(S, "simulate_readings", "offsets_m", lambda: st_.simulate_readings(X, FLAT, FLAT, spacing_ab_m=1e-3, offsets_m=(0.0, 0.0)))
+bad(S, "simulate_readings", "profile", lambda: st_.simulate_readings(X, "flat", FLAT, spacing_ab_m=1e-3), lambda: st_.simulate_readings(X, lambda p: p[:2], FLAT, spacing_ab_m=1e-3),
+    lambda: st_.simulate_readings(X, lambda p: p * NAN, FLAT, spacing_ab_m=1e-3))
+bad(S, "simulate_readings", "motion", lambda: st_.simulate_readings(X, FLAT, None, spacing_ab_m=1e-3))
+bad(S, "simulate_readings", "rng", lambda: st_.simulate_readings(X, FLAT, FLAT, spacing_ab_m=1e-3, noise_m=1e-9, rng=5))
+bad(S, "uneven_step", "position_m", lambda: st_.uneven_step([0.0]), lambda: st_.uneven_step([]), lambda: st_.uneven_step([0.0, NAN]), lambda: st_.uneven_step("ab"))
+bad(S, "reversal", "same positions", lambda: st_.reversal([0.0, 1.0], [0.0, 1.0], [0.0]))
+bad(S, "reversal", "position_m", lambda: st_.reversal([], [], []), lambda: st_.reversal([NAN], [0.0], [0.0]))
+bad(S, "reversal", "normal_m", lambda: st_.reversal([0.0], [INF], [0.0]), lambda: st_.reversal([0.0], "a", [0.0]))
+for _fn in ("sequential_two_point", "sequential_three_point", "fine_sequential_three_point", "generalized_two_point", "frequency_domain", "combined"):
+    bad(S, _fn, "readings", lambda _f=getattr(st_, _fn): _f({"position_m": X}), lambda _f=getattr(st_, _fn): _f(None))
+bad(S, "sequential_two_point", "yaw_rad", lambda: st_.sequential_two_point(RD, yaw_rad=[NAN] * 12), lambda: st_.sequential_two_point(RD, yaw_rad=[0.0] * 3))
+bad(S, "sequential_two_point", "at least 2", lambda: st_.sequential_two_point(st_.ProbeReadings([0.0], [0.0], [0.0], None, 1e-3)))
+bad(S, "sequential_three_point", "equal spacings", lambda: st_.sequential_three_point(st_.ProbeReadings(X, Z12, Z12, Z12, 3e-3, NAN)))
+bad(S, "fine_sequential_three_point", "positive, finite", lambda: st_.fine_sequential_three_point(st_.ProbeReadings(X, Z12, Z12, Z12, 2e-3, -1e-3)))
+bad(S, "frequency_domain", "min_gain", lambda: st_.frequency_domain(RD, min_gain=NAN), lambda: st_.frequency_domain(RD, min_gain="0.1"), lambda: st_.frequency_domain(RD, min_gain=1.0))
+bad(S, "frequency_domain", "probes", lambda: st_.frequency_domain(RD, probes=4), lambda: st_.frequency_domain(RD, probes="3"))
+bad(S, "frequency_domain", "parabola", lambda: st_.frequency_domain(RD, parabola="no"))
+bad(S, "combined", "calibration_m", lambda: st_.combined(RD, calibration_m=(1.0,)), lambda: st_.combined(RD, calibration_m=(NAN, 1.0)), lambda: st_.combined(RD, calibration_m=(0.01, 0.0)))
+bad(S, "separate", "unknown separation method", lambda: st_.separate(RD, method="magic"), lambda: st_.separate(RD, method=None))
+bad(S, "separate", "readings", lambda: st_.separate("readings.csv", method="stp"))
+bad(S, "separate", "probes", lambda: st_.separate(RD, method="frequency", probes=0))
+bad(S, "gtp_amplitude_response", "wavelength_m", lambda: st_.gtp_amplitude_response(0.0, spacing_m=1e-3, step_m=1e-4), lambda: st_.gtp_amplitude_response([NAN], spacing_m=1e-3, step_m=1e-4))
+bad(S, "gtp_amplitude_response", "spacing_m", lambda: st_.gtp_amplitude_response(0.1, spacing_m=NAN, step_m=1e-4), lambda: st_.gtp_amplitude_response(0.1, spacing_m=0.0, step_m=1e-4))
+bad(S, "gtp_amplitude_response", "step_m", lambda: st_.gtp_amplitude_response(0.1, spacing_m=1e-3, step_m=-1.0), lambda: st_.gtp_amplitude_response(0.1, spacing_m=1e-3, step_m=0.1))
+bad(S, "stp_offset_error", "n (chain", lambda: st_.stp_offset_error([NAN], 1e-6), lambda: st_.stp_offset_error([-1], 1e-6), lambda: st_.stp_offset_error("n", 1e-6))
+bad(S, "stp_offset_error", "delta1_m", lambda: st_.stp_offset_error([1], NAN), lambda: st_.stp_offset_error([1], None))
+bad(S, "strp_offset_error", "delta2_m", lambda: st_.strp_offset_error([1], 0.0, INF))
+bad(S, "strp_offset_error", "n (chain", lambda: st_.strp_offset_error([NAN], 0.0, 0.0))
+bad(S, "strp_yaw_offset_error", "spacing_m", lambda: st_.strp_yaw_offset_error([1], 0.0, 0.0, spacing_m=0.0), lambda: st_.strp_yaw_offset_error([1], 0.0, 0.0, spacing_m=NAN))
+bad(S, "strp_yaw_offset_error", "delta1_m", lambda: st_.strp_yaw_offset_error([1], "x", 0.0, spacing_m=1e-3))
+bad(S, "stp_yaw_neglect_error", "yaw_rad", lambda: st_.stp_yaw_neglect_error([NAN], spacing_m=1e-3), lambda: st_.stp_yaw_neglect_error([[0.0]], spacing_m=1e-3))
+bad(S, "stp_yaw_neglect_error", "spacing_m", lambda: st_.stp_yaw_neglect_error([0.0], spacing_m=-1e-3))
+bad(S, "stp_residual_yaw_error", "mean_rad", lambda: st_.stp_residual_yaw_error([1], spacing_m=1e-3, mean_rad=NAN, slope_rad_per_step=0.0))
+bad(S, "stp_residual_yaw_error", "slope_rad_per_step", lambda: st_.stp_residual_yaw_error([1], spacing_m=1e-3, mean_rad=0.0, slope_rad_per_step="0"))
+bad(S, "stp_residual_yaw_error", "spacing_m", lambda: st_.stp_residual_yaw_error([1], spacing_m=0.0, mean_rad=0.0, slope_rad_per_step=0.0))
+for _fn in ("stp_noise_std", "strp_noise_std"):
+    bad(S, _fn, "noise_m", lambda _f=getattr(st_, _fn): _f([1], -1e-9), lambda _f=getattr(st_, _fn): _f([1], NAN))
+    bad(S, _fn, "n (chain", lambda _f=getattr(st_, _fn): _f([-2], 1e-9), lambda _f=getattr(st_, _fn): _f([INF], 1e-9))
+bad(S, "gtp_noise_std", "steps_per_spacing", lambda: st_.gtp_noise_std([1], 1e-9, steps_per_spacing=0), lambda: st_.gtp_noise_std([1], 1e-9, steps_per_spacing=2.5))
+bad(S, "gtp_noise_std", "noise_m", lambda: st_.gtp_noise_std([1], NAN, steps_per_spacing=3))
+bad(S, "noise_propagation", "method", lambda: st_.noise_propagation(RD, method="magic", noise_m=1e-9))
+bad(S, "noise_propagation", "noise_m", lambda: st_.noise_propagation(RD, method="stp", noise_m=0.0), lambda: st_.noise_propagation(RD, method="stp", noise_m=NAN))
+bad(S, "noise_propagation", "trials", lambda: st_.noise_propagation(RD, method="stp", noise_m=1e-9, trials=0), lambda: st_.noise_propagation(RD, method="stp", noise_m=1e-9, trials=1.5))
+bad(S, "noise_propagation", "rng", lambda: st_.noise_propagation(RD, method="stp", noise_m=1e-9, trials=3, rng=1))
+bad(S, "noise_propagation", "readings", lambda: st_.noise_propagation(None, method="stp", noise_m=1e-9))
+bad(S, "Profile", "position_m", lambda: st_.Profile([NAN, 0.0], [0.0, 0.0], None, "p.csv", (2, 3)), lambda: st_.Profile([0.0, 1.0], [0.0], None, "p.csv", (2, 3)))
+bad(S, "Profile", "yaw_rad", lambda: st_.Profile([0.0, 1.0], [0.0, 0.0], "yaw", "p.csv", (2, 3)), lambda: st_.Profile([0.0, 1.0], [0.0, 0.0], [0.0], "p.csv", (2, 3)))
+bad(S, "read_profile", "path", lambda: st_.read_profile(None), lambda: st_.read_profile(3))
+bad(S, "read_profile", "increasing", lambda: st_.read_profile(EXAMPLES / "straightness_profile.csv", increasing="yes"))
+bad(S, "read_probe_readings", "path", lambda: st_.read_probe_readings(None, spacing_ab_m=1e-3))
+bad(S, "read_probe_readings", "spacing_ab_m", lambda: st_.read_probe_readings(EXAMPLES / "probe_readings.csv", spacing_ab_m=NAN),
+    lambda: st_.read_probe_readings(EXAMPLES / "probe_readings.csv", spacing_ab_m="5"))
+bad(S, "read_reversal_runs", "path", lambda: st_.read_reversal_runs(None, EXAMPLES / "straightness_profile.csv"))
+bad(S, "StraightnessEvaluation", "profile", lambda: st_.StraightnessEvaluation("p.csv", LINE))
+bad(S, "StraightnessEvaluation", "line", lambda: st_.StraightnessEvaluation(st_.read_profile(EXAMPLES / "straightness_profile.csv"), None))
+bad(S, "evaluate_straightness_file", "unknown reference", lambda: st_.evaluate_straightness_file(EXAMPLES / "straightness_profile.csv", reference="best"))
+bad(S, "evaluate_straightness_file", "path", lambda: st_.evaluate_straightness_file(None))
+bad(S, "separation_columns", "result", lambda: st_.separation_columns(None), lambda: st_.separation_columns(RD))
+bad(S, "SeparationRun", "separation", lambda: st_.SeparationRun(None, "", {}))
+bad(S, "separate_file", "unknown separation method", lambda: st_.separate_file(EXAMPLES / "probe_readings.csv", method="magic"))
+bad(S, "separate_file", "spacing_ab_m", lambda: st_.separate_file(EXAMPLES / "probe_readings.csv", spacing_ab_m=-1.0))
+bad(S, "separate_file", "readings_path", lambda: st_.separate_file(None))
+bad(S, "SimulatedReadings", "readings", lambda: st_.SimulatedReadings(None, "", {}))
+bad(S, "simulate_probe_readings", "spacing_ab_m", lambda: st_.simulate_probe_readings(EXAMPLES / "separation_profile.csv", EXAMPLES / "separation_motion.csv", spacing_ab_m=NAN, step_m=1e-3))
+bad(S, "simulate_probe_readings", "step_m", lambda: st_.simulate_probe_readings(EXAMPLES / "separation_profile.csv", EXAMPLES / "separation_motion.csv", spacing_ab_m=5e-3, step_m=0.0))
+bad(S, "simulate_probe_readings", "probes", lambda: st_.simulate_probe_readings(EXAMPLES / "separation_profile.csv", EXAMPLES / "separation_motion.csv", spacing_ab_m=5e-3, step_m=1e-3, probes=5))
+bad(S, "simulate_probe_readings", "noise_m", lambda: st_.simulate_probe_readings(EXAMPLES / "separation_profile.csv", EXAMPLES / "separation_motion.csv", spacing_ab_m=5e-3, step_m=1e-3, noise_m=-1.0))
+bad(S, "simulate_probe_readings", "seed", lambda: st_.simulate_probe_readings(EXAMPLES / "separation_profile.csv", EXAMPLES / "separation_motion.csv", spacing_ab_m=5e-3, step_m=1e-3, seed="a"))
+bad(S, "simulate_probe_readings", "profile_path", lambda: st_.simulate_probe_readings(None, EXAMPLES / "separation_motion.csv", spacing_ab_m=5e-3, step_m=1e-3))
+bad(S, "plot_straightness", "position_m", lambda: st_.plot_straightness("/tmp/never.png", [NAN, 0.0], [0.0, 0.0], LINE))
+bad(S, "plot_straightness", "same length", lambda: st_.plot_straightness("/tmp/never.png", [0.0, 1.0], [0.0], LINE))
+bad(S, "plot_straightness", "line", lambda: st_.plot_straightness("/tmp/never.png", [0.0, 1.0], [0.0, 0.0], None))
+bad(S, "plot_straightness", "path", lambda: st_.plot_straightness(None, [0.0, 1.0], [0.0, 0.0], LINE))
+bad(S, "plot_separation", "result", lambda: st_.plot_separation("/tmp/never.png", None))
+bad(S, "plot_separation", "path", lambda: st_.plot_separation(None, st_.reversal([0.0, 1.0], [0.0, 0.0], [0.0, 0.0])))
+bad(S, "render_report", "template", lambda: st_.render_report("none.txt.j2"), lambda: st_.render_report(None), lambda: st_.render_report("straightness.txt.j2"))
 
 
 # ---------------------------------------------------------------- the check

@@ -184,6 +184,7 @@ def check_array(
     min_len: int = 0,
     last: int | None = None,
     finite: bool = True,
+    limit: float | None = None,
 ) -> np.ndarray:
     """``values`` as a float array, refused when not numbers, of the wrong shape or not finite.
 
@@ -203,6 +204,9 @@ def check_array(
         The length required of the last dimension (``3`` for points in space).
     finite : bool
         Refuse NaN and infinity (default).
+    limit : float, optional
+        The largest magnitude accepted: beyond it a value has no physical meaning and would
+        overflow the arithmetic that follows.
 
     Returns
     -------
@@ -248,6 +252,8 @@ def check_array(
         where = int(np.argmax(~np.isfinite(array.ravel())))
         at = f" (entry {where})" if array.ndim else ""
         raise AxiscalError(f"{name} must hold finite numbers{of}, not {array.ravel()[where]}{at}")
+    if limit is not None and array.size and np.nanmax(np.abs(array)) > limit:
+        raise AxiscalError(f"{name} holds {np.nanmax(np.abs(array)):g}, beyond any physical value (more than {limit:g}{' ' + unit if unit else ''})")
     return array
 
 
