@@ -301,11 +301,93 @@ bad(S, "plot_separation", "path", lambda: st_.plot_separation(None, st_.reversal
 bad(S, "render_report", "template", lambda: st_.render_report("none.txt.j2"), lambda: st_.render_report(None), lambda: st_.render_report("straightness.txt.j2"))
 
 
+# ---------------------------------------------------------------- squareness
+sq = api("squareness")
+Q = "squareness"
+XS = [0.0, 0.1, 0.2]
+YS = [0.0, 1e-6, 0.0]
+CMM = sq.CmmSquareness(1e-4, 2e-4, -1e-4)
+PTS = np.zeros((2, 3))
+FIT = sq.squareness(XS, YS, XS, YS)
+
+bad(Q, "iso_term", "unknown plane", lambda: sq.iso_term("XW"), lambda: sq.iso_term(None), lambda: sq.iso_term(5))
+bad(Q, "iso_from_included_angle", "squareness_rad", lambda: sq.iso_from_included_angle(NAN, plane="XY"), lambda: sq.iso_from_included_angle("1", plane="XY"))
+bad(Q, "iso_from_included_angle", "unknown plane", lambda: sq.iso_from_included_angle(0.0, plane="AB"))
+bad(Q, "included_angle_from_iso", "iso_value_rad", lambda: sq.included_angle_from_iso(INF, plane="XY"), lambda: sq.included_angle_from_iso(None, plane="XY"))
+bad(Q, "included_angle_from_iso", "unknown plane", lambda: sq.included_angle_from_iso(0.0, plane=""))
+bad(Q, "squareness_from_slopes", "slope_first", lambda: sq.squareness_from_slopes(NAN, 0.0), lambda: sq.squareness_from_slopes("0", 0.0), lambda: sq.squareness_from_slopes(True, 0.0))
+bad(Q, "squareness_from_slopes", "slope_second", lambda: sq.squareness_from_slopes(0.0, INF))
+bad(Q, "squareness_from_slopes", "prism_deviation_rad", lambda: sq.squareness_from_slopes(0.0, 0.0, prism_deviation_rad=NAN))
+bad(Q, "squareness_from_slopes", "not a pentaprism", lambda: sq.squareness_from_slopes(0.0, 0.0, prism_deviation_rad=0.1))
+bad(Q, "squareness_from_slopes", "parallel", lambda: sq.squareness_from_slopes(1e6, 1e6))
+bad(Q, "squareness_from_slopes", "convention", lambda: sq.squareness_from_slopes(0.0, 0.0, convention="left"), lambda: sq.squareness_from_slopes(0.0, 0.0, convention=None))
+bad(Q, "squareness_from_slopes", "unknown plane", lambda: sq.squareness_from_slopes(0.0, 0.0, plane="QQ"))
+bad(Q, "squareness", "first_position_m", lambda: sq.squareness([0.0], [0.0], XS, YS), lambda: sq.squareness([0.0, NAN], [0.0, 0.0], XS, YS), lambda: sq.squareness(None, YS, XS, YS))
+bad(Q, "squareness", "second_deviation_m", lambda: sq.squareness(XS, YS, XS, [0.0, "a", 0.0]))
+bad(Q, "squareness", "same length", lambda: sq.squareness(XS, YS, XS, YS[:2]))
+bad(Q, "squareness", "unknown reference", lambda: sq.squareness(XS, YS, XS, YS, reference="best"))
+bad(Q, "squareness", "unknown plane", lambda: sq.squareness(XS, YS, XS, YS, plane="AB"))
+bad(Q, "prism_reversal", "alpha1_rad", lambda: sq.prism_reversal(NAN, 0.0), lambda: sq.prism_reversal("a", 0.0))
+bad(Q, "prism_reversal", "alpha2_rad", lambda: sq.prism_reversal(0.0, None))
+bad(Q, "prism_deviation_from_wedge", "alpha1_rad", lambda: sq.prism_deviation_from_wedge(INF, 0.0))
+bad(Q, "prism_deviation_from_wedge", "alpha2_rad", lambda: sq.prism_deviation_from_wedge(0.0, [1.0]))
+bad(Q, "psd_angular_resolution", "linear_resolution_m", lambda: sq.psd_angular_resolution(0.0, 1.0), lambda: sq.psd_angular_resolution(NAN, 1.0))
+bad(Q, "psd_angular_resolution", "travel_m", lambda: sq.psd_angular_resolution(1e-6, -1.0), lambda: sq.psd_angular_resolution(1e-6, "1"))
+bad(Q, "SquarenessEvaluation", "result", lambda: sq.SquarenessEvaluation(None, None, None))
+bad(Q, "SquarenessEvaluation", "first", lambda: sq.SquarenessEvaluation(FIT, "x.csv", "y.csv"))
+bad(Q, "squareness_from_files", "least-squares or end-points", lambda: sq.squareness_from_files(EXAMPLES / "squareness_x.csv", EXAMPLES / "squareness_y.csv", reference="minimum-zone"))
+bad(Q, "squareness_from_files", "first_path", lambda: sq.squareness_from_files(None, EXAMPLES / "squareness_y.csv"))
+bad(Q, "squareness_from_files", "unknown plane", lambda: sq.squareness_from_files(EXAMPLES / "squareness_x.csv", EXAMPLES / "squareness_y.csv", plane="XW"))
+bad(Q, "squareness_from_files", "prism_deviation_rad", lambda: sq.squareness_from_files(EXAMPLES / "squareness_x.csv", EXAMPLES / "squareness_y.csv", prism_deviation_rad=NAN))
+bad(Q, "PentaprismStudy", "table", lambda: sq.PentaprismStudy(None))
+bad(Q, "pentaprism_study", "range_rad", lambda: sq.pentaprism_study(range_rad=0.0), lambda: sq.pentaprism_study(range_rad=NAN), lambda: sq.pentaprism_study(range_rad="1"))
+bad(Q, "pentaprism_study", "steps", lambda: sq.pentaprism_study(steps=1), lambda: sq.pentaprism_study(steps=2.5), lambda: sq.pentaprism_study(steps=True))
+bad(Q, "pentaprism_study", "index", lambda: sq.pentaprism_study(index=0.5), lambda: sq.pentaprism_study(index=NAN))
+bad(Q, "CmmSquareness", "xy_rad", lambda: sq.CmmSquareness(NAN, 0.0, 0.0), lambda: sq.CmmSquareness("1", 0.0, 0.0))
+bad(Q, "CmmSquareness", "yz_rad", lambda: sq.CmmSquareness(0.0, 0.0, None))
+bad(Q, "CmmSquareness", "arc minutes", lambda: sq.CmmSquareness.checked(0.0, 0.1, 0.0))
+bad(Q, "CmmSquareness", "unknown squareness term", lambda: sq.CmmSquareness.from_iso({"EC0X": 1e-5}))
+bad(Q, "CmmSquareness", "EC0Y", lambda: sq.CmmSquareness.from_iso({"EC0Y": "1"}), lambda: sq.CmmSquareness.from_iso({"EC0Y": NAN}))
+bad(Q, "CmmSquareness", "terms", lambda: sq.CmmSquareness.from_iso(None))
+bad(Q, "compensate", "points_m", lambda: sq.compensate(np.zeros((2, 2)), CMM), lambda: sq.compensate([[NAN, 0, 0]], CMM), lambda: sq.compensate("a", CMM))
+bad(Q, "compensate", "squareness", lambda: sq.compensate(PTS, (0.0, 0.0, 0.0)))
+bad(Q, "readings_for", "points_m", lambda: sq.readings_for(np.zeros((2, 4)), CMM), lambda: sq.readings_for([[INF, 0, 0]], CMM))
+bad(Q, "readings_for", "squareness", lambda: sq.readings_for(PTS, None))
+bad(Q, "psd_squareness", "position_m", lambda: sq.psd_squareness([0.0], [0.0]), lambda: sq.psd_squareness([0.0, NAN], [0.0, 0.0]), lambda: sq.psd_squareness(None, [0.0]))
+bad(Q, "psd_squareness", "reading_m", lambda: sq.psd_squareness([0.0, 1.0], [INF, 0.0]))
+bad(Q, "psd_squareness", "prism_deviation_rad", lambda: sq.psd_squareness([0.0, 1.0], [0.0, 0.0], prism_deviation_rad=NAN))
+bad(Q, "psd_squareness", "unknown reference", lambda: sq.psd_squareness([0.0, 1.0], [0.0, 0.0], reference="best"))
+bad(Q, "squareness_from_psd_runs", "XY, XZ and YZ", lambda: sq.squareness_from_psd_runs({"XY": (XS, YS)}))
+bad(Q, "squareness_from_psd_runs", "runs", lambda: sq.squareness_from_psd_runs(None), lambda: sq.squareness_from_psd_runs({"XY": (XS, YS), "XZ": XS, "YZ": (XS, YS)}))
+bad(Q, "least_squares_plane", "at least 3", lambda: sq.least_squares_plane(PTS))
+bad(Q, "least_squares_plane", "points_m", lambda: sq.least_squares_plane([[0, 0, NAN]] * 3), lambda: sq.least_squares_plane(None), lambda: sq.least_squares_plane(np.zeros((3, 2))))
+bad(Q, "least_squares_plane", "one line", lambda: sq.least_squares_plane([[0, 0, 0], [1, 0, 0], [2, 0, 0]]))
+bad(Q, "gauge_block_length", "points_m", lambda: sq.gauge_block_length([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [NAN, 0, 0], [0, 0, 1]), lambda: sq.gauge_block_length([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [0, 0], [0, 0, 1]))
+bad(Q, "simulate_gauge_block", "nominal_m", lambda: sq.simulate_gauge_block(CMM, 0.0, (1, 0, 0)), lambda: sq.simulate_gauge_block(CMM, NAN, (1, 0, 0)))
+bad(Q, "simulate_gauge_block", "axis", lambda: sq.simulate_gauge_block(CMM, 1e-3, (0, 0, 0)), lambda: sq.simulate_gauge_block(CMM, 1e-3, (1, 0)), lambda: sq.simulate_gauge_block(CMM, 1e-3, "x"))
+bad(Q, "simulate_gauge_block", "centre_m", lambda: sq.simulate_gauge_block(CMM, 1e-3, (1, 0, 0), centre_m=(NAN, 0, 0)))
+bad(Q, "simulate_gauge_block", "end_offset_m", lambda: sq.simulate_gauge_block(CMM, 1e-3, (1, 0, 0), end_offset_m=(0, 0)))
+bad(Q, "simulate_gauge_block", "probe_rectangle_m", lambda: sq.simulate_gauge_block(CMM, 1e-3, (1, 0, 0), probe_rectangle_m=(0.02,)), lambda: sq.simulate_gauge_block(CMM, 1e-3, (1, 0, 0), probe_rectangle_m=(0.0, 0.01)))
+bad(Q, "simulate_gauge_block", "squareness", lambda: sq.simulate_gauge_block(None, 1e-3, (1, 0, 0)))
+bad(Q, "simulate_gauge_block", "compensation", lambda: sq.simulate_gauge_block(CMM, 1e-3, (1, 0, 0), compensation=5))
+bad(Q, "compensate_file", "points_path", lambda: sq.compensate_file(None, CMM))
+bad(Q, "compensate_file", "squareness", lambda: sq.compensate_file(EXAMPLES / "cmm_points.csv", None))
+bad(Q, "compensate_file", "inverse", lambda: sq.compensate_file(EXAMPLES / "cmm_points.csv", CMM, inverse="no"))
+bad(Q, "gauge_block_study", "end_offset_m", lambda: sq.gauge_block_study(CMM, end_offset_m=NAN), lambda: sq.gauge_block_study(CMM, end_offset_m="1"))
+bad(Q, "gauge_block_study", "squareness", lambda: sq.gauge_block_study(None))
+bad(Q, "plot_squareness", "result", lambda: sq.plot_squareness("/tmp/never.png", sq.squareness_from_slopes(0.0, 0.0), ((XS, YS), (XS, YS))), lambda: sq.plot_squareness("/tmp/never.png", None, ()))
+bad(Q, "plot_squareness", "runs", lambda: sq.plot_squareness("/tmp/never.png", FIT, (XS, YS)), lambda: sq.plot_squareness("/tmp/never.png", FIT, (([NAN], [0.0]), (XS, YS))))
+bad(Q, "plot_squareness", "path", lambda: sq.plot_squareness(None, FIT, ((XS, YS), (XS, YS))))
+bad(Q, "plot_pentaprism", "table", lambda: sq.plot_pentaprism("/tmp/never.png", None))
+bad(Q, "plot_pentaprism", "path", lambda: sq.plot_pentaprism(5, ins.pentaprism_sensitivity([0.0, 1e-3])))
+
+
 # ---------------------------------------------------------------- the check
 EXEMPT = {
     # result records: the library fills them with what a function computed; a user reads them and
     # does not build them, so they take no user values to check
     "instruments": {"RayTrace", "PentaprismSensitivity"},
+    "squareness": {"SquarenessResult", "ReversalResult", "Plane", "GaugeBlockCheck", "CmmCompensation", "GaugeBlockStudy"},
 }
 
 
