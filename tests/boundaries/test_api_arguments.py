@@ -382,11 +382,89 @@ bad(Q, "plot_pentaprism", "table", lambda: sq.plot_pentaprism("/tmp/never.png", 
 bad(Q, "plot_pentaprism", "path", lambda: sq.plot_pentaprism(5, ins.pentaprism_sensitivity([0.0, 1e-3])))
 
 
+# ---------------------------------------------------------------- circular
+ci = api("circular")
+C = "circular"
+A72 = np.radians(np.arange(0.0, 360.0, 5.0))
+TRACE = ci.BallbarTrace(A72, ("ccw",) * 72, np.zeros(72), radius=0.1)
+RESULT = ci.evaluate_ballbar(TRACE)
+BALLBAR = EXAMPLES / "ballbar" / "ballbar_run.csv"
+
+bad(C, "plane_axes", "unknown plane", lambda: ci.plane_axes("XX"), lambda: ci.plane_axes(None), lambda: ci.plane_axes(5))
+bad(C, "coverage_gap", "angles", lambda: ci.coverage_gap([NAN, 0.0]), lambda: ci.coverage_gap("a"), lambda: ci.coverage_gap(np.zeros((2, 2))))
+bad(C, "check_direction", "angles", lambda: ci.check_direction([INF] * 40, "ccw"), lambda: ci.check_direction(None, "ccw"))
+bad(C, "check_direction", "direction", lambda: ci.check_direction(A72, "up"), lambda: ci.check_direction(A72, None))
+bad(C, "BallbarTrace", "radius", lambda: ci.BallbarTrace(A72, ("ccw",) * 72, np.zeros(72), radius=0.0), lambda: ci.BallbarTrace(A72, ("ccw",) * 72, np.zeros(72), radius=NAN),
+    lambda: ci.BallbarTrace(A72, ("ccw",) * 72, np.zeros(72), radius="0.1"), lambda: ci.BallbarTrace(A72, ("ccw",) * 72, np.zeros(72), radius=True))
+bad(C, "BallbarTrace", "length", lambda: ci.BallbarTrace(A72, ("ccw",) * 71, np.zeros(72), radius=0.1), lambda: ci.BallbarTrace(A72, ("ccw",) * 72, np.zeros(70), radius=0.1))
+bad(C, "BallbarTrace", "finite", lambda: ci.BallbarTrace(A72, ("ccw",) * 72, np.full(72, NAN), radius=0.1))
+bad(C, "BallbarTrace", "angles", lambda: ci.BallbarTrace("a", ("ccw",), [0.0], radius=0.1), lambda: ci.BallbarTrace(None, ("ccw",), [0.0], radius=0.1))
+bad(C, "BallbarTrace", "direction", lambda: ci.BallbarTrace(A72, ("up",) * 72, np.zeros(72), radius=0.1), lambda: ci.BallbarTrace(A72, "ccw", np.zeros(72), radius=0.1))
+bad(C, "BallbarTrace", "at least 36", lambda: ci.BallbarTrace(A72[:10], ("ccw",) * 10, np.zeros(10), radius=0.1))
+bad(C, "BallbarTrace", "no points", lambda: ci.BallbarTrace([], (), [], radius=0.1))
+bad(C, "BallbarTrace", "unknown plane", lambda: ci.BallbarTrace(A72, ("ccw",) * 72, np.zeros(72), radius=0.1, plane="XQ"))
+bad(C, "BallbarTrace", "source", lambda: ci.BallbarTrace(A72, ("ccw",) * 72, np.zeros(72), radius=0.1, source=None))
+bad(C, "lsq_circle", "at least 3", lambda: ci.lsq_circle([0.0, 1.0], [0.0, 0.0], 0.1))
+bad(C, "lsq_circle", "angles", lambda: ci.lsq_circle([NAN, 1.0, 2.0], [0.0] * 3, 0.1), lambda: ci.lsq_circle([[0.0, 1.0, 2.0]], [[0.0] * 3], 0.1))
+bad(C, "lsq_circle", "deviations", lambda: ci.lsq_circle([0.0, 1.0, 2.0], [0.0, INF, 0.0], 0.1))
+bad(C, "lsq_circle", "same length", lambda: ci.lsq_circle([0.0, 1.0, 2.0], [0.0] * 4, 0.1))
+bad(C, "lsq_circle", "radius", lambda: ci.lsq_circle([0.0, 1.0, 2.0], [0.0] * 3, 0.0), lambda: ci.lsq_circle([0.0, 1.0, 2.0], [0.0] * 3, NAN))
+bad(C, "radial_deviations", "centre", lambda: ci.radial_deviations([0.0], [0.0], 0.1, (0.0,)), lambda: ci.radial_deviations([0.0], [0.0], 0.1, (NAN, 0.0)),
+    lambda: ci.radial_deviations([0.0, 1.6], [0.0, 0.0], 0.1, (0.0, 0.5)))
+bad(C, "radial_deviations", "radius", lambda: ci.radial_deviations([0.0], [0.0], -0.1, (0.0, 0.0)))
+bad(C, "radial_deviations", "same length", lambda: ci.radial_deviations([0.0, 1.0], [0.0], 0.1, (0.0, 0.0)))
+bad(C, "radial_deviations", "deviations", lambda: ci.radial_deviations([0.0], [NAN], 0.1, (0.0, 0.0)))
+bad(C, "iso230_4", "trace", lambda: ci.iso230_4(None), lambda: ci.iso230_4(A72))
+bad(C, "reversal_angles", "axis", lambda: ci.reversal_angles(2), lambda: ci.reversal_angles("x"), lambda: ci.reversal_angles(-1))
+bad(C, "backlash_signature", "axis", lambda: ci.backlash_signature(A72, np.ones(72), 2))
+bad(C, "backlash_signature", "signs", lambda: ci.backlash_signature(A72, np.zeros(72), 0), lambda: ci.backlash_signature(A72, np.ones(3), 0))
+bad(C, "backlash_signature", "angles", lambda: ci.backlash_signature([NAN], [1.0], 0))
+bad(C, "diagnose", "trace", lambda: ci.diagnose(None))
+bad(C, "diagnose", "feed", lambda: ci.diagnose(TRACE, feed=0.0), lambda: ci.diagnose(TRACE, feed=NAN), lambda: ci.diagnose(TRACE, feed="fast"))
+bad(C, "diagnose", "window", lambda: ci.diagnose(TRACE, spike_window=0.0), lambda: ci.diagnose(TRACE, spike_window=NAN), lambda: ci.diagnose(TRACE, spike_window=None))
+bad(C, "read_ballbar", "radius", lambda: ci.read_ballbar(BALLBAR, radius=0.0), lambda: ci.read_ballbar(BALLBAR, radius="0.1"), lambda: ci.read_ballbar(BALLBAR, radius=NAN))
+bad(C, "read_ballbar", "plane", lambda: ci.read_ballbar(BALLBAR, radius=0.1, plane="AB"))
+bad(C, "read_ballbar", "path", lambda: ci.read_ballbar(None, radius=0.1))
+bad(C, "iso_squareness", "unknown plane", lambda: ci.iso_squareness("XW", 0.0), lambda: ci.iso_squareness(None, 0.0))
+bad(C, "iso_squareness", "squareness", lambda: ci.iso_squareness("XY", NAN), lambda: ci.iso_squareness("XY", "1"))
+bad(C, "BallbarResult", "trace", lambda: ci.BallbarResult(None, RESULT.figures, RESULT.diagnostics))
+bad(C, "BallbarResult", "feed", lambda: ci.BallbarResult(TRACE, RESULT.figures, RESULT.diagnostics, feed=-1.0))
+bad(C, "evaluate_ballbar", "trace", lambda: ci.evaluate_ballbar(None))
+bad(C, "evaluate_ballbar", "feed", lambda: ci.evaluate_ballbar(TRACE, feed=-1.0))
+bad(C, "evaluate_ballbar_file", "radius", lambda: ci.evaluate_ballbar_file(BALLBAR, radius=-1.0))
+bad(C, "evaluate_ballbar_file", "feed", lambda: ci.evaluate_ballbar_file(BALLBAR, radius=0.15, feed=NAN))
+bad(C, "evaluate_ballbar_file", "path", lambda: ci.evaluate_ballbar_file(5, radius=0.1))
+bad(C, "ballbar_payload", "result", lambda: ci.ballbar_payload(None), lambda: ci.ballbar_payload(TRACE))
+bad(C, "format_number", "value", lambda: ci.format_number("1.5"))
+bad(C, "format_number", "fmt", lambda: ci.format_number(1.5, None), lambda: ci.format_number(1.5, "{0} {1}"))
+bad(C, "render_report", "result", lambda: ci.render_report(None))
+bad(C, "simulate_ballbar", "radius", lambda: ci.simulate_ballbar(radius=0.0), lambda: ci.simulate_ballbar(radius="1"))
+bad(C, "simulate_ballbar", "feed", lambda: ci.simulate_ballbar(feed=NAN))
+bad(C, "simulate_ballbar", "step", lambda: ci.simulate_ballbar(step=0.0), lambda: ci.simulate_ballbar(step=1.0))
+bad(C, "simulate_ballbar", "noise", lambda: ci.simulate_ballbar(noise=-1.0), lambda: ci.simulate_ballbar(noise=None))
+bad(C, "simulate_ballbar", "squareness", lambda: ci.simulate_ballbar(squareness=NAN), lambda: ci.simulate_ballbar(squareness="1"))
+bad(C, "simulate_ballbar", "scale", lambda: ci.simulate_ballbar(scale={"Z": 1e-5}), lambda: ci.simulate_ballbar(scale={"X": NAN}), lambda: ci.simulate_ballbar(scale=5),
+    lambda: ci.simulate_ballbar(scale={"X": "1"}))
+bad(C, "simulate_ballbar", "pitch", lambda: ci.simulate_ballbar(cyclic_error={"X": 1e-6}))
+bad(C, "simulate_ballbar", "directions", lambda: ci.simulate_ballbar(directions=()), lambda: ci.simulate_ballbar(directions=("up",)))
+bad(C, "simulate_ballbar", "seed", lambda: ci.simulate_ballbar(seed=-1), lambda: ci.simulate_ballbar(seed="a"))
+bad(C, "simulate_ballbar", "unknown plane", lambda: ci.simulate_ballbar(plane="AA"))
+bad(C, "trace_csv", "trace", lambda: ci.trace_csv(None))
+bad(C, "write_trace", "trace", lambda: ci.write_trace("/tmp/never-written.csv", None))
+bad(C, "write_trace", "path", lambda: ci.write_trace(None, TRACE))
+bad(C, "plot_ballbar", "result", lambda: ci.plot_ballbar(None, "/tmp/never.png"))
+bad(C, "plot_ballbar", "figure format", lambda: ci.plot_ballbar(RESULT, "/tmp/never.xyz"))
+bad(C, "plot_ballbar", "path", lambda: ci.plot_ballbar(RESULT, None))
+bad(C, "plot_ballbar", "title", lambda: ci.plot_ballbar(RESULT, "/tmp/never.png", title=5))
+
+
 # ---------------------------------------------------------------- the check
 EXEMPT = {
     # result records: the library fills them with what a function computed; a user reads them and
     # does not build them, so they take no user values to check
     "instruments": {"RayTrace", "PentaprismSensitivity"},
+    "straightness": {"Separation", "NoisePropagation"},
+    "circular": {"CircularFigures", "BallbarDiagnostics"},
     "squareness": {"SquarenessResult", "ReversalResult", "Plane", "GaugeBlockCheck", "CmmCompensation", "GaugeBlockStudy"},
 }
 

@@ -14,6 +14,7 @@ from axiscal.io.arguments import (
     check_number,
     check_path,
     check_same_length,
+    is_real,
     render_checked,
     unit_words,
 )
@@ -45,6 +46,7 @@ __all__ = [
     "check_number",
     "check_path",
     "check_same_length",
+    "is_real",
     "render_checked",
     "unit_words",
     "atomic_write",

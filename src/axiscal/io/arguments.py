@@ -22,7 +22,7 @@ from axiscal.errors import AxiscalError
 
 __all__ = [
     "unit_words", "check_number", "check_count", "check_array", "check_same_length", "check_broadcast", "check_choice",
-    "check_mapping", "check_path", "render_checked",
+    "check_mapping", "check_path", "render_checked", "is_real",
 ]
 
 # name suffix -> how a message speaks of the unit; longest suffix first
@@ -125,7 +125,7 @@ def check_number(
     of = f" of {unit}" if unit else ""
     if isinstance(value, np.ndarray) and value.ndim == 0:
         value = value[()]
-    good = isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
+    good = is_real(value)
     if good:
         value = float(value)
         good = math.isfinite(value) and not (positive and value <= 0.0) and not (nonnegative and value < 0.0)
@@ -447,3 +447,22 @@ def check_path(name: str, value: Any) -> Path:
     if isinstance(value, (str, os.PathLike)) and str(value).strip():
         return Path(value)
     raise AxiscalError(f"{name} must be a file name (str or Path), not {_shown(value)}")
+
+
+def is_real(value: Any) -> bool:
+    """True for an int or float, NumPy's too, that is not a bool (finite or not).
+
+    Parameters
+    ----------
+    value : object
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> is_real(np.float32(1.5)), is_real(True), is_real("1")
+    (True, False, False)
+    """
+    return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))

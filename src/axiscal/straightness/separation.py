@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_array, check_choice, check_count, check_number, check_same_length
+from axiscal.io.arguments import check_array, check_choice, check_count, check_number, check_same_length, is_real
 from axiscal.units import MM
 
 __all__ = [
@@ -107,16 +107,13 @@ class ProbeReadings:
                 object.__setattr__(self, name, check_array(name, value, ndim=1))
         check_same_length(position_m=self.position_m, a_m=self.a_m, b_m=self.b_m, c_m=self.c_m)
         d1, d2 = self.spacing_ab_m, self.spacing_bc_m
-        if not (_real(d1) and math.isfinite(d1) and d1 > 0):
+        if not (is_real(d1) and math.isfinite(d1) and d1 > 0):
             raise AxiscalError(f"spacing_ab_m must be a positive, finite number of metres, not {d1!r}")
         object.__setattr__(self, "spacing_ab_m", float(d1))
         # the B-C spacing is checked by the methods that use it, which name what they need of it
-        if d2 is not None and not _real(d2):
+        if d2 is not None and not is_real(d2):
             raise AxiscalError(f"spacing_bc_m must be a number of metres or None, not {d2!r}")
 
-
-def _real(value: object) -> bool:
-    return isinstance(value, (int, float, np.floating, np.integer)) and not isinstance(value, (bool, np.bool_))
 
 
 def _readings(readings: ProbeReadings) -> ProbeReadings:
@@ -690,7 +687,7 @@ def frequency_domain(
         spacings not whole numbers of steps, or no more readings than the probes span steps.
     """
     _readings(readings)
-    if not (_real(min_gain) and 0.0 <= min_gain < 1.0):
+    if not (is_real(min_gain) and 0.0 <= min_gain < 1.0):
         raise AxiscalError(f"the frequency-domain method needs 0 <= min_gain < 1, got {min_gain!r}")
     if not isinstance(parabola, (bool, np.bool_)):
         raise AxiscalError(f"parabola must be True or False, not {parabola!r}")
