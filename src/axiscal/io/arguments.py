@@ -237,7 +237,7 @@ def check_array(
             isinstance(v, (bool, np.bool_, str, bytes)) or v is None for v in array.ravel()
         ):
             raise TypeError
-        array = array.astype(float)
+        array = np.asarray(array, dtype=float)
     except (TypeError, ValueError):
         raise AxiscalError(f"{name} must be numbers{of}, not {_shown(raw)}") from None
     if ndim is not None and array.ndim != ndim:
