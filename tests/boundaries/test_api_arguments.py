@@ -619,3 +619,65 @@ def test_every_public_callable_has_a_bad_argument_case(room):
     covered = {name for r, name, _, _ in CASES if r == room}
     missing = sorted(_public_callables(room) - covered - EXEMPT.get(room, set()))
     assert not missing, f"public callables of axiscal.{room} without a bad-argument case: {missing}"
+
+
+# ---------------------------------------------------------------- properties: finite in, finite out or AxiscalError
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as hs  # noqa: E402
+
+_ANY_FLOAT = hs.floats(allow_nan=True, allow_infinity=True, width=64)
+_FINITE = hs.floats(allow_nan=False, allow_infinity=False, width=64)
+
+
+def _finite_or_refused(call: Callable[[], object]) -> object | None:
+    """The call's result, or None when it raised AxiscalError; no other exception, no RuntimeWarning."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            return call()
+        except AxiscalError:
+            return None
+
+
+@settings(max_examples=150, deadline=None)
+@given(hs.lists(hs.tuples(_FINITE, _FINITE), min_size=0, max_size=12), hs.sampled_from(st_.REFERENCES))
+def test_reference_line_of_any_finite_profile_is_finite_or_refused(points, reference):
+    x = [p[0] for p in points]
+    y = [p[1] for p in points]
+    line = _finite_or_refused(lambda: st_.reference_line(x, y, reference=reference))
+    if line is not None:
+        assert all(np.isfinite(v) for v in (line.slope, line.intercept_m, line.straightness_m))
+        assert line.straightness_m >= 0.0
+
+
+@settings(max_examples=150, deadline=None)
+@given(hs.lists(_ANY_FLOAT, min_size=0, max_size=12), hs.lists(_ANY_FLOAT, min_size=0, max_size=12), hs.sampled_from(st_.REFERENCES))
+def test_reference_line_refuses_what_is_not_finite(x, y, reference):
+    line = _finite_or_refused(lambda: st_.reference_line(x, y, reference=reference))
+    if line is not None:
+        assert np.all(np.isfinite(x)) and np.all(np.isfinite(y)) and len(x) == len(y)
+
+
+@settings(max_examples=100, deadline=None)
+@given(_ANY_FLOAT, _ANY_FLOAT, _ANY_FLOAT, _ANY_FLOAT)
+def test_refractive_index_of_any_numbers_is_finite_or_refused(t, p, h, wavelength):
+    n = _finite_or_refused(lambda: ins.refractive_index(t, p, h, wavelength))
+    if n is not None:
+        assert np.isfinite(n) and n > 1.0
+
+
+@settings(max_examples=100, deadline=None)
+@given(_ANY_FLOAT, _ANY_FLOAT, _ANY_FLOAT)
+def test_squareness_from_any_slopes_is_finite_or_refused(first, second, prism):
+    result = _finite_or_refused(lambda: sq.squareness_from_slopes(first, second, prism_deviation_rad=prism))
+    if result is not None:
+        assert np.isfinite(result.squareness_rad) and np.isfinite(result.iso_value_rad)
+
+
+@settings(max_examples=60, deadline=None)
+@given(hs.lists(_ANY_FLOAT, min_size=0, max_size=8), _ANY_FLOAT)
+def test_lsq_circle_of_any_numbers_is_finite_or_refused(deviations, radius):
+    angles = np.linspace(0.0, 2.0 * np.pi, len(deviations), endpoint=False)
+    fit = _finite_or_refused(lambda: ci.lsq_circle(angles, deviations, radius))
+    if fit is not None:
+        assert np.all(np.isfinite(fit))
