@@ -70,6 +70,13 @@ def unit_words(name: str) -> str:
     return ""
 
 
+def _of(name: str, unit: str | None, lead: str = " of ") -> str:
+    """`` of metres`` for ``spacing_m`` (or the ``unit`` given); empty for a name without a unit.
+    Worked out only when a message is written."""
+    words = unit_words(name) if unit is None else unit
+    return f"{lead}{words}" if words else ""
+
+
 def _shown(value: Any) -> str:
     text = repr(value) if isinstance(value, str) else str(value)
     return text if len(text) <= 40 else text[:37] + "..."
@@ -120,9 +127,7 @@ def check_number(
     ...
     axiscal.errors.AxiscalError: spacing_ab_m must be a positive finite number of metres, not nan
     """
-    unit = unit_words(name) if unit is None else unit
     kind = "positive " if positive else "non-negative " if nonnegative else ""
-    of = f" of {unit}" if unit else ""
     if isinstance(value, np.ndarray) and value.ndim == 0:
         value = value[()]
     good = is_real(value)
@@ -130,12 +135,12 @@ def check_number(
         value = float(value)
         good = math.isfinite(value) and not (positive and value <= 0.0) and not (nonnegative and value < 0.0)
     if not good:
-        raise AxiscalError(f"{name} must be a {kind}finite number{of}, not {_shown(value)}")
+        raise AxiscalError(f"{name} must be a {kind}finite number{_of(name, unit)}, not {_shown(value)}")
     if low is not None and value < low or high is not None and value > high:
         bounds = f"between {low:g} and {high:g}" if low is not None and high is not None else (
             f"at least {low:g}" if low is not None else f"at most {high:g}"
         )
-        raise AxiscalError(f"{name} must be {bounds}{' ' + unit if unit else ''}, not {value:g}")
+        raise AxiscalError(f"{name} must be {bounds}{_of(name, unit, ' ')}, not {value:g}")
     return value
 
 
@@ -226,11 +231,9 @@ def check_array(
     ...
     axiscal.errors.AxiscalError: position_m must hold finite numbers of metres, not inf (entry 1)
     """
-    unit = unit_words(name) if unit is None else unit
-    of = f" of {unit}" if unit else ""
     raw = values
     if isinstance(raw, (str, bytes)) or raw is None:
-        raise AxiscalError(f"{name} must be numbers{of}, not {_shown(raw)}")
+        raise AxiscalError(f"{name} must be numbers{_of(name, unit)}, not {_shown(raw)}")
     try:
         array = np.asarray(raw)
         if array.dtype.kind in "bUSMmV" or array.dtype.kind == "O" and any(
@@ -239,7 +242,7 @@ def check_array(
             raise TypeError
         array = np.asarray(array, dtype=float)
     except (TypeError, ValueError):
-        raise AxiscalError(f"{name} must be numbers{of}, not {_shown(raw)}") from None
+        raise AxiscalError(f"{name} must be numbers{_of(name, unit)}, not {_shown(raw)}") from None
     if ndim is not None and array.ndim != ndim:
         words = {0: "a single number", 1: "a one-dimensional array", 2: "a two-dimensional array"}.get(ndim, f"{ndim}-D")
         raise AxiscalError(f"{name} must be {words}, not of shape {array.shape}")
@@ -251,9 +254,9 @@ def check_array(
     if finite and not np.all(np.isfinite(array)):
         where = int(np.argmax(~np.isfinite(array.ravel())))
         at = f" (entry {where})" if array.ndim else ""
-        raise AxiscalError(f"{name} must hold finite numbers{of}, not {array.ravel()[where]}{at}")
+        raise AxiscalError(f"{name} must hold finite numbers{_of(name, unit)}, not {array.ravel()[where]}{at}")
     if limit is not None and array.size and np.nanmax(np.abs(array)) > limit:
-        raise AxiscalError(f"{name} holds {np.nanmax(np.abs(array)):g}, beyond any physical value (more than {limit:g}{' ' + unit if unit else ''})")
+        raise AxiscalError(f"{name} holds {np.nanmax(np.abs(array)):g}, beyond any physical value (more than {limit:g}{_of(name, unit, ' ')})")
     return array
 
 
