@@ -18,6 +18,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as hs
 
 from axiscal.errors import AxiscalError
 from axiscal.io import parse_csv
@@ -622,9 +624,6 @@ def test_every_public_callable_has_a_bad_argument_case(room):
 
 
 # ---------------------------------------------------------------- properties: finite in, finite out or AxiscalError
-from hypothesis import given, settings  # noqa: E402
-from hypothesis import strategies as hs  # noqa: E402
-
 _ANY_FLOAT = hs.floats(allow_nan=True, allow_infinity=True, width=64)
 _FINITE = hs.floats(allow_nan=False, allow_infinity=False, width=64)
 
