@@ -25,7 +25,7 @@ import numpy as np
 from axiscal.conventions import component_names
 from axiscal.errors import AxiscalError
 from axiscal.instruments.abbe import transfer_point
-from axiscal.io.arguments import check_array, check_choice, check_count, check_mapping, check_number, check_same_length
+from axiscal.io.arguments import check_array, check_count, check_mapping, check_number, check_same_length
 from axiscal.instruments.calibration import (
     Calibration,
     fit_mirror,

@@ -8,7 +8,6 @@ arc seconds when gamma is in arc seconds.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
