@@ -28,6 +28,7 @@ from scipy.optimize import minimize_scalar
 
 from axiscal.circular.evaluation import BallbarTrace
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_count, check_same_length, is_real
 from axiscal.units import MM, UM
 
 __all__ = [
@@ -89,6 +90,7 @@ class BallbarDiagnostics:
     warnings: tuple[str, ...] = ()
 
 
+
 def reversal_angles(axis: int) -> tuple[float, float]:
     """Angles at which an axis of the plane reverses its direction of motion on the circle.
 
@@ -107,6 +109,7 @@ def reversal_angles(axis: int) -> tuple[float, float]:
     >>> [round(math.degrees(a)) for a in reversal_angles(1)]
     [90, 270]
     """
+    axis = check_count("axis", axis, minimum=0, maximum=1)
     return (0.0, math.pi) if axis == 0 else (math.pi / 2, 3 * math.pi / 2)
 
 
@@ -130,7 +133,12 @@ def backlash_signature(angles: np.ndarray, signs: np.ndarray, axis: int) -> np.n
     ndarray, shape (n,)
         ``dR`` per unit of b/2.
     """
-    a = np.asarray(angles, dtype=float)
+    axis = check_count("axis", axis, minimum=0, maximum=1)
+    a = check_array("angles", angles, ndim=1, unit="radians")
+    signs = check_array("signs", signs, ndim=1, unit="")
+    check_same_length(angles=a, signs=signs)
+    if not np.all(np.abs(signs) == 1.0):
+        raise AxiscalError("signs must be +1 (ccw) or -1 (cw) for every point")
     if axis == 0:
         return signs * np.sign(np.sin(a)) * np.cos(a)
     return -signs * np.sign(np.cos(a)) * np.sin(a)
@@ -249,10 +257,12 @@ def diagnose(trace: BallbarTrace, *, feed: float | None = None, spike_window: fl
     >>> round(diagnose(t).squareness * 1e6, 3)
     20.0
     """
-    if feed is not None and not (math.isfinite(feed) and feed > 0):
+    if not isinstance(trace, BallbarTrace):
+        raise AxiscalError(f"trace must be a BallbarTrace, not {type(trace).__name__}")
+    if feed is not None and not (is_real(feed) and math.isfinite(feed) and feed > 0):
         raise AxiscalError(f"the feed must be a positive speed, got {feed!r} m/s")
-    if not (0 < spike_window < math.pi / 4):
-        raise AxiscalError(f"the spike window must be between 0 and 45 deg, got {math.degrees(spike_window):g} deg")
+    if not (is_real(spike_window) and 0 < spike_window < math.pi / 4):
+        raise AxiscalError(f"the spike window (spike_window) must be between 0 and 45 deg, got {spike_window!r} rad")
     R = trace.radius
     a, signs, y = trace.angles, trace.signs, trace.deviations
     windows = _spike_windows(a, signs, spike_window)

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_number, check_same_length
 from axiscal.units import LENGTH_UNITS
 
 __all__ = [
@@ -98,7 +99,7 @@ def coverage_gap(angles: np.ndarray) -> tuple[float, int]:
     >>> round(coverage_gap(np.radians([0.0, 90.0, 180.0]))[0], 4)
     3.1416
     """
-    a = np.mod(np.asarray(angles, dtype=float), 2 * math.pi)
+    a = np.mod(check_array("angles", angles, ndim=1, unit="radians"), 2 * math.pi)
     if a.size < 2:
         return 2 * math.pi, (0 if a.size else -1)
     order = np.argsort(a, kind="stable")
@@ -143,8 +144,12 @@ class BallbarTrace:
     _index: dict[str, np.ndarray] = field(default_factory=dict, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        angles = np.asarray(self.angles, dtype=float).ravel()
-        deviations = np.asarray(self.deviations, dtype=float).ravel()
+        if not isinstance(self.source, str):
+            raise AxiscalError(f"source must be a name (str), not {self.source!r}")
+        angles = check_array("angles", self.angles, finite=False).ravel()
+        deviations = check_array("deviations", self.deviations, finite=False).ravel()
+        if isinstance(self.directions, (str, bytes)) or not hasattr(self.directions, "__iter__"):
+            raise AxiscalError(f"{self.source}: directions must be one 'ccw' or 'cw' per point, not {self.directions!r}"[:200])
         directions = tuple(str(d).lower() for d in self.directions)
         if not (angles.size == deviations.size == len(directions)):
             raise AxiscalError(
@@ -153,7 +158,8 @@ class BallbarTrace:
             )
         if not (np.all(np.isfinite(angles)) and np.all(np.isfinite(deviations))):
             raise AxiscalError(f"{self.source}: angles and deviations must be finite numbers")
-        if not (math.isfinite(self.radius) and self.radius > 0):
+        if not (isinstance(self.radius, (int, float, np.floating, np.integer)) and not isinstance(self.radius, bool)
+                and math.isfinite(self.radius) and self.radius > 0):
             raise AxiscalError(f"{self.source}: the nominal radius must be a positive length, got {self.radius!r} m")
         plane = "".join(plane_axes(self.plane))
         unknown = sorted(set(directions) - set(DIRECTIONS))
@@ -218,6 +224,9 @@ def check_direction(angles: np.ndarray, direction: str) -> tuple[str, int] | Non
         The message and the index (into ``angles``) of the point it concerns; None when the
         direction has at least :data:`MIN_POINTS` points and no gap above :data:`MAX_GAP_DEG`.
     """
+    angles = check_array("angles", angles, ndim=1, unit="radians")
+    if not isinstance(direction, str) or direction not in DIRECTIONS:
+        raise AxiscalError(f"unknown direction {direction!r}; use ccw or cw")
     if angles.size < MIN_POINTS:
         return f"{angles.size} points in direction {direction}; at least {MIN_POINTS} needed", max(angles.size - 1, 0)
     gap, k = coverage_gap(angles)
@@ -264,12 +273,21 @@ def lsq_circle(angles: np.ndarray, deviations: np.ndarray, radius: float) -> tup
     >>> [round(v * 1e6, 3) + 0.0 for v in lsq_circle(a, 5e-6 * np.cos(a) + 1e-6, 0.1)]
     [5.0, 0.0, 1.0]
     """
-    a = np.asarray(angles, dtype=float)
+    a, deviations = _series(angles, deviations)
+    radius = check_number("radius", radius, positive=True, unit="metres")
     if a.size < 3:
         raise AxiscalError(f"a least-squares circle needs at least 3 points, got {a.size}")
     basis = np.column_stack([np.cos(a), np.sin(a), np.ones_like(a)])
-    (cx, cy, r0), *_ = np.linalg.lstsq(basis, np.asarray(deviations, dtype=float), rcond=None)
+    (cx, cy, r0), *_ = np.linalg.lstsq(basis, deviations, rcond=None)
     return float(cx), float(cy), float(r0)
+
+
+def _series(angles: np.ndarray, deviations: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Angles (rad) and deviations (m) of a trace as finite 1-D arrays of one length."""
+    a = check_array("angles", angles, ndim=1, unit="radians")
+    d = check_array("deviations", deviations, ndim=1, unit="metres")
+    check_same_length(angles=a, deviations=d)
+    return a, d
 
 
 def radial_deviations(angles: np.ndarray, deviations: np.ndarray, radius: float, centre: tuple[float, float]) -> np.ndarray:
@@ -302,11 +320,18 @@ def radial_deviations(angles: np.ndarray, deviations: np.ndarray, radius: float,
     >>> np.round(radial_deviations(a, L - 0.1, 0.1, (3e-5, 0.0)) * 1e9, 6)
     array([0., 0.])
     """
-    a = np.asarray(angles, dtype=float)
-    length = radius + np.asarray(deviations, dtype=float)
+    a, deviations = _series(angles, deviations)
+    radius = check_number("radius", radius, positive=True, unit="metres")
+    centre = check_array("centre", centre, ndim=1, unit="metres")
+    if centre.shape != (2,):
+        raise AxiscalError(f"centre must be 2 numbers of metres (along the plane's first and second axis), not shape {centre.shape}")
+    length = radius + deviations
     along = centre[0] * np.cos(a) + centre[1] * np.sin(a)
     across = centre[0] * np.sin(a) - centre[1] * np.cos(a)
-    return np.sqrt(length * length - across * across) - along - radius
+    square = length * length - across * across
+    if np.any(length <= 0.0) or np.any(square < 0.0):
+        raise AxiscalError("centre lies farther from the table ball than the bar reaches: no radial deviation about it")
+    return np.sqrt(square) - along - radius
 
 
 @dataclass(frozen=True)
@@ -366,6 +391,8 @@ def iso230_4(trace: BallbarTrace) -> CircularFigures:
     >>> round(f.G["ccw"] * 1e6, 3), round(f.F_max * 1e6, 3), round(f.centre[0] * 1e6, 3)
     (0.0, 3.0, 3.0)
     """
+    if not isinstance(trace, BallbarTrace):
+        raise AxiscalError(f"trace must be a BallbarTrace, not {type(trace).__name__}")
     cx, cy, r0 = lsq_circle(trace.angles, trace.deviations, trace.radius)
     G: dict[str, float] = {}
     centres: dict[str, tuple[float, float]] = {}

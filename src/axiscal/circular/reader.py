@@ -19,6 +19,7 @@ from axiscal.circular.evaluation import (
     plane_axes,
 )
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_path, is_real
 from axiscal.io.tabular import read_csv
 from axiscal.units import length_factor
 
@@ -63,10 +64,10 @@ def read_ballbar(path: str | Path, *, radius: float, plane: str = "XY") -> Ballb
     >>> trace.present, round(float(trace.deviations[0]) * 1e6, 3)
     (('ccw',), 0.5)
     """
-    path = str(path)
+    path = str(check_path("path", path))
     try:
         plane = "".join(plane_axes(plane))
-        if not (math.isfinite(radius) and radius > 0):
+        if not (is_real(radius) and math.isfinite(radius) and radius > 0):
             raise AxiscalError(f"the nominal radius must be a positive length, got {radius!r} m")
     except AxiscalError as exc:
         raise exc.located(path=path) from None

@@ -19,9 +19,12 @@ from axiscal.circular.evaluation import (
     BallbarTrace,
     CircularFigures,
     iso230_4,
+    plane_axes,
 )
 from axiscal.circular.reader import read_ballbar
 from axiscal.conventions import SQUARENESS_TERMS
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_number, is_real
 from axiscal.units import ANGLE_UNITS, LENGTH_UNITS, MM, UM
 
 __all__ = [
@@ -72,8 +75,8 @@ def iso_squareness(plane: str, squareness: float) -> tuple[str, float]:
     >>> iso_squareness("ZX", 5e-6)
     ('EB0Z', -5e-06)
     """
-    term, sign = _ISO_TERMS[frozenset(plane.upper())]
-    return term, sign * squareness
+    term, sign = _ISO_TERMS[frozenset("".join(plane_axes(plane)))]
+    return term, sign * check_number("squareness", squareness, unit="radians")
 
 
 @dataclass(frozen=True)
@@ -94,6 +97,13 @@ class BallbarResult:
     diagnostics: BallbarDiagnostics
     feed: float | None = None
 
+    def __post_init__(self) -> None:
+        for name, kind in (("trace", BallbarTrace), ("figures", CircularFigures), ("diagnostics", BallbarDiagnostics)):
+            if not isinstance(getattr(self, name), kind):
+                raise AxiscalError(f"{name} must be a {kind.__name__}, not {type(getattr(self, name)).__name__}")
+        if self.feed is not None:
+            check_number("feed", self.feed, positive=True, unit="metres per second")
+
 
 def evaluate_ballbar(trace: BallbarTrace, *, feed: float | None = None) -> BallbarResult:
     """ISO 230-4 figures and diagnostics of a trace.
@@ -113,6 +123,8 @@ def evaluate_ballbar(trace: BallbarTrace, *, feed: float | None = None) -> Ballb
     AxiscalError
         If the feed is not a positive speed.
     """
+    if not isinstance(trace, BallbarTrace):
+        raise AxiscalError(f"trace must be a BallbarTrace, not {type(trace).__name__}")
     return BallbarResult(trace=trace, figures=iso230_4(trace), diagnostics=diagnose(trace, feed=feed), feed=feed)
 
 
@@ -145,6 +157,12 @@ def _um(value: float) -> float | None:
     return value / UM if math.isfinite(value) else None
 
 
+def _result(result: BallbarResult) -> BallbarResult:
+    if not isinstance(result, BallbarResult):
+        raise AxiscalError(f"result must be a BallbarResult (evaluate_ballbar), not {type(result).__name__}")
+    return result
+
+
 def ballbar_payload(result: BallbarResult) -> dict[str, Any]:
     """The JSON object of ``axiscal ballbar --json`` (lengths in um, angles in urad, scale in ppm, time in ms).
 
@@ -158,6 +176,7 @@ def ballbar_payload(result: BallbarResult) -> dict[str, Any]:
         Plain values; a figure that cannot be given (H or G_cw of a single direction, the servo
         mismatch without feed) is None.
     """
+    _result(result)
     t, f, d = result.trace, result.figures, result.diagnostics
     term, iso_value = iso_squareness(t.plane, d.squareness)
     return {
@@ -208,7 +227,14 @@ def format_number(value: float | None, fmt: str = "{:+.2f}") -> str:
     >>> format_number(None, "{:6.2f}"), format_number(1.5, "{:6.2f}")
     ('   n/a', '  1.50')
     """
-    return "n/a".rjust(len(fmt.format(0.0))) if value is None else fmt.format(value)
+    if not isinstance(fmt, str):
+        raise AxiscalError(f"fmt must be a format string such as '{{:+.2f}}', not {fmt!r}")
+    if value is not None and not is_real(value):
+        raise AxiscalError(f"value must be a number or None, not {value!r}")
+    try:
+        return "n/a".rjust(len(fmt.format(0.0))) if value is None else fmt.format(value)
+    except (ValueError, IndexError, KeyError) as exc:
+        raise AxiscalError(f"fmt {fmt!r} is not a format for one number: {exc}") from None
 
 
 def render_report(result: BallbarResult) -> str:
@@ -227,6 +253,7 @@ def render_report(result: BallbarResult) -> str:
 
     import jinja2
 
+    _result(result)
     text = (files("axiscal") / "templates" / "ballbar.txt.j2").read_text(encoding="utf-8")
     env = jinja2.Environment(undefined=jinja2.StrictUndefined, keep_trailing_newline=False, trim_blocks=True, lstrip_blocks=True)
     env.filters["num"] = format_number

@@ -17,6 +17,7 @@ import numpy as np
 
 from axiscal.circular.evaluation import DIRECTIONS, MM_PER_MIN, BallbarTrace, plane_axes
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_path, is_real
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.tabular import write_csv
@@ -29,7 +30,11 @@ SPIKE_WIDTH_DEG = 1.5
 
 
 def _per_axis(name: str, values: Mapping[str, float] | None, axes: tuple[str, str]) -> tuple[float, float]:
+    if values is not None and not isinstance(values, Mapping):
+        raise AxiscalError(f"{name}: give a mapping of axis letter to value, not {values!r}")
     values = dict(values or {})
+    if not all(isinstance(k, str) for k in values) or not all(is_real(v) for v in values.values()):
+        raise AxiscalError(f"{name}: values must be finite numbers keyed by axis letter")
     unknown = sorted(set(k.upper() for k in values) - set(axes))
     if unknown:
         raise AxiscalError(f"{name}: axis '{unknown[0]}' is not in the plane {''.join(axes)}")
@@ -111,14 +116,14 @@ def simulate_ballbar(
     """
     axes = plane_axes(plane)
     for name, value in (("radius", radius), ("feed", feed), ("step", step)):
-        if not (math.isfinite(value) and value > 0):
+        if not (is_real(value) and math.isfinite(value) and value > 0):
             raise AxiscalError(f"the {name} must be positive, got {value!r}")
     if step > math.radians(1.0):
         raise AxiscalError(f"the step must be at most 1 deg, got {math.degrees(step):g} deg")
-    if not (math.isfinite(noise) and noise >= 0):
+    if not (is_real(noise) and math.isfinite(noise) and noise >= 0):
         raise AxiscalError(f"the noise must be zero or positive, got {noise!r} m")
     for name, value in (("squareness", squareness), ("servo mismatch", servo_mismatch)):
-        if not math.isfinite(value):
+        if not (is_real(value) and math.isfinite(value)):
             raise AxiscalError(f"the {name} must be a finite number")
     sc = _per_axis("scale", scale, axes)
     bl = _per_axis("backlash", backlash, axes)
@@ -129,6 +134,9 @@ def simulate_ballbar(
     for k in (0, 1):
         if cy[k] != 0.0 and not pitch[k] > 0:
             raise AxiscalError(f"cyclic error of {axes[k]}: give its pitch (a positive length)")
+    seed = check_count("seed", seed, minimum=0)
+    if isinstance(directions, str):
+        directions = (directions,)
     runs = [str(d).lower() for d in directions]
     if not runs or any(d not in DIRECTIONS for d in runs):
         raise AxiscalError(f"directions must be ccw and/or cw, got {', '.join(map(str, directions)) or 'none'}")
@@ -165,6 +173,12 @@ def simulate_ballbar(
                         plane="".join(axes), source="simulation")
 
 
+def _trace(trace: BallbarTrace) -> BallbarTrace:
+    if not isinstance(trace, BallbarTrace):
+        raise AxiscalError(f"trace must be a BallbarTrace, not {type(trace).__name__}")
+    return trace
+
+
 def trace_csv(trace: BallbarTrace) -> str:
     """The CSV text of a trace: ``angle_deg, direction, radius_deviation_um`` (header first, no comments).
 
@@ -176,6 +190,7 @@ def trace_csv(trace: BallbarTrace) -> str:
     -------
     str
     """
+    _trace(trace)
     return write_csv(
         None,
         {
@@ -203,6 +218,7 @@ def write_trace(path: str | Path, trace: BallbarTrace, **metadata) -> Path:
     Path
         ``path``.
     """
+    path = check_path("path", path)
     write_text(path, trace_csv(trace))
     write_sidecar(
         path,

@@ -21,6 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_broadcast
 
 __all__ = ["transfer_point", "transfer_components"]
 
@@ -52,10 +53,8 @@ def transfer_point(delta_m: np.ndarray, eps_rad: np.ndarray, offset_m: np.ndarra
     >>> transfer_point([0.0, 0.0, 0.0], [0.0, 0.0, 1e-5], [0.0, 0.1, 0.0])
     array([-1.e-06,  0.e+00,  0.e+00])
     """
-    delta, eps, offset = (np.asarray(a, dtype=float) for a in (delta_m, eps_rad, offset_m))
-    for name, a in (("delta_m", delta), ("eps_rad", eps), ("offset_m", offset)):
-        if a.shape[-1:] != (3,):
-            raise AxiscalError(f"{name} must have 3 components in its last dimension, got shape {a.shape}")
+    delta, eps, offset = (check_array(n, a, last=3) for n, a in (("delta_m", delta_m), ("eps_rad", eps_rad), ("offset_m", offset_m)))
+    delta, eps, offset = check_broadcast(delta_m=delta, eps_rad=eps, offset_m=offset)
     return delta + np.cross(eps, offset)
 
 
@@ -79,7 +78,8 @@ def transfer_components(delta_m: np.ndarray, eps_rad: np.ndarray, offsets_m: np.
     Raises
     ------
     AxiscalError
-        If ``offsets_m`` is not (3, 3) or ``delta_m``, ``eps_rad`` do not end in 3 components.
+        If ``offsets_m`` is not (3, 3), ``delta_m``, ``eps_rad`` do not end in 3 components or do
+        not broadcast, or a value is not a finite number.
 
     Examples
     --------
@@ -88,14 +88,13 @@ def transfer_components(delta_m: np.ndarray, eps_rad: np.ndarray, offsets_m: np.
     >>> transfer_components([0.0, 0.0, 0.0], [0.0, 1e-5, 0.0], offsets)
     array([1.e-06, 0.e+00, 0.e+00])
     """
-    offsets = np.asarray(offsets_m, dtype=float)
+    offsets = check_array("offsets_m", offsets_m)
     if offsets.shape != (3, 3):
         raise AxiscalError(f"offsets_m must have shape (3, 3), one row per component, got {offsets.shape}")
-    eps = np.asarray(eps_rad, dtype=float)
-    out = np.array(delta_m, dtype=float, copy=True)
-    for name, a in (("delta_m", out), ("eps_rad", eps)):
-        if a.shape[-1:] != (3,):
-            raise AxiscalError(f"{name} must have 3 components in its last dimension, got shape {a.shape}")
+    eps = check_array("eps_rad", eps_rad, last=3)
+    out = np.array(check_array("delta_m", delta_m, last=3), copy=True)
+    out, eps = check_broadcast(delta_m=out, eps_rad=eps)
+    out = out.copy()
     ea, eb, ec = eps[..., 0], eps[..., 1], eps[..., 2]
     # (eps x r)_x = eb rz - ec ry, (eps x r)_y = ec rx - ea rz, (eps x r)_z = ea ry - eb rx;
     # a zero arm adds nothing, so the common case (one offset per sensor) costs two products

@@ -28,6 +28,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.instruments.reports import render_report
+from axiscal.io.arguments import check_array, check_broadcast, check_choice, check_mapping, check_number
 from axiscal.units import LENGTH_UNITS, PPM, UM
 
 __all__ = [
@@ -109,9 +110,8 @@ def saturation_vapour_pressure(temperature_c, *, over: str = "auto"):
     float or ndarray, Pa
         Same shape as ``temperature_c``.
     """
-    if over not in ("auto", "water", "ice"):
-        raise AxiscalError(f"unknown phase '{over}' for the saturation vapour pressure; use auto, water or ice")
-    t = np.asarray(temperature_c, dtype=float)
+    check_choice("phase (over)", over, ("auto", "water", "ice"))
+    t = _temperature(temperature_c)
     kelvin = t + _KELVIN
     k1, k2, k3, k4, k5, k6, k7, k8, k9, k10 = _K
     omega = kelvin + k9 / (kelvin - k10)
@@ -151,9 +151,14 @@ def water_vapour_mole_fraction(temperature_c, pressure_pa, humidity_pct):
     float or ndarray
         Mole fraction x_v, dimensionless.
     """
-    t = np.asarray(temperature_c, dtype=float)
-    p = np.asarray(pressure_pa, dtype=float)
-    h = np.asarray(humidity_pct, dtype=float)
+    t, p, h = check_broadcast(
+        temperature_c=_temperature(temperature_c),
+        pressure_pa=check_array("pressure_pa", pressure_pa),
+        humidity_pct=check_array("humidity_pct", humidity_pct),
+    )
+    if np.any(p <= 0.0):
+        raise AxiscalError(f"pressure_pa must be positive, got {float(p[p <= 0].flat[0]):g} Pa")
+    _check_range(h, (0.0, 100.0), "relative humidity humidity_pct", "%")
     enhancement = 1.00062 + 3.14e-8 * p + 5.6e-7 * t**2
     return _as_float(h / 100.0 * enhancement * saturation_vapour_pressure(t) / p)
 
@@ -211,6 +216,14 @@ def _shopfloor(t, p, h, wavelength_nm, co2_ppm):
     return 1.0 + 7.86e-4 * (p / _PA_PER_KPA) / (273.0 + t) - 1.5e-11 * h * (t**2 + 160.0)
 
 
+def _temperature(temperature_c) -> np.ndarray:
+    """Air temperatures in degC as an array, refused when not finite or below absolute zero."""
+    t = check_array("temperature_c", temperature_c)
+    if np.any(t <= -_KELVIN):
+        raise AxiscalError(f"temperature_c {float(t[t <= -_KELVIN].flat[0]):g} degC is below absolute zero")
+    return t
+
+
 def _check_range(values: np.ndarray, bounds: tuple[float, float], what: str, unit: str, hint: str = "") -> None:
     low, high = bounds
     outside = (values < low) | (values > high)
@@ -254,17 +267,14 @@ def refractive_index(temperature_c, pressure_pa, humidity_pct, wavelength_nm, *,
         outside :data:`CO2_RANGE_PPM`, a wavelength outside the method's range
         (:data:`WAVELENGTH_RANGE_NM`), or a water vapour pressure not below the air pressure.
     """
-    if method not in _EQUATIONS:
-        raise AxiscalError(f"unknown refractive-index method '{method}'; use one of {', '.join(METHODS)}")
-    try:
-        t, p, h, wavelength, co2 = np.broadcast_arrays(
-            *(np.asarray(v, dtype=float) for v in (temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm))
-        )
-    except ValueError as exc:
-        raise AxiscalError(f"air temperature, pressure, humidity, wavelength and CO2 do not match in shape: {exc}") from None
-    for name, values in (("temperature", t), ("pressure", p), ("humidity", h), ("wavelength", wavelength), ("CO2", co2)):
+    if not isinstance(method, str) or method not in _EQUATIONS:
+        raise AxiscalError(f"unknown refractive-index method {method!r}; use one of {', '.join(METHODS)}")
+    named = dict(temperature_c=temperature_c, pressure_pa=pressure_pa, humidity_pct=humidity_pct, wavelength_nm=wavelength_nm, co2_ppm=co2_ppm)
+    arrays = {name: check_array(name, value, finite=False) for name, value in named.items()}
+    for name, values in arrays.items():
         if not np.all(np.isfinite(values)):
             raise AxiscalError(f"{name} for the refractive index of air is not a finite number")
+    t, p, h, wavelength, co2 = check_broadcast(**arrays)
     _check_range(h, (0.0, 100.0), "relative humidity", "%")
     if np.any(p <= 0.0):
         raise AxiscalError(f"air pressure must be positive, got {float(p[p <= 0].flat[0]):g} Pa")
@@ -342,6 +352,10 @@ def air_inputs(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm,
     -------
     dict
     """
+    check_choice("refractive-index method", method, METHODS)
+    for name, value in (("temperature_c", temperature_c), ("pressure_pa", pressure_pa), ("humidity_pct", humidity_pct),
+                        ("wavelength_nm", wavelength_nm), ("co2_ppm", co2_ppm)):
+        check_number(name, value)
     return {
         "method": method,
         "temperature_c": temperature_c,
@@ -364,4 +378,5 @@ def air_text(report: dict) -> str:
     -------
     str
     """
+    check_mapping("report", report, ("refractive_index", "n_minus_1_ppm"), what="the dict air_report returns")
     return render_report("instruments/air.txt.j2", r=report)

@@ -31,6 +31,7 @@ from numpy.polynomial import legendre
 
 from axiscal.errors import AxiscalError
 from axiscal.instruments.abbe import transfer_point
+from axiscal.io.arguments import check_array, check_count, check_number, check_path
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import json_line
 from axiscal.io.tabular import read_text
@@ -79,9 +80,22 @@ class ChannelCalibration:
     residual_rms: float = 0.0
     points: int = 0
 
+    def __post_init__(self) -> None:
+        if not isinstance(self.channel, str) or not self.channel:
+            raise AxiscalError(f"channel must be a channel name, not {self.channel!r}")
+        gain = check_number("gain", self.gain)
+        if gain == 0.0:
+            raise AxiscalError(f"channel {self.channel}: gain must not be zero")
+        object.__setattr__(self, "gain", gain)
+        object.__setattr__(self, "offset", check_number("offset", self.offset))
+        for name in ("residual_max", "residual_rms"):
+            object.__setattr__(self, name, check_number(name, getattr(self, name), nonnegative=True))
+        object.__setattr__(self, "points", check_count("points", self.points, minimum=0))
+
     def apply(self, raw: np.ndarray) -> np.ndarray:
-        """Calibrated values ``gain * raw + offset`` of raw readings (the channel's unit)."""
-        return raw * self.gain + self.offset
+        """Calibrated values ``gain * raw + offset`` of raw readings (the channel's unit); NaN stays NaN
+        (a missing reading)."""
+        return check_array("raw", raw, finite=False) * self.gain + self.offset
 
 
 def fit_sensitivity(channel: str, raw: np.ndarray, reference: np.ndarray) -> ChannelCalibration:
@@ -102,8 +116,8 @@ def fit_sensitivity(channel: str, raw: np.ndarray, reference: np.ndarray) -> Cha
     ChannelCalibration
         Gain, offset and the residual band (max |residual| and rms), channel unit.
     """
-    u = np.asarray(raw, dtype=float)
-    r = np.asarray(reference, dtype=float)
+    u = check_array("raw", raw, finite=False)
+    r = check_array("reference", reference, finite=False)
     if u.ndim != 1 or u.shape != r.shape:
         raise AxiscalError(f"channel {channel}: raw and reference must be 1-D arrays of the same length")
     if u.size < 3:
@@ -154,14 +168,16 @@ def transfer_reference(reference_m: np.ndarray, eps_rad: np.ndarray, offset_m: n
     AxiscalError
         For shapes other than the above or a component outside 0..2.
     """
-    eps = np.asarray(eps_rad, dtype=float)
-    offset = np.asarray(offset_m, dtype=float)
+    eps = check_array("eps_rad", eps_rad)
+    offset = check_array("offset_m", offset_m)
     if eps.ndim != 2 or eps.shape[1] != 3 or offset.shape != (3,):
         raise AxiscalError("eps_rad must have shape (n, 3) and offset_m shape (3,)")
-    if component not in (0, 1, 2):
-        raise AxiscalError(f"component must be 0, 1 or 2, got {component}")
+    component = check_count("component", component, minimum=0, maximum=2)
+    reference = check_array("reference_m", reference_m)
+    if reference.ndim > 1 or reference.ndim == 1 and reference.shape[0] != eps.shape[0]:
+        raise AxiscalError(f"reference_m must have one value per row of eps_rad ({eps.shape[0]}), not shape {reference.shape}")
     delta = np.zeros(eps.shape)
-    delta[:, component] = reference_m
+    delta[:, component] = reference
     return transfer_point(delta, eps, offset)[:, component]
 
 
@@ -195,14 +211,24 @@ class MirrorCorrection:
     cv_rms_rad: tuple[float, ...] = ()
     points: int = 0
 
+    def __post_init__(self) -> None:
+        start = check_number("start_m", self.start_m)
+        end = check_number("end_m", self.end_m)
+        if end <= start:
+            raise AxiscalError(f"axis {self.letter}: end_m must be greater than start_m")
+        coefficients = check_array("coefficients_rad", self.coefficients_rad, ndim=1, min_len=1)
+        object.__setattr__(self, "start_m", start)
+        object.__setattr__(self, "end_m", end)
+        object.__setattr__(self, "coefficients_rad", tuple(float(c) for c in coefficients))
+
     @property
     def order(self) -> int:
         return len(self.coefficients_rad) - 1
 
     def evaluate(self, q_m: np.ndarray) -> np.ndarray:
-        """Form error eps_error at positions ``q_m`` (shape (N,)), radians; positions are clipped to the map."""
+        """Form error eps_error at positions ``q_m`` (shape (N,), finite), radians; positions are clipped to the map."""
         scale = 2.0 / (self.end_m - self.start_m)
-        s = np.clip((np.asarray(q_m, dtype=float) - self.start_m) * scale - 1.0, -1.0, 1.0)
+        s = np.clip((check_array("q_m", q_m) - self.start_m) * scale - 1.0, -1.0, 1.0)
         return legendre.legval(s, np.asarray(self.coefficients_rad))
 
     def inside(self, q_m: np.ndarray) -> np.ndarray:
@@ -253,8 +279,13 @@ def fit_mirror(
     MirrorCorrection
         The fitted form error, its residuals and the cross-validation rms for every order tried.
     """
-    q = np.asarray(position_m, dtype=float)
-    eps_error = np.asarray(module_roll_rad, dtype=float) - np.asarray(level_roll_rad, dtype=float)
+    q = check_array("position_m", position_m, finite=False)
+    module = check_array("module_roll_rad", module_roll_rad, finite=False)
+    level = check_array("level_roll_rad", level_roll_rad, finite=False)
+    max_order = check_count("max_order", max_order, minimum=0)
+    if q.ndim != 1 or q.shape != module.shape or q.shape != level.shape:
+        raise AxiscalError(f"axis {letter}: positions, module and level readings must be 1-D of the same length")
+    eps_error = module - level
     if q.ndim != 1 or q.shape != eps_error.shape:
         raise AxiscalError(f"axis {letter}: positions, module and level readings must be 1-D of the same length")
     if not (np.all(np.isfinite(q)) and np.all(np.isfinite(eps_error))):
@@ -296,6 +327,12 @@ class Calibration:
 
     channels: Mapping[str, ChannelCalibration] = field(default_factory=dict)
     mirrors: Mapping[str, MirrorCorrection] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        for name, kind in (("channels", ChannelCalibration), ("mirrors", MirrorCorrection)):
+            entries = getattr(self, name)
+            if not isinstance(entries, Mapping) or not all(isinstance(v, kind) for v in entries.values()):
+                raise AxiscalError(f"{name} must map names to {kind.__name__} objects, not {entries!r}"[:200])
 
     def channel(self, name: str) -> ChannelCalibration:
         """The calibration of one channel.
@@ -375,7 +412,9 @@ def save_calibration(calibration: Calibration, path: str | Path) -> None:
     AxiscalError
         If the file cannot be written (naming it).
     """
-    write_text(path, json.dumps(calibration.to_dict(), indent=2) + "\n")
+    if not isinstance(calibration, Calibration):
+        raise AxiscalError(f"calibration must be a Calibration, not {type(calibration).__name__}")
+    write_text(check_path("path", path), json.dumps(calibration.to_dict(), indent=2) + "\n")
 
 
 def _number(entry: Mapping, key: str, fail, *, default: float | None = None) -> float:
@@ -488,7 +527,7 @@ def load_calibration(path: str | Path) -> Calibration:
     AxiscalError
         If the file is missing, not JSON or not a calibration (naming the file and line).
     """
-    path = Path(path)
+    path = check_path("path", path)
     text = read_text(path)
     try:
         data = json.loads(text)

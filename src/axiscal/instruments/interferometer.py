@@ -25,6 +25,7 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.instruments.air import air_inputs, refractive_index
 from axiscal.instruments.reports import render_report
+from axiscal.io.arguments import check_array, check_broadcast, check_count, check_mapping, check_number
 from axiscal.materials import STEEL_EXPANSION_PER_K
 from axiscal.units import MM, NM
 
@@ -50,14 +51,18 @@ REFERENCE_TEMPERATURE_C = 20.0
 
 
 def _finite(name: str, values) -> np.ndarray:
-    array = np.asarray(values, dtype=float)
+    array = check_array(name, values, finite=False)
     if not np.all(np.isfinite(array)):
         raise AxiscalError(f"{name} is not a finite number")
     return array
 
 
 def _mean_material_temperature(material_temperature_c) -> np.ndarray:
-    temperatures = _finite("material temperature", material_temperature_c)
+    temperatures = _finite("material_temperature_c", material_temperature_c)
+    if np.any(temperatures <= -273.15):
+        raise AxiscalError("material_temperature_c below absolute zero is not a temperature in degC")
+    if temperatures.size == 0:
+        raise AxiscalError("material_temperature_c holds no temperature")
     if temperatures.ndim > 2:
         raise AxiscalError(
             f"material temperatures must have shape (n,) or (n, k) for k sensors, got {temperatures.ndim} dimensions"
@@ -102,13 +107,16 @@ def length_from_fringes(
     ndarray, metres
         Broadcast shape of the inputs.
     """
-    if optical_fold < 1 or interpolation < 1:
-        raise AxiscalError("optical fold and interpolation must be positive whole numbers")
-    index = _finite("refractive index of air", index_of_air)
+    optical_fold = check_count("optical_fold", optical_fold)
+    interpolation = check_count("interpolation", interpolation)
+    index = _finite("index_of_air (refractive index of air)", index_of_air)
     if np.any(index < 1.0):
-        raise AxiscalError("refractive index of air below 1 is not physical")
-    wavelength = _finite("wavelength", wavelength_nm) * NM
-    return _finite("fringe count", counts) * wavelength / (2.0 * optical_fold * interpolation * index)
+        raise AxiscalError("index_of_air (refractive index of air) below 1 is not physical")
+    wavelength = _finite("wavelength_nm", wavelength_nm)
+    if np.any(wavelength <= 0.0):
+        raise AxiscalError("wavelength_nm must be a positive number of nanometres")
+    n, index, wavelength = check_broadcast(counts=_finite("counts (fringe count)", counts), index_of_air=index, wavelength_nm=wavelength)
+    return n * wavelength * NM / (2.0 * optical_fold * interpolation * index)
 
 
 def fringes_from_length(
@@ -136,7 +144,8 @@ def fringes_from_length(
     unit = length_from_fringes(
         1.0, wavelength_nm=wavelength_nm, index_of_air=index_of_air, optical_fold=optical_fold, interpolation=interpolation
     )
-    return _finite("length", length_m) / unit
+    length, unit = check_broadcast(length_m=_finite("length_m", length_m), wavelength_nm=unit)
+    return length / unit
 
 
 def normalise_to_20c(length_m, material_temperature_c, *, expansion_per_k=STEEL_EXPANSION_PER_K) -> np.ndarray:
@@ -158,8 +167,13 @@ def normalise_to_20c(length_m, material_temperature_c, *, expansion_per_k=STEEL_
     ndarray, metres
     """
     temperature = _mean_material_temperature(material_temperature_c)
-    alpha = _finite("expansion coefficient", expansion_per_k)
-    return _finite("length", length_m) / (1.0 + alpha * (temperature - REFERENCE_TEMPERATURE_C))
+    alpha = _finite("expansion_per_k (expansion coefficient)", expansion_per_k)
+    if np.any(np.abs(alpha) >= 1e-3):
+        raise AxiscalError("expansion_per_k must be a coefficient per kelvin below 1e-3 (steel: 11.5e-6)")
+    length, temperature, alpha = check_broadcast(
+        length_m=_finite("length_m", length_m), material_temperature_c=temperature, expansion_per_k=alpha
+    )
+    return length / (1.0 + alpha * (temperature - REFERENCE_TEMPERATURE_C))
 
 
 def compensated_length(
@@ -205,7 +219,7 @@ def compensated_length(
     ndarray, metres
         Broadcast shape of the inputs (the sensor axis of a 2-D material temperature removed).
     """
-    reading = _finite("laser reading", reading_m)
+    reading = _finite("reading_m (laser reading)", reading_m)
     index = refractive_index(air_temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm=co2_ppm, method=method)
     try:
         length = reading / np.asarray(index)
@@ -236,9 +250,13 @@ def dead_path_error(dead_path_m, *, index_at_datum, index_now) -> np.ndarray:
     -------
     ndarray, metres
     """
-    n0 = _finite("index at datum", index_at_datum)
-    n1 = _finite("present index", index_now)
-    return _finite("dead path", dead_path_m) * (n1 - n0) / n1
+    n0 = _finite("index_at_datum", index_at_datum)
+    n1 = _finite("index_now", index_now)
+    for name, index in (("index_at_datum", n0), ("index_now", n1)):
+        if np.any(index < 1.0):
+            raise AxiscalError(f"{name} (a refractive index of air) below 1 is not physical")
+    dead, n0, n1 = check_broadcast(dead_path_m=_finite("dead_path_m", dead_path_m), index_at_datum=n0, index_now=n1)
+    return dead * (n1 - n0) / n1
 
 
 def cosine_error(length_m, misalignment_rad) -> np.ndarray:
@@ -269,8 +287,10 @@ def cosine_error(length_m, misalignment_rad) -> np.ndarray:
     >>> round(float(cosine_error(1.0, 1e-3)) * 1e9, 3)  # 1 m at 1 mrad: 0.5 um
     500.0
     """
-    angle = _finite("misalignment angle", misalignment_rad)
-    return _finite("length", length_m) * 2.0 * np.sin(angle / 2.0) ** 2
+    length, angle = check_broadcast(
+        length_m=_finite("length_m", length_m), misalignment_rad=_finite("misalignment_rad", misalignment_rad)
+    )
+    return length * 2.0 * np.sin(angle / 2.0) ** 2
 
 
 def misalignment_for_cosine_error(relative_error) -> np.ndarray:
@@ -294,9 +314,9 @@ def misalignment_for_cosine_error(relative_error) -> np.ndarray:
     AxiscalError
         If the error is not finite or outside 0 to 2.
     """
-    error = _finite("relative cosine error", relative_error)
+    error = _finite("relative_error (relative cosine error)", relative_error)
     if np.any((error < 0.0) | (error > 2.0)):
-        raise AxiscalError("a relative cosine error lies between 0 and 2")
+        raise AxiscalError("relative_error: a relative cosine error lies between 0 and 2")
     return 2.0 * np.arcsin(np.sqrt(error / 2.0))
 
 
@@ -327,7 +347,8 @@ def abbe_error(arm_m, angle_rad) -> np.ndarray:
     AxiscalError
         If an input is not finite.
     """
-    return _finite("Abbe arm", arm_m) * np.sin(_finite("angle", angle_rad))
+    arm, angle = check_broadcast(arm_m=_finite("arm_m (Abbe arm)", arm_m), angle_rad=_finite("angle_rad", angle_rad))
+    return arm * np.sin(angle)
 
 
 def fringe_report(
@@ -374,6 +395,9 @@ def fringe_report(
     AxiscalError
         For values :func:`length_from_fringes` or :func:`compensated_length` refuse.
     """
+    check_number("counts", counts)
+    if isinstance(material_temperature_c, (str, bytes)) or not hasattr(material_temperature_c, "__iter__"):
+        raise AxiscalError(f"material_temperature_c must be a sequence of temperatures in degC, not {material_temperature_c!r}")
     vacuum = float(length_from_fringes(counts, wavelength_nm=wavelength_nm, optical_fold=optical_fold, interpolation=interpolation))
     air = dict(air_temperature_c=temperature_c, pressure_pa=pressure_pa, humidity_pct=humidity_pct, wavelength_nm=wavelength_nm, co2_ppm=co2_ppm, method=method)
     in_air = float(compensated_length(vacuum, **air))
@@ -405,6 +429,7 @@ def fringe_text(report: dict) -> str:
     -------
     str
     """
+    check_mapping("report", report, ("material_temperature_c", "length_in_air_mm"), what="the dict fringe_report returns")
     material = report["material_temperature_c"]
     mean = sum(material) / len(material) if material else None
     return render_report("instruments/fringes.txt.j2", r=report, mean_material_c=mean)

@@ -37,6 +37,7 @@ from typing import Literal
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_broadcast, check_number
 
 __all__ = [
     "BK7_INDEX",
@@ -71,6 +72,7 @@ PENTAPRISM_INCIDENT = np.array([-1.0, 0.0, 0.0])
 
 
 def _unit(vectors: np.ndarray, what: str) -> np.ndarray:
+    vectors = check_array(what, vectors, last=3, finite=False)
     norms = np.linalg.norm(vectors, axis=-1, keepdims=True)
     if np.any(~np.isfinite(norms)) or np.any(norms == 0.0):
         raise AxiscalError(f"{what} must be finite non-zero vectors")
@@ -78,7 +80,7 @@ def _unit(vectors: np.ndarray, what: str) -> np.ndarray:
 
 
 def _batch(vectors: np.ndarray | Sequence[float], what: str) -> np.ndarray:
-    array = np.asarray(vectors, dtype=float)
+    array = check_array(what, vectors)
     if array.ndim == 1:
         array = array[np.newaxis, :]
     if array.ndim != 2 or array.shape[1] != 3:
@@ -86,9 +88,17 @@ def _batch(vectors: np.ndarray | Sequence[float], what: str) -> np.ndarray:
     return array
 
 
+def _glass_index(index: float, name: str = "index") -> float:
+    try:
+        value = check_number(name, index, low=1.0)
+    except AxiscalError:
+        raise AxiscalError(f"{name}: a refractive index must be a finite number of at least 1 (glass in air), got {index!r}") from None
+    return value
+
+
 def _cos_sin(angle_rad: float | np.ndarray) -> tuple[np.ndarray, ...]:
     """cos, sin, ones and zeros of the angle(s), the entries of a rotation matrix."""
-    a = np.asarray(angle_rad, dtype=float)
+    a = check_array("angle_rad", angle_rad)
     return np.cos(a), np.sin(a), np.ones_like(a), np.zeros_like(a)
 
 
@@ -156,7 +166,7 @@ def rotation_xyz(rx_rad: float | np.ndarray, ry_rad: float | np.ndarray, rz_rad:
     ndarray, shape ``broadcast + (3, 3)``
         The rotation matrix (matrices).
     """
-    rx, ry, rz = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (rx_rad, ry_rad, rz_rad)))
+    rx, ry, rz = check_broadcast(**{n: check_array(n, a) for n, a in (("rx_rad", rx_rad), ("ry_rad", ry_rad), ("rz_rad", rz_rad))})
     return rotation_x(rx) @ rotation_y(ry) @ rotation_z(rz)
 
 
@@ -172,7 +182,7 @@ def reflection_matrix(normal: np.ndarray | Sequence[float]) -> np.ndarray:
     -------
     ndarray, shape (..., 3, 3)
     """
-    n = _unit(np.asarray(normal, dtype=float), "mirror normals")
+    n = _unit(normal, "normal (mirror normals)")
     return np.eye(3) - 2.0 * n[..., :, np.newaxis] * n[..., np.newaxis, :]
 
 
@@ -191,7 +201,9 @@ def reflect(directions: np.ndarray, normal: np.ndarray) -> np.ndarray:
     ndarray, shape (n, 3)
         Reflected directions.
     """
-    n = _unit(np.asarray(normal, dtype=float), "mirror normals")
+    directions = check_array("directions", directions, last=3)
+    n = _unit(normal, "normal (mirror normals)")
+    directions, n = check_broadcast(directions=directions, normal=n)
     return directions - 2.0 * np.sum(directions * n, axis=-1, keepdims=True) * n
 
 
@@ -220,8 +232,9 @@ def refract(directions: np.ndarray, normal: np.ndarray, index_ratio: float) -> n
     AxiscalError
         If a ray is totally internally reflected (the square root's argument is negative).
     """
-    n = _unit(np.asarray(normal, dtype=float), "face normals")
-    n = np.broadcast_to(n, directions.shape)
+    directions = check_array("directions", directions, last=3)
+    index_ratio = check_number("index_ratio", index_ratio, positive=True)
+    directions, n = check_broadcast(directions=directions, normal=_unit(normal, "normal (face normals)"))
     cos_in = np.sum(directions * n, axis=-1, keepdims=True)
     n = np.where(cos_in > 0.0, -n, n)
     cos_in = -np.abs(cos_in)
@@ -255,10 +268,8 @@ class Face:
     def __post_init__(self) -> None:
         if self.kind not in ("refract", "reflect"):
             raise AxiscalError(f"face kind must be 'refract' or 'reflect', not {self.kind!r}")
-        normal = _unit(np.asarray(self.normal, dtype=float).reshape(3), "a face normal")
-        point = np.asarray(self.point_m, dtype=float).reshape(3)
-        if not np.all(np.isfinite(point)):
-            raise AxiscalError("a face point must be finite")
+        normal = _unit(check_array("normal (a face normal)", self.normal, ndim=1, last=3), "normal (a face normal)")
+        point = check_array("point_m (a face point)", self.point_m, ndim=1, last=3)
         object.__setattr__(self, "normal", normal)
         object.__setattr__(self, "point_m", point)
 
@@ -282,23 +293,27 @@ class Prism:
     pivot_m: np.ndarray = field(default_factory=lambda: np.zeros(3))
 
     def __post_init__(self) -> None:
-        if not (np.isfinite(self.index) and self.index >= 1.0):
-            raise AxiscalError(f"a prism's refractive index must be at least 1 (glass in air), got {self.index}")
-        if not self.faces:
+        _glass_index(self.index)
+        if isinstance(self.faces, (str, bytes)) or not hasattr(self.faces, "__iter__") or not self.faces:
             raise AxiscalError("a prism needs at least one face")
+        if not all(isinstance(f, Face) for f in self.faces):
+            raise AxiscalError("faces must be Face objects")
         object.__setattr__(self, "faces", tuple(self.faces))
-        object.__setattr__(self, "pivot_m", np.asarray(self.pivot_m, dtype=float).reshape(3))
+        object.__setattr__(self, "index", float(self.index))
+        object.__setattr__(self, "pivot_m", check_array("pivot_m", self.pivot_m, ndim=1, last=3))
 
     def rotated(self, rotation: np.ndarray) -> Prism:
         """The prism turned by the 3x3 rotation matrix ``rotation`` about :attr:`pivot_m` (eq 9)."""
-        r = np.asarray(rotation, dtype=float)
+        r = check_array("rotation", rotation)
+        if r.shape != (3, 3):
+            raise AxiscalError(f"rotation must be a 3x3 matrix, not shape {r.shape}")
         c = self.pivot_m
         faces = tuple(Face(r @ f.normal, r @ (f.point_m - c) + c, f.kind) for f in self.faces)
         return Prism(faces, self.index, c)
 
     def translated(self, offset_m: np.ndarray | Sequence[float]) -> Prism:
         """The prism moved by ``offset_m`` (shape (3,), metres)."""
-        t = np.asarray(offset_m, dtype=float).reshape(3)
+        t = check_array("offset_m", offset_m, ndim=1, last=3)
         return Prism(tuple(Face(f.normal, f.point_m + t, f.kind) for f in self.faces), self.index, self.pivot_m + t)
 
 
@@ -357,9 +372,12 @@ def trace(
         If a ray runs parallel to a face or would have to go backwards to reach it (it misses the
         prism as set up), or is totally internally reflected at a refracting face.
     """
-    points = _batch(origins_m, "ray origins")
-    dirs = _unit(_batch(directions, "ray directions"), "ray directions")
-    points, dirs = np.broadcast_arrays(points, dirs)
+    if not isinstance(prism, Prism):
+        raise AxiscalError(f"prism must be a Prism, not {type(prism).__name__}")
+    ambient_index = _glass_index(ambient_index, "ambient_index")
+    points = _batch(origins_m, "origins_m (ray origins)")
+    dirs = _unit(_batch(directions, "directions (ray directions)"), "directions (ray directions)")
+    points, dirs = check_broadcast(origins_m=points, directions=dirs)
     points, dirs = points.copy(), dirs.copy()
     path_points, path_dirs = [points], [dirs]
     inside = False
@@ -402,8 +420,9 @@ def angle_between(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     >>> round(float(angle_between([1.0, 0.0, 0.0], [0.0, 2.0, 0.0])), 12)
     1.570796326795
     """
-    a = np.asarray(a, dtype=float)
-    b = np.asarray(b, dtype=float)
+    a = _unit(a, "a (a direction)")
+    b = _unit(b, "b (a direction)")
+    a, b = check_broadcast(a=a, b=b)
     return np.arctan2(np.linalg.norm(np.cross(a, b), axis=-1), np.sum(a * b, axis=-1))
 
 
@@ -437,9 +456,9 @@ def pentaprism(*, index: float = BK7_INDEX, size_m: float = 0.02, mirror_angle_e
     AxiscalError
         If ``index`` is below 1 or ``size_m`` is not positive.
     """
-    if not (np.isfinite(size_m) and size_m > 0.0):
-        raise AxiscalError(f"the prism size must be a positive length, got {size_m}")
-    a = float(size_m)
+    a = check_number("size_m (the prism size)", size_m, positive=True, unit="metres")
+    index = _glass_index(index)
+    mirror_angle_error_rad = check_number("mirror_angle_error_rad", mirror_angle_error_rad)
     c8, s8 = np.cos(np.pi / 8.0), np.sin(np.pi / 8.0)
     t = a / c8  # length of each mirror face
     n1 = np.array([1.0, 0.0, 0.0])
@@ -478,8 +497,8 @@ def mirror_angle_error_for_deviation(deviation_error_rad: float, *, index: float
     AxiscalError
         If ``index`` is below 1.
     """
-    if not (np.isfinite(index) and index >= 1.0):
-        raise AxiscalError(f"a prism's refractive index must be at least 1 (glass in air), got {index}")
+    index = _glass_index(index)
+    deviation_error_rad = check_number("deviation_error_rad", deviation_error_rad)
     return float(np.arcsin(np.sin(deviation_error_rad) / index) / 2.0)
 
 
@@ -522,15 +541,15 @@ def pentaprism_deviation(
         If ``index`` is below 1, or the prism is turned so far that the beam misses a face or is
         totally internally reflected.
     """
-    if not (np.isfinite(index) and index >= 1.0):
-        raise AxiscalError(f"a prism's refractive index must be at least 1 (glass in air), got {index}")
+    index = _glass_index(index)
+    deviation_error_rad = check_number("deviation_error_rad", deviation_error_rad)
     rotation = rotation_xyz(rx_rad, ry_rad, rz_rad)
     shape = rotation.shape[:-2]
     rotation = rotation.reshape(-1, 3, 3)
     error = mirror_angle_error_for_deviation(deviation_error_rad, index=index) if deviation_error_rad else 0.0
     size = 0.02
     prism = pentaprism(index=index, size_m=size, mirror_angle_error_rad=error)
-    offset = np.asarray(translation_m, dtype=float).reshape(3)
+    offset = check_array("translation_m", translation_m, ndim=1, last=3)
     # Trace in the prism's own frame: turning the prism by R about its pivot c is the same as
     # turning the beam by R^T about c (and undoing the shift), then turning the exit beam back.
     origin = np.array([2.0 * size, 0.0, size / 2.0])
@@ -594,8 +613,10 @@ def pentaprism_sensitivity(
         Deviation changes per rotation axis and per shift axis (rad) and the quadratic
         coefficient of the change with rotation about Z.
     """
-    angles = np.asarray(rotation_rad, dtype=float).reshape(-1)
-    shifts = np.asarray(translation_m, dtype=float).reshape(-1)
+    angles = check_array("rotation_rad", rotation_rad, ndim=1, min_len=1)
+    shifts = check_array("translation_m", translation_m, ndim=1, min_len=1)
+    if not np.any(angles):
+        raise AxiscalError("rotation_rad must hold a non-zero angle (the quadratic coefficient needs one)")
     zero = np.zeros_like(angles)
     change = np.stack(
         [

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from axiscal.io.arguments import render_checked
 from axiscal.io.templates import render_template
 
 __all__ = ["render_report"]
@@ -29,7 +30,11 @@ def render_report(name: str, **context: Any) -> str:
 
     Raises
     ------
-    jinja2.UndefinedError
-        If the template uses a value not given (a programming error, not a user's).
+    AxiscalError
+        For a template that is not shipped, or a value the template uses that is not given.
     """
+    return render_checked(_render, name, **context)
+
+
+def _render(name: str, **context: Any) -> str:
     return render_template(name, keep_trailing_newline=True, trim_blocks=False, **context)

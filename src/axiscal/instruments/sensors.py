@@ -27,6 +27,7 @@ import numpy as np
 
 from axiscal.conventions import AXIS_INDEX, component_names
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_count, check_number
 from axiscal.units import MM, UM
 
 __all__ = [
@@ -60,7 +61,7 @@ def straightness_from_psd(shift_m: np.ndarray) -> np.ndarray:
     >>> float(straightness_from_psd(2e-6))
     2e-06
     """
-    return np.asarray(shift_m, dtype=float)
+    return check_array("shift_m", shift_m)
 
 
 def angle_from_quadrant(shift_m: np.ndarray, focal_m: float) -> np.ndarray:
@@ -83,7 +84,7 @@ def angle_from_quadrant(shift_m: np.ndarray, focal_m: float) -> np.ndarray:
     >>> round(float(angle_from_quadrant(1e-6, 0.1)), 12)
     1e-05
     """
-    return np.asarray(shift_m, dtype=float) / focal_m
+    return check_array("shift_m", shift_m) / check_number("focal_m", focal_m, positive=True)
 
 
 def roll_from_autocollimation(shift_m: np.ndarray, focal_m: float) -> np.ndarray:
@@ -106,7 +107,7 @@ def roll_from_autocollimation(shift_m: np.ndarray, focal_m: float) -> np.ndarray
     >>> round(float(roll_from_autocollimation(2e-6, 0.1)), 12)
     1e-05
     """
-    return np.asarray(shift_m, dtype=float) / (2.0 * focal_m)
+    return check_array("shift_m", shift_m) / (2.0 * check_number("focal_m", focal_m, positive=True))
 
 
 def quadrant_shift(angle_rad: np.ndarray, focal_m: float) -> np.ndarray:
@@ -124,7 +125,7 @@ def quadrant_shift(angle_rad: np.ndarray, focal_m: float) -> np.ndarray:
     ndarray
         Spot shift, metres.
     """
-    return np.asarray(angle_rad, dtype=float) * focal_m
+    return check_array("angle_rad", angle_rad) * check_number("focal_m", focal_m, positive=True)
 
 
 def autocollimation_shift(roll_rad: np.ndarray, focal_m: float) -> np.ndarray:
@@ -142,7 +143,7 @@ def autocollimation_shift(roll_rad: np.ndarray, focal_m: float) -> np.ndarray:
     ndarray
         Spot shift, metres.
     """
-    return np.asarray(roll_rad, dtype=float) * (2.0 * focal_m)
+    return check_array("roll_rad", roll_rad) * (2.0 * check_number("focal_m", focal_m, positive=True))
 
 
 @dataclass(frozen=True)
@@ -159,6 +160,11 @@ class SignedComponent:
 
     index: int
     sign: float
+
+    def __post_init__(self) -> None:
+        check_count("index", self.index, minimum=0, maximum=5)
+        if self.sign not in (1.0, -1.0) or isinstance(self.sign, bool):
+            raise AxiscalError(f"sign must be +1 or -1, not {self.sign!r}")
 
 
 def parse_signed_component(text: str, letter: str, *, what: str) -> SignedComponent:
@@ -187,6 +193,8 @@ def parse_signed_component(text: str, letter: str, *, what: str) -> SignedCompon
     >>> parse_signed_component("-EBX", "X", what="qd_v")
     SignedComponent(index=4, sign=-1.0)
     """
+    if letter not in AXIS_INDEX:
+        raise AxiscalError(f"letter must be an axis letter {', '.join(AXIS_INDEX)}, not {letter!r}")
     names = component_names(letter)
     value = str(text).strip().upper()
     sign = 1.0
@@ -234,6 +242,20 @@ class SensorHead:
     qd_range_m: float = 500e-6
     roll_range_m: float = 500e-6
     scale_margin_m: float = 5e-3
+
+    def __post_init__(self) -> None:
+        if self.letter not in AXIS_INDEX:
+            raise AxiscalError(f"letter must be an axis letter {', '.join(AXIS_INDEX)}, not {self.letter!r}")
+        for name in ("scale_point_m", "psd_point_m"):
+            point = check_array(name, getattr(self, name), ndim=1)
+            if point.shape != (3,):
+                raise AxiscalError(f"{name} must be 3 numbers of metres, not shape {point.shape}")
+            object.__setattr__(self, name, tuple(float(v) for v in point))
+        for name in ("qd_focal_m", "roll_focal_m", "psd_range_m", "qd_range_m", "roll_range_m", "scale_margin_m"):
+            object.__setattr__(self, name, check_number(name, getattr(self, name), positive=True))
+        for name in ("qd_u", "qd_v", "roll"):
+            if not isinstance(getattr(self, name), SignedComponent):
+                raise AxiscalError(f"{name} must be a SignedComponent, not {getattr(self, name)!r}")
 
     @property
     def index(self) -> int:
@@ -321,6 +343,8 @@ def sensor_head_from_dict(letter: str, section: Mapping) -> SensorHead:
     AxiscalError
         For an unknown key, a bad value or rotations that are not three different ones.
     """
+    if letter not in AXIS_INDEX:
+        raise AxiscalError(f"letter must be an axis letter {', '.join(AXIS_INDEX)}, not {letter!r}")
     where = f"[axes.{letter}.sensors]"
     if not isinstance(section, Mapping):
         raise AxiscalError(f"{where} must be a table")

@@ -1,9 +1,23 @@
 """The one tabular reader and writer (CSV with units in column names), TOML and JSON files, atomic
-writes, JSON sidecars, the importers of instrument exports, and the lazy entry to matplotlib for
-plots (:mod:`axiscal.io.figures`)."""
+writes, JSON sidecars, the importers of instrument exports, the checks of the arguments public
+functions share (:mod:`axiscal.io.arguments`), and the lazy entry to matplotlib for plots
+(:mod:`axiscal.io.figures`)."""
 
 from __future__ import annotations
 
+from axiscal.io.arguments import (
+    check_array,
+    check_broadcast,
+    check_choice,
+    check_count,
+    check_mapping,
+    check_number,
+    check_path,
+    check_same_length,
+    is_real,
+    render_checked,
+    unit_words,
+)
 from axiscal.io.atomic import atomic_write, write_text
 from axiscal.io.jsonio import (
     dumps,
@@ -26,6 +40,17 @@ from axiscal.io.tabular import (
 )
 
 __all__ = [
+    "check_array",
+    "check_broadcast",
+    "check_choice",
+    "check_count",
+    "check_mapping",
+    "check_number",
+    "check_path",
+    "check_same_length",
+    "is_real",
+    "render_checked",
+    "unit_words",
     "atomic_write",
     "write_text",
     "dumps",

@@ -26,6 +26,7 @@ from axiscal.errors import AxiscalError
 from axiscal.instruments.abbe import transfer_point
 from axiscal.instruments.air import refractive_index
 from axiscal.instruments.calibration import save_calibration
+from axiscal.io.arguments import check_count, check_path
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.templates import render_template
@@ -85,6 +86,12 @@ def _beam_point(module: VirtualModule, letter: str) -> np.ndarray:
     return np.asarray(module.heads[letter].scale_point_m) + INTERFEROMETER_BEAM_M
 
 
+def _module(module: VirtualModule) -> VirtualModule:
+    if not isinstance(module, VirtualModule):
+        raise AxiscalError(f"module must be a VirtualModule, not {type(module).__name__}")
+    return module
+
+
 def laser_run(module: VirtualModule, letter: str, *, runs: int = 5, targets: int = 11, seed: int = 0) -> dict[str, np.ndarray]:
     """Raw laser readings of a bidirectional ISO 230-2 test of one axis with air and material sensors.
 
@@ -124,8 +131,12 @@ def laser_run(module: VirtualModule, letter: str, *, runs: int = 5, targets: int
     >>> sorted(set(run["direction"].tolist()))
     ['+', '-']
     """
-    if letter not in module.heads:
-        raise AxiscalError(f"the virtual module has no axis '{letter}'; use X or Z")
+    _module(module)
+    if not isinstance(letter, str) or letter not in module.heads:
+        raise AxiscalError(f"the virtual module has no axis {letter!r}; use X or Z (letter)")
+    runs = check_count("runs", runs)
+    targets = check_count("targets", targets, minimum=2)
+    seed = check_count("seed", seed, minimum=0)
     target_m = plan_targets(0.0, STROKE_M, targets, seed=seed)
     errors = module.true_errors(letter, target_m)
     index = "XYZ".index(letter)
@@ -180,6 +191,8 @@ def probe_readings(module: VirtualModule, *, seed: int = 0) -> dict[str, np.ndar
     >>> sorted(probe_readings(VirtualModule(seed=0)))
     ['a_um', 'b_um', 'c_um', 'position_mm']
     """
+    _module(module)
+    seed = check_count("seed", seed, minimum=0)
     length = STROKE_M + 2 * _SPACING_M
 
     def profile(x):
@@ -233,6 +246,9 @@ def squareness_runs(module: VirtualModule, *, points: int = 20, seed: int = 0) -
     >>> sorted(first)
     ['deviation_um', 'position_mm']
     """
+    _module(module)
+    points = check_count("points", points, minimum=2)
+    seed = check_count("seed", seed, minimum=0)
     q = np.linspace(0.0, STROKE_M, points)
     rng = np.random.default_rng([seed, 2])
     included = -module.machine.squareness_rad["EB0Z"]  # opening beyond 90 degrees (paper 002 eq 1)
@@ -262,6 +278,7 @@ def diagonal_readings(module: VirtualModule) -> dict[str, np.ndarray]:
     >>> float(diagonal_readings(VirtualModule(seed=0))["measured_mm"][0])
     0.0
     """
+    _module(module)
     measured = module.laser_diagonal({"X": _DIAGONAL_Q_M, "Z": _DIAGONAL_Q_M.copy()})
     return {"nominal_mm": np.hypot(_DIAGONAL_Q_M, _DIAGONAL_Q_M) / MM, "measured_mm": measured / MM}
 
@@ -295,6 +312,12 @@ class SimulatedCampaign:
     folder: Path
     seed: int
     files: tuple[str, ...]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "folder", check_path("folder", self.folder))
+        check_count("seed", self.seed, minimum=0)
+        if isinstance(self.files, (str, bytes)) or not all(isinstance(f, str) for f in self.files):
+            raise AxiscalError(f"files must be a sequence of file names (str), not {self.files!r}"[:200])
 
     @property
     def toml(self) -> Path:
@@ -350,7 +373,8 @@ def write_campaign(folder: str | Path, *, seed: int = 0) -> SimulatedCampaign:
     >>> campaign.toml.name
     'campaign.toml'
     """
-    folder = Path(folder)
+    folder = check_path("folder", folder)
+    seed = check_count("seed", seed, minimum=0)
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:

@@ -15,12 +15,15 @@ from collections.abc import Mapping
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_mapping
 from axiscal.units import MM, UM, URAD
 
 __all__ = ["display_name", "display_factor", "to_display"]
 
 def _split(name: str) -> tuple[str, str, float]:
     """(stem, display unit, SI per display unit) of an SI result name, or the name unchanged."""
+    if not isinstance(name, str):
+        raise AxiscalError(f"name must be a result name such as 'ex_m', not {name!r}")
     if name.endswith("_rad"):
         return name[: -len("_rad")], "urad", URAD
     if name.endswith("_m"):
@@ -97,9 +100,11 @@ def to_display(results: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
     >>> to_display({"t_s": np.array([0.5]), "ex_m": np.array([2e-6])})
     {'t_s': array([0.5]), 'ex_um': array([2.])}
     """
+    check_mapping("results", results, what="a mapping of result names to arrays")
     out: dict[str, np.ndarray] = {}
     for name, value in results.items():
         stem, unit, factor = _split(name)
+        check_array(f"results['{name}']", value, finite=False)  # NaN: a faulty frame's result
         shown = f"{stem}_{unit}" if unit else name
         if shown in out:
             raise AxiscalError(f"result columns '{name}' and another both show as '{shown}'")

@@ -21,6 +21,9 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_count, check_mapping, check_same_length
+
 __all__ = ["Fault", "FAULT_TEXT", "fault_text", "fault_legend", "mark_malformed"]
 
 
@@ -82,7 +85,7 @@ def fault_text(fault: int) -> str:
     >>> fault_text(2)
     'channel out of range'
     """
-    fault = int(fault)
+    fault = check_count("fault", fault, minimum=0)
     if fault == 0:
         return "ok"
     words = [text for bit, text in FAULT_TEXT.items() if fault & bit]
@@ -127,8 +130,17 @@ def mark_malformed(results: Mapping[str, np.ndarray], malformed: np.ndarray) -> 
     >>> fault.tolist(), out["e_m"].tolist()
     ([0, 256], [1e-06, nan])
     """
-    malformed = np.asarray(malformed, dtype=bool)
-    fault = np.asarray(results["fault"], dtype=np.int64) | np.where(malformed, int(Fault.MALFORMED), 0)
+    check_mapping("results", results, ("fault",), what="the results of MeasurementSystem.process (with 'fault')")
+    flags = np.asarray(malformed)
+    if flags.ndim != 1 or flags.dtype != bool:
+        raise AxiscalError(f"malformed must be a one-dimensional array of bool, one per frame, not {malformed!r}"[:200])
+    fault = np.asarray(results["fault"])
+    if fault.ndim != 1 or fault.dtype.kind not in "iu":
+        raise AxiscalError("results['fault'] must be a one-dimensional array of fault bits (integers)")
+    columns = {name: check_array(f"results['{name}']", value, ndim=1, finite=False) for name, value in results.items() if name != "fault"}
+    check_same_length(malformed=flags, fault=fault, **columns)
+    malformed = flags
+    fault = fault.astype(np.int64) | np.where(malformed, int(Fault.MALFORMED), 0)
     if not malformed.any():
         return fault, dict(results)
     return fault, {name: value if name in ("t_s", "fault") else np.where(malformed, np.nan, value) for name, value in results.items()}

@@ -27,6 +27,7 @@ from axiscal.instruments.calibration import (
 )
 from axiscal.instruments.reports import render_report
 from axiscal.instruments.sensors import roll_from_autocollimation
+from axiscal.io.arguments import check_array, check_count, check_mapping, check_number, check_path, check_same_length
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import read_json, sidecar_path, write_sidecar
 from axiscal.io.tabular import CsvTable, parse_csv, read_csv, read_text, write_csv
@@ -96,7 +97,7 @@ def load_system(machine: str | Path | None = None, *, seed: int = 0, load_kg: fl
     """
     if machine is None:
         return VirtualModule(seed=seed, load_kg=load_kg).measurement_system()
-    return MeasurementSystem.from_toml(machine)
+    return MeasurementSystem.from_toml(check_path("machine", machine))
 
 
 def is_live_record(path: str | Path, header: Sequence[str] = ()) -> bool:
@@ -113,7 +114,8 @@ def is_live_record(path: str | Path, header: Sequence[str] = ()) -> bool:
     -------
     bool
     """
-    side = sidecar_path(path)
+    side = sidecar_path(check_path("path", path))
+    header = _names("header", header)
     if side.is_file():
         try:
             data = read_json(side)
@@ -140,6 +142,8 @@ def drop_cut_line(text: str) -> str:
     str
         The text up to and including its last newline (unchanged when it ends with one).
     """
+    if not isinstance(text, str):
+        raise AxiscalError(f"text must be the record's text (str), not {type(text).__name__}")
     if text and not text.endswith("\n"):
         return text[: text.rfind("\n") + 1]
     return text
@@ -172,7 +176,9 @@ def numeric_columns(table: CsvTable, names: Sequence[str]) -> dict[str, np.ndarr
     >>> numeric_columns(table, ["a"])["a"].tolist()
     [nan, nan]
     """
-    return {name: table.numeric_or_missing(name) for name in names}
+    if not isinstance(table, CsvTable):
+        raise AxiscalError(f"table must be a CsvTable (read_csv, parse_csv), not {type(table).__name__}")
+    return {name: table.numeric_or_missing(name) for name in _names("names", names)}
 
 
 
@@ -199,7 +205,8 @@ def read_frames_table(path: str | Path, *, min_rows: int = 1) -> tuple[CsvTable,
         If the file is missing or unreadable, or a line has a different number of cells than the
         header (naming file and line).
     """
-    text = read_text(path)  # universal newlines: CR-only and CRLF files read as LF
+    min_rows = check_count("min_rows", min_rows, minimum=0)
+    text = read_text(check_path("path", path))  # universal newlines: CR-only and CRLF files read as LF
     first = text[: text.find("\n")] if "\n" in text else text
     header = [c.strip() for c in first.split(",")]
     truncated = False
@@ -236,6 +243,7 @@ def read_frames(path: str | Path, channels: Sequence[str]) -> dict[str, np.ndarr
     AxiscalError
         For a missing file or column or a line with a wrong number of cells (naming file and line).
     """
+    channels = _names("channels", channels)
     table, _ = read_frames_table(path)
     table.require("t_s", *channels)
     return numeric_columns(table, ["t_s", *channels])
@@ -254,6 +262,11 @@ def columns_csv(columns: Mapping[str, np.ndarray]) -> str:
     str
         The header line and one line per row.
     """
+    check_mapping("columns", columns, what="a mapping of column names to values")
+    for name, value in columns.items():
+        if not isinstance(name, str) or isinstance(value, (str, bytes)) or np.ndim(value) != 1:
+            raise AxiscalError(f"columns must map names to one-dimensional columns; columns[{name!r}] is not one")
+    check_same_length(**{str(name): value for name, value in columns.items()})
     return write_csv(None, dict(columns), fmt="{:.9g}")
 
 
@@ -283,6 +296,9 @@ def write_data_csv(path: str | Path, columns: Mapping[str, np.ndarray], *, kind:
     AxiscalError
         If a file cannot be written (naming it).
     """
+    path = check_path("path", path)
+    if not isinstance(kind, str) or not kind:
+        raise AxiscalError(f"kind must name what the file holds, not {kind!r}")
     text = columns_csv(columns)
     write_text(path, text)
     write_sidecar(path, kind=kind, sources=sources, **metadata)
@@ -304,6 +320,11 @@ class CsvOutput:
     text: str
     rows: int
 
+    def __post_init__(self) -> None:
+        if not isinstance(self.text, str):
+            raise AxiscalError(f"text must be the CSV text, not {type(self.text).__name__}")
+        check_count("rows", self.rows, minimum=0)
+
 
 @dataclass(frozen=True)
 class MeasureResult:
@@ -319,6 +340,11 @@ class MeasureResult:
 
     source: str
     results: dict[str, np.ndarray]
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.source, str):
+            raise AxiscalError(f"source must be the frames file's name, not {self.source!r}")
+        check_mapping("results", self.results, ("t_s", "fault"), what="the results of MeasurementSystem.process with 'fault'")
 
     @property
     def fault(self) -> np.ndarray:
@@ -373,6 +399,7 @@ def measure_file(frames_path: str | Path, *, machine: str | Path | None = None, 
     AxiscalError
         For unreadable input or an output that cannot be written.
     """
+    frames_path = check_path("frames_path", frames_path)
     system = load_system(machine)
     frames = read_frames(frames_path, system.channels)
     fault, results = mark_malformed(system.process(frames), ~np.isfinite(frames["t_s"]))
@@ -391,7 +418,19 @@ def measure_file(frames_path: str | Path, *, machine: str | Path | None = None, 
     return result
 
 
+def _names(name: str, values: Sequence[str]) -> tuple[str, ...]:
+    """A sequence of names (column or channel names), refused when it is a single string or not names."""
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
+        raise AxiscalError(f"{name} must be a sequence of names (str), not {values!r}")
+    values = tuple(values)
+    if not all(isinstance(v, str) for v in values):
+        raise AxiscalError(f"{name} must be a sequence of names (str), not {values!r}"[:200])
+    return values
+
+
 def _channel_role(system: MeasurementSystem, channel: str):
+    if not isinstance(channel, str):
+        raise AxiscalError(f"channel must be a channel name, not {channel!r}")
     for letter, head in system.heads.items():
         for role, name in head.channels.items():
             if name == channel:
@@ -476,6 +515,9 @@ def calibration_text(report: Mapping[str, Any]) -> str:
     gain_u: 0.00012
     points: 21
     """
+    check_mapping("report", report, what="a calibration report (calibrate_sensitivity, calibrate_mirror)")
+    if not report:
+        raise AxiscalError("report holds nothing to show")
     lines = []
     for key, value in report.items():
         if isinstance(value, (list, tuple)):
@@ -536,6 +578,7 @@ def calibrate_sensitivity(
         For an unknown channel, missing or wrong columns, an offset on an angle channel, or an
         output that cannot be written.
     """
+    run_path = check_path("run_path", run_path)
     system = load_system(machine)
     letter, head, role = _channel_role(system, channel)
     table = read_csv(run_path, min_rows=3)
@@ -554,7 +597,7 @@ def calibrate_sensitivity(
     else:
         reference = reference * length_factor(unit, allowed=("nm", "um", "mm")) / channel_unit
         if reference_offset_m is not None:
-            offset = np.asarray(reference_offset_m, dtype=float)
+            offset = check_array("reference_offset_m", reference_offset_m, ndim=1, last=3)
             eps = np.column_stack([_angle_column(table, f"E{r}{letter}") for r in "ABC"])
             component = head.index if kind == "scale" else "xyz".index(role.split("_")[1])
             reference = transfer_reference(reference * channel_unit, eps, offset, component) / channel_unit
@@ -616,12 +659,16 @@ def calibrate_mirror(
     AxiscalError
         For an axis without sensors, missing columns or an output that cannot be written.
     """
+    run_path = check_path("run_path", run_path)
+    if not isinstance(letter, str):
+        raise AxiscalError(f"letter must be an axis letter, not {letter!r}")
+    max_order = check_count("max_order", max_order, minimum=0)
     letter = letter.upper()
     system = load_system(machine)
     if output is not None and Path(output).exists():
         system = system.with_calibration(load_calibration(output))
     if letter not in system.heads:
-        raise AxiscalError(f"axis {letter} has no sensors in this machine (axes: {', '.join(system.axes)})")
+        raise AxiscalError(f"letter: axis {letter} has no sensors in this machine (axes: {', '.join(system.axes)})")
     head = system.heads[letter]
     channel = head.channels["roll"]
     table = read_csv(run_path, min_rows=4)
@@ -681,6 +728,12 @@ def simulate_frames(
     AxiscalError
         For an unknown path or a frame count outside 1 .. :data:`MAX_SIMULATED_FRAMES`.
     """
+    rate_hz = check_number("rate_hz", rate_hz, positive=True)
+    duration_s = check_number("duration_s", duration_s, positive=True)
+    if not isinstance(truth, (bool, np.bool_)):
+        raise AxiscalError(f"truth must be True or False, not {truth!r}")
+    if not isinstance(path, str) or path not in PATHS:
+        raise AxiscalError(f"unknown path {path!r}; use one of {', '.join(PATHS)}")
     count = int(round(duration_s * rate_hz))
     if count < 1 or count > MAX_SIMULATED_FRAMES:
         raise AxiscalError(f"--rate x --duration gives {count} frames; allowed 1 to {MAX_SIMULATED_FRAMES}")
@@ -727,8 +780,10 @@ def simulate_laser(
     AxiscalError
         If the steps leave the 190 mm travel.
     """
+    steps = check_count("steps", steps)
+    step_m = check_number("step_m", step_m, positive=True)
     if steps * step_m > STROKE_M + 1e-12:
-        raise AxiscalError(f"{steps} steps of {step_m / MM:g} mm leave the {STROKE_M / MM:g} mm travel")
+        raise AxiscalError(f"steps x step_m: {steps} steps of {step_m / MM:g} mm leave the {STROKE_M / MM:g} mm travel")
     module = VirtualModule(seed=seed, load_kg=load_kg)
     q = np.arange(steps + 1) * step_m
     reading = module.laser_diagonal({"X": q, "Z": q.copy()})
@@ -752,6 +807,12 @@ class DiagonalReport:
 
     experiment: DiagonalExperiment
     paper_um: dict[str, float] | None = field(default=None)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.experiment, DiagonalExperiment):
+            raise AxiscalError(f"experiment must be a DiagonalExperiment (diagonal_experiment), not {type(self.experiment).__name__}")
+        if self.paper_um is not None:
+            check_mapping("paper_um", self.paper_um, ("before", "after"), what="the paper's before and after values in um")
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary and points, display units (mm, um)."""
@@ -805,8 +866,9 @@ def run_diagonal_experiment(
     AxiscalError
         For a negative load or a figure that cannot be written.
     """
+    load_kg = check_number("load_kg", load_kg)
     if load_kg < 0:
-        raise AxiscalError(f"--load-kg must not be negative, got {load_kg:g}")
+        raise AxiscalError(f"load_kg must not be negative, got {load_kg:g}")
     experiment = diagonal_experiment(VirtualModule(seed=seed, load_kg=load_kg), samples=samples, squareness_error_rad=squareness_error_rad)
     if plot is not None:
         from axiscal.model.plot import plot_diagonal_experiment

@@ -36,6 +36,7 @@ from axiscal.instruments.calibration import (
     load_calibration,
 )
 from axiscal.instruments.sensors import SensorHead, sensor_head_from_dict
+from axiscal.io.arguments import check_array, check_mapping, check_path, check_same_length
 from axiscal.io.tabular import read_toml
 from axiscal.measurement.faults import Fault, fault_text
 from axiscal.model.machine import Machine, machine_from_dict
@@ -101,6 +102,13 @@ class MeasurementSystem:
     """
 
     def __init__(self, machine: Machine, heads: Mapping[str, SensorHead], calibration: Calibration | None = None):
+        if not isinstance(machine, Machine):
+            raise AxiscalError(f"machine must be a Machine (load_machine), not {type(machine).__name__}")
+        check_mapping("heads", heads, what="a mapping of axis letters to SensorHead")
+        if not all(isinstance(h, SensorHead) for h in heads.values()):
+            raise AxiscalError("heads must map axis letters to SensorHead objects (sensor_head_from_dict)")
+        if calibration is not None and not isinstance(calibration, Calibration):
+            raise AxiscalError(f"calibration must be a Calibration or None, not {type(calibration).__name__}")
         self.machine = machine
         self.calibration = calibration if calibration is not None else Calibration()
         self.axes = tuple(machine.letters)
@@ -182,7 +190,9 @@ class MeasurementSystem:
         The calibration files named by ``calibration = "..."`` in the sensor sections (relative to
         the TOML file) are loaded and applied; ``calibration`` given here is merged on top.
         """
-        path = Path(path)
+        path = check_path("path", path)
+        if calibration is not None and not isinstance(calibration, Calibration):
+            raise AxiscalError(f"calibration must be a Calibration or None, not {type(calibration).__name__}")
         data = read_toml(path)
         machine = machine_from_dict(data, base_dir=path.parent, source=str(path))
         heads: dict[str, SensorHead] = {}
@@ -217,6 +227,8 @@ class MeasurementSystem:
         MeasurementSystem
             A new system; this one is unchanged.
         """
+        if not isinstance(calibration, Calibration):
+            raise AxiscalError(f"calibration must be a Calibration, not {type(calibration).__name__}")
         return MeasurementSystem(self.machine, self.heads, self.calibration.merged(calibration))
 
     def fault_text(self, fault: int) -> str:
@@ -302,6 +314,11 @@ class MeasurementSystem:
         fault |= np.where(outside, int(Fault.RANGE), 0)
         si = raw * self._scale_si
         si += self._offset_si
+        if np.any(fault):
+            # a missing or out-of-range reading faults its frame, whose results all become NaN below;
+            # zero stands in for it meanwhile so that the shared transfer and mirror map, which
+            # refuse non-finite input, still see only numbers
+            si[:, fault != 0] = np.where(np.isfinite(si[:, fault != 0]), si[:, fault != 0], 0.0)
         out: dict[str, np.ndarray] = {"t_s": np.asarray(frames.get("t_s", np.full(n, np.nan)), dtype=float)}
         command: dict[str, np.ndarray] = {}
         measured: dict[str, np.ndarray] = {}
@@ -360,13 +377,26 @@ def spatial_error(machine: Machine, positions_m: Mapping[str, np.ndarray], error
     ndarray, shape (N, 3)
         Actual minus nominal functional point, in the workpiece frame, metres.
     """
+    if not isinstance(machine, Machine):
+        raise AxiscalError(f"machine must be a Machine (load_machine), not {type(machine).__name__}")
+    check_mapping("positions_m", positions_m, machine.letters, what=f"a mapping of every axis ({', '.join(machine.letters)}) to positions in metres")
+    check_mapping("errors", errors, machine.letters, what=f"a mapping of every axis ({', '.join(machine.letters)}) to its (6, N) error motions")
+    for letter in machine.letters:
+        shape = np.shape(errors[letter])
+        if len(shape) != 2 or shape[0] != 6:
+            raise AxiscalError(f"errors['{letter}'] must have shape (6, N), rows tx, ty, tz, ea, eb, ec; not {shape}")
     return machine.volumetric_error(positions_m, errors=errors, workers=1)
 
 
 def _batch_size(frames: Mapping[str, np.ndarray]) -> int:
+    check_mapping("frames", frames, what="a mapping of channel names to readings")
+    for name, value in frames.items():
+        kind = np.asarray(value).dtype.kind
+        if kind not in "iuf" or np.ndim(value) > 1:
+            raise AxiscalError(f"frames['{name}'] must be a one-dimensional array of readings (numbers), not {value!r}"[:200])
     sizes = {np.shape(v)[0] if np.ndim(v) else 1 for v in frames.values()}
     if len(sizes) > 1:
-        raise AxiscalError(f"frame columns have different lengths: {sorted(sizes)}")
+        raise AxiscalError(f"frame columns (frames) have different lengths: {sorted(sizes)}")
     if not sizes:
         raise AxiscalError("no frame columns given")
     return sizes.pop()
@@ -395,8 +425,9 @@ def diagonal_errors(
     before, after : ndarray, shape (n,)
         E_BD and E_AD, metres.
     """
-    x, z, laser = (np.asarray(a, dtype=float) for a in (x_m, z_m, laser_m))
-    e = np.asarray(error_m, dtype=float)
+    x, z, laser = (check_array(n, a, ndim=1) for n, a in (("x_m", x_m), ("z_m", z_m), ("laser_m", laser_m)))
+    e = check_array("error_m", error_m, ndim=2, last=3)
+    check_same_length(x_m=x, z_m=z, error_m=e, laser_m=laser)
     before = np.hypot(x, z) - laser
     after = np.sqrt((x + e[:, 0]) ** 2 + e[:, 1] ** 2 + (z + e[:, 2]) ** 2) - laser
     return before, after

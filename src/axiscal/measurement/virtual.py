@@ -25,6 +25,7 @@ import numpy as np
 from axiscal.conventions import component_names
 from axiscal.errors import AxiscalError
 from axiscal.instruments.abbe import transfer_point
+from axiscal.io.arguments import check_array, check_count, check_mapping, check_number, check_same_length
 from axiscal.instruments.calibration import (
     Calibration,
     fit_mirror,
@@ -144,6 +145,12 @@ class Truth:
     offset: float
     noise: float
 
+    def __post_init__(self) -> None:
+        if check_number("gain", self.gain, unit="") == 0.0:
+            raise AxiscalError("gain must not be zero")
+        check_number("offset", self.offset, unit="")
+        check_number("noise", self.noise, nonnegative=True, unit="")
+
 
 class VirtualModule:
     """Physically modelled 2-axis XZ module of paper 000 (190 mm strokes), the default source.
@@ -161,6 +168,11 @@ class VirtualModule:
     """
 
     def __init__(self, *, seed: int = 0, load_kg: float = 0.0, noise: bool = True, speed_mm_s: float = 50.0):
+        seed = check_count("seed", seed, minimum=0)
+        load_kg = check_number("load_kg", load_kg, nonnegative=True)
+        if not isinstance(noise, (bool, np.bool_)):
+            raise AxiscalError(f"noise must be True or False, not {noise!r}")
+        speed_mm_s = check_number("speed_mm_s", speed_mm_s, positive=True, unit="millimetres per second")
         self.seed = seed
         self.load_kg = float(load_kg)
         self.noise = bool(noise)
@@ -228,6 +240,18 @@ class VirtualModule:
             for k in ("X", "Z")
         }
 
+    def _letter(self, letter: str) -> str:
+        if not isinstance(letter, str) or letter not in self.heads:
+            raise AxiscalError(f"letter must be an axis of the module ({', '.join(self.heads)}), not {letter!r}")
+        return letter
+
+    def _positions(self, positions_m: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+        """``"X"`` and ``"Z"`` commanded positions as finite 1-D arrays of one length, within the strokes."""
+        check_mapping("positions_m", positions_m, ("X", "Z"), what="a mapping of 'X' and 'Z' to positions in metres")
+        out = {k: check_array(f"positions_m['{k}']", positions_m[k], ndim=1, min_len=1) for k in ("X", "Z")}
+        check_same_length(**{f"positions_m['{k}']": v for k, v in out.items()})
+        return out
+
     def true_errors(self, letter: str, q_m: np.ndarray) -> np.ndarray:
         """The six error motions of axis ``letter`` at positions ``q_m`` (with the load).
 
@@ -243,8 +267,8 @@ class VirtualModule:
         ndarray, shape (6, N)
             Rows tx, ty, tz (m) and ea, eb, ec (rad).
         """
-        q = np.asarray(q_m, dtype=float).reshape(-1)
-        slope, amplitude, cycles, phase, constant, ramp = self._curve_arrays[letter]
+        q = check_array("q_m", q_m).reshape(-1)
+        slope, amplitude, cycles, phase, constant, ramp = self._curve_arrays[self._letter(letter)]
         s = q / STROKE_M
         waves = amplitude[:, :, None] * (np.sin(2 * np.pi * cycles[:, :, None] * s + phase[:, :, None]) - np.sin(phase)[:, :, None])
         value = slope[:, None] * (q / MM) + waves.sum(axis=1)
@@ -267,7 +291,7 @@ class VirtualModule:
         ndarray
             Apparent roll, rad.
         """
-        return _curve(np.asarray(q_m, dtype=float), 0.0, self.mirror_terms[letter]) * URAD
+        return _curve(check_array("q_m", q_m), 0.0, self.mirror_terms[self._letter(letter)]) * URAD
 
     def positions(self, t_s: np.ndarray, *, path: str = "diagonal") -> dict[str, np.ndarray]:
         """Commanded positions of X and Z at times ``t_s`` along a periodic path.
@@ -293,7 +317,9 @@ class VirtualModule:
         0 mm with Z at mid-stroke; ``"raster"``: X sweeps back and forth while Z steps 10 mm per
         sweep, up through the square and back down.
         """
-        t = np.asarray(t_s, dtype=float)
+        t = check_array("t_s", t_s)
+        if not isinstance(path, str) or path not in PATHS:
+            raise AxiscalError(f"unknown path {path!r}; use one of {', '.join(PATHS)}")
         sweep = STROKE_M / self.speed_m_s
         phase = np.mod(t / sweep, 2.0)
         triangle = STROKE_M * np.where(phase < 1.0, phase, 2.0 - phase)
@@ -316,7 +342,11 @@ class VirtualModule:
 
     def sensor_values(self, letter: str, q_m: np.ndarray, errors: np.ndarray) -> dict[str, np.ndarray]:
         """What each channel of axis ``letter`` should read (true physical value, channel unit)."""
-        head = self.heads[letter]
+        head = self.heads[self._letter(letter)]
+        q_m = check_array("q_m", q_m, ndim=1)
+        errors = check_array("errors", errors, ndim=2)
+        if errors.shape != (6, q_m.size):
+            raise AxiscalError(f"errors must have shape (6, {q_m.size}), rows tx, ty, tz, ea, eb, ec; not {errors.shape}")
         at_scale = _moved(errors, head.scale_point_m)
         at_psd = _moved(errors, head.psd_point_m)
         names = head.channels
@@ -331,8 +361,15 @@ class VirtualModule:
 
     def raw(self, values: dict[str, np.ndarray], rng: np.random.Generator) -> dict[str, np.ndarray]:
         """Raw readings from true values: ``(value - offset) / gain`` plus reading noise."""
+        check_mapping("values", values, what="a mapping of channel names to true values")
+        if not isinstance(rng, np.random.Generator):
+            raise AxiscalError(f"rng must be a numpy.random.Generator, not {type(rng).__name__}")
+        unknown = sorted(set(values) - set(self.sensor_truth))
+        if unknown:
+            raise AxiscalError(f"values: unknown channel '{unknown[0]}'; channels are {', '.join(self.sensor_truth)}")
         out = {}
         for name, value in values.items():
+            value = check_array(f"values['{name}']", value)
             truth = self.sensor_truth[name]
             noise = rng.normal(0.0, truth.noise, value.shape) if self.noise and truth.noise else 0.0
             out[name] = (value - truth.offset) / truth.gain + noise
@@ -359,7 +396,7 @@ class VirtualModule:
             error ``"ex_m"``, ``"ey_m"``, ``"ez_m"``, ``"e_m"`` and functional point ``"px_m"``,
             ``"py_m"``, ``"pz_m"``.
         """
-        t = np.atleast_1d(np.asarray(t_s, dtype=float))
+        t = np.atleast_1d(check_array("t_s", t_s))
         q = self.positions(t, path=path)
         return self.frames_at(q, t_s=t)
 
@@ -378,8 +415,10 @@ class VirtualModule:
         frames, truth : dict of str to ndarray
             As :meth:`frames`.
         """
+        positions_m = self._positions(positions_m)
         n = positions_m["X"].size
-        t = np.zeros(n) if t_s is None else np.asarray(t_s, dtype=float)
+        t = np.zeros(n) if t_s is None else check_array("t_s", t_s, ndim=1)
+        check_same_length(positions_m=positions_m["X"], t_s=t)
         frames: dict[str, np.ndarray] = {"t_s": t}
         truth: dict[str, np.ndarray] = {"t_s": t}
         errors = {}
@@ -416,6 +455,7 @@ class VirtualModule:
         ndarray, shape (N, 3)
             The functional point, m.
         """
+        positions_m = self._positions(positions_m)
         errors = {k: self.true_errors(k, positions_m[k]) for k in ("X", "Z")}
         return self.machine.nominal_point(positions_m) + spatial_error(self.machine, positions_m, errors)
 
@@ -436,8 +476,11 @@ class VirtualModule:
         ndarray, shape (n,)
             Readings, m (0 at the first stop).
         """
+        positions_m = self._positions(positions_m)
         nominal = self.machine.nominal_point(positions_m)
         direction = nominal[-1] - nominal[0]
+        if not np.linalg.norm(direction) > 0.0:
+            raise AxiscalError("positions_m: the first and the last stop must differ (they set the beam's direction)")
         direction = direction / np.linalg.norm(direction)
         actual = self.true_point(positions_m)
         reading = (actual - actual[0]) @ direction
@@ -614,6 +657,14 @@ def diagonal_experiment(
     >>> result.after_max_m < result.before_max_m
     True
     """
+    if not isinstance(module, VirtualModule):
+        raise AxiscalError(f"module must be a VirtualModule, not {type(module).__name__}")
+    points = check_count("points", points)
+    step_m = check_number("step_m", step_m, positive=True)
+    if points * step_m > STROKE_M + 1e-12:
+        raise AxiscalError(f"points x step_m: {points} steps of {step_m / MM:g} mm leave the {STROKE_M / MM:g} mm stroke")
+    samples = check_count("samples", samples)
+    squareness_error_rad = check_number("squareness_error_rad", squareness_error_rad)
     system = module.measurement_system()
     if squareness_error_rad:
         squareness = {"EB0Z": SQUARENESS_EB0Z_RAD + squareness_error_rad}

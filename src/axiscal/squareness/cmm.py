@@ -37,6 +37,7 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_number, check_path
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.tabular import read_csv, write_csv
@@ -91,20 +92,19 @@ class CmmSquareness:
     yz_rad: float
 
     def __post_init__(self) -> None:
-        if not all(math.isfinite(v) for v in (self.xy_rad, self.xz_rad, self.yz_rad)):
-            raise AxiscalError("squareness values must be finite numbers")
+        for name in ("xy_rad", "xz_rad", "yz_rad"):  # squareness values must be finite numbers
+            object.__setattr__(self, name, check_number(name, getattr(self, name)))
 
     @classmethod
     def from_iso(cls, terms: Mapping[str, float]) -> CmmSquareness:
         """From ISO 230-1 terms ``EC0Y``, ``EB0Z``, ``EA0Z`` (radians; a missing term is 0)."""
+        if not isinstance(terms, Mapping):
+            raise AxiscalError(f"terms must map EC0Y, EB0Z, EA0Z to radians, not {terms!r}")
         unknown = sorted(set(terms) - {"EC0Y", "EB0Z", "EA0Z"})
         if unknown:
             raise AxiscalError(f"unknown squareness term {', '.join(unknown)}; use EC0Y, EB0Z, EA0Z")
-        return cls(
-            xy_rad=float(terms.get("EC0Y", 0.0)),
-            xz_rad=-float(terms.get("EB0Z", 0.0)),
-            yz_rad=float(terms.get("EA0Z", 0.0)),
-        )
+        ec0y, eb0z, ea0z = (check_number(term, terms.get(term, 0.0), unit="radians") for term in ("EC0Y", "EB0Z", "EA0Z"))
+        return cls(xy_rad=ec0y, xz_rad=-eb0z, yz_rad=ea0z)
 
     @classmethod
     def checked(cls, xy_rad: float, xz_rad: float, yz_rad: float) -> CmmSquareness:
@@ -152,14 +152,20 @@ class CmmSquareness:
 
 
 def _points(points_m: np.ndarray | Sequence[Sequence[float]]) -> np.ndarray:
-    points = np.asarray(points_m, dtype=float)
+    points = check_array("points_m", points_m, finite=False)
     if points.ndim == 1:
         points = points[np.newaxis, :]
     if points.ndim != 2 or points.shape[1] != 3:
-        raise AxiscalError(f"points must have shape (n, 3), got {points.shape}")
+        raise AxiscalError(f"points (points_m) must have shape (n, 3), got {points.shape}")
     if not np.all(np.isfinite(points)):
-        raise AxiscalError("points must be finite numbers")
+        raise AxiscalError("points (points_m) must be finite numbers")
     return points
+
+
+def _squareness(value: CmmSquareness, name: str = "squareness") -> CmmSquareness:
+    if not isinstance(value, CmmSquareness):
+        raise AxiscalError(f"{name} must be a CmmSquareness, not {type(value).__name__}")
+    return value
 
 
 def compensate(points_m: np.ndarray, squareness: CmmSquareness) -> np.ndarray:
@@ -187,7 +193,7 @@ def compensate(points_m: np.ndarray, squareness: CmmSquareness) -> np.ndarray:
     >>> compensate([[0.0, 0.1, 0.0]], c).round(9).tolist()
     [[-1e-05, 0.1, 0.0]]
     """
-    return _points(points_m) @ squareness.matrix().T
+    return _points(points_m) @ _squareness(squareness).matrix().T
 
 
 def readings_for(points_m: np.ndarray, squareness: CmmSquareness) -> np.ndarray:
@@ -213,6 +219,7 @@ def readings_for(points_m: np.ndarray, squareness: CmmSquareness) -> np.ndarray:
         Points not of shape (n, 3) or not finite.
     """
     p = _points(points_m)
+    squareness = _squareness(squareness)
     z = p[:, 2]
     y = p[:, 1] + z * squareness.yz_rad
     x = p[:, 0] + y * squareness.xy_rad + z * squareness.xz_rad
@@ -250,9 +257,14 @@ def psd_squareness(
     AxiscalError
         Fewer than 2 points, all at one position, or an unknown reference.
     """
-    if np.asarray(position_m).size < 2:
-        raise AxiscalError(f"a PSD run has {np.asarray(position_m).size} point(s); a line needs at least 2")
-    line = reference_line(position_m, reading_m, reference=reference)
+    prism_deviation_rad = check_number("prism_deviation_rad", prism_deviation_rad)
+    size = np.size(position_m) if not isinstance(position_m, (str, bytes)) and position_m is not None else 0
+    if size < 2:
+        raise AxiscalError(f"a PSD run has {size} point(s); a line needs at least 2 (position_m)")
+    try:
+        line = reference_line(position_m, reading_m, reference=reference)
+    except AxiscalError as exc:
+        raise AxiscalError(exc.message.replace("deviation_m", "reading_m")) from None
     return math.atan(line.slope) - prism_deviation_rad
 
 
@@ -282,14 +294,18 @@ def squareness_from_psd_runs(
     AxiscalError
         A plane missing or unknown, or a run :func:`psd_squareness` refuses.
     """
+    if not isinstance(runs, Mapping):
+        raise AxiscalError(f"runs must map XY, XZ and YZ to (position_m, reading_m), not {type(runs).__name__}")
     missing = sorted({"XY", "XZ", "YZ"} - set(runs))
     extra = sorted(set(runs) - {"XY", "XZ", "YZ"})
     if missing or extra:
         raise AxiscalError(f"need PSD runs for XY, XZ and YZ exactly (missing {missing or 'none'}, unknown {extra or 'none'})")
-    values = {
-        plane: psd_squareness(*runs[plane], prism_deviation_rad=prism_deviation_rad, reference=reference)
-        for plane in ("XY", "XZ", "YZ")
-    }
+    values = {}
+    for plane in ("XY", "XZ", "YZ"):
+        run = runs[plane]
+        if isinstance(run, (str, bytes)) or not hasattr(run, "__len__") or len(run) != 2:
+            raise AxiscalError(f"runs['{plane}'] must be (position_m, reading_m), not {run!r}"[:200])
+        values[plane] = psd_squareness(*run, prism_deviation_rad=prism_deviation_rad, reference=reference)
     return CmmSquareness(values["XY"], values["XZ"], values["YZ"])
 
 
@@ -460,17 +476,22 @@ def simulate_gauge_block(
     AxiscalError
         A block length that is not positive, or an axis that is zero or not finite.
     """
-    if not (math.isfinite(nominal_m) and nominal_m > 0.0):
-        raise AxiscalError(f"the block length must be positive, got {nominal_m}")
-    n = np.asarray(axis, dtype=float).reshape(3)
+    squareness = _squareness(squareness)
+    if compensation is not None:
+        _squareness(compensation, "compensation")
+    nominal_m = check_number("nominal_m (the block length)", nominal_m, positive=True, unit="metres")
+    n = check_array("axis", axis, ndim=1, last=3, finite=False)
     if not np.all(np.isfinite(n)) or np.linalg.norm(n) == 0.0:
         raise AxiscalError("the block axis must be a finite non-zero vector")
     n = n / np.linalg.norm(n)
-    centre = np.asarray(centre_m, dtype=float).reshape(3)
-    offset = np.asarray(end_offset_m, dtype=float).reshape(3)
+    centre = check_array("centre_m", centre_m, ndim=1, last=3)
+    offset = check_array("end_offset_m", end_offset_m, ndim=1, last=3)
     offset = offset - (offset @ n) * n
     u, v = _face_basis(n)
-    width, height = probe_rectangle_m
+    rectangle = check_array("probe_rectangle_m", probe_rectangle_m, ndim=1, last=2)
+    if np.any(rectangle <= 0.0):
+        raise AxiscalError(f"probe_rectangle_m must be a positive width and height in metres, not {rectangle.tolist()}")
+    width, height = rectangle
     grid = [(a, b) for b in (-0.5, 0.5) for a in (-0.5, 0.0, 0.5)]
     face = np.array([centre + a * width * u + b * height * v for a, b in grid])
     first = centre
@@ -552,7 +573,10 @@ def compensate_file(
     AxiscalError
         Missing file or column, or a cell that is not a finite number (naming file and line).
     """
-    table = read_csv(points_path)
+    squareness = _squareness(squareness)
+    if not isinstance(inverse, (bool, np.bool_)):
+        raise AxiscalError(f"inverse must be True or False, not {inverse!r}")
+    table = read_csv(check_path("points_path", points_path))
     table.require("x_mm", "y_mm", "z_mm")
     points = np.column_stack([table.numeric(name) for name in ("x_mm", "y_mm", "z_mm")]) * MM
     moved = readings_for(points, squareness) if inverse else compensate(points, squareness)
@@ -640,8 +664,8 @@ def gauge_block_study(squareness: CmmSquareness, *, end_offset_m: float = 1.0 * 
     >>> round(gauge_block_study(values).payload()["blocks"]["X"]["unaligned_improvement_um"], 1)
     10.2
     """
-    if not math.isfinite(end_offset_m):
-        raise AxiscalError(f"the end offset must be a finite length, got {end_offset_m}")
+    squareness = _squareness(squareness)
+    end_offset_m = check_number("end_offset_m (the end offset)", end_offset_m, unit="metres")
     d = end_offset_m
     blocks = {
         "X": simulate_gauge_block(squareness, PAPER_004_GAUGE_BLOCKS_MM["X"] * MM, (1, 0, 0), end_offset_m=(0, d, d)),

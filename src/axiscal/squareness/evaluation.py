@@ -44,6 +44,7 @@ import numpy as np
 
 from axiscal.conventions import PLANES
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_number, check_path
 from axiscal.straightness.files import Profile, read_profile
 from axiscal.straightness.reference import ReferenceLine, reference_line
 from axiscal.straightness.report import render_report
@@ -133,7 +134,7 @@ def iso_from_included_angle(squareness_rad: float, *, plane: str) -> float:
     >>> iso_from_included_angle(1e-5, plane="XZ")
     -1e-05
     """
-    return _plane(plane)[3] * squareness_rad
+    return _plane(plane)[3] * check_number("squareness_rad", squareness_rad)
 
 
 def included_angle_from_iso(iso_value_rad: float, *, plane: str) -> float:
@@ -160,7 +161,7 @@ def included_angle_from_iso(iso_value_rad: float, *, plane: str) -> float:
     >>> included_angle_from_iso(1e-5, plane="XZ")
     -1e-05
     """
-    return _plane(plane)[3] * iso_value_rad
+    return _plane(plane)[3] * check_number("iso_value_rad", iso_value_rad)
 
 
 @dataclass(frozen=True)
@@ -252,10 +253,11 @@ def squareness_from_slopes(
     20.95
     """
     first, second, term, _ = _plane(plane)
-    if convention not in CONVENTIONS:
-        raise AxiscalError(f"unknown sign convention '{convention}'; use one of {', '.join(CONVENTIONS)}")
-    if not all(math.isfinite(v) for v in (slope_first, slope_second, prism_deviation_rad)):
-        raise AxiscalError("slopes and prism deviation must be finite numbers")
+    if not isinstance(convention, str) or convention not in CONVENTIONS:
+        raise AxiscalError(f"unknown sign convention {convention!r}; use one of {', '.join(CONVENTIONS)}")
+    slope_first = check_number("slope_first", slope_first, unit="")
+    slope_second = check_number("slope_second", slope_second, unit="")
+    prism_deviation_rad = check_number("prism_deviation_rad", prism_deviation_rad, unit="radians")
     if abs(prism_deviation_rad) >= _MAX_PRISM_DEVIATION:
         raise AxiscalError(
             f"a prism deviation of {prism_deviation_rad / ARCSEC:.6g} arcsec is 1 degree or more off 90 degrees: "
@@ -324,12 +326,14 @@ def squareness(
         ("first", first_position_m, first_deviation_m),
         ("second", second_position_m, second_deviation_m),
     ):
-        if np.asarray(position).size < 2:
-            raise AxiscalError(f"the {label} run has {np.asarray(position).size} point(s); a line needs at least 2")
+        size = np.size(position) if not isinstance(position, (str, bytes)) and position is not None else 0
+        if size < 2:
+            raise AxiscalError(f"the {label} run has {size} point(s); a line needs at least 2 ({label}_position_m)")
         try:
             lines.append(reference_line(position, deviation, reference=reference))
         except AxiscalError as exc:
-            raise AxiscalError(f"{label} run: {exc.message}") from None
+            message = exc.message.replace("position_m", f"{label}_position_m").replace("deviation_m", f"{label}_deviation_m")
+            raise AxiscalError(f"{label} run: {message}") from None
     result = squareness_from_slopes(
         lines[0].slope, lines[1].slope, plane=plane, prism_deviation_rad=prism_deviation_rad, convention=convention
     )
@@ -380,8 +384,8 @@ def prism_reversal(alpha1_rad: float, alpha2_rad: float) -> ReversalResult:
     >>> round(result.prism_deviation_rad, 9), round(result.squareness_rad, 9)
     (4e-05, 1e-05)
     """
-    if not (math.isfinite(alpha1_rad) and math.isfinite(alpha2_rad)):
-        raise AxiscalError("reversal angles must be finite numbers")
+    alpha1_rad = check_number("alpha1_rad", alpha1_rad, unit="radians")
+    alpha2_rad = check_number("alpha2_rad", alpha2_rad, unit="radians")
     return ReversalResult(
         prism_deviation_rad=(alpha1_rad + alpha2_rad) / 2.0, squareness_rad=(alpha2_rad - alpha1_rad) / 2.0
     )
@@ -415,8 +419,8 @@ def prism_deviation_from_wedge(alpha1_rad: float, alpha2_rad: float) -> float:
     >>> prism_deviation_from_wedge(5e-5, 1e-5)
     1e-05
     """
-    if not (math.isfinite(alpha1_rad) and math.isfinite(alpha2_rad)):
-        raise AxiscalError("autocollimator angles must be finite numbers")
+    alpha1_rad = check_number("alpha1_rad", alpha1_rad, unit="radians")
+    alpha2_rad = check_number("alpha2_rad", alpha2_rad, unit="radians")
     return abs(alpha1_rad - alpha2_rad) / 4.0
 
 
@@ -451,10 +455,8 @@ def psd_angular_resolution(linear_resolution_m: float, travel_m: float) -> float
     >>> round(psd_angular_resolution(0.3 * UM, 18 * MM), 7)
     1.67e-05
     """
-    if not (math.isfinite(linear_resolution_m) and linear_resolution_m > 0.0):
-        raise AxiscalError(f"the PSD resolution must be a positive length, got {linear_resolution_m}")
-    if not (math.isfinite(travel_m) and travel_m > 0.0):
-        raise AxiscalError(f"the travel must be a positive length, got {travel_m}")
+    linear_resolution_m = check_number("linear_resolution_m", linear_resolution_m, positive=True, unit="metres")
+    travel_m = check_number("travel_m", travel_m, positive=True, unit="metres")
     return linear_resolution_m / travel_m
 
 
@@ -477,6 +479,13 @@ class SquarenessEvaluation:
     result: SquarenessResult
     first: Profile
     second: Profile
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.result, SquarenessResult):
+            raise AxiscalError(f"result must be a SquarenessResult, not {type(self.result).__name__}")
+        for name in ("first", "second"):
+            if not isinstance(getattr(self, name), Profile):
+                raise AxiscalError(f"{name} must be a Profile (read_profile), not {type(getattr(self, name)).__name__}")
 
     def payload(self) -> dict[str, Any]:
         """The JSON object: angles in arcsec and degrees, slopes, straightness of each run in um."""
@@ -568,9 +577,9 @@ def squareness_from_files(
     >>> round(run.payload()["squareness_arcsec"], 3)
     -2.063
     """
-    if reference not in SQUARENESS_REFERENCES:
-        raise AxiscalError(f"the reference line of a squareness run must be least-squares or end-points, not '{reference}'")
-    first, second = read_profile(first_path), read_profile(second_path)
+    if not isinstance(reference, str) or reference not in SQUARENESS_REFERENCES:
+        raise AxiscalError(f"the reference line of a squareness run must be least-squares or end-points, not {reference!r}")
+    first, second = read_profile(check_path("first_path", first_path)), read_profile(check_path("second_path", second_path))
     result = squareness(
         first.position_m,
         first.deviation_m,

@@ -8,7 +8,6 @@ arc seconds when gamma is in arc seconds.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -16,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_number
 from axiscal.instruments.optics import (
     BK7_INDEX,
     PentaprismSensitivity,
@@ -52,6 +52,10 @@ class PentaprismStudy:
     """
 
     table: PentaprismSensitivity
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.table, PentaprismSensitivity):
+            raise AxiscalError(f"table must be a PentaprismSensitivity (pentaprism_sensitivity), not {type(self.table).__name__}")
 
     def payload(self) -> dict[str, Any]:
         """The JSON object: rotations in arcmin, changes in arcsec, shifts in mm, eq (12)'s coefficient."""
@@ -127,10 +131,11 @@ def pentaprism_study(
     >>> float(round(study.payload()["deviation_change_arcsec"]["Z"][0], 4))
     -0.4363
     """
-    if not (math.isfinite(range_rad) and 0 < range_rad <= MAX_ROTATION_RAD):
-        raise AxiscalError(f"the rotation range must be in (0, {MAX_ROTATION_RAD / ARCMIN:g}] arc minutes, got {range_rad / ARCMIN:g}")
-    if not 2 <= steps <= MAX_STEPS:
-        raise AxiscalError(f"the sweep needs 2 to {MAX_STEPS} rotation angles, got {steps}")
+    range_rad = check_number("range_rad (the rotation range)", range_rad, unit="radians")
+    if not 0 < range_rad <= MAX_ROTATION_RAD:
+        raise AxiscalError(f"the rotation range range_rad must be in (0, {MAX_ROTATION_RAD / ARCMIN:g}] arc minutes, got {range_rad / ARCMIN:g}")
+    if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or not 2 <= steps <= MAX_STEPS:
+        raise AxiscalError(f"the sweep needs 2 to {MAX_STEPS} rotation angles (steps), got {steps!r}")
     angles = np.linspace(-range_rad, range_rad, steps)
     table = pentaprism_sensitivity(angles, PENTAPRISM_SHIFTS_M, index=index)
     if plot_path is not None:

@@ -14,6 +14,8 @@ import numpy as np
 
 from axiscal.conventions import PLANES
 from axiscal.instruments.optics import PentaprismSensitivity
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_path
 from axiscal.io.figures import pyplot, save_figure
 from axiscal.units import ARCMIN, ARCSEC, MM, UM
 
@@ -47,6 +49,19 @@ def plot_squareness(
     AxiscalError
         An unknown image format or a file that cannot be written.
     """
+    from axiscal.squareness.evaluation import SquarenessResult
+
+    path = check_path("path", path)
+    if not isinstance(result, SquarenessResult) or result.first_line is None or result.second_line is None:
+        raise AxiscalError("result must be a SquarenessResult fitted to data (squareness or squareness_from_files)")
+    if isinstance(runs, (str, bytes)) or not hasattr(runs, "__len__") or len(runs) != 2 or any(
+        isinstance(run, (str, bytes)) or not hasattr(run, "__len__") or len(run) != 2 for run in runs
+    ):
+        raise AxiscalError("runs must be ((position_m, deviation_m), (position_m, deviation_m)), one pair per run")
+    runs = tuple(
+        (check_array(f"runs[{k}] position_m", x, ndim=1, min_len=1), check_array(f"runs[{k}] deviation_m", y, ndim=1, min_len=1))
+        for k, (x, y) in enumerate(runs)
+    )
     plt = pyplot()
     a, b = PLANES[result.plane][:2]
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.6), constrained_layout=True)
@@ -88,6 +103,9 @@ def plot_pentaprism(path: str | Path, table: PentaprismSensitivity) -> Path:
     AxiscalError
         An unknown image format or a file that cannot be written.
     """
+    path = check_path("path", path)
+    if not isinstance(table, PentaprismSensitivity):
+        raise AxiscalError(f"table must be a PentaprismSensitivity (pentaprism_sensitivity), not {type(table).__name__}")
     plt = pyplot()
     fig, axes = plt.subplots(1, 4, figsize=(13, 3.6), sharey=True, constrained_layout=True)
     rotation_arcmin = table.rotation_rad / ARCMIN

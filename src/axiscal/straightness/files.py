@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_count, check_number, check_path, check_same_length
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.tabular import CsvTable, read_csv, write_csv
@@ -86,6 +87,20 @@ class Profile:
     path: str
     lines: tuple[int, ...]
 
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "position_m", check_array("position_m", self.position_m, ndim=1))
+        object.__setattr__(self, "deviation_m", check_array("deviation_m", self.deviation_m, ndim=1))
+        if self.yaw_rad is not None:  # NaN: a yaw not resolved (an empty cell)
+            object.__setattr__(self, "yaw_rad", check_array("yaw_rad", self.yaw_rad, ndim=1, finite=False))
+        check_same_length(position_m=self.position_m, deviation_m=self.deviation_m, yaw_rad=self.yaw_rad)
+        check_path("path", self.path)
+
+
+def _bool(name: str, value: Any) -> bool:
+    if not isinstance(value, (bool, np.bool_)):
+        raise AxiscalError(f"{name} must be True or False, not {value!r}")
+    return bool(value)
+
 
 def _column(table: CsvTable, stems: tuple[str, ...], allowed: tuple[str, ...]) -> tuple[str, float]:
     """The one column named ``<stem>_<unit>`` (first stem that has one) and its factor to metres."""
@@ -140,7 +155,8 @@ def read_profile(path: str | Path, *, increasing: bool = False) -> Profile:
     >>> read_profile(path).deviation_m.tolist()
     [1e-06, 2e-06]
     """
-    table = read_csv(path, min_rows=2)
+    increasing = _bool("increasing", increasing)
+    table = read_csv(check_path("path", path), min_rows=2)
     position_name, position_factor = _column(table, ("position",), POSITION_UNITS)
     deviation_name, deviation_factor = _column(table, DEVIATION_STEMS, DEVIATION_UNITS)
     position = table.numeric(position_name) * position_factor
@@ -182,7 +198,10 @@ def read_probe_readings(path: str | Path, *, spacing_ab_m: float, spacing_bc_m: 
         positions that do not increase in even steps (every method but reversal needs them):
         the first row that breaks the step is named by its line.
     """
-    table = read_csv(path, min_rows=2)
+    check_number("spacing_ab_m", spacing_ab_m, positive=True)
+    if spacing_bc_m is not None:
+        check_number("spacing_bc_m", spacing_bc_m, positive=True)
+    table = read_csv(check_path("path", path), min_rows=2)
     table.require("position_mm", "a_um", "b_um")
     position = table.numeric("position_mm")
     k = uneven_step(position)
@@ -220,8 +239,8 @@ def read_reversal_runs(normal_path: str | Path, reversed_path: str | Path) -> tu
         Missing file or column, a bad cell, fewer than 2 rows, or runs whose positions differ
         (naming the reversed run's line).
     """
-    normal = read_csv(normal_path, min_rows=2)
-    turned = read_csv(reversed_path, min_rows=2)
+    normal = read_csv(check_path("normal_path", normal_path), min_rows=2)
+    turned = read_csv(check_path("reversed_path", reversed_path), min_rows=2)
     normal.require("position_mm", "a_um")
     turned.require("position_mm", "a_um")
     x1, x2 = normal.numeric("position_mm"), turned.numeric("position_mm")
@@ -258,6 +277,12 @@ class StraightnessEvaluation:
 
     profile: Profile
     line: ReferenceLine
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.profile, Profile):
+            raise AxiscalError(f"profile must be a Profile (read_profile), not {type(self.profile).__name__}")
+        if not isinstance(self.line, ReferenceLine):
+            raise AxiscalError(f"line must be a ReferenceLine (reference_line), not {type(self.line).__name__}")
 
     def payload(self) -> dict[str, Any]:
         """The JSON object: ``straightness_um``, ``slope_urad``, ``intercept_um``, ``reference``."""
@@ -325,6 +350,12 @@ def _cells(values: np.ndarray, scale: float, fmt: str) -> list[str]:
     return ["" if not np.isfinite(v) else fmt.format(v / scale) for v in values]
 
 
+def _separation(result: Separation, name: str) -> Separation:
+    if not isinstance(result, Separation):
+        raise AxiscalError(f"{name} must be a Separation (separate or reversal), not {type(result).__name__}")
+    return result
+
+
 def separation_columns(result: Separation) -> dict[str, list[str]]:
     """The columns a separation is written as.
 
@@ -338,6 +369,7 @@ def separation_columns(result: Separation) -> dict[str, list[str]]:
         ``position_mm``, ``profile_um``, ``motion_um`` and, when the method resolves yaw,
         ``yaw_urad``; an empty cell where a value is not resolved.
     """
+    _separation(result, "result")
     columns = {
         "position_mm": _cells(result.position_m, MM, "{:.4f}"),
         "profile_um": _cells(result.profile_m, UM, "{:.5f}"),
@@ -352,6 +384,13 @@ def _write_data(path: str | Path, text: str, **sidecar: Any) -> None:
     """A plain data CSV and its JSON sidecar, each written atomically."""
     write_text(path, text)
     write_sidecar(path, **sidecar)
+
+
+def _text_and_metadata(csv_text: str, metadata: dict[str, Any]) -> None:
+    if not isinstance(csv_text, str):
+        raise AxiscalError(f"csv_text must be the CSV text, not {type(csv_text).__name__}")
+    if not isinstance(metadata, dict):
+        raise AxiscalError(f"metadata must be a dict, not {type(metadata).__name__}")
 
 
 @dataclass(frozen=True)
@@ -371,6 +410,10 @@ class SeparationRun:
     separation: Separation
     csv_text: str
     metadata: dict[str, Any]
+
+    def __post_init__(self) -> None:
+        _separation(self.separation, "separation")
+        _text_and_metadata(self.csv_text, self.metadata)
 
 
 def separate_file(
@@ -419,6 +462,9 @@ def separate_file(
         A bad file, a missing spacing or reversed run, or readings the method cannot separate
         (naming the file).
     """
+    check_path("readings_path", readings_path)
+    if not isinstance(method, str) or method not in SEPARATION_METHODS:
+        raise AxiscalError(f"unknown separation method {method!r}; use one of {', '.join(SEPARATION_METHODS)}")
     if method == "reversal":
         if reversed_path is None:
             raise AxiscalError("the reversal method needs reversed_path: the run with the workpiece turned over")
@@ -471,6 +517,11 @@ class SimulatedReadings:
     readings: ProbeReadings
     csv_text: str
     metadata: dict[str, Any]
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.readings, ProbeReadings):
+            raise AxiscalError(f"readings must be ProbeReadings, not {type(self.readings).__name__}")
+        _text_and_metadata(self.csv_text, self.metadata)
 
 
 def _interpolator(profile: Profile, values: np.ndarray, what: str) -> Callable[[np.ndarray], np.ndarray]:
@@ -538,8 +589,16 @@ def simulate_probe_readings(
         A bad file, a profile or motion that does not cover the probes' reach, a profile too
         short for the probes, or more than :data:`MAX_READINGS` readings.
     """
-    if probes not in (2, 3):
-        raise AxiscalError(f"the simulation uses 2 or 3 probes, not {probes}")
+    if isinstance(probes, bool) or probes not in (2, 3):
+        raise AxiscalError(f"the simulation uses 2 or 3 probes, not {probes!r}")
+    check_path("profile_path", profile_path)
+    check_path("motion_path", motion_path)
+    spacing_ab_m = check_number("spacing_ab_m", spacing_ab_m, positive=True)
+    if spacing_bc_m is not None:
+        spacing_bc_m = check_number("spacing_bc_m", spacing_bc_m, positive=True)
+    step_m = check_number("step_m", step_m, positive=True)
+    check_number("noise_m", noise_m, nonnegative=True)
+    seed = check_count("seed", seed, minimum=0)
     profile_run = read_profile(profile_path, increasing=True)
     motion_run = read_profile(motion_path, increasing=True)
     profile = _interpolator(profile_run, profile_run.deviation_m, "the profile")

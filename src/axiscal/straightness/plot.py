@@ -10,6 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_path
 from axiscal.io.figures import pyplot, save_figure
 from axiscal.straightness.reference import ReferenceLine, reference_line
 from axiscal.straightness.separation import Separation
@@ -42,8 +44,13 @@ def plot_straightness(path: str | Path, position_m: np.ndarray, deviation_m: np.
     AxiscalError
         An unknown image format or a file that cannot be written.
     """
-    plt = pyplot()
+    if not isinstance(line, ReferenceLine):
+        raise AxiscalError(f"line must be a ReferenceLine (reference_line), not {type(line).__name__}")
+    path = check_path("path", path)
+    position_m = check_array("position_m", position_m, ndim=1, min_len=1)
+    deviation_m = check_array("deviation_m", deviation_m, ndim=1)
     residual = line.residuals(position_m, deviation_m)
+    plt = pyplot()
     order = np.argsort(position_m, kind="stable")
     x = position_m[order]
     fit = line.slope * x + line.intercept_m
@@ -87,6 +94,9 @@ def plot_separation(path: str | Path, result: Separation) -> Path:
     AxiscalError
         An unknown image format or a file that cannot be written.
     """
+    if not isinstance(result, Separation):
+        raise AxiscalError(f"result must be a Separation (separate or reversal), not {type(result).__name__}")
+    path = check_path("path", path)
     plt = pyplot()
     x = result.position_m
     line = reference_line(x, result.profile_m)

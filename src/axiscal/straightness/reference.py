@@ -21,10 +21,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_choice, check_number, check_same_length
 
 __all__ = ["REFERENCES", "ReferenceLine", "reference_line"]
 
 REFERENCES = ("least-squares", "end-points", "minimum-zone")
+
+#: the largest position or deviation taken, metres: beyond it a value has no physical meaning
+#: (the tabular reader's limit, 1e12 mm)
+_LIMIT_M = 1e9
 
 
 @dataclass(frozen=True)
@@ -49,6 +54,11 @@ class ReferenceLine:
     straightness_m: float
     reference: str
 
+    def __post_init__(self) -> None:
+        for name in ("slope", "intercept_m", "straightness_m"):
+            object.__setattr__(self, name, check_number(name, getattr(self, name), unit="" if name == "slope" else "metres"))
+        check_choice("reference line", self.reference, REFERENCES)
+
     def residuals(self, position_m: np.ndarray, deviation_m: np.ndarray) -> np.ndarray:
         """Deviations about the line, metres.
 
@@ -62,8 +72,9 @@ class ReferenceLine:
         ndarray, shape (n,)
             ``deviation_m - (slope * position_m + intercept_m)``, metres.
         """
-        position = np.asarray(position_m, dtype=float)
-        deviation = np.asarray(deviation_m, dtype=float)
+        position = check_array("position_m", position_m, ndim=1)
+        deviation = check_array("deviation_m", deviation_m, ndim=1, finite=False)  # NaN: not resolved, stays NaN
+        check_same_length(position_m=position, deviation_m=deviation)
         return deviation - (self.slope * position + self.intercept_m)
 
 
@@ -98,18 +109,21 @@ def reference_line(position_m: np.ndarray, deviation_m: np.ndarray, *, reference
     >>> round(line.straightness_m / UM, 6), line.slope
     (1.0, 0.0)
     """
-    if reference not in REFERENCES:
-        raise AxiscalError(f"unknown reference line '{reference}'; use one of {', '.join(REFERENCES)}")
-    position = np.asarray(position_m, dtype=float)
-    deviation = np.asarray(deviation_m, dtype=float)
+    if not isinstance(reference, str) or reference not in REFERENCES:
+        raise AxiscalError(f"unknown reference line {reference!r}; use one of {', '.join(REFERENCES)}")
+    position = check_array("position_m", position_m, finite=False)
+    deviation = check_array("deviation_m", deviation_m, finite=False)
     if position.ndim != 1 or position.shape != deviation.shape:
         raise AxiscalError(
-            f"positions and deviations must be 1-D arrays of the same length (shapes {position.shape} and {deviation.shape})"
+            f"positions and deviations (position_m, deviation_m) must be 1-D arrays of the same length "
+            f"(shapes {position.shape} and {deviation.shape})"
         )
     if position.size < 2:
         raise AxiscalError(f"{position.size} point(s): a reference line needs at least 2")
     if not (np.all(np.isfinite(position)) and np.all(np.isfinite(deviation))):
-        raise AxiscalError("positions and deviations must be finite numbers")
+        raise AxiscalError("positions and deviations (position_m, deviation_m) must be finite numbers")
+    check_array("position_m", position, limit=_LIMIT_M)
+    check_array("deviation_m", deviation, limit=_LIMIT_M)
     centre = 0.5 * (position.min() + position.max())
     half_span = 0.5 * (position.max() - position.min())
     if not half_span > 0.0:
@@ -128,9 +142,13 @@ def reference_line(position_m: np.ndarray, deviation_m: np.ndarray, *, reference
     width = float(residual.max() - residual.min())
     if reference == "minimum-zone":
         offset += 0.5 * (residual.max() + residual.min())
-    slope = gain / half_span
+    with np.errstate(over="ignore"):
+        slope = gain / half_span
+        intercept = offset - slope * centre
+    if not (np.isfinite(slope) and np.isfinite(intercept)):
+        raise AxiscalError(f"position_m spans {2 * half_span:g} m: too little for a finite slope of the reference line")
     return ReferenceLine(
-        slope=float(slope), intercept_m=float(offset - slope * centre), straightness_m=width, reference=reference
+        slope=float(slope), intercept_m=float(intercept), straightness_m=width, reference=reference
     )
 
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from axiscal.io.arguments import render_checked
 from axiscal.io.templates import render_template
 
 __all__ = ["render_report"]
@@ -28,6 +29,11 @@ def render_report(template: str, **context: Any) -> str:
     str
         The report, without a trailing newline.
 
+    Raises
+    ------
+    AxiscalError
+        For a template that is not shipped, or a value the template uses that is not given.
+
     Examples
     --------
     >>> text = render_report("straightness.txt.j2", straightness_um=1.0, slope_urad=0.5,
@@ -35,4 +41,4 @@ def render_report(template: str, **context: Any) -> str:
     >>> text.splitlines()[0]
     'straightness  1.0000 um  (least-squares reference line)'
     """
-    return render_template(template, **context).rstrip("\n")
+    return render_checked(render_template, template, **context).rstrip("\n")

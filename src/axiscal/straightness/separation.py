@@ -39,6 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_choice, check_count, check_number, check_same_length, is_real
 from axiscal.units import MM
 
 __all__ = [
@@ -98,6 +99,27 @@ class ProbeReadings:
     c_m: np.ndarray | None
     spacing_ab_m: float
     spacing_bc_m: float | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("position_m", "a_m", "b_m", "c_m"):
+            value = getattr(self, name)
+            if value is not None or name != "c_m":
+                object.__setattr__(self, name, check_array(name, value, ndim=1))
+        check_same_length(position_m=self.position_m, a_m=self.a_m, b_m=self.b_m, c_m=self.c_m)
+        d1, d2 = self.spacing_ab_m, self.spacing_bc_m
+        if not (is_real(d1) and math.isfinite(d1) and d1 > 0):
+            raise AxiscalError(f"spacing_ab_m must be a positive, finite number of metres, not {d1!r}")
+        object.__setattr__(self, "spacing_ab_m", float(d1))
+        # the B-C spacing is checked by the methods that use it, which name what they need of it
+        if d2 is not None and not is_real(d2):
+            raise AxiscalError(f"spacing_bc_m must be a number of metres or None, not {d2!r}")
+
+
+
+def _readings(readings: ProbeReadings) -> ProbeReadings:
+    if not isinstance(readings, ProbeReadings):
+        raise AxiscalError(f"readings must be ProbeReadings, not {type(readings).__name__}")
+    return readings
 
 
 @dataclass(frozen=True)
@@ -177,22 +199,50 @@ def simulate_readings(
     >>> data.a_m.tolist()
     [-1e-06, -1e-06, -1e-06, -1e-06, -1e-06]
     """
-    x = np.asarray(position_m, dtype=float)
-    rng = np.random.default_rng(0) if rng is None else rng
-    s = np.asarray(motion(x), dtype=float)
-    g = np.zeros_like(x) if yaw is None else np.asarray(yaw(x), dtype=float)
+    x = check_array("position_m", position_m, ndim=1, min_len=1)
+    for name, function in (("profile", profile), ("motion", motion), ("yaw", yaw)):
+        if not (callable(function) or function is None and name == "yaw"):
+            raise AxiscalError(f"{name} must be a function of the positions (metres), not {function!r}")
+    offsets_m = check_array("offsets_m", offsets_m, ndim=1)
+    if offsets_m.shape != (3,):
+        raise AxiscalError(f"offsets_m must be 3 numbers of metres (probes A, B, C), not shape {offsets_m.shape}")
+    noise_m = check_number("noise_m", noise_m, nonnegative=True)
+    check_number("spacing_ab_m", spacing_ab_m, positive=True)
+    if spacing_bc_m is not None:
+        check_number("spacing_bc_m", spacing_bc_m, positive=True)
+    rng = _rng(rng)
+    s = _evaluated("motion", motion, x)
+    g = np.zeros_like(x) if yaw is None else _evaluated("yaw", yaw, x)
 
     def noisy(v: np.ndarray) -> np.ndarray:
         return v + noise_m * rng.standard_normal(v.shape) if noise_m > 0 else v
 
     d1 = float(spacing_ab_m)
-    a = noisy(np.asarray(profile(x), dtype=float) - s - offsets_m[0])
-    b = noisy(np.asarray(profile(x + d1), dtype=float) - s - d1 * g - offsets_m[1])
+    a = noisy(_evaluated("profile", profile, x) - s - offsets_m[0])
+    b = noisy(_evaluated("profile", profile, x + d1) - s - d1 * g - offsets_m[1])
     c = None
     if spacing_bc_m is not None:
         d12 = d1 + float(spacing_bc_m)
-        c = noisy(np.asarray(profile(x + d12), dtype=float) - s - d12 * g - offsets_m[2])
+        c = noisy(_evaluated("profile", profile, x + d12) - s - d12 * g - offsets_m[2])
     return ProbeReadings(x, a, b, c, d1, None if spacing_bc_m is None else float(spacing_bc_m))
+
+
+def _evaluated(name: str, function: Callable[[np.ndarray], np.ndarray], x: np.ndarray) -> np.ndarray:
+    """``function(x)`` as a finite float array of x's shape (a constant is spread), refused naming ``name`` otherwise."""
+    values = check_array(f"{name}(position_m)", function(x))
+    if values.ndim == 0:
+        values = np.full(x.shape, float(values))
+    if values.shape != x.shape:
+        raise AxiscalError(f"{name} must return one value per position, shape {x.shape}, not {values.shape}")
+    return values
+
+
+def _rng(rng: np.random.Generator | None) -> np.random.Generator:
+    if rng is None:
+        return np.random.default_rng(0)
+    if not isinstance(rng, np.random.Generator):
+        raise AxiscalError(f"rng must be a numpy.random.Generator, not {type(rng).__name__}")
+    return rng
 
 
 # ---------------------------------------------------------------------------------------------
@@ -221,7 +271,7 @@ def uneven_step(position_m: np.ndarray) -> int | None:
     >>> uneven_step(np.array([0.0, 1.0, 2.0, 4.0]))
     2
     """
-    steps = np.diff(position_m)
+    steps = np.diff(check_array("position_m", position_m, ndim=1, min_len=2))
     if not steps[0] > 0:
         return 0
     bad = np.flatnonzero(~(np.abs(steps - steps[0]) <= 1e-6 * steps[0]))
@@ -331,11 +381,14 @@ def reversal(position_m: np.ndarray, normal_m: np.ndarray, reversed_m: np.ndarra
     >>> (result.profile_m / UM).round(6).tolist()
     [1.0, 1.0]
     """
-    x = np.asarray(position_m, dtype=float)
-    n = np.asarray(normal_m, dtype=float)
-    r = np.asarray(reversed_m, dtype=float)
-    if not (x.shape == n.shape == r.shape) or x.ndim != 1:
-        raise AxiscalError("reversal needs the normal and the reversed run at the same positions")
+    x, n, r = (check_array(name, v, ndim=1) for name, v in (("position_m", position_m), ("normal_m", normal_m), ("reversed_m", reversed_m)))
+    if not (x.shape == n.shape == r.shape):
+        raise AxiscalError(
+            f"reversal needs the normal and the reversed run at the same positions: position_m, normal_m and "
+            f"reversed_m must have the same length, not {x.size}, {n.size} and {r.size}"
+        )
+    if x.size < 1:
+        raise AxiscalError("position_m needs at least 1 value, got 0")
     profile = 0.5 * (n + r)
     return Separation("reversal", x, profile, 0.5 * (r - n), np.full(x.shape, np.nan), _EMPTY)
 
@@ -365,11 +418,13 @@ def sequential_two_point(readings: ProbeReadings, *, yaw_rad: np.ndarray | None 
         Fewer than 2 readings, positions not increasing in even steps, or a spacing that is not a
         positive whole number of steps.
     """
-    x = readings.position_m
+    x = _readings(readings).position_m
     m = _steps_in(readings.spacing_ab_m, _step(x, "STP"), "STP")
     diff = readings.b_m[::m] - readings.a_m[::m]
     if yaw_rad is not None:
-        diff = diff + readings.spacing_ab_m * np.asarray(yaw_rad, dtype=float)[::m]
+        yaw = check_array("yaw_rad", yaw_rad, ndim=1)
+        check_same_length(position_m=x, yaw_rad=yaw)
+        diff = diff + readings.spacing_ab_m * yaw[::m]
     profile = np.concatenate([[0.0], np.cumsum(diff)])
     position = x[0] + readings.spacing_ab_m * np.arange(profile.size)
     return _finish("stp", position, profile, readings)
@@ -407,7 +462,7 @@ def sequential_three_point(readings: ProbeReadings) -> Separation:
         Fewer than 2 readings, positions not increasing in even steps, or a spacing that is not a
         positive whole number of steps. Also when probe C is missing or the spacings differ.
     """
-    x = readings.position_m
+    x = _readings(readings).position_m
     c, d2 = _third_probe(readings, "STRP")
     d = readings.spacing_ab_m
     if not abs(d2 - d) <= 1e-9 * d:
@@ -455,7 +510,7 @@ def fine_sequential_three_point(readings: ProbeReadings) -> Separation:
         positive whole number of steps. Also when probe C is missing, the spacings in
         steps are not coprime, or there are fewer readings than the A-C spacing has steps.
     """
-    x = readings.position_m
+    x = _readings(readings).position_m
     c, d2 = _third_probe(readings, "FSTRP")
     step = _step(x, "FSTRP")
     p = _steps_in(readings.spacing_ab_m, step, "FSTRP", "A-B spacing")
@@ -539,7 +594,7 @@ def generalized_two_point(readings: ProbeReadings) -> Separation:
         Fewer than 2 readings, positions not increasing in even steps, or a spacing that is not a
         positive whole number of steps.
     """
-    x = readings.position_m
+    x = _readings(readings).position_m
     step = _step(x, "GTP")
     d = readings.spacing_ab_m
     _steps_in(d, step, "GTP")
@@ -572,7 +627,13 @@ def gtp_amplitude_response(wavelength_m: np.ndarray, *, spacing_m: float, step_m
     >>> round(float(gtp_amplitude_response(75e-3, spacing_m=15e-3, step_m=1e-3)), 3)
     0.936
     """
-    lam = np.asarray(wavelength_m, dtype=float)
+    lam = check_array("wavelength_m", wavelength_m)
+    if np.any(lam <= 0.0):
+        raise AxiscalError("wavelength_m must hold positive wavelengths (metres)")
+    spacing_m = check_number("spacing_m", spacing_m, positive=True)
+    step_m = check_number("step_m", step_m, nonnegative=True)
+    if np.any(step_m >= lam):
+        raise AxiscalError(f"step_m ({step_m:g} m) must be shorter than every wavelength: sampling cannot see a wavelength at or below its step")
     return (np.abs(np.sinc(spacing_m / lam))) / np.sinc(step_m / lam)
 
 
@@ -625,8 +686,11 @@ def frequency_domain(
         ``min_gain`` outside [0, 1), probes not 2 or 3, probe C missing for three, uneven steps,
         spacings not whole numbers of steps, or no more readings than the probes span steps.
     """
-    if not 0.0 <= min_gain < 1.0:
-        raise AxiscalError(f"the frequency-domain method needs 0 <= min_gain < 1, got {min_gain:g}")
+    _readings(readings)
+    if not (is_real(min_gain) and 0.0 <= min_gain < 1.0):
+        raise AxiscalError(f"the frequency-domain method needs 0 <= min_gain < 1, got {min_gain!r}")
+    if not isinstance(parabola, (bool, np.bool_)):
+        raise AxiscalError(f"parabola must be True or False, not {parabola!r}")
     x = readings.position_m
     step = _step(x, "the frequency-domain method")
     p = _steps_in(readings.spacing_ab_m, step, "the frequency-domain method", "A-B spacing")
@@ -713,7 +777,11 @@ def combined(
         Probe C missing, unequal spacings, uneven steps, fewer than two readings per group, or a
         calibration region missing a group.
     """
-    x = readings.position_m
+    x = _readings(readings).position_m
+    if calibration_m is not None:
+        calibration_m = check_array("calibration_m", calibration_m, ndim=1)
+        if calibration_m.shape != (2,) or not calibration_m[0] < calibration_m[1]:
+            raise AxiscalError(f"calibration_m must be (start, end) in metres with start < end, not {calibration_m.tolist()}")
     c, d2 = _third_probe(readings, "the combined method")
     d = readings.spacing_ab_m
     if not abs(d2 - d) <= 1e-9 * d:
@@ -797,6 +865,11 @@ def separate(
     >>> separate(data, method="strp").method
     'strp'
     """
+    if not isinstance(method, str) or method not in METHODS:
+        raise AxiscalError(f"unknown separation method {method!r}; use one of {', '.join(METHODS)}")
+    _readings(readings)
+    if probes is not None and method == "frequency":
+        probes = check_count("probes", probes, minimum=2, maximum=3)
     if method == "stp":
         return sequential_two_point(readings)
     if method == "strp":
@@ -817,6 +890,14 @@ def separate(
 # error analysis (closed forms; the tests check each against simulation)
 
 
+def _chain_points(n: np.ndarray) -> np.ndarray:
+    """Chain point numbers as floats, refused when not finite or negative."""
+    points = check_array("n (chain point numbers)", n)
+    if np.any(points < 0):
+        raise AxiscalError("n (chain point numbers) must not be negative")
+    return points
+
+
 def stp_offset_error(n: np.ndarray, delta1_m: float) -> np.ndarray:
     """Profile error of STP from the zero offset Delta1 = xi_b - xi_a (eq 9): ``-n Delta1``.
 
@@ -835,7 +916,7 @@ def stp_offset_error(n: np.ndarray, delta1_m: float) -> np.ndarray:
     ndarray
         Profile error at each n, metres.
     """
-    return -np.asarray(n, dtype=float) * delta1_m
+    return -_chain_points(n) * check_number("delta1_m", delta1_m)
 
 
 def strp_offset_error(n: np.ndarray, delta1_m: float, delta2_m: float) -> np.ndarray:
@@ -856,7 +937,8 @@ def strp_offset_error(n: np.ndarray, delta1_m: float, delta2_m: float) -> np.nda
     ndarray
         Profile error at each n, metres.
     """
-    n = np.asarray(n, dtype=float)
+    n = _chain_points(n)
+    delta1_m, delta2_m = check_number("delta1_m", delta1_m), check_number("delta2_m", delta2_m)
     return -(delta2_m - 2.0 * delta1_m) * n * (n - 1.0) / 2.0
 
 
@@ -877,8 +959,9 @@ def strp_yaw_offset_error(n: np.ndarray, delta1_m: float, delta2_m: float, *, sp
     ndarray
         Yaw error at each n, radians.
     """
-    n = np.asarray(n, dtype=float)
-    return ((2.0 * n + 1.0) * delta1_m - n * delta2_m) / spacing_m
+    n = _chain_points(n)
+    delta1_m, delta2_m = check_number("delta1_m", delta1_m), check_number("delta2_m", delta2_m)
+    return ((2.0 * n + 1.0) * delta1_m - n * delta2_m) / check_number("spacing_m", spacing_m, positive=True)
 
 
 def stp_yaw_neglect_error(yaw_rad: np.ndarray, *, spacing_m: float) -> np.ndarray:
@@ -896,7 +979,8 @@ def stp_yaw_neglect_error(yaw_rad: np.ndarray, *, spacing_m: float) -> np.ndarra
     ndarray, shape (J + 1,)
         Error at the J + 1 chain points, metres (delta(0) = 0).
     """
-    return -spacing_m * np.concatenate([[0.0], np.cumsum(np.asarray(yaw_rad, dtype=float))])
+    spacing_m = check_number("spacing_m", spacing_m, positive=True)
+    return -spacing_m * np.concatenate([[0.0], np.cumsum(check_array("yaw_rad", yaw_rad, ndim=1))])
 
 
 def stp_residual_yaw_error(n: np.ndarray, *, spacing_m: float, mean_rad: float, slope_rad_per_step: float) -> np.ndarray:
@@ -919,7 +1003,10 @@ def stp_residual_yaw_error(n: np.ndarray, *, spacing_m: float, mean_rad: float, 
     ndarray
         Profile error at each n, metres.
     """
-    n = np.asarray(n, dtype=float)
+    n = _chain_points(n)
+    spacing_m = check_number("spacing_m", spacing_m, positive=True)
+    mean_rad = check_number("mean_rad", mean_rad)
+    slope_rad_per_step = check_number("slope_rad_per_step", slope_rad_per_step)
     return -n * spacing_m * mean_rad - 0.5 * n * (n - 1.0) * spacing_m * slope_rad_per_step
 
 
@@ -940,7 +1027,7 @@ def stp_noise_std(n: np.ndarray, noise_m: float) -> np.ndarray:
     ndarray
         Standard deviation at each n, metres.
     """
-    return noise_m * np.sqrt(2.0 * np.asarray(n, dtype=float))
+    return check_number("noise_m", noise_m, nonnegative=True) * np.sqrt(2.0 * _chain_points(n))
 
 
 def strp_noise_std(n: np.ndarray, noise_m: float) -> np.ndarray:
@@ -961,8 +1048,8 @@ def strp_noise_std(n: np.ndarray, noise_m: float) -> np.ndarray:
     ndarray
         Standard deviation at each n, metres.
     """
-    n = np.asarray(n, dtype=float)
-    return noise_m * np.sqrt(np.clip((n - 1.0) * n * (2.0 * n - 1.0), 0.0, None))
+    n = _chain_points(n)
+    return check_number("noise_m", noise_m, nonnegative=True) * np.sqrt(np.clip((n - 1.0) * n * (2.0 * n - 1.0), 0.0, None))
 
 
 def gtp_noise_std(n: np.ndarray, noise_m: float, *, steps_per_spacing: int) -> np.ndarray:
@@ -982,7 +1069,8 @@ def gtp_noise_std(n: np.ndarray, noise_m: float, *, steps_per_spacing: int) -> n
     ndarray
         Standard deviation at each n, metres.
     """
-    return noise_m * np.sqrt(2.0 * np.asarray(n, dtype=float)) / steps_per_spacing
+    steps_per_spacing = check_count("steps_per_spacing", steps_per_spacing)
+    return check_number("noise_m", noise_m, nonnegative=True) * np.sqrt(2.0 * _chain_points(n)) / steps_per_spacing
 
 
 @dataclass(frozen=True)
@@ -1040,8 +1128,11 @@ def noise_propagation(
     AxiscalError
         A method the set-up does not allow (see :func:`separate`).
     """
-    rng = np.random.default_rng(0) if rng is None else rng
-    x = readings.position_m
+    check_choice("separation method", method, ("reversal", *METHODS))
+    x = _readings(readings).position_m
+    noise_m = check_number("noise_m", noise_m, positive=True)
+    trials = check_count("trials", trials, minimum=2)
+    rng = _rng(rng)
     residuals = []
     for _ in range(trials):
         a, b, c = noise_m * rng.standard_normal((3, x.size))
