@@ -274,7 +274,9 @@ def reference_read(data: bytes, min_rows: int = 1):
             raise Refused(header_line)
         header.append(name)
     rows, numbers = [], []
-    for number, line in kept[1:]:
+    for k, (number, line) in enumerate(kept[1:]):
+        if k == 0 and line.startswith("\ufeff"):
+            line = line[1:]  # a byte-order mark opening the first data line is dropped, as one opening the file
         cells = split(number, line)
         if len(cells) != len(header):
             raise Refused(number)

@@ -94,7 +94,15 @@ def transfer_components(delta_m: np.ndarray, eps_rad: np.ndarray, offsets_m: np.
     eps = check_array("eps_rad", eps_rad, last=3)
     out = np.array(check_array("delta_m", delta_m, last=3), copy=True)
     out, eps = check_broadcast(delta_m=out, eps_rad=eps)
-    out = out.copy()
+    return _transfer_components(out.copy(), eps, offsets)
+
+
+def _transfer_components(out: np.ndarray, eps: np.ndarray, offsets: np.ndarray) -> np.ndarray:
+    """:func:`transfer_components` on checked arrays of one shape (..., 3), ``out`` a copy it may change.
+
+    The measurement pipeline's path: its arrays are built and checked once per batch, so the
+    checks of the public function are not repeated there.
+    """
     ea, eb, ec = eps[..., 0], eps[..., 1], eps[..., 2]
     # (eps x r)_x = eb rz - ec ry, (eps x r)_y = ec rx - ea rz, (eps x r)_z = ea ry - eb rx;
     # a zero arm adds nothing, so the common case (one offset per sensor) costs two products

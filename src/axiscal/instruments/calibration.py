@@ -227,8 +227,12 @@ class MirrorCorrection:
 
     def evaluate(self, q_m: np.ndarray) -> np.ndarray:
         """Form error eps_error at positions ``q_m`` (shape (N,), finite), radians; positions are clipped to the map."""
+        return self._evaluate(check_array("q_m", q_m))
+
+    def _evaluate(self, q: np.ndarray) -> np.ndarray:
+        """:meth:`evaluate` on a checked float array (the measurement pipeline's path)."""
         scale = 2.0 / (self.end_m - self.start_m)
-        s = np.clip((check_array("q_m", q_m) - self.start_m) * scale - 1.0, -1.0, 1.0)
+        s = np.clip((q - self.start_m) * scale - 1.0, -1.0, 1.0)
         return legendre.legval(s, np.asarray(self.coefficients_rad))
 
     def inside(self, q_m: np.ndarray) -> np.ndarray:
@@ -424,6 +428,17 @@ def _number(entry: Mapping, key: str, fail, *, default: float | None = None) -> 
     return float(value)
 
 
+def _whole(value: float) -> int | float:
+    """A count read from JSON: an int when it is whole, else left for the record's check to refuse."""
+    return int(value) if value == int(value) else value
+
+
+def _named_key(message: str, entry: Mapping) -> str | None:
+    """The key of ``entry`` whose name opens an error message of its record's checks, if any."""
+    stem = message.split(" ", 1)[0]
+    return next((key for key in entry if key == stem or key.startswith(stem + "_") or stem.startswith(key)), None)
+
+
 def calibration_from_dict(data: Mapping, *, locate: Callable[..., int | None] | None = None) -> Calibration:
     """Build a :class:`Calibration` from the parsed JSON (see :func:`save_calibration`).
 
@@ -468,14 +483,13 @@ def calibration_from_dict(data: Mapping, *, locate: Callable[..., int | None] | 
         gain = _number(entry, "gain", fail)
         if gain == 0.0:
             raise fail("gain must not be zero", "gain")
-        channels[name] = ChannelCalibration(
-            channel=name,
-            gain=gain,
-            offset=_number(entry, "offset", fail),
-            residual_max=_number(entry, "residual_max", fail, default=0.0),
-            residual_rms=_number(entry, "residual_rms", fail, default=0.0),
-            points=int(_number(entry, "points", fail, default=0)),
-        )
+        values = {key: _number(entry, key, fail, default=default) for key, default in
+                  (("offset", None), ("residual_max", 0.0), ("residual_rms", 0.0), ("points", 0))}
+        values["points"] = _whole(values["points"])
+        try:
+            channels[name] = ChannelCalibration(channel=name, gain=gain, **values)
+        except AxiscalError as exc:  # the entry's own checks (a negative residual, points not whole)
+            raise fail(exc.message, _named_key(exc.message, values)) from None
     mirrors: dict[str, MirrorCorrection] = {}
     for letter, entry in sections["mirrors"].items():
         where = f"mirror of axis '{letter}'"
@@ -497,16 +511,19 @@ def calibration_from_dict(data: Mapping, *, locate: Callable[..., int | None] | 
                 and all(v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)) for v in cv_values)):
             raise fail("'cv_rms_urad' must be a list of numbers (null: not resolved)", "cv_rms_urad")
         cv = [math.inf if v is None else float(v) * URAD for v in cv_values]
-        mirrors[letter] = MirrorCorrection(
-            letter=letter,
-            start_m=start,
-            end_m=end,
-            coefficients_rad=tuple(float(c) * URAD for c in coefficients),
-            residual_max_rad=_number(entry, "residual_max_urad", fail, default=0.0) * URAD,
-            residual_rms_rad=_number(entry, "residual_rms_urad", fail, default=0.0) * URAD,
-            cv_rms_rad=tuple(cv),
-            points=int(_number(entry, "points", fail, default=0)),
-        )
+        try:
+            mirrors[letter] = MirrorCorrection(
+                letter=letter,
+                start_m=start,
+                end_m=end,
+                coefficients_rad=tuple(float(c) * URAD for c in coefficients),
+                residual_max_rad=_number(entry, "residual_max_urad", fail, default=0.0) * URAD,
+                residual_rms_rad=_number(entry, "residual_rms_urad", fail, default=0.0) * URAD,
+                cv_rms_rad=tuple(cv),
+                points=_whole(_number(entry, "points", fail, default=0)),
+            )
+        except AxiscalError as exc:  # the entry's own checks
+            raise fail(exc.message, _named_key(exc.message, entry)) from None
     return Calibration(channels, mirrors)
 
 

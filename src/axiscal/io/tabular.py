@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_path
 from axiscal.io.atomic import write_text
 from axiscal.io.lines import Lines
 
@@ -338,7 +339,7 @@ def read_csv(path: str | Path, *, min_rows: int = 1) -> CsvTable:
     >>> read_csv(path).numeric("deviation_um")
     array([ 1.5, -2. ])
     """
-    path = Path(path)
+    path = check_path("path", path)
     try:
         stamp = _stamp(path)
         data = path.read_bytes()
@@ -554,7 +555,7 @@ def read_text(path: str | Path) -> str:
         If the file is missing or unreadable, naming it; if it is not UTF-8, naming the line of the
         first byte that is not.
     """
-    path = Path(path)
+    path = check_path("path", path)
     try:
         data = path.read_bytes()
     except FileNotFoundError:

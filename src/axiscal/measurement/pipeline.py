@@ -29,7 +29,7 @@ import numpy as np
 
 from axiscal.conventions import component_names
 from axiscal.errors import AxiscalError
-from axiscal.instruments.abbe import transfer_components
+from axiscal.instruments.abbe import _transfer_components
 from axiscal.instruments.calibration import (
     Calibration,
     MirrorCorrection,
@@ -328,8 +328,9 @@ class MeasurementSystem:
             errors = si[plan.error_rows]
             errors[plan.index] -= cmd
             if plan.mirror is not None:
-                errors[plan.roll_index] -= plan.roll_sign * plan.mirror.evaluate(cmd)
-            errors[:3] = transfer_components(errors[:3].T, errors[3:].T, plan.offsets_m).T
+                errors[plan.roll_index] -= plan.roll_sign * plan.mirror._evaluate(cmd)
+            # the batch is checked once above: the unchecked paths of the mirror map and the transfer
+            errors[:3] = _transfer_components(errors[:3].T.copy(), errors[3:].T, plan.offsets_m).T
             command[plan.letter] = cmd
             measured[plan.letter] = errors
             for name, row in zip(plan.error_names, errors):
