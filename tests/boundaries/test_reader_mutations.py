@@ -124,6 +124,21 @@ def run(reader, path):
         return reader(path)
 
 
+REFUSED = object()
+
+
+def read_or_refused(reader, path, raw: bytes):
+    """The reader's result, or REFUSED after checking the error names the file and a line in it."""
+    try:
+        result = run(reader, path)
+    except AxiscalError as exc:
+        located(exc, path, physical_line_count(raw))
+        event("refused")
+        return REFUSED
+    event("read")
+    return result
+
+
 # ---- positioning runs
 
 
@@ -154,13 +169,9 @@ def test_mutated_positioning_runs(tmp_path, examples, name, data):
     raw = mutate(text, steps)
     path = tmp_path / name
     path.write_bytes(raw)
-    try:
-        result = run(read_positioning_run, path)
-    except AxiscalError as exc:
-        located(exc, path, physical_line_count(raw))
-        event("refused")
+    result = read_or_refused(read_positioning_run, path, raw)
+    if result is REFUSED:
         return
-    event("read")
     r = result.run
     arrays = [a for a in (r.deviations_up, r.deviations_down) if a is not None]
     assert arrays and all(np.isfinite(a).all() and a.shape == (r.targets.size, r.runs) for a in arrays)
@@ -195,13 +206,9 @@ def test_mutated_probe_readings(tmp_path, examples, data):
     raw = mutate(text, steps)
     path = tmp_path / "probes.csv"
     path.write_bytes(raw)
-    try:
-        result = run(lambda p: read_probe_readings(p, spacing_ab_m=15 * MM), path)
-    except AxiscalError as exc:
-        located(exc, path, physical_line_count(raw))
-        event("refused")
+    result = read_or_refused(lambda p: read_probe_readings(p, spacing_ab_m=15 * MM), path, raw)
+    if result is REFUSED:
         return
-    event("read")
     header, rows = plain_rows(raw)
     column = {name: [float(row[header.index(name)]) for row in rows] for name in header if name}
     np.testing.assert_array_equal(result.position_m, np.array(column["position_mm"]) * MM)
@@ -419,13 +426,9 @@ def test_mutated_files_of_the_other_csv_readers(tmp_path, examples, name, data):
     raw = mutate(text, data.draw(mutations(len(lines), len(lines[0].split(",")))))
     path = tmp_path / "f.csv"
     path.write_bytes(raw)
-    try:
-        result = run(reader, path)
-    except AxiscalError as exc:
-        located(exc, path, physical_line_count(raw))
-        event("refused")
+    result = read_or_refused(reader, path, raw)
+    if result is REFUSED:
         return
-    event("read")
     check(result, raw)
 
 
@@ -515,13 +518,9 @@ def test_mutated_sensor_calibrations(tmp_path, examples, data):
     raw = ("\n".join(lines) + "\n").encode("utf-8")
     path = tmp_path / "cal.json"
     path.write_bytes(raw)
-    try:
-        calibration = run(load_calibration, path)
-    except AxiscalError as exc:
-        located(exc, path, physical_line_count(raw))
-        event("refused")
+    calibration = read_or_refused(load_calibration, path, raw)
+    if calibration is REFUSED:
         return
-    event("read")
     assert calibration is not None
 
 
