@@ -14,6 +14,7 @@ import numpy as np
 
 from axiscal.compensation.curve import ErrorCurve, _check_direction
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_instance, check_integer, check_number, check_optional_number
 from axiscal.units import DEG, MM, UM
 
 #: the largest axis number a FANUC parameter tape carries (Series 30i: 32 axes)
@@ -245,6 +246,18 @@ def fanuc_table(
     N10002P-1
     %
     """
+    check_instance("curve", curve, ErrorCurve)
+    for name, value in (("interval_m", interval_m), ("reference_position_m", reference_position_m),
+                        ("detection_unit_m", detection_unit_m), ("input_increment_m", input_increment_m)):
+        check_number(name, value)
+    check_optional_number("travel_per_revolution", travel_per_revolution, unit="")
+    for name, value in (("magnification", magnification), ("value_limit", value_limit), ("max_point", max_point),
+                        ("axis_number", axis_number)):
+        check_integer(name, value)
+    if reference_point is not None:
+        check_count("reference_point", reference_point, minimum=0)
+    check_instance("bidirectional", bidirectional, (bool, np.bool_))
+    check_instance("rotary", rotary, (bool, np.bool_))
     if not 1 <= magnification <= 100:
         raise AxiscalError(f"FANUC pitch error magnification (parameter 3623) is 1..100, got {magnification}")
     # messages in the units of the axis: mm and um, or degrees for a rotary axis

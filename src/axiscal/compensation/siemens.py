@@ -13,6 +13,7 @@ import numpy as np
 
 from axiscal.compensation.curve import ErrorCurve, _check_direction, _grid
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_count, check_instance, check_integer, check_number, check_optional_number
 from axiscal.units import MM
 
 __all__ = ["SiemensTable", "siemens_table"]
@@ -173,8 +174,16 @@ def siemens_table(
     >>> print(siemens_table(curve, step_m=0.01, axis="Y1").text().splitlines()[2])
     $AA_ENC_COMP[0,0,Y1]=0.0015
     """
-    if not axis or not axis.replace("_", "").isalnum():
-        raise AxiscalError(f"'{axis}' is not a machine axis name")
+    check_instance("curve", curve, ErrorCurve)
+    if not isinstance(axis, str) or not axis or not axis.replace("_", "").isalnum():
+        raise AxiscalError(f"{axis!r} is not a machine axis name")
+    step_m = check_number("step_m", step_m)
+    zero_at_m = check_optional_number("zero_at_m", zero_at_m)
+    check_choice("direction", direction, ("+", "-", "mean"))
+    check_integer("encoder", encoder)
+    decimals = check_count("decimals", decimals, minimum=0, maximum=12)
+    max_points = check_count("max_points", max_points)
+    unit_m = check_number("unit_m", unit_m, positive=True)
     modulo = curve.period is not None
     if modulo:
         steps = curve.period / step_m if step_m > 0 else math.nan

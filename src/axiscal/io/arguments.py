@@ -22,7 +22,7 @@ from axiscal.errors import AxiscalError
 
 __all__ = [
     "unit_words", "check_number", "check_count", "check_array", "check_same_length", "check_broadcast", "check_choice",
-    "check_mapping", "check_path", "render_checked", "is_real", "check_instance", "check_optional_number",
+    "check_mapping", "check_path", "render_checked", "is_real", "check_instance", "check_optional_number", "check_integer",
 ]
 
 # name suffix -> how a message speaks of the unit; longest suffix first
@@ -539,3 +539,35 @@ def check_optional_number(name: str, value: Any, **bounds: Any) -> float | None:
     (True, 0.01)
     """
     return None if value is None else check_number(name, value, **bounds)
+
+
+def check_integer(name: str, value: Any) -> int:
+    """``value`` as an int, refused when it is not a whole number; its range is left to the caller.
+
+    For an argument whose bounds the caller checks with its own message (a controller's
+    parameter range, say), so that a float, bool, string or None never reaches a comparison.
+
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the message.
+    value : object
+        An int (a NumPy integer too), not a bool, float or string.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    AxiscalError
+        ``"magnification must be a whole number, not 1.5"``.
+
+    Examples
+    --------
+    >>> check_integer("axis_number", np.int64(3))
+    3
+    """
+    if isinstance(value, numbers.Integral) and not isinstance(value, (bool, np.bool_)):
+        return int(value)
+    raise AxiscalError(f"{name} must be a whole number, not {_shown(value)}")

@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_count, check_instance, check_number, check_path, is_real
+from axiscal.io.arguments import check_instance, check_integer, check_number, check_path, is_real
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.positioning.evaluation import require_finite
@@ -106,11 +106,6 @@ class PositioningTestPlan:
         )
 
 
-def _whole(value: object) -> bool:
-    """True for an int (NumPy's too) that is not a bool: the range is checked where it is used."""
-    return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
-
-
 def minimum_targets(length_m: float) -> int:
     """Fewest targets ISO 230-2 accepts over ``length_m``: 5 per metre, at least 5.
 
@@ -163,10 +158,9 @@ def plan_targets(start_m: float, end_m: float, count: int, *, seed: int | None =
     require_finite(start_m=start_m, end_m=end_m)
     start_m = check_number("start_m", start_m)
     end_m = check_number("end_m", end_m)
-    if not _whole(count):
-        check_count("count", count, minimum=2)
-    if seed is not None and not _whole(seed):
-        check_count("seed", seed, minimum=0)
+    count = check_integer("count", count)
+    if seed is not None:
+        seed = check_integer("seed", seed)
     if end_m <= start_m:
         raise AxiscalError(f"the end ({end_m / MM:g} mm) must be beyond the start ({start_m / MM:g} mm)")
     need = minimum_targets(end_m - start_m)
@@ -237,8 +231,7 @@ def plan_test(
     """
     if not isinstance(cycle, str) or cycle not in CYCLES:
         raise AxiscalError(f"unknown cycle {cycle!r}; use one of {', '.join(CYCLES)}")
-    if not _whole(runs):
-        check_count("runs", runs, minimum=1)
+    runs = check_integer("runs", runs)
     if not is_real(overrun_m):
         check_number("overrun_m", overrun_m)
     if runs < 1:
