@@ -25,10 +25,10 @@ from axiscal.model.kinematics import (
     AXIS_INDEX,
     ChainLink,
     RotaryLink,
+    _pose_error,
     _through_chain,
-    pose_error,
+    _volumetric_error,
     reference_volumetric_error,
-    volumetric_error,
 )
 from axiscal.model.tables import (
     INTERPOLATIONS,
@@ -412,14 +412,17 @@ class Machine:
             wrong = [k for k in self.letters if errors.get(k, np.empty(0)).shape != (6, n)]
             if wrong:
                 raise AxiscalError(f"errors of axis {', '.join(wrong)} must have shape (6, {n})")
+            bad = [k for k, v in errors.items() if not np.isfinite(v).all()]
+            if bad:
+                raise AxiscalError(f"errors of axis {bad[0]} hold non-finite values")
         tool, workpiece = np.array(self.tool_m), np.array(self.workpiece_m)
 
         def run(start: int, stop: int) -> np.ndarray:
             part = {k: v[start:stop] for k, v in q.items()}
             given = None if errors is None else {k: v[:, start:stop] for k, v in errors.items()}
             if self.rotary:
-                return pose_error(self._tool_links, self._workpiece_links, tool, part, given, orientation=False)[0]
-            return volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, part, given)
+                return _pose_error(self._tool_links, self._workpiece_links, tool, part, given, orientation=False)[0]
+            return _volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, part, given)
 
         return self._chunked(run, q, n, errors is None, workers, 3)
 
@@ -465,7 +468,7 @@ class Machine:
 
         def run(start: int, stop: int) -> np.ndarray:
             part = {k: v[start:stop] for k, v in q.items()}
-            return np.column_stack(pose_error(self._tool_links, self._workpiece_links, tool, part))
+            return np.column_stack(_pose_error(self._tool_links, self._workpiece_links, tool, part))
 
         out = self._chunked(run, q, n, True, workers, 5)
         return out[:, :3], out[:, 3:]
