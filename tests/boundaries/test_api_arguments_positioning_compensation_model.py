@@ -126,6 +126,168 @@ bad(P, "render_template", "template", lambda: po.render_template(None), lambda: 
     lambda: po.render_template("positioning_report.txt.j2"))
 
 
+
+# ---------------------------------------------------------------- compensation
+co = api("compensation")
+C = "compensation"
+STATS = po.target_statistics(RUN)
+CURVE = co.error_curve(STATS)
+LCNC = co.linuxcnc_table(CURVE)
+SAG_X = np.linspace(0.0, 0.4, 5)
+SAG_E = np.array([0.0, 1e-6, 2e-6, 1e-6, 0.0])
+PROFILE = EXAMPLES / "straightness_profile.csv"
+
+bad(C, "ErrorCurve", "positions", lambda: co.ErrorCurve(None, [0.0], [0.0]), lambda: co.ErrorCurve([], [], []), lambda: co.ErrorCurve([NAN, 0.1], [0.0, 0.0], [0.0, 0.0]),
+    lambda: co.ErrorCurve("ab", [0.0, 0.0], [0.0, 0.0]), lambda: co.ErrorCurve(np.zeros((2, 2)), [0.0, 0.0], [0.0, 0.0]))
+bad(C, "ErrorCurve", "strictly increasing", lambda: co.ErrorCurve([0.1, 0.0], [0.0, 0.0], [0.0, 0.0]))
+bad(C, "ErrorCurve", "up", lambda: co.ErrorCurve(T2, [0.0, NAN], [0.0, 0.0]), lambda: co.ErrorCurve(T2, None, [0.0, 0.0]), lambda: co.ErrorCurve(T2, [0.0], [0.0, 0.0]))
+bad(C, "ErrorCurve", "down", lambda: co.ErrorCurve(T2, [0.0, 0.0], [INF, 0.0]), lambda: co.ErrorCurve(T2, [0.0, 0.0], [0.0, 0.0, 0.0]))
+bad(C, "ErrorCurve", "period", lambda: co.ErrorCurve(T2, [0.0, 0.0], [0.0, 0.0], period=0.0), lambda: co.ErrorCurve(T2, [0.0, 0.0], [0.0, 0.0], period=NAN),
+    lambda: co.ErrorCurve(T2, [0.0, 0.0], [0.0, 0.0], period="turn"))
+bad(C, "ErrorCurve", "unknown direction", lambda: CURVE.at(0.0, "up"), lambda: CURVE.at(0.0, None), lambda: CURVE.at(0.0, np.array([])))
+bad(C, "ErrorCurve", "x", lambda: CURVE.at(NAN, "+"), lambda: CURVE.at("a", "+"), lambda: CURVE.at(None, "+"))
+bad(C, "error_curve", "stats must be a TargetStatistics, not None", lambda: co.error_curve(None))
+bad(C, "error_curve", "stats", lambda: co.error_curve(RUN), lambda: co.error_curve({"targets": T2}))
+bad(C, "error_curve", "period", lambda: co.error_curve(STATS, period=-1.0), lambda: co.error_curve(STATS, period=INF))
+bad(C, "residuals", "curve must be an ErrorCurve", lambda: co.residuals(LCNC, None, 0.0, "+"))
+bad(C, "residuals", "table", lambda: co.residuals(None, CURVE, 0.0, "+"), lambda: co.residuals("table", CURVE, 0.0, "+"))
+bad(C, "residuals", "x", lambda: co.residuals(LCNC, CURVE, [NAN], "+"), lambda: co.residuals(LCNC, CURVE, "a", "+"))
+bad(C, "residuals", "direction", lambda: co.residuals(LCNC, CURVE, 0.0, "up"), lambda: co.residuals(LCNC, CURVE, 0.0, None))
+bad(C, "residuals", "offset", lambda: co.residuals(LCNC, CURVE, 0.0, "+", offset=NAN), lambda: co.residuals(LCNC, CURVE, 0.0, "+", offset=None))
+bad(C, "linuxcnc_table", "curve must be an ErrorCurve, not None", lambda: co.linuxcnc_table(None))
+bad(C, "linuxcnc_table", "curve", lambda: co.linuxcnc_table(STATS), lambda: co.linuxcnc_table(np.array([])))
+bad(C, "linuxcnc_table", "comp_type", lambda: co.linuxcnc_table(CURVE, comp_type=None), lambda: co.linuxcnc_table(CURVE, comp_type=0.5), lambda: co.linuxcnc_table(CURVE, comp_type=np.array([])))
+bad(C, "linuxcnc_table", "0 or 1", lambda: co.linuxcnc_table(CURVE, comp_type=2))
+bad(C, "linuxcnc_table", "unit_m", lambda: co.linuxcnc_table(CURVE, unit_m=0.0), lambda: co.linuxcnc_table(CURVE, unit_m=NAN), lambda: co.linuxcnc_table(CURVE, unit_m="mm"))
+bad(C, "linuxcnc_table", "decimals", lambda: co.linuxcnc_table(CURVE, decimals=-1), lambda: co.linuxcnc_table(CURVE, decimals=2.5), lambda: co.linuxcnc_table(CURVE, decimals=None))
+bad(C, "LinuxcncTable", "x", lambda: LCNC.correction("a", "+"), lambda: LCNC.correction([NAN], "+"))
+bad(C, "LinuxcncTable", "unknown direction", lambda: LCNC.correction(0.0, "mean"), lambda: LCNC.correction(0.0, None))
+bad(C, "parse_linuxcnc", "text", lambda: co.parse_linuxcnc(None), lambda: co.parse_linuxcnc(5), lambda: co.parse_linuxcnc(np.array([])))
+bad(C, "parse_linuxcnc", "line 1", lambda: co.parse_linuxcnc("a b c"))
+bad(C, "fanuc_table", "curve must be an ErrorCurve", lambda: co.fanuc_table(None, interval_m=0.01))
+bad(C, "fanuc_table", "interval", lambda: co.fanuc_table(CURVE, interval_m=None), lambda: co.fanuc_table(CURVE, interval_m=NAN), lambda: co.fanuc_table(CURVE, interval_m=-0.01),
+    lambda: co.fanuc_table(CURVE, interval_m="10"), lambda: co.fanuc_table(CURVE, interval_m=np.array([])))
+bad(C, "fanuc_table", "magnification", lambda: co.fanuc_table(CURVE, interval_m=0.01, magnification=0), lambda: co.fanuc_table(CURVE, interval_m=0.01, magnification=1.5),
+    lambda: co.fanuc_table(CURVE, interval_m=0.01, magnification=None))
+bad(C, "fanuc_table", "detection_unit_m", lambda: co.fanuc_table(CURVE, interval_m=0.01, detection_unit_m=NAN), lambda: co.fanuc_table(CURVE, interval_m=0.01, detection_unit_m=None))
+bad(C, "fanuc_table", "reference_position_m", lambda: co.fanuc_table(CURVE, interval_m=0.01, reference_position_m=INF), lambda: co.fanuc_table(CURVE, interval_m=0.01, reference_position_m="0"))
+bad(C, "fanuc_table", "reference_point", lambda: co.fanuc_table(CURVE, interval_m=0.01, reference_point=-1), lambda: co.fanuc_table(CURVE, interval_m=0.01, reference_point=2.5))
+bad(C, "fanuc_table", "axis number", lambda: co.fanuc_table(CURVE, interval_m=0.01, axis_number=0))
+bad(C, "fanuc_table", "axis_number", lambda: co.fanuc_table(CURVE, interval_m=0.01, axis_number="X"))
+bad(C, "fanuc_table", "bidirectional", lambda: co.fanuc_table(CURVE, interval_m=0.01, bidirectional="no"))
+bad(C, "fanuc_table", "rotary", lambda: co.fanuc_table(CURVE, interval_m=0.01, rotary=None))
+bad(C, "fanuc_table", "travel per revolution", lambda: co.fanuc_table(CURVE, interval_m=0.01, rotary=True), lambda: co.fanuc_table(CURVE, interval_m=0.01, rotary=True, travel_per_revolution=-1.0))
+bad(C, "fanuc_table", "value_limit", lambda: co.fanuc_table(CURVE, interval_m=0.01, value_limit=None))
+bad(C, "fanuc_table", "max_point", lambda: co.fanuc_table(CURVE, interval_m=0.01, max_point="1023"))
+bad(C, "fanuc_table", "input_increment_m", lambda: co.fanuc_table(CURVE, interval_m=0.01, input_increment_m=None))
+bad(C, "FanucTable", "x", lambda: co.fanuc_table(CURVE, interval_m=0.01).correction("a", "+"))
+bad(C, "FanucTable", "unknown direction", lambda: co.fanuc_table(CURVE, interval_m=0.01).correction(0.0, 5))
+bad(C, "siemens_table", "curve must be an ErrorCurve", lambda: co.siemens_table(None, step_m=0.01))
+bad(C, "siemens_table", "step_m", lambda: co.siemens_table(CURVE, step_m=None), lambda: co.siemens_table(CURVE, step_m=NAN), lambda: co.siemens_table(CURVE, step_m="1"))
+bad(C, "siemens_table", "interval must be positive", lambda: co.siemens_table(CURVE, step_m=0.0))
+bad(C, "siemens_table", "machine axis", lambda: co.siemens_table(CURVE, step_m=0.01, axis=None), lambda: co.siemens_table(CURVE, step_m=0.01, axis="X 1"))
+bad(C, "siemens_table", "direction", lambda: co.siemens_table(CURVE, step_m=0.01, direction="up"), lambda: co.siemens_table(CURVE, step_m=0.01, direction=None))
+bad(C, "siemens_table", "zero_at_m", lambda: co.siemens_table(CURVE, step_m=0.01, zero_at_m=NAN), lambda: co.siemens_table(CURVE, step_m=0.01, zero_at_m="0"))
+bad(C, "siemens_table", "encoder", lambda: co.siemens_table(CURVE, step_m=0.01, encoder=0.5))
+bad(C, "siemens_table", "decimals", lambda: co.siemens_table(CURVE, step_m=0.01, decimals=-2))
+bad(C, "siemens_table", "max_points", lambda: co.siemens_table(CURVE, step_m=0.01, max_points=0), lambda: co.siemens_table(CURVE, step_m=0.01, max_points=None))
+bad(C, "siemens_table", "unit_m", lambda: co.siemens_table(CURVE, step_m=0.01, unit_m=-1.0))
+bad(C, "SiemensTable", "x", lambda: co.siemens_table(CURVE, step_m=0.01).correction(None, "+"))
+bad(C, "heidenhain_table", "curve must be an ErrorCurve", lambda: co.heidenhain_table(None), lambda: co.heidenhain_table("curve"))
+bad(C, "heidenhain_table", "axis", lambda: co.heidenhain_table(CURVE, axis=None), lambda: co.heidenhain_table(CURVE, axis="X1"))
+bad(C, "heidenhain_table", "backlash", lambda: co.heidenhain_table(CURVE, backlash="yes"))
+bad(C, "heidenhain_table", "decimals", lambda: co.heidenhain_table(CURVE, decimals=1.5), lambda: co.heidenhain_table(CURVE, decimals=-1))
+bad(C, "heidenhain_table", "unit_m", lambda: co.heidenhain_table(CURVE, unit_m=NAN))
+bad(C, "HeidenhainTable", "x", lambda: co.heidenhain_table(CURVE).correction("a", "+"))
+bad(C, "compensation_table", "path", lambda: co.compensation_table(None, "linuxcnc"), lambda: co.compensation_table(5, "linuxcnc"))
+bad(C, "compensation_table", "unknown compensation table format", lambda: co.compensation_table(RUN, "okuma"), lambda: co.compensation_table(RUN, None),
+    lambda: co.compensation_table(RUN, np.array([])))
+bad(C, "compensation_table", "comp_type", lambda: co.compensation_table(RUN, "linuxcnc", comp_type=0.5), lambda: co.compensation_table(RUN, "linuxcnc", comp_type="1"))
+bad(C, "compensation_table", "interval_m", lambda: co.compensation_table(RUN, "fanuc", interval_m=NAN), lambda: co.compensation_table(RUN, "fanuc", interval_m="10"))
+bad(C, "compensation_table", "magnification", lambda: co.compensation_table(RUN, "fanuc", magnification=2.5))
+bad(C, "compensation_table", "bidirectional", lambda: co.compensation_table(RUN, "fanuc", bidirectional="yes"))
+bad(C, "compensation_table", "backlash", lambda: co.compensation_table(RUN, "heidenhain", backlash=1))
+bad(C, "compensation_table", "axis", lambda: co.compensation_table(RUN, "siemens", axis=5), lambda: co.compensation_table(RUN, "heidenhain", axis=["X"]))
+bad(C, "compensation_table", "applies to format", lambda: co.compensation_table(RUN, "linuxcnc", magnification=2))
+bad(C, "klipper_lengths", "squareness_rad", lambda: co.klipper_lengths(NAN, 0.1), lambda: co.klipper_lengths(None, 0.1), lambda: co.klipper_lengths("1", 0.1))
+bad(C, "klipper_lengths", "square_m", lambda: co.klipper_lengths(1e-3, 0.0), lambda: co.klipper_lengths(1e-3, -0.1), lambda: co.klipper_lengths(1e-3, None))
+bad(C, "skew_correction", "firmware", lambda: co.skew_correction("grbl", xy_rad=1e-3), lambda: co.skew_correction(None, xy_rad=1e-3), lambda: co.skew_correction(np.array([]), xy_rad=1e-3))
+bad(C, "skew_correction", "convention", lambda: co.skew_correction("klipper", xy_rad=1e-3, convention="x"), lambda: co.skew_correction("klipper", xy_rad=1e-3, convention=None))
+bad(C, "skew_correction", "xy_rad", lambda: co.skew_correction("klipper", xy_rad="1"), lambda: co.skew_correction("klipper", xy_rad=np.array([])))
+bad(C, "skew_correction", "squareness", lambda: co.skew_correction("marlin", xz_rad=NAN), lambda: co.skew_correction("rrf", yz_rad=1.0), lambda: co.skew_correction("klipper"))
+bad(C, "skew_correction", "square", lambda: co.skew_correction("klipper", xy_rad=1e-3, square_m=0.0), lambda: co.skew_correction("klipper", xy_rad=1e-3, square_m="0.1"),
+    lambda: co.skew_correction("klipper", xy_rad=1e-3, square_m=NAN))
+bad(C, "squareness_from_results", "paths", lambda: co.squareness_from_results(None), lambda: co.squareness_from_results("result.json"), lambda: co.squareness_from_results([None]),
+    lambda: co.squareness_from_results(5))
+bad(C, "squareness_from_results", "not a squareness result", lambda: co.squareness_from_results([EXAMPLES / "positioning_run.json"]))
+bad(C, "reversal_backlash", "run must be a PositioningRun, not None", lambda: co.reversal_backlash(None))
+bad(C, "reversal_backlash", "method", lambda: co.reversal_backlash(RUN, method="median"), lambda: co.reversal_backlash(RUN, method=None))
+bad(C, "reversal_backlash", "target_m", lambda: co.reversal_backlash(RUN, method="target", target_m=NAN), lambda: co.reversal_backlash(RUN, method="target", target_m="0"))
+bad(C, "reversal_backlash", "target position", lambda: co.reversal_backlash(RUN, method="target"))
+bad(C, "backlash_setting", "controller", lambda: co.backlash_setting("okuma", 1e-6), lambda: co.backlash_setting(None, 1e-6), lambda: co.backlash_setting(np.array([]), 1e-6))
+bad(C, "backlash_setting", "backlash_m", lambda: co.backlash_setting("fanuc", NAN), lambda: co.backlash_setting("fanuc", None), lambda: co.backlash_setting("fanuc", "5"),
+    lambda: co.backlash_setting("fanuc", np.array([])))
+bad(C, "backlash_setting", "axis", lambda: co.backlash_setting("fanuc", 1e-6, axis=None), lambda: co.backlash_setting("fanuc", 1e-6, axis="Q"))
+bad(C, "backlash_setting", "axis_number", lambda: co.backlash_setting("siemens", 1e-6, axis_number=1.5), lambda: co.backlash_setting("siemens", 1e-6, axis_number="1"))
+bad(C, "backlash_setting", "axis numbers start at 1", lambda: co.backlash_setting("siemens", 1e-6, axis_number=0))
+bad(C, "backlash_from_run", "controller", lambda: co.backlash_from_run("okuma", RUN), lambda: co.backlash_from_run(None, RUN))
+bad(C, "backlash_from_run", "run", lambda: co.backlash_from_run("fanuc", None), lambda: co.backlash_from_run("fanuc", 5))
+bad(C, "backlash_from_run", "method", lambda: co.backlash_from_run("fanuc", RUN, method="x"))
+bad(C, "mach4_screw_map", "curve must be an ErrorCurve, not None", lambda: co.mach4_screw_map(None))
+bad(C, "mach4_screw_map", "axis", lambda: co.mach4_screw_map(CURVE, axis=None))
+bad(C, "mach4_screw_map", "points", lambda: co.mach4_screw_map(CURVE, points=1), lambda: co.mach4_screw_map(CURVE, points=2.5), lambda: co.mach4_screw_map(CURVE, points="5"))
+bad(C, "mach4_screw_map", "unit", lambda: co.mach4_screw_map(CURVE, unit="cm"), lambda: co.mach4_screw_map(CURVE, unit=None), lambda: co.mach4_screw_map(CURVE, unit=np.array([])))
+bad(C, "mach4_screw_map", "decimals", lambda: co.mach4_screw_map(CURVE, decimals=7), lambda: co.mach4_screw_map(CURVE, decimals=1.5))
+bad(C, "mach4_screw_map", "bidirectional", lambda: co.mach4_screw_map(CURVE, bidirectional="no"))
+bad(C, "Mach4ScrewMap", "x", lambda: co.mach4_screw_map(CURVE).correction("a", "+"))
+bad(C, "Mach4ScrewMap", "unknown direction", lambda: co.mach4_screw_map(CURVE).correction(0.0, np.array([])))
+bad(C, "twincat_table", "curve must be an ErrorCurve", lambda: co.twincat_table(None))
+bad(C, "twincat_table", "axis_number", lambda: co.twincat_table(CURVE, axis_number=None), lambda: co.twincat_table(CURVE, axis_number=1.5), lambda: co.twincat_table(CURVE, axis_number=np.array([])))
+bad(C, "twincat_table", "axis numbers start at 1", lambda: co.twincat_table(CURVE, axis_number=0))
+bad(C, "twincat_table", "interval", lambda: co.twincat_table(CURVE, interval_m=NAN), lambda: co.twincat_table(CURVE, interval_m="1"), lambda: co.twincat_table(CURVE, interval_m=-1e-3))
+bad(C, "twincat_table", "max_points", lambda: co.twincat_table(CURVE, max_points=2.5))
+bad(C, "twincat_table", "axis", lambda: co.twincat_table(CURVE, axis=None))
+bad(C, "twincat_table", "bilateral", lambda: co.twincat_table(CURVE, bilateral=None))
+bad(C, "TwincatTable", "x", lambda: co.twincat_table(CURVE).correction("a", "+"))
+bad(C, "TwincatTable", "unknown direction", lambda: co.twincat_table(CURVE).correction(0.0, None))
+bad(C, "screwmap_file", "controller", lambda: co.screwmap_file(EXAMPLES / "positioning_run.csv", controller="fanuc"),
+    lambda: co.screwmap_file(EXAMPLES / "positioning_run.csv", controller=None), lambda: co.screwmap_file(EXAMPLES / "positioning_run.csv", controller=np.array([])))
+bad(C, "screwmap_file", "path", lambda: co.screwmap_file(None, controller="mach4"), lambda: co.screwmap_file(5, controller="twincat"))
+bad(C, "screwmap_file", "axis_number", lambda: co.screwmap_file(EXAMPLES / "positioning_run.csv", controller="twincat", axis_number="1"))
+bad(C, "screwmap_file", "twincat settings", lambda: co.screwmap_file(EXAMPLES / "positioning_run.csv", controller="mach4", interval_m=1e-3))
+bad(C, "sinumerik_sag_table", "position_m", lambda: co.sinumerik_sag_table("x", SAG_E, input_axis="X", output_axis="Z", step_m=0.1),
+    lambda: co.sinumerik_sag_table(None, SAG_E, input_axis="X", output_axis="Z", step_m=0.1))
+bad(C, "sinumerik_sag_table", "deviation_m", lambda: co.sinumerik_sag_table(SAG_X, [None] * 5, input_axis="X", output_axis="Z", step_m=0.1))
+bad(C, "sinumerik_sag_table", "two equal lists", lambda: co.sinumerik_sag_table(SAG_X, SAG_E[:3], input_axis="X", output_axis="Z", step_m=0.1),
+    lambda: co.sinumerik_sag_table([], [], input_axis="X", output_axis="Z", step_m=0.1))
+bad(C, "sinumerik_sag_table", "finite", lambda: co.sinumerik_sag_table(SAG_X, [NAN] * 5, input_axis="X", output_axis="Z", step_m=0.1))
+bad(C, "sinumerik_sag_table", "step", lambda: co.sinumerik_sag_table(SAG_X, SAG_E, input_axis="X", output_axis="Z", step_m=None),
+    lambda: co.sinumerik_sag_table(SAG_X, SAG_E, input_axis="X", output_axis="Z", step_m="0.1"), lambda: co.sinumerik_sag_table(SAG_X, SAG_E, input_axis="X", output_axis="Z", step_m=0.0))
+bad(C, "sinumerik_sag_table", "compensation axis", lambda: co.sinumerik_sag_table(SAG_X, SAG_E, input_axis=None, output_axis="Z", step_m=0.1),
+    lambda: co.sinumerik_sag_table(SAG_X, SAG_E, input_axis="X", output_axis="X", step_m=0.1))
+bad(C, "sinumerik_sag_table", "reference", lambda: co.sinumerik_sag_table(SAG_X, SAG_E, input_axis="X", output_axis="Z", step_m=0.1, reference="best"),
+    lambda: co.sinumerik_sag_table(SAG_X, SAG_E, input_axis="X", output_axis="Z", step_m=0.1, reference=None))
+bad(C, "sinumerik_sag_table", "direction", lambda: co.sinumerik_sag_table(SAG_X, SAG_E, input_axis="X", output_axis="Z", step_m=0.1, direction=0.5),
+    lambda: co.sinumerik_sag_table(SAG_X, SAG_E, input_axis="X", output_axis="Z", step_m=0.1, direction=np.array([])))
+bad(C, "sinumerik_sag_table", "table", lambda: co.sinumerik_sag_table(SAG_X, SAG_E, input_axis="X", output_axis="Z", step_m=0.1, table=-1),
+    lambda: co.sinumerik_sag_table(SAG_X, SAG_E, input_axis="X", output_axis="Z", step_m=0.1, table="0"))
+bad(C, "sinumerik_sag_table", "max_points", lambda: co.sinumerik_sag_table(SAG_X, SAG_E, input_axis="X", output_axis="Z", step_m=0.1, max_points="5"))
+bad(C, "SinumerikSagTable", "x", lambda: co.sinumerik_sag_table(SAG_X, SAG_E, input_axis="X", output_axis="Z", step_m=0.1).correction("a"))
+bad(C, "heidenhain_sag_table", "position_m", lambda: co.heidenhain_sag_table("x", SAG_E, base_axis="X", compensation_axis="Z"))
+bad(C, "heidenhain_sag_table", "axis", lambda: co.heidenhain_sag_table(SAG_X, SAG_E, base_axis=5, compensation_axis="Z"),
+    lambda: co.heidenhain_sag_table(SAG_X, SAG_E, base_axis="X1", compensation_axis="Z"))
+bad(C, "heidenhain_sag_table", "step", lambda: co.heidenhain_sag_table(SAG_X, SAG_E, base_axis="X", compensation_axis="Z", step_m=NAN))
+bad(C, "heidenhain_sag_table", "file name", lambda: co.heidenhain_sag_table(SAG_X, SAG_E, base_axis="X", compensation_axis="Z", name="a b"),
+    lambda: co.heidenhain_sag_table(SAG_X, SAG_E, base_axis="X", compensation_axis="Z", name=5))
+bad(C, "heidenhain_sag_table", "decimals", lambda: co.heidenhain_sag_table(SAG_X, SAG_E, base_axis="X", compensation_axis="Z", decimals=7))
+bad(C, "sag_table_file", "controller", lambda: co.sag_table_file(PROFILE, controller="fanuc", base_axis="X", compensation_axis="Z"),
+    lambda: co.sag_table_file(PROFILE, controller=np.array([]), base_axis="X", compensation_axis="Z"))
+bad(C, "sag_table_file", "path", lambda: co.sag_table_file(None, controller="heidenhain", base_axis="X", compensation_axis="Z"))
+bad(C, "sag_table_file", "table", lambda: co.sag_table_file(PROFILE, controller="heidenhain", base_axis="X", compensation_axis="Z", table=np.array([])))
+bad(C, "sag_table_file", "direction", lambda: co.sag_table_file(PROFILE, controller="siemens", base_axis="X", compensation_axis="Z", step_m=0.01, direction="up"))
+bad(C, "sag_table_file", "step", lambda: co.sag_table_file(PROFILE, controller="siemens", base_axis="X", compensation_axis="Z"))
+
+
 # ---------------------------------------------------------------- the check
 EXEMPT = {
     # result records: the library fills them with what a function computed (per-target statistics,
@@ -134,6 +296,9 @@ EXEMPT = {
     "positioning": {"TargetStatistics", "Iso230Result", "Vdi3441Result", "RunFile", "PositioningTestPlan", "PositioningEvaluation",
                     # a function of no arguments: the table of paper 003
                     "paper003_table4_run"},
+    # result records: the table formats and findings the library writes (their methods that take
+    # user values, correction(x, direction), have cases under the class name)
+    "compensation": {"CompensationResult", "SkewCorrection", "BacklashSetting"},
 }
 
 

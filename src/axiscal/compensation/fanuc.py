@@ -14,7 +14,7 @@ import numpy as np
 
 from axiscal.compensation.curve import ErrorCurve, _check_direction
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_count, check_instance, check_integer, check_number, check_optional_number
+from axiscal.io.arguments import check_array, check_count, check_instance, check_integer, check_number, check_optional_number
 from axiscal.units import DEG, MM, UM
 
 #: the largest axis number a FANUC parameter tape carries (Series 30i: 32 axes)
@@ -139,7 +139,7 @@ class FanucTable:
             absolute = self._absolute(self.values_down, self.reference_value_down)
         else:
             absolute = self._absolute(self.values, 0)
-        return np.interp(np.asarray(x, dtype=float), self.nodes, absolute * self.resolution)
+        return np.interp(check_array("x", x, unit="metres"), self.nodes, absolute * self.resolution)
 
     def text(self) -> str:
         """The parameters and data as a FANUC parameter tape (``N<number>A<axis>P<value>`` / ``N<10000 + point>P<value>``)."""

@@ -15,7 +15,7 @@ import numpy as np
 
 from axiscal.compensation.curve import ErrorCurve, _check_direction
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_count, check_instance, check_number
+from axiscal.io.arguments import check_array, check_count, check_instance, check_number
 from axiscal.units import MM
 
 HEIDENHAIN_MAX_ENTRIES = 256
@@ -127,7 +127,7 @@ class HeidenhainTable:
         error = self.error_mm
         if direction == "-" and self.backlash_mm is not None:
             error = error + self.backlash_mm
-        return -np.interp(np.asarray(x, dtype=float), self.nodes, error * self.unit_m)
+        return -np.interp(check_array("x", x, unit="metres"), self.nodes, error * self.unit_m)
 
     def text(self) -> str:
         """The ``.COM`` file."""

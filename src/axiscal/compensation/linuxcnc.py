@@ -12,7 +12,7 @@ import numpy as np
 
 from axiscal.compensation.curve import ErrorCurve, _check_direction
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_count, check_instance, check_integer, check_number
+from axiscal.io.arguments import check_array, check_count, check_instance, check_integer, check_number
 from axiscal.units import MM
 
 LINUXCNC_MAX_ENTRIES = 256
@@ -92,7 +92,7 @@ class LinuxcncTable:
         _check_direction(direction)
         values = self.forward if direction == "+" else self.reverse
         trims = self.nominal - values if self.comp_type == 0 else values
-        x_units = np.asarray(x, dtype=float) / self.unit_m
+        x_units = check_array("x", x, unit="metres") / self.unit_m
         return np.interp(x_units, self.nominal, trims) * self.unit_m
 
 

@@ -85,7 +85,7 @@ class SinumerikSagTable:
 
     def correction(self, x) -> np.ndarray:
         """What the control adds to the compensation axis with the base axis at ``x`` (metres), metres."""
-        return -np.interp(np.asarray(x, dtype=float), self.nodes, self.values_mm * MM)
+        return -np.interp(check_array("x", x, unit="metres"), self.nodes, self.values_mm * MM)
 
     def text(self) -> str:
         """The ``%_N_NC_CEC_INI`` program."""

@@ -30,7 +30,7 @@ from pathlib import Path
 
 from axiscal.compensation.curve import ErrorCurve, error_curve
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_instance, check_integer, check_optional_number
+from axiscal.io.arguments import check_array, check_instance, check_integer, check_optional_number
 from axiscal.units import INCH, MM, UM
 
 __all__ = ["SCREWMAP_CONTROLLERS", "TWINCAT_UNIT", "Mach4ScrewMap", "TwincatTable", "mach4_screw_map", "screwmap_file",
@@ -88,10 +88,10 @@ class TwincatTable:
 
     def correction(self, x, direction: str) -> np.ndarray:
         """What the control adds to a command at ``x`` (metres) moving in ``direction`` ("+" or "-"), metres."""
-        if direction not in ("+", "-"):
+        if not isinstance(direction, str) or direction not in ("+", "-"):
             raise AxiscalError(f"unknown direction '{direction}'; use + or -")
         values = self.pos if direction == "+" or not self.bilateral else self.neg
-        return -np.interp(np.asarray(x, dtype=float), self.setpoints * TWINCAT_UNIT, values * TWINCAT_UNIT)
+        return -np.interp(check_array("x", x, unit="metres"), self.setpoints * TWINCAT_UNIT, values * TWINCAT_UNIT)
 
     def text(self) -> str:
         """The compensation value list (ASCII, ``#`` comments)."""
@@ -256,11 +256,11 @@ class Mach4ScrewMap:
         -------
         ndarray, shape of ``x``, metres
         """
-        if direction not in ("+", "-"):
+        if not isinstance(direction, str) or direction not in ("+", "-"):
             raise AxiscalError(f"unknown direction '{direction}'; use + or -")
         values = self.error_up if direction == "+" else self.error_down
         scale = MACH4_UNITS[self.unit]
-        return np.interp(np.asarray(x, dtype=float), self.points * scale, values * scale)
+        return np.interp(check_array("x", x, unit="metres"), self.points * scale, values * scale)
 
     def text(self) -> str:
         """The values to type into the plugin, one point a line."""

@@ -13,7 +13,7 @@ import numpy as np
 
 from axiscal.compensation.curve import ErrorCurve, _check_direction, _grid
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_choice, check_count, check_instance, check_integer, check_number, check_optional_number
+from axiscal.io.arguments import check_array, check_choice, check_count, check_instance, check_integer, check_number, check_optional_number
 from axiscal.units import MM
 
 __all__ = ["SiemensTable", "siemens_table"]
@@ -99,7 +99,7 @@ class SiemensTable:
         ndarray, shape of ``x``, metres
         """
         _check_direction(direction)
-        return -np.interp(np.asarray(x, dtype=float), self.nodes, self.values_mm * self.unit_m)
+        return -np.interp(check_array("x", x, unit="metres"), self.nodes, self.values_mm * self.unit_m)
 
     def text(self) -> str:
         """The ``%_N_AX_EEC_INI`` program that loads the table."""

@@ -508,7 +508,7 @@ def check_instance(name: str, value: Any, kind: type | tuple[type, ...], *, what
         return value
     if what is None:
         kinds = kind if isinstance(kind, tuple) else (kind,)
-        what = " or ".join(f"a {k.__name__}" for k in kinds)
+        what = " or ".join(f"{'an' if k.__name__[0] in 'AEIOU' else 'a'} {k.__name__}" for k in kinds)
     raise AxiscalError(f"{name} must be {what}, not {_shown(value)}")
 
 
