@@ -176,10 +176,13 @@ def _check_direction(direction: str) -> None:
         raise AxiscalError(f"unknown direction {direction!r}; use + or -")
 
 
-def _grid(start: float, end: float, step: float) -> np.ndarray:
+def _grid(start: float, end: float, step: float, limit: int | None = None, what: str = "") -> np.ndarray:
+    """Nodes from ``start`` past ``end`` at ``step``; more than ``limit`` nodes are refused before any is made."""
     if not (math.isfinite(step) and step > 0):
         raise AxiscalError(f"the table interval must be positive, got {step / MM:g} mm")
     count = int(math.ceil((end - start) / step - 1e-9)) + 1
+    if limit is not None and count > limit:
+        raise AxiscalError(f"{count} compensation points exceed {what} = {limit}: use a larger step")
     return start + step * np.arange(count)
 
 

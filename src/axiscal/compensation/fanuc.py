@@ -317,7 +317,12 @@ def fanuc_table(
     k_ref = reference_point - (first - 1)
 
     def increments(e: np.ndarray, e_ref: float) -> tuple[np.ndarray, int]:
-        absolute = np.round(-(e - e_ref) / unit).astype(int)
+        scaled = np.round(-(e - e_ref) / unit)
+        if np.abs(scaled).max(initial=0.0) > 2.0**53:
+            raise AxiscalError(
+                f"a compensation value of {np.abs(scaled).max():.3g} units: the detection unit or magnification is far too small"
+            )
+        absolute = scaled.astype(int)
         return np.diff(absolute), int(absolute[k_ref])
 
     if bidirectional:

@@ -194,7 +194,7 @@ def siemens_table(
             )
         nodes = step_m * np.arange(round(steps) + 1)
     else:
-        nodes = _grid(float(curve.positions[0]), float(curve.positions[-1]), step_m)
+        nodes = _grid(float(curve.positions[0]), float(curve.positions[-1]), step_m, max_points, "MD38000")
     if nodes.size > max_points:
         raise AxiscalError(f"{nodes.size} compensation points exceed MD38000 = {max_points}: use a larger step")
     e = curve.at(nodes, direction)

@@ -1029,6 +1029,8 @@ def positions_from_points(sequence: Sequence[Mapping[str, float]]) -> dict[str, 
             raise AxiscalError(f"point {k + 1} names axes {sorted(point)}, the first point {sorted(letters)}")
     out = {k: _floats([p[k] for p in sequence], f"point positions of axis {k}") for k in letters}
     for k, q in out.items():
+        if q.ndim != 1:
+            raise AxiscalError(f"point positions of axis {k} must be one number per point")
         if not np.all(np.isfinite(q)):
             raise AxiscalError(f"point {int(np.argmax(~np.isfinite(q))) + 1}: the position of axis {k} must be a finite number")
     return out

@@ -46,6 +46,10 @@ __all__ = [
 #: one revolution, radians
 TURN = 2.0 * np.pi
 
+# largest magnitude of a target or deviation a run holds (metres or radians): beyond it a value
+# has no physical meaning and the figures would overflow
+_LIMIT = 1e6
+
 #: ISO 230-2 editions this module evaluates, and their coverage factor k
 ISO_EDITIONS: dict[str, int] = {"2014": 2, "2006": 2, "1997": 2, "1988": 3}
 
@@ -136,6 +140,11 @@ class PositioningRun:
             raise AxiscalError(f"{self.source}: no runs")
         if not (np.all(np.isfinite(targets)) and all(np.all(np.isfinite(a)) for a in given)):
             raise AxiscalError(f"{self.source}: targets and deviations must be finite numbers (found NaN or infinity)")
+        for name, value in (("targets", targets), ("deviations_up", up), ("deviations_down", down)):
+            if value is not None and value.size and np.abs(value).max() > _LIMIT:
+                raise AxiscalError(
+                    f"{self.source}: {name} holds {np.abs(value).max():g}, beyond any physical value (more than {_LIMIT:g})"
+                )
         if np.any(np.diff(targets) <= 0):
             raise AxiscalError(f"{self.source}: target positions must be strictly increasing")
         for name, value in (("targets", targets), ("deviations_up", up), ("deviations_down", down)):
