@@ -21,6 +21,8 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as hs
 
 from axiscal.errors import AxiscalError
 
@@ -182,7 +184,9 @@ bad(C, "fanuc_table", "travel per revolution", lambda: co.fanuc_table(CURVE, int
 bad(C, "fanuc_table", "value_limit", lambda: co.fanuc_table(CURVE, interval_m=0.01, value_limit=None))
 bad(C, "fanuc_table", "max_point", lambda: co.fanuc_table(CURVE, interval_m=0.01, max_point="1023"))
 bad(C, "fanuc_table", "input_increment_m", lambda: co.fanuc_table(CURVE, interval_m=0.01, input_increment_m=None))
-bad(C, "fanuc_table", "far too small", lambda: co.fanuc_table(CURVE, interval_m=0.01, detection_unit_m=1e-300))
+bad(C, "fanuc_table", "far too small", lambda: co.fanuc_table(CURVE, interval_m=0.01, detection_unit_m=1e-300), lambda: co.fanuc_table(CURVE, interval_m=0.01, detection_unit_m=5e-324))
+bad(C, "fanuc_table", "more compensation points", lambda: co.fanuc_table(CURVE, interval_m=5e-324))
+bad(C, "fanuc_table", "interval_m must be between", lambda: co.fanuc_table(CURVE, interval_m=1e308))
 bad(C, "FanucTable", "x", lambda: co.fanuc_table(CURVE, interval_m=0.01).correction("a", "+"))
 bad(C, "FanucTable", "unknown direction", lambda: co.fanuc_table(CURVE, interval_m=0.01).correction(0.0, 5))
 bad(C, "siemens_table", "curve must be an ErrorCurve", lambda: co.siemens_table(None, step_m=0.01))
@@ -195,6 +199,7 @@ bad(C, "siemens_table", "encoder", lambda: co.siemens_table(CURVE, step_m=0.01, 
 bad(C, "siemens_table", "decimals", lambda: co.siemens_table(CURVE, step_m=0.01, decimals=-2))
 bad(C, "siemens_table", "max_points", lambda: co.siemens_table(CURVE, step_m=0.01, max_points=0), lambda: co.siemens_table(CURVE, step_m=0.01, max_points=None))
 bad(C, "siemens_table", "MD38000", lambda: co.siemens_table(CURVE, step_m=1e-15))
+bad(C, "siemens_table", "more than 10^9 points", lambda: co.siemens_table(CURVE, step_m=1e-12, max_points=10**12))
 bad(C, "siemens_table", "unit_m", lambda: co.siemens_table(CURVE, step_m=0.01, unit_m=-1.0))
 bad(C, "SiemensTable", "x", lambda: co.siemens_table(CURVE, step_m=0.01).correction(None, "+"))
 bad(C, "heidenhain_table", "curve must be an ErrorCurve", lambda: co.heidenhain_table(None), lambda: co.heidenhain_table("curve"))
@@ -488,3 +493,48 @@ def test_every_public_callable_has_a_bad_argument_case(room):
     covered = {name for r, name, _, _ in CASES if r == room}
     missing = sorted(_public_callables(room) - covered - EXEMPT.get(room, set()))
     assert not missing, f"public callables of axiscal.{room} without a bad-argument case: {missing}"
+
+
+# ---------------------------------------------------------------- properties: any numbers in, finite figures out or AxiscalError
+_ANY_FLOAT = hs.one_of(hs.floats(allow_nan=True, allow_infinity=True, width=64),
+                       hs.sampled_from([0.0, 5e-324, -5e-324, 1e-300, 1e300, -1e300, 1.7e308]))
+
+
+def _finite_or_refused(call: Callable[[], object]) -> object | None:
+    """The call's result, or None when it raised AxiscalError; no other exception, no RuntimeWarning."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            return call()
+        except AxiscalError:
+            return None
+
+
+@settings(max_examples=150, deadline=None)
+@given(hs.lists(_ANY_FLOAT, min_size=0, max_size=4), hs.lists(_ANY_FLOAT, min_size=0, max_size=12), hs.integers(1, 3))
+def test_iso230_2_of_any_numbers_is_finite_or_refused(targets, deviations, runs):
+    devs = np.resize(np.asarray(deviations, dtype=float), (len(targets), runs)) if deviations else np.zeros((len(targets), runs))
+    result = _finite_or_refused(lambda: po.iso230_2(po.PositioningRun(targets, devs, devs[::-1].copy())))
+    if result is not None:
+        figures = [v for k, v in result.figures().items() if runs >= 2 or k not in ("A", "A_up", "A_down", "R", "R_up", "R_down", "S_up", "S_down")]
+        assert all(np.isfinite(v) for v in figures)
+
+
+@settings(max_examples=150, deadline=None)
+@given(hs.lists(hs.tuples(_ANY_FLOAT, _ANY_FLOAT), min_size=0, max_size=8))
+def test_volumetric_error_of_any_positions_is_finite_or_refused(points):
+    q = {"X": [p[0] for p in points], "Z": [p[1] for p in points]}
+    error = _finite_or_refused(lambda: MACHINE.volumetric_error(q))
+    if error is not None:
+        assert error.shape == (len(points), 3) and np.all(np.isfinite(error))
+
+
+@settings(max_examples=100, deadline=None)
+@given(_ANY_FLOAT, _ANY_FLOAT, _ANY_FLOAT, hs.sampled_from(["fanuc", "siemens"]))
+def test_compensation_table_of_any_interval_is_finite_or_refused(interval, reference, unit, fmt):
+    options = {"interval_m": interval, "reference_position_m": reference}
+    if fmt == "fanuc":
+        options["detection_unit_m"] = unit
+    result = _finite_or_refused(lambda: co.compensation_table(RUN, fmt, **options))
+    if result is not None:
+        assert np.isfinite(result.largest_residual_m)

@@ -180,7 +180,12 @@ def _grid(start: float, end: float, step: float, limit: int | None = None, what:
     """Nodes from ``start`` past ``end`` at ``step``; more than ``limit`` nodes are refused before any is made."""
     if not (math.isfinite(step) and step > 0):
         raise AxiscalError(f"the table interval must be positive, got {step / MM:g} mm")
-    count = int(math.ceil((end - start) / step - 1e-9)) + 1
+    steps = (end - start) / step
+    if limit is not None and steps > limit:
+        raise AxiscalError(f"{steps + 1:.0f} compensation points exceed {what} = {limit}: use a larger step")
+    if not steps < 1e9:
+        raise AxiscalError(f"a table interval of {step / MM:g} mm gives more than 10^9 points; use a larger one")
+    count = int(math.ceil(steps - 1e-9)) + 1
     if limit is not None and count > limit:
         raise AxiscalError(f"{count} compensation points exceed {what} = {limit}: use a larger step")
     return start + step * np.arange(count)

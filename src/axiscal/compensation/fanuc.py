@@ -164,6 +164,11 @@ class FanucTable:
         return "\n".join(lines) + "\n"
 
 
+# largest interval, unit or position a FANUC table takes, metres (or radians): beyond it a value
+# has no physical meaning and the arithmetic would overflow
+_LARGEST_M = 1e3
+
+
 def fanuc_table(
     curve: ErrorCurve,
     *,
@@ -249,8 +254,8 @@ def fanuc_table(
     check_instance("curve", curve, ErrorCurve)
     for name, value in (("interval_m", interval_m), ("reference_position_m", reference_position_m),
                         ("detection_unit_m", detection_unit_m), ("input_increment_m", input_increment_m)):
-        check_number(name, value)
-    check_optional_number("travel_per_revolution", travel_per_revolution, unit="")
+        check_number(name, value, low=-_LARGEST_M, high=_LARGEST_M)
+    check_optional_number("travel_per_revolution", travel_per_revolution, unit="", high=_LARGEST_M)
     for name, value in (("magnification", magnification), ("value_limit", value_limit), ("max_point", max_point),
                         ("axis_number", axis_number)):
         check_integer(name, value)
@@ -276,6 +281,11 @@ def fanuc_table(
         raise AxiscalError("the reference position must be a finite number")
     unit = magnification * detection_unit_m
     lo, hi = float(curve.positions[0]), float(curve.positions[-1])
+    span = travel_per_revolution if rotary and travel_per_revolution is not None else hi - lo
+    if span > interval_m * (max_point + 1):
+        raise AxiscalError(
+            f"the interval {interval_m / big:g} {big_unit} gives more compensation points than 0..{max_point} hold; use a larger one"
+        )
     if rotary:
         if travel_per_revolution is None or not (math.isfinite(travel_per_revolution) and travel_per_revolution > 0):
             raise AxiscalError("a rotary axis needs the travel per revolution (parameter 3625)")
@@ -317,8 +327,9 @@ def fanuc_table(
     k_ref = reference_point - (first - 1)
 
     def increments(e: np.ndarray, e_ref: float) -> tuple[np.ndarray, int]:
-        scaled = np.round(-(e - e_ref) / unit)
-        if np.abs(scaled).max(initial=0.0) > 2.0**53:
+        with np.errstate(over="ignore"):  # a unit far too small: refused just below
+            scaled = np.round(-(e - e_ref) / unit)
+        if not np.abs(scaled).max(initial=0.0) <= 2.0**53:
             raise AxiscalError(
                 f"a compensation value of {np.abs(scaled).max():.3g} units: the detection unit or magnification is far too small"
             )

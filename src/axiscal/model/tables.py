@@ -318,7 +318,7 @@ class ErrorTable:
             q_m = np.ravel(_floats(q_m, f"positions of axis {self.letter}"))
             factor, unit = (_DEG, "deg") if self.letter in ROTARY_LETTERS else (MM, "mm")
             raise AxiscalError(
-                f"{self.letter} = {q_m[k] / factor:.6g} {unit} is outside the error table of axis {self.letter} "
+                f"{self.letter} = {float(q_m[k]) / factor:.6g} {unit} is outside the error table of axis {self.letter} "
                 f"({self.start_m / factor:.6g} to {self.end_m / factor:.6g} {unit})",
                 path=path,
                 line=lines[k] if lines else None,
