@@ -317,7 +317,8 @@ bad(M, "ErrorTable", "letter", lambda: mo.ErrorTable(np.array([]), [0.0, 1.0], V
 bad(M, "ErrorTable", "positions", lambda: mo.ErrorTable("X", "ab", V6), lambda: mo.ErrorTable("X", None, V6))
 bad(M, "ErrorTable", "shape", lambda: mo.ErrorTable("X", [0.0, 1.0], np.zeros((5, 2))), lambda: mo.ErrorTable("X", [0.0, 1.0], np.zeros(6)))
 bad(M, "ErrorTable", "non-finite", lambda: mo.ErrorTable("X", [0.0, NAN], V6), lambda: mo.ErrorTable("X", [0.0, 1.0], np.full((6, 2), INF)))
-bad(M, "ErrorTable", "interpolation", lambda: mo.ErrorTable("X", [0.0, 1.0], V6, interpolation="spline"), lambda: mo.ErrorTable("X", [0.0, 1.0], V6, interpolation=None))
+bad(M, "ErrorTable", "interpolation", lambda: mo.ErrorTable("X", [0.0, 1.0], V6, interpolation="spline"), lambda: mo.ErrorTable("X", [0.0, 1.0], V6, interpolation=None),
+    lambda: mo.ErrorTable("X", [0.0, 1.0], V6, interpolation=np.array([])))
 bad(M, "ErrorTable", "hold_ends", lambda: mo.ErrorTable("X", [0.0, 1.0], V6, hold_ends="no"))
 bad(M, "ErrorTable", "periodic", lambda: mo.ErrorTable("X", [0.0, 1.0], V6, periodic=True), lambda: mo.ErrorTable("C", [0.0, 1.0], V6, periodic="yes"))
 bad(M, "ErrorTable", "positions of axis X", lambda: TX.evaluate("a"), lambda: TX.evaluate(None), lambda: TX.evaluate([[0.0, "a"]]))
@@ -493,6 +494,14 @@ def test_every_public_callable_has_a_bad_argument_case(room):
     covered = {name for r, name, _, _ in CASES if r == room}
     missing = sorted(_public_callables(room) - covered - EXEMPT.get(room, set()))
     assert not missing, f"public callables of axiscal.{room} without a bad-argument case: {missing}"
+
+
+def test_a_volumetric_map_without_error_plots_without_a_warning(tmp_path):
+    """Zero error in a plane leaves no arrows to scale: the plot is drawn, no RuntimeWarning escapes."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        mo.plot_volumetric(Q, np.zeros((2, 3)), tmp_path / "v.png")
+    assert (tmp_path / "v.png").stat().st_size > 0
 
 
 # ---------------------------------------------------------------- properties: any numbers in, finite figures out or AxiscalError

@@ -140,7 +140,8 @@ def plot_volumetric(
             else:
                 sc = ax.scatter(qa, qb, c=magnitude, cmap="viridis")
                 fig.colorbar(sc, ax=ax, label=label)
-            if len(names) == 3 and a in "XYZ" and b in "XYZ":
+            if len(names) == 3 and a in "XYZ" and b in "XYZ" and np.any(values[:, ["XYZ".index(a), "XYZ".index(b)]]):
+                # (arrows of zero length have no scale: none are drawn for an error-free plane)
                 ia, ib = "XYZ".index(a), "XYZ".index(b)
                 arrows = slice(None, None, max(1, qa.size // 150))
                 ax.quiver(qa[arrows], qb[arrows], values[arrows, ia], values[arrows, ib], color="white", alpha=0.8)

@@ -144,7 +144,7 @@ class ErrorTable:
             raise AxiscalError(f"axis {self.letter}: positions not strictly increasing at row {k + 1}")
         if not isinstance(self.hold_ends, (bool, np.bool_)):
             raise AxiscalError(f"hold_ends must be True or False, not {self.hold_ends!r}")
-        if self.interpolation not in INTERPOLATIONS:
+        if not isinstance(self.interpolation, str) or self.interpolation not in INTERPOLATIONS:
             raise AxiscalError(f"unknown interpolation '{self.interpolation}'; use one of {', '.join(INTERPOLATIONS)}")
         if self.periodic:
             span = position[-1] - position[0]
