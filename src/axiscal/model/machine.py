@@ -301,10 +301,11 @@ class Machine:
         AxiscalError
             If the axis is not in the chain.
         """
-        for link in self._workpiece_links + self._tool_links:
-            if link.letter == letter:
-                return link.table
-        raise AxiscalError(f"axis {letter} is not in chain '{self.chain}'")
+        if isinstance(letter, str):
+            for link in self._workpiece_links + self._tool_links:
+                if link.letter == letter:
+                    return link.table
+        raise AxiscalError(f"axis {letter if isinstance(letter, str) else repr(letter)} is not in chain '{self.chain}'")
 
     def travel_m(self, letter: str) -> tuple[float, float]:
         """Travel covered by the error table of axis ``letter``.

@@ -224,6 +224,9 @@ class ErrorTable:
         AxiscalError
             A name that is not a component of the axis, or any reason of the class.
         """
+        check_choice("letter", letter, _LETTERS)
+        if not isinstance(components, Mapping):
+            raise AxiscalError(f"components must map ISO 230-1 names such as E{'X'}{letter} to values, not {components!r:.40}")
         names = component_names(letter)
         unknown = set(components) - set(names)
         if unknown:
