@@ -15,12 +15,14 @@ docs/compensation.md, "Backlash").
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_instance, check_integer, check_number, check_optional_number
 from axiscal.positioning import PositioningRun, read_positioning_run, target_statistics
 from axiscal.units import MM, UM
 
@@ -125,8 +127,9 @@ def reversal_backlash(run: PositioningRun, *, method: str = "mean", target_m: fl
     >>> round(reversal_backlash(run) / 1e-6, 6)
     11.0
     """
-    if method not in BACKLASH_METHODS:
-        raise AxiscalError(f"unknown method '{method}'; use one of {', '.join(BACKLASH_METHODS)}")
+    check_instance("run", run, PositioningRun)
+    check_choice("method", method, BACKLASH_METHODS)
+    target_m = check_optional_number("target_m", target_m)
     reversal = target_statistics(run).reversal
     if method == "mean":
         return -float(np.mean(reversal))
@@ -171,13 +174,13 @@ def backlash_setting(controller: str, backlash_m: float, *, axis: str = "X", axi
     >>> backlash_setting("siemens", 0.012e-3, axis="X").lines
     ('$MA_BACKLASH[0,AX1]=0.012',)
     """
-    if controller not in BACKLASH_CONTROLLERS:
-        raise AxiscalError(f"unknown controller '{controller}'; use one of {', '.join(BACKLASH_CONTROLLERS)}")
-    axis = axis.upper()
+    check_choice("controller", controller, BACKLASH_CONTROLLERS)
+    axis = check_instance("axis", axis, str, what="an axis letter").upper()
     if axis not in _AXES:
         raise AxiscalError(f"unknown axis '{axis}'; use one of {', '.join(_AXES)}")
-    if not math.isfinite(backlash_m):
-        raise AxiscalError("the backlash must be a finite number")
+    backlash_m = check_number("backlash_m", backlash_m)
+    if axis_number is not None:
+        check_integer("axis_number", axis_number)
     number = axis_number if axis_number is not None else _AXES.index(axis) + 1
     if number < 1:
         raise AxiscalError(f"axis numbers start at 1, not {number}")
@@ -282,7 +285,8 @@ def backlash_from_run(
     AxiscalError
         As the two functions do, and as the reader does for a file.
     """
-    if isinstance(run, (str, Path)):
+    check_choice("controller", controller, BACKLASH_CONTROLLERS)
+    if isinstance(run, (str, os.PathLike)):
         run = read_positioning_run(run).run
     value = reversal_backlash(run, method=method, target_m=target_m)
     return backlash_setting(controller, value, axis=axis, axis_number=axis_number)

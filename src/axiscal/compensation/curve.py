@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_instance, check_number, check_optional_number
 from axiscal.positioning.evaluation import TargetStatistics
 from axiscal.units import MM
 
@@ -68,6 +69,20 @@ class ErrorCurve:
     down: np.ndarray
     period: float | None = None
 
+    def __post_init__(self) -> None:
+        positions = check_array("positions", self.positions, ndim=1, min_len=1, unit="")
+        up = check_array("up", self.up, ndim=1, unit="")
+        down = check_array("down", self.down, ndim=1, unit="")
+        if up.size != positions.size or down.size != positions.size:
+            raise AxiscalError(
+                f"up and down must hold one value per position ({positions.size}), not {up.size} and {down.size}"
+            )
+        if np.any(np.diff(positions) <= 0):
+            raise AxiscalError("positions must be strictly increasing")
+        period = check_optional_number("period", self.period, positive=True, unit="")
+        for name, value in (("positions", positions), ("up", up), ("down", down), ("period", period)):
+            object.__setattr__(self, name, value)
+
     @property
     def mean(self) -> np.ndarray:
         """Bidirectional mean deviation, shape (m,), metres."""
@@ -92,10 +107,10 @@ class ErrorCurve:
         AxiscalError
             For an unknown direction.
         """
-        values = {"+": self.up, "-": self.down, "mean": self.mean}.get(direction)
+        values = {"+": self.up, "-": self.down, "mean": self.mean}.get(direction) if isinstance(direction, str) else None
         if values is None:
-            raise AxiscalError(f"unknown direction '{direction}'; use +, - or mean")
-        return np.interp(np.asarray(x, dtype=float), self.positions, values, period=self.period)
+            raise AxiscalError(f"unknown direction {direction!r}; use +, - or mean")
+        return np.interp(check_array("x", x, unit="metres"), self.positions, values, period=self.period)
 
     def closed(self) -> ErrorCurve:
         """The curve with one more position a turn after the first, holding the first values (rotary axes).
@@ -147,6 +162,7 @@ def error_curve(stats: TargetStatistics, *, period: float | None = None) -> Erro
     >>> error_curve(target_statistics(paper003_table4_run())).positions.tolist()
     [0.0, 0.02]
     """
+    check_instance("stats", stats, TargetStatistics)
     up, down = np.asarray(stats.mean_up), np.asarray(stats.mean_down)
     if np.all(np.isnan(down)):
         down = up
@@ -156,14 +172,22 @@ def error_curve(stats: TargetStatistics, *, period: float | None = None) -> Erro
 
 
 def _check_direction(direction: str) -> None:
-    if direction not in DIRECTIONS:
-        raise AxiscalError(f"unknown direction '{direction}'; use + or -")
+    if not isinstance(direction, str) or direction not in DIRECTIONS:
+        raise AxiscalError(f"unknown direction {direction!r}; use + or -")
 
 
-def _grid(start: float, end: float, step: float) -> np.ndarray:
+def _grid(start: float, end: float, step: float, limit: int | None = None, what: str = "") -> np.ndarray:
+    """Nodes from ``start`` past ``end`` at ``step``; more than ``limit`` nodes are refused before any is made."""
     if not (math.isfinite(step) and step > 0):
         raise AxiscalError(f"the table interval must be positive, got {step / MM:g} mm")
-    count = int(math.ceil((end - start) / step - 1e-9)) + 1
+    steps = (end - start) / step
+    if limit is not None and steps > limit:
+        raise AxiscalError(f"{steps + 1:.0f} compensation points exceed {what} = {limit}: use a larger step")
+    if not steps < 1e9:
+        raise AxiscalError(f"a table interval of {step / MM:g} mm gives more than 10^9 points; use a larger one")
+    count = int(math.ceil(steps - 1e-9)) + 1
+    if limit is not None and count > limit:
+        raise AxiscalError(f"{count} compensation points exceed {what} = {limit}: use a larger step")
     return start + step * np.arange(count)
 
 
@@ -205,4 +229,8 @@ def residuals(table, curve: ErrorCurve, x, direction: str, *, offset: float = 0.
     >>> bool(abs(left).max() <= 0.05 * UM)
     True
     """
+    check_instance("curve", curve, ErrorCurve)
+    if not callable(getattr(table, "correction", None)):
+        raise AxiscalError(f"table must be a compensation table (with correction(x, direction)), not {type(table).__name__}")
+    offset = check_number("offset", offset, unit="metres")
     return curve.at(x, direction) - offset + table.correction(x, "+" if direction == "mean" else direction)

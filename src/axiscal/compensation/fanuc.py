@@ -14,6 +14,7 @@ import numpy as np
 
 from axiscal.compensation.curve import ErrorCurve, _check_direction
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_count, check_instance, check_integer, check_number, check_optional_number
 from axiscal.units import DEG, MM, UM
 
 #: the largest axis number a FANUC parameter tape carries (Series 30i: 32 axes)
@@ -138,7 +139,7 @@ class FanucTable:
             absolute = self._absolute(self.values_down, self.reference_value_down)
         else:
             absolute = self._absolute(self.values, 0)
-        return np.interp(np.asarray(x, dtype=float), self.nodes, absolute * self.resolution)
+        return np.interp(check_array("x", x, unit="metres"), self.nodes, absolute * self.resolution)
 
     def text(self) -> str:
         """The parameters and data as a FANUC parameter tape (``N<number>A<axis>P<value>`` / ``N<10000 + point>P<value>``)."""
@@ -161,6 +162,11 @@ class FanucTable:
         lines += [f"N{10000 + p}P{v}" for p, v in sorted(data.items())]
         lines.append("%")
         return "\n".join(lines) + "\n"
+
+
+# largest interval, unit or position a FANUC table takes, metres (or radians): beyond it a value
+# has no physical meaning and the arithmetic would overflow
+_LARGEST_M = 1e3
 
 
 def fanuc_table(
@@ -245,6 +251,18 @@ def fanuc_table(
     N10002P-1
     %
     """
+    check_instance("curve", curve, ErrorCurve)
+    for name, value in (("interval_m", interval_m), ("reference_position_m", reference_position_m),
+                        ("detection_unit_m", detection_unit_m), ("input_increment_m", input_increment_m)):
+        check_number(name, value, low=-_LARGEST_M, high=_LARGEST_M)
+    check_optional_number("travel_per_revolution", travel_per_revolution, unit="", high=_LARGEST_M)
+    for name, value in (("magnification", magnification), ("value_limit", value_limit), ("max_point", max_point),
+                        ("axis_number", axis_number)):
+        check_integer(name, value)
+    if reference_point is not None:
+        check_count("reference_point", reference_point, minimum=0)
+    check_instance("bidirectional", bidirectional, (bool, np.bool_))
+    check_instance("rotary", rotary, (bool, np.bool_))
     if not 1 <= magnification <= 100:
         raise AxiscalError(f"FANUC pitch error magnification (parameter 3623) is 1..100, got {magnification}")
     # messages in the units of the axis: mm and um, or degrees for a rotary axis
@@ -263,6 +281,11 @@ def fanuc_table(
         raise AxiscalError("the reference position must be a finite number")
     unit = magnification * detection_unit_m
     lo, hi = float(curve.positions[0]), float(curve.positions[-1])
+    span = travel_per_revolution if rotary and travel_per_revolution is not None else hi - lo
+    if span > interval_m * (max_point + 1):
+        raise AxiscalError(
+            f"the interval {interval_m / big:g} {big_unit} gives more compensation points than 0..{max_point} hold; use a larger one"
+        )
     if rotary:
         if travel_per_revolution is None or not (math.isfinite(travel_per_revolution) and travel_per_revolution > 0):
             raise AxiscalError("a rotary axis needs the travel per revolution (parameter 3625)")
@@ -304,7 +327,13 @@ def fanuc_table(
     k_ref = reference_point - (first - 1)
 
     def increments(e: np.ndarray, e_ref: float) -> tuple[np.ndarray, int]:
-        absolute = np.round(-(e - e_ref) / unit).astype(int)
+        with np.errstate(over="ignore"):  # a unit far too small: refused just below
+            scaled = np.round(-(e - e_ref) / unit)
+        if not np.abs(scaled).max(initial=0.0) <= 2.0**53:
+            raise AxiscalError(
+                f"a compensation value of {np.abs(scaled).max():.3g} units: the detection unit or magnification is far too small"
+            )
+        absolute = scaled.astype(int)
         return np.diff(absolute), int(absolute[k_ref])
 
     if bidirectional:

@@ -28,6 +28,7 @@ from axiscal.compensation.heidenhain import heidenhain_table
 from axiscal.compensation.linuxcnc import linuxcnc_table
 from axiscal.compensation.siemens import siemens_table
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_instance, check_integer, check_optional_number
 from axiscal.positioning.evaluation import (
     TURN,
     PositioningRun,
@@ -242,8 +243,11 @@ def compensation_table(
     >>> result.largest_residual_m
     0.0
     """
-    if fmt not in FORMATS:
-        raise AxiscalError(f"unknown compensation table format '{fmt}'; use one of {', '.join(FORMATS)}")
+    if not isinstance(fmt, str) or fmt not in FORMATS:
+        raise AxiscalError(f"unknown compensation table format {fmt!r}; use one of {', '.join(FORMATS)}")
+    for name, value in (("bidirectional", bidirectional), ("backlash", backlash)):
+        if value is not None:
+            check_instance(name, value, (bool, np.bool_))
     given = dict(comp_type=comp_type, interval_m=interval_m, magnification=magnification,
                  detection_unit_m=detection_unit_m, reference_position_m=reference_position_m,
                  reference_point=reference_point, bidirectional=bidirectional, axis=axis, axis_number=axis_number,
@@ -251,6 +255,14 @@ def compensation_table(
                  reference_position_rad=reference_position_rad)
     _refuse_options_of_other_formats(fmt, given)
     require_finite(**given)
+    for name in ("interval_m", "detection_unit_m", "reference_position_m", "interval_rad", "detection_unit_rad",
+                 "reference_position_rad"):
+        check_optional_number(name, given[name])
+    for name in ("comp_type", "magnification", "reference_point", "axis_number"):
+        if given[name] is not None:
+            check_integer(name, given[name])
+    if axis is not None:
+        check_instance("axis", axis, str, what="an axis name")
     if not isinstance(run, PositioningRun):
         run = read_positioning_run(run).run
     si = _axis_options(run, given)

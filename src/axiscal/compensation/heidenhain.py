@@ -15,6 +15,7 @@ import numpy as np
 
 from axiscal.compensation.curve import ErrorCurve, _check_direction
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_count, check_instance, check_number
 from axiscal.units import MM
 
 HEIDENHAIN_MAX_ENTRIES = 256
@@ -126,7 +127,7 @@ class HeidenhainTable:
         error = self.error_mm
         if direction == "-" and self.backlash_mm is not None:
             error = error + self.backlash_mm
-        return -np.interp(np.asarray(x, dtype=float), self.nodes, error * self.unit_m)
+        return -np.interp(check_array("x", x, unit="metres"), self.nodes, error * self.unit_m)
 
     def text(self) -> str:
         """The ``.COM`` file."""
@@ -179,8 +180,12 @@ def heidenhain_table(
     >>> heidenhain_table(curve, backlash=False).error_mm.tolist()
     [0.0015, 0.0022]
     """
-    if not axis.isalpha():
-        raise AxiscalError(f"'{axis}' is not an axis name")
+    check_instance("curve", curve, ErrorCurve)
+    if not isinstance(axis, str) or not axis.isalpha():
+        raise AxiscalError(f"{axis!r} is not an axis name")
+    check_instance("backlash", backlash, (bool, np.bool_))
+    decimals = check_count("decimals", decimals, minimum=0, maximum=12)
+    unit_m = check_number("unit_m", unit_m, positive=True)
     if curve.positions.size > HEIDENHAIN_MAX_ENTRIES:
         raise AxiscalError(f"{curve.positions.size} targets: a .COM table holds at most {HEIDENHAIN_MAX_ENTRIES} rows")
     positions = np.round(curve.positions / unit_m, decimals)

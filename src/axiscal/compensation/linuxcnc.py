@@ -12,6 +12,7 @@ import numpy as np
 
 from axiscal.compensation.curve import ErrorCurve, _check_direction
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_count, check_instance, check_integer, check_number
 from axiscal.units import MM
 
 LINUXCNC_MAX_ENTRIES = 256
@@ -91,7 +92,7 @@ class LinuxcncTable:
         _check_direction(direction)
         values = self.forward if direction == "+" else self.reverse
         trims = self.nominal - values if self.comp_type == 0 else values
-        x_units = np.asarray(x, dtype=float) / self.unit_m
+        x_units = check_array("x", x, unit="metres") / self.unit_m
         return np.interp(x_units, self.nominal, trims) * self.unit_m
 
 
@@ -129,8 +130,11 @@ def linuxcnc_table(curve: ErrorCurve, *, comp_type: int = 1, unit_m: float = MM,
     >>> linuxcnc_table(curve, comp_type=0).forward.tolist()
     [0.000733, 20.0016]
     """
-    if comp_type not in (0, 1):
+    check_instance("curve", curve, ErrorCurve)
+    if check_integer("comp_type", comp_type) not in (0, 1):
         raise AxiscalError(f"LinuxCNC COMP_FILE_TYPE is 0 or 1, got {comp_type}")
+    unit_m = check_number("unit_m", unit_m, positive=True)
+    decimals = check_count("decimals", decimals, minimum=0, maximum=12)
     if curve.positions.size > LINUXCNC_MAX_ENTRIES:
         raise AxiscalError(
             f"{curve.positions.size} targets: a LinuxCNC compensation file holds at most {LINUXCNC_MAX_ENTRIES} entries"
@@ -170,6 +174,7 @@ def parse_linuxcnc(text: str) -> np.ndarray:
     >>> parse_linuxcnc("0 0 0\\n10 0.001 -0.001\\n").shape
     (2, 3)
     """
+    check_instance("text", text, str, what="the text of a LinuxCNC compensation file")
     lines = text.splitlines()
     rows = []
     for line in lines:

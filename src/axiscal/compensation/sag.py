@@ -28,6 +28,7 @@ from pathlib import Path
 
 from axiscal.compensation.heidenhain import HEIDENHAIN_MAX_ENTRIES, HeidenhainTable
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_integer, check_number
 from axiscal.straightness import reference_line
 from axiscal.units import MM
 
@@ -84,7 +85,7 @@ class SinumerikSagTable:
 
     def correction(self, x) -> np.ndarray:
         """What the control adds to the compensation axis with the base axis at ``x`` (metres), metres."""
-        return -np.interp(np.asarray(x, dtype=float), self.nodes, self.values_mm * MM)
+        return -np.interp(check_array("x", x, unit="metres"), self.nodes, self.values_mm * MM)
 
     def text(self) -> str:
         """The ``%_N_NC_CEC_INI`` program."""
@@ -160,11 +161,13 @@ def sinumerik_sag_table(
     >>> t.text().splitlines()[2:5]
     ['$AN_CEC[0,0]=0.0000', '$AN_CEC[0,1]=-0.0120', '$AN_CEC[0,2]=0.0000']
     """
-    if direction not in (0, 1, -1):
+    if check_integer("direction", direction) not in (0, 1, -1):
         raise AxiscalError(f"$AN_CEC_DIRECTION is 0, 1 or -1, not {direction}")
-    if not isinstance(table, int) or table < 0:
+    if check_integer("table", table) < 0:
         raise AxiscalError(f"table indices start at 0, not {table}")
     x, e = _cross_axis_run(position_m, deviation_m, input_axis, output_axis, reference)
+    if max_points is not None:
+        check_integer("max_points", max_points)
     count = _point_count(x, step_m)
     if max_points is not None and count > max_points:
         raise AxiscalError(f"{count} points: MD18342 reserves {max_points} for table {table}; give a larger step")
@@ -185,16 +188,16 @@ def sinumerik_sag_table(
 
 def _cross_axis_run(position_m, deviation_m, base_axis: str, compensation_axis: str, reference: str):
     """The checked run (positions strictly increasing, finite) with the chosen line removed."""
-    x = np.asarray(position_m, dtype=float)
-    e = np.asarray(deviation_m, dtype=float)
+    x = check_array("position_m", position_m, finite=False)
+    e = check_array("deviation_m", deviation_m, finite=False)
     if x.shape != e.shape or x.ndim != 1 or x.size < 2:
         raise AxiscalError("positions and deviations must be two equal lists of at least 2 values")
     if not (np.isfinite(x).all() and np.isfinite(e).all()):
         raise AxiscalError("positions and deviations must be finite numbers")
     if np.any(np.diff(x) <= 0):
         raise AxiscalError("the positions of the run must be strictly increasing")
-    if reference not in SAG_REFERENCES:
-        raise AxiscalError(f"unknown reference '{reference}'; use one of {', '.join(SAG_REFERENCES)}")
+    if not isinstance(reference, str) or reference not in SAG_REFERENCES:
+        raise AxiscalError(f"unknown reference {reference!r}; use one of {', '.join(SAG_REFERENCES)}")
     if not (isinstance(base_axis, str) and isinstance(compensation_axis, str) and base_axis.strip() and compensation_axis.strip()):
         raise AxiscalError("name the base axis and the compensation axis")
     if base_axis.strip().upper() == compensation_axis.strip().upper():
@@ -206,7 +209,8 @@ def _cross_axis_run(position_m, deviation_m, base_axis: str, compensation_axis: 
 
 def _point_count(x: np.ndarray, step_m: float) -> int:
     """Points of an equidistant table from the run's first position past its last."""
-    if not (isinstance(step_m, (int, float)) and math.isfinite(step_m) and step_m > 0):
+    step_m = check_number("step_m", step_m)
+    if not step_m > 0:
         raise AxiscalError(f"the step must be a positive length, not {step_m / MM:g} mm")
     count = (x[-1] - x[0]) / step_m
     if count > 1e6:
@@ -350,8 +354,10 @@ def sag_table_file(
     """
     from axiscal.straightness import read_profile
 
-    if controller not in SAG_CONTROLLERS:
-        raise AxiscalError(f"unknown controller '{controller}'; sag tables are written for {', '.join(SAG_CONTROLLERS)}")
+    if not isinstance(controller, str) or controller not in SAG_CONTROLLERS:
+        raise AxiscalError(f"unknown controller {controller!r}; sag tables are written for {', '.join(SAG_CONTROLLERS)}")
+    check_integer("table", table)
+    check_integer("direction", direction)
     if controller == "heidenhain" and (table != 0 or direction != 0 or max_points is not None):
         raise AxiscalError("the table index, direction and maximum points are SINUMERIK settings; a HEIDENHAIN .COM has none")
     if controller == "siemens" and name is not None:

@@ -30,6 +30,7 @@ from pathlib import Path
 
 from axiscal.compensation.curve import ErrorCurve, error_curve
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_instance, check_integer, check_optional_number
 from axiscal.units import INCH, MM, UM
 
 __all__ = ["SCREWMAP_CONTROLLERS", "TWINCAT_UNIT", "Mach4ScrewMap", "TwincatTable", "mach4_screw_map", "screwmap_file",
@@ -87,10 +88,10 @@ class TwincatTable:
 
     def correction(self, x, direction: str) -> np.ndarray:
         """What the control adds to a command at ``x`` (metres) moving in ``direction`` ("+" or "-"), metres."""
-        if direction not in ("+", "-"):
+        if not isinstance(direction, str) or direction not in ("+", "-"):
             raise AxiscalError(f"unknown direction '{direction}'; use + or -")
         values = self.pos if direction == "+" or not self.bilateral else self.neg
-        return -np.interp(np.asarray(x, dtype=float), self.setpoints * TWINCAT_UNIT, values * TWINCAT_UNIT)
+        return -np.interp(check_array("x", x, unit="metres"), self.setpoints * TWINCAT_UNIT, values * TWINCAT_UNIT)
 
     def text(self) -> str:
         """The compensation value list (ASCII, ``#`` comments)."""
@@ -157,7 +158,13 @@ def twincat_table(
     >>> twincat_table(curve).pos.tolist(), twincat_table(curve).neg.tolist()
     ([0, -102], [0, 80])
     """
-    if axis_number < 1:
+    check_instance("curve", curve, ErrorCurve)
+    check_instance("axis", axis, str, what="an axis name")
+    check_instance("bilateral", bilateral, (bool, np.bool_))
+    interval_m = check_optional_number("interval_m", interval_m)
+    if max_points is not None:
+        check_integer("max_points", max_points)
+    if check_integer("axis_number", axis_number) < 1:
         raise AxiscalError(f"axis numbers start at 1, not {axis_number}")
     positions = np.asarray(curve.positions, dtype=float)
     if interval_m is None:
@@ -249,11 +256,11 @@ class Mach4ScrewMap:
         -------
         ndarray, shape of ``x``, metres
         """
-        if direction not in ("+", "-"):
+        if not isinstance(direction, str) or direction not in ("+", "-"):
             raise AxiscalError(f"unknown direction '{direction}'; use + or -")
         values = self.error_up if direction == "+" else self.error_down
         scale = MACH4_UNITS[self.unit]
-        return np.interp(np.asarray(x, dtype=float), self.points * scale, values * scale)
+        return np.interp(check_array("x", x, unit="metres"), self.points * scale, values * scale)
 
     def text(self) -> str:
         """The values to type into the plugin, one point a line."""
@@ -318,10 +325,13 @@ def mach4_screw_map(
     >>> m.start, m.length, m.error_up.tolist(), m.error_down.tolist()
     (0.0, 200.0, [0.0, -0.005, -0.008], [-0.002, -0.007, -0.01])
     """
+    check_instance("curve", curve, ErrorCurve)
+    check_instance("axis", axis, str, what="an axis name")
+    check_instance("bidirectional", bidirectional, (bool, np.bool_))
     if curve.period is not None:
         raise AxiscalError("a Mach4 screw map is written for a linear axis; this test is of a rotary axis")
-    if unit not in MACH4_UNITS:
-        raise AxiscalError(f"unknown unit '{unit}'; Mach4 profiles are in {' or '.join(MACH4_UNITS)}")
+    if not isinstance(unit, str) or unit not in MACH4_UNITS:
+        raise AxiscalError(f"unknown unit {unit!r}; Mach4 profiles are in {' or '.join(MACH4_UNITS)}")
     if decimals is None:
         decimals = 4 if unit == "mm" else 5
     if not isinstance(decimals, int) or not 0 <= decimals <= 6:
@@ -393,8 +403,9 @@ def screwmap_file(
     """
     from axiscal.positioning import read_positioning_run, target_statistics
 
-    if controller not in SCREWMAP_CONTROLLERS:
-        raise AxiscalError(f"unknown controller '{controller}'; screw maps are written for {', '.join(SCREWMAP_CONTROLLERS)}")
+    if not isinstance(controller, str) or controller not in SCREWMAP_CONTROLLERS:
+        raise AxiscalError(f"unknown controller {controller!r}; screw maps are written for {', '.join(SCREWMAP_CONTROLLERS)}")
+    check_integer("axis_number", axis_number)
     if controller == "mach4" and (interval_m is not None or max_points is not None or axis_number != 1):
         raise AxiscalError("the interval, maximum points and axis number are TwinCAT settings; for Mach4 give the number of points")
     if controller == "twincat" and (points is not None or unit != "mm"):

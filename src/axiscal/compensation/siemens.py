@@ -13,6 +13,7 @@ import numpy as np
 
 from axiscal.compensation.curve import ErrorCurve, _check_direction, _grid
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_choice, check_count, check_instance, check_integer, check_number, check_optional_number
 from axiscal.units import MM
 
 __all__ = ["SiemensTable", "siemens_table"]
@@ -98,7 +99,7 @@ class SiemensTable:
         ndarray, shape of ``x``, metres
         """
         _check_direction(direction)
-        return -np.interp(np.asarray(x, dtype=float), self.nodes, self.values_mm * self.unit_m)
+        return -np.interp(check_array("x", x, unit="metres"), self.nodes, self.values_mm * self.unit_m)
 
     def text(self) -> str:
         """The ``%_N_AX_EEC_INI`` program that loads the table."""
@@ -173,8 +174,16 @@ def siemens_table(
     >>> print(siemens_table(curve, step_m=0.01, axis="Y1").text().splitlines()[2])
     $AA_ENC_COMP[0,0,Y1]=0.0015
     """
-    if not axis or not axis.replace("_", "").isalnum():
-        raise AxiscalError(f"'{axis}' is not a machine axis name")
+    check_instance("curve", curve, ErrorCurve)
+    if not isinstance(axis, str) or not axis or not axis.replace("_", "").isalnum():
+        raise AxiscalError(f"{axis!r} is not a machine axis name")
+    step_m = check_number("step_m", step_m)
+    zero_at_m = check_optional_number("zero_at_m", zero_at_m)
+    check_choice("direction", direction, ("+", "-", "mean"))
+    check_integer("encoder", encoder)
+    decimals = check_count("decimals", decimals, minimum=0, maximum=12)
+    max_points = check_count("max_points", max_points)
+    unit_m = check_number("unit_m", unit_m, positive=True)
     modulo = curve.period is not None
     if modulo:
         steps = curve.period / step_m if step_m > 0 else math.nan
@@ -185,7 +194,7 @@ def siemens_table(
             )
         nodes = step_m * np.arange(round(steps) + 1)
     else:
-        nodes = _grid(float(curve.positions[0]), float(curve.positions[-1]), step_m)
+        nodes = _grid(float(curve.positions[0]), float(curve.positions[-1]), step_m, max_points, "MD38000")
     if nodes.size > max_points:
         raise AxiscalError(f"{nodes.size} compensation points exceed MD38000 = {max_points}: use a larger step")
     e = curve.at(nodes, direction)

@@ -23,11 +23,13 @@ Klipper's and Marlin's factor is ``-tan s`` and RepRapFirmware's tangent is ``+t
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+import os
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_number, check_path, is_real
 from axiscal.io.jsonio import read_json
 from axiscal.units import MM
 
@@ -110,6 +112,8 @@ def klipper_lengths(squareness_rad: float, square_m: float) -> tuple[float, floa
     >>> [round(v * 1000, 6) for v in klipper_lengths(0.0, 0.1)]
     [141.421356, 141.421356, 100.0]
     """
+    squareness_rad = check_number("squareness_rad", squareness_rad)
+    square_m = check_number("square_m", square_m, positive=True)
     s = math.sin(squareness_rad)
     return square_m * math.sqrt(2.0 - 2.0 * s), square_m * math.sqrt(2.0 + 2.0 * s), square_m
 
@@ -175,10 +179,13 @@ def skew_correction(
     >>> skew_correction("rrf", xy_rad=100 * ARCSEC).lines
     ('M556 S100 X0.048481',)
     """
-    if firmware not in FIRMWARES:
-        raise AxiscalError(f"unknown firmware '{firmware}'; use one of {', '.join(FIRMWARES)}")
-    if convention not in SKEW_CONVENTIONS:
-        raise AxiscalError(f"unknown convention '{convention}'; use one of {', '.join(SKEW_CONVENTIONS)}")
+    check_choice("firmware", firmware, FIRMWARES)
+    check_choice("convention", convention, SKEW_CONVENTIONS)
+    for name, value in (("xy_rad", xy_rad), ("xz_rad", xz_rad), ("yz_rad", yz_rad)):
+        if value is not None and not is_real(value):
+            check_number(name, value)
+    if not is_real(square_m):
+        check_number("square_m", square_m, positive=True)
     given = {p: v for p, v in (("XY", xy_rad), ("XZ", xz_rad), ("YZ", yz_rad)) if v is not None}
     planes = {p: (v * _ISO_SIGN[p] if convention == "iso" else float(v)) for p, v in given.items()}
     _check(planes, square_m)
@@ -239,6 +246,9 @@ def squareness_from_results(paths: Sequence[str | Path]) -> dict[str, float]:
         Naming the file: not a squareness result (no ``plane`` or ``included_angle_deg``), an
         unknown plane, or the same plane in two files.
     """
+    if isinstance(paths, (str, os.PathLike)) or not isinstance(paths, Iterable):
+        raise AxiscalError(f"paths must be a list of result files, not {paths!r}")
+    paths = [check_path("paths", path) for path in paths]
     planes: dict[str, float] = {}
     for path in paths:
         body = read_json(path)

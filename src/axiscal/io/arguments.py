@@ -22,7 +22,7 @@ from axiscal.errors import AxiscalError
 
 __all__ = [
     "unit_words", "check_number", "check_count", "check_array", "check_same_length", "check_broadcast", "check_choice",
-    "check_mapping", "check_path", "render_checked", "is_real",
+    "check_mapping", "check_path", "render_checked", "is_real", "check_instance", "check_optional_number", "check_integer",
 ]
 
 # name suffix -> how a message speaks of the unit; longest suffix first
@@ -469,3 +469,105 @@ def is_real(value: Any) -> bool:
     (True, False, False)
     """
     return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
+
+
+def check_instance(name: str, value: Any, kind: type | tuple[type, ...], *, what: str | None = None) -> Any:
+    """``value`` if it is an instance of ``kind``, else refused naming the type expected.
+
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the message.
+    value : object
+        What the caller passed.
+    kind : type or tuple of types
+        The class (or classes) accepted.
+    what : str, optional
+        What the message calls the expected value; ``"a <ClassName>"`` when not given.
+
+    Returns
+    -------
+    object
+        ``value`` unchanged.
+
+    Raises
+    ------
+    AxiscalError
+        ``"run must be a PositioningRun, not None"``.
+
+    Examples
+    --------
+    >>> check_instance("count", 3, int)
+    3
+    >>> check_instance("run", None, Path)
+    Traceback (most recent call last):
+    ...
+    axiscal.errors.AxiscalError: run must be a Path, not None
+    """
+    if isinstance(value, kind):
+        return value
+    if what is None:
+        kinds = kind if isinstance(kind, tuple) else (kind,)
+        what = " or ".join(f"{'an' if k.__name__[0] in 'AEIOU' else 'a'} {k.__name__}" for k in kinds)
+    raise AxiscalError(f"{name} must be {what}, not {_shown(value)}")
+
+
+def check_optional_number(name: str, value: Any, **bounds: Any) -> float | None:
+    """None when ``value`` is None (an option not given), else :func:`check_number` of it.
+
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the message.
+    value : object
+        None, or a number.
+    **bounds
+        ``unit``, ``positive``, ``nonnegative``, ``low``, ``high`` as :func:`check_number` takes them.
+
+    Returns
+    -------
+    float or None
+
+    Raises
+    ------
+    AxiscalError
+        As :func:`check_number`.
+
+    Examples
+    --------
+    >>> check_optional_number("step_m", None) is None, check_optional_number("step_m", 0.01, positive=True)
+    (True, 0.01)
+    """
+    return None if value is None else check_number(name, value, **bounds)
+
+
+def check_integer(name: str, value: Any) -> int:
+    """``value`` as an int, refused when it is not a whole number; its range is left to the caller.
+
+    For an argument whose bounds the caller checks with its own message (a controller's
+    parameter range, say), so that a float, bool, string or None never reaches a comparison.
+
+    Parameters
+    ----------
+    name : str
+        The argument's name, for the message.
+    value : object
+        An int (a NumPy integer too), not a bool, float or string.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    AxiscalError
+        ``"magnification must be a whole number, not 1.5"``.
+
+    Examples
+    --------
+    >>> check_integer("axis_number", np.int64(3))
+    3
+    """
+    if isinstance(value, numbers.Integral) and not isinstance(value, (bool, np.bool_)):
+        return int(value)
+    raise AxiscalError(f"{name} must be a whole number, not {_shown(value)}")

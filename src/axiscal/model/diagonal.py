@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_choice, check_instance
 from axiscal.model.inputs import check_travel, parse_point, read_interferometer
 from axiscal.model.machine import Machine, as_machine
 from axiscal.model.output import SIGN_CONVENTION, TableResult, render_template
@@ -259,8 +260,10 @@ def diagonal_check(
     >>> result = diagonal_check(machine, {"X": 0.0, "Z": 0.0}, {"X": 0.19, "Z": 0.19}, 19)  # doctest: +SKIP
     >>> result.model_error_m  # predicted - nominal, metres  # doctest: +SKIP
     """
-    if measure not in MEASURES:
-        raise AxiscalError(f"unknown measure '{measure}'; use one of {', '.join(MEASURES)}")
+    check_instance("machine", machine, Machine)
+    check_choice("measure", measure, MEASURES)
+    if measured_m is not None:
+        measured_m = check_array("measured_m", measured_m, ndim=1)
     positions = diagonal_positions(start_m, end_m, steps)
     missing = sorted(set(machine.letters) - set(positions))
     if missing:
@@ -340,6 +343,7 @@ def diagonal_test(
     >>> result = diagonal_test("machine.toml", "X=0,Z=0", "X=190,Z=190", readings="laser.csv")  # doctest: +SKIP
     >>> result.range_after_m  # doctest: +SKIP
     """
+    check_choice("measure", measure, MEASURES)
     model = as_machine(machine)
     start_m = parse_point(start, "start") if isinstance(start, str) else start
     end_m = parse_point(end, "end") if isinstance(end, str) else end
@@ -347,7 +351,7 @@ def diagonal_test(
     sources = [str(machine)] if isinstance(machine, (str, Path)) else []
     measured = None
     if readings is not None and not isinstance(readings, (str, Path)):
-        measured = np.asarray(readings, dtype=float)
+        measured = check_array("readings", readings, ndim=1, min_len=2)
     if steps is None:
         if isinstance(readings, (str, Path)):
             steps = read_interferometer(readings).size - 1

@@ -14,6 +14,7 @@ import numpy as np
 
 from axiscal.conventions import AXIS_INDEX
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_instance, check_mapping
 from axiscal.io.tabular import read_csv
 from axiscal.model.machine import AXIS_UNITS, Machine
 from axiscal.units import MM, UM
@@ -60,6 +61,7 @@ def read_points(path: str | Path, machine: Machine) -> tuple[dict[str, np.ndarra
     --------
     >>> positions, lines = read_points("points.csv", machine)  # doctest: +SKIP
     """
+    check_instance("machine", machine, Machine)
     table = read_csv(path)
     positions = {}
     for letter in machine.letters:
@@ -100,9 +102,18 @@ def check_travel(
     AxiscalError
         ``"X = 200 mm is outside the error table of axis X (0 to 190 mm)"``, with file and line.
     """
-    for letter in machine.letters:
-        if letter in positions:
-            machine.table(letter).check_range(np.asarray(positions[letter], dtype=float), path=path, lines=lines)
+    check_instance("machine", machine, Machine)
+    check_mapping("positions", positions, what="a mapping of axis letters to positions")
+    given = {k: check_array(f"positions[{k!r}]", positions[k], finite=False, unit="") for k in machine.letters if k in positions}
+    if lines is not None:
+        if isinstance(lines, (str, bytes)) or not isinstance(lines, Sequence) or any(
+            not isinstance(n, (int, np.integer)) for n in lines
+        ):
+            raise AxiscalError(f"lines must be a sequence of line numbers, not {lines!r:.40}")
+        if any(len(lines) < q.size for q in given.values()):
+            raise AxiscalError("lines must give a line number for every position")
+    for letter, q in given.items():
+        machine.table(letter).check_range(q, path=path, lines=lines)
 
 
 def parse_point(text: str, option: str = "point") -> dict[str, float]:
@@ -130,6 +141,9 @@ def parse_point(text: str, option: str = "point") -> dict[str, float]:
     >>> parse_point("X=0,Z=190")
     {'X': 0.0, 'Z': 0.19}
     """
+    check_instance("option", option, str)
+    if not isinstance(text, str):
+        raise AxiscalError(f"{option} must be axis positions in mm like 'X=0,Z=190', not {text!r:.40}")
     point: dict[str, float] = {}
     for part in text.split(","):
         letter, sep, value = part.partition("=")
@@ -192,6 +206,8 @@ def read_interferometer(path: str | Path, nominal_m: np.ndarray | None = None) -
         A missing column, a bad cell, a different number of rows or a ``nominal_mm`` that does not
         match, naming the file and the line.
     """
+    if nominal_m is not None:
+        nominal_m = check_array("nominal_m", nominal_m, ndim=1)
     table = read_csv(path, min_rows=2)
     table.require("nominal_mm", "measured_mm")
     nominal = table.numeric("nominal_mm") * MM

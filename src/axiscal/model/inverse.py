@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array
 from axiscal.model.inputs import read_targets
 from axiscal.model.machine import Machine, as_machine
 from axiscal.model.output import TableResult
@@ -91,6 +92,9 @@ def inverse_commands(machine: Machine | str | Path, targets: np.ndarray | str | 
         if bad is not None:
             raise AxiscalError(message, path=str(targets), line=lines[bad])
     else:
+        targets = check_array("targets", targets)
+        if targets.size == 0:
+            raise AxiscalError("targets must hold at least one point (x, y, z) in metres")
         command = model.command_for(targets)
         target = np.atleast_2d(np.asarray(targets, dtype=float))
     return InverseResult(target, {k: command[k] for k in model.letters}, sources=tuple(sources))

@@ -48,6 +48,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.conventions import AXIS_INDEX, ROTARY_INDEX
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_choice, check_instance, check_mapping, check_number
 from axiscal.model.tables import ErrorTable
 
 __all__ = [
@@ -82,6 +84,10 @@ class ChainLink:
     origin_m: np.ndarray
     squareness_rad: np.ndarray
 
+    def __post_init__(self) -> None:
+        check_choice("letter", self.letter, tuple(AXIS_INDEX))
+        _check_link(self, ("origin_m", "squareness_rad"))
+
     @property
     def index(self) -> int:
         """0, 1 or 2: the coordinate the axis moves along."""
@@ -111,6 +117,10 @@ class RotaryLink:
     origin_m: np.ndarray
     offset_m: np.ndarray
     tilt_rad: np.ndarray
+
+    def __post_init__(self) -> None:
+        check_choice("letter", self.letter, tuple(ROTARY_INDEX))
+        _check_link(self, ("origin_m", "offset_m", "tilt_rad"))
 
     @property
     def index(self) -> int:
@@ -177,6 +187,50 @@ def _carry(link, q, v, p, forward, errors, point):
     return _unrotate(v[3], v[4], v[5], *p) if errors else tuple(p)
 
 
+def _check_link(link, vectors: tuple[str, ...]) -> None:
+    """The table and the 3-vectors of a link, checked once when it is made."""
+    check_instance("table", link.table, ErrorTable)
+    if link.table.letter != link.letter:
+        raise AxiscalError(f"table is of axis {link.table.letter}, not of the link's axis {link.letter}")
+    for name in vectors:
+        object.__setattr__(link, name, check_array(name, getattr(link, name), ndim=1, last=3))
+
+
+def _checked_chain(tool_links, workpiece_links, tool_m, positions_m, errors, workpiece_m=None):
+    """The arguments of the chain functions checked once at the public entry (the inner passes
+    run unchecked): links, the tool (and workpiece) point, one finite 1-D array per axis of the
+    chain, all of one length, and error motions of shape (6, N)."""
+    links = []
+    for name, given in (("tool_links", tool_links), ("workpiece_links", workpiece_links)):
+        if isinstance(given, (str, bytes)) or not isinstance(given, Sequence):
+            raise AxiscalError(f"{name} must be a sequence of ChainLink or RotaryLink, not {given!r}"[:120])
+        for link in given:
+            check_instance(name, link, (ChainLink, RotaryLink), what="a sequence of ChainLink or RotaryLink")
+            links.append(link)
+    tool = check_array("tool_m", tool_m, ndim=1, last=3)
+    workpiece = None if workpiece_m is None else check_array("workpiece_m", workpiece_m, ndim=1, last=3)
+    check_mapping("positions_m", positions_m, [link.letter for link in links],
+                  what="a mapping of every axis letter of the chain to its positions")
+    if not links and not positions_m:
+        raise AxiscalError("positions_m must give the positions of at least one axis")
+    positions = {}
+    size = None
+    for letter in [link.letter for link in links] or list(positions_m):
+        q = check_array(f"positions_m[{letter!r}]", positions_m[letter], ndim=1, unit="")
+        if size is not None and q.size != size:
+            raise AxiscalError(f"positions_m of every axis must have the same length, not {size} and {q.size}")
+        size = q.size
+        positions[letter] = q
+    if errors is not None:
+        check_mapping("errors", errors, [link.letter for link in links],
+                      what="a mapping of every axis letter of the chain to its error motions")
+        errors = {link.letter: check_array(f"errors[{link.letter!r}]", errors[link.letter], ndim=2, unit="") for link in links}
+        for letter, e in errors.items():
+            if e.shape != (6, size):
+                raise AxiscalError(f"errors[{letter!r}] must have shape (6, {size}), not {e.shape}")
+    return positions, errors, tool, workpiece
+
+
 def _link_inputs(links, positions_m):
     """Per link: its position, or (cos θ, sin θ) for a rotary link (computed once for every pass)."""
     out = {}
@@ -237,6 +291,12 @@ def pose_error(
     AxiscalError
         A position outside an error table (unless it holds its ends or is periodic).
     """
+    positions_m, errors, tool_m, _ = _checked_chain(tool_links, workpiece_links, tool_m, positions_m, errors)
+    return _pose_error(tool_links, workpiece_links, tool_m, positions_m, errors, orientation=bool(orientation))
+
+
+def _pose_error(tool_links, workpiece_links, tool_m, positions_m, errors=None, *, orientation=True):
+    """:func:`pose_error` of checked arguments."""
     n = len(next(iter(positions_m.values())))
     links = tuple(tool_links) + tuple(workpiece_links)
     if errors is None:
@@ -313,6 +373,13 @@ def volumetric_error(
     AxiscalError
         A position outside an error table (unless it holds its ends).
     """
+    positions_m, errors, tool_m, workpiece_m = _checked_chain(
+        tool_links, workpiece_links, tool_m, positions_m, errors, workpiece_m)
+    return _volumetric_error(tool_links, workpiece_links, tool_m, workpiece_m, positions_m, errors)
+
+
+def _volumetric_error(tool_links, workpiece_links, tool_m, workpiece_m, positions_m, errors=None):
+    """:func:`volumetric_error` of checked arguments."""
     n = len(next(iter(positions_m.values())))
     px = np.full(n, float(tool_m[0]))
     py = np.full(n, float(tool_m[1]))
@@ -363,6 +430,10 @@ def translation_matrix(t: Sequence[float]) -> np.ndarray:
     -------
     ndarray, shape (4, 4)
     """
+    return _translation(check_array("t_m", t, ndim=1, last=3))
+
+
+def _translation(t) -> np.ndarray:
     m = np.eye(4)
     m[:3, 3] = t
     return m
@@ -383,6 +454,12 @@ def error_matrix(tx: float, ty: float, tz: float, ea: float, eb: float, ec: floa
     ndarray, shape (4, 4)
         Rotation part ``I + [eps]x`` (first order, as the paper writes it), translation ``t``.
     """
+    tx, ty, tz = (check_number(name, v) for name, v in (("tx_m", tx), ("ty_m", ty), ("tz_m", tz)))
+    ea, eb, ec = (check_number(name, v) for name, v in (("ea_rad", ea), ("eb_rad", eb), ("ec_rad", ec)))
+    return _error(tx, ty, tz, ea, eb, ec)
+
+
+def _error(tx, ty, tz, ea, eb, ec) -> np.ndarray:
     return np.array(
         [[1.0, -ec, eb, tx], [ec, 1.0, -ea, ty], [-eb, ea, 1.0, tz], [0.0, 0.0, 0.0, 1.0]],
     )
@@ -409,14 +486,19 @@ def link_matrix(link: ChainLink, q: float, *, with_errors: bool = True) -> np.nd
     AxiscalError
         A position outside the axis' table (unless it holds its ends).
     """
+    check_instance("link", link, ChainLink)
+    return _link_matrix(link, check_number("q_m", q), bool(with_errors))
+
+
+def _link_matrix(link, q, with_errors):
     u = np.zeros(3)
     u[link.index] = 1.0
     if not with_errors:
-        return translation_matrix(link.origin_m + q * u)
+        return _translation(link.origin_m + q * u)
     s = link.squareness_rad
-    m = error_matrix(0.0, 0.0, 0.0, s[0], s[1], s[2])
+    m = _error(0.0, 0.0, 0.0, s[0], s[1], s[2])
     values = link.table.evaluate(np.array([q]))[:, 0]
-    return m @ translation_matrix(link.origin_m) @ translation_matrix(q * u) @ error_matrix(*values)
+    return m @ _translation(link.origin_m) @ _translation(q * u) @ _error(*values)
 
 
 def reference_volumetric_error(
@@ -443,6 +525,10 @@ def reference_volumetric_error(
     AxiscalError
         A position outside an error table (unless it holds its ends).
     """
+    for name, given in (("tool_links", tool_links), ("workpiece_links", workpiece_links)):
+        for link in given if isinstance(given, Sequence) and not isinstance(given, str) else (None,):
+            check_instance(name, link, ChainLink, what="a sequence of ChainLink (linear axes)")
+    positions_m, _, tool_m, workpiece_m = _checked_chain(tool_links, workpiece_links, tool_m, positions_m, None, workpiece_m)
     n = len(next(iter(positions_m.values())))
     out = np.empty((n, 3))
     for i in range(n):
@@ -450,12 +536,12 @@ def reference_volumetric_error(
         for with_errors in (True, False):
             t_tool = np.eye(4)
             for link in tool_links:
-                t_tool = t_tool @ link_matrix(link, positions_m[link.letter][i], with_errors=with_errors)
-            t_tool = t_tool @ translation_matrix(tool_m)
+                t_tool = t_tool @ _link_matrix(link, positions_m[link.letter][i], with_errors)
+            t_tool = t_tool @ _translation(tool_m)
             t_wp = np.eye(4)
             for link in workpiece_links:
-                t_wp = t_wp @ link_matrix(link, positions_m[link.letter][i], with_errors=with_errors)
-            t_wp = t_wp @ translation_matrix(workpiece_m)
+                t_wp = t_wp @ _link_matrix(link, positions_m[link.letter][i], with_errors)
+            t_wp = t_wp @ _translation(workpiece_m)
             origins.append((np.linalg.inv(t_wp) @ t_tool)[:3, 3])
         out[i] = origins[0] - origins[1]
     return out

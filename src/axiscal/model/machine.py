@@ -19,16 +19,17 @@ import numpy as np
 
 from axiscal.conventions import ROTARY_LETTERS, SQUARENESS_TERMS, location_names
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_count, check_instance, check_path
 from axiscal.io.schema import TomlLines, finite_number
 from axiscal.io.tabular import read_text, read_toml
 from axiscal.model.kinematics import (
     AXIS_INDEX,
     ChainLink,
     RotaryLink,
+    _pose_error,
     _through_chain,
-    pose_error,
+    _volumetric_error,
     reference_volumetric_error,
-    volumetric_error,
 )
 from axiscal.model.tables import (
     INTERPOLATIONS,
@@ -86,6 +87,16 @@ class Axis:
     letter: str
     table: ErrorTable | None = None
     origin_m: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        check_choice("letter", self.letter, ("X", "Y", "Z", *ROTARY_LETTERS))
+        if self.table is not None:
+            check_instance("table", self.table, ErrorTable)
+            if self.table.letter != self.letter:
+                raise AxiscalError(f"table is the error table of axis {self.table.letter}, not of axis {self.letter}")
+        origin = _floats(self.origin_m, f"axis {self.letter}: origin_m")
+        if origin.shape != (3,) or not np.all(np.isfinite(origin)):
+            raise AxiscalError(f"axis {self.letter}: origin_m must be 3 finite numbers of metres, not {self.origin_m!r:.60}")
 
 
 def parse_chain(chain: str) -> tuple[tuple[str, ...], tuple[str, ...]]:
@@ -210,7 +221,8 @@ class Machine:
         unknown = sorted(set(self.squareness_rad) - set(SQUARENESS_TERMS))
         if unknown:
             raise AxiscalError(f"unknown squareness term {', '.join(unknown)}; use {', '.join(SQUARENESS_TERMS)}")
-        if self.squareness_placement not in SQUARENESS_PLACEMENTS:
+        check_instance("name", self.name, str)
+        if not isinstance(self.squareness_placement, str) or self.squareness_placement not in SQUARENESS_PLACEMENTS:
             raise AxiscalError(
                 f"unknown squareness placement '{self.squareness_placement}'; use {' or '.join(SQUARENESS_PLACEMENTS)}"
             )
@@ -289,10 +301,11 @@ class Machine:
         AxiscalError
             If the axis is not in the chain.
         """
-        for link in self._workpiece_links + self._tool_links:
-            if link.letter == letter:
-                return link.table
-        raise AxiscalError(f"axis {letter} is not in chain '{self.chain}'")
+        if isinstance(letter, str):
+            for link in self._workpiece_links + self._tool_links:
+                if link.letter == letter:
+                    return link.table
+        raise AxiscalError(f"axis {letter if isinstance(letter, str) else repr(letter)} is not in chain '{self.chain}'")
 
     def travel_m(self, letter: str) -> tuple[float, float]:
         """Travel covered by the error table of axis ``letter``.
@@ -412,14 +425,17 @@ class Machine:
             wrong = [k for k in self.letters if errors.get(k, np.empty(0)).shape != (6, n)]
             if wrong:
                 raise AxiscalError(f"errors of axis {', '.join(wrong)} must have shape (6, {n})")
+            bad = [k for k, v in errors.items() if not np.isfinite(v).all()]
+            if bad:
+                raise AxiscalError(f"errors of axis {bad[0]} hold non-finite values")
         tool, workpiece = np.array(self.tool_m), np.array(self.workpiece_m)
 
         def run(start: int, stop: int) -> np.ndarray:
             part = {k: v[start:stop] for k, v in q.items()}
             given = None if errors is None else {k: v[:, start:stop] for k, v in errors.items()}
             if self.rotary:
-                return pose_error(self._tool_links, self._workpiece_links, tool, part, given, orientation=False)[0]
-            return volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, part, given)
+                return _pose_error(self._tool_links, self._workpiece_links, tool, part, given, orientation=False)[0]
+            return _volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, part, given)
 
         return self._chunked(run, q, n, errors is None, workers, 3)
 
@@ -465,13 +481,15 @@ class Machine:
 
         def run(start: int, stop: int) -> np.ndarray:
             part = {k: v[start:stop] for k, v in q.items()}
-            return np.column_stack(pose_error(self._tool_links, self._workpiece_links, tool, part))
+            return np.column_stack(_pose_error(self._tool_links, self._workpiece_links, tool, part))
 
         out = self._chunked(run, q, n, True, workers, 5)
         return out[:, :3], out[:, 3:]
 
     def _chunked(self, run, q: dict[str, np.ndarray], n: int, check: bool, workers: int | None, width: int) -> np.ndarray:
         """``run(start, stop)`` over chunks of points, in threads; the results stacked."""
+        if workers is not None:
+            check_count("workers", workers)
         if n <= _CHUNK:
             return run(0, n)
         if check:
@@ -745,6 +763,12 @@ def machine_from_dict(
     ...
     axiscal.errors.AxiscalError: <machine>: hold_ends must be true or false, not 'false'
     """
+    check_instance("source", source, str)
+    base_dir = check_path("base_dir", base_dir)
+    if text is not None:
+        check_instance("text", text, str)
+    if tables_dir is not None:
+        check_path("tables_dir", tables_dir)
     where = _Where(source, text)
     if not isinstance(data, Mapping):
         raise where.error("a machine description must be a table of keys")
@@ -886,7 +910,9 @@ def load_machine(path: str | Path, *, tables_dir: str | Path | None = None) -> M
     >>> machine.chain  # doctest: +SKIP
     'FXZ'
     """
-    path = Path(path)
+    path = check_path("path", path)
+    if tables_dir is not None:
+        check_path("tables_dir", tables_dir)
     data = read_toml(path)
     return machine_from_dict(data, base_dir=path.parent, source=str(path), text=read_text(path), tables_dir=tables_dir)
 
@@ -996,10 +1022,16 @@ def positions_from_points(sequence: Sequence[Mapping[str, float]]) -> dict[str, 
     AxiscalError
         Points that are not mappings, name different axes, or hold values that are not numbers.
     """
-    if not isinstance(sequence, Sequence) or not all(isinstance(p, Mapping) for p in sequence):
-        raise AxiscalError("points must be a list of mappings such as {'X': 0.1, 'Z': 0.05}")
+    if not isinstance(sequence, Sequence) or not sequence or not all(isinstance(p, Mapping) for p in sequence):
+        raise AxiscalError("points must be a list of at least one mapping such as {'X': 0.1, 'Z': 0.05}")
     letters = list(sequence[0]) if sequence else []
     for k, point in enumerate(sequence):
         if set(point) != set(letters):
             raise AxiscalError(f"point {k + 1} names axes {sorted(point)}, the first point {sorted(letters)}")
-    return {k: _floats([p[k] for p in sequence], f"positions of axis {k}") for k in letters}
+    out = {k: _floats([p[k] for p in sequence], f"point positions of axis {k}") for k in letters}
+    for k, q in out.items():
+        if q.ndim != 1:
+            raise AxiscalError(f"point positions of axis {k} must be one number per point")
+        if not np.all(np.isfinite(q)):
+            raise AxiscalError(f"point {int(np.argmax(~np.isfinite(q))) + 1}: the position of axis {k} must be a finite number")
+    return out

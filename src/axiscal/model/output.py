@@ -7,6 +7,7 @@ Multi-line text is rendered from the Jinja2 templates shipped in ``axiscal/templ
 
 from __future__ import annotations
 
+import os
 from abc import ABC, abstractmethod
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -14,6 +15,8 @@ from typing import Any
 
 import numpy as np
 
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_instance, check_mapping, check_path, render_checked
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.tabular import write_csv
@@ -40,7 +43,19 @@ def table_text(columns: Mapping[str, np.ndarray], *, fmt: str = "{:.6f}") -> str
     str
         Header line, then one line per row, each ending in a newline.
     """
-    return write_csv(None, columns, fmt=fmt)
+    check_mapping("columns", columns, what="a mapping of column names to values")
+    checked = {}
+    for name, values in columns.items():
+        check_instance("column name", name, str)
+        checked[name] = check_array(f"column {name!r}", values, ndim=1, finite=False, unit="")
+    if len({v.size for v in checked.values()}) > 1:
+        raise AxiscalError(f"columns must be equally long, not {', '.join(str(v.size) for v in checked.values())} values")
+    check_instance("fmt", fmt, str, what="a format such as '{:.6f}'")
+    try:
+        fmt.format(0.0)
+    except (ValueError, IndexError, KeyError):
+        raise AxiscalError(f"fmt {fmt!r} is not a format of one number such as '{{:.6f}}'") from None
+    return write_csv(None, checked, fmt=fmt)
 
 
 def write_table(
@@ -82,7 +97,12 @@ def write_table(
     AxiscalError
         If the file cannot be written.
     """
-    path = write_text(path, table_text(columns, fmt=fmt))
+    path = check_path("path", path)
+    check_instance("kind", kind, str)
+    if isinstance(sources, (str, os.PathLike)) or not isinstance(sources, Sequence):
+        raise AxiscalError(f"sources must be a list of file names, not {sources!r:.40}")
+    text = table_text(columns, fmt=fmt)
+    path = write_text(path, text)
     if sidecar:
         write_sidecar(path, kind=kind, sources=sources, **({"sign": SIGN_CONVENTION} | metadata))
     return path
@@ -184,4 +204,8 @@ def render_template(template: str, /, **context: Any) -> str:
         A template that is not shipped, or a variable it uses that is not given (program errors,
         not user mistakes).
     """
+    return render_checked(_render_kept, template, **context)
+
+
+def _render_kept(template: str, **context: Any) -> str:
     return _render(template, keep_trailing_newline=True, **context)

@@ -11,6 +11,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_instance, check_mapping, check_path
 from axiscal.io.figures import pyplot, save_figure
 from axiscal.model.machine import AXIS_UNITS, Machine
 from axiscal.units import ANGLE_UNITS, MM, UM
@@ -43,6 +45,8 @@ def plot_error_tables(machine: Machine, path: str | Path) -> None:
     AxiscalError
         If the suffix is not a figure format or the file cannot be written.
     """
+    check_instance("machine", machine, Machine)
+    check_path("path", path)
     plt = pyplot()
     letters = machine.letters
     fig, axes = plt.subplots(len(letters), 2, figsize=(11, 3.2 * len(letters)), squeeze=False)
@@ -102,6 +106,18 @@ def plot_volumetric(
     AxiscalError
         If the suffix is not a figure format or the file cannot be written.
     """
+    check_mapping("positions_m", positions_m, what="a mapping of axis letters to positions")
+    positions_m = {k: check_array(f"positions_m[{k!r}]", q, ndim=1, unit="") for k, q in positions_m.items()}
+    error_m = check_array("error_m", error_m, ndim=2, last=3)
+    n = error_m.shape[0]
+    if any(q.size != n for q in positions_m.values()):
+        raise AxiscalError(f"positions_m must hold one position per row of error_m ({n}) for every axis")
+    if orientation_rad is not None:
+        orientation_rad = check_array("orientation_rad", orientation_rad, ndim=2, last=2)
+        if orientation_rad.shape[0] != n:
+            raise AxiscalError(f"orientation_rad must have one row per point ({n}), not {orientation_rad.shape[0]}")
+    check_instance("title", title, str)
+    check_path("path", path)
     plt = pyplot()
     error_um = np.asarray(error_m) / UM
     panels = [("|e| / um", error_um, ("ex", "ey", "ez"))]
@@ -124,7 +140,8 @@ def plot_volumetric(
             else:
                 sc = ax.scatter(qa, qb, c=magnitude, cmap="viridis")
                 fig.colorbar(sc, ax=ax, label=label)
-            if len(names) == 3 and a in "XYZ" and b in "XYZ":
+            if len(names) == 3 and a in "XYZ" and b in "XYZ" and np.any(values[:, ["XYZ".index(a), "XYZ".index(b)]]):
+                # (arrows of zero length have no scale: none are drawn for an error-free plane)
                 ia, ib = "XYZ".index(a), "XYZ".index(b)
                 arrows = slice(None, None, max(1, qa.size // 150))
                 ax.quiver(qa[arrows], qb[arrows], values[arrows, ia], values[arrows, ib], color="white", alpha=0.8)
@@ -173,6 +190,10 @@ def plot_diagonal(result: DiagonalResult, path: str | Path, *, title: str = "Dia
     AxiscalError
         If the suffix is not a figure format or the file cannot be written.
     """
+    from axiscal.model.diagonal import DiagonalResult
+
+    check_instance("result", result, DiagonalResult)
+    check_path("path", path)
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(8, 4.5))
     nominal_mm = result.nominal_m / MM
@@ -213,6 +234,11 @@ def plot_diagonal_experiment(result, path: str | Path) -> None:
     AxiscalError
         If the suffix is not a figure format or the file cannot be written.
     """
+    if not all(hasattr(result, name) for name in ("x_m", "z_m", "before_m", "after_m", "scales_only_m")):
+        raise AxiscalError(
+            f"result must be the DiagonalExperiment axiscal.measurement.diagonal_experiment returns, not {type(result).__name__}"
+        )
+    check_path("path", path)
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(7.0, 4.2))
     diagonal_mm = np.hypot(result.x_m, result.z_m) / MM

@@ -20,6 +20,7 @@ import numpy as np
 
 from axiscal.conventions import ROTARY_LETTERS, component_names
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_number
 from axiscal.io.tabular import CsvTable, read_csv
 from axiscal.units import ANGLE_UNITS, MM, angle_factor, length_factor, split_unit
 
@@ -35,11 +36,14 @@ MAX_ANGLE_ERROR_RAD = 0.01
 #: largest position accepted in a table (1 km, the range of an ideal axis)
 _MAX_POSITION_M = 1000.0
 
+#: the axis letters an error table is for
+_LETTERS = ("X", "Y", "Z", *ROTARY_LETTERS)
+
 
 def _floats(value: object, what: str) -> np.ndarray:
     """``value`` as a float array; anything that is not numbers (text, true/false) raises AxiscalError."""
     try:
-        if isinstance(value, (bool, np.bool_, str)):
+        if value is None or isinstance(value, (bool, np.bool_, str)):
             raise TypeError
         if isinstance(value, (list, tuple)):  # true/false would pass as 1/0
             if any(isinstance(v, (bool, np.bool_)) for v in np.asarray(value, dtype=object).ravel()):
@@ -110,6 +114,7 @@ class ErrorTable:
     _spline: object = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        check_choice("letter", self.letter, _LETTERS)
         component_names(self.letter)
         position = np.ascontiguousarray(_floats(self.position_m, f"axis {self.letter}: positions"))
         values = np.ascontiguousarray(_floats(self.values, f"axis {self.letter}: values"))
@@ -139,7 +144,7 @@ class ErrorTable:
             raise AxiscalError(f"axis {self.letter}: positions not strictly increasing at row {k + 1}")
         if not isinstance(self.hold_ends, (bool, np.bool_)):
             raise AxiscalError(f"hold_ends must be True or False, not {self.hold_ends!r}")
-        if self.interpolation not in INTERPOLATIONS:
+        if not isinstance(self.interpolation, str) or self.interpolation not in INTERPOLATIONS:
             raise AxiscalError(f"unknown interpolation '{self.interpolation}'; use one of {', '.join(INTERPOLATIONS)}")
         if self.periodic:
             span = position[-1] - position[0]
@@ -187,8 +192,10 @@ class ErrorTable:
         -------
         ErrorTable
         """
+        check_choice("letter", letter, _LETTERS)
         if letter in ROTARY_LETTERS:
             return cls(letter, np.array([0.0, _TURN]), np.zeros((6, 2)), periodic=True)
+        start_m, end_m = check_number("start_m", start_m), check_number("end_m", end_m)
         return cls(letter, np.array([start_m, end_m]), np.zeros((6, 2)), hold_ends=True)
 
     @classmethod
@@ -217,6 +224,9 @@ class ErrorTable:
         AxiscalError
             A name that is not a component of the axis, or any reason of the class.
         """
+        check_choice("letter", letter, _LETTERS)
+        if not isinstance(components, Mapping):
+            raise AxiscalError(f"components must map ISO 230-1 names such as E{'X'}{letter} to values, not {components!r:.40}")
         names = component_names(letter)
         unknown = set(components) - set(names)
         if unknown:
@@ -261,9 +271,11 @@ class ErrorTable:
 
         Raises
         ------
-        ValueError
+        AxiscalError
             If ``name`` is not a component of this axis.
         """
+        if not isinstance(name, str) or name not in self.names:
+            raise AxiscalError(f"unknown component {name!r} of axis {self.letter}; use one of {', '.join(self.names)}")
         return self.values[self.names.index(name)]
 
     def first_outside(self, q_m: np.ndarray) -> int | None:
@@ -279,6 +291,7 @@ class ErrorTable:
         int or None
             None when all are inside (with ``hold_ends`` or a periodic table: when none is NaN).
         """
+        q_m = _floats(q_m, f"positions of axis {self.letter}")
         if self.hold_ends or self.periodic:
             if np.isnan(q_m).any():
                 return int(np.argmax(np.isnan(q_m)))
@@ -305,9 +318,10 @@ class ErrorTable:
         """
         k = self.first_outside(q_m)
         if k is not None:
+            q_m = np.ravel(_floats(q_m, f"positions of axis {self.letter}"))
             factor, unit = (_DEG, "deg") if self.letter in ROTARY_LETTERS else (MM, "mm")
             raise AxiscalError(
-                f"{self.letter} = {q_m[k] / factor:.6g} {unit} is outside the error table of axis {self.letter} "
+                f"{self.letter} = {float(q_m[k]) / factor:.6g} {unit} is outside the error table of axis {self.letter} "
                 f"({self.start_m / factor:.6g} to {self.end_m / factor:.6g} {unit})",
                 path=path,
                 line=lines[k] if lines else None,
@@ -332,6 +346,8 @@ class ErrorTable:
             A position outside the table (unless ``hold_ends``).
         """
         q = _floats(q_m, f"positions of axis {self.letter}")
+        if q.ndim == 0:
+            return self.evaluate(q[None])[:, 0]
         self.check_range(q)
         if self.periodic:
             q = self.start_m + np.mod(q - self.start_m, _TURN)
@@ -388,6 +404,7 @@ def read_error_table(
     >>> table = read_error_table("examples/xz_module/x_errors.csv", "X")  # doctest: +SKIP
     >>> table.component("EXX")  # metres  # doctest: +SKIP
     """
+    check_choice("letter", letter, _LETTERS)
     table = read_csv(path, min_rows=2)
     try:
         return _table_from_csv(table, letter, interpolation=interpolation, hold_ends=hold_ends, periodic=periodic)

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_choice, check_instance
 from axiscal.units import MM, UM
 
 __all__ = [
@@ -44,6 +45,10 @@ __all__ = [
 
 #: one revolution, radians
 TURN = 2.0 * np.pi
+
+# largest magnitude of a target or deviation a run holds (metres or radians): beyond it a value
+# has no physical meaning and the figures would overflow
+_LIMIT = 1e6
 
 #: ISO 230-2 editions this module evaluates, and their coverage factor k
 ISO_EDITIONS: dict[str, int] = {"2014": 2, "2006": 2, "1997": 2, "1988": 3}
@@ -109,11 +114,15 @@ class PositioningRun:
     rotary: bool = False
 
     def __post_init__(self) -> None:
-        targets = np.array(self.targets, dtype=float)
+        check_instance("source", self.source, str)
+        check_instance("rotary", self.rotary, (bool, np.bool_))
+        targets = np.array(check_array("targets", self.targets, finite=False, unit=""), dtype=float)
         if self.deviations_up is None and self.deviations_down is None:
             raise AxiscalError(f"{self.source}: no deviations in either direction")
-        up = None if self.deviations_up is None else np.array(self.deviations_up, dtype=float)
-        down = None if self.deviations_down is None else np.array(self.deviations_down, dtype=float)
+        up = None if self.deviations_up is None else np.array(
+            check_array("deviations_up", self.deviations_up, finite=False, unit=""), dtype=float)
+        down = None if self.deviations_down is None else np.array(
+            check_array("deviations_down", self.deviations_down, finite=False, unit=""), dtype=float)
         given = [a for a in (up, down) if a is not None]
         if targets.ndim != 1 or targets.size < 2:
             raise AxiscalError(f"{self.source}: at least 2 target positions are needed, got {targets.size}")
@@ -131,6 +140,11 @@ class PositioningRun:
             raise AxiscalError(f"{self.source}: no runs")
         if not (np.all(np.isfinite(targets)) and all(np.all(np.isfinite(a)) for a in given)):
             raise AxiscalError(f"{self.source}: targets and deviations must be finite numbers (found NaN or infinity)")
+        for name, value in (("targets", targets), ("deviations_up", up), ("deviations_down", down)):
+            if value is not None and value.size and np.abs(value).max() > _LIMIT:
+                raise AxiscalError(
+                    f"{self.source}: {name} holds {np.abs(value).max():g}, beyond any physical value (more than {_LIMIT:g})"
+                )
         if np.any(np.diff(targets) <= 0):
             raise AxiscalError(f"{self.source}: target positions must be strictly increasing")
         for name, value in (("targets", targets), ("deviations_up", up), ("deviations_down", down)):
@@ -325,6 +339,7 @@ def target_statistics(run: PositioningRun) -> TargetStatistics:
     >>> (st.mean_up / UM).round(3).tolist(), (st.s_up / UM).round(3).tolist()
     ([0.733, 1.6], [0.643, 0.458])
     """
+    check_instance("run", run, PositioningRun)
     missing = np.full((run.targets.size, run.runs), np.nan)
     up = missing if run.deviations_up is None else run.deviations_up
     down = missing if run.deviations_down is None else run.deviations_down
@@ -379,7 +394,7 @@ def require_finite(**values: float | None) -> None:
     axiscal.errors.AxiscalError: end_m must be a finite number, got inf
     """
     for name, value in values.items():
-        if isinstance(value, (int, float)) and not isinstance(value, bool) and not np.isfinite(value):
+        if isinstance(value, (int, float, np.floating)) and not isinstance(value, bool) and not np.isfinite(value):
             raise AxiscalError(f"{name} must be a finite number, got {value}")
 
 
@@ -405,7 +420,7 @@ def covers_circle(targets: np.ndarray) -> bool:
     >>> covers_circle(np.radians(np.arange(0, 360, 30))), covers_circle(np.radians([0, 45, 90]))
     (True, False)
     """
-    targets = np.asarray(targets, dtype=float)
+    targets = check_array("targets_rad", targets, ndim=1, min_len=2)
     wrap = targets[0] + TURN - targets[-1]
     return bool(wrap <= 2.0 * float(np.diff(targets).max()) * (1 + 1e-9))
 
@@ -449,8 +464,9 @@ def iso230_2(run: PositioningRun, *, edition: str = "2014") -> Iso230Result:
     >>> round(result.B / UM, 3), round(result.R / UM, 3)
     (1.5, 8.451)
     """
-    if edition not in ISO_EDITIONS:
-        raise AxiscalError(f"unknown ISO 230-2 edition '{edition}'; use one of {', '.join(ISO_EDITIONS)}")
+    check_instance("run", run, PositioningRun)
+    if not isinstance(edition, str) or edition not in ISO_EDITIONS:
+        raise AxiscalError(f"unknown ISO 230-2 edition {edition!r}; use one of {', '.join(ISO_EDITIONS)}")
     k = ISO_EDITIONS[edition]
     st = target_statistics(run)
     r_up = 2 * k * st.s_up
@@ -513,6 +529,7 @@ def vdi3441(run: PositioningRun) -> Vdi3441Result:
     >>> round(result.Pa / UM, 3), round(result.P / UM, 3)
     (0.683, 9.767)
     """
+    check_instance("run", run, PositioningRun)
     if not run.bidirectional:
         raise AxiscalError(
             f"{run.source}: VDI/DGQ 3441 evaluates a bidirectional test; this one goes in the {run.directions[0]}"
@@ -566,6 +583,8 @@ def iso_edition(standard: str) -> str:
     >>> iso_edition("jis-b6192"), iso_edition("iso230-2:1997")
     ('1988', '1997')
     """
+    if not isinstance(standard, str):
+        check_choice("standard", standard, STANDARDS)
     if standard == "jis-b6192":
         return "1988"
     prefix = "iso230-2:"

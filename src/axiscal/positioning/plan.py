@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_instance, check_integer, check_number, check_path, is_real
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.positioning.evaluation import require_finite
@@ -122,6 +123,7 @@ def minimum_targets(length_m: float) -> int:
     >>> minimum_targets(0.8), minimum_targets(2.1)
     (5, 11)
     """
+    length_m = check_number("length_m", length_m, nonnegative=True)
     return max(TARGETS_PER_METRE, math.ceil(TARGETS_PER_METRE * length_m - 1e-9))
 
 
@@ -154,6 +156,11 @@ def plan_targets(start_m: float, end_m: float, count: int, *, seed: int | None =
     [0.0, 122.523, 182.208, 322.432, 400.0]
     """
     require_finite(start_m=start_m, end_m=end_m)
+    start_m = check_number("start_m", start_m)
+    end_m = check_number("end_m", end_m)
+    count = check_integer("count", count)
+    if seed is not None:
+        seed = check_integer("seed", seed)
     if end_m <= start_m:
         raise AxiscalError(f"the end ({end_m / MM:g} mm) must be beyond the start ({start_m / MM:g} mm)")
     need = minimum_targets(end_m - start_m)
@@ -222,8 +229,11 @@ def plan_test(
     >>> plan.readings, plan.moves.size
     (170, 180)
     """
-    if cycle not in CYCLES:
-        raise AxiscalError(f"unknown cycle '{cycle}'; use one of {', '.join(CYCLES)}")
+    if not isinstance(cycle, str) or cycle not in CYCLES:
+        raise AxiscalError(f"unknown cycle {cycle!r}; use one of {', '.join(CYCLES)}")
+    runs = check_integer("runs", runs)
+    if not is_real(overrun_m):
+        check_number("overrun_m", overrun_m)
     if runs < 1:
         raise AxiscalError(f"runs must be at least 1, got {runs}")
     if runs > MAX_RUNS:
@@ -287,6 +297,7 @@ def cycle_csv(plan: PositioningTestPlan) -> str:
     >>> cycle_csv(plan).splitlines()[:3]
     ['step,run,direction,target_mm,move_to_mm,deviation_um', '1,1,-,,-5.000,', '2,1,+,0.000,0.000,']
     """
+    check_instance("plan", plan, PositioningTestPlan)
     lines = [",".join(PLAN_COLUMNS)]
     for k in range(plan.moves.size):
         target = plan.move_target[k]
@@ -330,9 +341,12 @@ def gcode_program(plan: PositioningTestPlan, *, axis: str = "X", dwell_s: float 
     >>> program.splitlines()[4:7]
     ['G1 Z-5.000 F2000', 'G1 Z0.000', 'G4 P1']
     """
-    if not axis or not axis.isalpha() or len(axis) != 1:
-        raise AxiscalError(f"axis must be one letter (X, Y, Z, ...), got '{axis}'")
+    check_instance("plan", plan, PositioningTestPlan)
+    if not isinstance(axis, str) or not axis.isalpha() or len(axis) != 1:
+        raise AxiscalError(f"axis must be one letter (X, Y, Z, ...), got {axis!r}")
     require_finite(dwell_s=dwell_s, feed_mm_per_min=feed_mm_per_min)
+    dwell_s = check_number("dwell_s", dwell_s)
+    feed_mm_per_min = check_number("feed_mm_per_min", feed_mm_per_min, unit="mm/min")
     if dwell_s < 0:
         raise AxiscalError(f"the dwell must be zero or positive, got {dwell_s:g} s")
     if feed_mm_per_min <= 0:
@@ -393,6 +407,11 @@ def write_plan(
     >>> write_plan(plan, "cycle.csv", gcode_path="cycle.ngc")  # doctest: +SKIP
     [PosixPath('cycle.csv'), PosixPath('cycle.json'), PosixPath('cycle.ngc')]
     """
+    check_instance("plan", plan, PositioningTestPlan)
+    if csv_path is not None:
+        check_path("csv_path", csv_path)
+    if gcode_path is not None:
+        check_path("gcode_path", gcode_path)
     program = None if gcode_path is None else gcode_program(plan, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_per_min)
     written: list[Path] = []
     if csv_path is not None:

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_instance, check_mapping, check_path
 from axiscal.io.figures import pyplot, save_figure
 from axiscal.positioning.evaluation import Iso230Result, PositioningRun, Vdi3441Result
 from axiscal.units import ARCSEC, DEG, MM, UM
@@ -90,6 +91,14 @@ def plot_positioning(
     >>> plot_positioning(run, iso230_2(run), "positioning.png")  # doctest: +SKIP
     PosixPath('positioning.png')
     """
+    check_instance("run", run, PositioningRun)
+    check_instance("result", result, (Iso230Result, Vdi3441Result))
+    path = check_path("path", path)
+    check_instance("title", title, str)
+    if result.stats.targets.shape != run.targets.shape:
+        raise AxiscalError(f"result has {result.stats.targets.size} targets, the run {run.targets.size}: evaluate this run")
+    if overlay is not None:
+        check_mapping("overlay", overlay, what="the targets object of axiscal positioning --json")
     plt = pyplot()
     suffix = Path(path).suffix.lstrip(".").lower()
     supported = plt.figure().canvas.get_supported_filetypes()
@@ -128,7 +137,11 @@ def plot_positioning(
             values = overlay.get(key)
             if targets is not None and values is not None:
                 arrow = "↑" if "up" in key else "↓"
-                ax.plot(np.asarray(targets, dtype=float), np.asarray([np.nan if v is None else v for v in values], dtype=float),
+                x_over = check_array(f"overlay {'target_deg' if run.rotary else 'target_mm'}", targets, ndim=1, unit="")
+                y_over = check_array(f"overlay {key}", [np.nan if v is None else v for v in values], ndim=1, finite=False, unit="")
+                if x_over.size != y_over.size:
+                    raise AxiscalError(f"overlay {key} must have one value per target, not {y_over.size} for {x_over.size}")
+                ax.plot(x_over, y_over,
                         linestyle=style, color="0.45", linewidth=1.2,
                         label=f"{overlay.get('label', 'compared')}: mean x̄{arrow}")
     ax.plot([], [], ".", color="0.5", label="single runs")

@@ -27,7 +27,9 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_number, check_optional_number
 from axiscal.io.tabular import CsvTable, read_csv
+from axiscal.instruments.air import METHODS
 from axiscal.materials import STEEL_EXPANSION_PER_K
 from axiscal.positioning.evaluation import PositioningRun, covers_circle
 from axiscal.units import ANGLE_UNITS, DEG, INCH, LENGTH_UNITS
@@ -223,6 +225,10 @@ def read_positioning_run(
     >>> data.compensated, data.run.runs  # doctest: +SKIP
     (True, 5)
     """
+    check_optional_number("wavelength_nm", wavelength_nm, positive=True)
+    check_number("co2_ppm", co2_ppm, nonnegative=True)
+    check_number("expansion_per_k", expansion_per_k)
+    check_choice("method", method, METHODS)
     table = read_csv(path, min_rows=2)
     table.require("run", "direction")
     target_name, target_factor = _one_column(table, ("target",), "target position")[1:]

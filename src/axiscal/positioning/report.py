@@ -19,8 +19,10 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_optional_number, render_checked
 from axiscal.materials import STEEL_EXPANSION_PER_K
 from axiscal.positioning.evaluation import (
+    STANDARDS,
     Iso230Result,
     PositioningRun,
     Vdi3441Result,
@@ -77,6 +79,10 @@ def render_template(name: str, **context: Any) -> str:
     ...                 unit="um").splitlines()[0]
     'x.csv: vdi3441, 2 targets, 1 run each way'
     """
+    return render_checked(_render, name, **context)
+
+
+def _render(name: str, **context: Any) -> str:
     return _environment().get_template(name).render(**context).rstrip("\n")
 
 
@@ -311,6 +317,9 @@ def evaluate_positioning_file(
     14.936
     """
     require_finite(wavelength_nm=wavelength_nm, expansion_per_k=expansion_per_k)
+    check_choice("standard", standard, STANDARDS)
+    check_optional_number("wavelength_nm", wavelength_nm, positive=True)
+    check_optional_number("expansion_per_k", expansion_per_k)
     edition = None if standard == "vdi3441" else iso_edition(standard)
     data = read_positioning_run(
         path,
