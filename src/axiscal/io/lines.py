@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from axiscal.errors import AxiscalError
+
 __all__ = ["Lines"]
 
 # bytes that may start a line that is blank or a comment once stripped of white space (ASCII white
@@ -40,6 +42,8 @@ class Lines:
     """
 
     def __init__(self, data: bytes):
+        if not isinstance(data, bytes):
+            raise AxiscalError(f"data must be the file's content (bytes), not {type(data).__name__}")
         self.data = data
         arr = np.frombuffer(data, dtype=np.uint8)
         if b"\r" in data:

@@ -1,0 +1,213 @@
+"""Every public callable of the uncertainty, live, campaign, report and io rooms refuses bad
+arguments with AxiscalError naming the argument: never an AttributeError or TypeError from deep
+inside, a NumPy broadcast error, an ambiguous truth value, a stray RuntimeWarning or a silent NaN.
+
+The table lists, per public name, calls with the kinds of bad values a user passes: None where an
+object (a Budget, a Campaign, a CampaignResults, a LiveState) is expected, NaN and inf, empty and
+mismatched arrays, a string for a number, unknown option strings, values out of range. A coverage
+check fails when a public callable of these rooms has no case (or an explicit exemption below).
+"""
+
+from __future__ import annotations
+
+import inspect
+import warnings
+from collections.abc import Callable
+from importlib import import_module
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from axiscal.errors import AxiscalError
+from axiscal.io.templates import render_template
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+NEVER = "/tmp/axiscal-never-written"
+
+ROOMS = ("uncertainty", "live", "campaign", "report", "io")
+NAN, INF = float("nan"), float("inf")
+
+CASES: list[tuple[str, str, Callable[[], object], str]] = []  # (room, public name, call, words of the message)
+
+
+def bad(room: str, name: str, words: str, *calls: Callable[[], object]) -> None:
+    """Add one case per call: each must raise AxiscalError whose message holds ``words``."""
+    CASES.extend((room, name, call, words) for call in calls)
+
+
+def api(room: str):
+    return import_module(f"axiscal.{room}")
+
+
+# ---------------------------------------------------------------- io
+io = api("io")
+O = "io"
+
+bad(O, "check_number", "spacing_m", lambda: io.check_number("spacing_m", NAN), lambda: io.check_number("spacing_m", None), lambda: io.check_number("spacing_m", -1.0, positive=True))
+bad(O, "check_count", "trials", lambda: io.check_count("trials", 0), lambda: io.check_count("trials", 2.5), lambda: io.check_count("trials", True))
+bad(O, "check_array", "position_m", lambda: io.check_array("position_m", [NAN]), lambda: io.check_array("position_m", "x"), lambda: io.check_array("position_m", [[0.0]], ndim=1))
+bad(O, "check_same_length", "same length", lambda: io.check_same_length(a_m=[1.0], b_m=[1.0, 2.0]))
+bad(O, "check_broadcast", "do not match", lambda: io.check_broadcast(a_m=np.zeros(2), b_m=np.zeros(3)))
+bad(O, "check_choice", "plane", lambda: io.check_choice("plane", "XX", ("XY", "YZ")), lambda: io.check_choice("plane", None, ("XY",)))
+bad(O, "check_mapping", "report", lambda: io.check_mapping("report", None), lambda: io.check_mapping("report", {}, ("a",)))
+bad(O, "check_path", "path", lambda: io.check_path("path", None), lambda: io.check_path("path", 5), lambda: io.check_path("path", " "))
+bad(O, "render_checked", "template", lambda: io.render_checked(render_template, None), lambda: io.render_checked(render_template, "none/none.j2"))
+bad(O, "atomic_write", "path", lambda: io.atomic_write(None, lambda p: None), lambda: io.atomic_write(5, lambda p: None))
+bad(O, "atomic_write", "write", lambda: io.atomic_write(NEVER, None), lambda: io.atomic_write(NEVER, "text"))
+bad(O, "write_text", "path", lambda: io.write_text(None, "a"))
+bad(O, "write_text", "text", lambda: io.write_text(NEVER, None), lambda: io.write_text(NEVER, b"a"))
+bad(O, "read_json", "path", lambda: io.read_json(None), lambda: io.read_json(5))
+bad(O, "write_json", "path", lambda: io.write_json(None, {}))
+bad(O, "json_line", "text", lambda: io.json_line(None, "a"), lambda: io.json_line(b"{}", "a"))
+bad(O, "sidecar_path", "csv_path", lambda: io.sidecar_path(None), lambda: io.sidecar_path(NAN))
+bad(O, "write_sidecar", "csv_path", lambda: io.write_sidecar(None, kind="x"))
+bad(O, "write_sidecar", "kind", lambda: io.write_sidecar(NEVER + ".csv", kind=None), lambda: io.write_sidecar(NEVER + ".csv", kind=""))
+bad(O, "write_sidecar", "units", lambda: io.write_sidecar(NEVER + ".csv", kind="x", units=["mm"]))
+bad(O, "write_sidecar", "sources", lambda: io.write_sidecar(NEVER + ".csv", kind="x", sources="a.csv"), lambda: io.write_sidecar(NEVER + ".csv", kind="x", sources=5))
+bad(O, "Lines", "data", lambda: io.Lines(None), lambda: io.Lines("text"))
+bad(O, "CsvTable", "header", lambda: io.CsvTable("a.csv", None), lambda: io.CsvTable("a.csv", (1, 2)), lambda: io.CsvTable("a.csv", "ab"))
+bad(O, "CsvTable", "path", lambda: io.CsvTable(None, ("a",)))
+bad(O, "CsvTable", "same length", lambda: io.CsvTable("a.csv", ("a",), rows=(("1",),), lines=()))
+bad(O, "parse_csv", "lines", lambda: io.parse_csv(None), lambda: io.parse_csv("a,b\n1,2"), lambda: io.parse_csv([1, 2]))
+bad(O, "parse_csv", "min_rows", lambda: io.parse_csv(["a", "1"], min_rows=-1), lambda: io.parse_csv(["a", "1"], min_rows=NAN))
+bad(O, "parse_csv", "path", lambda: io.parse_csv(["a", "1"], path=None))
+bad(O, "read_csv", "path", lambda: io.read_csv(None), lambda: io.read_csv(NAN))
+bad(O, "read_text", "path", lambda: io.read_text(None), lambda: io.read_text(np.array([])))
+bad(O, "read_toml", "path", lambda: io.read_toml(None))
+bad(O, "parse_toml", "text", lambda: io.parse_toml(None), lambda: io.parse_toml(b"a = 1"))
+bad(O, "write_csv", "columns", lambda: io.write_csv(None, None), lambda: io.write_csv(None, {"a_mm": 5.0}), lambda: io.write_csv(None, {"a_mm": "abc"}))
+bad(O, "write_csv", "same length", lambda: io.write_csv(None, {"a_mm": [1.0], "b_mm": [1.0, 2.0]}))
+bad(O, "write_csv", "fmt", lambda: io.write_csv(None, {"a_mm": [1.0]}, fmt=None), lambda: io.write_csv(None, {"a_mm": [1.0]}, fmt="{:d}"))
+bad(O, "write_csv", "path", lambda: io.write_csv(5, {"a_mm": [1.0]}))
+bad(O, "ColumnMap", "layout", lambda: io.ColumnMap(np.array([]), "t"), lambda: io.ColumnMap(None, "t"), lambda: io.ColumnMap("grid", "t"))
+bad(O, "ColumnMap", "sign", lambda: io.ColumnMap("rows", "t", reading="r", sign=NAN), lambda: io.ColumnMap("rows", "t", reading="r", sign=2))
+bad(O, "ColumnMap", "units.target", lambda: io.ColumnMap("rows", "t", reading="r", target_unit="furlong"), lambda: io.ColumnMap("rows", "t", reading="r", target_unit=None))
+bad(O, "ColumnMap", "skip_lines", lambda: io.ColumnMap("rows", "t", reading="r", skip_lines=-1))
+bad(O, "ColumnMap", "direction_values", lambda: io.ColumnMap("rows", "t", reading="r", direction_values=None))
+bad(O, "ColumnMap", "delimiter", lambda: io.ColumnMap("rows", "t", reading="r", delimiter=5))
+bad(O, "ColumnMap", "column", lambda: io.ColumnMap("rows", None, reading="r"), lambda: io.ColumnMap("rows", 0, reading="r"))
+bad(O, "import_readings", "cmap", lambda: io.import_readings(None, EXAMPLES / "positioning_run.csv"))
+bad(O, "import_readings", "path", lambda: io.import_readings(io.ColumnMap("rows", "t", reading="r"), None))
+bad(O, "read_column_map", "path", lambda: io.read_column_map(None))
+bad(O, "write_positioning_csv", "readings", lambda: io.write_positioning_csv(None, NEVER + ".csv"), lambda: io.write_positioning_csv({}, NEVER + ".csv"))
+bad(O, "read_rtx", "path", lambda: io.read_rtx(None, unit="mm"), lambda: io.read_rtx(np.array([]), unit="mm"))
+bad(O, "read_rtx", "unit", lambda: io.read_rtx(NEVER + ".rtx", unit="furlong"), lambda: io.read_rtx(NEVER + ".rtx", unit=None))
+bad(O, "write_rtx", "path", lambda: io.write_rtx(np.array([]), [0.0], sample_rate_hz=1.0, unit="mm"), lambda: io.write_rtx(None, [0.0], sample_rate_hz=1.0, unit="mm"))
+bad(O, "write_rtx", "sample_rate_hz", lambda: io.write_rtx(NEVER, [0.0], sample_rate_hz=NAN, unit="mm"), lambda: io.write_rtx(NEVER, [0.0], sample_rate_hz="1", unit="mm"),
+    lambda: io.write_rtx(NEVER, [0.0], sample_rate_hz=0.0, unit="mm"))
+bad(O, "write_rtx", "samples", lambda: io.write_rtx(NEVER, [NAN], sample_rate_hz=1.0, unit="mm"), lambda: io.write_rtx(NEVER, "abc", sample_rate_hz=1.0, unit="mm"),
+    lambda: io.write_rtx(NEVER, None, sample_rate_hz=1.0, unit="mm"))
+bad(O, "write_rtx", "unit", lambda: io.write_rtx(NEVER, [0.0], sample_rate_hz=1.0, unit="furlong"))
+bad(O, "write_rtx", "header", lambda: io.write_rtx(NEVER, [0.0], sample_rate_hz=1.0, unit="mm", header=["Owner"]))
+bad(O, "write_rtx_csv", "capture", lambda: io.write_rtx_csv(None, NEVER + ".csv"), lambda: io.write_rtx_csv({"samples_m": []}, NEVER + ".csv"))
+bad(O, "dumps", "payload", lambda: io.dumps(object()), lambda: io.dumps({"a": {1, 2}}), lambda: io.dumps(b"x"))
+bad(O, "write_json", "payload", lambda: io.write_json(NEVER + ".json", {"a": object()}))
+bad(O, "check_instance", "run must be an int, not None", lambda: io.check_instance("run", None, int))
+bad(O, "check_instance", "budget must be a float, not str", lambda: io.check_instance("budget", "x", (float, int)))
+
+
+# ---------------------------------------------------------------- uncertainty
+un = api("uncertainty")
+U = "uncertainty"
+BUDGET = un.Budget(length_U_rel=0.5e-6)
+BUDGET_FILE = EXAMPLES / "uncertainty_budget.toml"
+PU = un.positioning_uncertainty(BUDGET, 1.0)
+EVALUATION = import_module("axiscal.positioning").evaluate_positioning_file(EXAMPLES / "positioning_run.csv")
+MACHINE_U = EXAMPLES / "xfyz_machine_u" / "machine.toml"
+MACHINE, MU = un.load_machine_uncertainty(MACHINE_U)
+Q3 = {"X": np.array([0.1, 0.2]), "Y": np.array([0.1, 0.1]), "Z": np.array([0.05, 0.05])}
+VU = un.volumetric_monte_carlo(MACHINE, MU, Q3, 40, seed=1)
+LINE_X, LINE_Y = np.linspace(0.0, 0.1, 5), np.array([0.0, 1e-6, 0.0, -1e-6, 0.0])
+
+bad(U, "Budget", "length_U_rel", lambda: un.Budget(length_U_rel=NAN), lambda: un.Budget(length_U_rel="1"), lambda: un.Budget(length_U_rel=-1.0))
+bad(U, "Budget", "method", lambda: un.Budget(method="magic"))
+bad(U, "budget_from_dict", "data", lambda: un.budget_from_dict(None), lambda: un.budget_from_dict([("air", {})]))
+bad(U, "budget_from_dict", "budget section", lambda: un.budget_from_dict({"weather": {}}), lambda: un.budget_from_dict({5: {}}))
+bad(U, "budget_from_dict", "eve_um", lambda: un.budget_from_dict({"setup": {"eve_um": NAN}}), lambda: un.budget_from_dict({"setup": {"eve_um": -1.0}}))
+bad(U, "budget_from_dict", "locate", lambda: un.budget_from_dict({}, locate=5))
+bad(U, "budget_from_dict", "text", lambda: un.budget_from_dict({}, text=5))
+bad(U, "read_budget", "path", lambda: un.read_budget(None), lambda: un.read_budget(NAN))
+bad(U, "air_sensitivities", "budget must be a Budget", lambda: un.air_sensitivities(None), lambda: un.air_sensitivities({"air": {}}))
+for _fn in ("length_model", "length_components"):
+    bad(U, _fn, "budget must be a Budget", lambda _f=getattr(un, _fn): _f(None, 1.0), lambda _f=getattr(un, _fn): _f("budget.toml", 1.0))
+    bad(U, _fn, "length_m", lambda _f=getattr(un, _fn): _f(BUDGET, NAN), lambda _f=getattr(un, _fn): _f(BUDGET, None), lambda _f=getattr(un, _fn): _f(BUDGET, "1"))
+bad(U, "decide", "value", lambda: un.decide(NAN, 10.0), lambda: un.decide(None, 10.0), lambda: un.decide("9", 10.0))
+bad(U, "decide", "limit", lambda: un.decide(9.0, INF), lambda: un.decide(9.0, None))
+bad(U, "decide", "U must be a non-negative", lambda: un.decide(9.0, 10.0, -1.0), lambda: un.decide(9.0, 10.0, NAN))
+bad(U, "decide", "decision rule", lambda: un.decide(9.0, 10.0, rule="strict"), lambda: un.decide(9.0, 10.0, rule=None))
+bad(U, "figure_uncertainties", "kind", lambda: un.figure_uncertainties("ballbar", EVALUATION, BUDGET), lambda: un.figure_uncertainties(None, EVALUATION, BUDGET))
+bad(U, "figure_uncertainties", "evaluation", lambda: un.figure_uncertainties("positioning", None, BUDGET), lambda: un.figure_uncertainties("straightness", EVALUATION, BUDGET))
+bad(U, "figure_uncertainties", "budget", lambda: un.figure_uncertainties("positioning", EVALUATION, None), lambda: un.figure_uncertainties("positioning", EVALUATION, 5))
+bad(U, "figure_uncertainties", "run", lambda: un.figure_uncertainties("positioning", {"E": 5.0}, BUDGET), lambda: un.figure_uncertainties("positioning", {"E": 5.0}, BUDGET, run="x"),
+    lambda: un.figure_uncertainties("positioning", {"E": 5.0}, BUDGET, run=NAN))
+bad(U, "figure_verdicts", "tolerances", lambda: un.figure_verdicts("positioning", EVALUATION, BUDGET, None), lambda: un.figure_verdicts("positioning", EVALUATION, BUDGET, [("E_um", 5.0)]))
+bad(U, "figure_verdicts", "tolerance 'E_um'", lambda: un.figure_verdicts("positioning", EVALUATION, BUDGET, {"E_um": NAN}), lambda: un.figure_verdicts("positioning", EVALUATION, BUDGET, {"E_um": "5"}))
+bad(U, "figure_verdicts", "decision rule", lambda: un.figure_verdicts("positioning", EVALUATION, BUDGET, {"E_um": 5.0}, rule=None))
+bad(U, "figure_verdicts", "tolerance 'Q_um'", lambda: un.figure_verdicts("positioning", EVALUATION, BUDGET, {"Q_um": 5.0}))
+bad(U, "coverage_interval", "samples", lambda: un.coverage_interval(None), lambda: un.coverage_interval([]), lambda: un.coverage_interval("abc"),
+    lambda: un.coverage_interval(np.array(3.0)), lambda: un.coverage_interval([NAN] * 100), lambda: un.coverage_interval([True] * 100))
+bad(U, "coverage_interval", "probability", lambda: un.coverage_interval(np.zeros(100), NAN), lambda: un.coverage_interval(np.zeros(100), 1.0), lambda: un.coverage_interval(np.zeros(100), "0.95"))
+bad(U, "coverage_interval", "axis", lambda: un.coverage_interval(np.zeros(100), axis=1), lambda: un.coverage_interval(np.zeros(100), axis=0.5))
+bad(U, "coverage_interval", "too few", lambda: un.coverage_interval(np.zeros(5)))
+bad(U, "evaluate_positioning_with_uncertainty", "budget", lambda: un.evaluate_positioning_with_uncertainty(EXAMPLES / "positioning_run.csv", None))
+bad(U, "evaluate_positioning_with_uncertainty", "path", lambda: un.evaluate_positioning_with_uncertainty(None, BUDGET))
+bad(U, "evaluate_positioning_with_uncertainty", "monte_carlo", lambda: un.evaluate_positioning_with_uncertainty(EXAMPLES / "positioning_run.csv", BUDGET, monte_carlo=-1))
+bad(U, "positioning_uncertainty", "budget", lambda: un.positioning_uncertainty(None, 1.0), lambda: un.positioning_uncertainty(1.0, 1.0))
+bad(U, "positioning_uncertainty", "run", lambda: un.positioning_uncertainty(BUDGET, None), lambda: un.positioning_uncertainty(BUDGET, NAN), lambda: un.positioning_uncertainty(BUDGET, -1.0),
+    lambda: un.positioning_uncertainty(BUDGET, "1"))
+bad(U, "positioning_uncertainty", "monte_carlo", lambda: un.positioning_uncertainty(BUDGET, 1.0, monte_carlo=NAN), lambda: un.positioning_uncertainty(BUDGET, 1.0, monte_carlo=2.5),
+    lambda: un.positioning_uncertainty(BUDGET, 1.0, monte_carlo="100"))
+bad(U, "positioning_uncertainty", "seed", lambda: un.positioning_uncertainty(BUDGET, 1.0, monte_carlo=100, seed=-1), lambda: un.positioning_uncertainty(BUDGET, 1.0, monte_carlo=100, seed="a"))
+bad(U, "positioning_monte_carlo", "budget", lambda: un.positioning_monte_carlo(None, 1.0, 100))
+bad(U, "positioning_monte_carlo", "length_m", lambda: un.positioning_monte_carlo(BUDGET, None, 100), lambda: un.positioning_monte_carlo(BUDGET, NAN, 100))
+bad(U, "positioning_monte_carlo", "draws", lambda: un.positioning_monte_carlo(BUDGET, 1.0, 0), lambda: un.positioning_monte_carlo(BUDGET, 1.0, None))
+bad(U, "positioning_monte_carlo", "seed", lambda: un.positioning_monte_carlo(BUDGET, 1.0, 100, seed=1.5))
+bad(U, "positioning_monte_carlo", "probability", lambda: un.positioning_monte_carlo(BUDGET, 1.0, 100, probability=NAN), lambda: un.positioning_monte_carlo(BUDGET, 1.0, 100, probability=2.0))
+for _fn in ("uncertainty_payload", "budget_report"):
+    bad(U, _fn, "result must be a PositioningUncertainty", lambda _f=getattr(un, _fn): _f(None), lambda _f=getattr(un, _fn): _f({"k": 2}))
+bad(U, "positioning_decisions", "result", lambda: un.positioning_decisions(None, PU, {"E": 1e-5}))
+bad(U, "positioning_decisions", "uncertainty", lambda: un.positioning_decisions(EVALUATION.result, None, {"E": 1e-5}))
+bad(U, "positioning_decisions", "limits", lambda: un.positioning_decisions(EVALUATION.result, PU, None), lambda: un.positioning_decisions(EVALUATION.result, PU, {"E": NAN}),
+    lambda: un.positioning_decisions(EVALUATION.result, PU, {"E": "1"}))
+bad(U, "positioning_decisions", "figure", lambda: un.positioning_decisions(EVALUATION.result, PU, {"Q": 1e-5}), lambda: un.positioning_decisions(EVALUATION.result, PU, {5: 1e-5}))
+bad(U, "positioning_decisions", "decision rule", lambda: un.positioning_decisions(EVALUATION.result, PU, {}, rule="strict"))
+bad(U, "straightness_uncertainty", "budget", lambda: un.straightness_uncertainty(None, LINE_X, LINE_Y))
+bad(U, "straightness_uncertainty", "position_m", lambda: un.straightness_uncertainty(BUDGET, None, LINE_Y), lambda: un.straightness_uncertainty(BUDGET, "x", LINE_Y),
+    lambda: un.straightness_uncertainty(BUDGET, [NAN] * 5, LINE_Y))
+bad(U, "straightness_uncertainty", "deviation_m", lambda: un.straightness_uncertainty(BUDGET, LINE_X, [[0.0]]))
+bad(U, "straightness_uncertainty", "same length", lambda: un.straightness_uncertainty(BUDGET, LINE_X, LINE_Y[:3]))
+bad(U, "straightness_uncertainty", "reference", lambda: un.straightness_uncertainty(BUDGET, LINE_X, LINE_Y, reference="best"))
+bad(U, "squareness_uncertainty", "budget", lambda: un.squareness_uncertainty(None, LINE_X, LINE_Y, LINE_X, LINE_Y))
+bad(U, "squareness_uncertainty", "second_deviation_m", lambda: un.squareness_uncertainty(BUDGET, LINE_X, LINE_Y, LINE_X, None),
+    lambda: un.squareness_uncertainty(BUDGET, LINE_X, LINE_Y, LINE_X, [INF] * 5))
+bad(U, "squareness_uncertainty", "plane", lambda: un.squareness_uncertainty(BUDGET, LINE_X, LINE_Y, LINE_X, LINE_Y, plane="XX"))
+bad(U, "squareness_uncertainty", "prism_deviation_rad", lambda: un.squareness_uncertainty(BUDGET, LINE_X, LINE_Y, LINE_X, LINE_Y, prism_deviation_rad=NAN))
+bad(U, "MachineUncertainty", "tables", lambda: un.MachineUncertainty(None, {}), lambda: un.MachineUncertainty({"X": "a"}, {}), lambda: un.MachineUncertainty({"X": np.full((6, 2), NAN)}, {}),
+    lambda: un.MachineUncertainty({"X": -np.ones((6, 2))}, {}))
+bad(U, "MachineUncertainty", "squareness", lambda: un.MachineUncertainty({}, None), lambda: un.MachineUncertainty({}, {"EQ0Y": 1e-6}), lambda: un.MachineUncertainty({}, {"EC0Y": NAN}))
+bad(U, "load_machine_uncertainty", "path", lambda: un.load_machine_uncertainty(None), lambda: un.load_machine_uncertainty(5))
+bad(U, "volumetric_monte_carlo", "machine", lambda: un.volumetric_monte_carlo(None, MU, Q3, 40))
+bad(U, "volumetric_monte_carlo", "uncertainty", lambda: un.volumetric_monte_carlo(MACHINE, None, Q3, 40))
+bad(U, "volumetric_monte_carlo", "positions", lambda: un.volumetric_monte_carlo(MACHINE, MU, None, 40))
+bad(U, "volumetric_monte_carlo", "draws", lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 0), lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, NAN), lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, "40"))
+bad(U, "volumetric_monte_carlo", "chunk_draws", lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 40, chunk_draws=0))
+bad(U, "volumetric_monte_carlo", "probability", lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 40, probability=NAN), lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 40, probability=None))
+bad(U, "volumetric_monte_carlo", "seed", lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 40, seed=-1), lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 40, seed="a"))
+bad(U, "volumetric_monte_carlo", "progress", lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 40, progress="bar"))
+bad(U, "write_volumetric_uncertainty", "path", lambda: un.write_volumetric_uncertainty(None, Q3, VU))
+bad(U, "write_volumetric_uncertainty", "result", lambda: un.write_volumetric_uncertainty(NEVER + ".csv", Q3, None))
+bad(U, "write_volumetric_uncertainty", "positions", lambda: un.write_volumetric_uncertainty(NEVER + ".csv", None, VU))
+bad(U, "volumetric_uncertainty_columns", "result", lambda: un.volumetric_uncertainty_columns(Q3, None))
+bad(U, "volumetric_uncertainty_columns", "positions", lambda: un.volumetric_uncertainty_columns(None, VU), lambda: un.volumetric_uncertainty_columns({"X": [NAN, 0.1]}, VU),
+    lambda: un.volumetric_uncertainty_columns({"X": "ab"}, VU), lambda: un.volumetric_uncertainty_columns({"X": [0.1]}, VU))
+bad(U, "volumetric_uncertainty_map", "machine", lambda: un.volumetric_uncertainty_map(None, positions=Q3), lambda: un.volumetric_uncertainty_map((MACHINE,), positions=Q3),
+    lambda: un.volumetric_uncertainty_map(5, positions=Q3))
+bad(U, "volumetric_uncertainty_map", "exactly one", lambda: un.volumetric_uncertainty_map(MACHINE_U))
+bad(U, "volumetric_uncertainty_map", "draws", lambda: un.volumetric_uncertainty_map((MACHINE, MU), positions=Q3, draws=-5))
+bad(U, "volumetric_uncertainty_map", "seed", lambda: un.volumetric_uncertainty_map((MACHINE, MU), positions=Q3, draws=40, seed=NAN))
+bad(U, "plot_volumetric_uncertainty", "result", lambda: un.plot_volumetric_uncertainty(Q3, None, NEVER + ".png"))
+bad(U, "plot_volumetric_uncertainty", "positions_m", lambda: un.plot_volumetric_uncertainty(None, VU, NEVER + ".png"), lambda: un.plot_volumetric_uncertainty({}, VU, NEVER + ".png"),
+    lambda: un.plot_volumetric_uncertainty({"X": [NAN, 0.0]}, VU, NEVER + ".png"), lambda: un.plot_volumetric_uncertainty({"X": [0.0]}, VU, NEVER + ".png"))
+bad(U, "plot_volumetric_uncertainty", "title", lambda: un.plot_volumetric_uncertainty(Q3, VU, NEVER + ".png", title=5))
+bad(U, "plot_volumetric_uncertainty", "path", lambda: un.plot_volumetric_uncertainty(Q3, VU, None))
