@@ -18,8 +18,12 @@ from typing import Any
 
 import numpy as np
 
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_number
+from axiscal.io.instances import check_instance
 from axiscal.live.protocol import FrameBatch
 from axiscal.measurement.faults import fault_text
+from axiscal.measurement.pipeline import MeasurementSystem
 from axiscal.units import MM
 
 __all__ = ["UPDATE_HZ_RANGE", "SPATIAL", "CORRECTED", "axis_error_columns", "result_columns", "LiveState"]
@@ -48,6 +52,7 @@ def axis_error_columns(letter: str) -> tuple[str, ...]:
     >>> axis_error_columns("Z")[:2]
     ('EXZ_um', 'EYZ_um')
     """
+    _check_letter(letter)
     return tuple(f"E{d}{letter}_um" for d in "XYZ") + tuple(f"E{r}{letter}_urad" for r in "ABC")
 
 
@@ -64,9 +69,19 @@ def result_columns(axes: tuple[str, ...]) -> tuple[str, ...]:
     tuple of str
         Display names (``ex_um`` ... ``px_mm`` ... ``x_mm`` ... ``EXX_um`` ...).
     """
+    if not isinstance(axes, (tuple, list, str)):
+        raise AxiscalError(f"axes must be a tuple of axis letters, not {axes!r}")
+    for letter in axes:
+        _check_letter(letter, "axes")
     positions = tuple(f"{letter.lower()}_mm" for letter in axes)
     errors = tuple(name for letter in axes for name in axis_error_columns(letter))
     return SPATIAL + CORRECTED + positions + errors
+
+
+def _check_letter(letter: str, name: str = "letter") -> None:
+    """Refuse an axis letter that is not one letter."""
+    if not isinstance(letter, str) or len(letter) != 1 or not letter.isalpha():
+        raise AxiscalError(f"{name} must hold axis letters (one letter each), not {letter!r}")
 
 
 def _plain(values: np.ndarray, digits: int = 6) -> list[float | None]:
@@ -93,6 +108,10 @@ class LiveState:
     """
 
     def __init__(self, system, *, bins: int = 96, history_s: float = 20.0, history_points: int = 400):
+        check_instance("system", system, MeasurementSystem)
+        bins = check_count("bins", bins)
+        history_s = check_number("history_s", history_s, positive=True)
+        history_points = check_count("history_points", history_points)
         self.channels = tuple(system.channels)
         self.axes = tuple(system.axes)
         limits = [system.channel_limits.get(name, (-np.inf, np.inf)) for name in self.channels]
