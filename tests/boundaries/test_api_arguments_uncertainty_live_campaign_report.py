@@ -321,3 +321,148 @@ bad(L, "create_app", "allowed host", lambda: lv.create_app(STATE, allowed_hosts=
 bad(L, "LiveServer", "app", lambda: lv.LiveServer(None), lambda: lv.LiveServer(STATE))
 bad(L, "LiveServer", "port", lambda: lv.LiveServer(APP, port=-1), lambda: lv.LiveServer(APP, port="80"), lambda: lv.LiveServer(APP, port=NAN))
 bad(L, "LiveServer", "host", lambda: lv.LiveServer(APP, host=None))
+
+
+# ---------------------------------------------------------------- campaign
+ca = api("campaign")
+C = "campaign"
+CAMPAIGN = ca.load_campaign(EXAMPLES / "campaign")
+SPEC = CAMPAIGN.tests[0]
+RESULTS = ca.CampaignResults({"title": "t"}, {}, {}, [ca.TestResult("t1", "positioning", "X", ["x.csv"], {"E": 5.0})])
+
+
+def _spec(**changes):
+    from dataclasses import replace
+
+    return lambda: replace(SPEC, **changes)
+
+
+def _campaign(**changes):
+    from dataclasses import replace
+
+    return lambda: replace(CAMPAIGN, **changes)
+
+
+bad(C, "TestSpec", "test kind", _spec(kind="magic"), _spec(kind=None))
+bad(C, "TestSpec", "id", _spec(id=None), _spec(id=""))
+bad(C, "TestSpec", "axis", _spec(axis=5))
+bad(C, "TestSpec", "options", _spec(options=None))
+bad(C, "TestSpec", "tolerances", _spec(tolerances=[("E_um", 5.0)]))
+bad(C, "TestSpec", "line", _spec(line=-1), _spec(line=NAN))
+bad(C, "Campaign", "folder", _campaign(folder=None), _campaign(folder="examples/campaign"))
+bad(C, "Campaign", "tests", _campaign(tests=None), _campaign(tests=({"kind": "positioning"},)))
+bad(C, "Campaign", "machine", _campaign(machine=None))
+bad(C, "Campaign", "controller", _campaign(controller="magic"))
+bad(C, "Campaign", "budget", _campaign(budget="budget.toml"))
+bad(C, "Campaign", "decision rule", _campaign(decision_rule="strict"), _campaign(decision_rule=None))
+bad(C, "Campaign", "model", _campaign(model="machine.toml"))
+bad(C, "load_campaign", "folder", lambda: ca.load_campaign(None), lambda: ca.load_campaign(NAN))
+bad(C, "check_figures", "figures", lambda: ca.check_figures(None, {}, {}), lambda: ca.check_figures({"E": "big"}, {"E_um": 5.0}, {}))
+bad(C, "check_figures", "tolerance", lambda: ca.check_figures({"E": 1.0}, None, {}), lambda: ca.check_figures({"E": 1.0}, {"E_um": NAN}, {}),
+    lambda: ca.check_figures({"E": 1.0}, {"E_um": "5"}, {}), lambda: ca.check_figures({"E": 1.0}, {"E_um": -1.0}, {}))
+bad(C, "check_figures", "units", lambda: ca.check_figures({"E": 1.0}, {"E_um": 5.0}, None))
+bad(C, "check_figures", "uncertainty", lambda: ca.check_figures({"E": 1.0}, {"E_um": 5.0}, {}, uncertainty=5.0))
+bad(C, "check_figures", "decision rule", lambda: ca.check_figures({"E": 1.0}, {"E_um": 5.0}, {}, rule="strict"))
+bad(C, "overall_verdict", "verdict", lambda: ca.overall_verdict(None), lambda: ca.overall_verdict("pass"), lambda: ca.overall_verdict(["ok"]), lambda: ca.overall_verdict([None]))
+bad(C, "results_payload", "results must be a CampaignResults", lambda: ca.results_payload(None), lambda: ca.results_payload(CAMPAIGN))
+bad(C, "evaluation_is_raw", "path", lambda: ca.evaluation_is_raw(None), lambda: ca.evaluation_is_raw(5))
+bad(C, "run_campaign", "campaign", lambda: ca.run_campaign(None), lambda: ca.run_campaign(5))
+bad(C, "run_campaign", "progress", lambda: ca.run_campaign(CAMPAIGN, progress="bar"))
+bad(C, "run_campaign", "compare", lambda: ca.run_campaign(CAMPAIGN, compare=["a"]))
+bad(C, "run_test", "campaign must be a Campaign", lambda: ca.run_test(None, SPEC), lambda: ca.run_test(EXAMPLES / "campaign", SPEC))
+bad(C, "run_test", "spec must be a TestSpec", lambda: ca.run_test(CAMPAIGN, None), lambda: ca.run_test(CAMPAIGN, {"kind": "positioning"}))
+bad(C, "run_test", "compare", lambda: ca.run_test(CAMPAIGN, SPEC, compare=5))
+bad(C, "svg_of", "draw", lambda: ca.svg_of(None), lambda: ca.svg_of("plot.svg"))
+bad(C, "volumetric_section", "model", lambda: ca.volumetric_section(None, ca.svg_of))
+bad(C, "volumetric_section", "svg_of", lambda: ca.volumetric_section(EXAMPLES / "xfyz_machine_u" / "machine.toml", None))
+bad(C, "plot_volume", "machine", lambda: ca.plot_volume(None, NEVER + ".svg"), lambda: ca.plot_volume("machine.toml", NEVER + ".svg"))
+bad(C, "plot_volume", "path", lambda: ca.plot_volume(MACHINE, None))
+bad(C, "plot_volume", "figure format", lambda: ca.plot_volume(MACHINE, NEVER + ".txt"))
+bad(C, "plot_volume", "count", lambda: ca.plot_volume(MACHINE, NEVER + ".svg", count=1), lambda: ca.plot_volume(MACHINE, NEVER + ".svg", count=NAN))
+
+
+# ---------------------------------------------------------------- report
+rp = api("report")
+R = "report"
+
+bad(R, "decision_statement", "decision rule", lambda: rp.decision_statement("strict"), lambda: rp.decision_statement(None))
+bad(R, "render_html", "results", lambda: rp.render_html(None), lambda: rp.render_html(CAMPAIGN))
+bad(R, "render_html", "compare", lambda: rp.render_html(RESULTS, compare=5), lambda: rp.render_html(RESULTS, compare={"tests": "all"}))
+bad(R, "render_html", "volumetric", lambda: rp.render_html(RESULTS, volumetric=["plot"]))
+bad(R, "render_html", "generated", lambda: rp.render_html(RESULTS, generated=5))
+bad(R, "format_number", "value", lambda: rp.format_number([1.0]), lambda: rp.format_number(object()))
+bad(R, "format_number", "digits", lambda: rp.format_number(1.0, -1), lambda: rp.format_number(1.0, NAN), lambda: rp.format_number(1.0, "3"))
+bad(R, "previous_figures", "compare", lambda: rp.previous_figures(NAN), lambda: rp.previous_figures("results.json"))
+bad(R, "compare_label", "compare", lambda: rp.compare_label(NAN), lambda: rp.compare_label([]))
+bad(R, "verdict_rows", "results", lambda: rp.verdict_rows(None, None))
+bad(R, "verdict_rows", "before", lambda: rp.verdict_rows(RESULTS, ["E"]))
+bad(R, "sections", "tests", lambda: rp.sections(None), lambda: rp.sections([None]), lambda: rp.sections("tests"))
+bad(R, "write_report", "results", lambda: rp.write_report(None, NEVER))
+bad(R, "write_report", "out_dir", lambda: rp.write_report(RESULTS, None))
+bad(R, "write_report", "compare", lambda: rp.write_report(RESULTS, NEVER, compare=5))
+bad(R, "write_report", "pdf", lambda: rp.write_report(RESULTS, NEVER, pdf="yes"))
+bad(R, "write_report", "extra_files", lambda: rp.write_report(RESULTS, NEVER, extra_files=["a"]), lambda: rp.write_report(RESULTS, NEVER, extra_files={"../a.txt": "x"}),
+    lambda: rp.write_report(RESULTS, NEVER, extra_files={"a.txt": None}))
+bad(R, "report_campaign", "campaign_dir", lambda: rp.report_campaign(None))
+bad(R, "report_campaign", "out_dir", lambda: rp.report_campaign(EXAMPLES / "campaign", 5))
+bad(R, "report_campaign", "compare", lambda: rp.report_campaign(EXAMPLES / "campaign", NEVER, compare=5))
+bad(R, "report_campaign", "pdf", lambda: rp.report_campaign(EXAMPLES / "campaign", NEVER, pdf=None))
+bad(R, "write_pdf", "results", lambda: rp.write_pdf(None, NEVER + ".pdf"))
+bad(R, "write_pdf", "path", lambda: rp.write_pdf(RESULTS, None))
+bad(R, "write_pdf", "compare", lambda: rp.write_pdf(RESULTS, NEVER + ".pdf", compare="old.json"))
+bad(R, "write_pdf", "generated", lambda: rp.write_pdf(RESULTS, NEVER + ".pdf", generated=5))
+bad(R, "run_demo", "output_dir", lambda: rp.run_demo(None), lambda: rp.run_demo(5))
+bad(R, "run_demo", "seed", lambda: rp.run_demo(NEVER, seed=-1), lambda: rp.run_demo(NEVER, seed=NAN))
+
+
+# ---------------------------------------------------------------- the check
+EXEMPT: dict[str, set[str]] = {
+    # result records: the library fills them with what a function computed; a user reads them and
+    # does not build them, so they take no user values to check
+    "uncertainty": {"Decision", "CoverageInterval", "PositioningUncertainty", "PositioningWithUncertainty", "LineUncertainty",
+                    "VolumetricUncertainty", "VolumetricUncertaintyMap"},
+    "live": {"RunSummary", "FrameBatch", "Record", "SourceStatus", "ClientStats"},
+    "campaign": {"Check", "Figure", "Plot", "TestResult", "CampaignResults"},
+    "report": {"ReportFiles", "DemoResult",
+               # functions of no arguments
+               "template_environment", "builtin_example",
+               # print any value (with str; None as empty): every value is a valid argument
+               "typst_string", "typst_text"},
+    # result records of import_readings and read_rtx; a predicate and a pass-through that take any
+    # value (type_name too); unit_words reads the name of an argument, which the library's own code gives
+    "io": {"ImportedReadings", "RtxCapture", "is_real", "to_plain", "unit_words", "type_name"},
+}
+
+
+def _public_callables(room: str) -> set[str]:
+    module = api(room)
+    names = set()
+    for name in module.__all__:
+        value = getattr(module, name)
+        if callable(value) and not (inspect.isclass(value) and issubclass(value, (int, str))):
+            names.add(name)
+    return names
+
+
+def _ids():
+    counts: dict[str, int] = {}
+    for room, name, _, _ in CASES:
+        key = f"{room}.{name}"
+        counts[key] = counts.get(key, 0) + 1
+        yield f"{key}-{counts[key]}"
+
+
+@pytest.mark.parametrize(("room", "name", "call", "words"), CASES, ids=list(_ids()))
+def test_bad_arguments_raise_axiscal_error_naming_them(room, name, call, words):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(AxiscalError) as caught:
+            call()
+    assert words.lower() in caught.value.message.lower(), caught.value.message
+
+
+@pytest.mark.parametrize("room", ROOMS)
+def test_every_public_callable_has_a_bad_argument_case(room):
+    covered = {name for r, name, _, _ in CASES if r == room}
+    missing = sorted(_public_callables(room) - covered - EXEMPT.get(room, set()))
+    assert not missing, f"public callables of axiscal.{room} without a bad-argument case: {missing}"
