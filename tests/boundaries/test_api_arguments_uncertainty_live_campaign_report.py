@@ -105,6 +105,8 @@ bad(O, "dumps", "payload", lambda: io.dumps(object()), lambda: io.dumps({"a": {1
 bad(O, "write_json", "payload", lambda: io.write_json(NEVER + ".json", {"a": object()}))
 bad(O, "check_instance", "run must be an int, not None", lambda: io.check_instance("run", None, int))
 bad(O, "check_instance", "budget must be a float, not str", lambda: io.check_instance("budget", "x", (float, int)))
+bad(O, "check_instance", "kind must be a type", lambda: io.check_instance("run", 1, None), lambda: io.check_instance("run", 1, ()))
+bad(O, "check_instance", "name", lambda: io.check_instance(None, 1, int))
 
 
 # ---------------------------------------------------------------- uncertainty
@@ -303,7 +305,7 @@ bad(L, "open_source", "channels", lambda: lv.open_source("sim", None, virtual_mo
 bad(L, "open_source", "virtual_module", lambda: lv.open_source("sim", CH), lambda: lv.open_source("sim", CH, virtual_module=VM))
 bad(L, "open_source", "pace", lambda: lv.open_source("sim", CH, virtual_module=lambda: VM, pace=None))
 bad(L, "open_source", "rate_hz", lambda: lv.open_source("sim", CH, virtual_module=lambda: VM, rate_hz=NAN))
-bad(L, "axis_error_columns", "letter", lambda: lv.axis_error_columns(None), lambda: lv.axis_error_columns("XY"), lambda: lv.axis_error_columns(1))
+bad(L, "axis_error_columns", "letter", lambda: lv.axis_error_columns(None), lambda: lv.axis_error_columns("XY"), lambda: lv.axis_error_columns(1), lambda: lv.axis_error_columns("x"))
 bad(L, "result_columns", "axes", lambda: lv.result_columns(None), lambda: lv.result_columns(("X", None)), lambda: lv.result_columns(5))
 bad(L, "LiveState", "system", lambda: lv.LiveState(None), lambda: lv.LiveState("machine.toml"))
 bad(L, "LiveState", "bins", lambda: lv.LiveState(SYS, bins=0), lambda: lv.LiveState(SYS, bins=2.5))

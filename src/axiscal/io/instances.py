@@ -55,7 +55,8 @@ def check_instance(name: str, value: Any, kind: type | tuple[type, ...], what: s
     Raises
     ------
     AxiscalError
-        ``"run must be a PositioningRun, not None"``.
+        ``"run must be a PositioningRun, not None"``; also for a ``name`` that is not a str or a
+        ``kind`` that is not a type.
 
     Examples
     --------
@@ -66,6 +67,10 @@ def check_instance(name: str, value: Any, kind: type | tuple[type, ...], what: s
     ...
     axiscal.errors.AxiscalError: run must be an int, not None
     """
+    if not isinstance(name, str):
+        raise AxiscalError(f"name must be the argument's name (a str), not {type_name(name)}")
+    if not (isinstance(kind, type) or isinstance(kind, tuple) and kind and all(isinstance(k, type) for k in kind)):
+        raise AxiscalError(f"kind must be a type or a tuple of types, not {kind!r}")
     if isinstance(value, kind):
         return value
     if what is None:

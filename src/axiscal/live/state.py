@@ -53,6 +53,11 @@ def axis_error_columns(letter: str) -> tuple[str, ...]:
     ('EXZ_um', 'EYZ_um')
     """
     _check_letter(letter)
+    return _error_columns(letter)
+
+
+def _error_columns(letter: str) -> tuple[str, ...]:
+    """:func:`axis_error_columns` unchecked, for the state's per-batch updates."""
     return tuple(f"E{d}{letter}_um" for d in "XYZ") + tuple(f"E{r}{letter}_urad" for r in "ABC")
 
 
@@ -74,14 +79,14 @@ def result_columns(axes: tuple[str, ...]) -> tuple[str, ...]:
     for letter in axes:
         _check_letter(letter, "axes")
     positions = tuple(f"{letter.lower()}_mm" for letter in axes)
-    errors = tuple(name for letter in axes for name in axis_error_columns(letter))
+    errors = tuple(name for letter in axes for name in _error_columns(letter))
     return SPATIAL + CORRECTED + positions + errors
 
 
 def _check_letter(letter: str, name: str = "letter") -> None:
     """Refuse an axis letter that is not one letter."""
-    if not isinstance(letter, str) or len(letter) != 1 or not letter.isalpha():
-        raise AxiscalError(f"{name} must hold axis letters (one letter each), not {letter!r}")
+    if not isinstance(letter, str) or len(letter) != 1 or not letter.isalpha() or not letter.isupper():
+        raise AxiscalError(f"{name} must hold axis letters (one capital letter each), not {letter!r}")
 
 
 def _plain(values: np.ndarray, digits: int = 6) -> list[float | None]:
@@ -181,7 +186,7 @@ class LiveState:
             cell = cell[inside]
             count = np.bincount(cell, minlength=self.bins)
             touched = count > 0
-            for row, name in enumerate(axis_error_columns(letter)):
+            for row, name in enumerate(_error_columns(letter)):
                 sums = np.bincount(cell, weights=results[name][good][inside], minlength=self.bins)
                 self._profiles[letter][row, touched] = sums[touched] / count[touched]
 
@@ -248,7 +253,7 @@ class LiveState:
                 axes[letter] = {
                     "travel_mm": [float(edges[0]), float(edges[-1])],
                     "position_mm": _plain(0.5 * (edges[1:] + edges[:-1]), 3),
-                    "errors": {name: _plain(self._profiles[letter][row]) for row, name in enumerate(axis_error_columns(letter))},
+                    "errors": {name: _plain(self._profiles[letter][row]) for row, name in enumerate(_error_columns(letter))},
                 }
             sensors = [
                 {
