@@ -109,6 +109,12 @@ class TestSpec:
         Limits for this test (merged over the campaign's ``[tolerances]``), figure key -> limit.
     line : int
         The line of ``[[tests]]`` in campaign.toml.
+
+    Raises
+    ------
+    AxiscalError
+        For an empty ``id``, an unknown ``kind``, ``options`` or ``tolerances`` that are not
+        mappings, a negative ``line``.
     """
 
     id: str
@@ -152,6 +158,13 @@ class Campaign:
         The uncertainty budget (``uncertainty = "budget.toml"`` or an ``[uncertainty]`` table).
     decision_rule : str
         ``"simple"`` (default) or ``"guard-band"`` (ISO 14253-1), from ``[uncertainty] decision_rule``.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``folder`` or ``model`` that is not a Path, tables that are not mappings,
+        ``tests`` that are not TestSpecs, an unknown controller or decision rule, a
+        ``budget`` that is not a Budget.
     """
 
     folder: Path

@@ -293,6 +293,11 @@ def overall_verdict(verdicts: Sequence[str]) -> str:
         ``"fail"`` if any test failed; else ``"inconclusive"`` if any test was (guard band); else
         ``"pass"`` if any passed; else ``"not assessed"``.
 
+    Raises
+    ------
+    AxiscalError
+        For ``verdicts`` that are not a sequence of the :data:`VERDICTS`.
+
     Examples
     --------
     >>> overall_verdict(["pass", "not assessed"])
@@ -322,6 +327,11 @@ def results_payload(results: CampaignResults) -> dict[str, Any]:
     -------
     dict
         Ready for :func:`axiscal.io.dumps` (NaN becomes null there).
+
+    Raises
+    ------
+    AxiscalError
+        For ``results`` that are not a :class:`CampaignResults`.
     """
     check_instance("results", results, CampaignResults)
     tests = []

@@ -43,6 +43,11 @@ def svg_of(draw: Callable[[Path], Any]) -> str:
     -------
     str
         The ``<svg>`` element, without XML prolog and metadata.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``draw`` that is not callable.
     """
     if not callable(draw):
         raise AxiscalError(f"draw must be a function that writes a plot to the path it is given, not {type_name(draw)}")
@@ -160,6 +165,11 @@ def evaluation_is_raw(path: Path) -> bool:
     -------
     bool
         True when it has an ``actual_<unit>`` column.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``path`` that is not a file name, or a file that cannot be read.
     """
     from axiscal.io.tabular import read_csv
 

@@ -84,7 +84,25 @@ def atomic_write(path: str | Path, write: Callable[[Path], Any], *, make_parents
 
 
 def write_text(path: str | Path, text: str) -> Path:
-    """Write ``text`` (UTF-8, newlines as given) to ``path`` atomically; see :func:`atomic_write`."""
+    """Write ``text`` (UTF-8, newlines as given) to ``path`` atomically; see :func:`atomic_write`.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file to produce.
+    text : str
+        Its content.
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``text`` that is not a str, or what :func:`atomic_write` raises.
+    """
     if not isinstance(text, str):
         raise AxiscalError(f"text must be a str, not {type(text).__name__}")
     return atomic_write(path, lambda target: target.write_bytes(text.encode("utf-8")))

@@ -57,7 +57,14 @@ def dumps(payload: Any) -> str:
 
 
 def write_json(path: str | Path, payload: Any) -> Path:
-    """Write ``payload`` as JSON to ``path`` atomically."""
+    """Write ``payload`` as JSON to ``path`` atomically.
+
+    Raises
+    ------
+    AxiscalError
+        For a payload JSON cannot write, a ``path`` that is not a file name, a file that cannot
+        be written.
+    """
     return write_text(path, dumps(payload))
 
 
@@ -79,6 +86,11 @@ def json_line(text: str, *keys: str) -> int | None:
     -------
     int or None
 
+    Raises
+    ------
+    AxiscalError
+        For a ``text`` that is not a str.
+
     Examples
     --------
     >>> json_line('{\n  "a": {\n    "b": 1,\n    "c": 2\n  }\n}', "a", "c")
@@ -98,7 +110,13 @@ def json_line(text: str, *keys: str) -> int | None:
 
 
 def read_json(path: str | Path) -> Any:
-    """Parse a JSON file; a missing or malformed file raises AxiscalError naming the line."""
+    """Parse a JSON file; a missing or malformed file raises AxiscalError naming the line.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``path`` that is not a file name, a missing or unreadable file, malformed JSON.
+    """
     from axiscal.io.tabular import read_text
 
     text = read_text(path)
@@ -109,7 +127,13 @@ def read_json(path: str | Path) -> Any:
 
 
 def sidecar_path(csv_path: str | Path) -> Path:
-    """``NAME.json`` beside ``NAME.csv``."""
+    """``NAME.json`` beside ``NAME.csv``.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``csv_path`` that is not a file name.
+    """
     return check_path("csv_path", csv_path).with_suffix(".json")
 
 

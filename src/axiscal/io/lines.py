@@ -34,6 +34,11 @@ class Lines:
         Offset of each line's first byte and one past its last byte before the line end. A file
         ending with a line end has no empty line after it.
 
+    Raises
+    ------
+    AxiscalError
+        For ``data`` that is not bytes.
+
     Examples
     --------
     >>> lines = Lines(b"a\\r\\nb\\rc\\x0cd\\n")

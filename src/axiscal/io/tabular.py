@@ -96,6 +96,12 @@ class CsvTable:
     header_line : int
         The line number of the header.
 
+    Raises
+    ------
+    AxiscalError
+        For a ``path`` that is not a name, a ``header`` that is not a sequence of names,
+        rows and lines of different lengths.
+
     Examples
     --------
     >>> table = parse_csv(["# note", "position_mm, EXX_µm", "0, 1.5", "10, -2"])

@@ -108,6 +108,13 @@ class Pipeline:
         What a dashboard reads.
     latency_capacity : int
         Frames whose delay is kept (the most recent ones).
+
+    Raises
+    ------
+    AxiscalError
+        For a ``system`` that is not a measurement system, a ``source``, ``recorder`` or
+        ``state`` of the wrong kind, a ``latency_capacity`` below 1; :meth:`run` for a bad
+        ``duration_s``, ``progress`` or ``progress_interval_s``.
     """
 
     def __init__(self, system, source, *, recorder: Recorder | None = None, state: LiveState | None = None, latency_capacity: int = 1 << 20):

@@ -118,6 +118,12 @@ class LineDecoder:
     ignored_columns : tuple of str
         Columns the last header named that the system does not know.
 
+    Raises
+    ------
+    AxiscalError
+        For ``channels`` that are not a sequence of names or a ``max_line_bytes`` below 1;
+        :meth:`feed` for data that is not bytes.
+
     Examples
     --------
     >>> decoder = LineDecoder(["a_mm"], max_line_bytes=16)
@@ -254,6 +260,12 @@ def encode_lines(t_s: np.ndarray, values: np.ndarray) -> bytes:
     -------
     bytes
         One UTF-8 line per frame.
+
+    Raises
+    ------
+    AxiscalError
+        For ``t_s`` that is not one-dimensional, ``values`` that is not two-dimensional, or
+        lengths that differ.
     """
     t_s = check_array("t_s", t_s, ndim=1, finite=False)
     values = check_array("values", values, ndim=2, finite=False)
@@ -275,5 +287,10 @@ def header_line(channels: Sequence[str]) -> bytes:
     -------
     bytes
         ``t_s,<channels>`` and a newline.
+
+    Raises
+    ------
+    AxiscalError
+        For ``channels`` that are not a sequence of names.
     """
     return (",".join(("t_s",) + _checked_channels(channels)) + "\n").encode("utf-8")

@@ -75,6 +75,12 @@ def request_allowed(headers: dict[str, str], allowed_hosts: tuple[str, ...] = LO
         True when ``Host`` names an allowed host and ``Origin`` is absent or ``http://`` plus
         exactly that ``Host``.
 
+    Raises
+    ------
+    AxiscalError
+        For ``headers`` that is not a mapping or ``allowed_hosts`` that is not a tuple of
+        names.
+
     Examples
     --------
     >>> request_allowed({"host": "127.0.0.1:8765", "origin": "http://127.0.0.1:8765"})
@@ -147,6 +153,12 @@ class Broadcaster:
         Refreshes per second.
     title : str, keyword-only
         The page's title.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``state`` that is not a :class:`LiveState`, an ``update_hz`` outside
+        :data:`~axiscal.live.state.UPDATE_HZ_RANGE`, a ``title`` that is not a str.
     """
 
     def __init__(self, state: LiveState, *, update_hz: float = 10.0, title: str = "axiscal live"):
@@ -287,6 +299,12 @@ class LiveServer:
     host : str
         Address to listen on (IPv4). Anything but loopback exposes the dashboard and its stream to
         every computer that reaches this one (docs/live.md).
+
+    Raises
+    ------
+    AxiscalError
+        For an ``app`` that is not a Starlette app, a ``port`` outside 0-65535, an empty
+        ``host``.
     """
 
     def __init__(self, app: Starlette, *, port: int = 8765, host: str = HOST):

@@ -89,6 +89,12 @@ class Backoff:
     ----------
     initial_s, factor, maximum_s : float
         First delay (s), growth factor per failed attempt, longest delay (s).
+
+    Raises
+    ------
+    AxiscalError
+        For a delay that is not a positive number of seconds, a factor below 1, or a maximum
+        below the first delay.
     """
 
     def __init__(self, *, initial_s: float = 0.05, factor: float = 2.0, maximum_s: float = 2.0):
@@ -193,6 +199,12 @@ class ReplaySource:
     pace : bool
         True: frames are delivered when their ``t_s`` (relative to the first) has passed;
         False: as fast as the pipeline takes them.
+
+    Raises
+    ------
+    AxiscalError
+        For a bad ``path`` or ``channels``, a ``pace`` that is not a bool, a ``max_batch``
+        below 1, a file that lacks a channel column.
     """
 
     def __init__(self, path: str | Path, channels: Sequence[str], *, pace: bool = True, max_batch: int = 2000):
@@ -393,6 +405,13 @@ class TcpSource(_LineStreamSource):
     clock_offset_s : float, optional
         Monotonic clock minus the sender's ``t_s``, when the sender stamps frames from a clock
         this machine shares (used to measure latency; see benchmarks/realtime_live.py).
+
+    Raises
+    ------
+    AxiscalError
+        For an empty ``host``, a ``port`` outside 1-65535, bad ``channels``, a ``backoff``
+        that is not a :class:`Backoff`, a non-finite clock offset or a timeout that is not
+        positive.
     """
 
     def __init__(
@@ -459,6 +478,12 @@ class SerialSource(_LineStreamSource):
         The port, e.g. ``/dev/ttyUSB0``.
     baud : int
         Baud rate (default 115200).
+
+    Raises
+    ------
+    AxiscalError
+        For an empty ``device``, a ``baud`` below 1, bad ``channels``, a missing pyserial or
+        device.
     """
 
     def __init__(self, device: str, channels: Sequence[str], *, baud: int = 115200, backoff: Backoff | None = None):
@@ -561,6 +586,11 @@ def rtx_parts(argument: str) -> tuple[str, str, str]:
     -------
     tuple of str
         File, unit, channel (empty strings where missing).
+
+    Raises
+    ------
+    AxiscalError
+        For an ``argument`` that is not a str.
 
     Examples
     --------

@@ -47,6 +47,11 @@ def axis_error_columns(letter: str) -> tuple[str, ...]:
     tuple of str
         ``EX<L>_um``, ``EY<L>_um``, ``EZ<L>_um``, ``EA<L>_urad``, ``EB<L>_urad``, ``EC<L>_urad``.
 
+    Raises
+    ------
+    AxiscalError
+        For a ``letter`` that is not one capital letter.
+
     Examples
     --------
     >>> axis_error_columns("Z")[:2]
@@ -73,6 +78,11 @@ def result_columns(axes: tuple[str, ...]) -> tuple[str, ...]:
     -------
     tuple of str
         Display names (``ex_um`` ... ``px_mm`` ... ``x_mm`` ... ``EXX_um`` ...).
+
+    Raises
+    ------
+    AxiscalError
+        For ``axes`` that are not a tuple of capital letters.
     """
     if not isinstance(axes, (tuple, list, str)):
         raise AxiscalError(f"axes must be a tuple of axis letters, not {axes!r}")
@@ -110,6 +120,12 @@ class LiveState:
         Length of the spatial-error history, seconds of stream time.
     history_points : int
         Samples kept in that history.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``system`` that is not a MeasurementSystem, ``bins`` or ``history_points``
+        below 1, a ``history_s`` that is not positive.
     """
 
     def __init__(self, system, *, bins: int = 96, history_s: float = 20.0, history_points: int = 400):

@@ -69,6 +69,11 @@ def format_number(value: Any, digits: int = 3) -> str:
     str
         Fixed decimals, ``n/a`` for a missing or non-finite value.
 
+    Raises
+    ------
+    AxiscalError
+        For a value that is not a number, a text or None, or ``digits`` below 0.
+
     Examples
     --------
     >>> format_number(2.23333), format_number(float("nan"))
@@ -108,6 +113,11 @@ def decision_statement(rule: str) -> str:
     -------
     str
         One sentence, with the standard it comes from.
+
+    Raises
+    ------
+    AxiscalError
+        For an unknown rule.
     """
     from axiscal.uncertainty.decision import DECISION_RULES
 
@@ -126,6 +136,11 @@ def previous_figures(compare: Mapping[str, Any] | None) -> dict[str, Any] | None
     -------
     dict or None
         Test id -> its figures; None without a comparison.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``compare`` that is not a results.json object.
     """
     if compare is None:
         return None
@@ -145,6 +160,11 @@ def compare_label(compare: Mapping[str, Any] | None) -> str | None:
     -------
     str or None
         Its title and date; None without a comparison.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``compare`` that is not a results.json object.
     """
     if compare is None:
         return None
@@ -168,6 +188,11 @@ def verdict_rows(results: CampaignResults, before: Mapping[str, Any] | None) -> 
     -------
     list of dict
         One row per toleranced figure, or per test without a tolerance; texts ready to print.
+
+    Raises
+    ------
+    AxiscalError
+        For ``results`` that are not a CampaignResults or ``before`` that is not a mapping.
     """
     check_instance("results", results, CampaignResults)
     if before is not None:
@@ -205,6 +230,11 @@ def sections(tests: list[TestResult]) -> list[dict[str, Any]]:
     list of dict
         ``anchor``, ``title`` and ``tests`` of each section: one per axis, then squareness,
         circular tests, diagonal checks, 6-DOF recordings.
+
+    Raises
+    ------
+    AxiscalError
+        For ``tests`` that are not a list of TestResult.
     """
     if isinstance(tests, (str, bytes)) or not isinstance(tests, (list, tuple)) or not all(isinstance(t, TestResult) for t in tests):
         raise AxiscalError(f"tests must be a list of TestResult, not {type_name(tests)}")
@@ -256,6 +286,13 @@ def render_html(
     -------
     str
         The HTML text.
+
+    Raises
+    ------
+    AxiscalError
+        For ``results`` that are not a CampaignResults, a ``compare`` that is not a
+        results.json object, a ``volumetric`` that is not a mapping, a ``generated`` that is
+        not a str.
     """
     check_instance("results", results, CampaignResults)
     if volumetric is not None:

@@ -99,6 +99,11 @@ class Budget:
         Refractive-index equation of :func:`axiscal.instruments.air.refractive_index` ("ciddor").
     source : str
         Where the budget came from, for messages.
+
+    Raises
+    ------
+    AxiscalError
+        A value that is not a finite number, a negative uncertainty, an unknown method.
     """
 
     length_U_rel: float = 0.0

@@ -247,6 +247,11 @@ def uncertainty_payload(result: PositioningUncertainty) -> dict:
         ``{"k": 2, "E": {"U": ...}, ..., "M": {"U": ...}, "components_um": {...}}``; with Monte
         Carlo also ``"monte_carlo": {"draws": M, "probability": 0.95, "E": {"low": ..., "high": ...,
         "U": half width}, ...}``.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``result`` that is not a :class:`PositioningUncertainty`.
     """
     check_instance("result", result, PositioningUncertainty)
     body: dict = {"k": int(result.k) if float(result.k).is_integer() else result.k}
@@ -272,6 +277,11 @@ def budget_report(result: PositioningUncertainty) -> str:
     -------
     str
         Rendered from the package template ``templates/uncertainty/budget.txt.j2``.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``result`` that is not a :class:`PositioningUncertainty`.
     """
     from jinja2 import Environment, PackageLoader, StrictUndefined
 

@@ -70,6 +70,13 @@ class MachineUncertainty:
         (rows tx, ty, tz in m; ea, eb, ec in rad); zero where no ``_u`` column was given.
     squareness_rad : dict of str to float
         Standard uncertainty of each squareness term (EC0Y, EB0Z, EA0Z), rad.
+
+    Raises
+    ------
+    AxiscalError
+        For tables that are not a mapping of axis letters to 2-D arrays of finite, non-
+        negative numbers, or squareness terms other than EC0Y, EB0Z, EA0Z with non-negative
+        values.
     """
 
     tables: dict[str, np.ndarray]
