@@ -18,6 +18,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as hs
 
 from axiscal.errors import AxiscalError
 from axiscal.io.templates import render_template
@@ -213,6 +215,11 @@ bad(U, "plot_volumetric_uncertainty", "positions_m", lambda: un.plot_volumetric_
     lambda: un.plot_volumetric_uncertainty({"X": [NAN, 0.0]}, VU, NEVER + ".png"), lambda: un.plot_volumetric_uncertainty({"X": [0.0]}, VU, NEVER + ".png"))
 bad(U, "plot_volumetric_uncertainty", "title", lambda: un.plot_volumetric_uncertainty(Q3, VU, NEVER + ".png", title=5))
 bad(U, "plot_volumetric_uncertainty", "path", lambda: un.plot_volumetric_uncertainty(Q3, VU, None))
+
+VMAP = un.volumetric_uncertainty_map((MACHINE, MU), positions=Q3, draws=40, seed=1)
+bad(U, "VolumetricUncertaintyMap", "path", lambda: VMAP.write_csv(None), lambda: VMAP.plot(None))
+bad(U, "VolumetricUncertaintyMap", "figure format", lambda: VMAP.plot(NEVER + ".txt"))
+bad(U, "VolumetricUncertaintyMap", "title", lambda: VMAP.plot(NEVER + ".png", title=5))
 
 
 # ---------------------------------------------------------------- live
@@ -422,7 +429,7 @@ EXEMPT: dict[str, set[str]] = {
     # result records: the library fills them with what a function computed; a user reads them and
     # does not build them, so they take no user values to check
     "uncertainty": {"Decision", "CoverageInterval", "PositioningUncertainty", "PositioningWithUncertainty", "LineUncertainty",
-                    "VolumetricUncertainty", "VolumetricUncertaintyMap"},
+                    "VolumetricUncertainty"},
     "live": {"RunSummary", "FrameBatch", "Record", "SourceStatus", "ClientStats"},
     "campaign": {"Check", "Figure", "Plot", "TestResult", "CampaignResults"},
     "report": {"ReportFiles", "DemoResult",
@@ -468,3 +475,44 @@ def test_every_public_callable_has_a_bad_argument_case(room):
     covered = {name for r, name, _, _ in CASES if r == room}
     missing = sorted(_public_callables(room) - covered - EXEMPT.get(room, set()))
     assert not missing, f"public callables of axiscal.{room} without a bad-argument case: {missing}"
+
+
+# ---------------------------------------------------------------- properties: finite in, finite out or AxiscalError
+_ANY_FLOAT = hs.floats(allow_nan=True, allow_infinity=True, width=64)
+
+
+def _finite_or_refused(call: Callable[[], object]) -> object | None:
+    """The call's result, or None when it raised AxiscalError; no other exception, no RuntimeWarning."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            return call()
+        except AxiscalError:
+            return None
+
+
+@settings(max_examples=150, deadline=None)
+@given(_ANY_FLOAT, _ANY_FLOAT, _ANY_FLOAT, hs.sampled_from(("simple", "guard-band")))
+def test_decide_on_any_numbers_is_a_verdict_or_refused(value, limit, U, rule):
+    decision = _finite_or_refused(lambda: un.decide(value, limit, U, rule=rule))
+    if decision is not None:
+        assert decision.verdict in ("pass", "fail", "inconclusive")
+        assert np.isfinite([value, limit, U]).all() and U >= 0
+
+
+@settings(max_examples=100, deadline=None)
+@given(hs.lists(_ANY_FLOAT, min_size=0, max_size=60), _ANY_FLOAT)
+def test_coverage_interval_of_any_draws_is_finite_or_refused(draws, probability):
+    interval = _finite_or_refused(lambda: un.coverage_interval(draws, probability))
+    if interval is not None:
+        assert np.isfinite([interval.low, interval.high, interval.mean]).all()
+        assert interval.low <= interval.high
+
+
+@settings(max_examples=100, deadline=None)
+@given(hs.dictionaries(hs.sampled_from(("E", "R", "B")), hs.one_of(_ANY_FLOAT, hs.none(), hs.text(max_size=2))),
+       hs.dictionaries(hs.sampled_from(("E_um", "R_um", "B_um")), hs.one_of(_ANY_FLOAT, hs.text(max_size=2))))
+def test_check_figures_of_any_values_is_checks_or_refused(figures, tolerances):
+    checks = _finite_or_refused(lambda: ca.check_figures(figures, tolerances, {}))
+    if checks is not None:
+        assert all(np.isfinite(c.limit) and c.limit >= 0 for c in checks)

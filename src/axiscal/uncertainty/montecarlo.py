@@ -118,8 +118,9 @@ def coverage_interval(samples, probability: float = 0.95, *, shortest: bool = Fa
     axis = check_count("axis", axis, minimum=-x.ndim, maximum=x.ndim - 1)
     x = np.moveaxis(x, axis, 0)
     m = x.shape[0]
-    if m < 1.0 / (1.0 - probability):
-        raise AxiscalError(f"samples: {m} draws are too few for a {probability:.0%} coverage interval; use at least {int(np.ceil(1 / (1 - probability)))}")
+    if m < max(2.0, 1.0 / (1.0 - probability)):  # two at least: the standard deviation needs them
+        raise AxiscalError(f"samples: {m} draws are too few for a {probability:.0%} coverage interval;"
+                           f" use at least {max(2, int(np.ceil(1 / (1 - probability))))}")
     if shortest:
         ordered = np.sort(x, axis=0)
         q = int(np.floor(probability * m + 0.5))
@@ -131,4 +132,10 @@ def coverage_interval(samples, probability: float = 0.95, *, shortest: bool = Fa
         low, high = np.quantile(x, [(1.0 - probability) / 2.0, (1.0 + probability) / 2.0], axis=0)
     if x.ndim > 1:
         return low, high
-    return CoverageInterval(float(low), float(high), float(x.mean()), float(x.std(ddof=1)), probability, m)
+    scale = float(np.max(np.abs(x)))
+    if scale < 1e100:  # any physical draws: as they are
+        mean, std = float(x.mean()), float(x.std(ddof=1))
+    else:  # draws near the float range: mean and std of x / scale, which do not overflow
+        unit = x / scale
+        mean, std = scale * float(unit.mean()), scale * float(unit.std(ddof=1))
+    return CoverageInterval(float(low), float(high), mean, std, probability, m)
