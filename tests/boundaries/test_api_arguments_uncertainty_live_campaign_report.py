@@ -195,6 +195,7 @@ bad(U, "volumetric_monte_carlo", "machine", lambda: un.volumetric_monte_carlo(No
 bad(U, "volumetric_monte_carlo", "uncertainty", lambda: un.volumetric_monte_carlo(MACHINE, None, Q3, 40))
 bad(U, "volumetric_monte_carlo", "positions", lambda: un.volumetric_monte_carlo(MACHINE, MU, None, 40))
 bad(U, "volumetric_monte_carlo", "draws", lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 0), lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, NAN), lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, "40"))
+bad(U, "volumetric_monte_carlo", "draws: 1 are too few", lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 1, probability=0.01))
 bad(U, "volumetric_monte_carlo", "chunk_draws", lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 40, chunk_draws=0))
 bad(U, "volumetric_monte_carlo", "probability", lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 40, probability=NAN), lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 40, probability=None))
 bad(U, "volumetric_monte_carlo", "seed", lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 40, seed=-1), lambda: un.volumetric_monte_carlo(MACHINE, MU, Q3, 40, seed="a"))

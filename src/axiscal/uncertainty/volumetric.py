@@ -361,9 +361,9 @@ def volumetric_monte_carlo(
     seed = check_count("seed", seed, minimum=0)
     if progress is not None and not callable(progress):
         raise AxiscalError(f"progress must be a function of (done, total), not {type_name(progress)}")
-    if draws < 1.0 / (1.0 - probability):
-        raise AxiscalError(f"{draws} draws are too few for a {probability:.0%} coverage interval;"
-                           f" use at least {int(np.ceil(1.0 / (1.0 - probability)))}")
+    if draws < max(2.0, 1.0 / (1.0 - probability)):  # two at least: the standard deviation needs them
+        raise AxiscalError(f"draws: {draws} are too few for a {probability:.0%} coverage interval;"
+                           f" use at least {max(2, int(np.ceil(1.0 / (1.0 - probability))))}")
     error = machine.volumetric_error(positions)  # also checks the positions
     q = {k: np.atleast_1d(np.asarray(positions[k], dtype=float)) for k in machine.letters}
     n = error.shape[0]
