@@ -445,24 +445,13 @@ EXEMPT: dict[str, set[str]] = {
 
 
 def _public_callables(room: str) -> set[str]:
+    """The public names of a room that can be called, without its Enum and IntFlag classes."""
     module = api(room)
-    names = set()
-    for name in module.__all__:
-        value = getattr(module, name)
-        if callable(value) and not (inspect.isclass(value) and issubclass(value, (int, str))):
-            names.add(name)
-    return names
+    return {name for name in module.__all__
+            if callable(value := getattr(module, name)) and not (inspect.isclass(value) and issubclass(value, (int, str)))}
 
 
-def _ids():
-    counts: dict[str, int] = {}
-    for room, name, _, _ in CASES:
-        key = f"{room}.{name}"
-        counts[key] = counts.get(key, 0) + 1
-        yield f"{key}-{counts[key]}"
-
-
-@pytest.mark.parametrize(("room", "name", "call", "words"), CASES, ids=list(_ids()))
+@pytest.mark.parametrize(("room", "name", "call", "words"), CASES, ids=[f"{r}.{n}-{i}" for i, (r, n, _, _) in enumerate(CASES)])
 def test_bad_arguments_raise_axiscal_error_naming_them(room, name, call, words):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
