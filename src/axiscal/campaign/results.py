@@ -260,6 +260,12 @@ def check_figures(
     check_mapping("units", units, what="a mapping of tolerance keys to units")
     if uncertainty is not None:
         check_mapping("uncertainty", uncertainty, what="a mapping of figure keys to expanded uncertainties")
+        for figure, U in uncertainty.items():
+            if not is_real(U) or not math.isfinite(U) or U < 0:
+                raise AxiscalError(f"uncertainty['{figure}'] must be a non-negative number, not {U!r}")
+    for key, unit in units.items():
+        if not isinstance(unit, str):
+            raise AxiscalError(f"units['{key}'] must be a unit (a str), not {unit!r}")
     check_choice("decision rule", rule, DECISION_RULES)
     out = []
     for key, limit in tolerances.items():

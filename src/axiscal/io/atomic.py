@@ -46,6 +46,8 @@ def atomic_write(path: str | Path, write: Callable[[Path], Any], *, make_parents
         ``path`` that is not a file name or a ``write`` that is not callable.
     """
     path = check_path("path", path)
+    if not isinstance(make_parents, bool):
+        raise AxiscalError(f"make_parents must be a bool, not {make_parents!r}")
     if not callable(write):
         raise AxiscalError(f"write must be a function that fills the file, not {write!r}")
     shown = path

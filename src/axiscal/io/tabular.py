@@ -629,7 +629,7 @@ def write_csv(
         if not isinstance(name, str) or isinstance(values, (str, bytes)) or not hasattr(values, "__len__") or not hasattr(values, "__getitem__"):
             raise AxiscalError(f"columns must map column names to sequences of values, not {name!r}: {type(values).__name__}")
     check_same_length(**{str(k): v for k, v in columns.items()})
-    if not isinstance(fmt, (str, Mapping)):
+    if not isinstance(fmt, (str, Mapping)) or isinstance(fmt, Mapping) and not all(isinstance(f, str) for f in fmt.values()):
         raise AxiscalError(f"fmt must be a format string or a mapping of them, not {fmt!r}")
     names = list(columns)
     n = len(next(iter(columns.values()))) if names else 0

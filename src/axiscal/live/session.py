@@ -231,6 +231,8 @@ class LiveSession:
         _check(rate_hz, duration_s, port, update_hz, load_kg, path, seed)
         for name, flag in (("pace", pace), ("server", server), ("force", force)):
             check_instance(name, flag, bool)
+        if isinstance(allowed_hosts, str) or not isinstance(allowed_hosts, (tuple, list, set, frozenset)):
+            raise AxiscalError(f"allowed_hosts must be a sequence of host names, not {allowed_hosts!r}")
         if not isinstance(bind, str) or not bind.strip():
             raise AxiscalError(f"bind must be an address to listen on, not {bind!r}")
         kind, argument = parse_source(source)

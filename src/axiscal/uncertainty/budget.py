@@ -224,6 +224,8 @@ def budget_from_dict(
     1e-06
     """
     check_mapping("data", data, what="the tables of a budget (a dict)")
+    if not isinstance(source, (str, Path)):
+        raise AxiscalError(f"source must be the file name for messages (a str), not {type_name(source)}")
     if locate is not None and not callable(locate):
         raise AxiscalError(f"locate must be a function of (section, key), not {type_name(locate)}")
     if text is not None and not isinstance(text, str):

@@ -180,6 +180,8 @@ def figure_verdicts(
         if not is_real(limit) or not math.isfinite(limit) or limit < 0:
             raise AxiscalError(f"tolerance '{key}' must be a non-negative number, got {limit!r}")
         value = figures.get(figure)
+        if value is not None and not is_real(value):
+            raise AxiscalError(f"evaluation: figure '{figure}' must be a number (or None when not available), not {value!r}")
         value = math.nan if value is None else abs(float(value))
         if math.isfinite(value):
             out[key] = decide(value, float(limit), U[figure], rule=rule)

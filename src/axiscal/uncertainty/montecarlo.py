@@ -114,6 +114,8 @@ def coverage_interval(samples, probability: float = 0.95, *, shortest: bool = Fa
     2.0
     """
     probability = _probability(probability)
+    if not isinstance(shortest, (bool, np.bool_)):
+        raise AxiscalError(f"shortest must be a bool, not {shortest!r}")
     x = _draws_array(samples)
     axis = check_count("axis", axis, minimum=-x.ndim, maximum=x.ndim - 1)
     x = np.moveaxis(x, axis, 0)

@@ -21,7 +21,7 @@ from __future__ import annotations
 import csv
 import io
 import tempfile
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -359,6 +359,8 @@ def volumetric_monte_carlo(
     chunk_draws = _whole_draws(chunk_draws, "chunk_draws")
     probability = _probability(probability)
     seed = check_count("seed", seed, minimum=0)
+    if scheduler is not None and not isinstance(scheduler, str) and not callable(getattr(scheduler, "submit", None)):
+        raise AxiscalError(f"scheduler must be None, 'local', a scheduler address or a dask.distributed.Client, not {type_name(scheduler)}")
     if progress is not None and not callable(progress):
         raise AxiscalError(f"progress must be a function of (done, total), not {type_name(progress)}")
     if draws < max(2.0, 1.0 / (1.0 - probability)):  # two at least: the standard deviation needs them
@@ -500,6 +502,8 @@ def write_volumetric_uncertainty(
         Positions that do not match the result's points, or a file that cannot be written.
     """
     path = check_path("path", path)
+    if isinstance(sources, (str, bytes, Path)) or not isinstance(sources, Iterable):
+        raise AxiscalError(f"sources must be a sequence of file names, not {sources!r}")
     written = write_text(path, write_csv(None, volumetric_uncertainty_columns(positions, result), fmt="{:.6f}"))
     write_sidecar(written, kind="volumetric uncertainty", sources=list(sources), method="Monte Carlo (JCGM 101)",
                   frame="tool point relative to the workpiece, workpiece frame; actual minus nominal",

@@ -145,6 +145,9 @@ class ColumnMap:
     def __post_init__(self) -> None:
         if not isinstance(self.layout, str) or self.layout not in _LAYOUTS:
             raise AxiscalError(f"layout must be one of {', '.join(_LAYOUTS)}, not '{self.layout}'", **self._at("layout"))
+        if isinstance(self.run_labels, (str, bytes)) or not isinstance(self.run_labels, (tuple, list)) \
+                or not all(isinstance(label, str) for label in self.run_labels):
+            raise AxiscalError(f"run_labels must be a tuple of labels (str), not {self.run_labels!r}", **self._at("runs"))
         if self.layout == "rows" and self.reading is None:
             raise AxiscalError("layout 'rows' needs columns.reading (the reading column)", **self._at("columns.reading"))
         if self.layout == "runs":
@@ -175,6 +178,8 @@ class ColumnMap:
             raise AxiscalError(f"delimiter must be a str or None, not {self.delimiter!r}", **self._at("delimiter"))
         if not isinstance(self.direction_values, Mapping):
             raise AxiscalError(f"direction_values must map words to '+' or '-', not {self.direction_values!r}", **self._at("direction_values"))
+        if not isinstance(self.header, bool):
+            raise AxiscalError(f"header must be true or false, not {self.header!r}", **self._at("header"))
         if isinstance(self.readings, (str, bytes)) or not isinstance(self.readings, (tuple, list)):
             raise AxiscalError(f"readings must be a tuple of columns, not {self.readings!r}", **self._at("columns.readings"))
         for word, d in self.direction_values.items():

@@ -204,6 +204,8 @@ def write_rtx(
     values = check_array("samples", samples, ndim=1).astype("<f8")
     if header is not None:
         check_mapping("header", header)
+        if not all(isinstance(key, str) for key in header):
+            raise AxiscalError(f"header must map keys (str) to values, not {dict(header)!r}")
     lines = {
         "Owner": "axiscal",
         "Sample rate": f"{sample_rate_hz:g}",
