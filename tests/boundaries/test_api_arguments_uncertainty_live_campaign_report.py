@@ -110,10 +110,8 @@ bad(O, "write_rtx", "header", lambda: io.write_rtx(NEVER, [0.0], sample_rate_hz=
 bad(O, "write_rtx_csv", "capture", lambda: io.write_rtx_csv(None, NEVER + ".csv"), lambda: io.write_rtx_csv({"samples_m": []}, NEVER + ".csv"))
 bad(O, "dumps", "payload", lambda: io.dumps(object()), lambda: io.dumps({"a": {1, 2}}), lambda: io.dumps(b"x"))
 bad(O, "write_json", "payload", lambda: io.write_json(NEVER + ".json", {"a": object()}))
-bad(O, "check_instance", "run must be an int, not None", lambda: io.check_instance("run", None, int))
-bad(O, "check_instance", "budget must be a float, not str", lambda: io.check_instance("budget", "x", (float, int)))
-bad(O, "check_instance", "kind must be a type", lambda: io.check_instance("run", 1, None), lambda: io.check_instance("run", 1, ()))
-bad(O, "check_instance", "name", lambda: io.check_instance(None, 1, int))
+bad(O, "check_instance", "run must be a Path, not None", lambda: io.check_instance("run", None, Path))
+bad(O, "check_instance", "budget must be a float", lambda: io.check_instance("budget", "x", (float, int)))
 
 
 # ---------------------------------------------------------------- uncertainty

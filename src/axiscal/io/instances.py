@@ -33,7 +33,7 @@ def type_name(value: Any) -> str:
     return "None" if value is None else type(value).__name__
 
 
-def check_instance(name: str, value: Any, kind: type | tuple[type, ...], what: str | None = None) -> Any:
+def check_instance(name: str, value: Any, kind: type | tuple[type, ...], *, what: str | None = None) -> Any:
     """``value`` if it is a ``kind``, else refused naming ``name``.
 
     Parameters
@@ -44,7 +44,7 @@ def check_instance(name: str, value: Any, kind: type | tuple[type, ...], what: s
         What the caller passed.
     kind : type or tuple of types
         The accepted types.
-    what : str, optional
+    what : str, optional, keyword-only
         How the message speaks of them (default ``"a <Kind>"``).
 
     Returns
@@ -62,10 +62,10 @@ def check_instance(name: str, value: Any, kind: type | tuple[type, ...], what: s
     --------
     >>> check_instance("count", 3, int)
     3
-    >>> check_instance("run", None, int)
+    >>> check_instance("run", None, float)
     Traceback (most recent call last):
     ...
-    axiscal.errors.AxiscalError: run must be an int, not None
+    axiscal.errors.AxiscalError: run must be a float, not None
     """
     if not isinstance(name, str):
         raise AxiscalError(f"name must be the argument's name (a str), not {type_name(name)}")

@@ -308,7 +308,7 @@ class LiveServer:
     """
 
     def __init__(self, app: Starlette, *, port: int = 8765, host: str = HOST):
-        check_instance("app", app, Starlette, "the Starlette app create_app returns")
+        check_instance("app", app, Starlette, what="the Starlette app create_app returns")
         port = check_count("port", port, minimum=0, maximum=65535)
         if not isinstance(host, str) or not host.strip():
             raise AxiscalError(f"host must be an address to listen on, not {host!r}")

@@ -609,7 +609,7 @@ def write_positioning_csv(
     AxiscalError
         If the file cannot be written, or for readings that are not :class:`ImportedReadings`.
     """
-    check_instance("readings", readings, ImportedReadings, "ImportedReadings (what import_readings returns)")
+    check_instance("readings", readings, ImportedReadings, what="ImportedReadings (what import_readings returns)")
     path = check_path("path", path)
     if map_path is not None:
         check_path("map_path", map_path)

@@ -261,7 +261,7 @@ def write_rtx_csv(capture: RtxCapture, path: str | Path) -> Path:
     AxiscalError
         For a capture that is not an :class:`RtxCapture`, or a file that cannot be written.
     """
-    check_instance("capture", capture, RtxCapture, "an RtxCapture (what read_rtx returns)")
+    check_instance("capture", capture, RtxCapture, what="an RtxCapture (what read_rtx returns)")
     path = check_path("path", path)
     text = rtx_csv(capture)
     write_text(path, text)
