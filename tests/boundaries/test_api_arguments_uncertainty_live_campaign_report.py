@@ -112,6 +112,10 @@ bad(O, "dumps", "payload", lambda: io.dumps(object()), lambda: io.dumps({"a": {1
 bad(O, "write_json", "payload", lambda: io.write_json(NEVER + ".json", {"a": object()}))
 bad(O, "check_instance", "run must be a Path, not None", lambda: io.check_instance("run", None, Path))
 bad(O, "check_instance", "budget must be a float", lambda: io.check_instance("budget", "x", (float, int)))
+if hasattr(io, "check_integer"):  # the further shared checks io.arguments provides
+    bad(O, "check_integer", "axis_number", lambda: io.check_integer("axis_number", 1.5), lambda: io.check_integer("axis_number", None))
+if hasattr(io, "check_optional_number"):
+    bad(O, "check_optional_number", "step_m", lambda: io.check_optional_number("step_m", NAN), lambda: io.check_optional_number("step_m", "1"))
 
 
 # ---------------------------------------------------------------- uncertainty
