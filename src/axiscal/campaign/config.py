@@ -17,6 +17,8 @@ from pathlib import Path
 from typing import Any
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_count, check_mapping, check_path
+from axiscal.io.instances import check_instance
 from axiscal.io.schema import TomlLines
 from axiscal.io.tabular import parse_toml, read_text
 
@@ -107,6 +109,12 @@ class TestSpec:
         Limits for this test (merged over the campaign's ``[tolerances]``), figure key -> limit.
     line : int
         The line of ``[[tests]]`` in campaign.toml.
+
+    Raises
+    ------
+    AxiscalError
+        For an empty ``id``, an unknown ``kind``, ``options`` or ``tolerances`` that are not
+        mappings, a negative ``line``.
     """
 
     id: str
@@ -117,6 +125,16 @@ class TestSpec:
     line: int
 
     __test__ = False  # not a pytest test class
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.id, str) or not self.id:
+            raise AxiscalError(f"id must be the test's name (a str), not {self.id!r}")
+        check_choice("test kind", self.kind, KINDS)
+        if self.axis is not None and not isinstance(self.axis, str):
+            raise AxiscalError(f"axis must be an axis letter, a plane or None, not {self.axis!r}")
+        check_mapping("options", self.options)
+        check_mapping("tolerances", self.tolerances)
+        check_count("line", self.line, minimum=0)
 
 
 @dataclass(frozen=True)
@@ -140,6 +158,13 @@ class Campaign:
         The uncertainty budget (``uncertainty = "budget.toml"`` or an ``[uncertainty]`` table).
     decision_rule : str
         ``"simple"`` (default) or ``"guard-band"`` (ISO 14253-1), from ``[uncertainty] decision_rule``.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``folder`` or ``model`` that is not a Path, tables that are not mappings,
+        ``tests`` that are not TestSpecs, an unknown controller or decision rule, a
+        ``budget`` that is not a Budget.
     """
 
     folder: Path
@@ -152,6 +177,23 @@ class Campaign:
     controller: str | None = None
     budget: Any = None
     decision_rule: str = "simple"
+
+    def __post_init__(self) -> None:
+        from axiscal.uncertainty.budget import Budget
+        from axiscal.uncertainty.decision import DECISION_RULES
+
+        check_instance("folder", self.folder, Path)
+        for name in ("campaign", "machine", "instrument", "tolerances"):
+            check_mapping(name, getattr(self, name))
+        if not isinstance(self.tests, tuple) or not all(isinstance(t, TestSpec) for t in self.tests):
+            raise AxiscalError(f"tests must be a tuple of TestSpec, not {self.tests!r}"[:120])
+        if self.model is not None:
+            check_instance("model", self.model, Path)
+        if self.controller is not None:
+            check_choice("controller", self.controller, CONTROLLERS)
+        if self.budget is not None:
+            check_instance("budget", self.budget, Budget)
+        check_choice("decision rule", self.decision_rule, DECISION_RULES)
 
 
 def load_campaign(folder: str | Path) -> Campaign:
@@ -179,7 +221,7 @@ def load_campaign(folder: str | Path) -> Campaign:
     >>> [t.id for t in campaign.tests]  # doctest: +SKIP
     ['positioning-X-1', ...]
     """
-    folder = Path(folder)
+    folder = check_path("folder", folder)
     path = folder if folder.name == CAMPAIGN_FILE and folder.is_file() else folder / CAMPAIGN_FILE
     folder = path.parent.resolve()
     if not path.parent.is_dir():

@@ -14,6 +14,9 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_mapping, is_real
+from axiscal.io.instances import check_instance
 from axiscal.version import __version__
 
 __all__ = [
@@ -243,13 +246,39 @@ def check_figures(
     -------
     list of Check
         One per tolerance whose figure exists.
+
+    Raises
+    ------
+    AxiscalError
+        For arguments that are not mappings, a limit that is not a non-negative number, a figure
+        that is not a number, an unknown rule.
     """
+    from axiscal.uncertainty.decision import DECISION_RULES
+
+    check_mapping("figures", figures, what="a mapping of figure keys to values")
+    check_mapping("tolerances", tolerances, what="a mapping of tolerance keys to limits")
+    check_mapping("units", units, what="a mapping of tolerance keys to units")
+    if uncertainty is not None:
+        check_mapping("uncertainty", uncertainty, what="a mapping of figure keys to expanded uncertainties")
+        for figure, U in uncertainty.items():
+            if not is_real(U) or not math.isfinite(U) or U < 0:
+                raise AxiscalError(f"uncertainty['{figure}'] must be a non-negative number, not {U!r}")
+    for key, unit in units.items():
+        if not isinstance(unit, str):
+            raise AxiscalError(f"units['{key}'] must be a unit (a str), not {unit!r}")
+    check_choice("decision rule", rule, DECISION_RULES)
     out = []
     for key, limit in tolerances.items():
+        if not isinstance(key, str):
+            raise AxiscalError(f"tolerances must be keyed by figure names (str), not {key!r}")
+        if not is_real(limit) or not math.isfinite(limit) or limit < 0:
+            raise AxiscalError(f"tolerance '{key}' must be a non-negative number, not {limit!r}")
         figure = key if key in figures else key.rsplit("_", 1)[0]
         if figure not in figures:
             continue
         value = figures[figure]
+        if value is not None and not is_real(value):
+            raise AxiscalError(f"figures['{figure}'] must be a number (or None when not available), not {value!r}")
         value = float("nan") if value is None else float(value)
         U = None if uncertainty is None else uncertainty.get(figure)
         out.append(Check(figure, key, value, float(limit), units.get(key, key.rsplit("_", 1)[-1]), U, rule))
@@ -270,11 +299,20 @@ def overall_verdict(verdicts: Sequence[str]) -> str:
         ``"fail"`` if any test failed; else ``"inconclusive"`` if any test was (guard band); else
         ``"pass"`` if any passed; else ``"not assessed"``.
 
+    Raises
+    ------
+    AxiscalError
+        For ``verdicts`` that are not a sequence of the :data:`VERDICTS`.
+
     Examples
     --------
     >>> overall_verdict(["pass", "not assessed"])
     'pass'
     """
+    if isinstance(verdicts, (str, bytes)) or not isinstance(verdicts, (Sequence, set, frozenset)):
+        raise AxiscalError(f"verdicts must be a sequence of test verdicts, not {verdicts!r}")
+    for verdict in verdicts:
+        check_choice("verdict", verdict, VERDICTS)
     if "fail" in verdicts:
         return "fail"
     if "inconclusive" in verdicts:
@@ -295,7 +333,13 @@ def results_payload(results: CampaignResults) -> dict[str, Any]:
     -------
     dict
         Ready for :func:`axiscal.io.dumps` (NaN becomes null there).
+
+    Raises
+    ------
+    AxiscalError
+        For ``results`` that are not a :class:`CampaignResults`.
     """
+    check_instance("results", results, CampaignResults)
     tests = []
     for t in results.tests:
         entry: dict[str, Any] = {"id": t.id, "kind": t.kind}

@@ -23,6 +23,8 @@ from axiscal.campaign.results import (
     check_figures,
 )
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_mapping, check_path
+from axiscal.io.instances import check_instance, type_name
 from axiscal.positioning.evaluation import Iso230Result
 from axiscal.units import ARCSEC, MM, UM, URAD
 
@@ -41,7 +43,14 @@ def svg_of(draw: Callable[[Path], Any]) -> str:
     -------
     str
         The ``<svg>`` element, without XML prolog and metadata.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``draw`` that is not callable.
     """
+    if not callable(draw):
+        raise AxiscalError(f"draw must be a function that writes a plot to the path it is given, not {type_name(draw)}")
     with tempfile.TemporaryDirectory(prefix="axiscal-plot-") as folder:
         path = Path(folder) / "plot.svg"
         draw(path)
@@ -156,9 +165,15 @@ def evaluation_is_raw(path: Path) -> bool:
     -------
     bool
         True when it has an ``actual_<unit>`` column.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``path`` that is not a file name, or a file that cannot be read.
     """
     from axiscal.io.tabular import read_csv
 
+    path = check_path("path", path)
     return any(name.startswith("actual_") for name in read_csv(path).header)
 
 
@@ -390,6 +405,10 @@ def run_test(campaign: Campaign, spec: TestSpec, *, compare: Mapping[str, Any] |
     AxiscalError
         For a bad data file (naming it and the line).
     """
+    check_instance("campaign", campaign, Campaign)
+    check_instance("spec", spec, TestSpec)
+    if compare is not None:
+        check_mapping("compare", compare, what="a mapping of test ids to figures")
     runner = KIND_RUNNERS.get(spec.kind)
     if runner is None:
         raise AxiscalError(f"tests of kind '{spec.kind}' cannot be run yet", path=campaign.folder / "campaign.toml", line=spec.line)
@@ -426,7 +445,13 @@ def run_campaign(
         For a bad campaign or a bad data file (naming the file and line).
     """
     if not isinstance(campaign, Campaign):
+        if not isinstance(campaign, (str, Path)):
+            raise AxiscalError(f"campaign must be a Campaign or its folder, not {type_name(campaign)}")
         campaign = load_campaign(campaign)
+    if progress is not None and not callable(progress):
+        raise AxiscalError(f"progress must be a function of (done, total, spec), not {type_name(progress)}")
+    if compare is not None:
+        check_mapping("compare", compare, what="a results.json object (a mapping)")
     results = []
     previous = None
     if compare is not None:

@@ -14,6 +14,9 @@ from typing import Any
 import numpy as np
 
 from axiscal.campaign.results import Figure, Plot
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_path
+from axiscal.io.instances import check_instance, type_name
 from axiscal.model.machine import Machine, load_machine
 from axiscal.model.volumetric import volumetric_map
 from axiscal.units import MM, UM
@@ -44,9 +47,18 @@ def plot_volume(machine: Machine, path: str | Path, *, count: int = GRID_POINTS)
     -------
     dict
         ``max_um``, ``rms_um``, ``max_at_mm`` (axis -> position) over the grid.
-    """
-    from axiscal.io.figures import pyplot, save_figure
 
+    Raises
+    ------
+    AxiscalError
+        For a ``machine`` that is not a :class:`~axiscal.model.Machine`, a path without a figure
+        suffix, a ``count`` below 2.
+    """
+    from axiscal.io.figures import check_figure_path, pyplot, save_figure
+
+    check_instance("machine", machine, Machine)
+    check_figure_path(path)
+    count = check_count("count", count, minimum=2)
     letters = [letter for letter in machine.axes if letter in "XYZ"]
     axes = {letter: _axis_grid(machine, letter, count) for letter in letters}
     mesh = np.meshgrid(*axes.values(), indexing="ij")
@@ -114,7 +126,15 @@ def volumetric_section(model: str | Path, svg_of: Callable[[Callable[[Path], Any
     -------
     dict
         ``method``, ``table`` (list of Figure), ``plots`` (list of Plot) and ``figures`` (for results.json).
+
+    Raises
+    ------
+    AxiscalError
+        For a bad machine description (naming the file and line) or an ``svg_of`` that is not callable.
     """
+    model = check_path("model", model)
+    if not callable(svg_of):
+        raise AxiscalError(f"svg_of must be a function that turns a plot into SVG text, not {type_name(svg_of)}")
     machine = load_machine(model)
     holder: list[dict[str, Any]] = []
     svg = svg_of(lambda p: holder.append(plot_volume(machine, p)))

@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_path
 
 __all__ = ["atomic_write", "write_text"]
 
@@ -41,10 +42,15 @@ def atomic_write(path: str | Path, write: Callable[[Path], Any], *, make_parents
     Raises
     ------
     AxiscalError
-        If the folder cannot be made or the file cannot be written; it names the file.
+        If the folder cannot be made or the file cannot be written; it names the file. Also for a
+        ``path`` that is not a file name or a ``write`` that is not callable.
     """
+    path = check_path("path", path)
+    if not isinstance(make_parents, bool):
+        raise AxiscalError(f"make_parents must be a bool, not {make_parents!r}")
+    if not callable(write):
+        raise AxiscalError(f"write must be a function that fills the file, not {write!r}")
     shown = path
-    path = Path(path)
     tmp: Path | None = None
     try:
         if path.is_symlink():
@@ -80,7 +86,27 @@ def atomic_write(path: str | Path, write: Callable[[Path], Any], *, make_parents
 
 
 def write_text(path: str | Path, text: str) -> Path:
-    """Write ``text`` (UTF-8, newlines as given) to ``path`` atomically; see :func:`atomic_write`."""
+    """Write ``text`` (UTF-8, newlines as given) to ``path`` atomically; see :func:`atomic_write`.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file to produce.
+    text : str
+        Its content.
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``text`` that is not a str, or what :func:`atomic_write` raises.
+    """
+    if not isinstance(text, str):
+        raise AxiscalError(f"text must be a str, not {type(text).__name__}")
     return atomic_write(path, lambda target: target.write_bytes(text.encode("utf-8")))
 
 

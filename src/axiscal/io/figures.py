@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_path
 from axiscal.io.atomic import atomic_write
 
 __all__ = ["FIGURE_FORMATS", "check_figure_path", "pyplot", "save_figure"]
@@ -30,7 +31,7 @@ def pyplot():
 
 def check_figure_path(path: str | Path) -> Path:
     """``path`` if its suffix names a figure format; otherwise AxiscalError naming the formats."""
-    path = Path(path)
+    path = check_path("path", path)
     suffix = path.suffix.lower().lstrip(".")
     if suffix not in FIGURE_FORMATS:
         raise AxiscalError(

@@ -8,13 +8,14 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_path
 from axiscal.io.atomic import write_text
 from axiscal.version import __version__
 
@@ -42,12 +43,28 @@ def to_plain(value: Any) -> Any:
 
 
 def dumps(payload: Any) -> str:
-    """The JSON text of ``payload`` (indented, ending in a newline); NaN and infinities are null."""
-    return json.dumps(to_plain(payload), indent=2, ensure_ascii=False) + "\n"
+    """The JSON text of ``payload`` (indented, ending in a newline); NaN and infinities are null.
+
+    Raises
+    ------
+    AxiscalError
+        For a payload holding a value JSON cannot write (an object, a set, bytes, a complex number).
+    """
+    try:
+        return json.dumps(to_plain(payload), indent=2, ensure_ascii=False) + "\n"
+    except (TypeError, ValueError) as exc:
+        raise AxiscalError(f"payload holds a value JSON cannot write ({exc})") from None
 
 
 def write_json(path: str | Path, payload: Any) -> Path:
-    """Write ``payload`` as JSON to ``path`` atomically."""
+    """Write ``payload`` as JSON to ``path`` atomically.
+
+    Raises
+    ------
+    AxiscalError
+        For a payload JSON cannot write, a ``path`` that is not a file name, a file that cannot
+        be written.
+    """
     return write_text(path, dumps(payload))
 
 
@@ -69,6 +86,11 @@ def json_line(text: str, *keys: str) -> int | None:
     -------
     int or None
 
+    Raises
+    ------
+    AxiscalError
+        For a ``text`` that is not a str.
+
     Examples
     --------
     >>> json_line('{\n  "a": {\n    "b": 1,\n    "c": 2\n  }\n}', "a", "c")
@@ -76,6 +98,8 @@ def json_line(text: str, *keys: str) -> int | None:
     """
     import re
 
+    if not isinstance(text, str):
+        raise AxiscalError(f"text must be the JSON text (a str), not {type(text).__name__}")
     at, found = 0, None
     for key in keys:
         match = re.compile(re.escape(json.dumps(str(key), ensure_ascii=False)) + r"\s*:").search(text, at)
@@ -86,7 +110,13 @@ def json_line(text: str, *keys: str) -> int | None:
 
 
 def read_json(path: str | Path) -> Any:
-    """Parse a JSON file; a missing or malformed file raises AxiscalError naming the line."""
+    """Parse a JSON file; a missing or malformed file raises AxiscalError naming the line.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``path`` that is not a file name, a missing or unreadable file, malformed JSON.
+    """
     from axiscal.io.tabular import read_text
 
     text = read_text(path)
@@ -97,8 +127,14 @@ def read_json(path: str | Path) -> Any:
 
 
 def sidecar_path(csv_path: str | Path) -> Path:
-    """``NAME.json`` beside ``NAME.csv``."""
-    return Path(csv_path).with_suffix(".json")
+    """``NAME.json`` beside ``NAME.csv``.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``csv_path`` that is not a file name.
+    """
+    return check_path("csv_path", csv_path).with_suffix(".json")
 
 
 def write_sidecar(
@@ -128,8 +164,21 @@ def write_sidecar(
     -------
     Path
         The sidecar's path.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``csv_path`` that is not a file name, an empty ``kind``, ``units`` that is not a
+        mapping or ``sources`` that is not a sequence of names; or when the file cannot be written.
     """
-    payload: dict[str, Any] = {"kind": kind, "file": Path(csv_path).name, "axiscal_version": __version__}
+    csv_path = check_path("csv_path", csv_path)
+    if not isinstance(kind, str) or not kind.strip():
+        raise AxiscalError(f"kind must say what the file holds (a str), not {kind!r}")
+    if units is not None and not isinstance(units, Mapping):
+        raise AxiscalError(f"units must map column names to units, not {type(units).__name__}")
+    if isinstance(sources, (str, bytes, Path)) or not isinstance(sources, Iterable):
+        raise AxiscalError(f"sources must be a sequence of file names, not {sources!r}")
+    payload: dict[str, Any] = {"kind": kind, "file": csv_path.name, "axiscal_version": __version__}
     if units:
         payload["units"] = dict(units)
     if sources:

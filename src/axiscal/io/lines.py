@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from axiscal.errors import AxiscalError
+
 __all__ = ["Lines"]
 
 # bytes that may start a line that is blank or a comment once stripped of white space (ASCII white
@@ -32,6 +34,11 @@ class Lines:
         Offset of each line's first byte and one past its last byte before the line end. A file
         ending with a line end has no empty line after it.
 
+    Raises
+    ------
+    AxiscalError
+        For ``data`` that is not bytes.
+
     Examples
     --------
     >>> lines = Lines(b"a\\r\\nb\\rc\\x0cd\\n")
@@ -40,6 +47,8 @@ class Lines:
     """
 
     def __init__(self, data: bytes):
+        if not isinstance(data, bytes):
+            raise AxiscalError(f"data must be the file's content (bytes), not {type(data).__name__}")
         self.data = data
         arr = np.frombuffer(data, dtype=np.uint8)
         if b"\r" in data:

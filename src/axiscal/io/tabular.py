@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_path
+from axiscal.io.arguments import check_count, check_mapping, check_path, check_same_length
 from axiscal.io.atomic import write_text
 from axiscal.io.lines import Lines
 
@@ -96,6 +96,12 @@ class CsvTable:
     header_line : int
         The line number of the header.
 
+    Raises
+    ------
+    AxiscalError
+        For a ``path`` that is not a name, a ``header`` that is not a sequence of names,
+        rows and lines of different lengths.
+
     Examples
     --------
     >>> table = parse_csv(["# note", "position_mm, EXX_µm", "0, 1.5", "10, -2"])
@@ -112,7 +118,15 @@ class CsvTable:
     decimal_comma: bool = False
 
     def __post_init__(self) -> None:
+        if not isinstance(self.path, (str, os.PathLike)):
+            raise AxiscalError(f"path must be the file's name (a str), not {self.path!r}")
+        if isinstance(self.header, (str, bytes)) or not isinstance(self.header, Iterable):
+            raise AxiscalError(f"header must be a sequence of column names, not {self.header!r}")
+        if not all(isinstance(name, str) for name in self.header):
+            raise AxiscalError(f"header must be a sequence of column names (str), not {tuple(self.header)!r}")
         rows, lines = self.__dict__["_rows"], self.__dict__["_lines"]
+        if rows is not None and (lines is None or len(tuple(lines)) != len(tuple(rows))):
+            raise AxiscalError("rows and lines must have the same length (one line number per row)")
         if rows is not None:
             self.__dict__["_rows"] = tuple(tuple(row) for row in rows)
             self.__dict__["_lines"] = lines = tuple(lines)
@@ -373,6 +387,14 @@ def parse_csv(lines: Iterable[str], *, path: str = "<input>", min_rows: int = 1)
     AxiscalError
         As :func:`read_csv`.
     """
+    if isinstance(lines, (str, bytes)) or not isinstance(lines, Iterable):
+        raise AxiscalError(f"lines must be an iterable of str (the lines of the text), not {type(lines).__name__}")
+    lines = list(lines)
+    if not all(isinstance(line, str) for line in lines):
+        raise AxiscalError("lines must be an iterable of str (the lines of the text), not of other things")
+    if not isinstance(path, (str, os.PathLike)):
+        raise AxiscalError(f"path must be the name errors give (a str), not {path!r}")
+    min_rows = check_count("min_rows", min_rows, minimum=0)
     text = "\n".join(line[:-1] if line.endswith("\n") else line for line in lines)
     return _parse(text.encode("utf-8", errors="surrogatepass"), path, min_rows)
 
@@ -599,8 +621,16 @@ def write_csv(
     Raises
     ------
     AxiscalError
-        If the file cannot be written (the file that was there is left as it was).
+        If the file cannot be written (the file that was there is left as it was); for columns
+        that are not a mapping of names to sequences of one length, or a format that is not one.
     """
+    check_mapping("columns", columns, what="a mapping of column names to values")
+    for name, values in columns.items():
+        if not isinstance(name, str) or isinstance(values, (str, bytes)) or not hasattr(values, "__len__") or not hasattr(values, "__getitem__"):
+            raise AxiscalError(f"columns must map column names to sequences of values, not {name!r}: {type(values).__name__}")
+    check_same_length(**{str(k): v for k, v in columns.items()})
+    if not isinstance(fmt, (str, Mapping)) or isinstance(fmt, Mapping) and not all(isinstance(f, str) for f in fmt.values()):
+        raise AxiscalError(f"fmt must be a format string or a mapping of them, not {fmt!r}")
     names = list(columns)
     n = len(next(iter(columns.values()))) if names else 0
     out = [",".join(names)]
@@ -609,7 +639,10 @@ def write_csv(
         cells = []
         for name, f in zip(names, formats):
             value = columns[name][k]
-            cells.append(value if isinstance(value, str) else f.format(float(value)))
+            try:
+                cells.append(value if isinstance(value, str) else f.format(float(value)))
+            except (TypeError, ValueError, IndexError, KeyError) as exc:
+                raise AxiscalError(f"fmt {f!r} cannot write {value!r} (columns['{name}'] row {k}: {exc})") from None
         out.append(",".join(cells))
     text = "\n".join(out) + "\n"
     if path is not None:
@@ -654,6 +687,8 @@ def parse_toml(text: str, *, path: str | Path | None = None) -> dict:
     """
     import tomllib
 
+    if not isinstance(text, str):
+        raise AxiscalError(f"text must be the TOML text (a str), not {type(text).__name__}")
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

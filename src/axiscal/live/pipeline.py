@@ -21,11 +21,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_number
+from axiscal.io.instances import check_instance, type_name
 from axiscal.live.protocol import FrameBatch
 from axiscal.live.recorder import Recorder
 from axiscal.live.state import LiveState, result_columns
 from axiscal.measurement.display import to_display
 from axiscal.measurement.faults import mark_malformed
+from axiscal.measurement.pipeline import MeasurementSystem
 
 #: seconds per millisecond (delays are shown in ms)
 MS = 1e-3
@@ -104,9 +108,25 @@ class Pipeline:
         What a dashboard reads.
     latency_capacity : int
         Frames whose delay is kept (the most recent ones).
+
+    Raises
+    ------
+    AxiscalError
+        For a ``system`` that is not a measurement system, a ``source``, ``recorder`` or
+        ``state`` of the wrong kind, a ``latency_capacity`` below 1; :meth:`run` for a bad
+        ``duration_s``, ``progress`` or ``progress_interval_s``.
     """
 
     def __init__(self, system, source, *, recorder: Recorder | None = None, state: LiveState | None = None, latency_capacity: int = 1 << 20):
+        if not isinstance(system, MeasurementSystem) and not (hasattr(system, "channels") and hasattr(system, "axes")):
+            raise AxiscalError(f"system must be a MeasurementSystem, not {type_name(system)}")
+        if source is not None:  # None: a pipeline only fed by process() (checked again by run())
+            _check_source(source)
+        if recorder is not None:
+            check_instance("recorder", recorder, Recorder)
+        if state is not None:
+            check_instance("state", state, LiveState)
+        latency_capacity = check_count("latency_capacity", latency_capacity)
         self.system = system
         self.source = source
         self.recorder = recorder
@@ -266,6 +286,8 @@ class Pipeline:
         -------
         RunSummary
         """
+        _check_source(self.source)
+        _check_run(stop, duration_s, progress, progress_interval_s)
         start = time.monotonic()
         deadline = np.inf if duration_s is None else start + duration_s
         next_report = start + progress_interval_s
@@ -283,3 +305,20 @@ class Pipeline:
                     progress(self.summary(now - start, recent=20000))
         self.publish_status()
         return self.summary(time.monotonic() - start)
+
+
+def _check_source(source) -> None:
+    """Refuse a source that is not one of :mod:`axiscal.live.sources` (or shaped like one)."""
+    if not all(hasattr(source, name) for name in ("read", "close", "status", "finished", "clock_offset_s")):
+        raise AxiscalError(f"source must be a source of axiscal.live.sources (with read, close and status), not {type_name(source)}")
+
+
+def _check_run(stop, duration_s, progress, progress_interval_s) -> None:
+    """Refuse the arguments of a run that would fail only later, inside the loop."""
+    if stop is not None and not callable(getattr(stop, "is_set", None)):
+        raise AxiscalError(f"stop must be a threading.Event, not {type_name(stop)}")
+    if duration_s is not None:
+        check_number("duration_s", duration_s, nonnegative=True)
+    if progress is not None and not callable(progress):
+        raise AxiscalError(f"progress must be a function of the running summary, not {type_name(progress)}")
+    check_number("progress_interval_s", progress_interval_s, positive=True)

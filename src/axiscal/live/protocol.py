@@ -24,6 +24,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_count, check_same_length
+from axiscal.io.instances import type_name
 
 __all__ = ["MAX_LINE_BYTES", "FrameBatch", "LineDecoder", "encode_lines", "header_line"]
 
@@ -79,6 +81,18 @@ class FrameBatch:
         )
 
 
+def _checked_channels(channels: Sequence[str], name: str = "channels") -> tuple[str, ...]:
+    """``channels`` as a tuple of non-empty names, else refused naming ``name`` (checked once, where a
+    source, decoder or record is made, never per frame)."""
+    if isinstance(channels, (str, bytes)) or not isinstance(channels, Iterable):
+        raise AxiscalError(f"{name} must be a sequence of channel names, not {type_name(channels) if not isinstance(channels, str) else repr(channels)}")
+    out = tuple(channels)
+    for channel in out:
+        if not isinstance(channel, str) or not channel.strip():
+            raise AxiscalError(f"{name} must be a sequence of channel names, not holding {channel!r}")
+    return out
+
+
 def _cell(text: str) -> float:
     try:
         return float(text)
@@ -104,6 +118,12 @@ class LineDecoder:
     ignored_columns : tuple of str
         Columns the last header named that the system does not know.
 
+    Raises
+    ------
+    AxiscalError
+        For ``channels`` that are not a sequence of names or a ``max_line_bytes`` below 1;
+        :meth:`feed` for data that is not bytes.
+
     Examples
     --------
     >>> decoder = LineDecoder(["a_mm"], max_line_bytes=16)
@@ -113,9 +133,8 @@ class LineDecoder:
     """
 
     def __init__(self, channels: Sequence[str], *, max_line_bytes: int = MAX_LINE_BYTES):
-        if not max_line_bytes > 0:
-            raise AxiscalError(f"the longest line must be a positive number of bytes, got {max_line_bytes}")
-        self.channels = tuple(channels)
+        check_count("max_line_bytes", max_line_bytes, minimum=1)
+        self.channels = _checked_channels(channels)
         self.max_line_bytes = int(max_line_bytes)
         self._discarding = False
         self.overlong_lines = 0
@@ -145,6 +164,8 @@ class LineDecoder:
         ``\\n``, ``\\r\\n`` and ``\\r`` end a line. A line longer than ``max_line_bytes`` is one
         malformed frame; what follows of it up to the next line end is dropped.
         """
+        if not isinstance(data, (bytes, bytearray)):
+            raise AxiscalError(f"data must be the bytes a source read, not {type_name(data)}")
         data = data.replace(b"\r", b"\n")  # CR-only and CRLF ends; the empty line a CRLF leaves is skipped
         if self._discarding:  # inside an overlong line: drop up to its end
             end = data.find(b"\n")
@@ -177,6 +198,8 @@ class LineDecoder:
 
         ``None`` stands for a line that was too long to keep: it becomes one malformed frame.
         """
+        if isinstance(lines, (str, bytes)) or not isinstance(lines, Iterable):
+            raise AxiscalError(f"lines must be an iterable of text lines, not {type_name(lines)}")
         segments: list[FrameBatch] = []
         rows: list[list[str]] = []
         for line in lines:
@@ -237,7 +260,16 @@ def encode_lines(t_s: np.ndarray, values: np.ndarray) -> bytes:
     -------
     bytes
         One UTF-8 line per frame.
+
+    Raises
+    ------
+    AxiscalError
+        For ``t_s`` that is not one-dimensional, ``values`` that is not two-dimensional, or
+        lengths that differ.
     """
+    t_s = check_array("t_s", t_s, ndim=1, finite=False)
+    values = check_array("values", values, ndim=2, finite=False)
+    check_same_length(t_s=t_s, values=values)
     table = np.column_stack([t_s, values])
     text = "".join(",".join(repr(v) for v in row) + "\n" for row in table.tolist())
     return text.encode("utf-8")
@@ -255,5 +287,10 @@ def header_line(channels: Sequence[str]) -> bytes:
     -------
     bytes
         ``t_s,<channels>`` and a newline.
+
+    Raises
+    ------
+    AxiscalError
+        For ``channels`` that are not a sequence of names.
     """
-    return (",".join(("t_s",) + tuple(channels)) + "\n").encode("utf-8")
+    return (",".join(("t_s",) + _checked_channels(channels)) + "\n").encode("utf-8")

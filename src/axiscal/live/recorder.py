@@ -34,7 +34,10 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_mapping, check_number, check_path
+from axiscal.io.instances import check_instance
 from axiscal.io.jsonio import read_json, sidecar_path, write_sidecar
+from axiscal.live.protocol import _checked_channels
 from axiscal.measurement.faults import fault_legend
 from axiscal.measurement.offline import RECORD_KIND, numeric_columns, read_frames_table
 
@@ -83,11 +86,13 @@ class Recorder:
         metadata: Mapping[str, object] | None = None,
         overwrite: bool = True,
     ):
-        if not sync_interval_s > 0:
-            raise AxiscalError(f"sync interval must be positive, got {sync_interval_s}")
-        self.path = Path(path)
-        self.channels = tuple(channels)
-        self.result_columns = tuple(result_columns)
+        check_number("sync_interval_s", sync_interval_s, positive=True)
+        if metadata is not None:
+            check_mapping("metadata", metadata)
+        check_instance("overwrite", overwrite, bool)
+        self.path = check_path("path", path)
+        self.channels = _checked_channels(channels)
+        self.result_columns = _checked_channels(result_columns, "result_columns")
         self.columns = ("t_s",) + self.channels + ("fault",) + self.result_columns
         self.sync_interval_s = float(sync_interval_s)
         self._row_format = ",".join(["%.9f"] + ["%.15g"] * len(self.channels) + ["%d"] + ["%.9g"] * len(self.result_columns)) + "\n"
@@ -262,7 +267,7 @@ def read_record(path: str | Path) -> Record:
         If the file is missing, has no header with ``t_s``, or a complete line has a wrong number of
         cells (naming the file and line).
     """
-    path = Path(path)
+    path = check_path("path", path)
     table, truncated = read_frames_table(path, min_rows=0)
     if "t_s" not in table.header:
         raise AxiscalError(f"no 't_s' column (columns are: {', '.join(table.header)})", path=path, line=table.header_line)

@@ -39,6 +39,8 @@ from starlette.staticfiles import StaticFiles
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_mapping, is_real
+from axiscal.io.instances import check_instance, type_name
 from axiscal.live.state import UPDATE_HZ_RANGE, LiveState
 
 __all__ = ["WEB", "HOST", "LOOPBACK_HOSTS", "ClientStats", "Broadcaster", "request_allowed", "create_app", "LiveServer"]
@@ -73,6 +75,12 @@ def request_allowed(headers: dict[str, str], allowed_hosts: tuple[str, ...] = LO
         True when ``Host`` names an allowed host and ``Origin`` is absent or ``http://`` plus
         exactly that ``Host``.
 
+    Raises
+    ------
+    AxiscalError
+        For ``headers`` that is not a mapping or ``allowed_hosts`` that is not a tuple of
+        names.
+
     Examples
     --------
     >>> request_allowed({"host": "127.0.0.1:8765", "origin": "http://127.0.0.1:8765"})
@@ -82,11 +90,14 @@ def request_allowed(headers: dict[str, str], allowed_hosts: tuple[str, ...] = LO
     >>> request_allowed({"host": "localhost:8765", "origin": "http://evil.example"})
     False
     """
+    check_mapping("headers", headers, what="the request's headers (a mapping)")
+    if isinstance(allowed_hosts, str) or not isinstance(allowed_hosts, (tuple, list, frozenset, set)):
+        raise AxiscalError(f"allowed_hosts must be a tuple of host names, not {allowed_hosts!r}")
     host = headers.get("host", "")
-    if not host or _host_name(host) not in allowed_hosts:
+    if not isinstance(host, str) or not host or _host_name(host) not in allowed_hosts:
         return False
     origin = headers.get("origin")
-    return origin is None or origin.strip().lower() == f"http://{host.strip().lower()}"
+    return origin is None or isinstance(origin, str) and origin.strip().lower() == f"http://{host.strip().lower()}"
 
 
 class _GuardHosts:
@@ -142,12 +153,21 @@ class Broadcaster:
         Refreshes per second.
     title : str, keyword-only
         The page's title.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``state`` that is not a :class:`LiveState`, an ``update_hz`` outside
+        :data:`~axiscal.live.state.UPDATE_HZ_RANGE`, a ``title`` that is not a str.
     """
 
     def __init__(self, state: LiveState, *, update_hz: float = 10.0, title: str = "axiscal live"):
         low, high = UPDATE_HZ_RANGE
-        if not (math.isfinite(update_hz) and low <= update_hz <= high):
-            raise AxiscalError(f"update rate must be {low:g} to {high:g} per second, got {update_hz}")
+        if not (is_real(update_hz) and math.isfinite(update_hz) and low <= update_hz <= high):
+            raise AxiscalError(f"update_hz: the update rate must be {low:g} to {high:g} per second, not {update_hz!r}")
+        check_instance("state", state, LiveState)
+        if not isinstance(title, str):
+            raise AxiscalError(f"title must be a str, not {type_name(title)}")
         self.state = state
         self.interval_s = 1.0 / update_hz
         self.title = title
@@ -202,6 +222,11 @@ def create_app(
         If ``update_hz`` is outside :data:`~axiscal.live.state.UPDATE_HZ_RANGE` or a host name is
         empty or holds a port.
     """
+    check_instance("state", state, LiveState)
+    if isinstance(allowed_hosts, str) or not isinstance(allowed_hosts, (tuple, list, frozenset, set)):
+        raise AxiscalError(f"allowed_hosts must be a sequence of host names, not {allowed_hosts!r}")
+    if not all(isinstance(name, str) for name in allowed_hosts):
+        raise AxiscalError(f"allowed_hosts must hold host names (str), not {tuple(allowed_hosts)!r}")
     extra = tuple(name.strip().lower() for name in allowed_hosts)
     for name in extra:
         if not name or "/" in name or (":" in name and not name.startswith("[")):
@@ -274,9 +299,19 @@ class LiveServer:
     host : str
         Address to listen on (IPv4). Anything but loopback exposes the dashboard and its stream to
         every computer that reaches this one (docs/live.md).
+
+    Raises
+    ------
+    AxiscalError
+        For an ``app`` that is not a Starlette app, a ``port`` outside 0-65535, an empty
+        ``host``.
     """
 
     def __init__(self, app: Starlette, *, port: int = 8765, host: str = HOST):
+        check_instance("app", app, Starlette, what="the Starlette app create_app returns")
+        port = check_count("port", port, minimum=0, maximum=65535)
+        if not isinstance(host, str) or not host.strip():
+            raise AxiscalError(f"host must be an address to listen on, not {host!r}")
         self.app = app
         self.host = host
         config = uvicorn.Config(

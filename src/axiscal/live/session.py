@@ -18,8 +18,10 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_number, check_path, is_real
+from axiscal.io.instances import check_instance, type_name
 from axiscal.io.jsonio import sidecar_path
-from axiscal.live.pipeline import Pipeline, RunSummary
+from axiscal.live.pipeline import Pipeline, RunSummary, _check_run
 from axiscal.live.recorder import Recorder
 from axiscal.live.sources import MAX_RATE_HZ, open_source, parse_source, rtx_parts
 from axiscal.live.state import UPDATE_HZ_RANGE, LiveState, result_columns
@@ -54,6 +56,12 @@ def build_system(machine: str | Path | None, source_kind: str, *, seed: int = 0,
     AxiscalError
         If the machine file is wrong, or the sim source cannot feed the machine's channels.
     """
+    if machine is not None:
+        check_path("machine", machine)
+    if not isinstance(source_kind, str) or source_kind not in _SOURCE_KINDS:
+        raise AxiscalError(f"unknown source_kind {source_kind!r}; use one of {', '.join(_SOURCE_KINDS)}")
+    seed = check_count("seed", seed, minimum=0)
+    load_kg = check_number("load_kg", load_kg, nonnegative=True)
     built: list[VirtualModule] = []
 
     def module() -> VirtualModule:
@@ -76,26 +84,34 @@ def build_system(machine: str | Path | None, source_kind: str, *, seed: int = 0,
     return system, module
 
 
+_SOURCE_KINDS = ("sim", "replay", "rtx", "tcp", "serial")
+
+
 def _finite(value: float) -> bool:
-    return isinstance(value, (int, float)) and math.isfinite(value)
+    return is_real(value) and math.isfinite(value)
+
+
+def _shown(value: object) -> str:
+    """A number as ``:g`` shows it; anything else as its repr."""
+    return f"{value:g}" if is_real(value) else repr(value)
 
 
 def _check(rate_hz: float, duration_s: float | None, port: int, update_hz: float, load_kg: float, path: str, seed: int) -> None:
     """Refuse a bad setting before anything is built or allocated (every number must be finite)."""
     if not (_finite(rate_hz) and 0 < rate_hz <= MAX_RATE_HZ):
-        raise AxiscalError(f"--rate must be a positive number of frames per second up to {MAX_RATE_HZ:g}, got {rate_hz:g}")
+        raise AxiscalError(f"--rate must be a positive number of frames per second up to {MAX_RATE_HZ:g}, got {_shown(rate_hz)}")
     if duration_s is not None and not (_finite(duration_s) and duration_s > 0):
-        raise AxiscalError(f"--duration must be positive seconds, got {duration_s:g}")
-    if not 0 <= port <= 65535:
+        raise AxiscalError(f"--duration must be positive seconds, got {_shown(duration_s)}")
+    if not isinstance(port, int) or isinstance(port, bool) or not 0 <= port <= 65535:
         raise AxiscalError(f"--port must be 0-65535, got {port}")
     low, high = UPDATE_HZ_RANGE
     if not (_finite(update_hz) and low <= update_hz <= high):
-        raise AxiscalError(f"--update-hz must be {low:g} to {high:g} refreshes per second, got {update_hz:g}")
+        raise AxiscalError(f"--update-hz must be {low:g} to {high:g} refreshes per second, got {_shown(update_hz)}")
     if not (_finite(load_kg) and load_kg >= 0):
-        raise AxiscalError(f"--load-kg must be a finite mass of 0 kg or more, got {load_kg:g}")
-    if seed < 0:
-        raise AxiscalError(f"--seed must not be negative, got {seed}")
-    if path not in PATHS:
+        raise AxiscalError(f"--load-kg must be a finite mass of 0 kg or more, got {_shown(load_kg)}")
+    if not isinstance(seed, int) or isinstance(seed, bool) or seed < 0:
+        raise AxiscalError(f"--seed must not be negative, got {seed!r}" if isinstance(seed, int) else f"--seed must be a whole number, not {seed!r}")
+    if not isinstance(path, str) or path not in PATHS:
         raise AxiscalError(f"unknown path '{path}'; use one of {', '.join(PATHS)}")
 
 
@@ -135,6 +151,11 @@ def check_record_target(record: str | Path, inputs: Sequence[str | Path], *, for
         If the record or its sidecar is one of the inputs, or the record exists and ``force`` is
         not given.
     """
+    record = check_path("record", record)
+    if isinstance(inputs, (str, bytes)) or not isinstance(inputs, (tuple, list, set, frozenset)):
+        raise AxiscalError(f"inputs must be a sequence of the files the run reads, not {inputs!r}")
+    inputs = [check_path("inputs", name) for name in inputs]
+    check_instance("force", force, bool)
     used = {identity for identity in map(_identity, inputs) if identity is not None}
     for target in (Path(record), sidecar_path(record)):
         if _identity(target) in used:
@@ -208,6 +229,12 @@ class LiveSession:
         allowed_hosts: Sequence[str] = (),
     ):
         _check(rate_hz, duration_s, port, update_hz, load_kg, path, seed)
+        for name, flag in (("pace", pace), ("server", server), ("force", force)):
+            check_instance(name, flag, bool)
+        if isinstance(allowed_hosts, str) or not isinstance(allowed_hosts, (tuple, list, set, frozenset)):
+            raise AxiscalError(f"allowed_hosts must be a sequence of host names, not {allowed_hosts!r}")
+        if not isinstance(bind, str) or not bind.strip():
+            raise AxiscalError(f"bind must be an address to listen on, not {bind!r}")
         kind, argument = parse_source(source)
         if record is not None:
             read = {"replay": argument, "rtx": rtx_parts(argument)[0]}.get(kind)
@@ -276,6 +303,7 @@ class LiveSession:
         RunSummary
             The final summary; with a record, after every frame was made durable.
         """
+        _check_run(stop, duration_s, progress, progress_interval_s)
         stop = stop or threading.Event()
         start = time.monotonic()
         try:

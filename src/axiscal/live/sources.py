@@ -31,8 +31,11 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.importers.rtx import read_rtx
-from axiscal.live.protocol import FrameBatch, LineDecoder
+from axiscal.io.arguments import check_choice, check_count, check_number, check_path, is_real
+from axiscal.io.instances import check_instance, type_name
+from axiscal.live.protocol import FrameBatch, LineDecoder, _checked_channels
 from axiscal.live.recorder import read_record
+from axiscal.measurement.virtual import PATHS
 from axiscal.units import length_factor, split_unit
 
 __all__ = [
@@ -86,11 +89,20 @@ class Backoff:
     ----------
     initial_s, factor, maximum_s : float
         First delay (s), growth factor per failed attempt, longest delay (s).
+
+    Raises
+    ------
+    AxiscalError
+        For a delay that is not a positive number of seconds, a factor below 1, or a maximum
+        below the first delay.
     """
 
     def __init__(self, *, initial_s: float = 0.05, factor: float = 2.0, maximum_s: float = 2.0):
-        if not (initial_s > 0 and factor >= 1 and maximum_s >= initial_s):
-            raise AxiscalError("back-off needs initial > 0, factor >= 1 and maximum >= initial")
+        initial_s = check_number("initial_s", initial_s, positive=True)
+        factor = check_number("factor", factor, unit="", low=1.0)
+        maximum_s = check_number("maximum_s", maximum_s, positive=True)
+        if not maximum_s >= initial_s:
+            raise AxiscalError("back-off needs initial > 0, factor >= 1 and maximum >= initial (maximum_s below initial_s)")
         self.initial_s = initial_s
         self.factor = factor
         self.maximum_s = maximum_s
@@ -136,12 +148,15 @@ class SimSource:
     """
 
     def __init__(self, module, channels: Sequence[str], *, rate_hz: float = 1000.0, path: str = "diagonal", max_batch_s: float = 0.05):
-        if not (np.isfinite(rate_hz) and 0 < rate_hz <= MAX_RATE_HZ):
-            raise AxiscalError(f"rate must be a positive number of frames per second up to {MAX_RATE_HZ:g}, got {rate_hz}")
-        if not (np.isfinite(max_batch_s) and 0 < max_batch_s <= 1.0):
-            raise AxiscalError(f"the longest batch must be 0 to 1 s, got {max_batch_s}")
+        if not (is_real(rate_hz) and np.isfinite(rate_hz) and 0 < rate_hz <= MAX_RATE_HZ):
+            raise AxiscalError(f"rate_hz: the frame rate must be a positive number of frames per second up to {MAX_RATE_HZ:g}, not {rate_hz!r}")
+        if not (is_real(max_batch_s) and np.isfinite(max_batch_s) and 0 < max_batch_s <= 1.0):
+            raise AxiscalError(f"max_batch_s (the longest batch) must be 0 to 1 s, not {max_batch_s!r}")
+        if not callable(getattr(module, "frames", None)):
+            raise AxiscalError(f"module must be a VirtualModule, not {type_name(module)}")
+        check_choice("path", path, PATHS)
         self.module = module
-        self.channels = tuple(channels)
+        self.channels = _checked_channels(channels)
         self.rate_hz = float(rate_hz)
         self.path = path
         self.max_batch = max(1, int(round(max_batch_s * rate_hz)))
@@ -184,9 +199,17 @@ class ReplaySource:
     pace : bool
         True: frames are delivered when their ``t_s`` (relative to the first) has passed;
         False: as fast as the pipeline takes them.
+
+    Raises
+    ------
+    AxiscalError
+        For a bad ``path`` or ``channels``, a ``pace`` that is not a bool, a ``max_batch``
+        below 1, a file that lacks a channel column.
     """
 
     def __init__(self, path: str | Path, channels: Sequence[str], *, pace: bool = True, max_batch: int = 2000):
+        channels = _checked_channels(channels)
+        _check_playback(pace, max_batch)
         record = read_record(path)
         missing = [name for name in channels if name not in record.columns]
         if missing:
@@ -240,6 +263,12 @@ class ReplaySource:
         self.status.state = "finished"
 
 
+def _check_playback(pace: bool, max_batch: int) -> None:
+    """Refuse a ``pace`` that is not a bool or a ``max_batch`` that is not a positive whole number."""
+    check_instance("pace", pace, bool)
+    check_count("max_batch", max_batch)
+
+
 class RtxSource(ReplaySource):
     """A Renishaw ``.rtx`` dynamic capture played back as the reading of one channel.
 
@@ -269,8 +298,10 @@ class RtxSource(ReplaySource):
     """
 
     def __init__(self, path: str | Path, unit: str, channel: str, channels: Sequence[str], *, pace: bool = True, max_batch: int = 2000):
-        channels = tuple(channels)
-        if channel not in channels:
+        channels = _checked_channels(channels)
+        _check_playback(pace, max_batch)
+        path = check_path("path", path)
+        if not isinstance(channel, str) or channel not in channels:
             raise AxiscalError(f"channel '{channel}' is not one of the measurement system's: {', '.join(channels)}")
         factor = length_factor(split_unit(channel)[1], allowed=("nm", "um", "mm"), what=f"channel {channel}")
         capture = read_rtx(path, unit=unit)
@@ -284,7 +315,11 @@ class _LineStreamSource(ABC):
     """Common part of the TCP and serial sources: connect, read lines, reconnect with back-off."""
 
     def __init__(self, channels: Sequence[str], description: str, backoff: Backoff | None, clock_offset_s: float | None):
-        self.channels = tuple(channels)
+        self.channels = _checked_channels(channels)
+        if backoff is not None:
+            check_instance("backoff", backoff, Backoff)
+        if clock_offset_s is not None:
+            clock_offset_s = check_number("clock_offset_s", clock_offset_s)
         self.decoder = LineDecoder(self.channels)
         self.backoff = backoff or Backoff()
         self.status = SourceStatus(description)
@@ -370,6 +405,13 @@ class TcpSource(_LineStreamSource):
     clock_offset_s : float, optional
         Monotonic clock minus the sender's ``t_s``, when the sender stamps frames from a clock
         this machine shares (used to measure latency; see benchmarks/realtime_live.py).
+
+    Raises
+    ------
+    AxiscalError
+        For an empty ``host``, a ``port`` outside 1-65535, bad ``channels``, a ``backoff``
+        that is not a :class:`Backoff`, a non-finite clock offset or a timeout that is not
+        positive.
     """
 
     def __init__(
@@ -382,9 +424,13 @@ class TcpSource(_LineStreamSource):
         clock_offset_s: float | None = None,
         connect_timeout_s: float = 1.0,
     ):
+        if not isinstance(host, str) or not host.strip():
+            raise AxiscalError(f"host must be a host name or address, not {host!r}")
+        port = check_count("port", port, minimum=1, maximum=65535)
+        connect_timeout_s = check_number("connect_timeout_s", connect_timeout_s, positive=True)
         super().__init__(channels, f"tcp {host}:{port}", backoff, clock_offset_s)
         self.host = host
-        self.port = int(port)
+        self.port = port
         self.connect_timeout_s = connect_timeout_s
         self._socket: socket.socket | None = None
 
@@ -432,9 +478,19 @@ class SerialSource(_LineStreamSource):
         The port, e.g. ``/dev/ttyUSB0``.
     baud : int
         Baud rate (default 115200).
+
+    Raises
+    ------
+    AxiscalError
+        For an empty ``device``, a ``baud`` below 1, bad ``channels``, a missing pyserial or
+        device.
     """
 
     def __init__(self, device: str, channels: Sequence[str], *, baud: int = 115200, backoff: Backoff | None = None):
+        if not isinstance(device, str) or not device.strip():
+            raise AxiscalError(f"device must be the name of a serial port, not {device!r}")
+        baud = check_count("baud", baud)
+        _checked_channels(channels)
         try:
             import serial
         except ImportError:
@@ -499,6 +555,8 @@ def parse_source(spec: str) -> tuple[str, str]:
     >>> parse_source("tcp:127.0.0.1:9000")
     ('tcp', '127.0.0.1:9000')
     """
+    if not isinstance(spec, str):
+        raise AxiscalError(f"spec must be a source (a str such as 'sim' or 'tcp:HOST:PORT'), not {type_name(spec)}")
     kind, sep, argument = spec.partition(":")
     kind = kind.strip().lower()
     if kind == "sim" and not sep:
@@ -529,11 +587,18 @@ def rtx_parts(argument: str) -> tuple[str, str, str]:
     tuple of str
         File, unit, channel (empty strings where missing).
 
+    Raises
+    ------
+    AxiscalError
+        For an ``argument`` that is not a str.
+
     Examples
     --------
     >>> rtx_parts("runs/x axis.rtx:mm:x_scale_mm")
     ('runs/x axis.rtx', 'mm', 'x_scale_mm')
     """
+    if not isinstance(argument, str):
+        raise AxiscalError(f"argument must be FILE:UNIT:CHANNEL (a str), not {type_name(argument)}")
     parts = argument.rsplit(":", 2)
     if len(parts) < 3:
         return (parts[0], "", "") if len(parts) == 1 else (parts[0], parts[1], "")
@@ -576,9 +641,13 @@ def open_source(
         For a bad spec, or a replay file or capture that does not exist or cannot be read.
     """
     kind, argument = parse_source(spec)
+    channels = _checked_channels(channels)
+    check_instance("pace", pace, bool)
+    if virtual_module is not None and not callable(virtual_module):
+        raise AxiscalError(f"virtual_module must be a function that makes the VirtualModule, not {type_name(virtual_module)}")
     if kind == "sim":
         if virtual_module is None:
-            raise AxiscalError("the sim source needs the virtual module")
+            raise AxiscalError("the sim source needs the virtual module (virtual_module)")
         return SimSource(virtual_module(), channels, rate_hz=rate_hz, path=path)
     if kind == "replay":
         if not Path(argument).is_file():

@@ -18,8 +18,12 @@ from typing import Any
 
 import numpy as np
 
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_number
+from axiscal.io.instances import check_instance
 from axiscal.live.protocol import FrameBatch
 from axiscal.measurement.faults import fault_text
+from axiscal.measurement.pipeline import MeasurementSystem
 from axiscal.units import MM
 
 __all__ = ["UPDATE_HZ_RANGE", "SPATIAL", "CORRECTED", "axis_error_columns", "result_columns", "LiveState"]
@@ -43,11 +47,22 @@ def axis_error_columns(letter: str) -> tuple[str, ...]:
     tuple of str
         ``EX<L>_um``, ``EY<L>_um``, ``EZ<L>_um``, ``EA<L>_urad``, ``EB<L>_urad``, ``EC<L>_urad``.
 
+    Raises
+    ------
+    AxiscalError
+        For a ``letter`` that is not one capital letter.
+
     Examples
     --------
     >>> axis_error_columns("Z")[:2]
     ('EXZ_um', 'EYZ_um')
     """
+    _check_letter(letter)
+    return _error_columns(letter)
+
+
+def _error_columns(letter: str) -> tuple[str, ...]:
+    """:func:`axis_error_columns` unchecked, for the state's per-batch updates."""
     return tuple(f"E{d}{letter}_um" for d in "XYZ") + tuple(f"E{r}{letter}_urad" for r in "ABC")
 
 
@@ -63,10 +78,25 @@ def result_columns(axes: tuple[str, ...]) -> tuple[str, ...]:
     -------
     tuple of str
         Display names (``ex_um`` ... ``px_mm`` ... ``x_mm`` ... ``EXX_um`` ...).
+
+    Raises
+    ------
+    AxiscalError
+        For ``axes`` that are not a tuple of capital letters.
     """
+    if not isinstance(axes, (tuple, list, str)):
+        raise AxiscalError(f"axes must be a tuple of axis letters, not {axes!r}")
+    for letter in axes:
+        _check_letter(letter, "axes")
     positions = tuple(f"{letter.lower()}_mm" for letter in axes)
-    errors = tuple(name for letter in axes for name in axis_error_columns(letter))
+    errors = tuple(name for letter in axes for name in _error_columns(letter))
     return SPATIAL + CORRECTED + positions + errors
+
+
+def _check_letter(letter: str, name: str = "letter") -> None:
+    """Refuse an axis letter that is not one letter."""
+    if not isinstance(letter, str) or len(letter) != 1 or not letter.isalpha() or not letter.isupper():
+        raise AxiscalError(f"{name} must hold axis letters (one capital letter each), not {letter!r}")
 
 
 def _plain(values: np.ndarray, digits: int = 6) -> list[float | None]:
@@ -90,9 +120,19 @@ class LiveState:
         Length of the spatial-error history, seconds of stream time.
     history_points : int
         Samples kept in that history.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``system`` that is not a MeasurementSystem, ``bins`` or ``history_points``
+        below 1, a ``history_s`` that is not positive.
     """
 
     def __init__(self, system, *, bins: int = 96, history_s: float = 20.0, history_points: int = 400):
+        check_instance("system", system, MeasurementSystem)
+        bins = check_count("bins", bins)
+        history_s = check_number("history_s", history_s, positive=True)
+        history_points = check_count("history_points", history_points)
         self.channels = tuple(system.channels)
         self.axes = tuple(system.axes)
         limits = [system.channel_limits.get(name, (-np.inf, np.inf)) for name in self.channels]
@@ -162,7 +202,7 @@ class LiveState:
             cell = cell[inside]
             count = np.bincount(cell, minlength=self.bins)
             touched = count > 0
-            for row, name in enumerate(axis_error_columns(letter)):
+            for row, name in enumerate(_error_columns(letter)):
                 sums = np.bincount(cell, weights=results[name][good][inside], minlength=self.bins)
                 self._profiles[letter][row, touched] = sums[touched] / count[touched]
 
@@ -229,7 +269,7 @@ class LiveState:
                 axes[letter] = {
                     "travel_mm": [float(edges[0]), float(edges[-1])],
                     "position_mm": _plain(0.5 * (edges[1:] + edges[:-1]), 3),
-                    "errors": {name: _plain(self._profiles[letter][row]) for row, name in enumerate(axis_error_columns(letter))},
+                    "errors": {name: _plain(self._profiles[letter][row]) for row, name in enumerate(_error_columns(letter))},
                 }
             sensors = [
                 {

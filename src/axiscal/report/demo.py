@@ -17,6 +17,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from axiscal.io.arguments import check_count, check_path
 from axiscal.io.jsonio import write_json
 from axiscal.io.templates import render_template
 from axiscal.measurement.campaign_sim import (
@@ -155,7 +156,8 @@ def run_demo(output_dir: str | Path = "axiscal-demo", *, seed: int = 0) -> DemoR
     Raises
     ------
     AxiscalError
-        If a folder cannot be made or a file cannot be written.
+        If a folder cannot be made or a file cannot be written; for an ``output_dir`` that is not a
+        folder name or a ``seed`` that is not a whole number of 0 or more.
 
     Examples
     --------
@@ -163,7 +165,8 @@ def run_demo(output_dir: str | Path = "axiscal-demo", *, seed: int = 0) -> DemoR
     >>> round(result.summary["experiment"]["2kg"]["before_max_um"], 1)  # doctest: +SKIP
     56.4
     """
-    folder = Path(output_dir)
+    folder = check_path("output_dir", output_dir)
+    seed = check_count("seed", seed, minimum=0)
     campaign = write_campaign(folder / "campaign", seed=seed)
     report = report_campaign(campaign.folder, folder / "report")
     experiments = {load: diagonal_experiment(VirtualModule(seed=seed, load_kg=load)) for load in DIAGONAL_LOADS_KG}

@@ -15,6 +15,9 @@ from typing import Any
 import numpy as np
 
 from axiscal.campaign.results import CampaignResults, TestResult, results_payload
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_count, check_mapping, is_real
+from axiscal.io.instances import check_instance, type_name
 from axiscal.version import __version__
 
 __all__ = [
@@ -66,21 +69,37 @@ def format_number(value: Any, digits: int = 3) -> str:
     str
         Fixed decimals, ``n/a`` for a missing or non-finite value.
 
+    Raises
+    ------
+    AxiscalError
+        For a value that is not a number, a text or None, or ``digits`` below 0.
+
     Examples
     --------
     >>> format_number(2.23333), format_number(float("nan"))
     ('2.233', 'n/a')
     """
+    digits = check_count("digits", digits, minimum=0)
     if value is None:
         return "n/a"
     if isinstance(value, str):
         return value
+    if not is_real(value):
+        raise AxiscalError(f"value must be a number, a text or None, not {type_name(value)}")
     if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
         return str(int(value))
     value = float(value)
     if not math.isfinite(value):
         return "n/a"
     return f"{value:.{digits}f}"
+
+
+def check_compare(compare: Any) -> Mapping[str, Any]:
+    """``compare`` if it is a results.json object (a mapping with a list of tests), else refused."""
+    check_mapping("compare", compare, what="another campaign's results.json (a mapping)")
+    if not isinstance(compare.get("tests", []), list):
+        raise AxiscalError("compare must be another campaign's results.json (its 'tests' is not a list)")
+    return compare
 
 
 def decision_statement(rule: str) -> str:
@@ -94,10 +113,15 @@ def decision_statement(rule: str) -> str:
     -------
     str
         One sentence, with the standard it comes from.
+
+    Raises
+    ------
+    AxiscalError
+        For an unknown rule.
     """
     from axiscal.uncertainty.decision import DECISION_RULES
 
-    return "Decision rule: " + DECISION_RULES.get(rule, rule)
+    return "Decision rule: " + DECISION_RULES[check_choice("decision rule", rule, DECISION_RULES)]
 
 
 def previous_figures(compare: Mapping[str, Any] | None) -> dict[str, Any] | None:
@@ -112,9 +136,15 @@ def previous_figures(compare: Mapping[str, Any] | None) -> dict[str, Any] | None
     -------
     dict or None
         Test id -> its figures; None without a comparison.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``compare`` that is not a results.json object.
     """
     if compare is None:
         return None
+    check_compare(compare)
     return {t.get("id"): t.get("figures", {}) for t in compare.get("tests", []) if isinstance(t, Mapping)}
 
 
@@ -130,10 +160,18 @@ def compare_label(compare: Mapping[str, Any] | None) -> str | None:
     -------
     str or None
         Its title and date; None without a comparison.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``compare`` that is not a results.json object.
     """
     if compare is None:
         return None
-    info = compare.get("campaign", {}).get("campaign", {})
+    check_compare(compare)
+    info = compare.get("campaign", {})
+    info = info.get("campaign", {}) if isinstance(info, Mapping) else {}
+    info = info if isinstance(info, Mapping) else {}
     return f"{info.get('title', 'another campaign')} ({info.get('date', 'undated')})"
 
 
@@ -150,7 +188,15 @@ def verdict_rows(results: CampaignResults, before: Mapping[str, Any] | None) -> 
     -------
     list of dict
         One row per toleranced figure, or per test without a tolerance; texts ready to print.
+
+    Raises
+    ------
+    AxiscalError
+        For ``results`` that are not a CampaignResults or ``before`` that is not a mapping.
     """
+    check_instance("results", results, CampaignResults)
+    if before is not None:
+        check_mapping("before", before, what="a mapping of test ids to figures")
     rows = []
     for test in results.tests:
         old = (before or {}).get(test.id, {})
@@ -184,7 +230,14 @@ def sections(tests: list[TestResult]) -> list[dict[str, Any]]:
     list of dict
         ``anchor``, ``title`` and ``tests`` of each section: one per axis, then squareness,
         circular tests, diagonal checks, 6-DOF recordings.
+
+    Raises
+    ------
+    AxiscalError
+        For ``tests`` that are not a list of TestResult.
     """
+    if isinstance(tests, (str, bytes)) or not isinstance(tests, (list, tuple)) or not all(isinstance(t, TestResult) for t in tests):
+        raise AxiscalError(f"tests must be a list of TestResult, not {type_name(tests)}")
     groups: dict[str, list[TestResult]] = {}
     titles: dict[str, str] = {}
     for test in sorted(tests, key=lambda t: (_SECTION_ORDER.index(t.kind) if t.kind in _SECTION_ORDER else 99)):
@@ -233,7 +286,19 @@ def render_html(
     -------
     str
         The HTML text.
+
+    Raises
+    ------
+    AxiscalError
+        For ``results`` that are not a CampaignResults, a ``compare`` that is not a
+        results.json object, a ``volumetric`` that is not a mapping, a ``generated`` that is
+        not a str.
     """
+    check_instance("results", results, CampaignResults)
+    if volumetric is not None:
+        check_mapping("volumetric", volumetric, what="the volumetric section (a mapping)")
+    if generated is not None and not isinstance(generated, str):
+        raise AxiscalError(f"generated must be a str (when the report was made), not {type_name(generated)}")
     before = previous_figures(compare)
     label = compare_label(compare)
     payload = results_payload(results)

@@ -17,7 +17,10 @@ from typing import Any
 
 from axiscal.campaign.results import CampaignResults, results_payload
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_path
+from axiscal.io.instances import check_instance, type_name
 from axiscal.report.html import (
+    check_compare,
     compare_label,
     decision_statement,
     previous_figures,
@@ -90,8 +93,14 @@ def write_pdf(
     Raises
     ------
     AxiscalError
-        When Typst is not installed or fails.
+        When Typst is not installed or fails; for arguments of the wrong kind.
     """
+    check_instance("results", results, CampaignResults)
+    path = check_path("path", path)
+    if compare is not None:
+        check_compare(compare)
+    if generated is not None and not isinstance(generated, str):
+        raise AxiscalError(f"generated must be a str (when the report was made), not {type_name(generated)}")
     try:
         import typst
     except ImportError:  # pragma: no cover - typst is a dependency

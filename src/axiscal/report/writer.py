@@ -19,8 +19,10 @@ from axiscal.campaign.config import Campaign, TestSpec, load_campaign
 from axiscal.campaign.results import CampaignResults, results_payload
 from axiscal.campaign.runner import run_campaign
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_mapping, check_path
+from axiscal.io.instances import check_instance
 from axiscal.io.jsonio import dumps, read_json
-from axiscal.report.html import render_html
+from axiscal.report.html import check_compare, render_html
 
 __all__ = ["ReportFiles", "write_report", "report_campaign"]
 
@@ -87,9 +89,21 @@ def write_report(
     Raises
     ------
     AxiscalError
-        When the folder cannot be written; nothing is left half-written.
+        When the folder cannot be written; nothing is left half-written. For arguments of the
+        wrong kind, or an extra file whose name leaves the folder.
     """
-    out_dir = Path(out_dir)
+    check_instance("results", results, CampaignResults)
+    out_dir = check_path("out_dir", out_dir)
+    if compare is not None:
+        check_compare(compare)
+    check_instance("pdf", pdf, bool)
+    if extra_files is not None:
+        check_mapping("extra_files", extra_files, what="a mapping of relative file names to texts")
+        for name, text in extra_files.items():
+            if not isinstance(name, str) or not name or Path(name).is_absolute() or ".." in Path(name).parts:
+                raise AxiscalError(f"extra_files: {name!r} must be a file name relative to the report folder")
+            if not isinstance(text, str):
+                raise AxiscalError(f"extra_files['{name}'] must be the file's text (a str), not {type(text).__name__}")
     try:
         out_dir.parent.mkdir(parents=True, exist_ok=True)
         staging = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
@@ -175,6 +189,12 @@ def report_campaign(
     >>> files.results_data.verdict  # doctest: +SKIP
     'fail'
     """
+    check_path("campaign_dir", campaign_dir)
+    if out_dir is not None:
+        check_path("out_dir", out_dir)
+    if compare is not None:
+        check_path("compare", compare)
+    check_instance("pdf", pdf, bool)
     campaign: Campaign = load_campaign(campaign_dir)
     other = None
     if compare is not None:

@@ -30,6 +30,8 @@ from pathlib import Path
 
 from axiscal.errors import AxiscalError
 from axiscal.instruments.air import METHODS, refractive_index
+from axiscal.io.arguments import check_mapping, check_number
+from axiscal.io.instances import check_instance, type_name
 from axiscal.io.tabular import read_text, read_toml
 from axiscal.units import ARCSEC, UM
 
@@ -97,6 +99,11 @@ class Budget:
         Refractive-index equation of :func:`axiscal.instruments.air.refractive_index` ("ciddor").
     source : str
         Where the budget came from, for messages.
+
+    Raises
+    ------
+    AxiscalError
+        A value that is not a finite number, a negative uncertainty, an unknown method.
     """
 
     length_U_rel: float = 0.0
@@ -208,7 +215,7 @@ def budget_from_dict(
     Raises
     ------
     AxiscalError
-        An unknown section or key, a value that is not a number, a negative uncertainty, air
+        ``data`` that is not a mapping, an unknown section or key, a value that is not a number, a negative uncertainty, air
         conditions outside the range of the refractive-index equation.
 
     Examples
@@ -216,6 +223,14 @@ def budget_from_dict(
     >>> budget_from_dict({"setup": {"eve_um": 1.0}}).eve_m
     1e-06
     """
+    check_mapping("data", data, what="the tables of a budget (a dict)")
+    if not isinstance(source, (str, Path)):
+        raise AxiscalError(f"source must be the file name for messages (a str), not {type_name(source)}")
+    if locate is not None and not callable(locate):
+        raise AxiscalError(f"locate must be a function of (section, key), not {type_name(locate)}")
+    if text is not None and not isinstance(text, str):
+        raise AxiscalError(f"text must be the TOML text (a str), not {type_name(text)}")
+
     def line(section: str, key: str | None = None) -> int | None:
         if locate is not None:
             return locate(section, key)
@@ -223,7 +238,7 @@ def budget_from_dict(
 
     values: dict[str, object] = {}
     for section, table in data.items():
-        if section not in BUDGET_KEYS:
+        if not isinstance(section, str) or section not in BUDGET_KEYS:
             raise AxiscalError(
                 f"unknown budget section [{section}]; use {', '.join('[' + s + ']' for s in BUDGET_KEYS)}",
                 path=source, line=line(section),
@@ -231,7 +246,7 @@ def budget_from_dict(
         if not isinstance(table, dict):
             raise AxiscalError(f"[{section}] must be a table of keys", path=source, line=line(section))
         for key, value in table.items():
-            if key not in BUDGET_KEYS[section]:
+            if not isinstance(key, str) or key not in BUDGET_KEYS[section]:
                 raise AxiscalError(
                     f"[{section}] unknown key '{key}'; known keys: {', '.join(BUDGET_KEYS[section])}",
                     path=source, line=line(section, key),
@@ -297,8 +312,10 @@ def air_sensitivities(budget: Budget) -> dict[str, float]:
     Raises
     ------
     AxiscalError
-        Air conditions or a wavelength outside the range of the refractive-index equation.
+        Air conditions or a wavelength outside the range of the refractive-index equation; a
+        ``budget`` that is not a :class:`Budget`.
     """
+    check_budget(budget)
     base = {"temperature": budget.air_temperature_C, "pressure": budget.air_pressure_Pa, "humidity": budget.air_humidity_percent}
     steps = {"temperature": 0.01, "pressure": 1.0, "humidity": 0.1}
     out: dict[str, float] = {}
@@ -338,11 +355,11 @@ def length_model(budget: Budget, length_m: float):
     Raises
     ------
     AxiscalError
-        As :func:`air_sensitivities`.
+        As :func:`air_sensitivities`; a ``length_m`` that is not a finite number.
     """
     from GTC import ureal
 
-    length = abs(float(length_m))
+    length = abs(check_number("length_m", length_m))
     c = air_sensitivities(budget)
     device = ureal(0.0, budget.length_U_rel / 2.0, label="device")
     air_t = ureal(budget.air_temperature_C, budget.air_temperature_u_K, label="air temperature")
@@ -390,8 +407,23 @@ def length_components(budget: Budget, length_m: float) -> dict[str, float]:
     """
     from GTC import reporting
 
+    check_budget(budget)
     out = dict.fromkeys(COMPONENTS, 0.0)
     for influence in reporting.budget(length_model(budget, length_m), trim=0):
         key = "air" if influence.label.startswith("air ") else influence.label
         out[key] = math.hypot(out[key], abs(influence.u))
     return out
+
+
+def check_budget(budget: object, name: str = "budget") -> Budget:
+    """``budget`` if it is a :class:`Budget`, else refused naming ``name``."""
+    return check_instance(name, budget, Budget)
+
+
+def as_budget(budget: Budget | str | Path, name: str = "budget") -> Budget:
+    """``budget`` itself, or the budget read from the file it names; anything else refused."""
+    if isinstance(budget, Budget):
+        return budget
+    if isinstance(budget, (str, Path)):
+        return read_budget(budget)
+    raise AxiscalError(f"{name} must be a Budget or the path of a budget file, not {type_name(budget)}")

@@ -9,10 +9,10 @@ in between neither is proven and the verdict is ``inconclusive``.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_number
 
 __all__ = ["DECISION_RULES", "Decision", "decide"]
 
@@ -79,12 +79,10 @@ def decide(value: float, limit: float, U: float = 0.0, *, rule: str = "simple") 
     >>> decide(9.0, 10.0, 1.5).verdict
     'pass'
     """
-    if rule not in DECISION_RULES:
-        raise AxiscalError(f"unknown decision rule '{rule}'; use one of {', '.join(DECISION_RULES)}")
-    if not all(math.isfinite(v) for v in (value, limit, U)):
-        raise AxiscalError("decision: value, limit and U must be finite numbers")
-    if U < 0:
-        raise AxiscalError(f"decision: the expanded uncertainty U must not be negative, got {U:g}")
+    check_choice("decision rule", rule, DECISION_RULES)
+    value = check_number("value", value, unit="")
+    limit = check_number("limit", limit, unit="")
+    U = check_number("U", U, unit="", nonnegative=True)
     if rule == "simple":
         verdict, acceptance = ("pass" if value <= limit else "fail"), limit
     else:

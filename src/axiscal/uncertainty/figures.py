@@ -26,11 +26,13 @@ from pathlib import Path
 from typing import Any
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_mapping, is_real
+from axiscal.io.instances import type_name
 from axiscal.positioning.evaluation import ISO_SYMBOLS, Iso230Result, PositioningRun
 from axiscal.positioning.report import PositioningEvaluation
 from axiscal.squareness.evaluation import SquarenessEvaluation
 from axiscal.straightness.files import StraightnessEvaluation
-from axiscal.uncertainty.budget import Budget, read_budget
+from axiscal.uncertainty.budget import Budget, as_budget
 from axiscal.uncertainty.decision import DECISION_RULES, Decision, decide
 from axiscal.uncertainty.positioning import FIGURES, positioning_uncertainty
 from axiscal.uncertainty.straightness import (
@@ -45,10 +47,6 @@ __all__ = ["UNCERTAINTY_KINDS", "figure_uncertainties", "figure_verdicts"]
 UNCERTAINTY_KINDS = ("positioning", "straightness", "squareness")
 
 
-def _as_budget(budget: Budget | str | Path) -> Budget:
-    return budget if isinstance(budget, Budget) else read_budget(budget)
-
-
 def _positioning_figures(evaluation, run) -> tuple[dict[str, float], PositioningRun | float]:
     """The ISO 230-2 figures in um and the run (or travel, m) the budget is taken over."""
     if isinstance(evaluation, PositioningEvaluation):
@@ -59,12 +57,12 @@ def _positioning_figures(evaluation, run) -> tuple[dict[str, float], Positioning
         if run is None:
             raise AxiscalError("positioning figures given as a mapping need run= (the PositioningRun or its travel in m)")
         return {k: evaluation[k] for k in ISO_SYMBOLS if k in evaluation}, run
-    raise AxiscalError(f"positioning: expected a PositioningEvaluation or its figures, got {type(evaluation).__name__}")
+    raise AxiscalError(f"evaluation of a positioning test must be a PositioningEvaluation or its figures, not {type_name(evaluation)}")
 
 
 def _figures_and_U(kind: str, evaluation, budget: Budget, run) -> tuple[dict[str, Any], dict[str, float]]:
     """(the figures, U of each figure that has one), in the figures' display units."""
-    if kind not in UNCERTAINTY_KINDS:
+    if not isinstance(kind, str) or kind not in UNCERTAINTY_KINDS:
         raise AxiscalError(f"no uncertainty for tests of kind '{kind}'; the budget covers {', '.join(UNCERTAINTY_KINDS)}")
     if kind == "positioning":
         figures, length = _positioning_figures(evaluation, run)
@@ -73,12 +71,12 @@ def _figures_and_U(kind: str, evaluation, budget: Budget, run) -> tuple[dict[str
         return figures, {symbol: U_m[base] / UM for symbol, base in bases.items() if base in FIGURES}
     if kind == "straightness":
         if not isinstance(evaluation, StraightnessEvaluation):
-            raise AxiscalError(f"straightness: expected a StraightnessEvaluation, got {type(evaluation).__name__}")
+            raise AxiscalError(f"evaluation of a straightness test must be a StraightnessEvaluation, not {type_name(evaluation)}")
         profile = evaluation.profile
         U = straightness_uncertainty(budget, profile.position_m, profile.deviation_m, reference=evaluation.line.reference).U
         return evaluation.payload(), {"straightness_um": U / UM}
     if not isinstance(evaluation, SquarenessEvaluation):
-        raise AxiscalError(f"squareness: expected a SquarenessEvaluation, got {type(evaluation).__name__}")
+        raise AxiscalError(f"evaluation of a squareness test must be a SquarenessEvaluation, not {type_name(evaluation)}")
     result, first, second = evaluation.result, evaluation.first, evaluation.second
     reference = result.first_line.reference if result.first_line is not None else "least-squares"
     U = squareness_uncertainty(budget, first.position_m, first.deviation_m, second.position_m, second.deviation_m,
@@ -126,7 +124,7 @@ def figure_uncertainties(
     >>> round(U["E"], 3), round(U["R_up"], 3)
     (6.874, 0.577)
     """
-    return _figures_and_U(kind, evaluation, _as_budget(budget), run)[1]
+    return _figures_and_U(kind, evaluation, as_budget(budget), run)[1]
 
 
 def figure_verdicts(
@@ -171,17 +169,19 @@ def figure_verdicts(
     >>> {key: d.verdict for key, d in verdicts.items()}
     {'E_um': 'inconclusive', 'R_um': 'pass'}
     """
-    if rule not in DECISION_RULES:
-        raise AxiscalError(f"unknown decision rule '{rule}'; use one of {', '.join(DECISION_RULES)}")
-    figures, U = _figures_and_U(kind, evaluation, _as_budget(budget), run)
+    check_choice("decision rule", rule, DECISION_RULES)
+    check_mapping("tolerances", tolerances, what="a mapping of tolerance keys to limits")
+    figures, U = _figures_and_U(kind, evaluation, as_budget(budget), run)
     out: dict[str, Decision] = {}
     for key, limit in tolerances.items():
         figure = key if key in U else key.rsplit("_", 1)[0]
         if figure not in U:
             raise AxiscalError(f"tolerance '{key}': no figure with an uncertainty; {kind} has {', '.join(U)}")
-        if isinstance(limit, bool) or not isinstance(limit, (int, float)) or not math.isfinite(limit) or limit < 0:
+        if not is_real(limit) or not math.isfinite(limit) or limit < 0:
             raise AxiscalError(f"tolerance '{key}' must be a non-negative number, got {limit!r}")
         value = figures.get(figure)
+        if value is not None and not is_real(value):
+            raise AxiscalError(f"evaluation: figure '{figure}' must be a number (or None when not available), not {value!r}")
         value = math.nan if value is None else abs(float(value))
         if math.isfinite(value):
             out[key] = decide(value, float(limit), U[figure], rule=rule)

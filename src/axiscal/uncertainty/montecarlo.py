@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_number
 
 __all__ = ["CoverageInterval", "coverage_interval"]
 
@@ -24,6 +25,30 @@ def _whole_draws(value, what: str = "the number of Monte Carlo draws", *, at_mos
     if at_most is not None and value > at_most:
         raise AxiscalError(f"{what} must be at most {at_most:.0e} (memory), got {value:.3g}")
     return int(value)
+
+
+def _probability(value) -> float:
+    """``value`` as a coverage probability, strictly between 0 and 1."""
+    p = check_number("probability", value, unit="")
+    if not 0.0 < p < 1.0:
+        raise AxiscalError(f"coverage probability must lie between 0 and 1, got {p:g}")
+    return p
+
+
+def _draws_array(samples) -> np.ndarray:
+    """``samples`` as a float array of finite draws (float32 kept: half the memory, quantiles to 6e-8 relative)."""
+    if samples is None or isinstance(samples, (str, bytes)):
+        raise AxiscalError(f"samples must be an array of draws, not {samples!r}")
+    x = np.asarray(samples)
+    if x.dtype.kind not in "iuf":
+        raise AxiscalError(f"samples must be an array of numeric draws, not of {x.dtype}")
+    if x.ndim == 0:
+        raise AxiscalError("samples must be an array of draws, not a single number")
+    if not np.issubdtype(x.dtype, np.floating):
+        x = x.astype(float)
+    if not np.isfinite(x).all():
+        raise AxiscalError("samples must hold finite draws (a NaN or an infinity is there)")
+    return x
 
 
 @dataclass(frozen=True)
@@ -78,7 +103,8 @@ def coverage_interval(samples, probability: float = 0.95, *, shortest: bool = Fa
     Raises
     ------
     AxiscalError
-        A probability outside (0, 1), or fewer than 1 / (1 - p) draws.
+        A probability outside (0, 1), fewer than 1 / (1 - p) draws, draws that are not numbers or
+        not finite, an ``axis`` the draws do not have.
 
     Examples
     --------
@@ -87,15 +113,16 @@ def coverage_interval(samples, probability: float = 0.95, *, shortest: bool = Fa
     >>> round(ci.high, 1)
     2.0
     """
-    if not 0.0 < probability < 1.0:
-        raise AxiscalError(f"coverage probability must lie between 0 and 1, got {probability:g}")
-    x = np.asarray(samples)
-    if not np.issubdtype(x.dtype, np.floating):
-        x = x.astype(float)  # float32 draws stay float32: half the memory, quantiles to 6e-8 relative
+    probability = _probability(probability)
+    if not isinstance(shortest, (bool, np.bool_)):
+        raise AxiscalError(f"shortest must be a bool, not {shortest!r}")
+    x = _draws_array(samples)
+    axis = check_count("axis", axis, minimum=-x.ndim, maximum=x.ndim - 1)
     x = np.moveaxis(x, axis, 0)
     m = x.shape[0]
-    if m < 1.0 / (1.0 - probability):
-        raise AxiscalError(f"{m} draws are too few for a {probability:.0%} coverage interval; use at least {int(np.ceil(1 / (1 - probability)))}")
+    if m < max(2.0, 1.0 / (1.0 - probability)):  # two at least: the standard deviation needs them
+        raise AxiscalError(f"samples: {m} draws are too few for a {probability:.0%} coverage interval;"
+                           f" use at least {max(2, int(np.ceil(1 / (1 - probability))))}")
     if shortest:
         ordered = np.sort(x, axis=0)
         q = int(np.floor(probability * m + 0.5))
@@ -107,4 +134,10 @@ def coverage_interval(samples, probability: float = 0.95, *, shortest: bool = Fa
         low, high = np.quantile(x, [(1.0 - probability) / 2.0, (1.0 + probability) / 2.0], axis=0)
     if x.ndim > 1:
         return low, high
-    return CoverageInterval(float(low), float(high), float(x.mean()), float(x.std(ddof=1)), probability, m)
+    scale = float(np.max(np.abs(x)))
+    if scale < 1e100:  # any physical draws: as they are
+        mean, std = float(x.mean()), float(x.std(ddof=1))
+    else:  # draws near the float range: mean and std of x / scale, which do not overflow
+        unit = x / scale
+        mean, std = scale * float(unit.mean()), scale * float(unit.std(ddof=1))
+    return CoverageInterval(float(low), float(high), mean, std, probability, m)

@@ -11,7 +11,10 @@ from pathlib import Path
 
 import numpy as np
 
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_mapping
 from axiscal.io.figures import check_figure_path, pyplot, save_figure
+from axiscal.io.instances import check_instance
 from axiscal.uncertainty.volumetric import VolumetricUncertainty
 from axiscal.units import MM, UM
 
@@ -47,11 +50,23 @@ def plot_volumetric_uncertainty(
     Raises
     ------
     AxiscalError
-        A suffix that is not a figure format, a file that cannot be written.
+        A suffix that is not a figure format, a file that cannot be written, positions that are
+        not finite or do not match the result's points, a result that is not a
+        :class:`VolumetricUncertainty`.
     """
+    check_instance("result", result, VolumetricUncertainty)
+    check_mapping("positions_m", positions_m, what="a mapping of axis letters to positions in metres")
+    if not positions_m:
+        raise AxiscalError("positions_m must give the position of at least one axis")
+    if not isinstance(title, str):
+        raise AxiscalError(f"title must be a str, not {title!r}")
+    n = result.error.shape[0]
+    q_mm = {k: check_array(f"positions_m['{k}']", q, ndim=1) / MM for k, q in positions_m.items()}
+    for k, q in q_mm.items():
+        if q.shape != (n,):
+            raise AxiscalError(f"positions_m['{k}']: {q.size} values for {n} points")
     check_figure_path(path)
     plt = pyplot()
-    q_mm = {k: np.asarray(q, dtype=float) / MM for k, q in positions_m.items()}
     moving = [k for k, q in q_mm.items() if np.ptp(q) > 0] or list(q_mm)
     e_um = result.magnitude / UM
     low, high = result.magnitude_low / UM, result.magnitude_high / UM

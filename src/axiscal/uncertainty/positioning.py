@@ -23,16 +23,19 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_count, check_mapping, check_number, is_real
+from axiscal.io.instances import check_instance, type_name
 from axiscal.instruments.air import refractive_index
 from axiscal.positioning.evaluation import Iso230Result, PositioningRun
 from axiscal.uncertainty.budget import (
     COMPONENTS,
     Budget,
+    as_budget,
+    check_budget,
     length_components,
     length_model,
-    read_budget,
 )
-from axiscal.uncertainty.decision import Decision, decide
+from axiscal.uncertainty.decision import DECISION_RULES, Decision, decide
 from axiscal.uncertainty.montecarlo import (
     CoverageInterval,
     _whole_draws,
@@ -105,12 +108,14 @@ class PositioningUncertainty:
         return {name: (u**2 / total if total > 0 else 0.0) for name, u in self.components.items()}
 
 
-def _travel(run: PositioningRun | float) -> float:
+def _travel(run: PositioningRun | float, name: str = "run") -> float:
     if isinstance(run, PositioningRun):
         return float(run.targets[-1] - run.targets[0])
+    if not is_real(run):
+        raise AxiscalError(f"{name} must be a PositioningRun or its travel in metres, not {type_name(run)}")
     length = float(run)
     if not math.isfinite(length) or length < 0:
-        raise AxiscalError(f"measured length must be a finite non-negative number of metres, got {run!r}")
+        raise AxiscalError(f"{name} (the measured length) must be a finite non-negative number of metres, got {run!r}")
     return length
 
 
@@ -147,10 +152,10 @@ def positioning_uncertainty(
     >>> round(result.U["E"] * 1e6, 3)
     0.5
     """
-    if not isinstance(budget, Budget):
-        budget = read_budget(budget)
-    if isinstance(monte_carlo, bool) or monte_carlo != 0:  # 0: no Monte Carlo
-        monte_carlo = _whole_draws(monte_carlo, at_most=MAX_POSITIONING_DRAWS)
+    budget = as_budget(budget)
+    if not is_real(monte_carlo) or monte_carlo != 0:  # 0: no Monte Carlo
+        monte_carlo = _whole_draws(monte_carlo, "monte_carlo (the number of Monte Carlo draws)", at_most=MAX_POSITIONING_DRAWS)
+    seed = check_count("seed", seed, minimum=0)
     length = _travel(run)
     components = length_components(budget, length)
     U = {
@@ -217,8 +222,10 @@ def positioning_monte_carlo(
     AxiscalError
         Too few draws or more than :data:`MAX_POSITIONING_DRAWS`, a negative length.
     """
-    length = _travel(length_m)
-    draws = _whole_draws(draws, at_most=MAX_POSITIONING_DRAWS)
+    check_budget(budget)
+    length = _travel(length_m, "length_m")
+    draws = _whole_draws(draws, "draws (the number of Monte Carlo draws)", at_most=MAX_POSITIONING_DRAWS)
+    seed = check_count("seed", seed, minimum=0)
     parts = _draw_errors(budget, length, draws, np.random.default_rng(seed))
     out = {}
     for figure in FIGURES:
@@ -240,7 +247,13 @@ def uncertainty_payload(result: PositioningUncertainty) -> dict:
         ``{"k": 2, "E": {"U": ...}, ..., "M": {"U": ...}, "components_um": {...}}``; with Monte
         Carlo also ``"monte_carlo": {"draws": M, "probability": 0.95, "E": {"low": ..., "high": ...,
         "U": half width}, ...}``.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``result`` that is not a :class:`PositioningUncertainty`.
     """
+    check_instance("result", result, PositioningUncertainty)
     body: dict = {"k": int(result.k) if float(result.k).is_integer() else result.k}
     body.update({figure: {"U": result.U[figure] / UM} for figure in FIGURES})
     body["components_um"] = {name: u / UM for name, u in result.components.items()}
@@ -264,9 +277,15 @@ def budget_report(result: PositioningUncertainty) -> str:
     -------
     str
         Rendered from the package template ``templates/uncertainty/budget.txt.j2``.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``result`` that is not a :class:`PositioningUncertainty`.
     """
     from jinja2 import Environment, PackageLoader, StrictUndefined
 
+    check_instance("result", result, PositioningUncertainty)
     env = Environment(loader=PackageLoader("axiscal", "templates"), undefined=StrictUndefined,
                       keep_trailing_newline=False, trim_blocks=True, lstrip_blocks=True)
     shares = result.shares()
@@ -309,13 +328,18 @@ def positioning_decisions(
         A figure that has no uncertainty here, a figure that is not available (NaN with one run),
         an unknown rule.
     """
+    check_instance("result", result, Iso230Result)
+    check_instance("uncertainty", uncertainty, PositioningUncertainty)
+    check_mapping("limits", limits, what="a mapping of figures to limits in metres")
+    check_choice("decision rule", rule, DECISION_RULES)
     out = {}
     for figure, limit in limits.items():
-        if figure not in FIGURES:
+        if not isinstance(figure, str) or figure not in FIGURES:
             raise AxiscalError(f"no uncertainty for figure '{figure}'; use one of {', '.join(FIGURES)}")
         value = getattr(result, figure)
         if not math.isfinite(value):
             raise AxiscalError(f"figure {figure} is not available for this test (one run per direction)")
+        limit = check_number(f"limits['{figure}']", limit, unit="metres", nonnegative=True)
         out[figure] = decide(value, limit, uncertainty.U[figure], rule=rule)
     return out
 
@@ -394,6 +418,7 @@ def evaluate_positioning_with_uncertainty(
     """
     from axiscal.positioning.report import evaluate_positioning_file
 
+    budget = as_budget(budget)
     evaluation = evaluate_positioning_file(
         path, standard=standard, wavelength_nm=wavelength_nm, expansion_per_k=expansion_per_k
     )

@@ -28,7 +28,8 @@ import numpy as np
 
 from axiscal.squareness.evaluation import squareness as squareness_of_runs
 from axiscal.straightness.reference import reference_line
-from axiscal.uncertainty.budget import Budget, read_budget
+from axiscal.io.arguments import check_array
+from axiscal.uncertainty.budget import Budget, as_budget
 
 __all__ = ["LineUncertainty", "straightness_uncertainty", "squareness_uncertainty"]
 
@@ -60,10 +61,6 @@ class LineUncertainty:
     components: dict[str, float]
     degrees_of_freedom: float
     k: float = _K
-
-
-def _budget(budget: Budget | str) -> Budget:
-    return budget if isinstance(budget, Budget) else read_budget(budget)
 
 
 def _slope_standard_error(position: np.ndarray, deviation: np.ndarray) -> tuple[float, int]:
@@ -124,9 +121,9 @@ def straightness_uncertainty(
     >>> round(r.components["device"] * 1e6, 4)
     0.7071
     """
-    budget = _budget(budget)
-    position = np.asarray(position_m, dtype=float)
-    deviation = np.asarray(deviation_m, dtype=float)
+    budget = as_budget(budget)
+    position = check_array("position_m", position_m, ndim=1)
+    deviation = check_array("deviation_m", deviation_m, ndim=1)
     line = reference_line(position, deviation, reference=reference)
     s_k, dof = _slope_standard_error(position, deviation)
     travel = float(position.max() - position.min())
@@ -174,7 +171,12 @@ def squareness_uncertainty(
     """
     from GTC import atan
 
-    budget = _budget(budget)
+    budget = as_budget(budget)
+    first_position_m, first_deviation_m, second_position_m, second_deviation_m = (
+        check_array(name, values, ndim=1) for name, values in (
+            ("first_position_m", first_position_m), ("first_deviation_m", first_deviation_m),
+            ("second_position_m", second_position_m), ("second_deviation_m", second_deviation_m))
+    )
     result = squareness_of_runs(first_position_m, first_deviation_m, second_position_m, second_deviation_m,
                                 plane=plane, prism_deviation_rad=prism_deviation_rad, reference=reference)
     slopes = []

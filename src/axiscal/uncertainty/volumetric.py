@@ -21,7 +21,7 @@ from __future__ import annotations
 import csv
 import io
 import tempfile
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -29,13 +29,15 @@ import numpy as np
 
 from axiscal.conventions import AXIS_INDEX, SQUARENESS_TERMS, component_names
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_count, check_mapping, check_number, check_path
 from axiscal.io.atomic import write_text
+from axiscal.io.instances import check_instance, type_name
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.schema import confined_path
 from axiscal.io.tabular import read_csv, read_text, read_toml, write_csv
 from axiscal.model.machine import Machine, machine_from_dict
 from axiscal.uncertainty.budget import _line_of
-from axiscal.uncertainty.montecarlo import _whole_draws, coverage_interval
+from axiscal.uncertainty.montecarlo import _probability, _whole_draws, coverage_interval
 from axiscal.units import MM, UM, angle_factor, length_factor
 
 __all__ = [
@@ -68,10 +70,29 @@ class MachineUncertainty:
         (rows tx, ty, tz in m; ea, eb, ec in rad); zero where no ``_u`` column was given.
     squareness_rad : dict of str to float
         Standard uncertainty of each squareness term (EC0Y, EB0Z, EA0Z), rad.
+
+    Raises
+    ------
+    AxiscalError
+        For tables that are not a mapping of axis letters to 2-D arrays of finite, non-
+        negative numbers, or squareness terms other than EC0Y, EB0Z, EA0Z with non-negative
+        values.
     """
 
     tables: dict[str, np.ndarray]
     squareness_rad: dict[str, float]
+
+    def __post_init__(self) -> None:
+        check_mapping("tables", self.tables, what="a mapping of axis letters to arrays of standard uncertainties")
+        for letter, u in self.tables.items():
+            u = check_array(f"tables['{letter}']", u, ndim=2, unit="")
+            if np.any(u < 0):
+                raise AxiscalError(f"tables['{letter}'] must hold non-negative standard uncertainties")
+        check_mapping("squareness_rad", self.squareness_rad, what="a mapping of squareness terms to standard uncertainties in radians")
+        for term, u in self.squareness_rad.items():
+            if not isinstance(term, str) or term not in SQUARENESS_TERMS:
+                raise AxiscalError(f"squareness_rad: unknown squareness term {term!r}; use one of {', '.join(SQUARENESS_TERMS)}")
+            check_number(f"squareness_rad['{term}']", u, unit="radians", nonnegative=True)
 
 
 @dataclass(frozen=True)
@@ -164,7 +185,7 @@ def load_machine_uncertainty(path: str | Path) -> tuple[Machine, MachineUncertai
         What :func:`axiscal.model.load_machine` raises, naming the original file; a ``_u`` column or
         key without its value, a negative or non-finite uncertainty.
     """
-    path = Path(path)
+    path = check_path("path", path)
     data = read_toml(path)
     data = {k: (dict(v) if isinstance(v, Mapping) else v) for k, v in data.items()}
     squareness = data.get("squareness", {})
@@ -331,13 +352,20 @@ def volumetric_monte_carlo(
         :data:`MAX_DRAW_POINTS` draw-points, a scheduler given without dask installed or one
         that does not answer within ``timeout_s``.
     """
-    draws = _whole_draws(draws, "the number of Monte Carlo draws")
+    check_instance("machine", machine, Machine)
+    check_instance("uncertainty", uncertainty, MachineUncertainty)
+    check_mapping("positions", positions, what="a mapping of axis letters to positions in metres")
+    draws = _whole_draws(draws, "draws (the number of Monte Carlo draws)")
     chunk_draws = _whole_draws(chunk_draws, "chunk_draws")
-    if not 0.0 < probability < 1.0:
-        raise AxiscalError(f"the coverage probability must lie between 0 and 1, got {probability!r}")
-    if draws < 1.0 / (1.0 - probability):
-        raise AxiscalError(f"{draws} draws are too few for a {probability:.0%} coverage interval;"
-                           f" use at least {int(np.ceil(1.0 / (1.0 - probability)))}")
+    probability = _probability(probability)
+    seed = check_count("seed", seed, minimum=0)
+    if scheduler is not None and not isinstance(scheduler, str) and not callable(getattr(scheduler, "submit", None)):
+        raise AxiscalError(f"scheduler must be None, 'local', a scheduler address or a dask.distributed.Client, not {type_name(scheduler)}")
+    if progress is not None and not callable(progress):
+        raise AxiscalError(f"progress must be a function of (done, total), not {type_name(progress)}")
+    if draws < max(2.0, 1.0 / (1.0 - probability)):  # two at least: the standard deviation needs them
+        raise AxiscalError(f"draws: {draws} are too few for a {probability:.0%} coverage interval;"
+                           f" use at least {max(2, int(np.ceil(1.0 / (1.0 - probability))))}")
     error = machine.volumetric_error(positions)  # also checks the positions
     q = {k: np.atleast_1d(np.asarray(positions[k], dtype=float)) for k in machine.letters}
     n = error.shape[0]
@@ -473,6 +501,9 @@ def write_volumetric_uncertainty(
     AxiscalError
         Positions that do not match the result's points, or a file that cannot be written.
     """
+    path = check_path("path", path)
+    if isinstance(sources, (str, bytes, Path)) or not isinstance(sources, Iterable):
+        raise AxiscalError(f"sources must be a sequence of file names, not {sources!r}")
     written = write_text(path, write_csv(None, volumetric_uncertainty_columns(positions, result), fmt="{:.6f}"))
     write_sidecar(written, kind="volumetric uncertainty", sources=list(sources), method="Monte Carlo (JCGM 101)",
                   frame="tool point relative to the workpiece, workpiece frame; actual minus nominal",
@@ -499,12 +530,15 @@ def volumetric_uncertainty_columns(positions: Mapping[str, np.ndarray], result: 
     Raises
     ------
     AxiscalError
-        Positions that do not match the result's points.
+        Positions that do not match the result's points or are not finite numbers; a result that
+        is not a :class:`VolumetricUncertainty`.
     """
+    check_instance("result", result, VolumetricUncertainty)
+    check_mapping("positions", positions, what="a mapping of axis letters to positions in metres")
     n = result.error.shape[0]
     columns: dict[str, np.ndarray] = {}
     for letter, q in positions.items():
-        q = np.atleast_1d(np.asarray(q, dtype=float))
+        q = np.atleast_1d(check_array(f"positions['{letter}'] (metres)", q, unit=""))
         if q.shape != (n,):
             raise AxiscalError(f"positions of axis {letter}: {q.size} values for {n} points")
         columns[f"{letter}_mm"] = q / MM

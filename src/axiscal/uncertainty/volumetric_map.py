@@ -19,6 +19,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.figures import check_figure_path
+from axiscal.io.instances import type_name
 from axiscal.io.tabular import write_csv
 from axiscal.model.machine import Machine
 from axiscal.model.volumetric import volumetric_map
@@ -233,9 +234,12 @@ def volumetric_uncertainty_map(
     if isinstance(machine, (str, Path)):
         model, uncertainty = load_machine_uncertainty(machine)
         sources: list[str] = [str(machine)]
-    else:
+    elif isinstance(machine, tuple) and len(machine) == 2 and isinstance(machine[0], Machine) \
+            and isinstance(machine[1], MachineUncertainty):
         model, uncertainty = machine
         sources = []
+    else:
+        raise AxiscalError(f"machine must be a machine file or a (Machine, MachineUncertainty) pair, not {type_name(machine)}")
     nominal = volumetric_map(model, points=points, grid=grid, positions=positions)
     if points is not None:
         sources.append(str(points))

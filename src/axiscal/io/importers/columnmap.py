@@ -19,6 +19,8 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_path
+from axiscal.io.instances import check_instance
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.schema import TomlLines
@@ -141,8 +143,11 @@ class ColumnMap:
         return {"path": self.source, "line": None if self.locate is None else self.locate(key)}
 
     def __post_init__(self) -> None:
-        if self.layout not in _LAYOUTS:
+        if not isinstance(self.layout, str) or self.layout not in _LAYOUTS:
             raise AxiscalError(f"layout must be one of {', '.join(_LAYOUTS)}, not '{self.layout}'", **self._at("layout"))
+        if isinstance(self.run_labels, (str, bytes)) or not isinstance(self.run_labels, (tuple, list)) \
+                or not all(isinstance(label, str) for label in self.run_labels):
+            raise AxiscalError(f"run_labels must be a tuple of labels (str), not {self.run_labels!r}", **self._at("runs"))
         if self.layout == "rows" and self.reading is None:
             raise AxiscalError("layout 'rows' needs columns.reading (the reading column)", **self._at("columns.reading"))
         if self.layout == "runs":
@@ -155,23 +160,33 @@ class ColumnMap:
                     f"{len(self.run_labels)} run labels for {len(self.readings)} reading columns", **self._at("runs")
                 )
         for name, unit in (("target", self.target_unit), ("reading", self.reading_unit)):
-            if unit not in IMPORT_UNITS:
+            if not isinstance(unit, str) or unit not in IMPORT_UNITS:
                 raise AxiscalError(
                     f"units.{name}: unknown length unit '{unit}'; use one of {', '.join(IMPORT_UNITS)}", **self._at(f"units.{name}")
                 )
-        if self.kind not in _KINDS:
+        if not isinstance(self.kind, str) or self.kind not in _KINDS:
             raise AxiscalError(f"reading must be one of {', '.join(_KINDS)}, not '{self.kind}'", **self._at("reading"))
-        if self.sign not in (1, -1):
+        if not isinstance(self.sign, int) or isinstance(self.sign, bool) or self.sign not in (1, -1):
             raise AxiscalError(f"sign must be 1 or -1, not {self.sign!r}", **self._at("sign"))
-        if self.decimal not in (".", ","):
+        if not isinstance(self.decimal, str) or self.decimal not in (".", ","):
             raise AxiscalError(f"decimal must be '.' or ',', not '{self.decimal}'", **self._at("decimal"))
         if self.decimal == "," and self.delimiter == ",":
             raise AxiscalError("a decimal comma needs another delimiter (';', 'tab' or 'whitespace')", **self._at("decimal"))
         if not isinstance(self.skip_lines, int) or isinstance(self.skip_lines, bool) or self.skip_lines < 0:
             raise AxiscalError(f"skip_lines must be a whole number >= 0, not {self.skip_lines!r}", **self._at("skip_lines"))
+        if self.delimiter is not None and not isinstance(self.delimiter, str):
+            raise AxiscalError(f"delimiter must be a str or None, not {self.delimiter!r}", **self._at("delimiter"))
+        if not isinstance(self.direction_values, Mapping):
+            raise AxiscalError(f"direction_values must map words to '+' or '-', not {self.direction_values!r}", **self._at("direction_values"))
+        if not isinstance(self.header, bool):
+            raise AxiscalError(f"header must be true or false, not {self.header!r}", **self._at("header"))
+        if isinstance(self.readings, (str, bytes)) or not isinstance(self.readings, (tuple, list)):
+            raise AxiscalError(f"readings must be a tuple of columns, not {self.readings!r}", **self._at("columns.readings"))
         for word, d in self.direction_values.items():
             if d not in ("+", "-"):
                 raise AxiscalError(f"direction_values.{word}: map to '+' or '-', not '{d}'", **self._at(f"direction_values.{word}"))
+        if self.target is None:
+            raise AxiscalError("columns.target is missing (the target position column)", **self._at("columns"))
         for ref in (self.target, self.reading, self.run, self.direction, *self.readings):
             if ref is None:
                 continue
@@ -444,8 +459,8 @@ def import_readings(cmap: ColumnMap | str | Path, path: str | Path) -> ImportedR
     ('+', '+', '-', '-')
     """
     if not isinstance(cmap, ColumnMap):
-        cmap = read_column_map(cmap)
-    source = str(path)
+        cmap = read_column_map(check_path("cmap", cmap))
+    source = str(check_path("path", path))
     rows = _split_lines(read_text(path), cmap)
     header: list[str] | None = None
     header_line = cmap.skip_lines + 1
@@ -592,8 +607,12 @@ def write_positioning_csv(
     Raises
     ------
     AxiscalError
-        If the file cannot be written.
+        If the file cannot be written, or for readings that are not :class:`ImportedReadings`.
     """
+    check_instance("readings", readings, ImportedReadings, what="ImportedReadings (what import_readings returns)")
+    path = check_path("path", path)
+    if map_path is not None:
+        check_path("map_path", map_path)
     write_text(path, positioning_csv(readings))
     sources = [readings.source] + ([str(map_path)] if map_path is not None else [])
     runs = sorted(set(readings.runs), key=_run_key)

@@ -18,6 +18,8 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_mapping, check_number, check_path
+from axiscal.io.instances import check_instance
 from axiscal.io.atomic import atomic_write, write_text
 from axiscal.io.importers.columnmap import IMPORT_UNITS
 from axiscal.io.jsonio import write_sidecar
@@ -62,7 +64,7 @@ class RtxCapture:
 
 
 def _unit_factor(unit: str, path: str | None = None) -> float:
-    if unit not in IMPORT_UNITS:
+    if not isinstance(unit, str) or unit not in IMPORT_UNITS:
         raise AxiscalError(f"unknown length unit '{unit}' for the samples; use one of {', '.join(IMPORT_UNITS)}", path=path)
     return IMPORT_UNITS[unit]
 
@@ -97,8 +99,8 @@ def read_rtx(path: str | Path, *, unit: str) -> RtxCapture:
     >>> read_rtx(f, unit="mm").time_s.tolist()
     [0.0, 0.001, 0.002]
     """
+    path = check_path("path", path)
     factor = _unit_factor(unit)
-    path = Path(path)
     source = str(path)
     try:
         blob = path.read_bytes()
@@ -196,10 +198,14 @@ def write_rtx(
     AxiscalError
         For a non-positive rate, an unknown unit, or a header key or value holding ':' or a line break.
     """
+    path = check_path("path", path)
     _unit_factor(unit)
-    if not np.isfinite(sample_rate_hz) or sample_rate_hz <= 0:
-        raise AxiscalError(f"the sample rate must be a positive number, not {sample_rate_hz}")
-    values = np.asarray(samples, dtype="<f8").ravel()
+    sample_rate_hz = check_number("sample_rate_hz", sample_rate_hz, positive=True)
+    values = check_array("samples", samples, ndim=1).astype("<f8")
+    if header is not None:
+        check_mapping("header", header)
+        if not all(isinstance(key, str) for key in header):
+            raise AxiscalError(f"header must map keys (str) to values, not {dict(header)!r}")
     lines = {
         "Owner": "axiscal",
         "Sample rate": f"{sample_rate_hz:g}",
@@ -249,7 +255,14 @@ def write_rtx_csv(capture: RtxCapture, path: str | Path) -> Path:
     -------
     Path
         ``path``.
+
+    Raises
+    ------
+    AxiscalError
+        For a capture that is not an :class:`RtxCapture`, or a file that cannot be written.
     """
+    check_instance("capture", capture, RtxCapture, what="an RtxCapture (what read_rtx returns)")
+    path = check_path("path", path)
     text = rtx_csv(capture)
     write_text(path, text)
     write_sidecar(
