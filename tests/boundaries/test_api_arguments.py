@@ -10,35 +10,23 @@ a public callable of these rooms has no case (or an explicit exemption below).
 
 from __future__ import annotations
 
-import inspect
-import warnings
-from collections.abc import Callable
-from importlib import import_module
 from pathlib import Path
 
 import numpy as np
-import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as hs
 
-from axiscal.errors import AxiscalError
+from api_cases import EXAMPLES, CaseTable, api, finite_or_refused
+
 from axiscal.io import parse_csv
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 ROOMS = ("instruments", "straightness", "squareness", "circular", "measurement")
 NAN, INF = float("nan"), float("inf")
 
-CASES: list[tuple[str, str, Callable[[], object], str]] = []  # (room, public name, call, words of the message)
-
-
-def bad(room: str, name: str, words: str, *calls: Callable[[], object]) -> None:
-    """Add one case per call: each must raise AxiscalError whose message holds ``words``."""
-    CASES.extend((room, name, call, words) for call in calls)
-
-
-def api(room: str):
-    return import_module(f"axiscal.{room}")
+TABLE = CaseTable(ROOMS)
+bad = TABLE.bad
+CASES = TABLE.cases
 
 
 # ---------------------------------------------------------------- instruments
@@ -589,38 +577,11 @@ EXEMPT = {
 }
 
 
-def _public_callables(room: str) -> set[str]:
-    module = api(room)
-    names = set()
-    for name in module.__all__:
-        value = getattr(module, name)
-        if callable(value) and not (inspect.isclass(value) and issubclass(value, (int, str))):
-            names.add(name)
-    return names
 
 
-def _ids():
-    counts: dict[str, int] = {}
-    for room, name, _, _ in CASES:
-        key = f"{room}.{name}"
-        counts[key] = counts.get(key, 0) + 1
-        yield f"{key}-{counts[key]}"
 
 
-@pytest.mark.parametrize(("room", "name", "call", "words"), CASES, ids=list(_ids()))
-def test_bad_arguments_raise_axiscal_error_naming_them(room, name, call, words):
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        with pytest.raises(AxiscalError) as caught:
-            call()
-    assert words.lower() in caught.value.message.lower(), caught.value.message
-
-
-@pytest.mark.parametrize("room", ROOMS)
-def test_every_public_callable_has_a_bad_argument_case(room):
-    covered = {name for r, name, _, _ in CASES if r == room}
-    missing = sorted(_public_callables(room) - covered - EXEMPT.get(room, set()))
-    assert not missing, f"public callables of axiscal.{room} without a bad-argument case: {missing}"
+test_bad_arguments_raise_axiscal_error_naming_them, test_every_public_callable_has_a_bad_argument_case = TABLE.tests(EXEMPT)
 
 
 # ---------------------------------------------------------------- properties: finite in, finite out or AxiscalError
@@ -628,14 +589,7 @@ _ANY_FLOAT = hs.floats(allow_nan=True, allow_infinity=True, width=64)
 _FINITE = hs.floats(allow_nan=False, allow_infinity=False, width=64)
 
 
-def _finite_or_refused(call: Callable[[], object]) -> object | None:
-    """The call's result, or None when it raised AxiscalError; no other exception, no RuntimeWarning."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        try:
-            return call()
-        except AxiscalError:
-            return None
+_finite_or_refused = finite_or_refused
 
 
 @settings(max_examples=150, deadline=None)

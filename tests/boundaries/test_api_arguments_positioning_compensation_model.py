@@ -12,36 +12,25 @@ exemption below).
 
 from __future__ import annotations
 
-import inspect
 import warnings
-from collections.abc import Callable
-from importlib import import_module
 from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
-import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as hs
 
-from axiscal.errors import AxiscalError
+from api_cases import EXAMPLES, CaseTable, api, finite_or_refused
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
 NEVER = Path("/tmp/axiscal-never-written")
 
 ROOMS = ("positioning", "compensation", "model")
 NAN, INF = float("nan"), float("inf")
 
-CASES: list[tuple[str, str, Callable[[], object], str]] = []  # (room, public name, call, words of the message)
-
-
-def bad(room: str, name: str, words: str, *calls: Callable[[], object]) -> None:
-    """Add one case per call: each must raise AxiscalError whose message holds ``words``."""
-    CASES.extend((room, name, call, words) for call in calls)
-
-
-def api(room: str):
-    return import_module(f"axiscal.{room}")
+TABLE = CaseTable(ROOMS)
+bad = TABLE.bad
+CASES = TABLE.cases
 
 
 # ---------------------------------------------------------------- positioning
@@ -463,38 +452,11 @@ EXEMPT = {
 }
 
 
-def _public_callables(room: str) -> set[str]:
-    module = api(room)
-    names = set()
-    for name in module.__all__:
-        value = getattr(module, name)
-        if callable(value) and not (inspect.isclass(value) and issubclass(value, (int, str))):
-            names.add(name)
-    return names
 
 
-def _ids():
-    counts: dict[str, int] = {}
-    for room, name, _, _ in CASES:
-        key = f"{room}.{name}"
-        counts[key] = counts.get(key, 0) + 1
-        yield f"{key}-{counts[key]}"
 
 
-@pytest.mark.parametrize(("room", "name", "call", "words"), CASES, ids=list(_ids()))
-def test_bad_arguments_raise_axiscal_error_naming_them(room, name, call, words):
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        with pytest.raises(AxiscalError) as caught:
-            call()
-    assert words.lower() in caught.value.message.lower(), caught.value.message
-
-
-@pytest.mark.parametrize("room", ROOMS)
-def test_every_public_callable_has_a_bad_argument_case(room):
-    covered = {name for r, name, _, _ in CASES if r == room}
-    missing = sorted(_public_callables(room) - covered - EXEMPT.get(room, set()))
-    assert not missing, f"public callables of axiscal.{room} without a bad-argument case: {missing}"
+test_bad_arguments_raise_axiscal_error_naming_them, test_every_public_callable_has_a_bad_argument_case = TABLE.tests(EXEMPT)
 
 
 def test_a_volumetric_map_without_error_plots_without_a_warning(tmp_path):
@@ -510,14 +472,7 @@ _ANY_FLOAT = hs.one_of(hs.floats(allow_nan=True, allow_infinity=True, width=64),
                        hs.sampled_from([0.0, 5e-324, -5e-324, 1e-300, 1e300, -1e300, 1.7e308]))
 
 
-def _finite_or_refused(call: Callable[[], object]) -> object | None:
-    """The call's result, or None when it raised AxiscalError; no other exception, no RuntimeWarning."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        try:
-            return call()
-        except AxiscalError:
-            return None
+_finite_or_refused = finite_or_refused
 
 
 @settings(max_examples=150, deadline=None)

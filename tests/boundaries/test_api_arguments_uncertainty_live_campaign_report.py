@@ -10,36 +10,25 @@ check fails when a public callable of these rooms has no case (or an explicit ex
 
 from __future__ import annotations
 
-import inspect
-import warnings
-from collections.abc import Callable
 from importlib import import_module
 from pathlib import Path
 
 import numpy as np
-import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as hs
 
-from axiscal.errors import AxiscalError
+from api_cases import EXAMPLES, CaseTable, api, finite_or_refused
+
 from axiscal.io.templates import render_template
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 NEVER = "/tmp/axiscal-never-written"
 
 ROOMS = ("uncertainty", "live", "campaign", "report", "io")
 NAN, INF = float("nan"), float("inf")
 
-CASES: list[tuple[str, str, Callable[[], object], str]] = []  # (room, public name, call, words of the message)
-
-
-def bad(room: str, name: str, words: str, *calls: Callable[[], object]) -> None:
-    """Add one case per call: each must raise AxiscalError whose message holds ``words``."""
-    CASES.extend((room, name, call, words) for call in calls)
-
-
-def api(room: str):
-    return import_module(f"axiscal.{room}")
+TABLE = CaseTable(ROOMS)
+bad = TABLE.bad
+CASES = TABLE.cases
 
 
 # ---------------------------------------------------------------- io
@@ -459,41 +448,14 @@ EXEMPT: dict[str, set[str]] = {
 }
 
 
-def _public_callables(room: str) -> set[str]:
-    """The public names of a room that can be called, without its Enum and IntFlag classes."""
-    module = api(room)
-    return {name for name in module.__all__
-            if callable(value := getattr(module, name)) and not (inspect.isclass(value) and issubclass(value, (int, str)))}
-
-
-@pytest.mark.parametrize(("room", "name", "call", "words"), CASES, ids=[f"{r}.{n}-{i}" for i, (r, n, _, _) in enumerate(CASES)])
-def test_bad_arguments_raise_axiscal_error_naming_them(room, name, call, words):
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        with pytest.raises(AxiscalError) as caught:
-            call()
-    assert words.lower() in caught.value.message.lower(), caught.value.message
-
-
-@pytest.mark.parametrize("room", ROOMS)
-def test_every_public_callable_has_a_bad_argument_case(room):
-    covered = {name for r, name, _, _ in CASES if r == room}
-    missing = sorted(_public_callables(room) - covered - EXEMPT.get(room, set()))
-    assert not missing, f"public callables of axiscal.{room} without a bad-argument case: {missing}"
+test_bad_arguments_raise_axiscal_error_naming_them, test_every_public_callable_has_a_bad_argument_case = TABLE.tests(EXEMPT)
 
 
 # ---------------------------------------------------------------- properties: finite in, finite out or AxiscalError
 _ANY_FLOAT = hs.floats(allow_nan=True, allow_infinity=True, width=64)
 
 
-def _finite_or_refused(call: Callable[[], object]) -> object | None:
-    """The call's result, or None when it raised AxiscalError; no other exception, no RuntimeWarning."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        try:
-            return call()
-        except AxiscalError:
-            return None
+_finite_or_refused = finite_or_refused
 
 
 @settings(max_examples=150, deadline=None)

@@ -18,7 +18,7 @@ from typing import Any
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_choice, check_count, check_mapping, check_path
-from axiscal.io.instances import check_instance
+from axiscal.io.arguments import check_instance
 from axiscal.io.schema import TomlLines
 from axiscal.io.tabular import parse_toml, read_text
 

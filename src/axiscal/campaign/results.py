@@ -16,7 +16,7 @@ from typing import Any
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_choice, check_mapping, is_real
-from axiscal.io.instances import check_instance
+from axiscal.io.arguments import check_instance
 from axiscal.version import __version__
 
 __all__ = [

@@ -24,7 +24,7 @@ from axiscal.campaign.results import (
 )
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_mapping, check_path
-from axiscal.io.instances import check_instance, type_name
+from axiscal.io.arguments import check_instance, type_name
 from axiscal.positioning.evaluation import Iso230Result
 from axiscal.units import ARCSEC, MM, UM, URAD
 

@@ -16,7 +16,7 @@ import numpy as np
 from axiscal.campaign.results import Figure, Plot
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_path
-from axiscal.io.instances import check_instance, type_name
+from axiscal.io.arguments import check_instance, type_name
 from axiscal.model.machine import Machine, load_machine
 from axiscal.model.volumetric import volumetric_map
 from axiscal.units import MM, UM

@@ -14,7 +14,6 @@ docs/compensation.md, "Backlash").
 
 from __future__ import annotations
 
-import math
 import os
 from dataclasses import dataclass
 from pathlib import Path

@@ -1,6 +1,6 @@
 """The one tabular reader and writer (CSV with units in column names), TOML and JSON files, atomic
 writes, JSON sidecars, the importers of instrument exports, the checks of the arguments public
-functions share (:mod:`axiscal.io.arguments`, :mod:`axiscal.io.instances`), and the lazy entry to matplotlib for plots
+functions share (:mod:`axiscal.io.arguments`), and the lazy entry to matplotlib for plots
 (:mod:`axiscal.io.figures`)."""
 
 from __future__ import annotations
@@ -11,6 +11,7 @@ from axiscal.io.arguments import (
     check_choice,
     check_count,
     check_instance,
+    type_name,
     check_integer,
     check_mapping,
     check_number,
@@ -22,7 +23,6 @@ from axiscal.io.arguments import (
     unit_words,
 )
 from axiscal.io.atomic import atomic_write, write_text
-from axiscal.io.instances import check_instance, type_name
 from axiscal.io.jsonio import (
     dumps,
     read_json,
@@ -58,7 +58,6 @@ __all__ = [
     "is_real",
     "render_checked",
     "unit_words",
-    "check_instance",
     "type_name",
     "atomic_write",
     "write_text",

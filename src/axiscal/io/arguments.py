@@ -23,6 +23,7 @@ from axiscal.errors import AxiscalError
 __all__ = [
     "unit_words", "check_number", "check_count", "check_array", "check_same_length", "check_broadcast", "check_choice",
     "check_mapping", "check_path", "render_checked", "is_real", "check_instance", "check_optional_number", "check_integer",
+    "type_name",
 ]
 
 # name suffix -> how a message speaks of the unit; longest suffix first
@@ -571,3 +572,22 @@ def check_integer(name: str, value: Any) -> int:
     if isinstance(value, numbers.Integral) and not isinstance(value, (bool, np.bool_)):
         return int(value)
     raise AxiscalError(f"{name} must be a whole number, not {_shown(value)}")
+
+
+def type_name(value: Any) -> str:
+    """``None``, or the name of ``value``'s type, for a message refusing it.
+
+    Parameters
+    ----------
+    value : object
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> type_name(None), type_name(1.5)
+    ('None', 'float')
+    """
+    return "None" if value is None else type(value).__name__

@@ -23,7 +23,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_number
-from axiscal.io.instances import check_instance, type_name
+from axiscal.io.arguments import check_instance, type_name
 from axiscal.live.protocol import FrameBatch
 from axiscal.live.recorder import Recorder
 from axiscal.live.state import LiveState, result_columns

@@ -25,7 +25,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_count, check_same_length
-from axiscal.io.instances import type_name
+from axiscal.io.arguments import type_name
 
 __all__ = ["MAX_LINE_BYTES", "FrameBatch", "LineDecoder", "encode_lines", "header_line"]
 

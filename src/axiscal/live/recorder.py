@@ -35,7 +35,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_mapping, check_number, check_path
-from axiscal.io.instances import check_instance
+from axiscal.io.arguments import check_instance
 from axiscal.io.jsonio import read_json, sidecar_path, write_sidecar
 from axiscal.live.protocol import _checked_channels
 from axiscal.measurement.faults import fault_legend

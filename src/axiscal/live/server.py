@@ -40,7 +40,7 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_mapping, is_real
-from axiscal.io.instances import check_instance, type_name
+from axiscal.io.arguments import check_instance, type_name
 from axiscal.live.state import UPDATE_HZ_RANGE, LiveState
 
 __all__ = ["WEB", "HOST", "LOOPBACK_HOSTS", "ClientStats", "Broadcaster", "request_allowed", "create_app", "LiveServer"]

@@ -19,7 +19,7 @@ from pathlib import Path
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_number, check_path, is_real
-from axiscal.io.instances import check_instance, type_name
+from axiscal.io.arguments import check_instance
 from axiscal.io.jsonio import sidecar_path
 from axiscal.live.pipeline import Pipeline, RunSummary, _check_run
 from axiscal.live.recorder import Recorder

@@ -32,7 +32,7 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.io.importers.rtx import read_rtx
 from axiscal.io.arguments import check_choice, check_count, check_number, check_path, is_real
-from axiscal.io.instances import check_instance, type_name
+from axiscal.io.arguments import check_instance, type_name
 from axiscal.live.protocol import FrameBatch, LineDecoder, _checked_channels
 from axiscal.live.recorder import read_record
 from axiscal.measurement.virtual import PATHS

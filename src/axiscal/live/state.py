@@ -20,7 +20,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_number
-from axiscal.io.instances import check_instance
+from axiscal.io.arguments import check_instance
 from axiscal.live.protocol import FrameBatch
 from axiscal.measurement.faults import fault_text
 from axiscal.measurement.pipeline import MeasurementSystem

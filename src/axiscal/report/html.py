@@ -17,7 +17,7 @@ import numpy as np
 from axiscal.campaign.results import CampaignResults, TestResult, results_payload
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_choice, check_count, check_mapping, is_real
-from axiscal.io.instances import check_instance, type_name
+from axiscal.io.arguments import check_instance, type_name
 from axiscal.version import __version__
 
 __all__ = [

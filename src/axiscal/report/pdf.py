@@ -18,7 +18,7 @@ from typing import Any
 from axiscal.campaign.results import CampaignResults, results_payload
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_path
-from axiscal.io.instances import check_instance, type_name
+from axiscal.io.arguments import check_instance, type_name
 from axiscal.report.html import (
     check_compare,
     compare_label,

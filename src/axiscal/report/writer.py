@@ -20,7 +20,7 @@ from axiscal.campaign.results import CampaignResults, results_payload
 from axiscal.campaign.runner import run_campaign
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_mapping, check_path
-from axiscal.io.instances import check_instance
+from axiscal.io.arguments import check_instance
 from axiscal.io.jsonio import dumps, read_json
 from axiscal.report.html import check_compare, render_html
 

@@ -31,7 +31,7 @@ from pathlib import Path
 from axiscal.errors import AxiscalError
 from axiscal.instruments.air import METHODS, refractive_index
 from axiscal.io.arguments import check_mapping, check_number
-from axiscal.io.instances import check_instance, type_name
+from axiscal.io.arguments import check_instance, type_name
 from axiscal.io.tabular import read_text, read_toml
 from axiscal.units import ARCSEC, UM
 

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_choice, check_number
 
 __all__ = ["DECISION_RULES", "Decision", "decide"]

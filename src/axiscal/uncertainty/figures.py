@@ -27,7 +27,7 @@ from typing import Any
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_choice, check_mapping, is_real
-from axiscal.io.instances import type_name
+from axiscal.io.arguments import type_name
 from axiscal.positioning.evaluation import ISO_SYMBOLS, Iso230Result, PositioningRun
 from axiscal.positioning.report import PositioningEvaluation
 from axiscal.squareness.evaluation import SquarenessEvaluation

@@ -14,7 +14,7 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_mapping
 from axiscal.io.figures import check_figure_path, pyplot, save_figure
-from axiscal.io.instances import check_instance
+from axiscal.io.arguments import check_instance
 from axiscal.uncertainty.volumetric import VolumetricUncertainty
 from axiscal.units import MM, UM
 

@@ -24,7 +24,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_choice, check_count, check_mapping, check_number, is_real
-from axiscal.io.instances import check_instance, type_name
+from axiscal.io.arguments import check_instance, type_name
 from axiscal.instruments.air import refractive_index
 from axiscal.positioning.evaluation import Iso230Result, PositioningRun
 from axiscal.uncertainty.budget import (

@@ -31,7 +31,7 @@ from axiscal.conventions import AXIS_INDEX, SQUARENESS_TERMS, component_names
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_count, check_mapping, check_number, check_path
 from axiscal.io.atomic import write_text
-from axiscal.io.instances import check_instance, type_name
+from axiscal.io.arguments import check_instance, type_name
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.schema import confined_path
 from axiscal.io.tabular import read_csv, read_text, read_toml, write_csv

@@ -19,7 +19,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.figures import check_figure_path
-from axiscal.io.instances import type_name
+from axiscal.io.arguments import type_name
 from axiscal.io.tabular import write_csv
 from axiscal.model.machine import Machine
 from axiscal.model.volumetric import volumetric_map

@@ -20,7 +20,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_path
-from axiscal.io.instances import check_instance
+from axiscal.io.arguments import check_instance
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.schema import TomlLines

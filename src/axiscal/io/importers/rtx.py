@@ -19,7 +19,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_mapping, check_number, check_path
-from axiscal.io.instances import check_instance
+from axiscal.io.arguments import check_instance
 from axiscal.io.atomic import atomic_write, write_text
 from axiscal.io.importers.columnmap import IMPORT_UNITS
 from axiscal.io.jsonio import write_sidecar
