@@ -44,8 +44,10 @@ __all__ = [
 ]
 
 #: a number as a file may spell it: optional sign, decimal digits with an optional point, optional exponent
-_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
-_NUMBER_COMMA = re.compile(r"[+-]?(?:[0-9]+[.,]?[0-9]*|[.,][0-9]+)(?:[eE][+-]?[0-9]+)?")
+# (the digits before and after the point are separate groups, so a long cell that is not a number
+# is refused in linear time: "[0-9]+\.?[0-9]*" would try every split of a run of digits)
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_NUMBER_COMMA = re.compile(r"[+-]?(?:[0-9]+(?:[.,][0-9]*)?|[.,][0-9]+)(?:[eE][+-]?[0-9]+)?")
 _NOT_FINITE = re.compile(r"[+-]?(?:nan|inf|infinity)", re.IGNORECASE)
 _MICRO = ("\u00b5", "\u03bc")  # micro sign and Greek mu, as in "µm"
 _SHOWN = 40  # characters of a cell quoted in an error message
