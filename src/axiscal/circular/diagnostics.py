@@ -28,7 +28,7 @@ from scipy.optimize import minimize_scalar
 
 from axiscal.circular.evaluation import BallbarTrace
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_array, check_count, check_same_length, is_real
+from axiscal.io.arguments import check_array, check_count, check_instance, check_same_length, is_real
 from axiscal.units import MM, UM
 
 __all__ = [
@@ -257,8 +257,7 @@ def diagnose(trace: BallbarTrace, *, feed: float | None = None, spike_window: fl
     >>> round(diagnose(t).squareness * 1e6, 3)
     20.0
     """
-    if not isinstance(trace, BallbarTrace):
-        raise AxiscalError(f"trace must be a BallbarTrace, not {type(trace).__name__}")
+    check_instance("trace", trace, BallbarTrace, what="a BallbarTrace")
     if feed is not None and not (is_real(feed) and math.isfinite(feed) and feed > 0):
         raise AxiscalError(f"the feed must be a positive speed, got {feed!r} m/s")
     if not (is_real(spike_window) and 0 < spike_window < math.pi / 4):

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_array, check_number, check_same_length
+from axiscal.io.arguments import check_array, check_instance, check_number, check_same_length
 from axiscal.units import LENGTH_UNITS
 
 __all__ = [
@@ -391,8 +391,7 @@ def iso230_4(trace: BallbarTrace) -> CircularFigures:
     >>> round(f.G["ccw"] * 1e6, 3), round(f.F_max * 1e6, 3), round(f.centre[0] * 1e6, 3)
     (0.0, 3.0, 3.0)
     """
-    if not isinstance(trace, BallbarTrace):
-        raise AxiscalError(f"trace must be a BallbarTrace, not {type(trace).__name__}")
+    check_instance("trace", trace, BallbarTrace, what="a BallbarTrace")
     cx, cy, r0 = lsq_circle(trace.angles, trace.deviations, trace.radius)
     G: dict[str, float] = {}
     centres: dict[str, tuple[float, float]] = {}

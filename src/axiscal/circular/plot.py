@@ -14,7 +14,7 @@ import numpy as np
 from axiscal.circular.evaluation import radial_deviations
 from axiscal.circular.report import BallbarResult, ballbar_payload, format_number
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_path
+from axiscal.io.arguments import check_instance, check_path
 from axiscal.io.figures import check_figure_path, pyplot, save_figure
 from axiscal.units import MM, UM
 
@@ -87,8 +87,7 @@ def plot_ballbar(result: BallbarResult, path: str | Path, *, title: str = "") ->
     AxiscalError
         If the suffix names no figure format, or the file cannot be written.
     """
-    if not isinstance(result, BallbarResult):
-        raise AxiscalError(f"result must be a BallbarResult (evaluate_ballbar), not {type(result).__name__}")
+    check_instance("result", result, BallbarResult, what="a BallbarResult (evaluate_ballbar)")
     if not isinstance(title, str):
         raise AxiscalError(f"title must be text, not {title!r}")
     path = check_figure_path(check_path("path", path))

@@ -24,7 +24,7 @@ from axiscal.circular.evaluation import (
 from axiscal.circular.reader import read_ballbar
 from axiscal.conventions import SQUARENESS_TERMS
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_number, is_real
+from axiscal.io.arguments import check_instance, check_number, is_real
 from axiscal.units import ANGLE_UNITS, LENGTH_UNITS, MM, UM
 
 __all__ = [
@@ -123,8 +123,7 @@ def evaluate_ballbar(trace: BallbarTrace, *, feed: float | None = None) -> Ballb
     AxiscalError
         If the feed is not a positive speed.
     """
-    if not isinstance(trace, BallbarTrace):
-        raise AxiscalError(f"trace must be a BallbarTrace, not {type(trace).__name__}")
+    check_instance("trace", trace, BallbarTrace, what="a BallbarTrace")
     return BallbarResult(trace=trace, figures=iso230_4(trace), diagnostics=diagnose(trace, feed=feed), feed=feed)
 
 
@@ -158,8 +157,7 @@ def _um(value: float) -> float | None:
 
 
 def _result(result: BallbarResult) -> BallbarResult:
-    if not isinstance(result, BallbarResult):
-        raise AxiscalError(f"result must be a BallbarResult (evaluate_ballbar), not {type(result).__name__}")
+    check_instance("result", result, BallbarResult, what="a BallbarResult (evaluate_ballbar)")
     return result
 
 

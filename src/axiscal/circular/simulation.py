@@ -17,7 +17,7 @@ import numpy as np
 
 from axiscal.circular.evaluation import DIRECTIONS, MM_PER_MIN, BallbarTrace, plane_axes
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_count, check_path, is_real
+from axiscal.io.arguments import check_count, check_instance, check_path, is_real
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.tabular import write_csv
@@ -174,8 +174,7 @@ def simulate_ballbar(
 
 
 def _trace(trace: BallbarTrace) -> BallbarTrace:
-    if not isinstance(trace, BallbarTrace):
-        raise AxiscalError(f"trace must be a BallbarTrace, not {type(trace).__name__}")
+    check_instance("trace", trace, BallbarTrace, what="a BallbarTrace")
     return trace
 
 

@@ -31,7 +31,7 @@ from numpy.polynomial import legendre
 
 from axiscal.errors import AxiscalError
 from axiscal.instruments.abbe import transfer_point
-from axiscal.io.arguments import check_array, check_count, check_number, check_path
+from axiscal.io.arguments import check_array, check_count, check_instance, check_number, check_path
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import json_line
 from axiscal.io.tabular import read_text
@@ -416,8 +416,7 @@ def save_calibration(calibration: Calibration, path: str | Path) -> None:
     AxiscalError
         If the file cannot be written (naming it).
     """
-    if not isinstance(calibration, Calibration):
-        raise AxiscalError(f"calibration must be a Calibration, not {type(calibration).__name__}")
+    check_instance("calibration", calibration, Calibration, what="a Calibration")
     write_text(check_path("path", path), json.dumps(calibration.to_dict(), indent=2) + "\n")
 
 

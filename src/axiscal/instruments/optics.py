@@ -37,7 +37,7 @@ from typing import Literal
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_array, check_broadcast, check_number
+from axiscal.io.arguments import check_array, check_broadcast, check_instance, check_number
 
 __all__ = [
     "BK7_INDEX",
@@ -372,8 +372,7 @@ def trace(
         If a ray runs parallel to a face or would have to go backwards to reach it (it misses the
         prism as set up), or is totally internally reflected at a refracting face.
     """
-    if not isinstance(prism, Prism):
-        raise AxiscalError(f"prism must be a Prism, not {type(prism).__name__}")
+    check_instance("prism", prism, Prism, what="a Prism")
     ambient_index = _glass_index(ambient_index, "ambient_index")
     points = _batch(origins_m, "origins_m (ray origins)")
     dirs = _unit(_batch(directions, "directions (ray directions)"), "directions (ray directions)")

@@ -510,7 +510,9 @@ def check_instance(name: str, value: Any, kind: type | tuple[type, ...], *, what
     if what is None:
         kinds = kind if isinstance(kind, tuple) else (kind,)
         what = " or ".join(f"{'an' if k.__name__[0] in 'AEIOU' else 'a'} {k.__name__}" for k in kinds)
-    raise AxiscalError(f"{name} must be {what}, not {_shown(value)}")
+    # a plain value is shown as it is, an object of another kind by the name of its type
+    plain = value is None or isinstance(value, (str, bool, int, float))
+    raise AxiscalError(f"{name} must be {what}, not {_shown(value) if plain else type_name(value)}")
 
 
 def check_optional_number(name: str, value: Any, **bounds: Any) -> float | None:

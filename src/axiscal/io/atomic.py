@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_path
+from axiscal.io.arguments import check_instance, check_path
 
 __all__ = ["atomic_write", "write_text"]
 
@@ -105,8 +105,7 @@ def write_text(path: str | Path, text: str) -> Path:
     AxiscalError
         For a ``text`` that is not a str, or what :func:`atomic_write` raises.
     """
-    if not isinstance(text, str):
-        raise AxiscalError(f"text must be a str, not {type(text).__name__}")
+    check_instance("text", text, str, what="a str")
     return atomic_write(path, lambda target: target.write_bytes(text.encode("utf-8")))
 
 

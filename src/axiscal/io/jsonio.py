@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_path
+from axiscal.io.arguments import check_instance, check_path
 from axiscal.io.atomic import write_text
 from axiscal.version import __version__
 
@@ -98,8 +98,7 @@ def json_line(text: str, *keys: str) -> int | None:
     """
     import re
 
-    if not isinstance(text, str):
-        raise AxiscalError(f"text must be the JSON text (a str), not {type(text).__name__}")
+    check_instance("text", text, str, what="the JSON text (a str)")
     at, found = 0, None
     for key in keys:
         match = re.compile(re.escape(json.dumps(str(key), ensure_ascii=False)) + r"\s*:").search(text, at)

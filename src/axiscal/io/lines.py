@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_instance
 
 __all__ = ["Lines"]
 
@@ -47,8 +47,7 @@ class Lines:
     """
 
     def __init__(self, data: bytes):
-        if not isinstance(data, bytes):
-            raise AxiscalError(f"data must be the file's content (bytes), not {type(data).__name__}")
+        check_instance("data", data, bytes, what="the file's content (bytes)")
         self.data = data
         arr = np.frombuffer(data, dtype=np.uint8)
         if b"\r" in data:

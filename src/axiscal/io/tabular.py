@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_count, check_mapping, check_path, check_same_length
+from axiscal.io.arguments import check_count, check_instance, check_mapping, check_path, check_same_length
 from axiscal.io.atomic import write_text
 from axiscal.io.lines import Lines
 
@@ -689,8 +689,7 @@ def parse_toml(text: str, *, path: str | Path | None = None) -> dict:
     """
     import tomllib
 
-    if not isinstance(text, str):
-        raise AxiscalError(f"text must be the TOML text (a str), not {type(text).__name__}")
+    check_instance("text", text, str, what="the TOML text (a str)")
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

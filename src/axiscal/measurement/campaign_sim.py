@@ -26,7 +26,7 @@ from axiscal.errors import AxiscalError
 from axiscal.instruments.abbe import transfer_point
 from axiscal.instruments.air import refractive_index
 from axiscal.instruments.calibration import save_calibration
-from axiscal.io.arguments import check_count, check_path
+from axiscal.io.arguments import check_count, check_instance, check_path
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.templates import render_template
@@ -87,8 +87,7 @@ def _beam_point(module: VirtualModule, letter: str) -> np.ndarray:
 
 
 def _module(module: VirtualModule) -> VirtualModule:
-    if not isinstance(module, VirtualModule):
-        raise AxiscalError(f"module must be a VirtualModule, not {type(module).__name__}")
+    check_instance("module", module, VirtualModule, what="a VirtualModule")
     return module
 
 

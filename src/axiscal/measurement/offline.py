@@ -27,7 +27,7 @@ from axiscal.instruments.calibration import (
 )
 from axiscal.instruments.reports import render_report
 from axiscal.instruments.sensors import roll_from_autocollimation
-from axiscal.io.arguments import check_array, check_count, check_mapping, check_number, check_path, check_same_length
+from axiscal.io.arguments import check_array, check_count, check_instance, check_mapping, check_number, check_path, check_same_length
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import read_json, sidecar_path, write_sidecar
 from axiscal.io.tabular import CsvTable, parse_csv, read_csv, read_text, write_csv
@@ -142,8 +142,7 @@ def drop_cut_line(text: str) -> str:
     str
         The text up to and including its last newline (unchanged when it ends with one).
     """
-    if not isinstance(text, str):
-        raise AxiscalError(f"text must be the record's text (str), not {type(text).__name__}")
+    check_instance("text", text, str, what="the record's text (str)")
     if text and not text.endswith("\n"):
         return text[: text.rfind("\n") + 1]
     return text
@@ -176,8 +175,7 @@ def numeric_columns(table: CsvTable, names: Sequence[str]) -> dict[str, np.ndarr
     >>> numeric_columns(table, ["a"])["a"].tolist()
     [nan, nan]
     """
-    if not isinstance(table, CsvTable):
-        raise AxiscalError(f"table must be a CsvTable (read_csv, parse_csv), not {type(table).__name__}")
+    check_instance("table", table, CsvTable, what="a CsvTable (read_csv, parse_csv)")
     return {name: table.numeric_or_missing(name) for name in _names("names", names)}
 
 
@@ -321,8 +319,7 @@ class CsvOutput:
     rows: int
 
     def __post_init__(self) -> None:
-        if not isinstance(self.text, str):
-            raise AxiscalError(f"text must be the CSV text, not {type(self.text).__name__}")
+        check_instance("text", self.text, str, what="the CSV text")
         check_count("rows", self.rows, minimum=0)
 
 
@@ -809,8 +806,7 @@ class DiagonalReport:
     paper_um: dict[str, float] | None = field(default=None)
 
     def __post_init__(self) -> None:
-        if not isinstance(self.experiment, DiagonalExperiment):
-            raise AxiscalError(f"experiment must be a DiagonalExperiment (diagonal_experiment), not {type(self.experiment).__name__}")
+        check_instance("experiment", self.experiment, DiagonalExperiment, what="a DiagonalExperiment (diagonal_experiment)")
         if self.paper_um is not None:
             check_mapping("paper_um", self.paper_um, ("before", "after"), what="the paper's before and after values in um")
 

@@ -36,7 +36,7 @@ from axiscal.instruments.calibration import (
     load_calibration,
 )
 from axiscal.instruments.sensors import SensorHead, sensor_head_from_dict
-from axiscal.io.arguments import check_array, check_mapping, check_path, check_same_length
+from axiscal.io.arguments import check_array, check_instance, check_mapping, check_path, check_same_length
 from axiscal.io.tabular import read_toml
 from axiscal.measurement.faults import Fault, fault_text
 from axiscal.model.machine import Machine, machine_from_dict
@@ -102,13 +102,11 @@ class MeasurementSystem:
     """
 
     def __init__(self, machine: Machine, heads: Mapping[str, SensorHead], calibration: Calibration | None = None):
-        if not isinstance(machine, Machine):
-            raise AxiscalError(f"machine must be a Machine (load_machine), not {type(machine).__name__}")
+        check_instance("machine", machine, Machine, what="a Machine (load_machine)")
         check_mapping("heads", heads, what="a mapping of axis letters to SensorHead")
         if not all(isinstance(h, SensorHead) for h in heads.values()):
             raise AxiscalError("heads must map axis letters to SensorHead objects (sensor_head_from_dict)")
-        if calibration is not None and not isinstance(calibration, Calibration):
-            raise AxiscalError(f"calibration must be a Calibration or None, not {type(calibration).__name__}")
+        check_instance("calibration", calibration, (Calibration, type(None)), what="a Calibration or None")
         self.machine = machine
         self.calibration = calibration if calibration is not None else Calibration()
         self.axes = tuple(machine.letters)
@@ -191,8 +189,7 @@ class MeasurementSystem:
         the TOML file) are loaded and applied; ``calibration`` given here is merged on top.
         """
         path = check_path("path", path)
-        if calibration is not None and not isinstance(calibration, Calibration):
-            raise AxiscalError(f"calibration must be a Calibration or None, not {type(calibration).__name__}")
+        check_instance("calibration", calibration, (Calibration, type(None)), what="a Calibration or None")
         data = read_toml(path)
         machine = machine_from_dict(data, base_dir=path.parent, source=str(path))
         heads: dict[str, SensorHead] = {}
@@ -227,8 +224,7 @@ class MeasurementSystem:
         MeasurementSystem
             A new system; this one is unchanged.
         """
-        if not isinstance(calibration, Calibration):
-            raise AxiscalError(f"calibration must be a Calibration, not {type(calibration).__name__}")
+        check_instance("calibration", calibration, Calibration, what="a Calibration")
         return MeasurementSystem(self.machine, self.heads, self.calibration.merged(calibration))
 
     def fault_text(self, fault: int) -> str:
@@ -378,8 +374,7 @@ def spatial_error(machine: Machine, positions_m: Mapping[str, np.ndarray], error
     ndarray, shape (N, 3)
         Actual minus nominal functional point, in the workpiece frame, metres.
     """
-    if not isinstance(machine, Machine):
-        raise AxiscalError(f"machine must be a Machine (load_machine), not {type(machine).__name__}")
+    check_instance("machine", machine, Machine, what="a Machine (load_machine)")
     check_mapping("positions_m", positions_m, machine.letters, what=f"a mapping of every axis ({', '.join(machine.letters)}) to positions in metres")
     check_mapping("errors", errors, machine.letters, what=f"a mapping of every axis ({', '.join(machine.letters)}) to its (6, N) error motions")
     for letter in machine.letters:

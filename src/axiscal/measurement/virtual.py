@@ -25,7 +25,7 @@ import numpy as np
 from axiscal.conventions import component_names
 from axiscal.errors import AxiscalError
 from axiscal.instruments.abbe import transfer_point
-from axiscal.io.arguments import check_array, check_count, check_mapping, check_number, check_same_length
+from axiscal.io.arguments import check_array, check_count, check_instance, check_mapping, check_number, check_same_length
 from axiscal.instruments.calibration import (
     Calibration,
     fit_mirror,
@@ -657,8 +657,7 @@ def diagonal_experiment(
     >>> result.after_max_m < result.before_max_m
     True
     """
-    if not isinstance(module, VirtualModule):
-        raise AxiscalError(f"module must be a VirtualModule, not {type(module).__name__}")
+    check_instance("module", module, VirtualModule, what="a VirtualModule")
     points = check_count("points", points)
     step_m = check_number("step_m", step_m, positive=True)
     if points * step_m > STROKE_M + 1e-12:

@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_array, check_number, check_path
+from axiscal.io.arguments import check_array, check_instance, check_number, check_path
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.tabular import read_csv, write_csv
@@ -163,8 +163,7 @@ def _points(points_m: np.ndarray | Sequence[Sequence[float]]) -> np.ndarray:
 
 
 def _squareness(value: CmmSquareness, name: str = "squareness") -> CmmSquareness:
-    if not isinstance(value, CmmSquareness):
-        raise AxiscalError(f"{name} must be a CmmSquareness, not {type(value).__name__}")
+    check_instance(name, value, CmmSquareness, what="a CmmSquareness")
     return value
 
 

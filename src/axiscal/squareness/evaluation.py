@@ -44,7 +44,7 @@ import numpy as np
 
 from axiscal.conventions import PLANES
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_number, check_path
+from axiscal.io.arguments import check_instance, check_number, check_path
 from axiscal.straightness.files import Profile, read_profile
 from axiscal.straightness.reference import ReferenceLine, reference_line
 from axiscal.straightness.report import render_report
@@ -481,11 +481,9 @@ class SquarenessEvaluation:
     second: Profile
 
     def __post_init__(self) -> None:
-        if not isinstance(self.result, SquarenessResult):
-            raise AxiscalError(f"result must be a SquarenessResult, not {type(self.result).__name__}")
+        check_instance("result", self.result, SquarenessResult, what="a SquarenessResult")
         for name in ("first", "second"):
-            if not isinstance(getattr(self, name), Profile):
-                raise AxiscalError(f"{name} must be a Profile (read_profile), not {type(getattr(self, name)).__name__}")
+            check_instance(name, getattr(self, name), Profile, what="a Profile (read_profile)")
 
     def payload(self) -> dict[str, Any]:
         """The JSON object: angles in arcsec and degrees, slopes, straightness of each run in um."""

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_number
+from axiscal.io.arguments import check_instance, check_number
 from axiscal.instruments.optics import (
     BK7_INDEX,
     PentaprismSensitivity,
@@ -54,8 +54,7 @@ class PentaprismStudy:
     table: PentaprismSensitivity
 
     def __post_init__(self) -> None:
-        if not isinstance(self.table, PentaprismSensitivity):
-            raise AxiscalError(f"table must be a PentaprismSensitivity (pentaprism_sensitivity), not {type(self.table).__name__}")
+        check_instance("table", self.table, PentaprismSensitivity, what="a PentaprismSensitivity (pentaprism_sensitivity)")
 
     def payload(self) -> dict[str, Any]:
         """The JSON object: rotations in arcmin, changes in arcsec, shifts in mm, eq (12)'s coefficient."""

@@ -15,7 +15,7 @@ import numpy as np
 from axiscal.conventions import PLANES
 from axiscal.instruments.optics import PentaprismSensitivity
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_array, check_path
+from axiscal.io.arguments import check_array, check_instance, check_path
 from axiscal.io.figures import pyplot, save_figure
 from axiscal.units import ARCMIN, ARCSEC, MM, UM
 
@@ -104,8 +104,7 @@ def plot_pentaprism(path: str | Path, table: PentaprismSensitivity) -> Path:
         An unknown image format or a file that cannot be written.
     """
     path = check_path("path", path)
-    if not isinstance(table, PentaprismSensitivity):
-        raise AxiscalError(f"table must be a PentaprismSensitivity (pentaprism_sensitivity), not {type(table).__name__}")
+    check_instance("table", table, PentaprismSensitivity, what="a PentaprismSensitivity (pentaprism_sensitivity)")
     plt = pyplot()
     fig, axes = plt.subplots(1, 4, figsize=(13, 3.6), sharey=True, constrained_layout=True)
     rotation_arcmin = table.rotation_rad / ARCMIN

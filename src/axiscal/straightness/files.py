@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_array, check_count, check_number, check_path, check_same_length
+from axiscal.io.arguments import check_array, check_count, check_instance, check_number, check_path, check_same_length
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.tabular import CsvTable, read_csv, write_csv
@@ -279,10 +279,8 @@ class StraightnessEvaluation:
     line: ReferenceLine
 
     def __post_init__(self) -> None:
-        if not isinstance(self.profile, Profile):
-            raise AxiscalError(f"profile must be a Profile (read_profile), not {type(self.profile).__name__}")
-        if not isinstance(self.line, ReferenceLine):
-            raise AxiscalError(f"line must be a ReferenceLine (reference_line), not {type(self.line).__name__}")
+        check_instance("profile", self.profile, Profile, what="a Profile (read_profile)")
+        check_instance("line", self.line, ReferenceLine, what="a ReferenceLine (reference_line)")
 
     def payload(self) -> dict[str, Any]:
         """The JSON object: ``straightness_um``, ``slope_urad``, ``intercept_um``, ``reference``."""
@@ -351,8 +349,7 @@ def _cells(values: np.ndarray, scale: float, fmt: str) -> list[str]:
 
 
 def _separation(result: Separation, name: str) -> Separation:
-    if not isinstance(result, Separation):
-        raise AxiscalError(f"{name} must be a Separation (separate or reversal), not {type(result).__name__}")
+    check_instance(name, result, Separation, what="a Separation (separate or reversal)")
     return result
 
 
@@ -387,10 +384,8 @@ def _write_data(path: str | Path, text: str, **sidecar: Any) -> None:
 
 
 def _text_and_metadata(csv_text: str, metadata: dict[str, Any]) -> None:
-    if not isinstance(csv_text, str):
-        raise AxiscalError(f"csv_text must be the CSV text, not {type(csv_text).__name__}")
-    if not isinstance(metadata, dict):
-        raise AxiscalError(f"metadata must be a dict, not {type(metadata).__name__}")
+    check_instance("csv_text", csv_text, str, what="the CSV text")
+    check_instance("metadata", metadata, dict, what="a dict")
 
 
 @dataclass(frozen=True)
@@ -519,8 +514,7 @@ class SimulatedReadings:
     metadata: dict[str, Any]
 
     def __post_init__(self) -> None:
-        if not isinstance(self.readings, ProbeReadings):
-            raise AxiscalError(f"readings must be ProbeReadings, not {type(self.readings).__name__}")
+        check_instance("readings", self.readings, ProbeReadings, what="ProbeReadings")
         _text_and_metadata(self.csv_text, self.metadata)
 
 

@@ -10,8 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_array, check_path
+from axiscal.io.arguments import check_array, check_instance, check_path
 from axiscal.io.figures import pyplot, save_figure
 from axiscal.straightness.reference import ReferenceLine, reference_line
 from axiscal.straightness.separation import Separation
@@ -44,8 +43,7 @@ def plot_straightness(path: str | Path, position_m: np.ndarray, deviation_m: np.
     AxiscalError
         An unknown image format or a file that cannot be written.
     """
-    if not isinstance(line, ReferenceLine):
-        raise AxiscalError(f"line must be a ReferenceLine (reference_line), not {type(line).__name__}")
+    check_instance("line", line, ReferenceLine, what="a ReferenceLine (reference_line)")
     path = check_path("path", path)
     position_m = check_array("position_m", position_m, ndim=1, min_len=1)
     deviation_m = check_array("deviation_m", deviation_m, ndim=1)
@@ -94,8 +92,7 @@ def plot_separation(path: str | Path, result: Separation) -> Path:
     AxiscalError
         An unknown image format or a file that cannot be written.
     """
-    if not isinstance(result, Separation):
-        raise AxiscalError(f"result must be a Separation (separate or reversal), not {type(result).__name__}")
+    check_instance("result", result, Separation, what="a Separation (separate or reversal)")
     path = check_path("path", path)
     plt = pyplot()
     x = result.position_m

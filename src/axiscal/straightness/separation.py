@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_array, check_choice, check_count, check_number, check_same_length, is_real
+from axiscal.io.arguments import check_array, check_choice, check_count, check_instance, check_number, check_same_length, is_real
 from axiscal.units import MM
 
 __all__ = [
@@ -117,8 +117,7 @@ class ProbeReadings:
 
 
 def _readings(readings: ProbeReadings) -> ProbeReadings:
-    if not isinstance(readings, ProbeReadings):
-        raise AxiscalError(f"readings must be ProbeReadings, not {type(readings).__name__}")
+    check_instance("readings", readings, ProbeReadings, what="ProbeReadings")
     return readings
 
 
