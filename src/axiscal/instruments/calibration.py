@@ -432,12 +432,6 @@ def _whole(value: float) -> int | float:
     return int(value) if value == int(value) else value
 
 
-def _named_key(message: str, entry: Mapping) -> str | None:
-    """The key of ``entry`` whose name opens an error message of its record's checks, if any."""
-    stem = message.split(" ", 1)[0]
-    return next((key for key in entry if key == stem or key.startswith(stem + "_") or stem.startswith(key)), None)
-
-
 def calibration_from_dict(data: Mapping, *, locate: Callable[..., int | None] | None = None) -> Calibration:
     """Build a :class:`Calibration` from the parsed JSON (see :func:`save_calibration`).
 
@@ -488,7 +482,7 @@ def calibration_from_dict(data: Mapping, *, locate: Callable[..., int | None] | 
         try:
             channels[name] = ChannelCalibration(channel=name, gain=gain, **values)
         except AxiscalError as exc:  # the entry's own checks (a negative residual, points not whole)
-            raise fail(exc.message, _named_key(exc.message, values)) from None
+            raise fail(exc.message) from None
     mirrors: dict[str, MirrorCorrection] = {}
     for letter, entry in sections["mirrors"].items():
         where = f"mirror of axis '{letter}'"
@@ -522,7 +516,7 @@ def calibration_from_dict(data: Mapping, *, locate: Callable[..., int | None] | 
                 points=_whole(_number(entry, "points", fail, default=0)),
             )
         except AxiscalError as exc:  # the entry's own checks
-            raise fail(exc.message, _named_key(exc.message, entry)) from None
+            raise fail(exc.message) from None
     return Calibration(channels, mirrors)
 
 

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import is_real
 
 __all__ = ["TomlLines", "finite_number", "confined_path"]
 
@@ -87,7 +88,7 @@ class TomlLines:
 
 def _is(kind: str, value: Any) -> bool:
     if kind == "number":
-        return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+        return is_real(value) and math.isfinite(value)
     raise ValueError(kind)
 
 
