@@ -23,6 +23,7 @@ from axiscal.compensation import (
     residuals,
     siemens_table,
 )
+from axiscal.compensation.readback import parse_fanuc_tape, parse_siemens, read_compensation
 from axiscal.errors import AxiscalError
 from axiscal.positioning.evaluation import PositioningRun, target_statistics
 from axiscal.positioning.reader import read_positioning_run
@@ -121,18 +122,7 @@ def test_linuxcnc_residuals_within_resolution_for_any_curve(seed, m):
 
 
 def tape(text: str) -> tuple[dict[int, int], dict[int, int]]:
-    lines = text.splitlines()
-    assert lines[0] == "%" and lines[-1] == "%"
-    params, data = {}, {}
-    for line in lines[1:-1]:
-        m = re.fullmatch(r"N(\d{5})A1P(-?\d+)", line)
-        if m:
-            params[int(m.group(1))] = int(m.group(2))
-            continue
-        m = re.fullmatch(r"N1(\d{4})P(-?\d+)", line)
-        assert m, line
-        data[int(m.group(1))] = int(m.group(2))
-    return params, data
+    return parse_fanuc_tape(text)
 
 
 def test_fanuc_point_numbers_follow_the_parameter_manual():
@@ -230,19 +220,7 @@ def test_fanuc_residuals_within_one_unit_for_any_curve(seed, interval, bidirecti
 
 
 def siemens_parse(text: str) -> tuple[list[float], dict[str, float]]:
-    lines = text.splitlines()
-    assert lines[0] == "%_N_AX_EEC_INI" and lines[1] == "CHANDATA(1)" and lines[-1] == "M17"
-    values, params = [], {}
-    for line in lines[2:-1]:
-        m = re.fullmatch(r"\$AA_ENC_COMP\[0,(\d+),X1\]=(-?\d+\.\d+)", line)
-        if m:
-            assert int(m.group(1)) == len(values)
-            values.append(float(m.group(2)))
-            continue
-        m = re.fullmatch(r"\$AA_ENC_COMP_(STEP|MIN|MAX|IS_MODULO)\[0,X1\]=(-?[\d.]+)", line)
-        assert m, line
-        params[m.group(1)] = float(m.group(2))
-    return values, params
+    return parse_siemens(text)
 
 
 def test_siemens_table_rules_and_residuals(curve):
@@ -307,24 +285,10 @@ def test_error_curve_directions(curve):
 
 
 def fanuc_control(text: str, *, reference_position_m: float, unit_m: float, increment_m: float = 1e-6):
-    """FANUC pitch error compensation from the parameter tape: returns correction(x, direction) in metres.
-
-    Point N sits at reference + (N - 3620) * 3624; its value is the change of the correction over
-    the section N-1 .. N; the correction is 0 at the reference (3627 for - travel, bidirectional)."""
-    params, data = tape(text)
-    ref, first, last = params[3620], params[3621], params[3622]
-    unit = params[3623] * unit_m
-    numbers = np.arange(first - 1, last + 1)
-    nodes = reference_position_m + (numbers - ref) * params[3624] * increment_m
-
-    def absolute(point_value, at_reference):
-        steps = np.array([point_value(n) for n in numbers[1:]])
-        cumulative = np.concatenate([[0], np.cumsum(steps)])
-        return (cumulative - cumulative[ref - (first - 1)] + at_reference) * unit
-
-    plus = absolute(lambda n: data[n], 0)
-    minus = absolute(lambda n: data[params[3626] + n - first], params[3627]) if 3626 in params else plus
-    return lambda x, d: np.interp(x, nodes, plus if d == "+" else minus), nodes
+    """FANUC pitch error compensation from the parameter tape, as the virtual controller reads it."""
+    c = read_compensation(text, "fanuc", reference_position_m=reference_position_m, detection_unit_m=unit_m,
+                          increment_m=increment_m)
+    return c.correction, c.nodes_m
 
 
 @pytest.mark.parametrize("bidirectional", [False, True])
@@ -343,11 +307,11 @@ def test_fanuc_tape_applied_as_the_control_does(curve, bidirectional, seed):
 
 
 def siemens_control(text: str, unit: float = MM):
-    """SINUMERIK MSEC from the INI text: correction(x) = -(value interpolated over MIN + i STEP), mm (deg) -> SI."""
+    """SINUMERIK MSEC from the INI text: correction(x) = -(value interpolated over MIN + i STEP)."""
     values, params = siemens_parse(text)
-    nodes = params["MIN"] + params["STEP"] * np.arange(len(values))
-    assert nodes[-1] == pytest.approx(params["MAX"])
-    return lambda x: -np.interp(x / unit, nodes, values) * unit, nodes * unit
+    c = read_compensation(text, "siemens", unit_m=unit)
+    assert c.nodes_m[-1] == pytest.approx(params["MAX"] * unit)
+    return (lambda x: c.correction(x, "+")), c.nodes_m
 
 
 @pytest.mark.parametrize("seed", [None, 1, 2])
@@ -360,13 +324,8 @@ def test_siemens_file_applied_as_the_control_does(curve, seed):
 
 
 def heidenhain_control(text: str, unit: float = MM):
-    """HEIDENHAIN .COM from its text: the control subtracts the error column (plus BACKLASH in -), mm (deg) -> SI."""
-    lines = text.splitlines()
-    header = lines[1].split()
-    rows = np.array([[float(cell) for cell in line.split()] for line in lines[2:-1]])
-    position, error = rows[:, 1], rows[:, 2]
-    extra = rows[:, 3] if "BACKLASH" in header else np.zeros_like(error)
-    return lambda x, d: -np.interp(x / unit, position, error + (extra if d == "-" else 0.0)) * unit
+    """HEIDENHAIN .COM from its text: the control subtracts the error column (plus BACKLASH in -)."""
+    return read_compensation(text, "heidenhain", unit_m=unit).correction
 
 
 @pytest.mark.parametrize("backlash", [True, False])

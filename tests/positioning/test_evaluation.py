@@ -302,6 +302,24 @@ def rows(targets=(0.0, 100.0, 200.0), runs=(1, 2, 3), value=lambda t, r, d: 0.1 
     return out
 
 
+def test_a_raw_deviation_with_air_sensors_is_compensated_as_the_raw_reading(tmp_path):
+    # deviation_um beside the air columns is the raw reading less the target (as a capture writes it)
+    env = ",21.5,100500,40"
+    raw = [r + env for r in rows()[1:]]
+    as_deviation = write(tmp_path, "\n".join(["target_mm,run,direction,deviation_um,air_temperature_c,pressure_pa,humidity_pct"] + raw) + "\n")
+    actual_rows = []
+    for r in rows()[1:]:
+        t, run, d, dev = r.split(",")
+        actual_rows.append(f"{t},{run},{d},{float(t) + float(dev) / 1000:.7f}" + env)
+    folder = tmp_path / "actual"
+    folder.mkdir()
+    as_actual = write(folder, "\n".join(["target_mm,run,direction,actual_mm,air_temperature_c,pressure_pa,humidity_pct"] + actual_rows) + "\n")
+    a, b = read_positioning_run(as_deviation), read_positioning_run(as_actual)
+    assert a.compensated and b.compensated
+    assert a.run.deviations_up == pytest.approx(b.run.deviations_up, abs=1e-12)
+    assert a.run.deviations_down == pytest.approx(b.run.deviations_down, abs=1e-12)
+
+
 def test_reader_arranges_runs_per_target(tmp_path):
     data = read_positioning_run(write(tmp_path, "\n".join(rows()) + "\n"))
     assert data.run.targets == pytest.approx([0.0, 0.1, 0.2])
@@ -368,10 +386,10 @@ BAD_FILES = {
         "missing pressure_pa, humidity_pct",
         1,
     ),
-    "env with deviation": (
-        ["target_mm,run,direction,deviation_um,air_temperature_c,pressure_pa,humidity_pct"]
+    "env with a rotary deviation": (
+        ["target_deg,run,direction,deviation_arcsec,air_temperature_c,pressure_pa,humidity_pct"]
         + [r + ",20,101325,50" for r in rows()[1:]],
-        "give actual_<unit>",
+        "give actual_<unit> or deviation_<unit>",
         1,
     ),
     # an environment value the refractive index refuses names the row it is on

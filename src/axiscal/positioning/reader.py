@@ -11,7 +11,8 @@ targets are taken round the circle: 0 and 360 deg are the same target. Rows may 
 a move without a reading (the overrun moves of a plan written by :func:`axiscal.positioning.plan.write_plan`)
 and is passed over, so a plan with its readings typed in is a run file as it is. When the environment columns ``air_temperature_c``,
 ``pressure_pa`` and ``humidity_pct`` (and optionally ``material_temperature_c``) are present,
-``actual_<unit>`` is a raw laser reading computed with the vacuum wavelength; it is compensated
+``actual_<unit>`` is a raw laser reading computed with the vacuum wavelength (``deviation_<unit>``
+is then the raw reading less the target, as ``axiscal capture`` writes it); it is compensated
 with :func:`axiscal.instruments.interferometer.compensated_length` (paper 003 eq 1, ISO 1 normalisation to
 20 degC) before the deviations are formed. Several material sensors (``material_temperature_1_c``,
 ``material_temperature_2_c``, ...: every column named ``material_temperature*_c``) are averaged.
@@ -255,10 +256,10 @@ def read_positioning_run(
                 path=table.path,
                 line=table.header_line,
             )
-        if stem != "actual" or rotary:
+        if rotary:
             raise AxiscalError(
-                f"environment columns compensate raw laser readings of a length: give actual_<unit> in"
-                f" {', '.join(ALLOWED_UNITS)} (the raw reading), not '{value_name}'",
+                f"environment columns compensate raw laser readings of a length: give actual_<unit> or"
+                f" deviation_<unit> in {', '.join(ALLOWED_UNITS)} (of the raw reading), not '{value_name}'",
                 path=table.path,
                 line=table.header_line,
             )
@@ -270,6 +271,9 @@ def read_positioning_run(
     if compensate:
         from axiscal.instruments.interferometer import compensated_length
 
+        if stem == "deviation":  # the deviation of the raw reading: the raw reading is target + deviation
+            values_m = targets_m + values_m
+            stem = "actual"
         options = {} if wavelength_nm is None else {"wavelength_nm": wavelength_nm}
         environment = {
             "air_temperature_c": table.numeric("air_temperature_c"),

@@ -1,0 +1,574 @@
+"""Capture a positioning run: the plan's steps walked through a recording or a live stream, stop by stop.
+
+Each stop the reading makes (:mod:`axiscal.capture.stops`) is matched to the plan's next step
+(:mod:`axiscal.capture.steps`); its deviation is ``(reading - offset) - target``. The result is the
+positioning run ``axiscal positioning`` reads: ``target_mm, run, direction, deviation_um`` and, when
+the recording carries them, the air and material sensors averaged over each stop's window (the
+deviation is then that of the raw reading, compensated for the air when the run is read).
+
+A capture to a file appends every stop to ``RUN.csv.partial`` as it is taken (flushed to disk), so
+a stream that dies leaves every stop before it; a resumed capture reads that file and goes on from
+the step after its last; the run itself is written atomically at the end, with a JSON sidecar
+holding the plan's seed, the source, the settings and, per stop, its start time and the standard
+deviation of the reading over its window.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from axiscal.capture.recording import READING_UNITS, Recording, environment_columns, read_recording
+from axiscal.capture.steps import PlanSteps, StepMatcher, plan_steps
+from axiscal.capture.stops import Stop, StopDetector
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_instance, check_number, check_path
+from axiscal.io.jsonio import write_sidecar
+from axiscal.io.tabular import read_csv, write_csv
+from axiscal.positioning.evaluation import PositioningRun
+from axiscal.positioning.plan import PositioningTestPlan
+from axiscal.positioning.reader import ENVIRONMENT_REQUIRED
+from axiscal.units import MM, UM, split_unit
+
+__all__ = [
+    "CaptureSettings",
+    "StopReading",
+    "Capture",
+    "CaptureProgress",
+    "capture",
+    "capture_run",
+    "capture_to_file",
+    "partial_path",
+]
+
+#: columns of the partial file, before the environment columns
+PARTIAL_COLUMNS = ("step", "target_mm", "run", "direction", "deviation_um", "position_mm", "start_s", "window_std_um", "samples")
+
+
+@dataclass(frozen=True)
+class CaptureSettings:
+    """How stops are found and matched (SI units).
+
+    Attributes
+    ----------
+    stability_m : float, metres
+        Largest peak to peak of the reading over the window for a stop (default 1 um).
+    window_s : float, seconds
+        How long the reading must hold still; the value is the mean over the stop's last window (0.5 s).
+    tolerance_m : float, metres
+        How far from the plan's target a stop may be (0.5 mm).
+    offset_m : float, metres
+        The reading at the datum, subtracted from every reading (0).
+    """
+
+    stability_m: float = 1e-6
+    window_s: float = 0.5
+    tolerance_m: float = 0.5e-3
+    offset_m: float = 0.0
+
+    def __post_init__(self) -> None:
+        check_number("stability_m", self.stability_m, positive=True, unit="m")
+        check_number("window_s", self.window_s, positive=True, unit="s")
+        check_number("tolerance_m", self.tolerance_m, positive=True, unit="m")
+        check_number("offset_m", self.offset_m, unit="m")
+
+    def as_dict(self) -> dict[str, float]:
+        """The settings in the units of the command line's flags."""
+        return {"stability_um": self.stability_m / UM, "window_s": self.window_s,
+                "tolerance_mm": self.tolerance_m / MM, "offset_mm": self.offset_m / MM}
+
+
+@dataclass(frozen=True)
+class StopReading:
+    """The reading captured at one step of the plan.
+
+    Attributes
+    ----------
+    index : int
+        The step's index in the plan (0-based).
+    deviation_m : float, metres
+        ``(reading - offset) - target``.
+    start_s : float, seconds
+        When the stop began (the axis arrived within the stability).
+    window_std_m : float, metres
+        Standard deviation of the reading over the stop's window.
+    samples : int
+        Samples in that window.
+    channels : dict of str to float
+        The environment columns averaged over the window (each in its own unit).
+    """
+
+    index: int
+    deviation_m: float
+    start_s: float
+    window_std_m: float
+    samples: int
+    channels: Mapping[str, float] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class CaptureProgress:
+    """Where a capture stands, for a progress line.
+
+    Attributes
+    ----------
+    taken, total : int
+        Stops taken and needed.
+    step : int or None
+        The plan's number of the step awaited (None when done).
+    target_m : float, metres
+        Its target (NaN when done).
+    reading_m : float, metres
+        The latest reading less the offset (NaN before the first).
+    still : bool
+        Whether the reading is holding still now.
+    samples : int
+        Samples read so far.
+    """
+
+    taken: int
+    total: int
+    step: int | None
+    target_m: float
+    reading_m: float
+    still: bool
+    samples: int
+
+
+@dataclass(frozen=True)
+class Capture:
+    """A captured positioning run.
+
+    Attributes
+    ----------
+    steps : PlanSteps
+        The plan walked.
+    readings : tuple of StopReading
+        One per step with a target, in the plan's order.
+    settings : CaptureSettings
+    source : str
+        The recording or stream.
+    environment : tuple of str
+        The environment columns carried (empty when the source had none).
+    header : dict of str to str
+        The recording's header (an ``.rtx`` capture's), empty otherwise.
+    """
+
+    steps: PlanSteps
+    readings: tuple[StopReading, ...]
+    settings: CaptureSettings
+    source: str
+    environment: tuple[str, ...] = ()
+    header: Mapping[str, str] = field(default_factory=dict)
+
+    def columns(self) -> dict[str, Any]:
+        """The run's columns as ``axiscal positioning`` reads them (mm, um, the sensors' units)."""
+        k = np.array([r.index for r in self.readings], dtype=int)
+        out: dict[str, Any] = {
+            "target_mm": self.steps.target_m[k] / MM,
+            "run": [str(int(v)) for v in self.steps.run[k]],
+            "direction": [str(v) for v in self.steps.direction[k]],
+            "deviation_um": np.array([r.deviation_m for r in self.readings]) / UM,
+        }
+        for name in self.environment:
+            out[name] = np.array([r.channels[name] for r in self.readings])
+        return out
+
+    @property
+    def run(self) -> PositioningRun:
+        """The deviations arranged per target and run (compensated for the air when sensors were recorded)."""
+        k = np.array([r.index for r in self.readings], dtype=int)
+        targets = self.steps.target_m[k]
+        deviation = np.array([r.deviation_m for r in self.readings])
+        if all(name in self.environment for name in ENVIRONMENT_REQUIRED):
+            from axiscal.instruments.interferometer import compensated_length
+
+            material = [n for n in self.environment if n.startswith("material_temperature")]
+            env = {n: np.array([r.channels[n] for r in self.readings]) for n in self.environment}
+            actual = compensated_length(
+                targets + deviation,
+                air_temperature_c=env["air_temperature_c"], pressure_pa=env["pressure_pa"], humidity_pct=env["humidity_pct"],
+                material_temperature_c=np.column_stack([env[n] for n in material]) if material else None,
+            )
+            deviation = actual - targets
+        return _arranged(targets, self.steps.run[k], self.steps.direction[k], deviation, self.source)
+
+
+def _arranged(targets: np.ndarray, runs: np.ndarray, directions: np.ndarray, deviation: np.ndarray, source: str) -> PositioningRun:
+    unique = np.unique(np.round(targets / UM) * UM)
+    labels = np.unique(runs)
+    arrays: dict[str, np.ndarray | None] = {}
+    for d in ("+", "-"):
+        sel = directions == d
+        if not sel.any():
+            arrays[d] = None
+            continue
+        grid = np.full((unique.size, labels.size), np.nan)
+        i = np.searchsorted(unique, np.round(targets[sel] / UM) * UM)
+        j = np.searchsorted(labels, runs[sel])
+        grid[i, j] = deviation[sel]
+        arrays[d] = grid
+    return PositioningRun(unique, arrays["+"], arrays["-"], source=source)
+
+
+def partial_path(output: str | Path) -> Path:
+    """The partial file of a capture to ``output``: ``RUN.csv.partial`` beside it."""
+    output = check_path("output", output)
+    return output.with_name(output.name + ".partial")
+
+
+class _PartialWriter:
+    """Appends each stop to the partial file and flushes it to disk."""
+
+    def __init__(self, path: Path, steps: PlanSteps, environment: tuple[str, ...]):
+        self.path = path
+        self.steps = steps
+        self.environment = environment
+        fresh = not path.exists() or path.stat().st_size == 0
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            self._file = open(path, "a", encoding="utf-8", newline="\n")
+        except OSError as exc:
+            raise AxiscalError(f"cannot write the partial capture ({exc.strerror or exc})", path=path) from None
+        if fresh:
+            self._write(",".join(PARTIAL_COLUMNS + environment))
+
+    def _write(self, line: str) -> None:
+        try:
+            self._file.write(line + "\n")
+            self._file.flush()
+            os.fsync(self._file.fileno())
+        except OSError as exc:
+            raise AxiscalError(f"cannot write the partial capture ({exc.strerror or exc})", path=self.path) from None
+
+    def add(self, r: StopReading) -> None:
+        s = self.steps
+        cells = [str(int(s.step[r.index])), f"{s.target_m[r.index] / MM:.6f}", str(int(s.run[r.index])), s.direction[r.index],
+                 f"{r.deviation_m / UM:.5f}", f"{(s.target_m[r.index] + r.deviation_m) / MM:.8f}", f"{r.start_s:.6f}",
+                 f"{r.window_std_m / UM:.5f}", str(r.samples)]
+        cells += [f"{r.channels[n]:.6g}" if n in r.channels else "" for n in self.environment]
+        self._write(",".join(cells))
+
+    def close(self) -> None:
+        self._file.close()
+
+
+def _read_partial(path: Path, steps: PlanSteps) -> tuple[list[StopReading], tuple[str, ...]]:
+    """The stops a partial file holds, checked against the plan."""
+    if not path.is_file():
+        raise AxiscalError("nothing to resume: no partial capture here", path=path)
+    table = read_csv(path, min_rows=1)
+    table.require(*PARTIAL_COLUMNS)
+    environment = environment_columns(table.header)
+    number = table.numeric("step")
+    deviation = table.numeric("deviation_um") * UM
+    start = table.numeric("start_s")
+    std = table.numeric("window_std_um") * UM
+    samples = table.numeric("samples")
+    env = {n: table.numeric_or_missing(n) for n in environment}
+    index_of = {int(s): k for k, s in enumerate(steps.step)}
+    readings: list[StopReading] = []
+    last = -1
+    for row in range(len(table)):
+        k = index_of.get(int(number[row])) if number[row] == int(number[row]) else None
+        if k is None or not np.isfinite(steps.target_m[k]) or k <= last:
+            raise AxiscalError(f"step {number[row]:g} is not the plan's next step with a target: this partial capture is"
+                               f" not of the plan {steps.source}", path=path, line=table.line_of(row))
+        readings.append(StopReading(k, float(deviation[row]), float(start[row]), float(std[row]), int(samples[row]),
+                                    {n: float(env[n][row]) for n in environment if np.isfinite(env[n][row])}))
+        last = k
+    return readings, environment
+
+
+def _recording_source(recording: Any, unit: str | None, channel: str | None) -> Recording | Any:
+    if isinstance(recording, Recording):
+        return recording
+    if isinstance(recording, (str, Path)):
+        return read_recording(recording, unit=unit, channel=channel)
+    if callable(getattr(recording, "read", None)) and hasattr(recording, "channels"):
+        return recording
+    raise AxiscalError(f"recording must be a Recording, a recording's path or a live source, not {type(recording).__name__}")
+
+
+def _feed_recording(recording: Recording, detector: StopDetector, take: Callable[[Stop], None]) -> None:
+    for stop in detector.feed(recording.time_s, recording.reading_m, recording.channels):
+        take(stop)
+    for stop in detector.finish():
+        take(stop)
+
+
+def _feed_source(source: Any, detector: StopDetector, take: Callable[[Stop], None], channel: str | None, unit: str | None,
+                 done: Callable[[], bool], report: Callable[[float, bool], None], timeout_s: float | None) -> None:
+    names = tuple(source.channels)
+    if channel is None:
+        lengths = [n for n in names if split_unit(n)[1] in READING_UNITS and n not in detector.channels]
+        if len(lengths) != 1:
+            raise AxiscalError(f"cannot tell which channel holds the reading ({', '.join(names) or 'none'}): name it (--channel)")
+        channel = lengths[0]
+    if channel not in names:
+        raise AxiscalError(f"the source has no channel '{channel}' (it has {', '.join(names)})")
+    named = split_unit(channel)[1]
+    factor = READING_UNITS.get(named) or (READING_UNITS.get(unit) if unit else None)
+    if factor is None:
+        raise AxiscalError(f"channel {channel} does not say its unit: give it (--unit mm, um, nm, m or in)")
+    column = names.index(channel)
+    env_columns = [names.index(n) for n in detector.channels]
+    import time
+
+    began = time.monotonic()
+    while not done():
+        batch = source.read(0.05)
+        if len(batch):
+            good = ~batch.malformed
+            t, values = batch.t_s[good], batch.values[good]
+            reading = values[:, column] * factor
+            for stop in detector.feed(t, reading, {n: values[:, c] for n, c in zip(detector.channels, env_columns)}):
+                take(stop)
+            if reading.size:
+                report(float(reading[-1]), detector.holding)
+        if getattr(source, "finished", False):
+            break
+        if timeout_s is not None and time.monotonic() - began > timeout_s:
+            break
+    if not done():
+        for stop in detector.finish():
+            take(stop)
+
+
+def capture(
+    plan: PositioningTestPlan | PlanSteps | str | Path,
+    recording: Recording | str | Path | Any,
+    *,
+    settings: CaptureSettings | None = None,
+    unit: str | None = None,
+    channel: str | None = None,
+    environment: Sequence[str] | None = None,
+    resumed: Sequence[StopReading] = (),
+    on_stop: Callable[[StopReading], None] | None = None,
+    progress: Callable[[CaptureProgress], None] | None = None,
+    timeout_s: float | None = None,
+) -> Capture:
+    """Walk a plan through a recording or a live source and take the reading at every stop.
+
+    Parameters
+    ----------
+    plan : PositioningTestPlan, PlanSteps, str or Path
+        The plan, or its cycle CSV as ``axiscal plan`` writes it.
+    recording : Recording, str, Path or a live source
+        A recording (:func:`~axiscal.capture.recording.read_recording`), its file, or a source of
+        :mod:`axiscal.live.sources` (read until every stop is taken or it finishes).
+    settings : CaptureSettings, optional, keyword-only
+        Stability, window, tolerance and offset (defaults: 1 um, 0.5 s, 0.5 mm, 0).
+    unit, channel : str, optional, keyword-only
+        Unit and column (channel) of the reading, for a file or a source (see :func:`read_recording`).
+    environment : sequence of str, optional, keyword-only
+        The environment channels of a live source to average over each stop (default: those of its
+        channels named as air and material sensors).
+    resumed : sequence of StopReading, keyword-only
+        Stops already taken (a resumed capture): the plan goes on after the last.
+    on_stop : callable, optional, keyword-only
+        Called with each new StopReading as it is taken (the partial file's writer).
+    progress : callable, optional, keyword-only
+        Called with a :class:`CaptureProgress` as a live source's batches arrive.
+    timeout_s : float, optional, keyword-only
+        Longest a live source is read, seconds (default: until done or finished).
+
+    Returns
+    -------
+    Capture
+
+    Raises
+    ------
+    AxiscalError
+        One line naming the step, its target, run and direction, for a stop elsewhere, a missing
+        stop, an approach from the other side, or a recording that ends before the last step; and
+        whatever the recording's reader or the plan's refuse.
+    """
+    settings = CaptureSettings() if settings is None else check_instance("settings", settings, CaptureSettings)
+    steps = plan if isinstance(plan, PlanSteps) else plan_steps(plan)
+    source = _recording_source(recording, unit, channel)
+    live = not isinstance(source, Recording)
+    if live:
+        names = tuple(environment) if environment is not None else environment_columns(source.channels)
+        description = getattr(getattr(source, "status", None), "description", type(source).__name__)
+    else:
+        names = tuple(source.channels)
+        description = source.source
+    readings = list(resumed)
+    start = readings[-1].index + 1 if readings else 0
+    if readings and not live:
+        stated = tuple(readings[0].channels)
+        if set(stated) != set(names):
+            raise AxiscalError(f"the partial capture carries the sensors {', '.join(stated) or 'none'}, the recording"
+                               f" {', '.join(names) or 'none'}: resume with a recording of the same kind", path=description)
+
+    def locate(stop: Stop) -> tuple[str | None, int | None]:
+        return description, (None if live else source.line_of(stop.first_index))
+
+    matcher = StepMatcher(steps, tolerance_m=settings.tolerance_m, offset_m=settings.offset_m, start=start, locate=locate)
+    detector = StopDetector(stability_m=settings.stability_m, window_s=settings.window_s, channels=names)
+
+    def take(stop: Stop) -> None:
+        if matcher.done and stop.first_index != 0:
+            return  # the axis may go on moving after the plan's last step (back home): not a reading
+        taken = matcher.take(stop)
+        if taken is None:
+            return
+        sensors = {name: value for name, value in stop.channels.items() if np.isfinite(value)}
+        reading = StopReading(taken.index, taken.deviation_m, stop.start_s, stop.std_m, stop.samples, sensors)
+        readings.append(reading)
+        if on_stop is not None:
+            on_stop(reading)
+
+    def report(last_m: float, still: bool) -> None:
+        if progress is None:
+            return
+        k = matcher.next_index
+        progress(CaptureProgress(matcher.taken, steps.readings, None if k is None else int(steps.step[k]),
+                                 math.nan if k is None else float(steps.target_m[k]), last_m - settings.offset_m, still,
+                                 detector.samples))
+
+    if live:
+        _feed_source(source, detector, take, channel, unit, lambda: matcher.done, report, timeout_s)
+    else:
+        _feed_recording(source, detector, take)
+    if not matcher.done:
+        raise matcher.missing(description)
+    header = {} if live else dict(source.header)
+    carried = tuple(name for name in names if any(name in r.channels for r in readings))
+    for r in readings:
+        lacking = [name for name in carried if name not in r.channels]
+        if lacking:
+            raise AxiscalError(f"{steps.describe(r.index)}: no {', '.join(lacking)} reading over its window (the sensor"
+                               " dropped out): the run's air compensation needs it at every stop", path=description)
+    return Capture(steps, tuple(readings), settings, description, carried, header)
+
+
+def capture_run(plan, recording, **options) -> PositioningRun:
+    """The positioning run captured from a recording or a live source: :func:`capture` ``(...).run``.
+
+    Parameters
+    ----------
+    plan, recording, **options
+        As :func:`capture` takes them.
+
+    Returns
+    -------
+    PositioningRun
+        Deviations per target and run, metres (compensated for the air where sensors were recorded).
+
+    Raises
+    ------
+    AxiscalError
+        As :func:`capture`.
+
+    Examples
+    --------
+    >>> run = capture_run("plan.csv", "recording.csv")  # doctest: +SKIP
+    >>> run.runs  # doctest: +SKIP
+    5
+    """
+    return capture(plan, recording, **options).run
+
+
+@dataclass(frozen=True)
+class CaptureFiles:
+    """What :func:`capture_to_file` wrote.
+
+    Attributes
+    ----------
+    capture : Capture
+    run_csv, sidecar : Path
+        The run and its JSON sidecar.
+    """
+
+    capture: Capture
+    run_csv: Path
+    sidecar: Path
+
+
+def capture_to_file(
+    plan: PositioningTestPlan | str | Path,
+    recording: Recording | str | Path | Any,
+    output: str | Path,
+    *,
+    resume: bool = False,
+    **options: Any,
+) -> CaptureFiles:
+    """Capture a run into ``output`` (``axiscal capture``): partial file as it goes, the run atomically at the end.
+
+    Parameters
+    ----------
+    plan, recording :
+        As :func:`capture` takes them.
+    output : str or Path
+        The run CSV to write; ``OUTPUT.partial`` holds the stops as they are taken.
+    resume : bool, keyword-only
+        Continue the partial capture ``OUTPUT.partial`` with this recording (the rest of the run).
+    **options
+        ``settings``, ``unit``, ``channel``, ``environment``, ``progress``, ``timeout_s`` of :func:`capture`.
+
+    Returns
+    -------
+    CaptureFiles
+
+    Raises
+    ------
+    AxiscalError
+        As :func:`capture` (the partial file then keeps every stop taken before); for a partial
+        file left from an interrupted capture when ``resume`` is not given, or none when it is.
+    """
+    output = check_path("output", output)
+    check_instance("resume", resume, bool)
+    steps = plan_steps(plan)
+    partial = partial_path(output)
+    resumed: list[StopReading] = []
+    environment: tuple[str, ...] | None = None
+    if resume:
+        resumed, environment = _read_partial(partial, steps)
+    elif partial.exists():
+        raise AxiscalError("a partial capture is here from an interrupted run: continue it with --resume (resume=True),"
+                           " or delete it", path=partial)
+    writer: _PartialWriter | None = None
+
+    def on_stop(reading: StopReading) -> None:
+        nonlocal writer
+        if writer is None:
+            writer = _PartialWriter(partial, steps, tuple(reading.channels))
+        writer.add(reading)
+
+    try:
+        result = capture(steps, recording, resumed=resumed, on_stop=on_stop, **options)
+    finally:
+        if writer is not None:
+            writer.close()
+    if environment is not None and set(environment) != set(result.environment):
+        raise AxiscalError("the partial capture and the recording carry different sensors", path=partial)
+    write_csv(output, result.columns(), fmt={"target_mm": "{:.6f}", "deviation_um": "{:.5f}",
+                                              **{n: "{:.6g}" for n in result.environment}})
+    sidecar = write_sidecar(
+        output,
+        kind="positioning run (captured)",
+        units={"deviation_um": "um, (reading - offset) - target" + (
+            "; the raw reading, compensated for the air when read" if result.environment else "")},
+        sources=[s for s in (steps.source, result.source) if s and not s.startswith("<")],
+        standard="ISO 230-2",
+        plan=steps.source,
+        plan_seed=steps.seed,
+        source=result.source,
+        settings=result.settings.as_dict(),
+        recording_header=dict(result.header),
+        stops=[{"step": int(steps.step[r.index]), "start_s": r.start_s, "window_std_um": r.window_std_m / UM,
+                "samples": r.samples} for r in result.readings],
+    )
+    try:
+        partial.unlink(missing_ok=True)
+    except OSError:
+        pass
+    return CaptureFiles(result, output, sidecar)

@@ -1,0 +1,103 @@
+"""``axiscal capture``: the readings of a positioning test taken at each stop, from a recording or a live stream."""
+
+from __future__ import annotations
+
+import math
+
+import click
+
+from axiscal.capture.run import CaptureSettings, capture_to_file
+from axiscal.capture.recording import READING_UNITS
+from axiscal.capture.sources import open_capture_source
+from axiscal.capture.steps import plan_steps
+from axiscal.cli.common import echo_json, flags_named
+from axiscal.errors import AxiscalError
+from axiscal.units import MM, UM
+
+__all__ = ["capture_command", "register"]
+
+_FLAGS = {"stability_m": "--stability-um", "window_s": "--window-s", "tolerance_m": "--tolerance-mm", "offset_m": "--offset-mm"}
+
+
+def _progress_line(console):
+    """A callback drawing one Rich line: step k of n, the target, the reading and whether it holds still."""
+    from rich.live import Live
+    from rich.text import Text
+
+    live = Live(Text("waiting for the first reading"), console=console, refresh_per_second=8, transient=False)
+
+    def show(p) -> None:
+        if not live.is_started:
+            live.start()
+        target = "done" if p.step is None else f"step {p.step}: target {p.target_m / MM:.3f} mm"
+        reading = "-" if math.isnan(p.reading_m) else f"{p.reading_m / MM:.4f} mm"
+        state = "[green]still[/]" if p.still else "[yellow]moving[/]"
+        live.update(Text.from_markup(f"capture {p.taken} of {p.total}  {target}  reading {reading}  {state}"
+                                     f"  ({p.samples} samples)"))
+
+    return live, show
+
+
+@click.command("capture")
+@click.argument("plan_csv", type=click.Path(dir_okay=False))
+@click.option("--from", "recording", type=click.Path(dir_okay=False), help="A recording: an .rtx capture or a CSV with time_s and the reading.")
+@click.option("--source", "source_spec", help="A live source: sim | tcp:HOST:PORT | serial:DEVICE[:BAUD].")
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="The positioning run CSV to write.")
+@click.option("--unit", type=click.Choice(tuple(READING_UNITS)), default=None, help="Unit of the readings (a column name ending in _mm ... says it; an .rtx file needs it).")
+@click.option("--channel", default=None, help="The column or channel holding the laser reading [the only length column; reading_mm for a source].")
+@click.option("--stability-um", type=float, default=1.0, show_default=True, help="Peak to peak of the reading over the window for a stop.")
+@click.option("--window-s", type=float, default=0.5, show_default=True, help="How long the reading must hold still; the value is the mean over the stop's last window.")
+@click.option("--tolerance-mm", type=float, default=0.5, show_default=True, help="How far from the plan's target a stop may be.")
+@click.option("--offset-mm", type=float, default=0.0, show_default=True, help="The reading at the datum, when the laser was not zeroed there.")
+@click.option("--resume", is_flag=True, help="Continue the partial capture OUTPUT.partial with this recording or stream.")
+@click.option("--rate-hz", type=float, default=1000.0, show_default=True, help="Sample rate of the sim source.")
+@click.option("--seed", type=int, default=0, show_default=True, help="Noise seed of the sim source.")
+@click.option("--timeout-s", type=float, default=None, help="Stop reading a live source after this many seconds.")
+@click.option("--json", "as_json", is_flag=True, help="Print the stops taken as JSON.")
+def capture_command(plan_csv, recording, source_spec, output, unit, channel, stability_um, window_s, tolerance_mm, offset_mm,
+                    resume, rate_hz, seed, timeout_s, as_json):
+    """Capture a positioning run: walk PLAN_CSV's steps through a recording (--from) or a live stream (--source).
+
+    Each step with a target needs one stop: the reading comes within --tolerance-mm of the target and
+    holds within --stability-um for --window-s; its value is the mean of the stop's last window. The run
+    (target_mm, run, direction, deviation_um and the air sensors) is what `axiscal positioning` reads.
+    """
+    if (recording is None) == (source_spec is None):
+        raise AxiscalError("give one of --from RECORDING or --source SPEC")
+    with flags_named(_FLAGS):
+        settings = CaptureSettings(stability_m=stability_um * UM, window_s=window_s, tolerance_m=tolerance_mm * MM,
+                                   offset_m=offset_mm * MM)
+    live = None
+    options = {}
+    if source_spec is not None:
+        from rich.console import Console
+
+        source = open_capture_source(source_spec, steps=plan_steps(plan_csv), channel=channel, rate_hz=rate_hz, seed=seed)
+        console = Console(stderr=True)
+        live, show = _progress_line(console)
+        options = {"progress": show, "timeout_s": timeout_s}
+    else:
+        source = recording
+    try:
+        files = capture_to_file(plan_csv, source, output, resume=resume, settings=settings, unit=unit, channel=channel,
+                                **options)
+    finally:
+        if live is not None and live.is_started:
+            live.stop()
+        if source_spec is not None:
+            source.close()
+    result = files.capture
+    if as_json:
+        echo_json({
+            "run_csv": str(files.run_csv), "sidecar": str(files.sidecar), "source": result.source,
+            "stops": len(result.readings), "environment": list(result.environment), "settings": result.settings.as_dict(),
+            "readings": [{"step": int(result.steps.step[r.index]), "target_mm": result.steps.target_m[r.index] / MM,
+                          "run": int(result.steps.run[r.index]), "direction": str(result.steps.direction[r.index]),
+                          "deviation_um": r.deviation_m / UM, "start_s": r.start_s, "window_std_um": r.window_std_m / UM}
+                         for r in result.readings],
+        })
+    click.echo(f"axiscal: note: {len(result.readings)} stops captured from {result.source} into {files.run_csv}", err=True)
+
+
+def register(group: click.Group) -> None:
+    group.add_command(capture_command)
