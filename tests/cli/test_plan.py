@@ -57,3 +57,25 @@ def test_plan_to_stdout_and_bad_requests(run_cli):
     assert status == 2 and "beyond the start" in err
     status, _, err = run_cli("plan", "--start-mm", 0, "--end-mm", 100, "--targets", 5, "--gcode", "/tmp/x.nc", "--axis", "XY")
     assert status == 2 and "one letter" in err
+
+
+@pytest.mark.parametrize("dialect", ["linuxcnc", "fanuc", "sinumerik", "heidenhain", "grbl", "marlin", "klipper"])
+def test_plan_writes_the_program_in_the_controls_dialect(run_cli, tmp_path, dialect):
+    from axiscal.io.gcode import program_motions
+
+    gcode = tmp_path / "cycle.prog"
+    status, out, _ = run_cli("plan", "--start-mm", 0, "--end-mm", 400, "--targets", 5, "--runs", 1, "--seed", 2,
+                             "--gcode", gcode, "--dialect", dialect, "--dwell-s", 3, "-o", tmp_path / "cycle.csv")
+    assert status == 0 and out == ""
+    motions = program_motions(gcode.read_text(), dialect=dialect, source=str(gcode))
+    dwells = [m.dwell_s for m in motions if m.kind == "dwell"]
+    assert dwells == [3.0] * 10
+    frame = pandas.read_csv(tmp_path / "cycle.csv")
+    moves = [m.end_m["X"] * 1e3 for m in motions if m.kind == "feed"]
+    assert moves == pytest.approx(list(frame["move_to_mm"]), abs=1e-9)
+
+
+def test_plan_refuses_an_unknown_dialect(run_cli, tmp_path):
+    status, _, err = run_cli("plan", "--start-mm", 0, "--end-mm", 400, "--targets", 5, "--gcode", tmp_path / "p.nc",
+                             "--dialect", "haas")
+    assert status == 2 and "haas" in err

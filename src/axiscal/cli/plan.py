@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import flags_named
+from axiscal.io.gcode import DIALECT_NAMES
 from axiscal.positioning.plan import CYCLES, cycle_csv, plan_test, write_plan
 from axiscal.units import MM
 
@@ -20,17 +21,19 @@ __all__ = ["plan_command", "register"]
 @click.option("--seed", type=int, default=None, help="Seed of the random target offsets (same seed, same targets) [a fresh one, shown in the note and recorded in the sidecar and the G-code].")
 @click.option("--cycle", type=click.Choice(CYCLES), default="linear", show_default=True, help="Test cycle.")
 @click.option("--gcode", "gcode_path", type=click.Path(dir_okay=False), help="Also write the cycle as a G-code program.")
+@click.option("--dialect", type=click.Choice(DIALECT_NAMES), default="linuxcnc", show_default=True,
+              help="The control's G-code dialect: its dwell word and unit, units, comments, start and end.")
 @click.option("--axis", default="X", show_default=True, help="Axis letter in the G-code program.")
-@click.option("--dwell-s", type=float, default=2.0, show_default=True, help="Dwell at each target in the G-code (G4 P, seconds).")
+@click.option("--dwell-s", type=float, default=2.0, show_default=True, help="Dwell at each target in the G-code, seconds (written in the dialect's own word and unit).")
 @click.option("--feed-mm-min", type=float, default=2000.0, show_default=True, help="Feed of the G-code moves.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
               help="Write the cycle CSV (and its JSON sidecar) here instead of stdout.")
-def plan_command(start_mm, end_mm, count, runs, overrun_mm, seed, cycle, gcode_path, axis, dwell_s, feed_mm_min, output):
+def plan_command(start_mm, end_mm, count, runs, overrun_mm, seed, cycle, gcode_path, dialect, axis, dwell_s, feed_mm_min, output):
     """Plan an ISO 230-2 positioning test: uneven targets and the test cycle (CSV to fill in; G-code with --gcode)."""
     with flags_named({"start_m": "--start-mm", "end_m": "--end-mm", "overrun_m": "--overrun-mm", "dwell_s": "--dwell-s",
                       "feed_mm_per_min": "--feed-mm-min"}):
         plan = plan_test(start_mm * MM, end_mm * MM, count, runs=runs, overrun_m=overrun_mm * MM, seed=seed, cycle=cycle)
-        write_plan(plan, output, gcode_path=gcode_path, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_min)
+        write_plan(plan, output, gcode_path=gcode_path, dialect=dialect, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_min)
     if not output:
         click.echo(cycle_csv(plan), nl=False)
     click.echo(f"axiscal: note: {plan.description}", err=True)

@@ -25,6 +25,7 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_integer, check_number, check_path, is_real
 from axiscal.io.atomic import write_text
+from axiscal.io.gcode import ProgramWriter, dialect as gcode_dialect
 from axiscal.io.jsonio import write_sidecar
 from axiscal.positioning.evaluation import require_finite
 from axiscal.units import MM, UM
@@ -306,44 +307,65 @@ def cycle_csv(plan: PositioningTestPlan) -> str:
     return "\n".join(lines) + "\n"
 
 
-def gcode_program(plan: PositioningTestPlan, *, axis: str = "X", dwell_s: float = 2.0, feed_mm_per_min: float = 2000.0) -> str:
-    """The test cycle as an RS-274 (G-code) program with a dwell at each target.
+def gcode_program(
+    plan: PositioningTestPlan,
+    *,
+    dialect: str = "linuxcnc",
+    axis: str = "X",
+    dwell_s: float = 2.0,
+    feed_mm_per_min: float = 2000.0,
+    program_name: str = "AXISCAL",
+) -> str:
+    """The test cycle as a G-code program in a control's dialect, with a dwell at each target.
 
-    Metric, absolute (``G21 G90``), feed moves ``G1 <axis>... F...``, and after every move that
-    ends at a target ``G4 P<dwell_s>`` (dwell in seconds, as LinuxCNC and most controls read P;
-    Fanuc reads ``G4 P`` in milliseconds and ``G4 X`` in seconds, so check your control). Ends
-    with ``M2``.
+    Millimetres, absolute, feed per minute (each dialect's own words: ``G21 G90 G94`` on LinuxCNC
+    and Grbl, ``G71 G90 G94`` on SINUMERIK, ``BEGIN PGM ... MM`` on HEIDENHAIN ...), feed moves to
+    every position of the cycle, and after every move that ends at a target the dialect's dwell:
+    ``G4 P<s>`` (LinuxCNC, Grbl), ``G04 X<s>`` (FANUC), ``G4 F<s>`` (SINUMERIK), ``G4 P<ms>``
+    (Marlin, Klipper), ``CYCL DEF 9.0 DWELL TIME`` / ``CYCL DEF 9.1 DWELL <s>`` (HEIDENHAIN).
+    Each dialect's start, end and comments are its own (see :mod:`axiscal.io.gcode.dialects`);
+    :func:`axiscal.io.gcode.program_motions` reads the program back.
 
     Parameters
     ----------
     plan : PositioningTestPlan
         The plan (see :func:`plan_test`).
+    dialect : str, keyword-only
+        One of :data:`axiscal.io.gcode.DIALECT_NAMES` (default "linuxcnc").
     axis : str, keyword-only
-        One axis letter (default "X").
+        One axis letter of the dialect (default "X").
     dwell_s : float, keyword-only
-        Dwell at each target, seconds (>= 0, default 2).
+        Dwell at each target, seconds (>= 0, default 2); written to the dialect's resolution
+        (1 ms).
     feed_mm_per_min : float, keyword-only
         Feed of the moves, mm/min (> 0, default 2000).
+    program_name : str, keyword-only
+        The program's name where the dialect writes one (HEIDENHAIN's ``BEGIN PGM name MM``).
 
     Returns
     -------
     str
-        The program, one block a line, starting and ending with ``%``.
+        The program, one block a line.
 
     Raises
     ------
     AxiscalError
-        For an axis that is not one letter, a negative dwell or a feed that is not positive.
+        For an unknown dialect, an axis that is not one of the dialect's letters, a negative dwell
+        or a feed that is not positive.
 
     Examples
     --------
     >>> program = gcode_program(plan_test(0.0, 0.4, 5, runs=1, seed=1), axis="z", dwell_s=1)
     >>> program.splitlines()[4:7]
     ['G1 Z-5.000 F2000', 'G1 Z0.000', 'G4 P1']
+    >>> program = gcode_program(plan_test(0.0, 0.4, 5, runs=1, seed=1), dialect="sinumerik", dwell_s=1.5)
+    >>> program.splitlines()[2:6]
+    ['G71 G90 G94', 'G1 X-5.000 F2000', 'G1 X0.000', 'G4 F1.5']
     """
     check_instance("plan", plan, PositioningTestPlan)
-    if not isinstance(axis, str) or not axis.isalpha() or len(axis) != 1:
-        raise AxiscalError(f"axis must be one letter (X, Y, Z, ...), got {axis!r}")
+    spec = gcode_dialect(dialect)
+    if not isinstance(axis, str) or axis.upper() not in spec.axes:
+        raise AxiscalError(f"axis must be one letter of {spec.controller}'s axes ({', '.join(spec.axes)}), got {axis!r}")
     require_finite(dwell_s=dwell_s, feed_mm_per_min=feed_mm_per_min)
     dwell_s = check_number("dwell_s", dwell_s)
     feed_mm_per_min = check_number("feed_mm_per_min", feed_mm_per_min, unit="mm/min")
@@ -352,19 +374,16 @@ def gcode_program(plan: PositioningTestPlan, *, axis: str = "X", dwell_s: float 
     if feed_mm_per_min <= 0:
         raise AxiscalError(f"the feed must be positive, got {feed_mm_per_min:g} mm/min")
     axis = axis.upper()
-    out = [
-        "%",
-        f"(axiscal plan: {plan.description})",
-        "(a dwell follows every move that ends at a target: take the reading there)",
-        "G21 G90 G94",
-        f"G1 {axis}{plan.moves[0] / MM:.3f} F{feed_mm_per_min:g}",
-    ]
-    for k in range(1, plan.moves.size):
-        out.append(f"G1 {axis}{plan.moves[k] / MM:.3f}")
+    feed = feed_mm_per_min * MM / 60.0
+    writer = ProgramWriter(spec, name=program_name, comments=(
+        f"axiscal plan: {plan.description}",
+        "a dwell follows every move that ends at a target: take the reading there",
+    ))
+    for k in range(plan.moves.size):
+        writer.move({axis: float(plan.moves[k])}, feed_m_per_s=feed)
         if not math.isnan(plan.move_target[k]):
-            out.append(f"G4 P{dwell_s:g}")
-    out += ["M2", "%"]
-    return "\n".join(out) + "\n"
+            writer.dwell(dwell_s)
+    return writer.text()
 
 
 def write_plan(
@@ -372,6 +391,7 @@ def write_plan(
     csv_path: str | Path | None = None,
     *,
     gcode_path: str | Path | None = None,
+    dialect: str = "linuxcnc",
     axis: str = "X",
     dwell_s: float = 2.0,
     feed_mm_per_min: float = 2000.0,
@@ -387,8 +407,9 @@ def write_plan(
         targets in mm, runs, overrun in mm, seed). None writes no CSV.
     gcode_path : str or Path, optional, keyword-only
         The G-code program (:func:`gcode_program`). None writes none.
-    axis, dwell_s, feed_mm_per_min : keyword-only
-        Passed to :func:`gcode_program` (axis letter, dwell in seconds, feed in mm/min).
+    dialect, axis, dwell_s, feed_mm_per_min : keyword-only
+        Passed to :func:`gcode_program` (the control's dialect, axis letter, dwell in seconds, feed
+        in mm/min); the program's name, where the dialect writes one, is the file's stem.
 
     Returns
     -------
@@ -412,7 +433,9 @@ def write_plan(
         check_path("csv_path", csv_path)
     if gcode_path is not None:
         check_path("gcode_path", gcode_path)
-    program = None if gcode_path is None else gcode_program(plan, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_per_min)
+    program = None if gcode_path is None else gcode_program(
+        plan, dialect=dialect, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_per_min,
+        program_name=Path(gcode_path).stem)
     written: list[Path] = []
     if csv_path is not None:
         written.append(write_text(csv_path, cycle_csv(plan)))
