@@ -10,7 +10,6 @@ streamed at the pace of its clock, as a laser on a real machine would stream.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -22,24 +21,14 @@ from axiscal.capture.steps import PlanSteps
 from axiscal.capture.virtual import simulate_motions
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_number
+from axiscal.io.gcode import Motion
 from axiscal.live.sources import ReplaySource, open_source, parse_source
 from axiscal.units import MM
 
-__all__ = ["PlanMotion", "plan_motions", "open_capture_source"]
+__all__ = ["plan_motions", "open_capture_source"]
 
 
-@dataclass(frozen=True)
-class PlanMotion:
-    """One block of a plan run as a program: a feed move or a dwell (the fields a program's motions have)."""
-
-    line: int
-    kind: str
-    end_m: dict
-    feed_m_per_s: float | None
-    dwell_s: float
-
-
-def plan_motions(steps: PlanSteps, *, axis: str = "X", dwell_s: float = 2.0, feed_mm_per_min: float = 2000.0) -> tuple[PlanMotion, ...]:
+def plan_motions(steps: PlanSteps, *, axis: str = "X", dwell_s: float = 2.0, feed_mm_per_min: float = 2000.0) -> tuple[Motion, ...]:
     """The plan's moves as a program runs them: a feed move per step and a dwell after each target.
 
     Parameters
@@ -54,15 +43,15 @@ def plan_motions(steps: PlanSteps, *, axis: str = "X", dwell_s: float = 2.0, fee
 
     Returns
     -------
-    tuple of PlanMotion
+    tuple of Motion
     """
     dwell_s = check_number("dwell_s", dwell_s, nonnegative=True, unit="s")
     feed = check_number("feed_mm_per_min", feed_mm_per_min, positive=True, unit="mm/min") * MM / 60.0
     out: list[PlanMotion] = []
     for k in range(steps.step.size):
-        out.append(PlanMotion(k + 1, "feed", {axis: float(steps.move_to_m[k])}, feed, 0.0))
+        out.append(Motion(k + 1, "feed", {axis: float(steps.move_to_m[k])}, feed, 0.0))
         if np.isfinite(steps.target_m[k]):
-            out.append(PlanMotion(k + 1, "dwell", {axis: float(steps.move_to_m[k])}, None, dwell_s))
+            out.append(Motion(k + 1, "dwell", {axis: float(steps.move_to_m[k])}, None, dwell_s))
     return tuple(out)
 
 

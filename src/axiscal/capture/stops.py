@@ -229,7 +229,7 @@ class StopDetector:
         cursor = 0  # local position in the batch up to which the motion's extremes are taken
         for e in edges:
             if still[e]:  # a stop begins at batch sample e
-                moving = bx[idx[cursor] : first[e]] if cursor < e else bx[0:0]
+                moving = bx[idx[cursor] : idx[e]]
                 moving = moving[np.isfinite(moving)]
                 if moving.size:
                     self._low = min(self._low, float(moving.min()))

@@ -43,7 +43,7 @@ from axiscal.io.jsonio import write_sidecar
 from axiscal.model.machine import Machine
 from axiscal.units import MM, UM
 
-__all__ = ["VirtualAxis", "SimulatedRecording", "simulate_motions", "write_recording"]
+__all__ = ["VirtualAxis", "SimulatedRecording", "simulate_motions", "simulate_capture", "write_recording"]
 
 
 @dataclass(frozen=True)
@@ -58,6 +58,8 @@ class VirtualAxis:
         Speed of rapid moves (default 0.1 m/s, 6 m/min).
     reversal_m : float
         Reversal error of the axis (default 4 um).
+    repeatability_m : float
+        Standard deviation of where the axis stops from one arrival to the next (default 0.2 um).
     settle_m : float
         Amplitude of the oscillation after each arrival (default 2 um).
     settle_hz, settle_s : float
@@ -73,6 +75,7 @@ class VirtualAxis:
     acceleration_m_s2: float = 1.0
     rapid_m_s: float = 0.1
     reversal_m: float = 4e-6
+    repeatability_m: float = 0.2e-6
     settle_m: float = 2e-6
     settle_hz: float = 25.0
     settle_s: float = 0.06
@@ -84,7 +87,7 @@ class VirtualAxis:
     def __post_init__(self) -> None:
         for name in ("acceleration_m_s2", "rapid_m_s", "settle_hz", "settle_s", "creep_s"):
             check_number(name, getattr(self, name), positive=True)
-        for name in ("reversal_m", "settle_m", "creep_m", "noise_m", "air_drift_c"):
+        for name in ("reversal_m", "repeatability_m", "settle_m", "creep_m", "noise_m", "air_drift_c"):
             check_number(name, getattr(self, name), nonnegative=True)
 
 
@@ -248,7 +251,9 @@ def simulate_motions(
     if index is None:
         raise AxiscalError(f"axis {axis!r}: the laser reads X, Y or Z")
     error = machine.volumetric_error(positions)[:, index]
-    position = motor + error - direction * spec.reversal_m / 2
+    rng = np.random.default_rng([seed, 20])
+    scatter = rng.normal(0.0, spec.repeatability_m, len(seg))  # where each move ends, arrival to arrival
+    position = motor + error - direction * spec.reversal_m / 2 + scatter[np.maximum(last_move, 0)][k]
     # settling and creep after each arrival (the end of every move), the last two arrivals summed
     arrive = seg[moves, 0] + seg[moves, 1]
     arrive_sign = move_sign[moves]
@@ -269,7 +274,6 @@ def simulate_motions(
     sensors = {"air_temperature_c": np.round(air_c, 4), "pressure_pa": np.round(pressure, 2), "humidity_pct": np.round(humidity, 2)}
     n_air = refractive_index(sensors["air_temperature_c"], sensors["pressure_pa"], sensors["humidity_pct"], wavelength_nm)
     clean = position * n_air
-    rng = np.random.default_rng([seed, 20])
     reading = clean + rng.normal(0.0, spec.noise_m, clean.size)
     dwell_rows = seg[seg[:, 5] == 1]
     dwell_dir = np.where(sign_of_seg[seg[:, 5] == 1] > 0, "+", "-")
@@ -277,7 +281,8 @@ def simulate_motions(
     settings = {"axis": axis, "rate_hz": rate_hz, "seed": seed, "duration_s": total,
                 "compensation": None if compensation is None else compensation.controller,
                 "virtual_axis": {"acceleration_m_s2": spec.acceleration_m_s2, "rapid_mm_min": spec.rapid_m_s / MM * 60,
-                                 "reversal_um": spec.reversal_m / UM, "settle_um": spec.settle_m / UM,
+                                 "reversal_um": spec.reversal_m / UM,
+                                 "repeatability_um": spec.repeatability_m / UM, "settle_um": spec.settle_m / UM,
                                  "settle_hz": spec.settle_hz, "settle_s": spec.settle_s, "creep_um": spec.creep_m / UM,
                                  "creep_s": spec.creep_s, "noise_um": spec.noise_m / UM, "air_drift_c": spec.air_drift_c},
                 "wavelength_nm": wavelength_nm}
@@ -321,3 +326,96 @@ def write_recording(simulated: SimulatedRecording, path: str | Path, *, program:
     write_sidecar(path, kind="laser recording (virtual machine)", units={"reading_mm": "mm, raw reading computed with the"
                   " vacuum wavelength"}, sources=[program] if program else [], **dict(simulated.settings))
     return Path(path)
+
+
+def _dialect_of(path: Path, dialect: str | None) -> str:
+    from axiscal.io.gcode import DIALECTS
+
+    if dialect is not None:
+        return dialect
+    by_extension = {d.extension: name for name, d in DIALECTS.items() if d.extension in (".ngc", ".mpf", ".h")}
+    return by_extension.get(path.suffix.lower(), "linuxcnc")
+
+
+def simulate_capture(
+    program: str | Path,
+    machine: Machine | str | Path,
+    output: str | Path | None = None,
+    *,
+    axis: str,
+    dialect: str | None = None,
+    compensation: str | Path | None = None,
+    controller: str | None = None,
+    comp_type: int = 1,
+    reference_position_m: float = 0.0,
+    rate_hz: float = 1000.0,
+    seed: int = 0,
+    spec: VirtualAxis | None = None,
+) -> SimulatedRecording:
+    """Run a program file on the virtual machine, with a controller's compensation loaded, and record the laser.
+
+    Parameters
+    ----------
+    program : str or Path
+        The program file, in ``dialect``.
+    machine : Machine, str or Path
+        The machine model (or its machine.toml).
+    output : str or Path, optional
+        Where to write the recording (:func:`write_recording`); None writes nothing.
+    axis : str, keyword-only
+        The axis the laser reads.
+    dialect : str, optional, keyword-only
+        The program's dialect (default: ``heidenhain`` for ``.h``, ``sinumerik`` for ``.mpf``,
+        else ``linuxcnc``).
+    compensation : str or Path, optional, keyword-only
+        A compensation file to load into the virtual controller.
+    controller : {"linuxcnc", "fanuc", "siemens", "heidenhain"}, optional, keyword-only
+        Whose file ``compensation`` is (needed with it).
+    comp_type, reference_position_m : keyword-only
+        As :func:`axiscal.compensation.readback.read_compensation` takes them (LinuxCNC's file
+        type; FANUC's reference position, metres).
+    rate_hz, seed, spec : keyword-only
+        As :func:`simulate_motions` takes them.
+
+    Returns
+    -------
+    SimulatedRecording
+
+    Raises
+    ------
+    AxiscalError
+        Naming the file and line: a program the dialect's reader refuses, a compensation file
+        the controller would refuse; a compensation without its controller; as
+        :func:`simulate_motions`.
+
+    Examples
+    --------
+    >>> rec = simulate_capture("x.ngc", "examples/xfyz_machine/machine.toml", "x.csv", axis="X")  # doctest: +SKIP
+    """
+    from axiscal.compensation.readback import read_compensation
+    from axiscal.io.gcode import program_motions
+    from axiscal.io.tabular import read_text
+    from axiscal.model.machine import as_machine
+
+    program = Path(program) if isinstance(program, (str, Path)) else program
+    text = read_text(program)
+    motions = program_motions(text, dialect=_dialect_of(Path(program), dialect), source=str(program))
+    model = as_machine(machine)
+    loaded = None
+    if compensation is not None:
+        if controller is None:
+            raise AxiscalError("a compensation file needs its controller (linuxcnc, fanuc, siemens or heidenhain)")
+        try:
+            loaded = read_compensation(read_text(compensation), controller, comp_type=comp_type,
+                                       reference_position_m=reference_position_m)
+        except AxiscalError as exc:
+            raise exc.located(path=compensation) from None
+    elif controller is not None:
+        raise AxiscalError("a controller is given without its compensation file")
+    simulated = simulate_motions(motions, model, axis=axis, compensation=loaded, rate_hz=rate_hz, seed=seed, spec=spec)
+    simulated = SimulatedRecording(simulated.recording, simulated.clean_m, simulated.dwells, simulated.directions,
+                                   {**simulated.settings, "program": str(program),
+                                    "compensation_file": None if compensation is None else str(compensation)})
+    if output is not None:
+        write_recording(simulated, output, program=str(program))
+    return simulated

@@ -1,4 +1,4 @@
-"""``axiscal capture``: the readings of a positioning test taken at each stop, from a recording or a live stream."""
+"""``axiscal capture`` and ``axiscal simulate capture``: the readings of a positioning test taken at each stop, from a recording or a live stream."""
 
 from __future__ import annotations
 
@@ -10,6 +10,9 @@ from axiscal.capture.run import CaptureSettings, capture_to_file
 from axiscal.capture.recording import READING_UNITS
 from axiscal.capture.sources import open_capture_source
 from axiscal.capture.steps import plan_steps
+from axiscal.capture.virtual import simulate_capture
+from axiscal.compensation.readback import CONTROLLERS
+from axiscal.io.gcode import DIALECT_NAMES
 from axiscal.cli.common import echo_json, flags_named
 from axiscal.errors import AxiscalError
 from axiscal.units import MM, UM
@@ -99,5 +102,37 @@ def capture_command(plan_csv, recording, source_spec, output, unit, channel, sta
     click.echo(f"axiscal: note: {len(result.readings)} stops captured from {result.source} into {files.run_csv}", err=True)
 
 
+@click.command("capture")
+@click.argument("program", type=click.Path(dir_okay=False))
+@click.option("--machine", required=True, type=click.Path(dir_okay=False), help="The machine model (machine.toml) whose axis runs the program.")
+@click.option("--axis", required=True, help="The axis the laser reads (X, Y or Z).")
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="The recording CSV to write (what capture --from reads).")
+@click.option("--dialect", type=click.Choice(DIALECT_NAMES), default=None, help="The program's dialect [heidenhain for .h, sinumerik for .mpf, else linuxcnc].")
+@click.option("--compensation", type=click.Path(dir_okay=False), default=None, help="A compensation file loaded into the virtual controller.")
+@click.option("--controller", type=click.Choice(CONTROLLERS), default=None, help="Whose compensation file it is.")
+@click.option("--comp-type", type=click.Choice(["0", "1"]), default="1", show_default=True, help="LinuxCNC COMP_FILE_TYPE of the file.")
+@click.option("--reference-position-mm", type=float, default=0.0, show_default=True, help="FANUC: machine position of the reference position.")
+@click.option("--rate-hz", type=float, default=1000.0, show_default=True, help="Samples per second of the laser.")
+@click.option("--seed", type=int, default=0, show_default=True, help="Seed of the laser's noise.")
+def simulate_capture_command(program, machine, axis, output, dialect, compensation, controller, comp_type, reference_position_mm,
+                             rate_hz, seed):
+    """Run PROGRAM on the virtual machine and record what a laser on --axis reads over time.
+
+    Moves are trapezoidal at the programmed feed, each stop rings and creeps, dwells are held; the axis
+    carries the model's positioning error and a reversal; the reading is raw (vacuum wavelength) with
+    the air sensors recorded beside it. With --compensation the virtual controller applies that file.
+    """
+    with flags_named({"reference_position_m": "--reference-position-mm", "rate_hz": "--rate-hz"}):
+        simulated = simulate_capture(program, machine, output, axis=axis.upper(), dialect=dialect, compensation=compensation,
+                                     controller=controller, comp_type=int(comp_type),
+                                     reference_position_m=reference_position_mm * MM, rate_hz=rate_hz, seed=seed)
+    click.echo(f"axiscal: note: {simulated.recording.time_s.size} samples over {simulated.settings['duration_s']:.1f} s,"
+               f" {len(simulated.dwells)} dwells, written to {output}", err=True)
+
+
 def register(group: click.Group) -> None:
+    # `axiscal simulate capture` joins the "simulate" group of axiscal.cli.measure
+    from axiscal.cli.measure import simulate_group
+
     group.add_command(capture_command)
+    simulate_group.add_command(simulate_capture_command)

@@ -1,0 +1,144 @@
+"""Capture against the truth of the virtual machine: every stop found, the right value, the one-line errors, resume."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from axiscal.capture import capture, capture_run, capture_to_file, plan_steps, read_recording
+from axiscal.capture.recording import Recording
+from axiscal.capture.run import CaptureSettings, partial_path
+from axiscal.capture.sources import plan_motions
+from axiscal.capture.virtual import VirtualAxis, simulate_motions, write_recording
+from axiscal.cli.main import main
+from axiscal.errors import AxiscalError
+from axiscal.io.gcode import Motion
+from axiscal.model.machine import load_machine
+from axiscal.positioning.evaluation import PositioningRun, iso230_2
+from axiscal.positioning.plan import plan_test, write_plan
+from axiscal.report.demo import builtin_example
+from axiscal.units import MM, UM
+
+WINDOW_S = 0.5
+
+
+@pytest.fixture(scope="module")
+def machine():
+    return load_machine(builtin_example() / "machine.toml")
+
+
+def small_plan(seed=1):
+    return plan_test(0.0, 0.19, 5, runs=2, seed=seed)
+
+
+def simulate(machine, plan, *, seed=0, motions=None, rate_hz=500.0, spec=None):
+    motions = plan_motions(plan_steps(plan), dwell_s=1.2) if motions is None else motions
+    return simulate_motions(motions, machine, axis="X", rate_hz=rate_hz, seed=seed, spec=spec)
+
+
+def true_run(plan, simulated, captured):
+    """The run made of the true stop means (noise-free reading over each dwell's last window), compensated as captured."""
+    truth = simulated.true_stop_means(WINDOW_S)
+    steps = plan_steps(plan)
+    readings = [replace(r, deviation_m=float(truth[k] - steps.target_m[r.index])) for k, r in enumerate(captured.readings)]
+    return replace(captured, readings=tuple(readings)).run
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_capture_finds_every_stop_and_its_true_value(machine, seed):
+    # noise, ringing, creep and a slow air drift: every stop found, within 0.05 um of its true mean
+    plan = small_plan(seed=seed + 1)
+    simulated = simulate(machine, plan, seed=seed)
+    captured = capture(plan, simulated.recording)
+    assert len(captured.readings) == plan.readings == len(simulated.dwells)
+    truth = simulated.true_stop_means(WINDOW_S)
+    steps = captured.steps
+    got = np.array([steps.target_m[r.index] + r.deviation_m for r in captured.readings])
+    assert np.abs(got - truth).max() < 0.05 * UM
+    # ISO 230-2 figures within 0.1 um of the true run's
+    mine, true = iso230_2(captured.run).figures(), iso230_2(true_run(plan, simulated, captured)).figures()
+    for name in ("A", "E", "R", "B", "M"):
+        assert mine[name] == pytest.approx(true[name], abs=0.1 * UM), name
+
+
+def test_the_run_is_the_axis_error_the_model_gives(machine):
+    # no noise, no scatter, no air drift: the captured mean deviation is the model's error plus the reversal
+    plan = small_plan()
+    quiet = VirtualAxis(noise_m=0.0, repeatability_m=0.0, air_drift_c=0.0)
+    run = capture_run(plan, simulate(machine, plan, spec=quiet).recording)
+    positions = {"X": plan.targets, "Z": np.zeros_like(plan.targets)}
+    error = machine.volumetric_error(positions)[:, 0]
+    assert run.deviations_up[:, 0] == pytest.approx(error - 2e-6, abs=0.02 * UM)
+    assert run.deviations_down[:, 0] == pytest.approx(error + 2e-6, abs=0.02 * UM)
+
+
+def dwell_indices(motions):
+    return [k for k, m in enumerate(motions) if m.kind == "dwell"]
+
+
+def test_a_missing_stop_is_named(machine, tmp_path):
+    plan = small_plan()
+    motions = list(plan_motions(plan_steps(plan), dwell_s=1.2))
+    del motions[dwell_indices(motions)[3]]  # the axis goes on without stopping at the 4th target
+    recording = simulate(machine, plan, motions=motions).recording
+    out = tmp_path / "run.csv"
+    with pytest.raises(AxiscalError, match=r"step 5 \(target .* mm, run 1, \+\): no stop there: the axis went on"):
+        capture_to_file(plan, recording, out)
+    partial = partial_path(out).read_text().splitlines()
+    assert len(partial) == 1 + 3 and not out.exists()
+
+
+def test_an_extra_stop_is_named(machine):
+    plan = small_plan()
+    motions = list(plan_motions(plan_steps(plan), dwell_s=1.2))
+    k = dwell_indices(motions)[2] + 1
+    odd = Motion(0, "feed", {"X": 0.1234}, 2000 * MM / 60, 0.0)
+    motions[k:k] = [odd, Motion(0, "dwell", {"X": 0.1234}, None, 1.2)]
+    with pytest.raises(AxiscalError, match=r"step \d+ \(target .* mm, run 1, \+\): the axis stopped at 123\.4\d* mm"):
+        capture(plan, simulate(machine, plan, motions=motions).recording)
+
+
+def test_a_recording_cut_short_then_resumed_finishes_the_run(machine, tmp_path):
+    plan = small_plan()
+    simulated = simulate(machine, plan)
+    rec = simulated.recording
+    cut = int(np.searchsorted(rec.time_s, simulated.dwells[7, 1] + 0.3))  # just after the 8th stop
+    first = Recording(rec.time_s[:cut], rec.reading_m[:cut], {k: v[:cut] for k, v in rec.channels.items()}, "first.csv")
+    rest = Recording(rec.time_s[cut:], rec.reading_m[cut:], {k: v[cut:] for k, v in rec.channels.items()}, "rest.csv")
+    out = tmp_path / "run.csv"
+    with pytest.raises(AxiscalError, match=r"step \d+ \(target .* mm, run 1, -\): the recording ends before it \(8 of 20"):
+        capture_to_file(plan, first, out)
+    assert len(partial_path(out).read_text().splitlines()) == 1 + 8
+    with pytest.raises(AxiscalError, match="--resume"):
+        capture_to_file(plan, rest, out)
+    files = capture_to_file(plan, rest, out, resume=True)
+    whole = capture_to_file(plan, rec, tmp_path / "whole.csv").capture
+    assert not partial_path(out).exists()
+    assert [r.deviation_m for r in files.capture.readings] == pytest.approx([r.deviation_m for r in whole.readings], abs=1e-11)
+    assert out.read_text() == (tmp_path / "whole.csv").read_text()
+
+
+def test_capture_refuses_settings_out_of_range():
+    with pytest.raises(AxiscalError, match="tolerance_m"):
+        CaptureSettings(tolerance_m=-1.0)
+
+
+def test_the_command_line_cycle_and_its_one_line_error(machine, tmp_path, capsys):
+    plan = small_plan()
+    write_plan(plan, tmp_path / "plan.csv")
+    simulated = simulate(machine, plan)
+    write_recording(simulated, tmp_path / "rec.csv")
+    assert main(["capture", str(tmp_path / "plan.csv"), "--from", str(tmp_path / "rec.csv"), "-o", str(tmp_path / "run.csv")]) == 0
+    assert main(["positioning", str(tmp_path / "run.csv"), "--json"]) == 0
+    rec = read_recording(tmp_path / "rec.csv")
+    assert rec.time_s.size == simulated.recording.time_s.size
+    # cut the recording: one line, naming the file, the step, its target, run and direction; exit 2
+    lines = (tmp_path / "rec.csv").read_text().splitlines()
+    (tmp_path / "cut.csv").write_text("\n".join(lines[: len(lines) // 2]) + "\n")
+    capsys.readouterr()
+    assert main(["capture", str(tmp_path / "plan.csv"), "--from", str(tmp_path / "cut.csv"), "-o", str(tmp_path / "r2.csv")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "cut.csv" in err[0] and "the recording ends before it" in err[0] and "run " in err[0]
+    assert main(["capture", str(tmp_path / "plan.csv"), "--from", str(tmp_path / "rec.csv"), "-o", str(tmp_path / "r2.csv"), "--resume"]) == 0
