@@ -13,11 +13,13 @@ pytestmark = pytest.mark.filterwarnings("ignore::UserWarning")
 def test_demo_writes_the_campaign_and_its_report(run_cli, tmp_path, flag):
     status, out, err = run_cli("demo", flag, tmp_path / "demo")
     assert status == 0, err
-    for name in ("campaign/campaign.toml", "report/report.html", "report/results.json", "summary.json"):
+    for name in ("as-found/campaign/campaign.toml", "as-found/report/report.html", "as-found/report/results.json",
+                 "as-left/report/report.html", "summary.json"):
         assert (tmp_path / "demo" / name).is_file(), name
-    assert json.loads((tmp_path / "demo" / "report" / "results.json").read_text())["verdict"] == "fail"
+    assert json.loads((tmp_path / "demo" / "as-found" / "report" / "results.json").read_text())["verdict"] == "fail"
+    assert json.loads((tmp_path / "demo" / "as-left" / "report" / "results.json").read_text())["verdict"] == "pass"
     lines = out.splitlines()
-    assert lines[1] == f"report        {tmp_path / 'demo' / 'report' / 'report.html'}" and len(lines) == 8
+    assert lines[1] == f"report        {tmp_path / 'demo' / 'as-found' / 'report' / 'report.html'}" and len(lines) == 12
 
 
 def test_demo_into_a_file_is_one_line_error(run_cli, tmp_path):

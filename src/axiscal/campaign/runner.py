@@ -174,7 +174,9 @@ def evaluation_is_raw(path: Path) -> bool:
     from axiscal.io.tabular import read_csv
 
     path = check_path("path", path)
-    return any(name.startswith("actual_") for name in read_csv(path).header)
+    header = read_csv(path).header
+    # raw readings: actual_<unit>, or a deviation beside the air columns (the raw reading less the target)
+    return any(name.startswith("actual_") for name in header) or "air_temperature_c" in header
 
 
 def _captured(call: Callable[[Path], Any]) -> tuple[Any, str]:

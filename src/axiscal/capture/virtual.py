@@ -351,6 +351,7 @@ def simulate_capture(
     rate_hz: float = 1000.0,
     seed: int = 0,
     spec: VirtualAxis | None = None,
+    wavelength_nm: float = HENE_WAVELENGTH_NM,
 ) -> SimulatedRecording:
     """Run a program file on the virtual machine, with a controller's compensation loaded, and record the laser.
 
@@ -374,7 +375,7 @@ def simulate_capture(
     comp_type, reference_position_m : keyword-only
         As :func:`axiscal.compensation.readback.read_compensation` takes them (LinuxCNC's file
         type; FANUC's reference position, metres).
-    rate_hz, seed, spec : keyword-only
+    rate_hz, seed, spec, wavelength_nm : keyword-only
         As :func:`simulate_motions` takes them.
 
     Returns
@@ -412,7 +413,8 @@ def simulate_capture(
             raise exc.located(path=compensation) from None
     elif controller is not None:
         raise AxiscalError("a controller is given without its compensation file")
-    simulated = simulate_motions(motions, model, axis=axis, compensation=loaded, rate_hz=rate_hz, seed=seed, spec=spec)
+    simulated = simulate_motions(motions, model, axis=axis, compensation=loaded, rate_hz=rate_hz, seed=seed, spec=spec,
+                                 wavelength_nm=wavelength_nm)
     simulated = SimulatedRecording(simulated.recording, simulated.clean_m, simulated.dwells, simulated.directions,
                                    {**simulated.settings, "program": str(program),
                                     "compensation_file": None if compensation is None else str(compensation)})

@@ -45,6 +45,7 @@ from axiscal.units import ARCSEC, MM, UM
 __all__ = [
     "AIR",
     "DIAGONAL_LOADS_KG",
+    "campaign_toml",
     "PRISM_DEVIATION_RAD",
     "REPEATABILITY_M",
     "REVERSAL_M",
@@ -339,7 +340,31 @@ def _plain(path: Path, columns: dict[str, np.ndarray], formats: dict[str, str], 
     write_sidecar(path, kind=kind, description=description, simulated=True, made_by="axiscal demo", **meta)
 
 
-def write_campaign(folder: str | Path, *, seed: int = 0) -> SimulatedCampaign:
+def campaign_toml(seed: int = 0, *, budget: str | None = None, captured: bool = False) -> str:
+    """The campaign.toml of the simulated campaign (template ``demo_campaign.toml.j2``).
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the virtual module, named in the file.
+    budget : str, optional, keyword-only
+        File name of an uncertainty budget beside campaign.toml, named at its top.
+    captured : bool, keyword-only
+        The positioning runs were captured from laser recordings (notes say so).
+
+    Returns
+    -------
+    str
+    """
+    seed = check_count("seed", seed, minimum=0)
+    return render_template(
+        "demo_campaign.toml.j2", keep_trailing_newline=True, seed=seed, wavelength_nm=VACUUM_WAVELENGTH_NM,
+        prism_deviation_arcsec=PRISM_DEVIATION_RAD / ARCSEC, spacing_mm=_SPACING_M / MM, loads_kg=DIAGONAL_LOADS_KG,
+        budget=budget, captured=captured,
+    )
+
+
+def write_campaign(folder: str | Path, *, seed: int = 0, laser_runs: bool = True) -> SimulatedCampaign:
     """Simulate the whole campaign on the virtual XZ module and write it as a campaign folder.
 
     Writes ``campaign.toml`` (from the template ``demo_campaign.toml.j2``), the module's model
@@ -355,6 +380,9 @@ def write_campaign(folder: str | Path, *, seed: int = 0) -> SimulatedCampaign:
         The campaign folder (created if missing; files of the same names are replaced).
     seed : int, keyword-only
         Seed of the virtual module and of every simulated reading (default 0).
+    laser_runs : bool, keyword-only
+        Write the laser runs of X and Z (default); False leaves them to the caller (the demo
+        captures them from the virtual machine's laser recording).
 
     Returns
     -------
@@ -374,6 +402,7 @@ def write_campaign(folder: str | Path, *, seed: int = 0) -> SimulatedCampaign:
     """
     folder = check_path("folder", folder)
     seed = check_count("seed", seed, minimum=0)
+    check_instance("laser_runs", laser_runs, bool)
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -390,7 +419,7 @@ def write_campaign(folder: str | Path, *, seed: int = 0) -> SimulatedCampaign:
     frames, _ = loaded.frames(np.arange(380) / 50.0, path="diagonal")
     write_data_csv(folder / "sixdof_diagonal_2kg.csv", frames, kind="raw frames",
                    description="raw frames of the virtual XZ module along the diagonal and back at 50 Hz, 2 kg on Z")
-    for letter in ("X", "Z"):
+    for letter in ("X", "Z") if laser_runs else ():
         _plain(folder / f"positioning_{letter.lower()}.csv", laser_run(module, letter, seed=seed),
                {"target_mm": ".4f", "actual_mm": ".7f", "air_temperature_c": ".3f", "pressure_pa": ".1f",
                 "humidity_pct": ".1f", "material_temperature_c": ".3f"},
@@ -412,9 +441,6 @@ def write_campaign(folder: str | Path, *, seed: int = 0) -> SimulatedCampaign:
         _plain(folder / f"diagonal_{load_kg:g}kg.csv", diagonal_readings(VirtualModule(seed=seed, load_kg=load_kg)),
                {"nominal_mm": ".6f", "measured_mm": ".6f"}, kind="diagonal readings",
                description=f"laser interferometer on the XZ diagonal, {load_kg:g} kg on Z", load_kg=load_kg)
-    write_text(folder / "campaign.toml", render_template(
-        "demo_campaign.toml.j2", keep_trailing_newline=True, seed=seed, wavelength_nm=VACUUM_WAVELENGTH_NM,
-        prism_deviation_arcsec=PRISM_DEVIATION_RAD / ARCSEC, spacing_mm=_SPACING_M / MM, loads_kg=DIAGONAL_LOADS_KG,
-    ))
+    write_text(folder / "campaign.toml", campaign_toml(seed))
     files = tuple(sorted(p.name for p in folder.iterdir() if p.is_file()))
     return SimulatedCampaign(folder, seed, files)

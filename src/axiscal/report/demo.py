@@ -1,13 +1,15 @@
-"""The demo job: a whole calibration campaign of paper 000's XZ module on the virtual instrument, reported.
+"""The demo job: the closed calibration cycle of paper 000's XZ module on the virtual machine, reported.
 
-Paper 000 (sections 4 and 5) end to end: :func:`axiscal.measurement.campaign_sim.write_campaign`
-simulates the sensor calibration, a 6-DOF recording, ISO 230-2 laser runs with air and material
-sensors, straightness by error separation, squareness by pentaprism and the diagonal check unloaded
-and with 2 kg, and writes them as a campaign folder; :func:`axiscal.report.report_campaign` reports
-it (report.html, results.json, LinuxCNC compensation files). Beside the campaign, the paper's
-diagonal experiment with the live 6-DOF measurement (eq 13, 0 and 2 kg) gives the figures the
-offline model cannot reach under load. The console lines come from the template
-``axiscal/templates/demo_summary.txt.j2``.
+As found: :func:`axiscal.measurement.campaign_sim.write_campaign` simulates the sensor calibration,
+a 6-DOF recording, straightness by error separation, squareness by pentaprism and the diagonal check
+unloaded and with 2 kg; each axis' ISO 230-2 test is planned, written as a LinuxCNC program, run on
+the virtual machine and captured stop by stop from the laser's recording
+(:func:`axiscal.capture.cycle.measure_axis`); the campaign, with its uncertainty budget, is reported
+(report.html, results.json, the LinuxCNC compensation files). As left: those compensation files are
+loaded into the virtual controller, each axis is measured again the same way, and the as-left
+campaign is reported compared with the as-found results. Beside the campaign, paper 000's diagonal
+experiment with the live 6-DOF measurement (eq 13, 0 and 2 kg) gives the figures the offline model
+cannot reach under load. The console lines come from the template ``demo_summary.txt.j2``.
 """
 
 from __future__ import annotations
@@ -17,15 +19,21 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from axiscal.capture.cycle import measure_axis
+from axiscal.capture.virtual import VirtualAxis
 from axiscal.io.arguments import check_count, check_path
+from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_json
 from axiscal.io.templates import render_template
 from axiscal.measurement.campaign_sim import (
     DIAGONAL_LOADS_KG,
+    VACUUM_WAVELENGTH_NM,
     SimulatedCampaign,
+    campaign_toml,
     write_campaign,
 )
 from axiscal.measurement.virtual import (
+    STROKE_M,
     DiagonalExperiment,
     VirtualModule,
     diagonal_experiment,
@@ -33,16 +41,29 @@ from axiscal.measurement.virtual import (
 from axiscal.report.writer import ReportFiles, report_campaign
 from axiscal.units import UM
 
-__all__ = ["DEMO_FILES", "DemoResult", "builtin_example", "run_demo"]
+__all__ = ["DEMO_FILES", "DEMO_AXES", "DemoResult", "builtin_example", "write_as_found_campaign",
+           "write_as_left_campaign", "run_demo"]
 
-#: the main files the demo writes, relative to its folder (the campaign's data files and the
-#: report's compensation files besides)
+#: the main files the demo writes, relative to its folder (the campaigns' data files and the
+#: reports' compensation files besides)
 DEMO_FILES = (
-    "campaign/campaign.toml",
-    "report/report.html",
-    "report/results.json",
+    "as-found/campaign/campaign.toml",
+    "as-found/report/report.html",
+    "as-found/report/results.json",
+    "as-left/campaign/campaign.toml",
+    "as-left/report/report.html",
+    "as-left/report/results.json",
     "summary.json",
 )
+#: the virtual machine's axes in the demo: each with its reversal (the model holds no reversal)
+DEMO_AXES = {"X": VirtualAxis(reversal_m=6 * UM), "Z": VirtualAxis(reversal_m=5 * UM)}
+#: the demo's controller, whose compensation files the virtual controller loads
+CONTROLLER = "linuxcnc"
+#: the uncertainty budget both campaigns carry (package data beside the built-in module)
+BUDGET = "uncertainty_budget.toml"
+#: targets of each axis' ISO 230-2 test over the 190 mm stroke, and runs each way
+TARGETS, RUNS = 11, 5
+_MODEL = ("machine.toml", "x_errors.csv", "z_errors.csv")
 
 
 def builtin_example() -> Path:
@@ -56,6 +77,84 @@ def builtin_example() -> Path:
     return Path(str(resources.files("axiscal") / "data" / "xz_module"))
 
 
+def _campaign_files(folder: Path, seed: int) -> SimulatedCampaign:
+    return SimulatedCampaign(folder, seed, tuple(sorted(p.name for p in folder.iterdir() if p.is_file())))
+
+
+def write_as_found_campaign(folder: str | Path, *, seed: int = 0) -> SimulatedCampaign:
+    """The as-found campaign: the simulated campaign with each axis' positioning test captured by axiscal.
+
+    Writes :func:`~axiscal.measurement.campaign_sim.write_campaign`'s folder without its laser runs;
+    for X and Z the plan, the LinuxCNC program, the virtual machine's laser recording and the run
+    captured from it (:func:`axiscal.capture.cycle.measure_axis`); the uncertainty budget; and a
+    campaign.toml that names the budget.
+
+    Parameters
+    ----------
+    folder : str or Path
+        The campaign folder (created if missing; files of the same names are replaced).
+    seed : int, keyword-only
+        Seed of the virtual module, of the plans and of every simulated reading (default 0).
+
+    Returns
+    -------
+    SimulatedCampaign
+
+    Raises
+    ------
+    AxiscalError
+        If a folder cannot be made or a file cannot be written.
+    """
+    folder = check_path("folder", folder)
+    seed = check_count("seed", seed, minimum=0)
+    write_campaign(folder, seed=seed, laser_runs=False)
+    write_text(folder / BUDGET, (builtin_example() / BUDGET).read_text(encoding="utf-8"))
+    for k, axis in enumerate(DEMO_AXES):
+        measure_axis(folder, folder / "machine.toml", axis=axis, start_m=0.0, end_m=STROKE_M, targets=TARGETS, runs=RUNS,
+                     seed=seed, run_seed=seed + 10 * k, spec=DEMO_AXES[axis], wavelength_nm=VACUUM_WAVELENGTH_NM)
+    write_text(folder / "campaign.toml", campaign_toml(seed, budget=BUDGET, captured=True))
+    return _campaign_files(folder, seed)
+
+
+def write_as_left_campaign(folder: str | Path, compensation: str | Path, *, seed: int = 0) -> SimulatedCampaign:
+    """The as-left campaign: the as-found compensation files loaded, each axis measured again.
+
+    Parameters
+    ----------
+    folder : str or Path
+        The campaign folder (created if missing).
+    compensation : str or Path
+        The folder holding the LinuxCNC compensation files ``X.comp`` and ``Z.comp`` of the as-found report.
+    seed : int, keyword-only
+        Seed of the plans (the same targets as found) and of the readings (default 0).
+
+    Returns
+    -------
+    SimulatedCampaign
+
+    Raises
+    ------
+    AxiscalError
+        If a compensation file is missing or refused, a folder cannot be made or a file written.
+    """
+    folder = check_path("folder", folder)
+    compensation = check_path("compensation", compensation)
+    seed = check_count("seed", seed, minimum=0)
+    for name in (*_MODEL, BUDGET):
+        write_text(folder / name, (builtin_example() / name).read_text(encoding="utf-8"))
+    files = {}
+    for k, axis in enumerate(DEMO_AXES):
+        files[axis] = compensation / f"{axis}.comp"
+        measure_axis(folder, folder / "machine.toml", axis=axis, start_m=0.0, end_m=STROKE_M, targets=TARGETS, runs=RUNS,
+                     seed=seed, run_seed=seed + 10 * k + 1, spec=DEMO_AXES[axis], wavelength_nm=VACUUM_WAVELENGTH_NM,
+                     compensation=files[axis], controller=CONTROLLER)
+    write_text(folder / "campaign.toml", render_template(
+        "demo_as_left.toml.j2", keep_trailing_newline=True, seed=seed, budget=BUDGET, controller=CONTROLLER,
+        wavelength_nm=VACUUM_WAVELENGTH_NM, axes=tuple(DEMO_AXES), compensation={a: p.name for a, p in files.items()},
+    ))
+    return _campaign_files(folder, seed)
+
+
 @dataclass(frozen=True)
 class DemoResult:
     """What :func:`run_demo` simulated, reported and wrote.
@@ -65,9 +164,13 @@ class DemoResult:
     folder : Path
         The output folder.
     campaign : SimulatedCampaign
-        The simulated campaign folder (``folder / "campaign"``).
+        The as-found campaign folder (``folder / "as-found" / "campaign"``).
     report : ReportFiles
-        The report of the campaign (``folder / "report"``), with its results.
+        Its report (``folder / "as-found" / "report"``), with its results and compensation files.
+    as_left : SimulatedCampaign
+        The as-left campaign (``folder / "as-left" / "campaign"``): the compensation loaded, measured again.
+    as_left_report : ReportFiles
+        Its report, compared with the as-found results (``folder / "as-left" / "report"``).
     experiments : dict of float to DiagonalExperiment
         Paper 000's diagonal experiment with the live 6-DOF measurement, per load in kg (0 and 2).
     summary : dict
@@ -77,6 +180,8 @@ class DemoResult:
     folder: Path
     campaign: SimulatedCampaign
     report: ReportFiles
+    as_left: SimulatedCampaign
+    as_left_report: ReportFiles
     experiments: dict[float, DiagonalExperiment]
     summary: dict[str, Any]
 
@@ -87,13 +192,18 @@ class DemoResult:
         Returns
         -------
         dict of str to Path
-            ``"campaign"``, ``"report"``, ``"results"``, ``"compensation"`` (a folder) and ``"summary"``.
+            ``"campaign"``, ``"report"``, ``"results"``, ``"compensation"`` (a folder) of the
+            as-found campaign, ``"as_left_campaign"``, ``"as_left_report"``, ``"as_left_results"``,
+            and ``"summary"``.
         """
         return {
             "campaign": self.campaign.toml,
             "report": self.report.html,
             "results": self.report.results,
             "compensation": self.report.folder / "compensation",
+            "as_left_campaign": self.as_left.toml,
+            "as_left_report": self.as_left_report.html,
+            "as_left_results": self.as_left_report.results,
             "summary": self.folder / "summary.json",
         }
 
@@ -108,13 +218,35 @@ class DemoResult:
         return render_template("demo_summary.txt.j2", keep_trailing_newline=True, files=self.files, summary=self.summary)
 
 
-def _summary(report: ReportFiles, experiments: dict[float, DiagonalExperiment]) -> dict[str, Any]:
+def _cycle(found: ReportFiles, left: ReportFiles) -> dict[str, Any]:
+    """Each toleranced figure of the tests measured both times: before, after, their U and the change."""
+    before = {t.id: {c.figure: c for c in t.checks} for t in found.results_data.tests}
+    out: dict[str, Any] = {}
+    for test in left.results_data.tests:
+        for check in test.checks:
+            old = before.get(test.id, {}).get(check.figure)
+            if old is None:
+                continue
+            unit = check.unit
+            out.setdefault(test.id, {})[f"{check.figure}_{unit}"] = {
+                "before": abs(old.value), "after": abs(check.value), "change": abs(check.value) - abs(old.value),
+                "U_before": old.U, "U_after": check.U, "limit": check.limit,
+            }
+    return out
+
+
+def _summary(report: ReportFiles, as_left: ReportFiles, experiments: dict[float, DiagonalExperiment]) -> dict[str, Any]:
     results = report.results_data
     tests = {t.id: t for t in results.tests}
     return {
         "machine": results.machine.get("name"),
         "verdict": results.verdict,
         "tests": {t.id: t.verdict for t in results.tests},
+        "as_left": {
+            "verdict": as_left.results_data.verdict,
+            "tests": {t.id: t.verdict for t in as_left.results_data.tests},
+        },
+        "cycle": _cycle(report, as_left),
         "diagonal_check": {
             f"{load:g}kg": {
                 "E_BD_range_um": tests[f"diagonal-{load:g}kg"].figures["E_BD_range_um"],
@@ -134,12 +266,14 @@ def _summary(report: ReportFiles, experiments: dict[float, DiagonalExperiment]) 
 
 
 def run_demo(output_dir: str | Path = "axiscal-demo", *, seed: int = 0) -> DemoResult:
-    """Simulate a whole campaign on the virtual XZ module, report it and write a summary.
+    """The closed calibration cycle on the virtual XZ module: as found, compensated, as left; reported.
 
-    Writes ``OUTPUT_DIR/campaign/`` (campaign.toml and its data, see
-    :func:`~axiscal.measurement.campaign_sim.write_campaign`), ``OUTPUT_DIR/report/``
-    (report.html, results.json, compensation/, as ``axiscal report`` writes them) and
-    ``OUTPUT_DIR/summary.json`` (the verdicts, the diagonal checks and paper 000's experiment).
+    Writes ``OUTPUT_DIR/as-found/campaign/`` (:func:`write_as_found_campaign`) and its report
+    ``OUTPUT_DIR/as-found/report/`` (report.html, results.json, compensation/, as ``axiscal
+    report`` writes them); ``OUTPUT_DIR/as-left/campaign/`` (:func:`write_as_left_campaign`: the
+    compensation files loaded into the virtual controller, each axis measured again) and its
+    report compared with the as-found results; and ``OUTPUT_DIR/summary.json`` (both verdicts, each
+    figure before and after, the diagonal checks and paper 000's experiment).
 
     Parameters
     ----------
@@ -167,9 +301,11 @@ def run_demo(output_dir: str | Path = "axiscal-demo", *, seed: int = 0) -> DemoR
     """
     folder = check_path("output_dir", output_dir)
     seed = check_count("seed", seed, minimum=0)
-    campaign = write_campaign(folder / "campaign", seed=seed)
-    report = report_campaign(campaign.folder, folder / "report")
+    campaign = write_as_found_campaign(folder / "as-found" / "campaign", seed=seed)
+    report = report_campaign(campaign.folder, folder / "as-found" / "report")
+    as_left = write_as_left_campaign(folder / "as-left" / "campaign", report.folder / "compensation", seed=seed)
+    as_left_report = report_campaign(as_left.folder, folder / "as-left" / "report", compare=report.results)
     experiments = {load: diagonal_experiment(VirtualModule(seed=seed, load_kg=load)) for load in DIAGONAL_LOADS_KG}
-    summary = _summary(report, experiments)
+    summary = _summary(report, as_left_report, experiments)
     write_json(folder / "summary.json", summary)
-    return DemoResult(folder, campaign, report, experiments, summary)
+    return DemoResult(folder, campaign, report, as_left, as_left_report, experiments, summary)
