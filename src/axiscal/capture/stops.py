@@ -5,13 +5,16 @@ A sample ``i`` is *still* when every sample in the window ``[t_i - window_s, t_i
 *stop* is a run of consecutive still samples. Its value is the mean of the reading over the last
 window of the stop, the ``window_s`` before the axis moved on: machines ring and creep after they
 arrive, so the value is where the axis settled, not where it first held still. The window is
-measured in time, so a recording with an uneven sample interval is read as it was taken.
+measured in time, so a recording with an uneven sample interval is read as it was taken; where
+the samples are evenly spaced (to a millionth of the interval) it is the ``floor(window_s /
+interval) + 1`` samples ending at each one.
 
 The detector is streaming: :class:`StopDetector` takes the samples in batches of any size and
 gives each stop once the axis has left it; :func:`detect_stops` is the same detector fed a whole
 recording at once, so a live capture and a capture from a file find the same stops. The peak to
-peak over each window is a range-maximum query over a sparse table (``O(n log w)`` for ``n``
-samples and ``w`` samples per window), batched with NumPy.
+peak over each window is a running maximum and minimum where the samples are evenly spaced
+(``O(n)``), else a range-maximum query over a sparse table (``O(n log w)`` for ``w`` samples per
+window), batched with NumPy.
 """
 
 from __future__ import annotations
@@ -87,18 +90,47 @@ def _sparse_max_min(x: np.ndarray, levels: int) -> tuple[list[np.ndarray], list[
     return highs, lows
 
 
+def _running_extremes(x: np.ndarray, size: int, start: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Max and min of ``x[a : a + size]`` for every a in ``start`` (van Herk / Gil-Werman, ``O(n)``).
+
+    The array is cut into blocks of ``size``: a window spans the end of one block (its suffix
+    extreme) and the start of the next (its prefix extreme).
+    """
+    blocks = -(-x.size // size) + 1
+    padded = np.full(blocks * size, np.nan)
+    padded[: x.size] = x
+    grid = padded.reshape(blocks, size)
+    out = []
+    for accumulate in (np.fmax, np.fmin):
+        prefix = accumulate.accumulate(grid, axis=1).ravel()
+        suffix = accumulate.accumulate(grid[:, ::-1], axis=1)[:, ::-1].ravel()
+        out.append(accumulate(suffix[start], prefix[start + size - 1]))
+    return out[0], out[1]
+
+
 def _range_ptp(x: np.ndarray, start: np.ndarray, stop: np.ndarray) -> np.ndarray:
-    """Peak to peak of ``x[start[i] : stop[i] + 1]`` for every i (start <= stop), by a sparse table."""
+    """Peak to peak of ``x[start[i] : stop[i] + 1]`` for every i (start <= stop).
+
+    Windows of one length (evenly sampled readings) take running extremes (``O(n)``); windows of
+    several lengths a sparse table (``O(n log w)``).
+    """
     length = stop - start + 1
     if length.size == 0:
         return np.empty(0)
+    shortest, longest = int(length.min()), int(length.max())
+    if shortest == longest:
+        high, low = _running_extremes(x, longest, start)
+        return high - low
     level = np.floor(np.log2(length)).astype(np.int64)
-    highs, lows = _sparse_max_min(x, int(level.max()) + 1)
+    low_level, high_level = int(np.log2(shortest)), int(np.log2(longest))
+    highs, lows = _sparse_max_min(x, high_level + 1)
     out_high = np.empty(length.size)
     out_low = np.empty(length.size)
-    for k in np.unique(level):
+    for k in range(low_level, high_level + 1):
         sel = np.nonzero(level == k)[0]
-        a, b = start[sel], stop[sel] - (1 << int(k)) + 1
+        if sel.size == 0:
+            continue
+        a, b = start[sel], stop[sel] - (1 << k) + 1
         out_high[sel] = np.maximum(highs[k][a], highs[k][b])
         out_low[sel] = np.minimum(lows[k][a], lows[k][b])
     return out_high - out_low
@@ -205,9 +237,16 @@ class StopDetector:
         idx = np.arange(old, buffer.shape[0])
         # the window of sample i: the samples with t >= t_i - window; covered when an earlier sample
         # lies at or before t_i - window (the recording reaches back a whole window)
-        first = np.searchsorted(bt, bt[idx] - self.window_s, side="left")
-        reach = np.searchsorted(bt, bt[idx] - self.window_s, side="right")
-        covered = (reach > 0) | (self._offset > 0)
+        reach_back = bt[idx] - self.window_s
+        step = np.diff(bt)
+        if step.size and step.min() > 0 and step.max() - step.min() <= 1e-6 * step.min():
+            # evenly sampled: the window is the floor(window / interval) + 1 samples ending at i
+            span = int(np.floor(self.window_s / float(0.5 * (step.min() + step.max())) + 1e-6))
+            first = np.maximum(idx - span, 0)
+            covered = (idx - span >= 0) | (self._offset > 0)
+        else:
+            first = np.searchsorted(bt, reach_back, side="left")
+            covered = (bt[0] <= reach_back) | (self._offset > 0)
         safe = np.nan_to_num(bx, nan=np.inf)
         ptp = _range_ptp(safe, first, idx)
         still = covered & (ptp <= self.stability_m)
@@ -258,7 +297,7 @@ class StopDetector:
         opened = self._open
         assert opened is not None
         bt = buffer[:, 0]
-        start = int(np.searchsorted(bt, bt[last] - self.window_s, side="left"))
+        start = int(np.searchsorted(bt, bt[last] - self.window_s * (1 + 1e-9), side="left"))
         window = buffer[start : last + 1]
         value = float(window[:, 1].mean())
         std = float(window[:, 1].std(ddof=1)) if window.shape[0] > 1 else 0.0
