@@ -304,7 +304,8 @@ def _feed_recording(recording: Recording, detector: StopDetector, take: Callable
 
 
 def _feed_source(source: Any, detector: StopDetector, take: Callable[[Stop], None], channel: str | None, unit: str | None,
-                 done: Callable[[], bool], report: Callable[[float, bool], None], timeout_s: float | None) -> None:
+                 done: Callable[[], bool], last_step: Callable[[], bool], report: Callable[[float, bool], None],
+                 timeout_s: float | None) -> None:
     names = tuple(source.channels)
     if channel is None:
         lengths = [n for n in names if split_unit(n)[1] in READING_UNITS and n not in detector.channels]
@@ -332,6 +333,11 @@ def _feed_source(source: Any, detector: StopDetector, take: Callable[[Stop], Non
                 take(stop)
             if reading.size:
                 report(float(reading[-1]), detector.holding)
+            if last_step() and detector.held_s >= detector.window_s:
+                # the plan's last stop: nothing moves the axis on, so it is taken once it has held a
+                # whole window after first holding still (the mean of its last window)
+                for stop in detector.finish():
+                    take(stop)
         if getattr(source, "finished", False):
             break
         if timeout_s is not None and time.monotonic() - began > timeout_s:
@@ -435,7 +441,10 @@ def capture(
                                  detector.samples))
 
     if live:
-        _feed_source(source, detector, take, channel, unit, lambda: matcher.done, report, timeout_s)
+        def last_step() -> bool:
+            return matcher.next_index is not None and matcher.taken == steps.readings - 1
+
+        _feed_source(source, detector, take, channel, unit, lambda: matcher.done, last_step, report, timeout_s)
     else:
         _feed_recording(source, detector, take)
     if not matcher.done:

@@ -321,6 +321,11 @@ class StopDetector:
         self._low = self._high = value
         return stop
 
+    @property
+    def held_s(self) -> float:
+        """How long the reading has been still, seconds (0 when it is moving)."""
+        return 0.0 if self._open is None else self._last_t - self._open["still_s"]
+
     def finish(self) -> list[Stop]:
         """End of the recording: the stop the axis is still at, if any (it held for a whole window).
 
