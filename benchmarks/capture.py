@@ -97,12 +97,15 @@ def sender(rate: float) -> None:
     connection.sendall(header_line(names))
     start = time.monotonic()
     sent = 0
-    while sent < len(lines):
-        due = int((time.monotonic() - start) * rate) + 1
-        if due > sent:
-            connection.sendall(b"".join(lines[sent:due]))
-            sent = min(due, len(lines))
-        time.sleep(0.002)
+    try:
+        while sent < len(lines):
+            due = int((time.monotonic() - start) * rate) + 1
+            if due > sent:
+                connection.sendall(b"".join(lines[sent:due]))
+                sent = min(due, len(lines))
+            time.sleep(0.002)
+    except (BrokenPipeError, ConnectionResetError):
+        pass  # the capture took its last stop and hung up
     connection.close()
     print(len(lines), flush=True)
 
@@ -119,11 +122,14 @@ def live(rate: float) -> None:
         last["samples"] = p.samples
 
     original = source.read
+    arrival = {}
 
     def read(timeout_s):
         batch = original(timeout_s)
         if len(batch):
             times.append(batch.t_s[~batch.malformed])
+            arrival.setdefault("first", time.monotonic() - float(batch.t_s[0]))
+            arrival["lag"] = time.monotonic() - arrival["first"] - float(batch.t_s[-1])
         return batch
 
     source.read = read
@@ -137,7 +143,8 @@ def live(rate: float) -> None:
     gaps = int(np.sum(np.abs(np.diff(t) - 1.0 / rate) > 0.5 / rate)) if t.size > 1 else 0
     print(f"live tcp at {rate:g} Hz: {simulated.recording.time_s.size} samples in the recording, {t.size} read by the"
           f" time the last stop was taken ({sent} sent in all), {gaps} gaps in the time stamps, {len(result.readings)} of"
-          f" {plan.readings} stops taken; the capture ended {behind:.2f} s after the last stop began")
+          f" {plan.readings} stops taken; the capture ended {behind:.2f} s after the last stop began; the last batch"
+          f" was read {arrival.get('lag', float('nan')) * 1e3:.1f} ms behind the stream")
 
 
 def main() -> None:

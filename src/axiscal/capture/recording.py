@@ -143,6 +143,8 @@ def read_recording(path: str | Path, *, unit: str | None = None, channel: str | 
         name = channel
     else:
         candidates = [n for n in table.header if _unit_of(n) is not None and n not in environment and n != time_name]
+        if not candidates:  # one column besides the time and the sensors: the reading, its unit given apart
+            candidates = [n for n in table.header if n not in environment and n != time_name][:2]
         if len(candidates) != 1:
             found = ", ".join(candidates) if candidates else "none"
             raise AxiscalError(
