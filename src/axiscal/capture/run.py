@@ -521,7 +521,8 @@ def capture_to_file(
     resume : bool, keyword-only
         Continue the partial capture ``OUTPUT.partial`` with this recording (the rest of the run).
     **options
-        ``settings``, ``unit``, ``channel``, ``environment``, ``progress``, ``timeout_s`` of :func:`capture`.
+        ``settings``, ``unit``, ``channel``, ``environment``, ``progress``, ``timeout_s`` and
+        ``on_stop`` (called after each stop is written to the partial file) of :func:`capture`.
 
     Returns
     -------
@@ -546,11 +547,15 @@ def capture_to_file(
                            " or delete it", path=partial)
     writer: _PartialWriter | None = None
 
+    observe = options.pop("on_stop", None)
+
     def on_stop(reading: StopReading) -> None:
         nonlocal writer
         if writer is None:
             writer = _PartialWriter(partial, steps, tuple(reading.channels))
         writer.add(reading)
+        if observe is not None:
+            observe(reading)
 
     try:
         result = capture(steps, recording, resumed=resumed, on_stop=on_stop, **options)

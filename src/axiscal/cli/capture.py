@@ -41,6 +41,17 @@ def _progress_line(console):
     return live, show
 
 
+def _dashboard(steps, source, port: int):
+    """The live page of a capture, served on 127.0.0.1 (its address on stderr)."""
+    from axiscal.capture.board import CaptureBoard
+    from axiscal.live.server import LiveServer, create_board_app
+
+    board = CaptureBoard(steps, getattr(getattr(source, "status", None), "description", ""))
+    server = LiveServer(create_board_app(board.snapshot, page="capture.html"), port=port).start()
+    click.echo(f"axiscal: capture page on {server.url}", err=True)
+    return server, board
+
+
 @click.command("capture")
 @click.argument("plan_csv", type=click.Path(dir_okay=False))
 @click.option("--from", "recording", type=click.Path(dir_okay=False), help="A recording: an .rtx capture or a CSV with time_s and the reading.")
@@ -56,9 +67,11 @@ def _progress_line(console):
 @click.option("--rate-hz", type=float, default=1000.0, show_default=True, help="Sample rate of the sim source.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Noise seed of the sim source.")
 @click.option("--timeout-s", type=float, default=None, help="Stop reading a live source after this many seconds.")
+@click.option("--dashboard", is_flag=True, help="With --source: show the plan, the target awaited and the stops taken on a live page.")
+@click.option("--port", type=int, default=8765, show_default=True, help="Port of the --dashboard page on 127.0.0.1 (0: any free port).")
 @click.option("--json", "as_json", is_flag=True, help="Print the stops taken as JSON.")
 def capture_command(plan_csv, recording, source_spec, output, unit, channel, stability_um, window_s, tolerance_mm, offset_mm,
-                    resume, rate_hz, seed, timeout_s, as_json):
+                    resume, rate_hz, seed, timeout_s, dashboard, port, as_json):
     """Capture a positioning run: walk PLAN_CSV's steps through a recording (--from) or a live stream (--source).
 
     Each step with a target needs one stop: the reading comes within --tolerance-mm of the target and
@@ -67,18 +80,24 @@ def capture_command(plan_csv, recording, source_spec, output, unit, channel, sta
     """
     if (recording is None) == (source_spec is None):
         raise AxiscalError("give one of --from RECORDING or --source SPEC")
+    if dashboard and source_spec is None:
+        raise AxiscalError("--dashboard shows a live capture: it goes with --source")
     with flags_named(_FLAGS):
         settings = CaptureSettings(stability_m=stability_um * UM, window_s=window_s, tolerance_m=tolerance_mm * MM,
                                    offset_m=offset_mm * MM)
-    live = None
+    live = server = None
     options = {}
     if source_spec is not None:
         from rich.console import Console
 
-        source = open_capture_source(source_spec, steps=plan_steps(plan_csv), channel=channel, rate_hz=rate_hz, seed=seed)
+        steps = plan_steps(plan_csv)
+        source = open_capture_source(source_spec, steps=steps, channel=channel, rate_hz=rate_hz, seed=seed)
         console = Console(stderr=True)
         live, show = _progress_line(console)
         options = {"progress": show, "timeout_s": timeout_s}
+        if dashboard:
+            server, board = _dashboard(steps, source, port)
+            options = {"progress": lambda p: (show(p), board.progress(p)), "on_stop": board.stop, "timeout_s": timeout_s}
     else:
         source = recording
     try:
@@ -89,6 +108,8 @@ def capture_command(plan_csv, recording, source_spec, output, unit, channel, sta
             live.stop()
         if source_spec is not None:
             source.close()
+        if server is not None:
+            server.stop()
     result = files.capture
     if as_json:
         echo_json({

@@ -43,7 +43,8 @@ from axiscal.io.arguments import check_count, check_mapping, is_real
 from axiscal.io.arguments import check_instance, type_name
 from axiscal.live.state import UPDATE_HZ_RANGE, LiveState
 
-__all__ = ["WEB", "HOST", "LOOPBACK_HOSTS", "ClientStats", "Broadcaster", "request_allowed", "create_app", "LiveServer"]
+__all__ = ["WEB", "HOST", "LOOPBACK_HOSTS", "ClientStats", "Broadcaster", "request_allowed", "create_app", "create_board_app",
+           "LiveServer"]
 
 WEB = Path(__file__).parent / "web"
 HOST = "127.0.0.1"
@@ -223,14 +224,7 @@ def create_app(
         empty or holds a port.
     """
     check_instance("state", state, LiveState)
-    if isinstance(allowed_hosts, str) or not isinstance(allowed_hosts, (tuple, list, frozenset, set)):
-        raise AxiscalError(f"allowed_hosts must be a sequence of host names, not {allowed_hosts!r}")
-    if not all(isinstance(name, str) for name in allowed_hosts):
-        raise AxiscalError(f"allowed_hosts must hold host names (str), not {tuple(allowed_hosts)!r}")
-    extra = tuple(name.strip().lower() for name in allowed_hosts)
-    for name in extra:
-        if not name or "/" in name or (":" in name and not name.startswith("[")):
-            raise AxiscalError(f"allowed host '{name}' must be a host name or address without port or scheme")
+    extra = _checked_hosts(allowed_hosts)
     broadcaster = Broadcaster(state, update_hz=update_hz, title=title)
 
     @contextlib.asynccontextmanager
@@ -285,6 +279,58 @@ def create_app(
     )
     app.state.broadcaster = broadcaster
     return app
+
+
+def _checked_hosts(allowed_hosts: Sequence[str]) -> tuple[str, ...]:
+    if isinstance(allowed_hosts, str) or not isinstance(allowed_hosts, (tuple, list, frozenset, set)):
+        raise AxiscalError(f"allowed_hosts must be a sequence of host names, not {allowed_hosts!r}")
+    if not all(isinstance(name, str) for name in allowed_hosts):
+        raise AxiscalError(f"allowed_hosts must hold host names (str), not {tuple(allowed_hosts)!r}")
+    extra = tuple(name.strip().lower() for name in allowed_hosts)
+    for name in extra:
+        if not name or "/" in name or (":" in name and not name.startswith("[")):
+            raise AxiscalError(f"allowed host '{name}' must be a host name or address without port or scheme")
+    return extra
+
+
+def create_board_app(snapshot, *, page: str, allowed_hosts: Sequence[str] = ()) -> Starlette:
+    """A page that polls ``/api/state`` for what ``snapshot()`` returns (the capture's board).
+
+    Parameters
+    ----------
+    snapshot : callable
+        Returns the state as a JSON-able mapping; called from the server's thread, so it must
+        return a value the writer replaces whole (never one it changes in place).
+    page : str
+        The page's file in ``axiscal/live/web`` (``capture.html``).
+    allowed_hosts : sequence of str, keyword-only
+        Host names allowed besides :data:`LOOPBACK_HOSTS` (see :func:`create_app`).
+
+    Returns
+    -------
+    Starlette
+
+    Raises
+    ------
+    AxiscalError
+        For a ``snapshot`` that is not callable, a page that is not shipped, or a bad host name.
+    """
+    if not callable(snapshot):
+        raise AxiscalError(f"snapshot must be a function returning the state, not {type_name(snapshot)}")
+    if not isinstance(page, str) or not (WEB / page).is_file():
+        raise AxiscalError(f"page must name a page of axiscal/live/web, not {page!r}")
+    extra = _checked_hosts(allowed_hosts)
+
+    async def index(request) -> Response:
+        return FileResponse(WEB / page, media_type="text/html")
+
+    async def latest(request) -> Response:
+        return Response(json.dumps(snapshot(), allow_nan=False), media_type="application/json")
+
+    return Starlette(
+        routes=[Route("/", index), Route("/api/state", latest), Mount("/static", StaticFiles(directory=WEB), name="static")],
+        middleware=[Middleware(_GuardHosts, allowed_hosts=LOOPBACK_HOSTS + extra)],
+    )
 
 
 class LiveServer:
