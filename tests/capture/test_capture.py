@@ -9,7 +9,8 @@ import pytest
 
 from axiscal.capture import capture, capture_run, capture_to_file, plan_steps, read_recording
 from axiscal.capture.recording import Recording
-from axiscal.capture.run import CaptureSettings, partial_path
+from axiscal.capture.files import partial_path
+from axiscal.capture.run import CaptureSettings
 from axiscal.capture.sources import plan_motions
 from axiscal.capture.virtual import VirtualAxis, simulate_motions, write_recording
 from axiscal.cli.main import main

@@ -7,13 +7,15 @@ through a recording or a live source and returns the positioning run; :func:`cap
 """
 
 from axiscal.capture.recording import Recording, read_recording
-from axiscal.capture.run import Capture, CaptureSettings, StopReading, capture, capture_run, capture_to_file
+from axiscal.capture.files import CaptureFiles, capture_to_file, partial_path
+from axiscal.capture.run import Capture, CaptureSettings, StopReading, capture, capture_run
 from axiscal.capture.steps import PlanSteps, plan_steps
 from axiscal.capture.stops import Stop, StopDetector, detect_stops
 from axiscal.capture.virtual import SimulatedRecording, VirtualAxis, simulate_capture, simulate_motions
 
 __all__ = [
     "Capture",
+    "CaptureFiles",
     "CaptureSettings",
     "PlanSteps",
     "Recording",
@@ -26,6 +28,7 @@ __all__ = [
     "capture_run",
     "capture_to_file",
     "detect_stops",
+    "partial_path",
     "plan_steps",
     "read_recording",
     "simulate_capture",

@@ -13,7 +13,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from axiscal.capture.run import CaptureFiles, CaptureSettings, capture_to_file
+from axiscal.capture.files import CaptureFiles, capture_to_file
+from axiscal.capture.run import CaptureSettings
 from axiscal.capture.virtual import SimulatedRecording, VirtualAxis, simulate_capture
 from axiscal.io.arguments import check_path
 from axiscal.io.gcode import dialect as find_dialect

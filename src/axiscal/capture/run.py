@@ -6,17 +6,13 @@ positioning run ``axiscal positioning`` reads: ``target_mm, run, direction, devi
 the recording carries them, the air and material sensors averaged over each stop's window (the
 deviation is then that of the raw reading, compensated for the air when the run is read).
 
-A capture to a file appends every stop to ``RUN.csv.partial`` as it is taken (flushed to disk), so
-a stream that dies leaves every stop before it; a resumed capture reads that file and goes on from
-the step after its last; the run itself is written atomically at the end, with a JSON sidecar
-holding the plan's seed, the source, the settings and, per stop, its start time and the standard
-deviation of the reading over its window.
+The files of a capture (the partial file, resume, the run and its sidecar) are
+:mod:`axiscal.capture.files`.
 """
 
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -28,9 +24,7 @@ from axiscal.capture.recording import READING_UNITS, Recording, environment_colu
 from axiscal.capture.steps import PlanSteps, StepMatcher, plan_steps
 from axiscal.capture.stops import Stop, StopDetector
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_instance, check_number, check_path
-from axiscal.io.jsonio import write_sidecar
-from axiscal.io.tabular import read_csv, write_csv
+from axiscal.io.arguments import check_instance, check_number
 from axiscal.positioning.evaluation import PositioningRun
 from axiscal.positioning.plan import PositioningTestPlan
 from axiscal.positioning.reader import ENVIRONMENT_REQUIRED
@@ -43,13 +37,7 @@ __all__ = [
     "CaptureProgress",
     "capture",
     "capture_run",
-    "capture_to_file",
-    "partial_path",
 ]
-
-#: columns of the partial file, before the environment columns
-PARTIAL_COLUMNS = ("step", "target_mm", "run", "direction", "deviation_um", "position_mm", "start_s", "window_std_um", "samples")
-
 
 @dataclass(frozen=True)
 class CaptureSettings:
@@ -215,75 +203,6 @@ def _arranged(targets: np.ndarray, runs: np.ndarray, directions: np.ndarray, dev
         grid[i, j] = deviation[sel]
         arrays[d] = grid
     return PositioningRun(unique, arrays["+"], arrays["-"], source=source)
-
-
-def partial_path(output: str | Path) -> Path:
-    """The partial file of a capture to ``output``: ``RUN.csv.partial`` beside it."""
-    output = check_path("output", output)
-    return output.with_name(output.name + ".partial")
-
-
-class _PartialWriter:
-    """Appends each stop to the partial file and flushes it to disk."""
-
-    def __init__(self, path: Path, steps: PlanSteps, environment: tuple[str, ...]):
-        self.path = path
-        self.steps = steps
-        self.environment = environment
-        fresh = not path.exists() or path.stat().st_size == 0
-        try:
-            path.parent.mkdir(parents=True, exist_ok=True)
-            self._file = open(path, "a", encoding="utf-8", newline="\n")
-        except OSError as exc:
-            raise AxiscalError(f"cannot write the partial capture ({exc.strerror or exc})", path=path) from None
-        if fresh:
-            self._write(",".join(PARTIAL_COLUMNS + environment))
-
-    def _write(self, line: str) -> None:
-        try:
-            self._file.write(line + "\n")
-            self._file.flush()
-            os.fsync(self._file.fileno())
-        except OSError as exc:
-            raise AxiscalError(f"cannot write the partial capture ({exc.strerror or exc})", path=self.path) from None
-
-    def add(self, r: StopReading) -> None:
-        s = self.steps
-        cells = [str(int(s.step[r.index])), f"{s.target_m[r.index] / MM:.6f}", str(int(s.run[r.index])), s.direction[r.index],
-                 f"{r.deviation_m / UM:.5f}", f"{(s.target_m[r.index] + r.deviation_m) / MM:.8f}", f"{r.start_s:.6f}",
-                 f"{r.window_std_m / UM:.5f}", str(r.samples)]
-        cells += [f"{r.channels[n]:.6g}" if n in r.channels else "" for n in self.environment]
-        self._write(",".join(cells))
-
-    def close(self) -> None:
-        self._file.close()
-
-
-def _read_partial(path: Path, steps: PlanSteps) -> tuple[list[StopReading], tuple[str, ...]]:
-    """The stops a partial file holds, checked against the plan."""
-    if not path.is_file():
-        raise AxiscalError("nothing to resume: no partial capture here", path=path)
-    table = read_csv(path, min_rows=1)
-    table.require(*PARTIAL_COLUMNS)
-    environment = environment_columns(table.header)
-    number = table.numeric("step")
-    deviation = table.numeric("deviation_um") * UM
-    start = table.numeric("start_s")
-    std = table.numeric("window_std_um") * UM
-    samples = table.numeric("samples")
-    env = {n: table.numeric_or_missing(n) for n in environment}
-    index_of = {int(s): k for k, s in enumerate(steps.step)}
-    readings: list[StopReading] = []
-    last = -1
-    for row in range(len(table)):
-        k = index_of.get(int(number[row])) if number[row] == int(number[row]) else None
-        if k is None or not np.isfinite(steps.target_m[k]) or k <= last:
-            raise AxiscalError(f"step {number[row]:g} is not the plan's next step with a target: this partial capture is"
-                               f" not of the plan {steps.source}", path=path, line=table.line_of(row))
-        readings.append(StopReading(k, float(deviation[row]), float(start[row]), float(std[row]), int(samples[row]),
-                                    {n: float(env[n][row]) for n in environment if np.isfinite(env[n][row])}))
-        last = k
-    return readings, environment
 
 
 def _recording_source(recording: Any, unit: str | None, channel: str | None) -> Recording | Any:
@@ -484,105 +403,3 @@ def capture_run(plan, recording, **options) -> PositioningRun:
     5
     """
     return capture(plan, recording, **options).run
-
-
-@dataclass(frozen=True)
-class CaptureFiles:
-    """What :func:`capture_to_file` wrote.
-
-    Attributes
-    ----------
-    capture : Capture
-    run_csv, sidecar : Path
-        The run and its JSON sidecar.
-    """
-
-    capture: Capture
-    run_csv: Path
-    sidecar: Path
-
-
-def capture_to_file(
-    plan: PositioningTestPlan | str | Path,
-    recording: Recording | str | Path | Any,
-    output: str | Path,
-    *,
-    resume: bool = False,
-    **options: Any,
-) -> CaptureFiles:
-    """Capture a run into ``output`` (``axiscal capture``): partial file as it goes, the run atomically at the end.
-
-    Parameters
-    ----------
-    plan, recording :
-        As :func:`capture` takes them.
-    output : str or Path
-        The run CSV to write; ``OUTPUT.partial`` holds the stops as they are taken.
-    resume : bool, keyword-only
-        Continue the partial capture ``OUTPUT.partial`` with this recording (the rest of the run).
-    **options
-        ``settings``, ``unit``, ``channel``, ``environment``, ``progress``, ``timeout_s`` and
-        ``on_stop`` (called after each stop is written to the partial file) of :func:`capture`.
-
-    Returns
-    -------
-    CaptureFiles
-
-    Raises
-    ------
-    AxiscalError
-        As :func:`capture` (the partial file then keeps every stop taken before); for a partial
-        file left from an interrupted capture when ``resume`` is not given, or none when it is.
-    """
-    output = check_path("output", output)
-    check_instance("resume", resume, bool)
-    steps = plan_steps(plan)
-    partial = partial_path(output)
-    resumed: list[StopReading] = []
-    environment: tuple[str, ...] | None = None
-    if resume:
-        resumed, environment = _read_partial(partial, steps)
-    elif partial.exists():
-        raise AxiscalError("a partial capture is here from an interrupted run: continue it with --resume (resume=True),"
-                           " or delete it", path=partial)
-    writer: _PartialWriter | None = None
-
-    observe = options.pop("on_stop", None)
-
-    def on_stop(reading: StopReading) -> None:
-        nonlocal writer
-        if writer is None:
-            writer = _PartialWriter(partial, steps, tuple(reading.channels))
-        writer.add(reading)
-        if observe is not None:
-            observe(reading)
-
-    try:
-        result = capture(steps, recording, resumed=resumed, on_stop=on_stop, **options)
-    finally:
-        if writer is not None:
-            writer.close()
-    if environment is not None and set(environment) != set(result.environment):
-        raise AxiscalError("the partial capture and the recording carry different sensors", path=partial)
-    write_csv(output, result.columns(), fmt={"target_mm": "{:.6f}", "deviation_um": "{:.5f}",
-                                              **{n: "{:.6g}" for n in result.environment}})
-    sidecar = write_sidecar(
-        output,
-        kind="positioning run (captured)",
-        units={"deviation_um": "um, (reading - offset) - target" + (
-            "; the raw reading, compensated for the air when read" if result.environment else "")},
-        sources=[s for s in (steps.source, result.source) if s and not s.startswith("<")],
-        standard="ISO 230-2",
-        plan=steps.source,
-        plan_seed=steps.seed,
-        source=result.source,
-        settings=result.settings.as_dict(),
-        recording_header=dict(result.header),
-        stops=[{"step": int(steps.step[r.index]), "start_s": r.start_s, "window_std_um": r.window_std_m / UM,
-                "samples": r.samples} for r in result.readings],
-    )
-    try:
-        partial.unlink(missing_ok=True)
-    except OSError:
-        pass
-    return CaptureFiles(result, output, sidecar)

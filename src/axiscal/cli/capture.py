@@ -6,7 +6,8 @@ import math
 
 import click
 
-from axiscal.capture.run import CaptureSettings, capture_to_file
+from axiscal.capture.files import capture_to_file
+from axiscal.capture.run import CaptureSettings
 from axiscal.capture.recording import READING_UNITS
 from axiscal.capture.sources import open_capture_source
 from axiscal.capture.steps import plan_steps
