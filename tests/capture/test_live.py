@@ -89,20 +89,21 @@ def test_the_sim_source_runs_the_plan(simulated):
 
 
 def test_the_capture_board_shows_the_plan_the_target_and_the_stops(simulated):
-    from starlette.testclient import TestClient
+    import httpx
 
     from axiscal.capture.board import CaptureBoard
-    from axiscal.live.server import create_board_app
+    from axiscal.live.server import LiveServer, create_board_app
 
     plan, sim = simulated
     board = CaptureBoard(plan_steps(plan), "sim")
-    client = TestClient(create_board_app(board.snapshot, page="capture.html"), base_url="http://127.0.0.1")
-    assert "axiscal capture" in client.get("/").text
-    captured = capture(plan, sim.recording, on_stop=board.stop)
-    state = client.get("/api/state").json()
-    assert [p["step"] for p in state["plan"]] == [int(plan_steps(plan).step[r.index]) for r in captured.readings]
-    assert [t["deviation_um"] for t in state["taken"]] == pytest.approx([r.deviation_m * 1e6 for r in captured.readings])
-    assert client.get("/api/state", headers={"host": "evil.example"}).status_code == 403
+    server = LiveServer(create_board_app(board.snapshot, page="capture.html"), port=0).start()
+    with server, httpx.Client(base_url=server.url) as client:
+        assert "axiscal capture" in client.get("/").text
+        captured = capture(plan, sim.recording, on_stop=board.stop)
+        state = client.get("/api/state").json()
+        assert [p["step"] for p in state["plan"]] == [int(plan_steps(plan).step[r.index]) for r in captured.readings]
+        assert [t["deviation_um"] for t in state["taken"]] == pytest.approx([r.deviation_m * 1e6 for r in captured.readings])
+        assert client.get("/api/state", headers={"host": "evil.example"}).status_code == 403
 
 
 def test_the_dashboard_goes_with_a_live_source(tmp_path, capsys):
