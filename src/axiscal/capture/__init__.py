@@ -3,34 +3,94 @@
 :func:`detect_stops` finds where a reading held still; :func:`capture_run` walks a plan's steps
 through a recording or a live source and returns the positioning run; :func:`capture_to_file` is
 ``axiscal capture`` (a partial file as it goes, resume, the run written atomically);
-:func:`simulate_capture` runs a program on the virtual machine and records what a laser reads.
+:func:`simulate_capture` runs a program on the virtual machine and records what a laser reads;
+:func:`measure_axis` does plan, program, run and capture for one axis of the virtual machine.
 """
 
-from axiscal.capture.recording import Recording, read_recording
-from axiscal.capture.files import CaptureFiles, capture_to_file, partial_path
-from axiscal.capture.run import Capture, CaptureSettings, StopReading, capture, capture_run
-from axiscal.capture.steps import PlanSteps, plan_steps
-from axiscal.capture.stops import Stop, StopDetector, detect_stops
-from axiscal.capture.virtual import SimulatedRecording, VirtualAxis, simulate_capture, simulate_motions
+from __future__ import annotations
+
+from axiscal.capture.stops import (
+    Stop,
+    StopDetector,
+    detect_stops,
+)
+from axiscal.capture.recording import (
+    ENVIRONMENT_COLUMNS,
+    READING_UNITS,
+    Recording,
+    environment_columns,
+    read_recording,
+)
+from axiscal.capture.steps import (
+    CapturedStop,
+    PlanSteps,
+    StepMatcher,
+    plan_steps,
+)
+from axiscal.capture.run import (
+    Capture,
+    CaptureProgress,
+    CaptureSettings,
+    StopReading,
+    capture,
+    capture_run,
+)
+from axiscal.capture.files import (
+    CaptureFiles,
+    PARTIAL_COLUMNS,
+    capture_to_file,
+    partial_path,
+)
+from axiscal.capture.virtual import (
+    SimulatedRecording,
+    VirtualAxis,
+    simulate_capture,
+    simulate_motions,
+    write_recording,
+)
+from axiscal.capture.sources import (
+    open_capture_source,
+    plan_motions,
+)
+from axiscal.capture.cycle import (
+    AxisMeasurement,
+    measure_axis,
+)
+from axiscal.capture.board import (
+    CaptureBoard,
+)
 
 __all__ = [
-    "Capture",
-    "CaptureFiles",
-    "CaptureSettings",
-    "PlanSteps",
-    "Recording",
-    "SimulatedRecording",
     "Stop",
     "StopDetector",
+    "detect_stops",
+    "ENVIRONMENT_COLUMNS",
+    "READING_UNITS",
+    "Recording",
+    "environment_columns",
+    "read_recording",
+    "CapturedStop",
+    "PlanSteps",
+    "StepMatcher",
+    "plan_steps",
+    "Capture",
+    "CaptureProgress",
+    "CaptureSettings",
     "StopReading",
-    "VirtualAxis",
     "capture",
     "capture_run",
+    "CaptureFiles",
+    "PARTIAL_COLUMNS",
     "capture_to_file",
-    "detect_stops",
     "partial_path",
-    "plan_steps",
-    "read_recording",
+    "SimulatedRecording",
+    "VirtualAxis",
     "simulate_capture",
     "simulate_motions",
+    "write_recording",
+    "open_capture_source",
+    "plan_motions",
+    "AxisMeasurement",
+    "measure_axis",
+    "CaptureBoard",
 ]

@@ -33,7 +33,17 @@ PARTIAL_COLUMNS = ("step", "target_mm", "run", "direction", "deviation_um", "pos
 
 
 def partial_path(output: str | Path) -> Path:
-    """The partial file of a capture to ``output``: ``RUN.csv.partial`` beside it."""
+    """The partial file of a capture to ``output``: ``RUN.csv.partial`` beside it.
+
+    Parameters
+    ----------
+    output : str or Path
+        The run CSV the capture writes.
+
+    Returns
+    -------
+    Path
+    """
     output = check_path("output", output)
     return output.with_name(output.name + ".partial")
 

@@ -118,3 +118,13 @@ from axiscal.compensation.sag import (  # noqa: E402
 
 __all__ += ["SAG_CONTROLLERS", "SAG_REFERENCES", "SinumerikSagTable", "heidenhain_sag_table", "sag_table_file",
             "sinumerik_sag_table"]
+
+from axiscal.compensation.readback import (  # noqa: E402
+    CONTROLLERS,
+    ControllerCompensation,
+    parse_fanuc_tape,
+    parse_siemens,
+    read_compensation,
+)
+
+__all__ += ["CONTROLLERS", "ControllerCompensation", "parse_fanuc_tape", "parse_siemens", "read_compensation"]

@@ -63,7 +63,8 @@ from axiscal.live.state import (
 
 #: the dashboard server's names, imported from :mod:`axiscal.live.server` only when first used
 #: (it imports starlette and uvicorn, which the rest of the live room and the CLI do without)
-_SERVER_NAMES = ("WEB", "HOST", "LOOPBACK_HOSTS", "ClientStats", "Broadcaster", "request_allowed", "create_app", "LiveServer")
+_SERVER_NAMES = ("WEB", "HOST", "LOOPBACK_HOSTS", "ClientStats", "Broadcaster", "request_allowed", "create_app",
+                 "create_board_app", "LiveServer")
 
 
 def __getattr__(name: str):
@@ -114,5 +115,6 @@ __all__ = [
     "Broadcaster",
     "request_allowed",
     "create_app",
+    "create_board_app",
     "LiveServer",
 ]

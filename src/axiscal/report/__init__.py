@@ -4,10 +4,13 @@ rendered from templates shipped with axiscal."""
 from __future__ import annotations
 
 from axiscal.report.demo import (
+    DEMO_AXES,
     DEMO_FILES,
     DemoResult,
     builtin_example,
     run_demo,
+    write_as_found_campaign,
+    write_as_left_campaign,
 )
 from axiscal.report.html import (
     compare_label,
@@ -45,8 +48,11 @@ __all__ = [
     "typst_string",
     "typst_text",
     "write_pdf",
+    "DEMO_AXES",
     "DEMO_FILES",
     "DemoResult",
+    "write_as_found_campaign",
+    "write_as_left_campaign",
     "builtin_example",
     "run_demo",
 ]
