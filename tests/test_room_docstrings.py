@@ -26,6 +26,7 @@ ROOMS = (
     "axiscal.measurement",
     "axiscal.live",
     "axiscal.levels",
+    "axiscal.flatness",
 )
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]

@@ -8,7 +8,7 @@ import numpy as np
 
 from api_cases import EXAMPLES, CaseTable, api
 
-ROOMS = ("levels",)
+ROOMS = ("levels", "flatness")
 NAN, INF = float("nan"), float("inf")
 
 TABLE = CaseTable(ROOMS)
@@ -47,5 +47,61 @@ bad(L, "evaluate_levels", "reference", lambda: lv.evaluate_levels(RUN, foot_m=0.
 bad(L, "evaluate_levels", "output", lambda: lv.evaluate_levels(RUN, foot_m=0.1, output=5))
 bad(L, "plot_levels", "evaluation", lambda: lv.plot_levels("x.png", None))
 bad(L, "plot_levels", "figure format", lambda: lv.plot_levels("x.nope", _evaluation()))
+
+
+# ---------------------------------------------------------------- flatness
+fl = api("flatness")
+F = "flatness"
+JACK = EXAMPLES / "flatness" / "union_jack_levels.toml"
+LINE = fl.FlatnessLine("a", [0, 0], [1, 0], [0, 0.5, 1], [0, 0, 0])
+
+
+def _surface():
+    return fl.evaluate_flatness(JACK).surface
+
+
+bad(F, "FlatnessLine", "name", lambda: fl.FlatnessLine("", [0, 0], [1, 0], [0, 1], [0, 0]),
+    lambda: fl.FlatnessLine(None, [0, 0], [1, 0], [0, 1], [0, 0]))
+bad(F, "FlatnessLine", "start_m", lambda: fl.FlatnessLine("a", [0, NAN], [1, 0], [0, 1], [0, 0]),
+    lambda: fl.FlatnessLine("a", [0, 0, 0], [1, 0], [0, 1], [0, 0]))
+bad(F, "FlatnessLine", "height_m", lambda: fl.FlatnessLine("a", [0, 0], [1, 0], [0, 1], [0, INF]),
+    lambda: fl.FlatnessLine("a", [0, 0], [1, 0], [0, 1], [0]))
+bad(F, "FlatnessLine", "distances", lambda: fl.FlatnessLine("a", [0, 0], [1, 0], [0.5, 0.2], [0, 0]),
+    lambda: fl.FlatnessLine("a", [0, 0], [1, 0], [-1, 0.5], [0, 0]))
+bad(F, "FlatnessLine", "same point", lambda: fl.FlatnessLine("a", [1, 1], [1, 1], [0, 1], [0, 0]))
+bad(F, "line_from_angles", "foot_m", lambda: fl.line_from_angles("a", [0, 0], [1, 0], [0, 0], foot_m=0.0),
+    lambda: fl.line_from_angles("a", [0, 0], [1, 0], [0, 0], foot_m=None))
+bad(F, "line_from_angles", "angle_rad", lambda: fl.line_from_angles("a", [0, 0], [1, 0], [0, NAN], foot_m=0.1),
+    lambda: fl.line_from_angles("a", [0, 0], [1, 0], [0.0], foot_m=0.1))
+bad(F, "line_from_angles", "end_m", lambda: fl.line_from_angles("a", [0, 0], "x", [0, 0], foot_m=0.1))
+bad(F, "Closure", "value_m", lambda: fl.Closure(0.0, 0.0, ("a",), NAN))
+bad(F, "Closure", "lines", lambda: fl.Closure(0.0, 0.0, (), 0.0), lambda: fl.Closure(0.0, 0.0, "ab", 0.0))
+bad(F, "FlatnessZone", "minimum_zone_m", lambda: fl.FlatnessZone(1.0, -1.0, (0, 0, 0), (0, 0, 0)))
+bad(F, "FlatnessZone", "least_squares_plane", lambda: fl.FlatnessZone(1.0, 1.0, (0, 0), (0, 0, 0)))
+bad(F, "flatness_zone", "z_m", lambda: fl.flatness_zone([0, 1, 0], [0, 0, 1], [0, NAN, 0]),
+    lambda: fl.flatness_zone([0, 1, 0], [0, 0, 1], [0, 0]))
+bad(F, "flatness_zone", "one line", lambda: fl.flatness_zone([0, 1, 2], [0, 1, 2], [0, 0, 0]))
+bad(F, "flatness_zone", "x_m", lambda: fl.flatness_zone("abc", [0, 0, 1], [0, 0, 0]), lambda: fl.flatness_zone([0, 1], [0, 1], [0, 0]))
+bad(F, "FlatnessSurface", "lines", lambda: fl.FlatnessSurface(("a",), (), X3, X3, X3, (), _surface().zone, "moody"))
+bad(F, "FlatnessSurface", "evaluation", lambda: fl.FlatnessSurface((LINE,), (), X3, X3, X3, (), _surface().zone, "best"))
+bad(F, "FlatnessSurface", "zone", lambda: fl.FlatnessSurface((LINE,), (), X3, X3, X3, (), None, "moody"))
+bad(F, "surface_from_lines", "lines", lambda: fl.surface_from_lines(None), lambda: fl.surface_from_lines([LINE, "b"]),
+    lambda: fl.surface_from_lines("ab"))
+bad(F, "surface_from_lines", "at least 2", lambda: fl.surface_from_lines([LINE]))
+bad(F, "surface_from_lines", "two lines are named", lambda: fl.surface_from_lines([LINE, LINE]))
+bad(F, "moody_union_jack", "8 lines", lambda: fl.moody_union_jack([LINE, fl.FlatnessLine("b", [0, 0], [0, 1], [0, 1], [0, 0])]))
+bad(F, "moody_union_jack", "lines", lambda: fl.moody_union_jack(None))
+bad(F, "FlatnessLines", "lines", lambda: fl.FlatnessLines([LINE], "", "a.toml"))
+bad(F, "FlatnessLines", "path", lambda: fl.FlatnessLines((LINE,), "", None))
+bad(F, "read_flatness_lines", "path", lambda: fl.read_flatness_lines(None))
+bad(F, "read_flatness_lines", "not found", lambda: fl.read_flatness_lines(EXAMPLES / "no_such_lines.toml"))
+bad(F, "FlatnessEvaluation", "source", lambda: fl.FlatnessEvaluation(None, _surface()))
+bad(F, "FlatnessEvaluation", "surface", lambda: fl.FlatnessEvaluation(fl.read_flatness_lines(JACK), "surface"))
+bad(F, "evaluate_flatness", "evaluation", lambda: fl.evaluate_flatness(JACK, evaluation="magic"),
+    lambda: fl.evaluate_flatness(JACK, evaluation=None))
+bad(F, "evaluate_flatness", "output", lambda: fl.evaluate_flatness(JACK, output=3.5))
+bad(F, "plot_flatness", "surface", lambda: fl.plot_flatness("x.png", None))
+bad(F, "plot_flatness", "title", lambda: fl.plot_flatness("x.png", _surface(), title=3))
+bad(F, "plot_flatness", "figure format", lambda: fl.plot_flatness("x.nope", _surface()))
 
 test_bad_arguments, test_every_public_callable_has_a_case = TABLE.tests({})
