@@ -27,6 +27,7 @@ ROOMS = (
     "axiscal.live",
     "axiscal.levels",
     "axiscal.flatness",
+    "axiscal.thermal",
 )
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]

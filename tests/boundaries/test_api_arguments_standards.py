@@ -8,7 +8,7 @@ import numpy as np
 
 from api_cases import EXAMPLES, CaseTable, api
 
-ROOMS = ("levels", "flatness")
+ROOMS = ("levels", "flatness", "thermal")
 NAN, INF = float("nan"), float("inf")
 
 TABLE = CaseTable(ROOMS)
@@ -103,5 +103,56 @@ bad(F, "evaluate_flatness", "output", lambda: fl.evaluate_flatness(JACK, output=
 bad(F, "plot_flatness", "surface", lambda: fl.plot_flatness("x.png", None))
 bad(F, "plot_flatness", "title", lambda: fl.plot_flatness("x.png", _surface(), title=3))
 bad(F, "plot_flatness", "figure format", lambda: fl.plot_flatness("x.nope", _surface()))
+
+# ---------------------------------------------------------------- thermal
+th = api("thermal")
+T = "thermal"
+ETVE = EXAMPLES / "thermal" / "etve_run.csv"
+DRIFT = EXAMPLES / "thermal" / "drift_run.csv"
+T5 = np.arange(5) * 60.0
+Z5 = {"Z": np.zeros(5)}
+AIR5 = {"air": np.linspace(20, 21, 5)}
+
+bad(T, "Correlation", "lag_s", lambda: th.Correlation("X", "air", 0.5, NAN, 0.5, 1e-6))
+bad(T, "Correlation", "direction", lambda: th.Correlation(None, "air", 0.5, 0.0, 0.5, 1e-6))
+bad(T, "Correlation", "sensitivity", lambda: th.Correlation("X", "air", 0.5, 0.0, 0.5, "1"))
+bad(T, "correlate", "time_s", lambda: th.correlate([0, 1], [0, 1], [0, 1]), lambda: th.correlate([0, 2, 1], [0, 1, 2], [0, 1, 2]))
+bad(T, "correlate", "displacement", lambda: th.correlate(T5, [0, NAN, 0, 0, 0], AIR5["air"]), lambda: th.correlate(T5, None, AIR5["air"]))
+bad(T, "correlate", "temperature_c", lambda: th.correlate(T5, np.zeros(5), np.zeros(4)))
+bad(T, "correlate", "max_lag_s", lambda: th.correlate(T5, np.zeros(5), AIR5["air"], max_lag_s=-1.0),
+    lambda: th.correlate(T5, np.zeros(5), AIR5["air"], max_lag_s=INF))
+bad(T, "correlate", "sensor", lambda: th.correlate(T5, np.zeros(5), AIR5["air"], sensor=3))
+bad(T, "fit_time_constant", "at least 4", lambda: th.fit_time_constant([0, 1, 2], [0, 1, 2]))
+bad(T, "fit_time_constant", "values", lambda: th.fit_time_constant(T5, [0, 1, INF, 3, 4]), lambda: th.fit_time_constant(T5, "abc"))
+bad(T, "EtveResult", "correlations", lambda: th.EtveResult({}, {}, [None], 1.0))
+bad(T, "EtveResult", "duration_s", lambda: th.EtveResult({}, {}, (), -1.0))
+bad(T, "EtveResult", "etve", lambda: th.EtveResult(None, {}, (), 1.0))
+bad(T, "etve", "one temperature", lambda: th.etve(T5, Z5, {}))
+bad(T, "etve", "unknown direction", lambda: th.etve(T5, {"Q": np.zeros(5)}, AIR5))
+bad(T, "etve", "displacements", lambda: th.etve(T5, {"Z": np.zeros(3)}, AIR5), lambda: th.etve(T5, None, AIR5),
+    lambda: th.etve(T5, {}, AIR5))
+bad(T, "etve", "temperatures_c", lambda: th.etve(T5, Z5, {"air": [20, NAN, 20, 20, 20]}), lambda: th.etve(T5, Z5, [1, 2]))
+bad(T, "etve", "max_lag_s", lambda: th.etve(T5, Z5, AIR5, max_lag_s=NAN))
+bad(T, "DriftResult", "heating_phases", lambda: th.DriftResult({}, {}, {}, {}, {}, {}, -1, 1.0))
+bad(T, "DriftResult", "drift_max", lambda: th.DriftResult(None, {}, {}, {}, {}, {}, 0, 1.0))
+bad(T, "thermal_drift", "running", lambda: th.thermal_drift(T5, Z5, running=[0, 1, 2, 0, 0]),
+    lambda: th.thermal_drift(T5, Z5, running=[0, 1]))
+bad(T, "thermal_drift", "time_s", lambda: th.thermal_drift([0, 0, 0, 0, 0], Z5), lambda: th.thermal_drift("t", Z5))
+bad(T, "thermal_drift", "displacements", lambda: th.thermal_drift(T5, {"Z": [0, 0]}))
+bad(T, "ThermalRun", "time_s", lambda: th.ThermalRun([NAN], {}, {}, None, "a.csv"))
+bad(T, "ThermalRun", "displacements", lambda: th.ThermalRun(T5, None, {}, None, "a.csv"))
+bad(T, "ThermalRun", "path", lambda: th.ThermalRun(T5, {}, {}, None, 5))
+bad(T, "read_thermal_run", "path", lambda: th.read_thermal_run(None))
+bad(T, "read_thermal_run", "not found", lambda: th.read_thermal_run(EXAMPLES / "no_such_thermal.csv"))
+bad(T, "EtveEvaluation", "run", lambda: th.EtveEvaluation(None, th.evaluate_etve(ETVE).result))
+bad(T, "EtveEvaluation", "result", lambda: th.EtveEvaluation(th.read_thermal_run(ETVE), None))
+bad(T, "evaluate_etve", "max_lag_s", lambda: th.evaluate_etve(ETVE, max_lag_s=-1.0), lambda: th.evaluate_etve(ETVE, max_lag_s="1"))
+bad(T, "evaluate_etve", "path", lambda: th.evaluate_etve(None))
+bad(T, "DriftEvaluation", "result", lambda: th.DriftEvaluation(th.read_thermal_run(DRIFT), th.evaluate_etve(ETVE).result))
+bad(T, "DriftEvaluation", "run", lambda: th.DriftEvaluation("run", th.evaluate_drift(DRIFT).result))
+bad(T, "evaluate_drift", "path", lambda: th.evaluate_drift(3), lambda: th.evaluate_drift(None))
+bad(T, "plot_thermal", "run", lambda: th.plot_thermal("x.png", None))
+bad(T, "plot_thermal", "title", lambda: th.plot_thermal("x.png", th.read_thermal_run(DRIFT), title=None))
+bad(T, "plot_thermal", "figure format", lambda: th.plot_thermal("x.nope", th.read_thermal_run(DRIFT)))
 
 test_bad_arguments, test_every_public_callable_has_a_case = TABLE.tests({})
