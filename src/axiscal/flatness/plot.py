@@ -60,8 +60,13 @@ def plot_flatness(path: str | Path, surface: FlatnessSurface, *, title: str = ""
         ends = np.array([line.start_m, line.end_m]) / MM
         left.plot(ends[:, 0], ends[:, 1], "-", color="white" if not flat else "gray", lw=0.8)
     left.plot(x, y, "k.", ms=2)
+    seen: dict[tuple[float, float], int] = {}
     for closure in surface.closures:
-        left.annotate(f"{closure.value_m / UM:.2f}", (closure.x_m / MM, closure.y_m / MM), fontsize=7, color="red")
+        spot = (round(closure.x_m / MM, 3), round(closure.y_m / MM, 3))
+        above = seen.get(spot, 0)
+        seen[spot] = above + 1
+        left.annotate(f"{closure.value_m / UM:.2f}", spot, xytext=(3, 3 + 8 * above), textcoords="offset points",
+                      fontsize=7, color="red")
     left.set_aspect("equal")
     left.set_xlabel("x / mm")
     left.set_ylabel("y / mm")

@@ -405,34 +405,41 @@ def surface_from_lines(lines: Sequence[FlatnessLine]) -> FlatnessSurface:
                 f"line {line.name!r} crosses the other lines at {crossings} station(s): at least 2 are needed to place it"
                 " (stations of crossing lines must fall on the same places)"
             )
-    m, n_nodes, n_lines = len(points), len(places), len(lines)
+    n_nodes, n_lines = len(places), len(lines)
     distance = np.concatenate([line.distance_m for line in lines])
     height = np.concatenate([line.height_m for line in lines])
-    scale_s = extent
-    design = np.zeros((m, n_nodes + 2 * n_lines))
-    rows = np.arange(m)
-    design[rows, node] = 1.0
-    design[rows, n_nodes + 2 * owner] = 1.0
-    design[rows, n_nodes + 2 * owner + 1] = distance / scale_s
-    solution, _, rank, _ = np.linalg.lstsq(design, height, rcond=None)
-    if rank < design.shape[1] - 3:
+    counts = shared.astype(float)
+
+    def less_node_mean(values: np.ndarray) -> np.ndarray:
+        """Each row less the mean of its node's rows (columns of a 2-D array alike)."""
+        flat = values.reshape(len(values), -1)
+        sums = np.stack([np.bincount(node, weights=column, minlength=n_nodes) for column in flat.T], axis=1)
+        return (flat - (sums / counts[:, None])[node]).reshape(values.shape)
+
+    # the heights of the places follow from the lines' offsets and tilts (the mean of the lines'
+    # values there), so the least squares reduces to the 2 per line (a Schur complement)
+    lines_design = np.zeros((len(points), 2 * n_lines))
+    rows = np.arange(len(points))
+    lines_design[rows, 2 * owner] = 1.0
+    lines_design[rows, 2 * owner + 1] = distance / extent
+    theta, _, rank, _ = np.linalg.lstsq(less_node_mean(lines_design), less_node_mean(height), rcond=None)
+    if rank < 2 * n_lines - 3:
         raise AxiscalError(
-            f"the lines leave {design.shape[1] - 3 - rank} shape(s) of the surface free: rows and columns alone do not"
+            f"the lines leave {2 * n_lines - 3 - rank} shape(s) of the surface free: rows and columns alone do not"
             " see a twist (add a diagonal through their crossings), and every line must join one network of crossings"
         )
-    z_nodes = solution[:n_nodes]
-    offset = solution[n_nodes::2][:n_lines]
-    tilt = solution[n_nodes + 1::2][:n_lines] / scale_s
-    estimate = height - offset[owner] - tilt[owner] * distance  # each line's own value of the surface
+    estimate = height - lines_design @ theta  # each line's own value of the surface at its stations
+    z_nodes = np.bincount(node, weights=estimate, minlength=n_nodes) / counts
     zone = flatness_zone(places[:, 0], places[:, 1], z_nodes)
     plane = zone.least_squares_plane
     about = z_nodes - (plane[0] * places[:, 0] + plane[1] * places[:, 1] + plane[2])
+    order = np.argsort(node, kind="stable")
+    starts = np.searchsorted(node[order], np.arange(n_nodes))
     closures = []
     for j in np.flatnonzero(shared > 1):
-        members = np.flatnonzero(node == j)
-        values = estimate[members]
+        members = order[starts[j]:starts[j] + shared[j]]
         closures.append(Closure(float(places[j, 0]), float(places[j, 1]),
-                                tuple(lines[k].name for k in owner[members]), float(np.ptp(values))))
+                                tuple(lines[k].name for k in owner[members]), float(np.ptp(estimate[members]))))
     joined = tuple(
         about[node[owner == k]] for k in range(n_lines)
     )
