@@ -396,12 +396,12 @@ def _levels(campaign: Campaign, spec: TestSpec) -> TestResult:
     figures = evaluation.payload()
     checks = check_figures(figures, spec.tolerances, {"straightness_um": "um"}, rule=campaign.decision_rule)
     direction = spec.options.get("direction")
-    label = f"E{direction}{spec.axis}" if direction else f"straightness of {spec.axis}"
+    label = f"straightness E{direction}{spec.axis}" if direction else f"straightness of {spec.axis}"
     svg = svg_of(lambda p: plot_levels(p, evaluation))
     return TestResult(
         id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, path)], figures=figures, checks=checks,
-        plots=[Plot(f"{label} from electronic levels: profile in its {reference} zone, and the readings", svg)],
-        table=[Figure(f"straightness {label}", figures["straightness_um"], "um"),
+        plots=[Plot(f"{label.capitalize()} from electronic levels: profile in its {reference} zone, and the readings", svg)],
+        table=[Figure(label, figures["straightness_um"], "um"),
                Figure("angular error motion (range of the readings)", figures["angular_error_arcsec"], "arcsec"),
                Figure("foot spacing", figures["foot_mm"], "mm")],
         method=f"Straightness and angular error from electronic levels: ISO 230-1 {reference} reference line"
