@@ -106,3 +106,23 @@ def test_mutated_runs_are_refused_with_a_line_or_read_correctly(tmp_path, exampl
         assert exc.path == str(path)
         return
     assert np.all(np.isfinite(run.angle_rad)) and np.all(np.diff(run.position_m) > 0)
+
+
+def test_level_profiles_feed_squareness_and_flatness(tmp_path, examples):
+    from axiscal.flatness import evaluate_flatness
+    from axiscal.squareness.evaluation import squareness_from_files
+
+    first, second = tmp_path / "x.csv", tmp_path / "y.csv"
+    evaluate_levels(examples / "levels" / "levels_run.csv", foot_m=100 * MM, output=first)
+    evaluate_levels(examples / "levels" / "levels_run.csv", foot_m=100 * MM, output=second)
+    assert np.isfinite(squareness_from_files(first, second, plane="XY").payload()["squareness_arcsec"])
+    # two edges and a diagonal of a 1000 x 1000 mm square, each the same level profile: a flatness lines
+    # file reads them as profiles and places them by their shared corners and middles
+    lines = "".join(
+        f'[[lines]]\nname = "{name}"\nfrom_mm = {start}\nto_mm = {end}\nprofile = "{profile}"\n'
+        for name, start, end, profile in (("S", [0, 0], [1000, 0], "x.csv"), ("N", [0, 1000], [1000, 1000], "x.csv"),
+                                          ("W", [0, 0], [0, 1000], "y.csv"), ("E", [1000, 0], [1000, 1000], "y.csv"),
+                                          ("WE", [0, 500], [1000, 500], "x.csv"), ("SN", [500, 0], [500, 1000], "y.csv")))
+    path = write(tmp_path, lines, "lines.toml")
+    with pytest.raises(AxiscalError, match="twist"):
+        evaluate_flatness(path)  # rows and columns only: the twist is not seen
