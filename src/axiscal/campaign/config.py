@@ -88,8 +88,9 @@ KINDS: dict[str, dict[str, Any]] = {
     "thermal_etve": {"file": "file", "max_lag_h": "float"},
     "thermal_drift": {"file": "file"},
 }
-#: kinds whose one tolerance is named after their figure
-_OWN_TOLERANCE = {"flatness": "flatness_um", "thermal_etve": "etve_um", "thermal_drift": "thermal_drift_um"}
+#: the kinds held against one tolerance of the campaign's (or their own)
+_OWN_TOLERANCE = {"levels": "straightness_um", "flatness": "flatness_um", "thermal_etve": "etve_um",
+                  "thermal_drift": "thermal_drift_um"}
 #: the data file(s) each kind cannot do without
 _REQUIRED = {
     "positioning": ("axis", "file"),
@@ -398,7 +399,7 @@ def _merged_tolerances(
         out.update({k: v for k, v in campaign.get("positioning", {}).items() if k.endswith(unit)})
         out.update(own.get("positioning", {}))
         out.update({k: v for k, v in own.items() if k in POSITIONING_TOLERANCE_KEYS})
-    elif kind in ("straightness", "separation", "levels"):
+    elif kind in ("straightness", "separation"):
         for source in (campaign, own):
             if "straightness_um" in source:
                 out["straightness_um"] = source["straightness_um"]
