@@ -69,6 +69,8 @@ bad(F, "FlatnessLine", "height_m", lambda: fl.FlatnessLine("a", [0, 0], [1, 0], 
 bad(F, "FlatnessLine", "distances", lambda: fl.FlatnessLine("a", [0, 0], [1, 0], [0.5, 0.2], [0, 0]),
     lambda: fl.FlatnessLine("a", [0, 0], [1, 0], [-1, 0.5], [0, 0]))
 bad(F, "FlatnessLine", "same point", lambda: fl.FlatnessLine("a", [1, 1], [1, 1], [0, 1], [0, 0]))
+bad(F, "FlatnessLine", "gravity", lambda: fl.FlatnessLine("a", [0, 0], [1, 0], [0, 1], [0, 0], "yes"),
+    lambda: fl.line_from_angles("a", [0, 0], [1, 0], [0, 0], foot_m=0.1, gravity=None))
 bad(F, "line_from_angles", "foot_m", lambda: fl.line_from_angles("a", [0, 0], [1, 0], [0, 0], foot_m=0.0),
     lambda: fl.line_from_angles("a", [0, 0], [1, 0], [0, 0], foot_m=None))
 bad(F, "line_from_angles", "angle_rad", lambda: fl.line_from_angles("a", [0, 0], [1, 0], [0, NAN], foot_m=0.1),

@@ -132,3 +132,13 @@ def test_mutated_files_are_refused_or_read(tmp_path, examples, mutations):
         assert exc.path == str(path)
         return
     assert all(np.all(np.isfinite(line.height_m)) for line in lines)
+
+
+def test_gravity_is_read_at_the_top_and_per_line(tmp_path):
+    text = "foot_mm = 100\ngravity = true\n" + line() + line("b", body="gravity = false\nangle_urad = [1, 1]")
+    lines = read_flatness_lines(write(tmp_path, text)).lines
+    assert [line.gravity for line in lines] == [True, False]
+    path = write(tmp_path, HEADER + line(body="gravity = 1\nangle_urad = [1, 1]"), "bad.toml")
+    with pytest.raises(AxiscalError) as caught:
+        read_flatness_lines(path)
+    assert caught.value.line == 6 and "gravity must be true or false" in caught.value.message

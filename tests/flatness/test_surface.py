@@ -196,3 +196,50 @@ def test_the_minimum_zone_is_never_wider_than_the_least_squares_zone(points):
     except AxiscalError:
         return
     assert 0.0 <= zone.minimum_zone_m <= zone.least_squares_m
+
+
+def level_lines(shape, segments, *, gravity):
+    """Lines read by a level over z = shape(x, y): (name, start, end, steps) each, rises exact."""
+    lines = []
+    for name, start, end, steps in segments:
+        start, end = np.array(start, float), np.array(end, float)
+        xy = start + np.linspace(0, 1, steps + 1)[:, None] * (end - start)
+        foot = np.hypot(*(end - start)) / steps
+        lines.append(line_from_angles(name, start, end, np.diff(shape(xy[:, 0], xy[:, 1])) / foot, foot_m=foot,
+                                      gravity=gravity))
+    return lines
+
+
+def test_levels_against_gravity_tie_rows_and_columns_without_a_diagonal():
+    def plate(x, y):  # a twist and a bow, the whole plate tilted against gravity by 30 urad and 10 urad
+        u, v = x / 0.6 - 1, y / 0.4 - 1
+        return 2e-6 * u * v + 1e-6 * (u * u + v * v) + 30e-6 * x - 10e-6 * y
+    grid = [(f"y{y}", (0, y), (1.2, y), 6) for y in (0.0, 0.4, 0.8)] + [(f"x{x}", (x, 0), (x, 0.8), 4) for x in (0.0, 0.6, 1.2)]
+    with pytest.raises(AxiscalError, match="twist"):
+        surface_from_lines(level_lines(plate, grid, gravity=False))
+    surface = surface_from_lines(level_lines(plate, grid, gravity=True))
+    truth = about_plane(surface.x_m, surface.y_m, plate(surface.x_m, surface.y_m))
+    np.testing.assert_allclose(surface.z_m, truth, atol=1e-15)
+    assert surface.closure_max_m < 1e-15
+
+
+def test_a_union_jack_against_gravity_gives_the_same_surface():
+    def plate(x, y):
+        return 1.5e-6 * np.sin(3 * x) * np.cos(4 * y) + 20e-6 * x
+    free = surface_from_lines(union_jack(plate))
+    lines = [FlatnessLine(line.name, line.start_m, line.end_m, line.distance_m, line.height_m, True)
+             for line in union_jack(plate)]
+    tied = surface_from_lines(lines)
+    np.testing.assert_allclose(tied.z_m, free.z_m, atol=1e-15)
+    np.testing.assert_allclose(tied.z_m, about_plane(tied.x_m, tied.y_m, plate(tied.x_m, tied.y_m)), atol=1e-15)
+
+
+def test_a_line_against_gravity_is_placed_by_one_crossing():
+    base = [FlatnessLine("a", [0, 0], [1, 0], [0, 0.5, 1], [0, 0, 0], True),
+            FlatnessLine("b", [0, 0], [0, 1], [0, 0.5, 1], [0, 1e-6, 2e-6], True),
+            FlatnessLine("c", [0.5, 0], [0.5, 1], [0, 0.5, 1], [0, 1e-6, 2e-6], True)]
+    spur = FlatnessLine("d", [0, 1], [-1, 1], [0, 1], [0, 0], True)
+    surface = surface_from_lines([*base, spur])
+    assert surface.zone.minimum_zone_m == pytest.approx(0.0, abs=1e-15)  # one plane rising along y
+    with pytest.raises(AxiscalError, match="line 'd' crosses the other lines at 1"):
+        surface_from_lines([*base, FlatnessLine("d", [0, 1], [-1, 1], [0, 1], [0, 0])])

@@ -29,8 +29,8 @@ from axiscal.units import MM, UM
 
 __all__ = ["FlatnessLines", "read_flatness_lines", "FlatnessEvaluation", "evaluate_flatness"]
 
-_TOP = {"title": "text", "foot_mm": "number", "lines": "lines"}
-_LINE = {"name": "text", "from_mm": "pair", "to_mm": "pair", "foot_mm": "number", "profile": "text",
+_TOP = {"title": "text", "foot_mm": "number", "gravity": "bool", "lines": "lines"}
+_LINE = {"name": "text", "from_mm": "pair", "to_mm": "pair", "foot_mm": "number", "gravity": "bool", "profile": "text",
          "position_mm": "numbers", "deviation_um": "numbers", **{k: "numbers" for k in ANGLE_COLUMNS}}
 #: a line's foot spacing times its readings may differ from its length by this fraction before a warning
 _FOOT_SLACK = 0.01
@@ -73,6 +73,8 @@ def _checked(kind: str, value: Any) -> bool:
         return isinstance(value, str) and bool(value.strip())
     if kind == "number":
         return finite_number(value)
+    if kind == "bool":
+        return isinstance(value, bool)
     if kind == "pair":
         return isinstance(value, list) and len(value) == 2 and all(finite_number(v) for v in value)
     if kind == "numbers":
@@ -80,7 +82,7 @@ def _checked(kind: str, value: Any) -> bool:
     return isinstance(value, list) and all(isinstance(v, dict) for v in value)
 
 
-_WORDS = {"text": "a text", "number": "a finite number", "pair": "two numbers [x, y]",
+_WORDS = {"text": "a text", "number": "a finite number", "bool": "true or false", "pair": "two numbers [x, y]",
           "numbers": "a list of finite numbers", "lines": "an array of tables [[lines]]"}
 
 
@@ -127,6 +129,7 @@ def read_flatness_lines(path: str | Path) -> FlatnessLines:
     if not raw_lines:
         raise AxiscalError("the file has no [[lines]]", path=path)
     default_foot = data.get("foot_mm")
+    default_gravity = data.get("gravity", False)
     lines: list[FlatnessLine] = []
     warnings: list[str] = []
     for index, raw in enumerate(raw_lines):
@@ -150,6 +153,7 @@ def read_flatness_lines(path: str | Path) -> FlatnessLines:
             problem = "no readings" if not given else f"more than one kind of readings ({', '.join(given)})"
             raise fail(f"line {name!r} has {problem}: give one of {', '.join(ANGLE_COLUMNS)}, profile or deviation_um")
         kind = given[0]
+        gravity = raw.get("gravity", default_gravity)
         try:
             if kind in ANGLE_COLUMNS:
                 foot = raw.get("foot_mm", default_foot)
@@ -160,14 +164,14 @@ def read_flatness_lines(path: str | Path) -> FlatnessLines:
                         raise fail(f"foot_mm must be positive, not {_show(foot)}", "foot_mm")
                     raise AxiscalError(f"foot_mm must be positive, not {_show(foot)}", path=path, line=where.of("", 0, "foot_mm"))
                 angles = np.array(raw[kind], float) * ANGLE_COLUMNS[kind]
-                line = line_from_angles(name, start, end, angles, foot_m=foot * MM)
+                line = line_from_angles(name, start, end, angles, foot_m=foot * MM, gravity=gravity)
                 span = angles.size * foot * MM
                 if abs(span - line.length_m) > _FOOT_SLACK * line.length_m:
                     warnings.append(f"line {name!r}: {angles.size} steps of {foot:g} mm make {span / MM:g} mm on a line"
                                     f" {line.length_m / MM:g} mm long; the rises are taken over {foot:g} mm")
             elif kind == "profile":
                 profile = read_profile(confined_path(path.parent, raw["profile"]), increasing=True)
-                line = FlatnessLine(name, start, end, profile.position_m, profile.deviation_m)
+                line = FlatnessLine(name, start, end, profile.position_m, profile.deviation_m, gravity)
             else:
                 if "position_mm" not in raw:
                     raise fail(f"line {name!r} gives deviation_um: give position_mm beside it", "deviation_um")
@@ -175,7 +179,7 @@ def read_flatness_lines(path: str | Path) -> FlatnessLines:
                     raise fail(f"line {name!r}: {len(raw['position_mm'])} positions and {len(raw['deviation_um'])} deviations",
                                "deviation_um")
                 line = FlatnessLine(name, start, end, np.array(raw["position_mm"], float) * MM,
-                                    np.array(raw["deviation_um"], float) * UM)
+                                    np.array(raw["deviation_um"], float) * UM, gravity)
         except AxiscalError as exc:
             if exc.path is not None:
                 raise

@@ -59,6 +59,10 @@ class FlatnessLine:
         Distance of each station from ``start_m`` along the line, metres, increasing, within the line.
     height_m : ndarray, shape (n,)
         The measured heights, metres, up to an offset and a tilt along the line.
+    gravity : bool
+        The heights' tilt along the line is measured against gravity (a level whose zero is
+        known), so the least-squares evaluation keeps it and fits the line's offset only
+        (default False: offset and tilt are fitted).
     """
 
     name: str
@@ -66,10 +70,13 @@ class FlatnessLine:
     end_m: np.ndarray
     distance_m: np.ndarray
     height_m: np.ndarray
+    gravity: bool = False
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.strip():
             raise AxiscalError(f"a line's name must be a text, not {self.name!r}")
+        if not isinstance(self.gravity, (bool, np.bool_)):
+            raise AxiscalError(f"gravity must be True or False, not {self.gravity!r}")
         object.__setattr__(self, "start_m", _point("start_m", self.start_m))
         object.__setattr__(self, "end_m", _point("end_m", self.end_m))
         distance = check_array("distance_m", self.distance_m, ndim=1, min_len=2, limit=_LIMIT_M)
@@ -102,7 +109,7 @@ class FlatnessLine:
 
 
 def line_from_angles(
-    name: str, start_m: np.ndarray, end_m: np.ndarray, angle_rad: np.ndarray, *, foot_m: float
+    name: str, start_m: np.ndarray, end_m: np.ndarray, angle_rad: np.ndarray, *, foot_m: float, gravity: bool = False
 ) -> FlatnessLine:
     """A line measured with a level or an autocollimator, one reading per step, from start to end.
 
@@ -120,6 +127,9 @@ def line_from_angles(
         The readings, radians (rise over foot), positive when the surface rises towards ``end_m``.
     foot_m : float, keyword-only
         The foot spacing the rises are computed with, metres.
+    gravity : bool, keyword-only
+        The readings are against gravity (the level's zero is known): the line keeps its tilt
+        (see :class:`FlatnessLine`; default False).
 
     Returns
     -------
@@ -142,7 +152,7 @@ def line_from_angles(
     chain = level_profile(np.arange(angle.size) * foot_m, angle, foot_m=foot_m)
     start, end = _point("start_m", start_m), _point("end_m", end_m)
     length = float(np.hypot(*(end - start)))
-    return FlatnessLine(name, start, end, np.linspace(0.0, length, angle.size + 1), chain.deviation_m)
+    return FlatnessLine(name, start, end, np.linspace(0.0, length, angle.size + 1), chain.deviation_m, gravity)
 
 
 @dataclass(frozen=True)
@@ -363,7 +373,10 @@ def surface_from_lines(lines: Sequence[FlatnessLine]) -> FlatnessSurface:
     minimised; the surface is fixed up to a plane, which is taken out (heights about the
     least-squares plane). Union Jack or grid layouts alike: every line must cross the others at two
     stations at least, and a grid needs a diagonal through its crossings (rows and columns alone
-    cannot tell a twist of the surface from the tilts of the lines).
+    cannot tell a twist of the surface from the tilts of the lines). A line measured against
+    gravity (``FlatnessLine.gravity``) keeps its tilt and needs one crossing: levels whose zero is
+    known tie rows and columns together without a diagonal, and add redundancy to a Union Jack
+    (as "Moody Revisited", 2026, proposes).
 
     Parameters
     ----------
@@ -400,10 +413,11 @@ def surface_from_lines(lines: Sequence[FlatnessLine]) -> FlatnessSurface:
     shared = np.bincount(node, minlength=len(places))
     for k, line in enumerate(lines):
         crossings = np.count_nonzero(shared[node[owner == k]] > 1)
-        if crossings < 2:
+        needed = 1 if line.gravity else 2
+        if crossings < needed:
             raise AxiscalError(
-                f"line {line.name!r} crosses the other lines at {crossings} station(s): at least 2 are needed to place it"
-                " (stations of crossing lines must fall on the same places)"
+                f"line {line.name!r} crosses the other lines at {crossings} station(s): at least {needed} are needed to"
+                " place it (stations of crossing lines must fall on the same places)"
             )
     n_nodes, n_lines = len(places), len(lines)
     distance = np.concatenate([line.distance_m for line in lines])
@@ -418,15 +432,23 @@ def surface_from_lines(lines: Sequence[FlatnessLine]) -> FlatnessSurface:
 
     # the heights of the places follow from the lines' offsets and tilts (the mean of the lines'
     # values there), so the least squares reduces to the 2 per line (a Schur complement)
-    lines_design = np.zeros((len(points), 2 * n_lines))
+    # a line against gravity keeps its tilt: an offset only; a plane through the surface stays free
+    # but for the slopes the gravity lines fix (along the directions they run in)
+    free_tilt = np.array([not line.gravity for line in lines])
+    tilt_column = n_lines + np.cumsum(free_tilt) - 1
+    lines_design = np.zeros((len(points), n_lines + int(free_tilt.sum())))
     rows = np.arange(len(points))
-    lines_design[rows, 2 * owner] = 1.0
-    lines_design[rows, 2 * owner + 1] = distance / extent
+    lines_design[rows, owner] = 1.0
+    tilted = free_tilt[owner]
+    lines_design[rows[tilted], tilt_column[owner[tilted]]] = distance[tilted] / extent
+    fixed = [(line.end_m - line.start_m) / line.length_m for line in lines if line.gravity]
+    gauge = 3 - (int(np.linalg.matrix_rank(np.array(fixed), tol=1e-9)) if fixed else 0)
     theta, _, rank, _ = np.linalg.lstsq(less_node_mean(lines_design), less_node_mean(height), rcond=None)
-    if rank < 2 * n_lines - 3:
+    if rank < lines_design.shape[1] - gauge:
         raise AxiscalError(
-            f"the lines leave {2 * n_lines - 3 - rank} shape(s) of the surface free: rows and columns alone do not"
-            " see a twist (add a diagonal through their crossings), and every line must join one network of crossings"
+            f"the lines leave {lines_design.shape[1] - gauge - rank} shape(s) of the surface free: rows and columns"
+            " alone do not see a twist (add a diagonal through their crossings, or read the rows or columns with a"
+            " level against gravity), and every line must join one network of crossings"
         )
     estimate = height - lines_design @ theta  # each line's own value of the surface at its stations
     z_nodes = np.bincount(node, weights=estimate, minlength=n_nodes) / counts
