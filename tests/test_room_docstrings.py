@@ -26,6 +26,9 @@ ROOMS = (
     "axiscal.measurement",
     "axiscal.live",
     "axiscal.capture",
+    "axiscal.levels",
+    "axiscal.flatness",
+    "axiscal.thermal",
 )
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]

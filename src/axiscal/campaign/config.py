@@ -43,6 +43,9 @@ _TOLERANCE_KEYS = {
     "squareness_arcsec": float,
     "diagonal_um": float,
     "circular_deviation_um": float,
+    "flatness_um": float,
+    "etve_um": float,
+    "thermal_drift_um": float,
 }
 
 # option types: "str", "float", "int", "bool", "file", "floats2", ("choice", values)
@@ -77,7 +80,17 @@ KINDS: dict[str, dict[str, Any]] = {
     },
     "sixdof": {"file": "file", "machine": "file", "axis": "axis"},
     "ballbar": {"file": "file", "radius_mm": "float", "plane": "plane", "axes": "plane", "feed_mm_min": "float"},
+    "levels": {
+        "axis": "axis", "direction": "axis", "file": "file", "foot_mm": "float",
+        "reference": ("choice", ("least-squares", "end-points", "minimum-zone")),
+    },
+    "flatness": {"file": "file", "evaluation": ("choice", ("least-squares", "moody"))},
+    "thermal_etve": {"file": "file", "max_lag_h": "float"},
+    "thermal_drift": {"file": "file"},
 }
+#: the kinds held against one tolerance of the campaign's (or their own)
+_OWN_TOLERANCE = {"levels": "straightness_um", "flatness": "flatness_um", "thermal_etve": "etve_um",
+                  "thermal_drift": "thermal_drift_um"}
 #: the data file(s) each kind cannot do without
 _REQUIRED = {
     "positioning": ("axis", "file"),
@@ -87,6 +100,10 @@ _REQUIRED = {
     "diagonal": ("from", "to"),
     "sixdof": ("file",),
     "ballbar": ("file", "radius_mm"),
+    "levels": ("axis", "file", "foot_mm"),
+    "flatness": ("file",),
+    "thermal_etve": ("file",),
+    "thermal_drift": ("file",),
 }
 
 
@@ -398,6 +415,10 @@ def _merged_tolerances(
         for source in (campaign, own):
             if "circular_deviation_um" in source:
                 out["circular_deviation_um"] = source["circular_deviation_um"]
+    elif kind in _OWN_TOLERANCE:
+        for source in (campaign, own):
+            if _OWN_TOLERANCE[kind] in source:
+                out[_OWN_TOLERANCE[kind]] = source[_OWN_TOLERANCE[kind]]
     return {k: float(v) for k, v in out.items()}
 
 

@@ -32,6 +32,12 @@ __all__ = [
 ]
 
 _SECTION_ORDER = ("positioning", "straightness", "separation", "squareness", "ballbar", "diagonal", "sixdof")
+#: kinds with a section of their own after the others: kind -> (anchor, title)
+_OWN_SECTIONS = {
+    "flatness": ("flatness", "Flatness"),
+    "thermal_etve": ("thermal", "Thermal tests (ISO 230-3)"),
+    "thermal_drift": ("thermal", "Thermal tests (ISO 230-3)"),
+}
 
 
 def template_environment():
@@ -251,6 +257,10 @@ def sections(tests: list[TestResult]) -> list[dict[str, Any]]:
             key, title = "diagonal", "Diagonal checks"
         elif test.kind == "sixdof":
             key, title = "sixdof", "6-DOF recordings"
+        elif test.kind == "levels" and test.axis:
+            key, title = f"axis-{test.axis}", f"{test.axis} axis"
+        elif test.kind in _OWN_SECTIONS:
+            key, title = _OWN_SECTIONS[test.kind]
         else:
             key, title = test.kind, test.kind.capitalize()
         groups.setdefault(key, []).append(test)

@@ -1,0 +1,82 @@
+"""The figure of ``axiscal thermal etve|drift --plot``: the displacements over time above the temperatures.
+
+Drawn through :func:`axiscal.io.figures.pyplot` and saved atomically; time in hours,
+displacements in um, tilts in urad, temperatures in degC; heating phases shaded.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_instance, check_path
+from axiscal.io.figures import pyplot, save_figure
+from axiscal.thermal.files import HOUR, ThermalRun
+from axiscal.units import UM, URAD
+
+__all__ = ["plot_thermal"]
+
+
+def plot_thermal(path: str | Path, run: ThermalRun, *, title: str = "") -> Path:
+    """Plot a thermal run: displacements (top; tilts on a right-hand axis) and temperatures (bottom).
+
+    Parameters
+    ----------
+    path : str or Path
+        Image to write (format from the suffix).
+    run : ThermalRun
+        The run (:func:`axiscal.thermal.read_thermal_run`).
+    title : str, keyword-only
+        The figure's title.
+
+    Returns
+    -------
+    Path
+        The image written.
+
+    Raises
+    ------
+    AxiscalError
+        A run of the wrong kind, a title that is not a text, an unknown image format, a file that
+        cannot be written.
+    """
+    check_instance("run", run, ThermalRun, what="a ThermalRun (read_thermal_run)")
+    if not isinstance(title, str):
+        raise AxiscalError(f"title must be a text, not {title!r}")
+    path = check_path("path", path)
+    plt = pyplot()
+    hours = run.time_s / HOUR
+    rows = 2 if run.temperatures_c else 1
+    fig, axes = plt.subplots(rows, 1, figsize=(8, 5.5 if rows == 2 else 3.4), sharex=True, squeeze=False)
+    top = axes[0, 0]
+    for name, d in run.displacements.items():
+        if name in "XYZ":
+            top.plot(hours, d / UM, label=name)
+    top.set_ylabel("displacement / um")
+    tilts = {k: v for k, v in run.displacements.items() if k in "AB"}
+    if tilts:
+        right = top.twinx()
+        for name, d in tilts.items():
+            right.plot(hours, d / URAD, "--", label=f"{name} (urad)")
+        right.set_ylabel("tilt / urad")
+        right.legend(fontsize=8, loc="lower right")
+    top.legend(fontsize=8, loc="upper left")
+    top.grid(True, alpha=0.3)
+    top.set_title(title, fontsize=10)
+    if run.running is not None:
+        on = np.asarray(run.running) == 1
+        for ax in axes[:, 0]:
+            ax.fill_between(hours, 0, 1, where=on, step="post", color="orange", alpha=0.12,
+                            transform=ax.get_xaxis_transform(), label="_heating")
+    if rows == 2:
+        bottom = axes[1, 0]
+        for place, temperature in run.temperatures_c.items():
+            bottom.plot(hours, temperature, label=place)
+        bottom.set_ylabel("temperature / degC")
+        bottom.legend(fontsize=8, ncol=3)
+        bottom.grid(True, alpha=0.3)
+    axes[-1, 0].set_xlabel("time / h")
+    fig.tight_layout()
+    return save_figure(fig, path)
