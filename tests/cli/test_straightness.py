@@ -207,8 +207,8 @@ def test_bad_input(run_cli, examples, tmp_path):
 @pytest.mark.parametrize(
     ("argv", "needle"),
     [
-        (["--method", "stp", "--spacing-mm", "inf"], "--spacing-mm must be a positive number"),
-        (["--method", "strp", "--spacing-mm", "15", "--spacing-bc-mm", "nan"], "--spacing-bc-mm must be a positive number"),
+        (["--method", "stp", "--spacing-mm", "inf"], "--spacing-mm must be a finite number"),
+        (["--method", "strp", "--spacing-mm", "15", "--spacing-bc-mm", "nan"], "--spacing-bc-mm must be a finite number"),
         (["--method", "frequency", "--spacing-mm", "1000"], "more readings than the probes span"),
         (["--method", "frequency", "--spacing-mm", "15", "--min-gain", "-1"], "--min-gain"),
         (["--method", "frequency", "--spacing-mm", "15", "--min-gain", "nan"], "--min-gain"),

@@ -1,7 +1,8 @@
-"""Helpers shared by the command modules: JSON on standard output and output files."""
+"""Helpers shared by the command modules: JSON on standard output, output files and finite-number options."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping
 from contextlib import contextmanager
 from pathlib import Path
@@ -13,7 +14,7 @@ from axiscal.errors import AxiscalError
 from axiscal.io.atomic import atomic_write
 from axiscal.io.jsonio import dumps
 
-__all__ = ["flags_named", "echo_json", "given_options", "write_output"]
+__all__ = ["FINITE", "FiniteFloat", "FiniteRange", "finite", "flags_named", "echo_json", "given_options", "write_output"]
 
 
 def echo_json(payload: dict[str, Any]) -> None:
@@ -49,3 +50,51 @@ def write_output(path: str | Path, write: Callable[[Path], Any]) -> Path:
     """Produce ``path`` atomically with ``write``; a failure is an AxiscalError naming the file."""
     return atomic_write(path, write)
 
+
+
+class FiniteFloat(click.types.FloatParamType):
+    """A number option that refuses ``nan`` and infinities (Click's ``float`` takes them).
+
+    Every value typed is checked where it is parsed, whether or not the command goes on to use it:
+    ``--dwell-s must be a finite number, got nan`` (an :class:`AxiscalError`, so one line and exit 2).
+    """
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> float:
+        number = super().convert(value, param, ctx)
+        if not math.isfinite(number):
+            if param is None:
+                self.fail(f"{value!r} is not a finite number", param, ctx)
+            flag = max(param.opts, key=len) if param.opts else param.name
+            raise AxiscalError(f"{flag} must be a finite number, got {value}")
+        return number
+
+
+class FiniteRange(click.FloatRange):
+    """A finite number within a range (Click's ``FloatRange`` lets ``nan`` through and ``inf`` past no maximum)."""
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> float:
+        return super().convert(FINITE.convert(value, param, ctx), param, ctx)
+
+
+FINITE = FiniteFloat()
+"""The type of every number option: ``@click.option("--dwell-s", type=FINITE)``."""
+
+
+def finite(min: float | None = None, max: float | None = None, *, min_open: bool = False,
+           max_open: bool = False) -> click.ParamType:
+    """The type of a number option with bounds (:data:`FINITE` when there are none).
+
+    Parameters
+    ----------
+    min, max : float, optional
+        The bounds (as :class:`click.FloatRange` takes them).
+    min_open, max_open : bool, keyword-only
+        Whether a bound itself is refused.
+
+    Returns
+    -------
+    click.ParamType
+    """
+    if min is None and max is None:
+        return FINITE
+    return FiniteRange(min=min, max=max, min_open=min_open, max_open=max_open)

@@ -1,0 +1,70 @@
+"""Every command of ``axiscal`` at once: number options refuse nan and infinities where they are parsed."""
+
+from __future__ import annotations
+
+import click
+import pytest
+
+from axiscal.cli.common import FiniteFloat, FiniteRange
+from axiscal.cli.main import cli
+
+
+def leaf_commands(group: click.Group = cli, path: tuple[str, ...] = ()) -> list[tuple[tuple[str, ...], click.Command]]:
+    """``(("simulate", "probes"), command)`` for every command that runs (not a group), hidden ones too."""
+    if hasattr(group, "load_all"):
+        group.load_all()
+    found = []
+    for name in sorted(group.commands):
+        command = group.commands[name]
+        if isinstance(command, click.Group):
+            found += leaf_commands(command, path + (name,))
+        else:
+            found.append((path + (name,), command))
+    return found
+
+
+def long_name(option: click.Option) -> str:
+    return max(option.opts, key=len)
+
+
+NUMBER_OPTIONS = [
+    pytest.param(path, long_name(option), option.nargs, id=" ".join(path) + " " + long_name(option))
+    for path, command in leaf_commands()
+    for option in command.params
+    if isinstance(option, click.Option) and isinstance(option.type, click.types.FloatParamType)
+]
+
+
+def test_there_are_number_options_to_check():
+    assert len(NUMBER_OPTIONS) > 40
+
+
+@pytest.mark.parametrize("path, flag, nargs", NUMBER_OPTIONS)
+def test_every_number_option_is_finite(path, flag, nargs):
+    command = dict(leaf_commands())[path]
+    option = next(o for o in command.params if isinstance(o, click.Option) and long_name(o) == flag)
+    assert isinstance(option.type, (FiniteFloat, FiniteRange)), f"axiscal {' '.join(path)} {flag} takes nan"
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "-inf"])
+@pytest.mark.parametrize("path, flag, nargs", NUMBER_OPTIONS)
+def test_a_non_finite_number_is_refused_used_or_not(run_cli, path, flag, nargs, value):
+    status, out, err = run_cli(*path, flag, *[value] * nargs)
+    assert status == 2 and out == ""
+    assert err == f"axiscal: error: {flag} must be a finite number, got {value}\n"
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ("plan", "--start-mm", "0", "--end-mm", "100", "--dwell-s", "nan"),
+        ("plan", "--start-mm", "0", "--end-mm", "100", "--feed-mm-min", "inf"),
+        ("fringes", "--counts", "1000", "--temperature-c", "20", "--pressure-pa", "101325", "--humidity-pct", "50",
+         "--expansion-per-k", "inf"),
+    ],
+)
+def test_options_the_command_does_not_use(run_cli, argv):
+    """Without --gcode plan does not use --dwell-s or --feed-mm-min, nor fringes --expansion-per-k without a
+    material temperature: their values are checked all the same."""
+    status, _, err = run_cli(*argv)
+    assert status == 2 and f"{argv[-2]} must be a finite number, got {argv[-1]}" in err
