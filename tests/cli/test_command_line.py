@@ -68,3 +68,21 @@ def test_options_the_command_does_not_use(run_cli, argv):
     material temperature: their values are checked all the same."""
     status, _, err = run_cli(*argv)
     assert status == 2 and f"{argv[-2]} must be a finite number, got {argv[-1]}" in err
+
+
+def test_simulate_probes_is_one_name_and_the_old_one_says_so(run_cli, examples, tmp_path):
+    args = ["--profile", examples / "separation_profile.csv", "--motion", examples / "separation_motion.csv",
+            "--spacing-mm", "15", "--step-mm", "1"]
+    status, new, err = run_cli("simulate", "probes", *args)
+    assert status == 0 and err == "" and new.startswith("position_mm,a_um,b_um,c_um\n")
+    status, old, err = run_cli("simulate-probes", *args)
+    assert status == 0 and old == new and err == "axiscal: 'simulate-probes' is now 'simulate probes'; the old name will go\n"
+    status, listing, _ = run_cli("--help")
+    assert status == 0 and "simulate-probes" not in listing and "\n  simulate " in listing
+    status, listing, _ = run_cli("simulate", "--help")
+    assert all(f"\n  {name} " in listing for name in ("ballbar", "frames", "laser", "probes"))
+
+
+def test_simulate_ballbar_is_registered(run_cli, tmp_path):
+    status, _, err = run_cli("simulate", "ballbar", "--step-deg", "1", "--direction", "ccw", "-o", tmp_path / "t.csv")
+    assert status == 0 and (tmp_path / "t.csv").read_text().startswith("angle_deg,direction,radius_deviation_um\n")

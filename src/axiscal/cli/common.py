@@ -14,7 +14,7 @@ from axiscal.errors import AxiscalError
 from axiscal.io.atomic import atomic_write
 from axiscal.io.jsonio import dumps
 
-__all__ = ["FINITE", "FiniteFloat", "FiniteRange", "finite", "flags_named", "echo_json", "given_options", "write_output"]
+__all__ = ["FINITE", "FiniteFloat", "FiniteRange", "finite", "flags_named", "echo_json", "given_options", "hidden_alias", "write_output"]
 
 
 def echo_json(payload: dict[str, Any]) -> None:
@@ -98,3 +98,29 @@ def finite(min: float | None = None, max: float | None = None, *, min_open: bool
     if min is None and max is None:
         return FINITE
     return FiniteRange(min=min, max=max, min_open=min_open, max_open=max_open)
+
+
+def hidden_alias(command: click.Command, old_name: str, new_name: str) -> click.Command:
+    """``command`` under its old name, left out of ``--help``, saying its new name on standard error.
+
+    Parameters
+    ----------
+    command : click.Command
+        The command as it is now named.
+    old_name : str
+        The name it had (``"simulate-probes"``).
+    new_name : str
+        What to type instead (``"simulate probes"``).
+
+    Returns
+    -------
+    click.Command
+        A command that takes the same options and runs the same code.
+    """
+
+    def callback(**values: Any) -> Any:
+        click.echo(f"axiscal: '{old_name}' is now '{new_name}'; the old name will go", err=True)
+        return command.callback(**values) if command.callback is not None else None
+
+    return click.Command(old_name, params=command.params, callback=callback, hidden=True,
+                         help=f"Old name of 'axiscal {new_name}'.", context_settings=command.context_settings)

@@ -127,7 +127,7 @@ def mirror_command(run_path, letter, machine, max_order, output, as_json):
 
 @click.group("simulate")
 def simulate_group():
-    """Data from the virtual XZ module of paper 000 (docs/measurement.md)."""
+    """Simulated data: frames and laser readings of paper 000's XZ module, ballbar traces, probe readings."""
 
 
 @simulate_group.command("frames")
@@ -198,6 +198,11 @@ def diagonal_command(load_kg, seed, samples, squareness_error_arcsec, plot, as_j
 
 
 def register(group: click.Group) -> None:
+    from axiscal.cli.ballbar import simulate_ballbar_command
+    from axiscal.cli.separation import simulate_probes_command
+
+    simulate_group.add_command(simulate_ballbar_command)
+    simulate_group.add_command(simulate_probes_command)
     group.add_command(measure_command)
     group.add_command(calibrate_group)
     group.add_command(simulate_group)

@@ -1,4 +1,4 @@
-"""``axiscal separate`` and ``axiscal simulate-probes``: multi-probe straightness error separation (paper 001)."""
+"""``axiscal separate`` and ``axiscal simulate probes``: multi-probe straightness error separation (paper 001)."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import math
 
 import click
 
-from axiscal.cli.common import FINITE
+from axiscal.cli.common import FINITE, hidden_alias
 from axiscal.errors import AxiscalError
 from axiscal.straightness.files import (
     SEPARATION_METHODS,
@@ -15,7 +15,7 @@ from axiscal.straightness.files import (
 )
 from axiscal.units import MM, UM
 
-__all__ = ["separate_command", "simulate_probes_command", "register"]
+__all__ = ["separate_command", "simulate_probes_command", "simulate_probes_alias", "register"]
 
 
 def _positive(**flags: float | None) -> None:
@@ -100,7 +100,7 @@ def separate_command(
         click.echo(run.csv_text, nl=False)
 
 
-@click.command("simulate-probes")
+@click.command("probes")
 @click.option(
     "--profile",
     "profile_path",
@@ -170,6 +170,10 @@ def simulate_probes_command(
         click.echo(simulated.csv_text, nl=False)
 
 
+simulate_probes_alias = hidden_alias(simulate_probes_command, "simulate-probes", "simulate probes")
+
+
 def register(group: click.Group) -> None:
+    """``separate`` and the old name ``simulate-probes``; ``simulate probes`` joins the ``simulate`` group."""
     group.add_command(separate_command)
-    group.add_command(simulate_probes_command)
+    group.add_command(simulate_probes_alias)
