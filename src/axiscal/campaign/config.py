@@ -30,9 +30,20 @@ __all__ = [
     "TestSpec",
     "Campaign",
     "load_campaign",
+    "TABLE_KEYS",
 ]
 
 CAMPAIGN_FILE = "campaign.toml"
+
+#: the keys the [campaign], [machine] and [instrument] tables take: key -> (type, required); the
+#: report prints every one of them that a campaign states
+TABLE_KEYS: dict[str, dict[str, tuple[type, bool]]] = {
+    "campaign": {"title": (str, True), "date": (_dt.date, True), "operator": (str, True), "customer": (str, False),
+                 "notes": (str, False)},
+    "machine": {"name": (str, True), "serial": (str, False), "model": (str, False), "controller": (str, False)},
+    "instrument": {"name": (str, False), "serial": (str, False), "certificate": (str, False),
+                   "calibrated": (_dt.date, False), "vacuum_wavelength_nm": (float, False)},
+}
 CONTROLLERS = ("linuxcnc", "fanuc", "siemens", "heidenhain")
 _FIGURES = ("A", "A_up", "A_down", "B", "B_mean", "E", "E_up", "E_down", "M", "R", "R_up", "R_down")
 #: figure keys a positioning tolerance may name: um for a linear axis, arcsec for a rotary one
@@ -256,14 +267,11 @@ def load_campaign(folder: str | Path) -> Campaign:
 
     if "campaign" not in data:
         raise fail("campaign.toml needs a [campaign] table (title, date, operator)")
-    campaign = table("campaign", {"title": (str, True), "date": (_dt.date, True), "operator": (str, True),
-                                  "customer": (str, False), "notes": (str, False)})
+    campaign = table("campaign", TABLE_KEYS["campaign"])
     if "machine" not in data:
         raise fail("campaign.toml needs a [machine] table (name)")
-    machine = table("machine", {"name": (str, True), "serial": (str, False), "model": (str, False),
-                                "controller": (str, False)})
-    instrument = table("instrument", {"name": (str, False), "serial": (str, False), "certificate": (str, False),
-                                      "calibrated": (_dt.date, False), "vacuum_wavelength_nm": (float, False)})
+    machine = table("machine", TABLE_KEYS["machine"])
+    instrument = table("instrument", TABLE_KEYS["instrument"])
     tolerances = _tolerances(data.get("tolerances", {}), lambda m, k=None: fail(m, "tolerances", 0, k), "[tolerances]")
 
     def budget_line(section: str, key: str | None = None) -> int | None:
