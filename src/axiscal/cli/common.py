@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Callable, Mapping
 from contextlib import contextmanager
 from pathlib import Path
@@ -35,14 +36,22 @@ def given_options(**values: Any) -> dict[str, Any]:
 
 @contextmanager
 def flags_named(flags: Mapping[str, str]):
-    """Within the block, an AxiscalError that opens with a library keyword (``interval_m applies
-    to ...``) names the command-line flag instead (``--interval-mm applies to ...``)."""
+    """Within the block, an AxiscalError that names a library argument names the command-line flag instead.
+
+    A message that opens with a keyword of ``flags`` (``interval_m applies to ...``) opens with its
+    flag (``--interval-mm applies to ...``). A key that is not a plain word (``rate_hz``,
+    ``force=True``, ``a source replay:FILE``) is replaced wherever it stands in the message, as a
+    whole: ``rate_hz x duration_s gives ...`` becomes ``--rate x --duration gives ...``.
+    """
     try:
         yield
     except AxiscalError as exc:
         head, sep, rest = exc.message.partition(" ")
-        if head in flags:
-            raise AxiscalError(flags[head] + sep + rest, path=exc.path, line=exc.line) from None
+        message = flags[head] + sep + rest if head in flags else exc.message
+        for key in sorted((k for k in flags if not k.isalpha()), key=len, reverse=True):
+            message = re.sub(rf"(?<![\w-]){re.escape(key)}(?![\w-])", lambda _, k=key: flags[k], message)
+        if message != exc.message:
+            raise AxiscalError(message, path=exc.path, line=exc.line) from None
         raise
 
 

@@ -12,7 +12,7 @@ import threading
 
 import click
 
-from axiscal.cli.common import FINITE
+from axiscal.cli.common import FINITE, flags_named
 from axiscal.errors import AxiscalError
 from axiscal.live.pipeline import RunSummary
 from axiscal.live.session import LiveSession
@@ -69,23 +69,24 @@ def live(
     Opens a dashboard on http://127.0.0.1:PORT/ unless --no-server. Ends after --duration, when a
     replay is finished (with --no-server), or on Ctrl-C.
     """
-    session = LiveSession(
-        machine=machine,
-        source=source_spec,
-        rate_hz=rate_hz,
-        path=motion,
-        seed=seed,
-        load_kg=load_kg,
-        pace=not no_pace,
-        record=record_path,
-        server=not no_server,
-        port=port,
-        update_hz=update_hz,
-        duration_s=duration_s,
-        force=force,
-        bind=bind,
-        allowed_hosts=allowed_hosts,
-    )
+    with flags_named(_FLAGS):
+        session = LiveSession(
+            machine=machine,
+            source=source_spec,
+            rate_hz=rate_hz,
+            path=motion,
+            seed=seed,
+            load_kg=load_kg,
+            pace=not no_pace,
+            record=record_path,
+            server=not no_server,
+            port=port,
+            update_hz=update_hz,
+            duration_s=duration_s,
+            force=force,
+            bind=bind,
+            allowed_hosts=allowed_hosts,
+        )
     stop = threading.Event()
     previous_term = signal.getsignal(signal.SIGTERM) if threading.current_thread() is threading.main_thread() else None
     try:
@@ -99,7 +100,8 @@ def live(
             text = summary.progress_text(session.state.measure_rate())
             click.echo(("\r" + text) if on_terminal else text, err=True, nl=not on_terminal)
 
-        summary = session.run(stop=stop, duration_s=duration_s, progress=progress, progress_interval_s=0.5 if on_terminal else 1.0)
+        with flags_named(_FLAGS):
+            summary = session.run(stop=stop, duration_s=duration_s, progress=progress, progress_interval_s=0.5 if on_terminal else 1.0)
         if on_terminal:
             click.echo("", err=True)
         click.echo(summary.progress_text(summary.mean_rate_hz, label="done"))
@@ -107,6 +109,14 @@ def live(
         if previous_term is not None:
             signal.signal(signal.SIGTERM, previous_term)
         session.close()
+
+
+#: the library's arguments and phrases in messages -> what to type on the command line
+_FLAGS = {
+    "rate_hz": "--rate", "duration_s": "--duration", "port": "--port", "update_hz": "--update-hz", "load_kg": "--load-kg",
+    "seed": "--seed", "record": "--record", "force=True": "--force", "overwrite=True": "--force",
+    "choose another port or host": "choose another --port or --bind", "a source replay:FILE": "--source replay:FILE",
+}
 
 
 def register(group: click.Group) -> None:

@@ -14,7 +14,7 @@ from typing import Any
 
 import click
 
-from axiscal.cli.common import FINITE, echo_json, finite
+from axiscal.cli.common import FINITE, echo_json, finite, flags_named
 from axiscal.errors import AxiscalError
 from axiscal.measurement import offline
 from axiscal.measurement.virtual import PATHS
@@ -102,7 +102,8 @@ def sensitivity_command(run_path, channel, machine, reference_offset_mm, output,
     columns E<A,B,C><axis>_urad or _arcsec of the run.
     """
     offset = _vector_mm(reference_offset_mm, "--reference-offset-mm")
-    report = offline.calibrate_sensitivity(run_path, channel, machine=machine, reference_offset_m=offset, output=output)
+    with flags_named({"reference_offset_m": "--reference-offset-mm"}):
+        report = offline.calibrate_sensitivity(run_path, channel, machine=machine, reference_offset_m=offset, output=output)
     _echo_report(report, as_json)
 
 
@@ -140,7 +141,9 @@ def simulate_group():
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV (and its .json sidecar) here (default: standard output).")
 def simulate_frames_command(motion, rate_hz, duration_s, load_kg, seed, truth, output):
     """Raw frames of the virtual module: t_s and every channel, ready for `axiscal measure`."""
-    made = offline.simulate_frames(path=motion, rate_hz=rate_hz, duration_s=duration_s, load_kg=load_kg, seed=seed, truth=truth, output=output)
+    with flags_named({"rate_hz": "--rate", "duration_s": "--duration"}):
+        made = offline.simulate_frames(path=motion, rate_hz=rate_hz, duration_s=duration_s, load_kg=load_kg, seed=seed,
+                                       truth=truth, output=output)
     if output is None:
         click.echo(made.text, nl=False)
     else:
