@@ -401,6 +401,7 @@ R = "report"
 
 bad(R, "decision_statement", "decision rule", lambda: rp.decision_statement("strict"), lambda: rp.decision_statement(None))
 bad(R, "render_html", "results", lambda: rp.render_html(None), lambda: rp.render_html(CAMPAIGN))
+bad(R, "report_facts", "results", lambda: rp.report_facts(None), lambda: rp.report_facts(CAMPAIGN))
 bad(R, "render_html", "compare", lambda: rp.render_html(RESULTS, compare=5), lambda: rp.render_html(RESULTS, compare={"tests": "all"}))
 bad(R, "render_html", "volumetric", lambda: rp.render_html(RESULTS, volumetric=["plot"]))
 bad(R, "render_html", "generated", lambda: rp.render_html(RESULTS, generated=5))

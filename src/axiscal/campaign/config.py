@@ -54,6 +54,8 @@ _TOLERANCE_KEYS = {
     "squareness_arcsec": float,
     "diagonal_um": float,
     "circular_deviation_um": float,
+    "calibration_um": float,
+    "calibration_arcsec": float,
 }
 
 # option types: "str", "float", "int", "bool", "file", "floats2", ("choice", values)
@@ -88,6 +90,8 @@ KINDS: dict[str, dict[str, Any]] = {
     },
     "sixdof": {"file": "file", "machine": "file", "axis": "axis"},
     "ballbar": {"file": "file", "radius_mm": "float", "plane": "plane", "axes": "plane", "feed_mm_min": "float"},
+    "sensor_calibration": {"file": "file", "machine": "file"},
+    "sixdof_diagonal": {"file": "file", "frames": "file", "machine": "file", "from": "str", "to": "str"},
 }
 #: the data file(s) each kind cannot do without
 _REQUIRED = {
@@ -98,6 +102,8 @@ _REQUIRED = {
     "diagonal": ("from", "to"),
     "sixdof": ("file",),
     "ballbar": ("file", "radius_mm"),
+    "sensor_calibration": ("file",),
+    "sixdof_diagonal": ("file", "frames", "from", "to"),
 }
 
 
@@ -333,6 +339,16 @@ def _test(raw, index, folder, campaign_tolerances, model, counters, fail) -> Tes
             raise bad("give the laser readings as 'interferometer' or 'file', not both", "file")
         if "file" in options:
             options["interferometer"] = options.pop("file")
+    if kind == "sixdof_diagonal":
+        from axiscal.model.inputs import parse_point
+
+        for end in ("from", "to"):
+            try:
+                point = parse_point(options[end], end)
+            except AxiscalError as exc:
+                raise bad(exc.message, end) from None
+            if set(point) - {"X", "Z"}:
+                raise bad(f"{end} '{options[end]}': the diagonal of the 6-DOF sensors lies in the XZ plane", end)
     if kind in ("squareness", "ballbar"):
         plane = options.pop("axes", None) or options.pop("plane", None) or "XY"
         options.pop("plane", None)
@@ -406,6 +422,9 @@ def _merged_tolerances(
         for source in (campaign, own):
             if "circular_deviation_um" in source:
                 out["circular_deviation_um"] = source["circular_deviation_um"]
+    elif kind == "sensor_calibration":
+        for source in (campaign, own):
+            out.update({k: source[k] for k in ("calibration_um", "calibration_arcsec") if k in source})
     return {k: float(v) for k, v in out.items()}
 
 

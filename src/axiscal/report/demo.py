@@ -2,11 +2,11 @@
 
 Paper 000 (sections 4 and 5) end to end: :func:`axiscal.measurement.campaign_sim.write_campaign`
 simulates the sensor calibration, a 6-DOF recording, ISO 230-2 laser runs with air and material
-sensors, straightness by error separation, squareness by pentaprism and the diagonal check unloaded
-and with 2 kg, and writes them as a campaign folder; :func:`axiscal.report.report_campaign` reports
-it (report.html, results.json, LinuxCNC compensation files). Beside the campaign, the paper's
-diagonal experiment with the live 6-DOF measurement (eq 13, 0 and 2 kg) gives the figures the
-offline model cannot reach under load. The console lines come from the template
+sensors, straightness by error separation, squareness by pentaprism, the diagonal check unloaded
+and with 2 kg, and the paper's diagonal experiment with the 6-DOF sensors read at the same stops
+(eq 13, 0 and 2 kg: the figures the offline model cannot reach under load), and writes them as a
+campaign folder; :func:`axiscal.report.report_campaign` reports it (report.html, results.json,
+LinuxCNC compensation files). The console lines come from the template
 ``axiscal/templates/demo_summary.txt.j2``.
 """
 
@@ -25,13 +25,7 @@ from axiscal.measurement.campaign_sim import (
     SimulatedCampaign,
     write_campaign,
 )
-from axiscal.measurement.virtual import (
-    DiagonalExperiment,
-    VirtualModule,
-    diagonal_experiment,
-)
 from axiscal.report.writer import ReportFiles, report_campaign
-from axiscal.units import UM
 
 __all__ = ["DEMO_FILES", "DemoResult", "builtin_example", "run_demo"]
 
@@ -67,9 +61,9 @@ class DemoResult:
     campaign : SimulatedCampaign
         The simulated campaign folder (``folder / "campaign"``).
     report : ReportFiles
-        The report of the campaign (``folder / "report"``), with its results.
-    experiments : dict of float to DiagonalExperiment
-        Paper 000's diagonal experiment with the live 6-DOF measurement, per load in kg (0 and 2).
+        The report of the campaign (``folder / "report"``), with its results (among them paper
+        000's diagonal experiment with the 6-DOF sensors, tests ``sixdof-diagonal-0kg`` and
+        ``sixdof-diagonal-2kg``).
     summary : dict
         The content of ``summary.json`` (display units in the key names).
     """
@@ -77,7 +71,6 @@ class DemoResult:
     folder: Path
     campaign: SimulatedCampaign
     report: ReportFiles
-    experiments: dict[float, DiagonalExperiment]
     summary: dict[str, Any]
 
     @property
@@ -108,7 +101,7 @@ class DemoResult:
         return render_template("demo_summary.txt.j2", keep_trailing_newline=True, files=self.files, summary=self.summary)
 
 
-def _summary(report: ReportFiles, experiments: dict[float, DiagonalExperiment]) -> dict[str, Any]:
+def _summary(report: ReportFiles) -> dict[str, Any]:
     results = report.results_data
     tests = {t.id: t for t in results.tests}
     return {
@@ -124,11 +117,11 @@ def _summary(report: ReportFiles, experiments: dict[float, DiagonalExperiment]) 
         },
         "experiment": {
             f"{load:g}kg": {
-                "before_max_um": e.before_max_m / UM,
-                "after_max_um": e.after_max_m / UM,
-                "scales_only_max_um": e.scales_only_max_m / UM,
+                "before_max_um": tests[f"sixdof-diagonal-{load:g}kg"].figures["E_BD_max_um"],
+                "after_max_um": tests[f"sixdof-diagonal-{load:g}kg"].figures["E_AD_max_um"],
+                "scales_only_max_um": tests[f"sixdof-diagonal-{load:g}kg"].figures["scales_only_max_um"],
             }
-            for load, e in experiments.items()
+            for load in DIAGONAL_LOADS_KG
         },
     }
 
@@ -151,7 +144,7 @@ def run_demo(output_dir: str | Path = "axiscal-demo", *, seed: int = 0) -> DemoR
     Returns
     -------
     DemoResult
-        The campaign, its report and the experiment; ``DemoResult.files`` lists the main files.
+        The campaign and its report; ``DemoResult.files`` lists the main files.
 
     Raises
     ------
@@ -169,7 +162,6 @@ def run_demo(output_dir: str | Path = "axiscal-demo", *, seed: int = 0) -> DemoR
     seed = check_count("seed", seed, minimum=0)
     campaign = write_campaign(folder / "campaign", seed=seed)
     report = report_campaign(campaign.folder, folder / "report")
-    experiments = {load: diagonal_experiment(VirtualModule(seed=seed, load_kg=load)) for load in DIAGONAL_LOADS_KG}
-    summary = _summary(report, experiments)
+    summary = _summary(report)
     write_json(folder / "summary.json", summary)
-    return DemoResult(folder, campaign, report, experiments, summary)
+    return DemoResult(folder, campaign, report, summary)

@@ -34,6 +34,7 @@ __all__ = [
 ]
 
 _SECTION_ORDER = ("positioning", "straightness", "separation", "squareness", "ballbar", "diagonal", "sixdof")
+_SECTION_TITLES = {"sensor_calibration": "Sensor calibration", "sixdof_diagonal": "Diagonal with the 6-DOF sensors"}
 
 
 def template_environment():
@@ -254,7 +255,7 @@ def sections(tests: list[TestResult]) -> list[dict[str, Any]]:
         elif test.kind == "sixdof":
             key, title = "sixdof", "6-DOF recordings"
         else:
-            key, title = test.kind, test.kind.capitalize()
+            key, title = test.kind, _SECTION_TITLES.get(test.kind, test.kind.capitalize())
         groups.setdefault(key, []).append(test)
         titles[key] = title
     axis_keys = sorted(k for k in groups if k.startswith("axis-"))
