@@ -60,7 +60,6 @@ def write_output(path: str | Path, write: Callable[[Path], Any]) -> Path:
     return atomic_write(path, write)
 
 
-
 class FiniteFloat(click.types.FloatParamType):
     """A number option that refuses ``nan`` and infinities (Click's ``float`` takes them).
 
