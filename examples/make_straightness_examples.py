@@ -9,7 +9,7 @@ by 2 arcsec + 1 arcsec sin(2 pi x / 50 mm) and probes B and C sit 0.05 and 0.02 
 
 * separation_profile.csv, separation_motion.csv: R, and S with the yaw, every 1 mm.
 * probe_readings.csv: three probes 15 mm apart, 1 mm steps, 0.005 um noise (seed 0), exactly
-  what `axiscal simulate-probes` writes for these files with those options (its settings in
+  what `axiscal simulate probes` writes for these files with those options (its settings in
   probe_readings.json beside it).
 * straightness_profile.csv: R every 10 mm plus a tilt of 2 um over the length.
 """
@@ -54,7 +54,7 @@ def main() -> None:
     write(HERE / "straightness_profile.csv", "position_mm,deviation_um",
           np.column_stack([coarse, profile_um(coarse) + 2.0 * coarse / N]))
     subprocess.run(
-        [sys.executable, "-m", "axiscal.cli.main", "simulate-probes",
+        [sys.executable, "-m", "axiscal.cli.main", "simulate", "probes",
          "--profile", "examples/separation_profile.csv", "--motion", "examples/separation_motion.csv",
          "--spacing-mm", "15", "--step-mm", "1", "--noise-um", "0.005", "--offsets-um", "0", "0.05", "0.02",
          "-o", "examples/probe_readings.csv"],

@@ -530,6 +530,13 @@ bad(M, "diagonal_errors", "same length", lambda: me.diagonal_errors([0.1, 0.1], 
 bad(M, "diagonal_errors", "laser_m", lambda: me.diagonal_errors([0.1, 0.1], [0.1, 0.1], E3, [INF, 0.2]))
 bad(M, "Truth", "gain", lambda: me.Truth(0.0, 0.0, 0.0), lambda: me.Truth(NAN, 0.0, 0.0))
 bad(M, "Truth", "noise", lambda: me.Truth(1.0, 0.0, -1.0))
+bad(M, "calibrate_sensor_runs", "path", lambda: me.calibrate_sensor_runs(None))
+bad(M, "calibrate_sensor_runs", "machine", lambda: me.calibrate_sensor_runs(EXAMPLES / "campaign" / "sensor_calibration_runs.csv", machine=5))
+bad(M, "sensor_diagonal", "readings_path", lambda: me.sensor_diagonal(None, "f.csv", start={"X": 0.0}, end={"X": 0.1}))
+bad(M, "sensor_diagonal", "frames_path", lambda: me.sensor_diagonal("r.csv", None, start={"X": 0.0}, end={"X": 0.1}))
+bad(M, "sensor_diagonal", "start", lambda: me.sensor_diagonal("r.csv", "f.csv", start="X=0", end={"X": 0.1}),
+    lambda: me.sensor_diagonal("r.csv", "f.csv", start={"Y": 0.0}, end={"X": 0.1}))
+bad(M, "sensor_diagonal", "end", lambda: me.sensor_diagonal("r.csv", "f.csv", start={"X": 0.0}, end={"X": NAN}))
 bad(M, "VirtualModule", "seed", lambda: me.VirtualModule(seed=-1), lambda: me.VirtualModule(seed="a"))
 bad(M, "VirtualModule", "load_kg", lambda: me.VirtualModule(load_kg=NAN), lambda: me.VirtualModule(load_kg=-2.0), lambda: me.VirtualModule(load_kg=None))
 bad(M, "VirtualModule", "noise", lambda: me.VirtualModule(noise="no"))
@@ -571,8 +578,9 @@ EXEMPT = {
     "instruments": {"RayTrace", "PentaprismSensitivity"},
     "straightness": {"Separation", "NoisePropagation"},
     "circular": {"CircularFigures", "BallbarDiagnostics"},
-    # an IntFlag of fault bits, a result record of diagonal_experiment, and a function of no arguments
-    "measurement": {"Fault", "DiagonalExperiment", "fault_legend"},
+    # an IntFlag of fault bits, result records of diagonal_experiment, calibrate_sensor_runs and
+    # sensor_diagonal, and a function of no arguments
+    "measurement": {"Fault", "DiagonalExperiment", "SensorRuns", "SensorDiagonal", "fault_legend"},
     "squareness": {"SquarenessResult", "ReversalResult", "Plane", "GaugeBlockCheck", "CmmCompensation", "GaugeBlockStudy"},
 }
 

@@ -82,7 +82,7 @@ def test_fringes_text_without_material_temperature(run_cli):
         ({"--temperature-c": "293.15"}, "air temperature"),
         ({"--wavelength-nm": "0.633"}, "vacuum wavelength"),
         ({"--co2-ppm": "-3"}, "CO2"),
-        ({"--temperature-c": "nan"}, "not a finite number"),
+        ({"--temperature-c": "nan"}, "--temperature-c must be a finite number"),
     ],
 )
 def test_air_bad_values_exit_2_with_one_line(run_cli, changes, message):

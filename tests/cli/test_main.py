@@ -22,7 +22,7 @@ def test_bare_axiscal_and_bare_group_print_help_and_succeed(run_cli):
 def test_help_lists_every_registered_command_with_its_short_help(run_cli):
     status, out, _ = run_cli("--help")
     assert status == 0
-    for name in ("air", "fringes", "separate", "simulate-probes", "straightness", "volumetric", "inverse", "live"):
+    for name in ("air", "fringes", "separate", "simulate", "straightness", "volumetric", "inverse", "live"):
         assert f"\n  {name} " in out
 
 

@@ -1,4 +1,4 @@
-"""End-to-end runs of `axiscal straightness`, `separate` and `simulate-probes` on the shipped examples."""
+"""End-to-end runs of `axiscal straightness`, `separate` and `simulate probes` on the shipped examples."""
 
 from __future__ import annotations
 
@@ -109,7 +109,7 @@ def test_what_separate_writes_is_a_straightness_input(run_cli, examples, tmp_pat
 def test_simulate_probes_writes_a_plain_csv_and_sidecar(run_cli, examples, tmp_path):
     readings = tmp_path / "readings.csv"
     status, _, err = run_cli(
-        "simulate-probes", "--profile", examples / "separation_profile.csv", "--motion", examples / "separation_motion.csv",
+        "simulate", "probes", "--profile", examples / "separation_profile.csv", "--motion", examples / "separation_motion.csv",
         "--spacing-mm", "15", "--step-mm", "1", "--probes", "2", "-o", readings,
     )
     assert status == 0, err
@@ -121,7 +121,7 @@ def test_simulate_probes_writes_a_plain_csv_and_sidecar(run_cli, examples, tmp_p
 def test_simulate_then_separate_round_trip_with_fstrp(run_cli, examples, tmp_path):
     readings = tmp_path / "fstrp.csv"
     status, _, err = run_cli(
-        "simulate-probes", "--profile", examples / "separation_profile.csv", "--motion", examples / "separation_motion.csv",
+        "simulate", "probes", "--profile", examples / "separation_profile.csv", "--motion", examples / "separation_motion.csv",
         "--spacing-mm", "7", "--spacing-bc-mm", "4", "--step-mm", "1", "-o", readings,
     )
     assert status == 0, err
@@ -135,7 +135,7 @@ def test_simulate_then_separate_round_trip_with_fstrp(run_cli, examples, tmp_pat
 
 def test_simulate_probes_matches_the_shipped_readings(run_cli, examples):
     status, out, _ = run_cli(
-        "simulate-probes", "--profile", examples / "separation_profile.csv", "--motion", examples / "separation_motion.csv",
+        "simulate", "probes", "--profile", examples / "separation_profile.csv", "--motion", examples / "separation_motion.csv",
         "--spacing-mm", "15", "--step-mm", "1", "--noise-um", "0.005", "--offsets-um", "0", "0.05", "0.02",
     )
     assert status == 0
@@ -144,7 +144,7 @@ def test_simulate_probes_matches_the_shipped_readings(run_cli, examples):
 
 def test_two_probe_simulation_and_reversal(run_cli, examples, tmp_path):
     status, out, _ = run_cli(
-        "simulate-probes", "--profile", examples / "separation_profile.csv", "--motion", examples / "separation_motion.csv",
+        "simulate", "probes", "--profile", examples / "separation_profile.csv", "--motion", examples / "separation_motion.csv",
         "--spacing-mm", "15", "--step-mm", "1", "--probes", "2",
     )
     assert status == 0 and out.splitlines()[0] == "position_mm,a_um,b_um"
@@ -188,10 +188,10 @@ def test_bad_input(run_cli, examples, tmp_path):
     short = tmp_path / "short.csv"
     short.write_text("position_mm,deviation_um\n0,0\n5,1\n")
     assert "too short" in one_line_error(
-        run_cli, "simulate-probes", "--profile", short, "--motion", short, "--spacing-mm", "15", "--step-mm", "1"
+        run_cli, "simulate", "probes", "--profile", short, "--motion", short, "--spacing-mm", "15", "--step-mm", "1"
     )
     assert "probes reach" in one_line_error(
-        run_cli, "simulate-probes", "--profile", examples / "separation_profile.csv", "--motion", short,
+        run_cli, "simulate", "probes", "--profile", examples / "separation_profile.csv", "--motion", short,
         "--spacing-mm", "15", "--step-mm", "1",
     )
     flat = tmp_path / "flat.csv"
@@ -207,8 +207,8 @@ def test_bad_input(run_cli, examples, tmp_path):
 @pytest.mark.parametrize(
     ("argv", "needle"),
     [
-        (["--method", "stp", "--spacing-mm", "inf"], "--spacing-mm must be a positive number"),
-        (["--method", "strp", "--spacing-mm", "15", "--spacing-bc-mm", "nan"], "--spacing-bc-mm must be a positive number"),
+        (["--method", "stp", "--spacing-mm", "inf"], "--spacing-mm must be a finite number"),
+        (["--method", "strp", "--spacing-mm", "15", "--spacing-bc-mm", "nan"], "--spacing-bc-mm must be a finite number"),
         (["--method", "frequency", "--spacing-mm", "1000"], "more readings than the probes span"),
         (["--method", "frequency", "--spacing-mm", "15", "--min-gain", "-1"], "--min-gain"),
         (["--method", "frequency", "--spacing-mm", "15", "--min-gain", "nan"], "--min-gain"),
@@ -244,7 +244,7 @@ def test_uneven_positions_are_named_by_their_line(run_cli, tmp_path):
 )
 def test_bad_simulation_options(run_cli, examples, argv, needle):
     line = one_line_error(
-        run_cli, "simulate-probes", "--profile", examples / "separation_profile.csv",
+        run_cli, "simulate", "probes", "--profile", examples / "separation_profile.csv",
         "--motion", examples / "separation_motion.csv", "--spacing-mm", "15", *argv,
     )
     assert needle in line

@@ -27,18 +27,18 @@ def test_a_session_records_a_plain_csv_with_its_sidecar(tmp_path):
 @pytest.mark.parametrize(
     ("settings", "message"),
     [
-        ({"rate_hz": 0.0}, "--rate must be a positive"),
-        ({"duration_s": -1.0}, "--duration must be positive"),
-        ({"port": 70000}, "--port must be 0-65535"),
+        ({"rate_hz": 0.0}, "rate_hz must be a positive"),
+        ({"duration_s": -1.0}, "duration_s must be positive"),
+        ({"port": 70000}, "port must be 0-65535"),
         ({"rate_hz": 1e9}, "up to 100000"),
-        ({"rate_hz": float("nan")}, "--rate must be a positive"),
-        ({"duration_s": float("inf")}, "--duration must be positive"),
-        ({"update_hz": 0.0}, "--update-hz must be 0.1 to 60"),
-        ({"update_hz": 1e300}, "--update-hz must be 0.1 to 60"),
-        ({"update_hz": float("nan")}, "--update-hz must be 0.1 to 60"),
-        ({"load_kg": -2.0}, "--load-kg must be a finite mass"),
-        ({"load_kg": float("inf")}, "--load-kg must be a finite mass"),
-        ({"seed": -1}, "--seed must not be negative"),
+        ({"rate_hz": float("nan")}, "rate_hz must be a positive"),
+        ({"duration_s": float("inf")}, "duration_s must be positive"),
+        ({"update_hz": 0.0}, "update_hz must be 0.1 to 60"),
+        ({"update_hz": 1e300}, "update_hz must be 0.1 to 60"),
+        ({"update_hz": float("nan")}, "update_hz must be 0.1 to 60"),
+        ({"load_kg": -2.0}, "load_kg must be a finite mass"),
+        ({"load_kg": float("inf")}, "load_kg must be a finite mass"),
+        ({"seed": -1}, "seed must not be negative"),
         ({"path": "circle"}, "unknown path"),
         ({"source": "udp:1"}, "unknown source"),
     ],
@@ -76,7 +76,7 @@ def test_a_hard_or_symbolic_link_to_an_input_is_the_input(tmp_path, examples):
 def test_an_existing_record_is_kept_unless_force(tmp_path):
     record = tmp_path / "old.csv"
     record.write_text("precious\n")
-    with pytest.raises(AxiscalError, match="the record file exists; choose another file, or give --force"):
+    with pytest.raises(AxiscalError, match="the record file exists; choose another file, or give force=True"):
         LiveSession(record=record, server=False)
     assert record.read_text() == "precious\n"
     with LiveSession(record=record, server=False, force=True) as session:

@@ -13,6 +13,7 @@ from axiscal.report import DEMO_FILES, report_campaign, run_demo
 pytestmark = pytest.mark.filterwarnings("ignore::UserWarning")
 
 VERDICTS = {
+    "sensor-calibration": "pass",
     "sixdof-2kg": "not assessed",
     "positioning-X-1": "fail",
     "positioning-Z-1": "fail",
@@ -20,6 +21,8 @@ VERDICTS = {
     "squareness-XZ-1": "fail",
     "diagonal-0kg": "fail",
     "diagonal-2kg": "fail",
+    "sixdof-diagonal-0kg": "not assessed",
+    "sixdof-diagonal-2kg": "not assessed",
 }
 
 
@@ -43,8 +46,8 @@ def test_the_campaign_folder_loads(demo):
     assert campaign.model == demo.folder / "as-found" / "campaign" / "machine.toml"
     assert campaign.budget is not None
     assert campaign.controller == "linuxcnc"
-    assert [t.kind for t in campaign.tests] == ["sixdof", "positioning", "positioning", "separation", "squareness",
-                                                "diagonal", "diagonal"]
+    assert [t.kind for t in campaign.tests] == ["sensor_calibration", "sixdof", "positioning", "positioning", "separation",
+                                                "squareness", "diagonal", "diagonal", "sixdof_diagonal", "sixdof_diagonal"]
 
 
 def test_results_json_verdicts(demo):
@@ -86,10 +89,15 @@ def test_the_report_again_on_the_written_campaign_gives_the_same_figures(demo, t
 def test_the_numbers_tell_paper_000_s_story(demo):
     summary = json.loads(demo.files["summary"].read_text())
     assert summary["tests"] == VERDICTS
-    # paper 000 section 5 with the live 6-DOF measurement (the figures the demo has always printed)
+    # paper 000 section 5 with the 6-DOF sensors read at the diagonal's stops: the campaign's own tests
     experiment = summary["experiment"]
-    assert round(experiment["0kg"]["before_max_um"], 1) == 67.5 and round(experiment["0kg"]["after_max_um"], 2) == 0.61
-    assert round(experiment["2kg"]["before_max_um"], 1) == 56.4 and round(experiment["2kg"]["after_max_um"], 2) == 0.61
+    assert round(experiment["0kg"]["before_max_um"], 1) == 67.5 and round(experiment["0kg"]["after_max_um"], 2) == 0.60
+    assert round(experiment["2kg"]["before_max_um"], 1) == 56.4 and round(experiment["2kg"]["after_max_um"], 2) == 0.60
+    results = {t.id: t.figures for t in demo.report.results_data.tests}
+    assert experiment["2kg"]["after_max_um"] == results["sixdof-diagonal-2kg"]["E_AD_max_um"]
+    # the sensors' calibration runs: within paper 000's +-1 um and +-1 arcsec (section 4.1)
+    calibration = results["sensor-calibration"]
+    assert calibration["channels"] == 10 and calibration["calibration_um"] < 1.0 and calibration["calibration_arcsec"] < 1.0
     # the offline model, taken unloaded, explains the unloaded diagonal but not the loaded one
     check = summary["diagonal_check"]
     assert round(check["0kg"]["E_BD_range_um"], 1) == 67.5 and check["0kg"]["E_AD_range_um"] < 0.1
@@ -109,11 +117,11 @@ def test_console_text(demo):
         f"as left       {demo.folder / 'as-left' / 'report' / 'report.html'}",
         f"summary       {demo.folder / 'summary.json'}",
     ]
-    assert lines[6] == "AS FOUND FAIL: 7 tests, 1 pass, 5 fail, 1 not assessed"
+    assert lines[6] == "AS FOUND FAIL: 10 tests, 2 pass, 5 fail, 3 not assessed"
     assert lines[7] == "AS LEFT PASS: the 2 positioning tests again with the compensation loaded"
     assert lines[8].startswith("  positioning-X-1: E ") and lines[9].startswith("  positioning-Z-1: E ")
     assert lines[10] == "  diagonal check, offline model (taken unloaded): 67.5 -> 0.02 um, 2 kg: 56.4 -> 11.08 um"
-    assert lines[11] == "  paper 000 experiment, live 6-DOF measurement: 67.5 -> 0.61 um, 2 kg: 56.4 -> 0.61 um"
+    assert lines[11] == "  paper 000 experiment, live 6-DOF measurement: 67.5 -> 0.60 um, 2 kg: 56.4 -> 0.60 um"
     assert len(lines) == 12
 
 

@@ -9,6 +9,7 @@ import pytest
 from axiscal.errors import AxiscalError
 from axiscal.instruments.air import refractive_index
 from axiscal.uncertainty import (
+    BUDGET_KEYS,
     COMPONENTS,
     Budget,
     air_sensitivities,
@@ -179,3 +180,53 @@ def test_air_conditions_in_the_wrong_unit_name_the_section(tmp_path):
     with pytest.raises(AxiscalError, match="pressure") as info:
         read_budget(path)
     assert info.value.line == 4
+
+
+def test_every_bounded_key_is_a_key_of_the_file():
+    from axiscal.uncertainty.budget import BUDGET_RANGES
+
+    assert all(key in BUDGET_KEYS[section] for section, key in BUDGET_RANGES)
+    numbers = {(s, k) for s, keys in BUDGET_KEYS.items() for k in keys} - {("instrument", "method"), ("instrument", "wavelength_nm")}
+    air_conditions = {("air", "temperature_C"), ("air", "pressure_Pa"), ("air", "humidity_percent")}
+    assert set(BUDGET_RANGES) == numbers - air_conditions  # those three and the wavelength: the air equation's range
+
+
+@pytest.mark.parametrize("section, key", [
+    ("instrument", "length_U_ppm"), ("instrument", "straightness_U_um"), ("air", "temperature_u_K"),
+    ("air", "pressure_u_Pa"), ("air", "humidity_u_percent"), ("machine", "temperature_C"), ("machine", "temperature_u_K"),
+    ("machine", "expansion_per_K"), ("machine", "expansion_u_per_K"), ("setup", "misalignment_urad"), ("setup", "eve_um"),
+    ("setup", "prism_deviation_u_arcsec"),
+])
+@pytest.mark.parametrize("value", ["1e300", "1.7e308", "-1e300"])
+def test_an_absurd_value_names_its_key_and_line(tmp_path, section, key, value):
+    """eve_um = 1e300 ended positioning --uncertainty in an OverflowError; now it is refused where it is read."""
+    path = tmp_path / "b.toml"
+    path.write_text(f"# a budget\n[{section}]\n{key} = {value}\n")
+    with pytest.raises(AxiscalError) as info:
+        read_budget(path)
+    assert info.value.path == str(path) and info.value.line == 3 and f"[{section}] {key} must" in info.value.message
+
+
+def test_the_largest_budget_keeps_every_figure_finite():
+    from axiscal.uncertainty import positioning_uncertainty
+    from axiscal.uncertainty.budget import BUDGET_RANGES
+
+    tables: dict[str, dict[str, float]] = {}
+    for (section, key), (_, high) in BUDGET_RANGES.items():
+        tables.setdefault(section, {})[key] = high
+    budget = budget_from_dict(tables)
+    result = positioning_uncertainty(budget, 1e6)  # a million metres of travel, the most the reader takes
+    assert all(math.isfinite(u) for u in result.U.values()) and all(math.isfinite(u) for u in result.components.values())
+
+
+def test_python_budget_refuses_values_beyond_their_range():
+    with pytest.raises(AxiscalError, match="budget value eve_m must be 0 to 0.01, got 1e"):
+        Budget(eve_m=1e300)
+
+
+def test_cli_names_the_budget_line(run_cli, examples, tmp_path):
+    text = (examples / "uncertainty_budget.toml").read_text().replace("eve_um = 1.0 ", "eve_um = 1e300")
+    (tmp_path / "b.toml").write_text(text)
+    line = next(n for n, row in enumerate(text.splitlines(), start=1) if row.startswith("eve_um"))
+    status, out, err = run_cli("positioning", examples / "positioning_run.csv", "--uncertainty", tmp_path / "b.toml")
+    assert status == 2 and out == "" and err == f"axiscal: error: {tmp_path / 'b.toml'}:{line}: [setup] eve_um must be 0 to 10000, got 1e+300\n"

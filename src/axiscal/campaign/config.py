@@ -30,9 +30,20 @@ __all__ = [
     "TestSpec",
     "Campaign",
     "load_campaign",
+    "TABLE_KEYS",
 ]
 
 CAMPAIGN_FILE = "campaign.toml"
+
+#: the keys the [campaign], [machine] and [instrument] tables take: key -> (type, required); the
+#: report prints every one of them that a campaign states
+TABLE_KEYS: dict[str, dict[str, tuple[type, bool]]] = {
+    "campaign": {"title": (str, True), "date": (_dt.date, True), "operator": (str, True), "customer": (str, False),
+                 "notes": (str, False)},
+    "machine": {"name": (str, True), "serial": (str, False), "model": (str, False), "controller": (str, False)},
+    "instrument": {"name": (str, False), "serial": (str, False), "certificate": (str, False),
+                   "calibrated": (_dt.date, False), "vacuum_wavelength_nm": (float, False)},
+}
 CONTROLLERS = ("linuxcnc", "fanuc", "siemens", "heidenhain")
 _FIGURES = ("A", "A_up", "A_down", "B", "B_mean", "E", "E_up", "E_down", "M", "R", "R_up", "R_down")
 #: figure keys a positioning tolerance may name: um for a linear axis, arcsec for a rotary one
@@ -46,6 +57,8 @@ _TOLERANCE_KEYS = {
     "flatness_um": float,
     "etve_um": float,
     "thermal_drift_um": float,
+    "calibration_um": float,
+    "calibration_arcsec": float,
 }
 
 # option types: "str", "float", "int", "bool", "file", "floats2", ("choice", values)
@@ -87,6 +100,8 @@ KINDS: dict[str, dict[str, Any]] = {
     "flatness": {"file": "file", "evaluation": ("choice", ("least-squares", "moody"))},
     "thermal_etve": {"file": "file", "max_lag_h": "float"},
     "thermal_drift": {"file": "file"},
+    "sensor_calibration": {"file": "file", "machine": "file"},
+    "sixdof_diagonal": {"file": "file", "frames": "file", "machine": "file", "from": "str", "to": "str"},
 }
 #: the kinds held against one tolerance of the campaign's (or their own)
 _OWN_TOLERANCE = {"levels": "straightness_um", "flatness": "flatness_um", "thermal_etve": "etve_um",
@@ -104,6 +119,8 @@ _REQUIRED = {
     "flatness": ("file",),
     "thermal_etve": ("file",),
     "thermal_drift": ("file",),
+    "sensor_calibration": ("file",),
+    "sixdof_diagonal": ("file", "frames", "from", "to"),
 }
 
 
@@ -273,14 +290,11 @@ def load_campaign(folder: str | Path) -> Campaign:
 
     if "campaign" not in data:
         raise fail("campaign.toml needs a [campaign] table (title, date, operator)")
-    campaign = table("campaign", {"title": (str, True), "date": (_dt.date, True), "operator": (str, True),
-                                  "customer": (str, False), "notes": (str, False)})
+    campaign = table("campaign", TABLE_KEYS["campaign"])
     if "machine" not in data:
         raise fail("campaign.toml needs a [machine] table (name)")
-    machine = table("machine", {"name": (str, True), "serial": (str, False), "model": (str, False),
-                                "controller": (str, False)})
-    instrument = table("instrument", {"name": (str, False), "serial": (str, False), "certificate": (str, False),
-                                      "calibrated": (_dt.date, False), "vacuum_wavelength_nm": (float, False)})
+    machine = table("machine", TABLE_KEYS["machine"])
+    instrument = table("instrument", TABLE_KEYS["instrument"])
     tolerances = _tolerances(data.get("tolerances", {}), lambda m, k=None: fail(m, "tolerances", 0, k), "[tolerances]")
 
     def budget_line(section: str, key: str | None = None) -> int | None:
@@ -342,6 +356,16 @@ def _test(raw, index, folder, campaign_tolerances, model, counters, fail) -> Tes
             raise bad("give the laser readings as 'interferometer' or 'file', not both", "file")
         if "file" in options:
             options["interferometer"] = options.pop("file")
+    if kind == "sixdof_diagonal":
+        from axiscal.model.inputs import parse_point
+
+        for end in ("from", "to"):
+            try:
+                point = parse_point(options[end], end)
+            except AxiscalError as exc:
+                raise bad(exc.message, end) from None
+            if set(point) - {"X", "Z"}:
+                raise bad(f"{end} '{options[end]}': the diagonal of the 6-DOF sensors lies in the XZ plane", end)
     if kind in ("squareness", "ballbar"):
         plane = options.pop("axes", None) or options.pop("plane", None) or "XY"
         options.pop("plane", None)
@@ -419,6 +443,9 @@ def _merged_tolerances(
         for source in (campaign, own):
             if _OWN_TOLERANCE[kind] in source:
                 out[_OWN_TOLERANCE[kind]] = source[_OWN_TOLERANCE[kind]]
+    elif kind == "sensor_calibration":
+        for source in (campaign, own):
+            out.update({k: source[k] for k in ("calibration_um", "calibration_arcsec") if k in source})
     return {k: float(v) for k, v in out.items()}
 
 

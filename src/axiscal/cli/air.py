@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import click
 
-from axiscal.cli.common import echo_json
+from axiscal.cli.common import FINITE, echo_json
 from axiscal.instruments.air import METHODS, air_report, air_text
 from axiscal.instruments.interferometer import (
     HENE_WAVELENGTH_NM,
@@ -20,13 +20,13 @@ from axiscal.materials import STEEL_EXPANSION_PER_K
 __all__ = ["air_command", "fringes_command", "register"]
 
 _AIR_OPTIONS = [
-    click.option("--temperature-c", type=float, required=True, help="Air temperature, degC."),
-    click.option("--pressure-pa", type=float, required=True, help="Air pressure, Pa (101325 at sea level)."),
-    click.option("--humidity-pct", type=float, required=True, help="Relative humidity, percent."),
+    click.option("--temperature-c", type=FINITE, required=True, help="Air temperature, degC."),
+    click.option("--pressure-pa", type=FINITE, required=True, help="Air pressure, Pa (101325 at sea level)."),
+    click.option("--humidity-pct", type=FINITE, required=True, help="Relative humidity, percent."),
     click.option(
-        "--wavelength-nm", type=float, default=HENE_WAVELENGTH_NM, show_default=True, help="Vacuum wavelength, nm."
+        "--wavelength-nm", type=FINITE, default=HENE_WAVELENGTH_NM, show_default=True, help="Vacuum wavelength, nm."
     ),
-    click.option("--co2-ppm", type=float, default=450.0, show_default=True, help="CO2 content, umol/mol."),
+    click.option("--co2-ppm", type=FINITE, default=450.0, show_default=True, help="CO2 content, umol/mol."),
     click.option(
         "--method", type=click.Choice(METHODS), default="ciddor", show_default=True, help="Refractive-index equation."
     ),
@@ -55,12 +55,12 @@ def air_command(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm
 
 
 @click.command("fringes")
-@click.option("--counts", type=float, required=True, help="Counter value N (fringes times --interpolation).")
+@click.option("--counts", type=FINITE, required=True, help="Counter value N (fringes times --interpolation).")
 @click.option("--optical-fold", type=click.IntRange(min=1), default=1, show_default=True, help="Passes m of the measuring beam (2: plane mirror).")
 @click.option("--interpolation", type=click.IntRange(min=1), default=1, show_default=True, help="Counts per fringe.")
 @_air_options
-@click.option("--material-temperature-c", type=float, multiple=True, help="Material temperature, degC; repeat for several sensors (averaged).")
-@click.option("--expansion-per-k", type=float, default=STEEL_EXPANSION_PER_K, show_default=True, help="Material expansion coefficient, 1/K.")
+@click.option("--material-temperature-c", type=FINITE, multiple=True, help="Material temperature, degC; repeat for several sensors (averaged).")
+@click.option("--expansion-per-k", type=FINITE, default=STEEL_EXPANSION_PER_K, show_default=True, help="Material expansion coefficient, 1/K.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object instead of text.")
 def fringes_command(
     counts,

@@ -14,7 +14,7 @@ from axiscal.circular.report import (
     evaluate_ballbar_file,
     render_report,
 )
-from axiscal.cli.common import echo_json
+from axiscal.cli.common import FINITE, echo_json, finite
 from axiscal.units import ANGLE_UNITS, MM, UM
 
 __all__ = ["ballbar_command", "simulate_ballbar_command", "register"]
@@ -24,10 +24,10 @@ _URAD = ANGLE_UNITS["urad"]
 
 @click.command("ballbar")
 @click.argument("run_csv", metavar="RUN.csv", type=click.Path(dir_okay=False))
-@click.option("--radius-mm", type=float, required=True, help="Nominal radius of the test (the ballbar's length), mm.")
+@click.option("--radius-mm", type=FINITE, required=True, help="Nominal radius of the test (the ballbar's length), mm.")
 @click.option("--plane", type=click.Choice(PLANES, case_sensitive=False), required=True,
               help="First and second axis; angles run from the first towards the second.")
-@click.option("--feed-mm-min", type=click.FloatRange(min=0, min_open=True), default=None,
+@click.option("--feed-mm-min", type=finite(min=0, min_open=True), default=None,
               help="Feed of the test (mm/min); with both directions it gives the servo mismatch.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (figures in um).")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write the polar plot to this file (.png, .svg, .pdf).")
@@ -67,21 +67,21 @@ def _scaled(values: dict[str, float], factor: float) -> dict[str, float]:
 
 
 @click.command("ballbar")
-@click.option("--radius-mm", type=click.FloatRange(min=0, min_open=True), default=100.0, show_default=True, help="Nominal radius, mm.")
+@click.option("--radius-mm", type=finite(min=0, min_open=True), default=100.0, show_default=True, help="Nominal radius, mm.")
 @click.option("--plane", type=click.Choice(PLANES, case_sensitive=False), default="XY", show_default=True, help="First and second axis.")
-@click.option("--feed-mm-min", type=click.FloatRange(min=0, min_open=True), default=1000.0, show_default=True, help="Feed, mm/min.")
-@click.option("--squareness-urad", type=float, default=0.0, show_default=True, help="Included angle of the axes minus 90 deg, urad.")
+@click.option("--feed-mm-min", type=finite(min=0, min_open=True), default=1000.0, show_default=True, help="Feed, mm/min.")
+@click.option("--squareness-urad", type=FINITE, default=0.0, show_default=True, help="Included angle of the axes minus 90 deg, urad.")
 @click.option("--scale-ppm", multiple=True, callback=_per_axis, metavar="AXIS=PPM", help="Scale error of an axis, e.g. X=12 (repeat per axis).")
 @click.option("--backlash-um", multiple=True, callback=_per_axis, metavar="AXIS=UM", help="Backlash (lost motion) of an axis, um.")
-@click.option("--servo-mismatch-ms", type=float, default=0.0, show_default=True, help="Lag of the first axis minus lag of the second, ms.")
+@click.option("--servo-mismatch-ms", type=FINITE, default=0.0, show_default=True, help="Lag of the first axis minus lag of the second, ms.")
 @click.option("--reversal-spike-um", multiple=True, callback=_per_axis, metavar="AXIS=UM", help="Spike height after an axis reverses, um.")
 @click.option("--cyclic-error-um", multiple=True, callback=_per_axis, metavar="AXIS=UM", help="Amplitude of an axis' cyclic error, um.")
 @click.option("--cyclic-pitch-mm", multiple=True, callback=_per_axis, metavar="AXIS=MM", help="Pitch of that cyclic error, mm.")
 @click.option("--centre-um", multiple=True, callback=_per_axis, metavar="AXIS=UM", help="Centre of the path relative to the table ball, um.")
 @click.option("--direction", "directions", type=click.Choice(DIRECTIONS + ("both",)), default="both", show_default=True,
               help="Directions run (both: ccw, then cw).")
-@click.option("--step-deg", type=click.FloatRange(min=0, min_open=True, max=1.0), default=0.1, show_default=True, help="Angle between readings, deg.")
-@click.option("--noise-um", type=click.FloatRange(min=0), default=0.0, show_default=True, help="Standard deviation of the reading noise, um.")
+@click.option("--step-deg", type=finite(min=0, min_open=True, max=1.0), default=0.1, show_default=True, help="Angle between readings, deg.")
+@click.option("--noise-um", type=finite(min=0), default=0.0, show_default=True, help="Standard deviation of the reading noise, um.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the noise.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV (and its JSON sidecar) here (default: standard output).")
 def simulate_ballbar_command(radius_mm, plane, feed_mm_min, squareness_urad, scale_ppm, backlash_um, servo_mismatch_ms,

@@ -14,7 +14,7 @@ from axiscal.capture.steps import plan_steps
 from axiscal.capture.virtual import simulate_capture
 from axiscal.compensation.readback import CONTROLLERS
 from axiscal.io.gcode import DIALECT_NAMES
-from axiscal.cli.common import echo_json, flags_named
+from axiscal.cli.common import FINITE, echo_json, flags_named
 from axiscal.errors import AxiscalError
 from axiscal.units import MM, UM
 
@@ -60,14 +60,14 @@ def _dashboard(steps, source, port: int):
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="The positioning run CSV to write.")
 @click.option("--unit", type=click.Choice(tuple(READING_UNITS)), default=None, help="Unit of the readings (a column name ending in _mm ... says it; an .rtx file needs it).")
 @click.option("--channel", default=None, help="The column or channel holding the laser reading [the only length column; reading_mm for a source].")
-@click.option("--stability-um", type=float, default=1.0, show_default=True, help="Peak to peak of the reading over the window for a stop.")
-@click.option("--window-s", type=float, default=0.5, show_default=True, help="How long the reading must hold still; the value is the mean over the stop's last window.")
-@click.option("--tolerance-mm", type=float, default=0.5, show_default=True, help="How far from the plan's target a stop may be.")
-@click.option("--offset-mm", type=float, default=0.0, show_default=True, help="The reading at the datum, when the laser was not zeroed there.")
+@click.option("--stability-um", type=FINITE, default=1.0, show_default=True, help="Peak to peak of the reading over the window for a stop.")
+@click.option("--window-s", type=FINITE, default=0.5, show_default=True, help="How long the reading must hold still; the value is the mean over the stop's last window.")
+@click.option("--tolerance-mm", type=FINITE, default=0.5, show_default=True, help="How far from the plan's target a stop may be.")
+@click.option("--offset-mm", type=FINITE, default=0.0, show_default=True, help="The reading at the datum, when the laser was not zeroed there.")
 @click.option("--resume", is_flag=True, help="Continue the partial capture OUTPUT.partial with this recording or stream.")
-@click.option("--rate-hz", type=float, default=1000.0, show_default=True, help="Sample rate of the sim source.")
+@click.option("--rate-hz", type=FINITE, default=1000.0, show_default=True, help="Sample rate of the sim source.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Noise seed of the sim source.")
-@click.option("--timeout-s", type=float, default=None, help="Stop reading a live source after this many seconds.")
+@click.option("--timeout-s", type=FINITE, default=None, help="Stop reading a live source after this many seconds.")
 @click.option("--dashboard", is_flag=True, help="With --source: show the plan, the target awaited and the stops taken on a live page.")
 @click.option("--port", type=int, default=8765, show_default=True, help="Port of the --dashboard page on 127.0.0.1 (0: any free port).")
 @click.option("--json", "as_json", is_flag=True, help="Print the stops taken as JSON.")
@@ -133,8 +133,8 @@ def capture_command(plan_csv, recording, source_spec, output, unit, channel, sta
 @click.option("--compensation", type=click.Path(dir_okay=False), default=None, help="A compensation file loaded into the virtual controller.")
 @click.option("--controller", type=click.Choice(CONTROLLERS), default=None, help="Whose compensation file it is.")
 @click.option("--comp-type", type=click.Choice(["0", "1"]), default="1", show_default=True, help="LinuxCNC COMP_FILE_TYPE of the file.")
-@click.option("--reference-position-mm", type=float, default=0.0, show_default=True, help="FANUC: machine position of the reference position.")
-@click.option("--rate-hz", type=float, default=1000.0, show_default=True, help="Samples per second of the laser.")
+@click.option("--reference-position-mm", type=FINITE, default=0.0, show_default=True, help="FANUC: machine position of the reference position.")
+@click.option("--rate-hz", type=FINITE, default=1000.0, show_default=True, help="Samples per second of the laser.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the laser's noise.")
 def simulate_capture_command(program, machine, axis, output, dialect, compensation, controller, comp_type, reference_position_mm,
                              rate_hz, seed):

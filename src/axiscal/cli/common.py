@@ -1,7 +1,9 @@
-"""Helpers shared by the command modules: JSON on standard output and output files."""
+"""Helpers shared by the command modules: JSON on standard output, output files and finite-number options."""
 
 from __future__ import annotations
 
+import math
+import re
 from collections.abc import Callable, Mapping
 from contextlib import contextmanager
 from pathlib import Path
@@ -13,7 +15,7 @@ from axiscal.errors import AxiscalError
 from axiscal.io.atomic import atomic_write
 from axiscal.io.jsonio import dumps
 
-__all__ = ["flags_named", "echo_json", "given_options", "write_output"]
+__all__ = ["FINITE", "FiniteFloat", "FiniteRange", "finite", "flags_named", "echo_json", "given_options", "hidden_alias", "write_output"]
 
 
 def echo_json(payload: dict[str, Any]) -> None:
@@ -34,14 +36,22 @@ def given_options(**values: Any) -> dict[str, Any]:
 
 @contextmanager
 def flags_named(flags: Mapping[str, str]):
-    """Within the block, an AxiscalError that opens with a library keyword (``interval_m applies
-    to ...``) names the command-line flag instead (``--interval-mm applies to ...``)."""
+    """Within the block, an AxiscalError that names a library argument names the command-line flag instead.
+
+    A message that opens with a keyword of ``flags`` (``interval_m applies to ...``) opens with its
+    flag (``--interval-mm applies to ...``). A key that is not a plain word (``rate_hz``,
+    ``force=True``, ``a source replay:FILE``) is replaced wherever it stands in the message, as a
+    whole: ``rate_hz x duration_s gives ...`` becomes ``--rate x --duration gives ...``.
+    """
     try:
         yield
     except AxiscalError as exc:
         head, sep, rest = exc.message.partition(" ")
-        if head in flags:
-            raise AxiscalError(flags[head] + sep + rest, path=exc.path, line=exc.line) from None
+        message = flags[head] + sep + rest if head in flags else exc.message
+        for key in sorted((k for k in flags if not k.isalpha()), key=len, reverse=True):
+            message = re.sub(rf"(?<![\w-]){re.escape(key)}(?![\w-])", lambda _, k=key: flags[k], message)
+        if message != exc.message:
+            raise AxiscalError(message, path=exc.path, line=exc.line) from None
         raise
 
 
@@ -49,3 +59,76 @@ def write_output(path: str | Path, write: Callable[[Path], Any]) -> Path:
     """Produce ``path`` atomically with ``write``; a failure is an AxiscalError naming the file."""
     return atomic_write(path, write)
 
+
+class FiniteFloat(click.types.FloatParamType):
+    """A number option that refuses ``nan`` and infinities (Click's ``float`` takes them).
+
+    Every value typed is checked where it is parsed, whether or not the command goes on to use it:
+    ``--dwell-s must be a finite number, got nan`` (an :class:`AxiscalError`, so one line and exit 2).
+    """
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> float:
+        number = super().convert(value, param, ctx)
+        if not math.isfinite(number):
+            if param is None:
+                self.fail(f"{value!r} is not a finite number", param, ctx)
+            flag = max(param.opts, key=len) if param.opts else param.name
+            raise AxiscalError(f"{flag} must be a finite number, got {value}")
+        return number
+
+
+class FiniteRange(click.FloatRange):
+    """A finite number within a range (Click's ``FloatRange`` lets ``nan`` through and ``inf`` past no maximum)."""
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> float:
+        return super().convert(FINITE.convert(value, param, ctx), param, ctx)
+
+
+FINITE = FiniteFloat()
+"""The type of every number option: ``@click.option("--dwell-s", type=FINITE)``."""
+
+
+def finite(min: float | None = None, max: float | None = None, *, min_open: bool = False,
+           max_open: bool = False) -> click.ParamType:
+    """The type of a number option with bounds (:data:`FINITE` when there are none).
+
+    Parameters
+    ----------
+    min, max : float, optional
+        The bounds (as :class:`click.FloatRange` takes them).
+    min_open, max_open : bool, keyword-only
+        Whether a bound itself is refused.
+
+    Returns
+    -------
+    click.ParamType
+    """
+    if min is None and max is None:
+        return FINITE
+    return FiniteRange(min=min, max=max, min_open=min_open, max_open=max_open)
+
+
+def hidden_alias(command: click.Command, old_name: str, new_name: str) -> click.Command:
+    """``command`` under its old name, left out of ``--help``, saying its new name on standard error.
+
+    Parameters
+    ----------
+    command : click.Command
+        The command as it is now named.
+    old_name : str
+        The name it had (``"simulate-probes"``).
+    new_name : str
+        What to type instead (``"simulate probes"``).
+
+    Returns
+    -------
+    click.Command
+        A command that takes the same options and runs the same code.
+    """
+
+    def callback(**values: Any) -> Any:
+        click.echo(f"axiscal: '{old_name}' is now '{new_name}'; the old name will go", err=True)
+        return command.callback(**values) if command.callback is not None else None
+
+    return click.Command(old_name, params=command.params, callback=callback, hidden=True,
+                         help=f"Old name of 'axiscal {new_name}'.", context_settings=command.context_settings)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from axiscal.cli.common import flags_named, given_options, write_output
+from axiscal.cli.common import FINITE, flags_named, given_options, write_output
 from axiscal.compensation.formats import FORMATS, compensation_table
 from axiscal.units import DEG, MM, UM
 
@@ -21,16 +21,16 @@ def _si(value: float | None, factor: float) -> float | None:
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the table here instead of stdout.")
 @click.option("--comp-type", type=click.IntRange(0, 1), default=1, show_default=True,
               help="linuxcnc: COMP_FILE_TYPE, 0 = positions reached, 1 = corrections.")
-@click.option("--interval-mm", type=float, default=None,
+@click.option("--interval-mm", type=FINITE, default=None,
               help="fanuc/siemens: spacing of the compensation points [mean target spacing, whole mm].")
-@click.option("--interval-deg", type=float, default=None,
+@click.option("--interval-deg", type=FINITE, default=None,
               help="fanuc/siemens, rotary axis: spacing of the compensation points [mean target spacing, whole deg].")
 @click.option("--magnification", type=int, default=1, show_default=True, help="fanuc: parameter 3623 (1..100).")
-@click.option("--detection-unit-um", type=float, default=1.0, show_default=True, help="fanuc: detection unit.")
-@click.option("--reference-position-mm", type=float, default=None,
+@click.option("--detection-unit-um", type=FINITE, default=1.0, show_default=True, help="fanuc: detection unit.")
+@click.option("--reference-position-mm", type=FINITE, default=None,
               help="fanuc: machine position of the reference position [first target]; siemens: value zero here.")
-@click.option("--detection-unit-deg", type=float, default=None, help="fanuc, rotary axis: detection unit [0.001].")
-@click.option("--reference-position-deg", type=float, default=None,
+@click.option("--detection-unit-deg", type=FINITE, default=None, help="fanuc, rotary axis: detection unit [0.001].")
+@click.option("--reference-position-deg", type=FINITE, default=None,
               help="fanuc, rotary axis: position of the reference [first target]; siemens: value zero here.")
 @click.option("--reference-point", type=int, default=None, help="fanuc: compensation point number of the reference (3620).")
 @click.option("--bidirectional", is_flag=True, help="fanuc: separate table for travel in the - direction (3605#0).")

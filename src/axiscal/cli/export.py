@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from axiscal.cli.common import echo_json
+from axiscal.cli.common import FINITE, echo_json
 from axiscal.compensation.backlash import (
     BACKLASH_CONTROLLERS,
     BACKLASH_METHODS,
@@ -33,10 +33,10 @@ def export_group() -> None:
 
 @export_group.command("skew")
 @click.option("--firmware", type=click.Choice(FIRMWARES), required=True, help="Klipper, Marlin or RepRapFirmware.")
-@click.option("--xy-arcsec", type=float, default=None, help="XY squareness (see --convention).")
-@click.option("--xz-arcsec", type=float, default=None, help="XZ squareness.")
-@click.option("--yz-arcsec", type=float, default=None, help="YZ squareness.")
-@click.option("--square-mm", type=float, default=100.0, show_default=True,
+@click.option("--xy-arcsec", type=FINITE, default=None, help="XY squareness (see --convention).")
+@click.option("--xz-arcsec", type=FINITE, default=None, help="XZ squareness.")
+@click.option("--yz-arcsec", type=FINITE, default=None, help="YZ squareness.")
+@click.option("--square-mm", type=FINITE, default=100.0, show_default=True,
               help="Side of the square the Klipper lengths and the RRF deviations refer to.")
 @click.option("--convention", type=click.Choice(SKEW_CONVENTIONS), default="included-angle", show_default=True,
               help="included-angle: included angle of the positive axes - 90 deg (axiscal squareness); "
@@ -78,8 +78,8 @@ def export_skew_command(firmware, xy_arcsec, xz_arcsec, yz_arcsec, square_mm, co
 @click.option("--axis-number", type=int, default=None, help="1-based axis number (LinuxCNC joint + 1, SINUMERIK AXn) [X=1, Y=2, ...].")
 @click.option("--method", type=click.Choice(BACKLASH_METHODS), default="mean", show_default=True,
               help="mean: -B_mean of ISO 230-2; max: -B_i where |B_i| is largest; target: -B_i at --target-mm.")
-@click.option("--target-mm", type=float, default=None, help="The target for --method target.")
-@click.option("--backlash-um", type=float, default=None, help="A backlash measured otherwise, instead of RUN_CSV.")
+@click.option("--target-mm", type=FINITE, default=None, help="The target for --method target.")
+@click.option("--backlash-um", type=FINITE, default=None, help="A backlash measured otherwise, instead of RUN_CSV.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def export_backlash_command(run_csv, controller, axis, axis_number, method, target_mm, backlash_um, as_json):
     """A controller's backlash parameter from a positioning test (RUN_CSV) or a value."""
@@ -111,7 +111,7 @@ def export_backlash_command(run_csv, controller, axis, axis_number, method, targ
               "mach4: the values of a Mach4 screw map (Machine Calibration plugin).")
 @click.option("--axis", default="X", show_default=True, help="Axis name (TwinCAT: kopf.log_achs_name).")
 @click.option("--axis-number", type=int, default=1, show_default=True, help="twincat: logical axis number (kopf.achs_nr).")
-@click.option("--interval-mm", type=float, default=None,
+@click.option("--interval-mm", type=FINITE, default=None,
               help="twincat: equidistant points this far apart (resampled) [the measured targets, listed].")
 @click.option("--points", type=int, default=None,
               help="mach4: number of evenly spaced points, both ends included [the number of targets].")
@@ -146,7 +146,7 @@ def export_screwmap_command(run_csv, controller, axis, axis_number, interval_mm,
               help="Axis the run moves: $AN_CEC_INPUT_AXIS (e.g. AX2) or the .CMA column (e.g. Y).")
 @click.option("--compensation-axis", required=True,
               help="Axis the deviation is along: $AN_CEC_OUTPUT_AXIS (e.g. AX3) or the .COM column (e.g. Z).")
-@click.option("--step-mm", type=float, default=None,
+@click.option("--step-mm", type=FINITE, default=None,
               help="Spacing of the table's points, the run resampled on it: $AN_CEC_STEP (required for siemens); "
               "for heidenhain, default one row per measured position.")
 @click.option("--table", "table_index", type=int, default=0, show_default=True, help="siemens: table index t.")

@@ -6,7 +6,7 @@ import math
 
 import click
 
-from axiscal.cli.common import echo_json
+from axiscal.cli.common import FINITE, echo_json
 from axiscal.errors import AxiscalError
 from axiscal.levels.files import evaluate_levels
 from axiscal.straightness.reference import REFERENCES
@@ -17,7 +17,7 @@ __all__ = ["levels_command", "register"]
 
 @click.command("levels")
 @click.argument("run", type=click.Path(dir_okay=False))
-@click.option("--foot-mm", type=float, required=True, help="The level's foot spacing, mm.")
+@click.option("--foot-mm", type=FINITE, required=True, help="The level's foot spacing, mm.")
 @click.option("--reference", type=click.Choice(REFERENCES), default="least-squares", show_default=True,
               help="Reference straight line of the straightness (ISO 230-1).")
 @click.option("--json", "as_json", is_flag=True,

@@ -12,6 +12,7 @@ import threading
 
 import click
 
+from axiscal.cli.common import FINITE, flags_named
 from axiscal.errors import AxiscalError
 from axiscal.live.pipeline import RunSummary
 from axiscal.live.session import LiveSession
@@ -33,19 +34,19 @@ class _OneLineCommand(click.Command):
 @click.command("live", cls=_OneLineCommand)
 @click.option("--machine", type=str, default=None, help="Machine TOML with [axes.<L>.sensors] (default: the built-in virtual module).")
 @click.option("--source", "source_spec", default="sim", show_default=True, help="sim | replay:FILE | rtx:FILE:UNIT:CHANNEL | tcp:HOST:PORT | serial:DEVICE[:BAUD].")
-@click.option("--rate", "rate_hz", type=float, default=1000.0, show_default=True, help="Frames per second of the sim source (Hz).")
+@click.option("--rate", "rate_hz", type=FINITE, default=1000.0, show_default=True, help="Frames per second of the sim source (Hz).")
 @click.option("--path", "motion", type=click.Choice(PATHS), default="diagonal", show_default=True, help="Motion of the sim source.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the virtual module.")
-@click.option("--load-kg", type=float, default=0.0, show_default=True, help="Mass on the Z slide of the virtual module (kg).")
+@click.option("--load-kg", type=FINITE, default=0.0, show_default=True, help="Mass on the Z slide of the virtual module (kg).")
 @click.option("--no-pace", is_flag=True, help="Replay a file as fast as possible instead of at its t_s pace.")
 @click.option("--record", "record_path", type=str, default=None, help="Write every frame and result to this new CSV, with a .json sidecar (docs/live.md).")
 @click.option("--force", is_flag=True, help="Replace an existing --record file (never a file the run reads).")
-@click.option("--duration", "duration_s", type=float, default=None, help="Stop cleanly after this many seconds.")
+@click.option("--duration", "duration_s", type=FINITE, default=None, help="Stop cleanly after this many seconds.")
 @click.option("--port", type=int, default=8765, show_default=True, help="Dashboard port (0: any free port).")
 @click.option("--bind", default="127.0.0.1", show_default=True, help="Address the dashboard listens on; 0.0.0.0 exposes it to the network (docs/live.md).")
 @click.option("--allow-host", "allowed_hosts", multiple=True, help="A further Host name the dashboard answers (repeatable); default: loopback names only.")
 @click.option("--no-server", is_flag=True, help="Run without the dashboard.")
-@click.option("--update-hz", type=float, default=10.0, show_default=True, help="Dashboard refreshes per second.")
+@click.option("--update-hz", type=FINITE, default=10.0, show_default=True, help="Dashboard refreshes per second.")
 def live(
     machine: str | None,
     source_spec: str,
@@ -68,23 +69,24 @@ def live(
     Opens a dashboard on http://127.0.0.1:PORT/ unless --no-server. Ends after --duration, when a
     replay is finished (with --no-server), or on Ctrl-C.
     """
-    session = LiveSession(
-        machine=machine,
-        source=source_spec,
-        rate_hz=rate_hz,
-        path=motion,
-        seed=seed,
-        load_kg=load_kg,
-        pace=not no_pace,
-        record=record_path,
-        server=not no_server,
-        port=port,
-        update_hz=update_hz,
-        duration_s=duration_s,
-        force=force,
-        bind=bind,
-        allowed_hosts=allowed_hosts,
-    )
+    with flags_named(_FLAGS):
+        session = LiveSession(
+            machine=machine,
+            source=source_spec,
+            rate_hz=rate_hz,
+            path=motion,
+            seed=seed,
+            load_kg=load_kg,
+            pace=not no_pace,
+            record=record_path,
+            server=not no_server,
+            port=port,
+            update_hz=update_hz,
+            duration_s=duration_s,
+            force=force,
+            bind=bind,
+            allowed_hosts=allowed_hosts,
+        )
     stop = threading.Event()
     previous_term = signal.getsignal(signal.SIGTERM) if threading.current_thread() is threading.main_thread() else None
     try:
@@ -98,7 +100,8 @@ def live(
             text = summary.progress_text(session.state.measure_rate())
             click.echo(("\r" + text) if on_terminal else text, err=True, nl=not on_terminal)
 
-        summary = session.run(stop=stop, duration_s=duration_s, progress=progress, progress_interval_s=0.5 if on_terminal else 1.0)
+        with flags_named(_FLAGS):
+            summary = session.run(stop=stop, duration_s=duration_s, progress=progress, progress_interval_s=0.5 if on_terminal else 1.0)
         if on_terminal:
             click.echo("", err=True)
         click.echo(summary.progress_text(summary.mean_rate_hz, label="done"))
@@ -106,6 +109,14 @@ def live(
         if previous_term is not None:
             signal.signal(signal.SIGTERM, previous_term)
         session.close()
+
+
+#: the library's arguments and phrases in messages -> what to type on the command line
+_FLAGS = {
+    "rate_hz": "--rate", "duration_s": "--duration", "port": "--port", "update_hz": "--update-hz", "load_kg": "--load-kg",
+    "seed": "--seed", "record": "--record", "force=True": "--force", "overwrite=True": "--force",
+    "choose another port or host": "choose another --port or --bind", "a source replay:FILE": "--source replay:FILE",
+}
 
 
 def register(group: click.Group) -> None:

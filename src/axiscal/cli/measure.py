@@ -14,7 +14,7 @@ from typing import Any
 
 import click
 
-from axiscal.cli.common import echo_json
+from axiscal.cli.common import FINITE, echo_json, finite, flags_named
 from axiscal.errors import AxiscalError
 from axiscal.measurement import offline
 from axiscal.measurement.virtual import PATHS
@@ -102,7 +102,8 @@ def sensitivity_command(run_path, channel, machine, reference_offset_mm, output,
     columns E<A,B,C><axis>_urad or _arcsec of the run.
     """
     offset = _vector_mm(reference_offset_mm, "--reference-offset-mm")
-    report = offline.calibrate_sensitivity(run_path, channel, machine=machine, reference_offset_m=offset, output=output)
+    with flags_named({"reference_offset_m": "--reference-offset-mm"}):
+        report = offline.calibrate_sensitivity(run_path, channel, machine=machine, reference_offset_m=offset, output=output)
     _echo_report(report, as_json)
 
 
@@ -127,20 +128,22 @@ def mirror_command(run_path, letter, machine, max_order, output, as_json):
 
 @click.group("simulate")
 def simulate_group():
-    """Data from the virtual XZ module of paper 000 (docs/measurement.md)."""
+    """Simulated data: frames and laser readings of paper 000's XZ module, ballbar traces, probe readings."""
 
 
 @simulate_group.command("frames")
 @click.option("--path", "motion", type=click.Choice(PATHS), default="diagonal", show_default=True, help="Motion of the module.")
-@click.option("--rate", "rate_hz", type=click.FloatRange(min=0, min_open=True), default=1000.0, show_default=True, help="Frames per second (Hz).")
-@click.option("--duration", "duration_s", type=click.FloatRange(min=0, min_open=True), default=1.0, show_default=True, help="Length of the run (s).")
-@click.option("--load-kg", type=click.FloatRange(min=0), default=0.0, show_default=True, help="Mass on the Z slide (kg).")
+@click.option("--rate", "rate_hz", type=finite(min=0, min_open=True), default=1000.0, show_default=True, help="Frames per second (Hz).")
+@click.option("--duration", "duration_s", type=finite(min=0, min_open=True), default=1.0, show_default=True, help="Length of the run (s).")
+@click.option("--load-kg", type=finite(min=0), default=0.0, show_default=True, help="Mass on the Z slide (kg).")
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the sensors and the noise.")
 @click.option("--truth", is_flag=True, help="Add the true values as truth_<name> columns.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV (and its .json sidecar) here (default: standard output).")
 def simulate_frames_command(motion, rate_hz, duration_s, load_kg, seed, truth, output):
     """Raw frames of the virtual module: t_s and every channel, ready for `axiscal measure`."""
-    made = offline.simulate_frames(path=motion, rate_hz=rate_hz, duration_s=duration_s, load_kg=load_kg, seed=seed, truth=truth, output=output)
+    with flags_named({"rate_hz": "--rate", "duration_s": "--duration"}):
+        made = offline.simulate_frames(path=motion, rate_hz=rate_hz, duration_s=duration_s, load_kg=load_kg, seed=seed,
+                                       truth=truth, output=output)
     if output is None:
         click.echo(made.text, nl=False)
     else:
@@ -149,8 +152,8 @@ def simulate_frames_command(motion, rate_hz, duration_s, load_kg, seed, truth, o
 
 @simulate_group.command("laser")
 @click.option("--steps", type=click.IntRange(min=1), default=19, show_default=True, help="Steps from the start (0, 0).")
-@click.option("--step-mm", type=click.FloatRange(min=0, min_open=True), default=10.0, show_default=True, help="Move of each axis per step (mm).")
-@click.option("--load-kg", type=click.FloatRange(min=0), default=0.0, show_default=True, help="Mass on the Z slide (kg).")
+@click.option("--step-mm", type=finite(min=0, min_open=True), default=10.0, show_default=True, help="Move of each axis per step (mm).")
+@click.option("--load-kg", type=finite(min=0), default=0.0, show_default=True, help="Mass on the Z slide (kg).")
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the noise.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV (and its .json sidecar) here (default: standard output).")
 def simulate_laser_command(steps, step_mm, load_kg, seed, output):
@@ -172,10 +175,10 @@ def experiment_group():
 
 
 @experiment_group.command("diagonal")
-@click.option("--load-kg", type=click.FloatRange(min=0), default=0.0, show_default=True, help="Mass on the Z slide (kg); the paper's second run uses 2.")
+@click.option("--load-kg", type=finite(min=0), default=0.0, show_default=True, help="Mass on the Z slide (kg); the paper's second run uses 2.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the sensors and the noise.")
 @click.option("--samples", type=click.IntRange(min=1), default=1, show_default=True, help="Frames averaged at each stop.")
-@click.option("--squareness-error-arcsec", type=float, default=0.0, show_default=True, help="Error of the squareness in the model (arcsec), e.g. 8.18 for the paper's marble square.")
+@click.option("--squareness-error-arcsec", type=FINITE, default=0.0, show_default=True, help="Error of the squareness in the model (arcsec), e.g. 8.18 for the paper's marble square.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Write the figure (PNG), like paper 000 Fig. 22.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def diagonal_command(load_kg, seed, samples, squareness_error_arcsec, plot, as_json):
@@ -198,6 +201,11 @@ def diagonal_command(load_kg, seed, samples, squareness_error_arcsec, plot, as_j
 
 
 def register(group: click.Group) -> None:
+    from axiscal.cli.ballbar import simulate_ballbar_command
+    from axiscal.cli.separation import simulate_probes_command
+
+    simulate_group.add_command(simulate_ballbar_command)
+    simulate_group.add_command(simulate_probes_command)
     group.add_command(measure_command)
     group.add_command(calibrate_group)
     group.add_command(simulate_group)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from axiscal.cli.common import flags_named
+from axiscal.cli.common import FINITE, flags_named
 from axiscal.io.gcode import DIALECT_NAMES
 from axiscal.positioning.plan import CYCLES, cycle_csv, plan_test, write_plan
 from axiscal.units import MM
@@ -13,19 +13,19 @@ __all__ = ["plan_command", "register"]
 
 
 @click.command("plan")
-@click.option("--start-mm", type=float, required=True, help="First target position.")
-@click.option("--end-mm", type=float, required=True, help="Last target position.")
+@click.option("--start-mm", type=FINITE, required=True, help="First target position.")
+@click.option("--end-mm", type=FINITE, required=True, help="Last target position.")
 @click.option("--targets", "count", type=int, required=True, help="Number of targets (ISO 230-2: >= 5 per metre, >= 5).")
 @click.option("--runs", type=int, default=5, show_default=True, help="Runs in each direction.")
-@click.option("--overrun-mm", type=float, default=5.0, show_default=True, help="Travel beyond a target before approaching it.")
+@click.option("--overrun-mm", type=FINITE, default=5.0, show_default=True, help="Travel beyond a target before approaching it.")
 @click.option("--seed", type=int, default=None, help="Seed of the random target offsets (same seed, same targets) [a fresh one, shown in the note and recorded in the sidecar and the G-code].")
 @click.option("--cycle", type=click.Choice(CYCLES), default="linear", show_default=True, help="Test cycle.")
 @click.option("--gcode", "gcode_path", type=click.Path(dir_okay=False), help="Also write the cycle as a G-code program.")
 @click.option("--dialect", type=click.Choice(DIALECT_NAMES), default="linuxcnc", show_default=True,
               help="The control's G-code dialect: its dwell word and unit, units, comments, start and end.")
 @click.option("--axis", default="X", show_default=True, help="Axis letter in the G-code program.")
-@click.option("--dwell-s", type=float, default=2.0, show_default=True, help="Dwell at each target in the G-code, seconds (written in the dialect's own word and unit).")
-@click.option("--feed-mm-min", type=float, default=2000.0, show_default=True, help="Feed of the G-code moves.")
+@click.option("--dwell-s", type=FINITE, default=2.0, show_default=True, help="Dwell at each target in the G-code, seconds (written in the dialect's own word and unit).")
+@click.option("--feed-mm-min", type=FINITE, default=2000.0, show_default=True, help="Feed of the G-code moves.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
               help="Write the cycle CSV (and its JSON sidecar) here instead of stdout.")
 def plan_command(start_mm, end_mm, count, runs, overrun_mm, seed, cycle, gcode_path, dialect, axis, dwell_s, feed_mm_min, output):

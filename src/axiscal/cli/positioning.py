@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from axiscal.cli.common import echo_json, flags_named, given_options
+from axiscal.cli.common import FINITE, echo_json, flags_named, given_options
 from axiscal.errors import AxiscalError
 from axiscal.materials import STEEL_EXPANSION_PER_K
 from axiscal.positioning.evaluation import STANDARDS
@@ -20,8 +20,8 @@ __all__ = ["positioning_command", "register"]
               help="Evaluation standard; jis-b6192 evaluates with the ISO 230-2:1988 (3 s) formulas.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (figures in um, arcsec for a rotary axis; per-target arrays).")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write the positioning plot to this file.")
-@click.option("--wavelength-nm", type=float, default=None, help="Vacuum wavelength for raw laser readings [632.991].")
-@click.option("--expansion-per-k", type=float, default=STEEL_EXPANSION_PER_K, show_default=True,
+@click.option("--wavelength-nm", type=FINITE, default=None, help="Vacuum wavelength for raw laser readings [632.991].")
+@click.option("--expansion-per-k", type=FINITE, default=STEEL_EXPANSION_PER_K, show_default=True,
               help="Material expansion coefficient for material_temperature_c normalisation to 20 degC.")
 @click.option("--uncertainty", "budget_path", type=click.Path(dir_okay=False),
               help="Uncertainty budget (TOML): add U (k = 2) of E, R, B, A, M and the budget table.")

@@ -1,4 +1,4 @@
-"""``axiscal separate`` and ``axiscal simulate-probes``: multi-probe straightness error separation (paper 001)."""
+"""``axiscal separate`` and ``axiscal simulate probes``: multi-probe straightness error separation (paper 001)."""
 
 from __future__ import annotations
 
@@ -6,6 +6,7 @@ import math
 
 import click
 
+from axiscal.cli.common import FINITE, hidden_alias
 from axiscal.errors import AxiscalError
 from axiscal.straightness.files import (
     SEPARATION_METHODS,
@@ -14,7 +15,7 @@ from axiscal.straightness.files import (
 )
 from axiscal.units import MM, UM
 
-__all__ = ["separate_command", "simulate_probes_command", "register"]
+__all__ = ["separate_command", "simulate_probes_command", "simulate_probes_alias", "register"]
 
 
 def _positive(**flags: float | None) -> None:
@@ -31,8 +32,8 @@ def _mm(value: float | None) -> float | None:
 @click.command("separate")
 @click.argument("readings", type=click.Path(dir_okay=False))
 @click.option("--method", type=click.Choice(SEPARATION_METHODS), default="combined", show_default=True, help="Separation method.")
-@click.option("--spacing-mm", type=float, help="Probe spacing A-B, mm (every method but reversal).")
-@click.option("--spacing-bc-mm", type=float, help="Probe spacing B-C, mm (default: the A-B spacing).")
+@click.option("--spacing-mm", type=FINITE, help="Probe spacing A-B, mm (every method but reversal).")
+@click.option("--spacing-bc-mm", type=FINITE, help="Probe spacing B-C, mm (default: the A-B spacing).")
 @click.option(
     "--reversed",
     "reversed_run",
@@ -42,7 +43,7 @@ def _mm(value: float | None) -> float | None:
 @click.option("--two-probe", is_flag=True, help="Frequency method: use probes A and B only (default: all probes in the file).")
 @click.option(
     "--min-gain",
-    type=float,
+    type=FINITE,
     default=0.05,
     show_default=True,
     help="Frequency method: harmonics below this fraction of the gain envelope are left out.",
@@ -50,7 +51,7 @@ def _mm(value: float | None) -> float | None:
 @click.option(
     "--periodic", is_flag=True, help="Frequency method: treat the profile as periodic over the record (no bow taken out)."
 )
-@click.option("--calibration-mm", type=float, nargs=2, help="Combined method: START END of the smooth region joining the groups.")
+@click.option("--calibration-mm", type=FINITE, nargs=2, help="Combined method: START END of the smooth region joining the groups.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV (and its JSON sidecar) here instead of standard output.")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write a plot of the separated profile and motion.")
 def separate_command(
@@ -99,7 +100,7 @@ def separate_command(
         click.echo(run.csv_text, nl=False)
 
 
-@click.command("simulate-probes")
+@click.command("probes")
 @click.option(
     "--profile",
     "profile_path",
@@ -114,14 +115,14 @@ def separate_command(
     type=click.Path(dir_okay=False),
     help="Slide motion S: position_mm, deviation_um[, yaw_urad].",
 )
-@click.option("--spacing-mm", type=float, required=True, help="Probe spacing A-B, mm.")
-@click.option("--spacing-bc-mm", type=float, help="Probe spacing B-C, mm (default: the A-B spacing).")
+@click.option("--spacing-mm", type=FINITE, required=True, help="Probe spacing A-B, mm.")
+@click.option("--spacing-bc-mm", type=FINITE, help="Probe spacing B-C, mm (default: the A-B spacing).")
 @click.option("--probes", type=click.IntRange(2, 3), default=3, show_default=True, help="Number of probes.")
-@click.option("--step-mm", type=float, required=True, help="Sampling step of the carriage, mm.")
-@click.option("--noise-um", type=float, default=0.0, show_default=True, help="Standard deviation of the probe noise, um.")
+@click.option("--step-mm", type=FINITE, required=True, help="Sampling step of the carriage, mm.")
+@click.option("--noise-um", type=FINITE, default=0.0, show_default=True, help="Standard deviation of the probe noise, um.")
 @click.option(
     "--offsets-um",
-    type=float,
+    type=FINITE,
     nargs=3,
     default=(0.0, 0.0, 0.0),
     show_default=True,
@@ -169,6 +170,10 @@ def simulate_probes_command(
         click.echo(simulated.csv_text, nl=False)
 
 
+simulate_probes_alias = hidden_alias(simulate_probes_command, "simulate-probes", "simulate probes")
+
+
 def register(group: click.Group) -> None:
+    """``separate`` and the old name ``simulate-probes``; ``simulate probes`` joins the ``simulate`` group."""
     group.add_command(separate_command)
-    group.add_command(simulate_probes_command)
+    group.add_command(simulate_probes_alias)

@@ -12,7 +12,7 @@ import math
 
 import click
 
-from axiscal.cli.common import echo_json
+from axiscal.cli.common import FINITE, echo_json
 from axiscal.errors import AxiscalError
 from axiscal.instruments.optics import BK7_INDEX
 from axiscal.squareness.cmm import (
@@ -42,7 +42,7 @@ __all__ = [
 @click.option("--second", "second_csv", required=True, type=click.Path(dir_okay=False),
               help="Run of the plane's second axis: position_mm, deviation_um (deviation along the first axis).")
 @click.option("--plane", default="XY", show_default=True, help="XY (EC0Y), XZ (EB0Z) or YZ (EA0Z).")
-@click.option("--prism-deviation-arcsec", type=float, default=0.0, show_default=True,
+@click.option("--prism-deviation-arcsec", type=FINITE, default=0.0, show_default=True,
               help="D: the prism turns the beam by 90 deg + D (paper 002 eq 13); subtracted per eq 21. "
               "Sign for a beam arriving against the first axis and leaving along the second; "
               "give -D if one of the two runs the other way (docs/squareness.md).")
@@ -79,8 +79,8 @@ def optics_group() -> None:
 
 
 @optics_group.command("pentaprism")
-@click.option("--index", type=float, default=BK7_INDEX, show_default=True, help="Refractive index of the glass.")
-@click.option("--range-arcmin", type=float, default=10.0, show_default=True, help="Sweep rotations from -R to +R.")
+@click.option("--index", type=FINITE, default=BK7_INDEX, show_default=True, help="Refractive index of the glass.")
+@click.option("--range-arcmin", type=FINITE, default=10.0, show_default=True, help="Sweep rotations from -R to +R.")
 @click.option("--steps", type=int, default=21, show_default=True, help="Number of rotation angles in the sweep.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False),
@@ -139,7 +139,7 @@ def compensate_command(points_csv, values, output, inverse):
 @cmm_group.command("gauge-blocks")
 @click.option("--squareness-arcmin", "values", default=",".join(f"{v:g}" for v in PAPER_004_SQUARENESS_ARCMIN),
               show_default=True, callback=_squareness_arcmin, help=_SQUARENESS_HELP)
-@click.option("--end-offset-mm", type=float, default=1.0, show_default=True,
+@click.option("--end-offset-mm", type=FINITE, default=1.0, show_default=True,
               help="Sideways distance, in each of the two across directions, between the two probed end points.")
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def gauge_blocks_command(values, end_offset_mm, as_json):

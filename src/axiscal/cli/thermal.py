@@ -6,7 +6,7 @@ import math
 
 import click
 
-from axiscal.cli.common import echo_json
+from axiscal.cli.common import FINITE, echo_json
 from axiscal.errors import AxiscalError
 from axiscal.thermal.files import evaluate_drift, evaluate_etve
 
@@ -20,7 +20,7 @@ def thermal_group() -> None:
 
 @thermal_group.command("etve")
 @click.argument("run", type=click.Path(dir_okay=False))
-@click.option("--max-lag-h", type=float, help="Largest lag of the correlations, hours (default a quarter of the test).")
+@click.option("--max-lag-h", type=FINITE, help="Largest lag of the correlations, hours (default a quarter of the test).")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON: etve_um per direction, temperature_range_c, correlations.")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write the drift plot with the temperatures.")
 def thermal_etve_command(run: str, max_lag_h: float | None, as_json: bool, plot_path: str | None) -> None:

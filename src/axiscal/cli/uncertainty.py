@@ -7,7 +7,7 @@ from contextlib import contextmanager
 
 import click
 
-from axiscal.cli.common import echo_json
+from axiscal.cli.common import FINITE, echo_json
 from axiscal.errors import AxiscalError
 from axiscal.uncertainty.volumetric import SCHEDULER_TIMEOUT_S
 from axiscal.uncertainty.volumetric_map import volumetric_uncertainty_map
@@ -49,7 +49,7 @@ def uncertainty_group() -> None:
 @click.option("--draws", type=int, default=10_000, show_default=True, help="Number of Monte Carlo draws.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the draws (same seed, same map, here or on a cluster).")
 @click.option("--scheduler", help='Run on Dask: "local" (a 2-worker LocalCluster) or a scheduler address (tcp://host:8786).')
-@click.option("--scheduler-timeout-s", "timeout_s", type=float, default=SCHEDULER_TIMEOUT_S, show_default=True,
+@click.option("--scheduler-timeout-s", "timeout_s", type=FINITE, default=SCHEDULER_TIMEOUT_S, show_default=True,
               help="Seconds to wait for a scheduler given by address.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV here (and its JSON sidecar) instead of standard output.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Write |e| and its 95 % interval against the axis positions (PNG, SVG, PDF).")

@@ -99,7 +99,7 @@ class Recorder:
         try:
             self._fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_APPEND | (os.O_TRUNC if overwrite else os.O_EXCL), 0o644)
         except FileExistsError:
-            raise AxiscalError("the record file exists; choose another file, or give --force to replace it", path=self.path) from None
+            raise AxiscalError("the record file exists; choose another file, or give overwrite=True to replace it", path=self.path) from None
         except OSError as exc:
             raise AxiscalError(f"cannot open the record file ({exc.strerror})", path=self.path) from None
         try:

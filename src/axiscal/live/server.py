@@ -384,7 +384,7 @@ class LiveServer:
         except (OSError, OverflowError) as exc:
             self._socket.close()
             reason = getattr(exc, "strerror", None) or exc
-            raise AxiscalError(f"the dashboard cannot listen on {self.host}:{self.port} ({reason}); choose another --port or --bind") from None
+            raise AxiscalError(f"the dashboard cannot listen on {self.host}:{self.port} ({reason}); choose another port or host") from None
         self.port = self._socket.getsockname()[1]
         self._thread.start()
         waited = 0.0

@@ -78,7 +78,7 @@ def build_system(machine: str | Path | None, source_kind: str, *, seed: int = 0,
         if unknown:
             raise AxiscalError(
                 f"the sim source cannot feed channel(s) {', '.join(unknown)}: it emits the virtual module's channels; "
-                "use --source replay:FILE or tcp:HOST:PORT with this machine",
+                "with this machine use a source replay:FILE or tcp:HOST:PORT",
                 path=machine,
             )
     return system, module
@@ -99,18 +99,18 @@ def _shown(value: object) -> str:
 def _check(rate_hz: float, duration_s: float | None, port: int, update_hz: float, load_kg: float, path: str, seed: int) -> None:
     """Refuse a bad setting before anything is built or allocated (every number must be finite)."""
     if not (_finite(rate_hz) and 0 < rate_hz <= MAX_RATE_HZ):
-        raise AxiscalError(f"--rate must be a positive number of frames per second up to {MAX_RATE_HZ:g}, got {_shown(rate_hz)}")
+        raise AxiscalError(f"rate_hz must be a positive number of frames per second up to {MAX_RATE_HZ:g}, got {_shown(rate_hz)}")
     if duration_s is not None and not (_finite(duration_s) and duration_s > 0):
-        raise AxiscalError(f"--duration must be positive seconds, got {_shown(duration_s)}")
+        raise AxiscalError(f"duration_s must be positive seconds, got {_shown(duration_s)}")
     if not isinstance(port, int) or isinstance(port, bool) or not 0 <= port <= 65535:
-        raise AxiscalError(f"--port must be 0-65535, got {port}")
+        raise AxiscalError(f"port must be 0-65535, got {port}")
     low, high = UPDATE_HZ_RANGE
     if not (_finite(update_hz) and low <= update_hz <= high):
-        raise AxiscalError(f"--update-hz must be {low:g} to {high:g} refreshes per second, got {_shown(update_hz)}")
+        raise AxiscalError(f"update_hz must be {low:g} to {high:g} refreshes per second, got {_shown(update_hz)}")
     if not (_finite(load_kg) and load_kg >= 0):
-        raise AxiscalError(f"--load-kg must be a finite mass of 0 kg or more, got {_shown(load_kg)}")
+        raise AxiscalError(f"load_kg must be a finite mass of 0 kg or more, got {_shown(load_kg)}")
     if not isinstance(seed, int) or isinstance(seed, bool) or seed < 0:
-        raise AxiscalError(f"--seed must not be negative, got {seed!r}" if isinstance(seed, int) else f"--seed must be a whole number, not {seed!r}")
+        raise AxiscalError(f"seed must not be negative, got {seed!r}" if isinstance(seed, int) else f"seed must be a whole number, not {seed!r}")
     if not isinstance(path, str) or path not in PATHS:
         raise AxiscalError(f"unknown path '{path}'; use one of {', '.join(PATHS)}")
 
@@ -159,9 +159,9 @@ def check_record_target(record: str | Path, inputs: Sequence[str | Path], *, for
     used = {identity for identity in map(_identity, inputs) if identity is not None}
     for target in (Path(record), sidecar_path(record)):
         if _identity(target) in used:
-            raise AxiscalError(f"--record would overwrite {target.name}, a file this run reads; record to another file", path=record)
+            raise AxiscalError(f"record would overwrite {target.name}, a file this run reads; record to another file", path=record)
     if not force and Path(record).exists():
-        raise AxiscalError("the record file exists; choose another file, or give --force to replace it", path=record)
+        raise AxiscalError("the record file exists; choose another file, or give force=True to replace it", path=record)
 
 
 class LiveSession:

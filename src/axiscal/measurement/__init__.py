@@ -1,4 +1,4 @@
-"""From raw sensor frames to the error of the functional point (paper 000), the virtual instrument that simulates them, and a whole campaign simulated on it."""
+"""From raw sensor frames to the error of the functional point (paper 000), the calibration runs of the sensors and the diagonal they explain, the virtual instrument that simulates them, and a whole campaign simulated on it."""
 
 from __future__ import annotations
 
@@ -74,6 +74,9 @@ from axiscal.measurement.virtual import (
     diagonal_experiment,
 )
 
+from axiscal.measurement.sensor_diagonal import SensorDiagonal, sensor_diagonal
+from axiscal.measurement.sensor_runs import SENSOR_RUN_COLUMNS, SensorRuns, calibrate_sensor_runs
+
 __all__ = [
     "display_name",
     "display_factor",
@@ -134,4 +137,9 @@ __all__ = [
     "probe_readings",
     "squareness_runs",
     "write_campaign",
+    "SENSOR_RUN_COLUMNS",
+    "SensorRuns",
+    "calibrate_sensor_runs",
+    "SensorDiagonal",
+    "sensor_diagonal",
 ]

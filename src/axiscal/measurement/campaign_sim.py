@@ -438,6 +438,10 @@ def write_campaign(folder: str | Path, *, seed: int = 0, laser_runs: bool = True
            description="straightness of Z along X against the beam turned by the pentaprism",
            prism_deviation_arcsec=PRISM_DEVIATION_RAD / ARCSEC)
     for load_kg in DIAGONAL_LOADS_KG:
+        stops, _ = VirtualModule(seed=seed, load_kg=load_kg).frames_at({"X": _DIAGONAL_Q_M, "Z": _DIAGONAL_Q_M.copy()})
+        write_data_csv(folder / f"sixdof_stops_{load_kg:g}kg.csv", stops, kind="raw frames",
+                       description=f"raw frames of the virtual XZ module, one at each stop of the diagonal readings, "
+                                   f"{load_kg:g} kg on Z")
         _plain(folder / f"diagonal_{load_kg:g}kg.csv", diagonal_readings(VirtualModule(seed=seed, load_kg=load_kg)),
                {"nominal_mm": ".6f", "measured_mm": ".6f"}, kind="diagonal readings",
                description=f"laser interferometer on the XZ diagonal, {load_kg:g} kg on Z", load_kg=load_kg)

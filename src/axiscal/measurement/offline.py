@@ -590,7 +590,7 @@ def calibrate_sensitivity(
         focal = head.qd_focal_m if kind == "qd" else 2.0 * head.roll_focal_m
         reference = component.sign * reference * angle_factor(unit) * focal / channel_unit
         if reference_offset_m is not None:
-            raise AxiscalError("--reference-offset-mm applies to translation channels (scale, PSD), not to angles")
+            raise AxiscalError("reference_offset_m applies to translation channels (scale, PSD), not to angles")
     else:
         reference = reference * length_factor(unit, allowed=("nm", "um", "mm")) / channel_unit
         if reference_offset_m is not None:
@@ -733,7 +733,7 @@ def simulate_frames(
         raise AxiscalError(f"unknown path {path!r}; use one of {', '.join(PATHS)}")
     count = int(round(duration_s * rate_hz))
     if count < 1 or count > MAX_SIMULATED_FRAMES:
-        raise AxiscalError(f"--rate x --duration gives {count} frames; allowed 1 to {MAX_SIMULATED_FRAMES}")
+        raise AxiscalError(f"rate_hz x duration_s gives {count} frames; allowed 1 to {MAX_SIMULATED_FRAMES}")
     if path not in PATHS:
         raise AxiscalError(f"unknown path '{path}'; use one of {', '.join(PATHS)}")
     module = VirtualModule(seed=seed, load_kg=load_kg)

@@ -7,9 +7,10 @@ the virtual machine and captured stop by stop from the laser's recording
 (:func:`axiscal.capture.cycle.measure_axis`); the campaign, with its uncertainty budget, is reported
 (report.html, results.json, the LinuxCNC compensation files). As left: those compensation files are
 loaded into the virtual controller, each axis is measured again the same way, and the as-left
-campaign is reported compared with the as-found results. Beside the campaign, paper 000's diagonal
-experiment with the live 6-DOF measurement (eq 13, 0 and 2 kg) gives the figures the offline model
-cannot reach under load. The console lines come from the template ``demo_summary.txt.j2``.
+campaign is reported compared with the as-found results. The as-found campaign also holds paper
+000's diagonal experiment with the 6-DOF sensors read at the same stops (eq 13, 0 and 2 kg: the
+figures the offline model cannot reach under load). The console lines come from the template
+``demo_summary.txt.j2``.
 """
 
 from __future__ import annotations
@@ -32,12 +33,7 @@ from axiscal.measurement.campaign_sim import (
     campaign_toml,
     write_campaign,
 )
-from axiscal.measurement.virtual import (
-    STROKE_M,
-    DiagonalExperiment,
-    VirtualModule,
-    diagonal_experiment,
-)
+from axiscal.measurement.virtual import STROKE_M
 from axiscal.report.writer import ReportFiles, report_campaign
 from axiscal.units import UM
 
@@ -171,8 +167,6 @@ class DemoResult:
         The as-left campaign (``folder / "as-left" / "campaign"``): the compensation loaded, measured again.
     as_left_report : ReportFiles
         Its report, compared with the as-found results (``folder / "as-left" / "report"``).
-    experiments : dict of float to DiagonalExperiment
-        Paper 000's diagonal experiment with the live 6-DOF measurement, per load in kg (0 and 2).
     summary : dict
         The content of ``summary.json`` (display units in the key names).
     """
@@ -182,7 +176,6 @@ class DemoResult:
     report: ReportFiles
     as_left: SimulatedCampaign
     as_left_report: ReportFiles
-    experiments: dict[float, DiagonalExperiment]
     summary: dict[str, Any]
 
     @property
@@ -235,7 +228,7 @@ def _cycle(found: ReportFiles, left: ReportFiles) -> dict[str, Any]:
     return out
 
 
-def _summary(report: ReportFiles, as_left: ReportFiles, experiments: dict[float, DiagonalExperiment]) -> dict[str, Any]:
+def _summary(report: ReportFiles, as_left: ReportFiles) -> dict[str, Any]:
     results = report.results_data
     tests = {t.id: t for t in results.tests}
     return {
@@ -256,11 +249,11 @@ def _summary(report: ReportFiles, as_left: ReportFiles, experiments: dict[float,
         },
         "experiment": {
             f"{load:g}kg": {
-                "before_max_um": e.before_max_m / UM,
-                "after_max_um": e.after_max_m / UM,
-                "scales_only_max_um": e.scales_only_max_m / UM,
+                "before_max_um": tests[f"sixdof-diagonal-{load:g}kg"].figures["E_BD_max_um"],
+                "after_max_um": tests[f"sixdof-diagonal-{load:g}kg"].figures["E_AD_max_um"],
+                "scales_only_max_um": tests[f"sixdof-diagonal-{load:g}kg"].figures["scales_only_max_um"],
             }
-            for load, e in experiments.items()
+            for load in DIAGONAL_LOADS_KG
         },
     }
 
@@ -305,7 +298,6 @@ def run_demo(output_dir: str | Path = "axiscal-demo", *, seed: int = 0) -> DemoR
     report = report_campaign(campaign.folder, folder / "as-found" / "report")
     as_left = write_as_left_campaign(folder / "as-left" / "campaign", report.folder / "compensation", seed=seed)
     as_left_report = report_campaign(as_left.folder, folder / "as-left" / "report", compare=report.results)
-    experiments = {load: diagonal_experiment(VirtualModule(seed=seed, load_kg=load)) for load in DIAGONAL_LOADS_KG}
-    summary = _summary(report, as_left_report, experiments)
+    summary = _summary(report, as_left_report)
     write_json(folder / "summary.json", summary)
-    return DemoResult(folder, campaign, report, as_left, as_left_report, experiments, summary)
+    return DemoResult(folder, campaign, report, as_left, as_left_report, summary)

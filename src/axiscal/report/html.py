@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from axiscal.campaign.config import TABLE_KEYS
 from axiscal.campaign.results import CampaignResults, TestResult, results_payload
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_choice, check_count, check_mapping, is_real
@@ -29,6 +30,7 @@ __all__ = [
     "compare_label",
     "verdict_rows",
     "sections",
+    "report_facts",
 ]
 
 _SECTION_ORDER = ("positioning", "straightness", "separation", "squareness", "ballbar", "diagonal", "sixdof")
@@ -38,6 +40,7 @@ _OWN_SECTIONS = {
     "thermal_etve": ("thermal", "Thermal tests (ISO 230-3)"),
     "thermal_drift": ("thermal", "Thermal tests (ISO 230-3)"),
 }
+_SECTION_TITLES = {"sensor_calibration": "Sensor calibration", "sixdof_diagonal": "Diagonal with the 6-DOF sensors"}
 
 
 def template_environment():
@@ -262,13 +265,71 @@ def sections(tests: list[TestResult]) -> list[dict[str, Any]]:
         elif test.kind in _OWN_SECTIONS:
             key, title = _OWN_SECTIONS[test.kind]
         else:
-            key, title = test.kind, test.kind.capitalize()
+            key, title = test.kind, _SECTION_TITLES.get(test.kind, test.kind.capitalize())
         groups.setdefault(key, []).append(test)
         titles[key] = title
     axis_keys = sorted(k for k in groups if k.startswith("axis-"))
     other = [k for k in ("squareness", "ballbar", "diagonal", "sixdof") if k in groups]
     rest = [k for k in groups if k not in axis_keys and k not in other]
     return [{"anchor": k, "title": titles[k], "tests": groups[k]} for k in (*axis_keys, *other, *rest)]
+
+
+# (table, key) -> the label of its line in the report's facts, in the order they are printed; the
+# instrument's name, serial, certificate and calibration date share one line, as the machine's name
+# and serial do
+_FACT_LABELS = {
+    ("machine", "name"): "Machine",
+    ("machine", "model"): "Machine model",
+    ("machine", "controller"): "Controller",
+    ("campaign", "date"): "Date",
+    ("campaign", "operator"): "Operator",
+    ("campaign", "customer"): "Customer",
+    ("instrument", "name"): "Instrument",
+    ("instrument", "vacuum_wavelength_nm"): "Vacuum wavelength",
+    ("campaign", "notes"): "Notes",
+}
+_JOINED = {("machine", "name"): ("serial",), ("instrument", "name"): ("serial", "certificate", "calibrated")}
+_SHOWN_ELSEWHERE = {("campaign", "title")}  # the report's heading
+
+
+def report_facts(results: CampaignResults) -> list[tuple[str, str]]:
+    """The lines that head the report: every field of [campaign], [machine] and [instrument] stated.
+
+    Parameters
+    ----------
+    results : CampaignResults
+
+    Returns
+    -------
+    list of (str, str)
+        ``(label, text)``: ``("Machine", "XZ module, serial 7")``, ``("Vacuum wavelength",
+        "632.99137 nm")`` ... The instrument's line says ``not stated`` when the campaign has no
+        ``[instrument]``; a field without a label of its own is shown under its key.
+
+    Raises
+    ------
+    AxiscalError
+        For ``results`` that are not a CampaignResults.
+    """
+    check_instance("results", results, CampaignResults)
+    tables = {"campaign": results.campaign, "machine": results.machine, "instrument": results.instrument}
+    joined = {(table, key) for (table, _), keys in _JOINED.items() for key in keys}
+    facts: list[tuple[str, str]] = []
+    for (table, key), label in _FACT_LABELS.items():
+        values = tables[table]
+        if (table, key) in _JOINED:
+            parts = [str(values[key])] if values.get(key) not in (None, "") else []
+            parts += [f"{extra} {values[extra]}" for extra in _JOINED[(table, key)] if values.get(extra) not in (None, "")]
+            if parts or table == "instrument":
+                facts.append((label, ", ".join(parts) or "not stated"))
+        elif values.get(key) not in (None, ""):
+            value = values[key]
+            facts.append((label, f"{value} nm" if key.endswith("_nm") else str(value)))
+    done = set(_FACT_LABELS) | joined | _SHOWN_ELSEWHERE
+    for table, keys in TABLE_KEYS.items():
+        facts += [(f"[{table}] {key}", str(tables[table][key])) for key in keys
+                  if (table, key) not in done and tables[table].get(key) not in (None, "")]
+    return facts
 
 
 def render_html(
@@ -321,6 +382,7 @@ def render_html(
         campaign=results.campaign,
         machine=results.machine,
         instrument=results.instrument,
+        facts=report_facts(results),
         verdict=results.verdict,
         verdict_rows=verdict_rows(results, before),
         has_u=any(c.U is not None for test in results.tests for c in test.checks),

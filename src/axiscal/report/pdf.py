@@ -24,6 +24,7 @@ from axiscal.report.html import (
     compare_label,
     decision_statement,
     previous_figures,
+    report_facts,
     sections,
     template_environment,
     verdict_rows,
@@ -109,10 +110,6 @@ def write_pdf(
     env = template_environment()
     env.filters["t"] = typst_text
     env.filters["s"] = typst_string
-    instrument = results.instrument
-    parts = [instrument.get("name")] if instrument.get("name") else []
-    parts += [f"{label} {instrument[key]}" for key, label in (("serial", "serial"), ("certificate", "certificate"),
-                                                              ("calibrated", "calibrated")) if instrument.get(key)]
     with tempfile.TemporaryDirectory(prefix="axiscal-pdf-") as folder:
         root = Path(folder)
         counter = 0
@@ -136,7 +133,7 @@ def write_pdf(
             generated=generated or _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
             campaign=results.campaign,
             machine=results.machine,
-            instrument_line=", ".join(parts) or "not stated",
+            facts=report_facts(results),
             verdict=results.verdict,
             verdict_rows=verdict_rows(results, before),
             warnings=results_payload(results)["warnings"],

@@ -2,7 +2,7 @@
 
 ISO 230-1 straightness of a profile file (``axiscal straightness``) and paper 001's multi-probe
 error separation from a readings file (``axiscal separate``) or of a simulated set-up
-(``axiscal simulate-probes``). Files are in the units their column names spell; everything
+(``axiscal simulate probes``). Files are in the units their column names spell; everything
 returned is SI. Data CSVs are written plain (header first, no comment lines) with a JSON sidecar
 holding their metadata.
 """
@@ -492,7 +492,7 @@ def separate_file(
 
 
 # ---------------------------------------------------------------------------------------------
-# axiscal simulate-probes
+# axiscal simulate probes
 
 
 @dataclass(frozen=True)

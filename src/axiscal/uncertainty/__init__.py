@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from axiscal.uncertainty.budget import (
     BUDGET_KEYS,
+    BUDGET_RANGES,
     COMPONENTS,
     HE_NE_WAVELENGTH_NM,
     Budget,
@@ -58,6 +59,7 @@ from axiscal.uncertainty.volumetric_map import (
 __all__ = [
     "COMPONENTS",
     "BUDGET_KEYS",
+    "BUDGET_RANGES",
     "HE_NE_WAVELENGTH_NM",
     "Budget",
     "budget_from_dict",

@@ -38,6 +38,7 @@ from axiscal.units import ARCSEC, UM
 __all__ = [
     "COMPONENTS",
     "BUDGET_KEYS",
+    "BUDGET_RANGES",
     "HE_NE_WAVELENGTH_NM",
     "Budget",
     "budget_from_dict",
@@ -103,7 +104,8 @@ class Budget:
     Raises
     ------
     AxiscalError
-        A value that is not a finite number, a negative uncertainty, an unknown method.
+        A value that is not a finite number, a negative uncertainty, a value outside its physical
+        range (:data:`BUDGET_RANGES`, here in SI), an unknown method.
     """
 
     length_U_rel: float = 0.0
@@ -136,6 +138,10 @@ class Budget:
         for name in _UNCERTAINTIES:
             if getattr(self, name) < 0:
                 raise AxiscalError(f"budget value {name} must not be negative, got {getattr(self, name):g}", path=self.source)
+        for name, (low, high) in _SI_RANGES.items():
+            if not low <= getattr(self, name) <= high:
+                raise AxiscalError(f"budget value {name} must be {low:g} to {high:g}, got {getattr(self, name):g}",
+                                   path=self.source)
         if self.method not in METHODS:
             raise AxiscalError(f"unknown refractive-index method '{self.method}'; use one of {', '.join(METHODS)}", path=self.source)
 
@@ -164,6 +170,28 @@ _FIELDS: dict[tuple[str, str], tuple[str, float]] = {
     ("instrument", "straightness_U_um"): ("straightness_U_m", UM),
     ("setup", "prism_deviation_u_arcsec"): ("prism_deviation_u_rad", ARCSEC),
 }
+
+
+#: the physical range of each number of a budget file, in the file's units (both ends allowed); a value
+#: beyond it is a typing or unit mistake (a budget of 1e300 um), refused before any sum is formed.
+#: The air conditions and the wavelength are bounded by the refractive-index equation itself.
+BUDGET_RANGES: dict[tuple[str, str], tuple[float, float]] = {
+    ("instrument", "length_U_ppm"): (0.0, 1000.0),
+    ("instrument", "straightness_U_um"): (0.0, 1000.0),
+    ("air", "temperature_u_K"): (0.0, 50.0),
+    ("air", "pressure_u_Pa"): (0.0, 10000.0),
+    ("air", "humidity_u_percent"): (0.0, 100.0),
+    ("machine", "temperature_C"): (-50.0, 150.0),
+    ("machine", "temperature_u_K"): (0.0, 50.0),
+    ("machine", "expansion_per_K"): (-1e-3, 1e-3),
+    ("machine", "expansion_u_per_K"): (0.0, 1e-3),
+    ("setup", "misalignment_urad"): (0.0, 1e5),
+    ("setup", "eve_um"): (0.0, 10000.0),
+    ("setup", "prism_deviation_u_arcsec"): (0.0, 3600.0),
+}
+
+# Budget field -> its range in SI
+_SI_RANGES = {_FIELDS[key][0]: (low * _FIELDS[key][1], high * _FIELDS[key][1]) for key, (low, high) in BUDGET_RANGES.items()}
 
 
 def _line_of(text: str, section: str, key: str | None = None) -> int | None:
@@ -215,8 +243,9 @@ def budget_from_dict(
     Raises
     ------
     AxiscalError
-        ``data`` that is not a mapping, an unknown section or key, a value that is not a number, a negative uncertainty, air
-        conditions outside the range of the refractive-index equation.
+        ``data`` that is not a mapping, an unknown section or key, a value that is not a number, a negative uncertainty, a
+        value outside its physical range (:data:`BUDGET_RANGES`), air conditions outside the range of the refractive-index
+        equation.
 
     Examples
     --------
@@ -261,6 +290,10 @@ def budget_from_dict(
             name, factor = _FIELDS[(section, key)]
             if name in _UNCERTAINTIES and value < 0:
                 raise AxiscalError(f"[{section}] {key} must not be negative, got {value:g}", path=source, line=line(section, key))
+            low, high = BUDGET_RANGES.get((section, key), (-math.inf, math.inf))
+            if not low <= value <= high:
+                raise AxiscalError(f"[{section}] {key} must be {low:g} to {high:g}, got {value:g}", path=source,
+                                   line=line(section, key))
             values[name] = float(value) * factor
     try:
         budget = Budget(**values, source=source)

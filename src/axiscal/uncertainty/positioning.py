@@ -159,7 +159,7 @@ def positioning_uncertainty(
     length = _travel(run)
     components = length_components(budget, length)
     U = {
-        figure: COVERAGE_FACTOR * math.sqrt(sum(components[c] ** 2 for c in names))
+        figure: COVERAGE_FACTOR * math.hypot(*(components[c] for c in names))
         for figure, names in FIGURE_COMPONENTS.items()
     }
     U = {figure: U[figure] for figure in FIGURES}

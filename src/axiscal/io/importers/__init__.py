@@ -17,7 +17,9 @@ from axiscal.io.importers.columnmap import (
 from axiscal.io.importers.rtx import (
     RTX_DATA,
     RTX_EOF,
+    RTX_FIELDS,
     RTX_HEADER,
+    RTX_TRAILERS,
     RtxCapture,
     read_rtx,
     rtx_csv,
@@ -39,6 +41,8 @@ __all__ = [
     "RTX_HEADER",
     "RTX_DATA",
     "RTX_EOF",
+    "RTX_TRAILERS",
+    "RTX_FIELDS",
     "RtxCapture",
     "read_rtx",
     "write_rtx",

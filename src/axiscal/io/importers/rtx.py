@@ -1,12 +1,16 @@
 """Renishaw dynamic capture files (``.rtx``): read them into a time series, and write them (for tests).
 
-Layout as the public rtx2csv converter describes it (github.com/TanmayPani/rtx2csv,
-``rtx_to_csv.py``): the text line ``HEADER::``, then ``Key: value`` lines (``Owner``, ``Version
-no``, ``Sample rate``, ``Sample no``, ``Actual sample rate``, ``Trigger point``, ``Date``, ...), the
-line ``Data:``, the samples as little-endian IEEE 754 float64, and the trailer ``EOF::``; lines end
-in CR LF. Sample k is taken at ``k / Actual sample rate`` seconds. The header does not state the
-unit of the samples: the caller gives it. No file from the instrument was at hand: the reader is
-tested with files built to this layout.
+Layout as the two public readers take it (rtx2csv, github.com/TanmayPani/rtx2csv, ``rtx_to_csv.py``;
+RTX2CSV-Converter, github.com/travdt/RTX2CSV-Converter, ``RTXFileProcessor.cs``): the text line
+``HEADER::``, then the 17 ``Key: value`` lines of :data:`RTX_FIELDS` (a value may be empty:
+``Machine: ``), the line ``Data:``, ``Sample no`` samples as little-endian IEEE 754 float64, and a
+trailer; lines end in CR LF. rtx2csv drops the 7 bytes after the samples, whatever they hold;
+RTX2CSV-Converter reads ``Sample no`` doubles and takes an 8-byte slot starting ``\\r\\nEOF`` as the
+end. The trailer of a file from the instrument is most likely ``\\r\\nEOF::`` (:data:`RTX_EOF`); the
+reader takes the declared number of samples and accepts any trailer starting ``\\r\\nEOF`` or
+``EOF``. Sample k is taken at ``k / Actual sample rate`` seconds. The header does not state the unit
+of the samples: the caller gives it. No file from the instrument was at hand: the reader is tested
+with files built to this layout, with the header values of a published capture.
 """
 
 from __future__ import annotations
@@ -25,11 +29,46 @@ from axiscal.io.importers.columnmap import IMPORT_UNITS
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.tabular import parse_number
 
-__all__ = ["RTX_HEADER", "RTX_DATA", "RTX_EOF", "RtxCapture", "read_rtx", "write_rtx", "rtx_csv", "write_rtx_csv"]
+__all__ = [
+    "RTX_HEADER",
+    "RTX_DATA",
+    "RTX_EOF",
+    "RTX_TRAILERS",
+    "RTX_FIELDS",
+    "RtxCapture",
+    "read_rtx",
+    "write_rtx",
+    "rtx_csv",
+    "write_rtx_csv",
+]
 
 RTX_HEADER = b"HEADER::\r\n"
 RTX_DATA = b"Data:\r\n"
-RTX_EOF = b"EOF::\r\n"
+RTX_EOF = b"\r\nEOF::"
+"""The trailer :func:`write_rtx` writes after the samples (7 bytes, as rtx2csv drops)."""
+RTX_TRAILERS = (b"\r\nEOF", b"EOF")
+"""How a trailer the reader accepts starts."""
+RTX_FIELDS = (
+    "Filename",
+    "Owner",
+    "Version no",
+    "File Type",
+    "Velocity",
+    "Sample rate",
+    "Sample no",
+    "Trigger point",
+    "Trigger interval",
+    "Actual sample rate",
+    "Flags",
+    "Machine",
+    "Serial No",
+    "Date",
+    "By",
+    "Axis",
+    "Location",
+)
+"""The header fields of a capture, in the order RTX2CSV-Converter reads them."""
+_LONGEST_TRAILER = len(b"\r\nEOF::\r\n")
 _RATE_KEYS = ("Actual sample rate", "Sample rate")
 
 
@@ -44,11 +83,14 @@ class RtxCapture:
     sample_rate_hz : float
         Samples per second (the header's ``Actual sample rate``, else ``Sample rate``).
     header : dict of str to str
-        Every ``Key: value`` line of the header, as text.
+        Every ``Key: value`` line of the header, as text, in the file's order (the fields of
+        :data:`RTX_FIELDS` and any other; an empty value is ``""``).
     unit : str
         The unit the samples were stored in (``nm``, ``um``, ``mm``, ``m`` or ``in``).
     source : str
         The file read.
+    trailer : bytes
+        The bytes after the samples (``b"\\r\\nEOF::"`` in a file from the instrument).
     """
 
     samples_m: np.ndarray
@@ -56,6 +98,7 @@ class RtxCapture:
     header: Mapping[str, str] = field(default_factory=dict)
     unit: str = "mm"
     source: str = ""
+    trailer: bytes = RTX_EOF
 
     @property
     def time_s(self) -> np.ndarray:
@@ -87,9 +130,10 @@ def read_rtx(path: str | Path, *, unit: str) -> RtxCapture:
     ------
     AxiscalError
         Naming the file (and the header line where there is one): no ``HEADER::`` start, a header
-        line that is not ``Key: value``, no ``Data:`` marker, no ``EOF::`` trailer, a data block
-        that is not a whole number of float64 samples, a sample count other than the header's
-        ``Sample no``, a missing or non-positive sample rate, or a non-finite sample.
+        line that is not ``Key: value``, no ``Data:`` marker, no ``Sample no`` or one that is not a
+        whole number of 1 or more, fewer samples than ``Sample no`` declares (both counts named;
+        nothing is padded), bytes after the samples that do not start ``\\r\\nEOF`` or ``EOF``
+        (or none at all), a missing or non-positive sample rate, or a non-finite sample.
 
     Examples
     --------
@@ -131,25 +175,27 @@ def read_rtx(path: str | Path, *, unit: str) -> RtxCapture:
         header.setdefault(key.strip(), value.strip())
         where.setdefault(key.strip(), number)
     data_line = len(lines) + 1
-    body = blob[data_at + 2 + len(RTX_DATA) :]
-    if not body.endswith(RTX_EOF):
-        raise AxiscalError("no 'EOF::' trailer at the end: the file is cut short", path=source, line=data_line)
-    body = body[: -len(RTX_EOF)]
-    if len(body) % 8:
-        raise AxiscalError(
-            f"the data block holds {len(body)} bytes, not a whole number of 8-byte samples", path=source, line=data_line
-        )
-    samples = np.frombuffer(body, dtype="<f8").astype(float)
-    if "Sample no" in header:
-        expected = parse_number(header["Sample no"])
-        if expected is None or expected != int(expected):
-            raise AxiscalError(f"'Sample no' is '{header['Sample no']}', not a whole number", path=source,
-                               line=where["Sample no"])
-        if expected != len(samples):
-            raise AxiscalError(
-                f"the header says {int(expected)} samples (Sample no), the data block holds {len(samples)}", path=source,
-                line=where["Sample no"],
-            )
+    body = memoryview(blob)[data_at + 2 + len(RTX_DATA) :]
+    if "Sample no" not in header:
+        raise AxiscalError("no 'Sample no' in the header: the number of samples is not known", path=source, line=data_line)
+    expected = parse_number(header["Sample no"])
+    if expected is None or expected != int(expected) or expected < 1:
+        raise AxiscalError(f"'Sample no' is '{header['Sample no']}', not a whole number of samples (1 or more)",
+                           path=source, line=where["Sample no"])
+    count = int(expected)
+    trailer = bytes(body[8 * count :]) if len(body) >= 8 * count else b""
+    if not trailer.startswith(RTX_TRAILERS):
+        held = _samples_held(body)
+        if held < count:
+            raise AxiscalError(f"the header says {count} samples (Sample no), the file holds {held}: it is cut short",
+                               path=source, line=where["Sample no"])
+        if not trailer:
+            problem = "nothing follows them: the 'EOF' trailer is missing, the file is cut short"
+        else:
+            problem = f"{len(trailer)} bytes follow them that do not start '\\r\\nEOF' or 'EOF'"
+        raise AxiscalError(f"after the {count} samples of the header (Sample no), {problem}", path=source,
+                           line=where["Sample no"])
+    samples = np.frombuffer(body[: 8 * count], dtype="<f8").astype(float)
     rate = None
     for key in _RATE_KEYS:
         if key in header:
@@ -162,7 +208,20 @@ def read_rtx(path: str | Path, *, unit: str) -> RtxCapture:
     bad = np.flatnonzero(~np.isfinite(samples))
     if bad.size:
         raise AxiscalError(f"sample {bad[0]} is not a finite number", path=source, line=data_line)
-    return RtxCapture(samples_m=samples * factor, sample_rate_hz=rate, header=header, unit=unit, source=source)
+    return RtxCapture(samples_m=samples * factor, sample_rate_hz=rate, header=header, unit=unit, source=source,
+                      trailer=trailer)
+
+
+def _samples_held(body: memoryview) -> int:
+    """Whole samples before a trailer (``EOF`` or CR LF ``EOF`` in the last bytes), else in the whole body."""
+    tail_at = max(0, len(body) - _LONGEST_TRAILER)
+    found = bytes(body[tail_at:]).rfind(b"EOF")
+    if found < 0:
+        return len(body) // 8
+    start = tail_at + found
+    if start >= 2 and bytes(body[start - 2 : start]) == b"\r\n":
+        start -= 2
+    return start // 8
 
 
 def write_rtx(
@@ -172,6 +231,7 @@ def write_rtx(
     sample_rate_hz: float,
     unit: str,
     header: Mapping[str, str] | None = None,
+    trailer: bytes = RTX_EOF,
 ) -> Path:
     """Write an ``.rtx`` capture in the layout :func:`read_rtx` reads (atomically).
 
@@ -186,7 +246,12 @@ def write_rtx(
     unit : str, keyword-only
         Unit of ``samples`` (checked; the format itself does not record it).
     header : mapping, optional, keyword-only
-        Further ``Key: value`` lines (``Owner``, ``Date``, ...).
+        Values of the fields of :data:`RTX_FIELDS` (``Owner``, ``Date``, ``Axis`` ...) and further
+        ``Key: value`` lines. The 17 fields are written in their order, empty where nothing is
+        known (``Machine: ``); further keys follow them.
+    trailer : bytes, keyword-only
+        The bytes after the samples: ``b"\\r\\nEOF::"`` (:data:`RTX_EOF`, the default) or another
+        trailer starting ``\\r\\nEOF`` or ``EOF``.
 
     Returns
     -------
@@ -196,7 +261,8 @@ def write_rtx(
     Raises
     ------
     AxiscalError
-        For a non-positive rate, an unknown unit, or a header key or value holding ':' or a line break.
+        For a non-positive rate, an unknown unit, a header key holding ':' or a key or value holding
+        a line break, or a trailer that does not start ``\\r\\nEOF`` or ``EOF``.
     """
     path = check_path("path", path)
     _unit_factor(unit)
@@ -206,20 +272,27 @@ def write_rtx(
         check_mapping("header", header)
         if not all(isinstance(key, str) for key in header):
             raise AxiscalError(f"header must map keys (str) to values, not {dict(header)!r}")
-    lines = {
+    check_instance("trailer", trailer, bytes)
+    if not trailer.startswith(RTX_TRAILERS):
+        raise AxiscalError(f"trailer must start with b'\\r\\nEOF' or b'EOF', not {trailer!r}")
+    lines = dict.fromkeys(RTX_FIELDS, "")
+    lines.update({
+        "Filename": path.name,
         "Owner": "axiscal",
+        "Velocity": "0",
         "Sample rate": f"{sample_rate_hz:g}",
         "Sample no": str(values.size),
-        "Actual sample rate": f"{sample_rate_hz:g}",
         "Trigger point": "0",
         "Trigger interval": f"{1.0 / sample_rate_hz:g}",
+        "Actual sample rate": f"{sample_rate_hz:g}",
+        "Flags": "0 0 0 0 0",
         **dict(header or {}),
-    }
+    })
     for key, value in lines.items():
         if ":" in key or "\r" in key or "\n" in key or "\r" in str(value) or "\n" in str(value):
             raise AxiscalError(f"header entry {key!r} cannot be written as one 'Key: value' line")
     text = "".join(f"{key}: {value}\r\n" for key, value in lines.items())
-    blob = RTX_HEADER + text.encode("utf-8") + RTX_DATA + values.tobytes() + RTX_EOF
+    blob = RTX_HEADER + text.encode("utf-8") + RTX_DATA + values.tobytes() + trailer
     return atomic_write(path, lambda target: target.write_bytes(blob))
 
 

@@ -1,0 +1,79 @@
+"""Every command that writes a file makes the folders its output path names (as ``mkdir -p`` would)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+import pytest
+
+from cli_commands import leaf_commands
+
+OUT = "no/such/dir"
+"""Stands for the folder a test asks a command to write into, which does not exist."""
+
+# (command path, the writing option, the whole command line); OUT is replaced by a missing folder in tmp_path
+WRITES = [
+    (("ballbar",), "--plot", ["ballbar", "{ex}/ballbar/ballbar_run.csv", "--radius-mm", "100", "--plane", "XY", "--plot", "{out}/polar.png"]),
+    (("calibrate", "mirror"), "--output", ["calibrate", "mirror", "{ex}/xz_module/sensors_mirror_run.csv", "--axis", "x", "-o", "{out}/cal.json"]),
+    (("calibrate", "sensitivity"), "--output", ["calibrate", "sensitivity", "{ex}/xz_module/sensors_psd_run.csv", "--channel", "x_psd_y_um", "-o", "{out}/cal.json"]),
+    (("cmm", "compensate"), "--output", ["cmm", "compensate", "--squareness-arcmin", "8.05,27.1,-16.6", "{ex}/cmm_points.csv", "-o", "{out}/c.csv"]),
+    (("compensate",), "--output", ["compensate", "{ex}/positioning_run.csv", "--format", "linuxcnc", "-o", "{out}/x.comp"]),
+    (("demo",), "--output", ["demo", "-o", "{out}/demo"]),
+    (("diagonal",), "--output", ["diagonal", "--machine", "{ex}/xz_module/machine.toml", "--from", "X=0,Z=0", "--to", "X=190,Z=190", "-o", "{out}/d.csv"]),
+    (("diagonal",), "--plot", ["diagonal", "--machine", "{ex}/xz_module/machine.toml", "--from", "X=0,Z=0", "--to", "X=190,Z=190", "--plot", "{out}/d.png"]),
+    (("experiment", "diagonal"), "--plot", ["experiment", "diagonal", "--samples", "1", "--plot", "{out}/e.png"]),
+    (("export", "sag"), "--output", ["export", "sag", "{ex}/squareness_y.csv", "--controller", "heidenhain", "--base-axis", "Y", "--compensation-axis", "X", "-o", "{out}/s.COM"]),
+    (("export", "screwmap"), "--output", ["export", "screwmap", "{ex}/positioning_run.csv", "--controller", "mach4", "-o", "{out}/m.txt"]),
+    (("import", "map"), "--output", ["import", "map", "{ex}/imports/runs_per_column.toml", "{ex}/imports/runs_per_column.csv", "-o", "{out}/run.csv"]),
+    (("import", "rtx"), "--output", ["import", "rtx", "{ex}/imports/capture.rtx", "--unit", "mm", "-o", "{out}/c.csv"]),
+    (("inverse",), "--output", ["inverse", "--machine", "{ex}/xfyz_machine/machine.toml", "--points", "{tmp}/points.csv", "-o", "{out}/i.csv"]),
+    (("measure",), "--output", ["measure", "{ex}/xz_module/sensors_frames.csv", "--machine", "{ex}/xz_module/sensors_machine.toml", "-o", "{out}/r.csv"]),
+    (("optics", "pentaprism"), "--plot", ["optics", "pentaprism", "--steps", "3", "--plot", "{out}/p.png"]),
+    (("plan",), "--output", ["plan", "--start-mm", "0", "--end-mm", "100", "--targets", "6", "-o", "{out}/p.csv"]),
+    (("plan",), "--gcode", ["plan", "--start-mm", "0", "--end-mm", "100", "--targets", "6", "--gcode", "{out}/p.gcode"]),
+    (("positioning",), "--plot", ["positioning", "{ex}/positioning_run.csv", "--plot", "{out}/p.png"]),
+    (("report",), "--output", ["report", "{ex}/campaign", "-o", "{out}/report"]),
+    (("separate",), "--output", ["separate", "{ex}/probe_readings.csv", "--spacing-mm", "15", "-o", "{out}/s.csv"]),
+    (("separate",), "--plot", ["separate", "{ex}/probe_readings.csv", "--spacing-mm", "15", "--plot", "{out}/s.png"]),
+    (("simulate", "ballbar"), "--output", ["simulate", "ballbar", "--step-deg", "1", "-o", "{out}/b.csv"]),
+    (("simulate", "frames"), "--output", ["simulate", "frames", "--duration", "0.01", "-o", "{out}/f.csv"]),
+    (("simulate", "laser"), "--output", ["simulate", "laser", "--steps", "3", "-o", "{out}/l.csv"]),
+    (("simulate", "probes"), "--output", ["simulate", "probes", "--profile", "{ex}/separation_profile.csv", "--motion", "{ex}/separation_motion.csv", "--spacing-mm", "15", "--step-mm", "1", "-o", "{out}/p.csv"]),
+    (("simulate-probes",), "--output", ["simulate-probes", "--profile", "{ex}/separation_profile.csv", "--motion", "{ex}/separation_motion.csv", "--spacing-mm", "15", "--step-mm", "1", "-o", "{out}/p.csv"]),
+    (("squareness",), "--plot", ["squareness", "--first", "{ex}/squareness_x.csv", "--second", "{ex}/squareness_y.csv", "--plot", "{out}/q.png"]),
+    (("straightness",), "--plot", ["straightness", "{ex}/straightness_profile.csv", "--plot", "{out}/s.png"]),
+    (("uncertainty", "volumetric"), "--output", ["uncertainty", "volumetric", "--machine", "{ex}/xfyz_machine_u/machine.toml", "--grid", "X=0:800:400,Y=0:500:500,Z=0", "-o", "{out}/u.csv"]),
+    (("uncertainty", "volumetric"), "--plot", ["uncertainty", "volumetric", "--machine", "{ex}/xfyz_machine_u/machine.toml", "--grid", "X=0:800:400,Y=0:500:500,Z=0", "--plot", "{out}/u.png"]),
+    (("volumetric",), "--output", ["volumetric", "--machine", "{ex}/xfyz_machine/machine.toml", "--grid", "X=0:600:300,Y=0:400:400,Z=0:300:300", "-o", "{out}/v.csv"]),
+    (("volumetric",), "--plot", ["volumetric", "--machine", "{ex}/xfyz_machine/machine.toml", "--grid", "X=0:600:300,Y=0:400:400,Z=0:300:300", "--plot", "{out}/v.png"]),
+    (("live",), "--record", ["live", "--no-server", "--no-pace", "--duration", "0.05", "--record", "{out}/live.csv"]),
+]
+WRITING_FLAGS = ("--output", "--plot", "--gcode", "--record")
+
+
+def written_by_commands() -> set[tuple[tuple[str, ...], str]]:
+    return {(path, flag) for path, command in leaf_commands() for param in command.params
+            if isinstance(param, click.Option) for flag in param.opts if flag in WRITING_FLAGS}
+
+
+def test_every_writing_option_is_tried():
+    assert written_by_commands() == {(path, flag) for path, flag, _ in WRITES}
+
+
+@pytest.mark.parametrize("path, flag, argv", [pytest.param(*w, id=" ".join(w[0]) + " " + w[1]) for w in WRITES])
+def test_a_command_makes_the_folders_of_its_output(run_cli, examples, tmp_path, path, flag, argv):
+    (tmp_path / "points.csv").write_text("x_mm,y_mm,z_mm\n-200,100,-100\n")
+    out = tmp_path / OUT
+    line = [a.format(ex=examples, tmp=tmp_path, out=out) for a in argv]
+    status, _, err = run_cli(*line)
+    assert status == 0, err
+    target = next(a for a in line if a.startswith(str(out)))
+    assert Path(target).exists()
+
+
+def test_a_folder_that_cannot_be_made_is_one_line(run_cli, examples, tmp_path):
+    (tmp_path / "file").write_text("a file where a folder would go\n")
+    target = tmp_path / "file" / "x.txt"
+    status, out, err = run_cli("compensate", examples / "positioning_run.csv", "--format", "linuxcnc", "-o", target)
+    assert status == 2 and out == "" and err.startswith(f"axiscal: error: {target}: cannot write this file") and err.count("\n") == 1
