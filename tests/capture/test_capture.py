@@ -112,7 +112,7 @@ def test_a_recording_cut_short_then_resumed_finishes_the_run(machine, tmp_path):
     with pytest.raises(AxiscalError, match=r"step \d+ \(target .* mm, run 1, -\): the recording ends before it \(8 of 20"):
         capture_to_file(plan, first, out)
     assert len(partial_path(out).read_text().splitlines()) == 1 + 8
-    with pytest.raises(AxiscalError, match="--resume"):
+    with pytest.raises(AxiscalError, match="resume=True"):
         capture_to_file(plan, rest, out)
     files = capture_to_file(plan, rest, out, resume=True)
     whole = capture_to_file(plan, rec, tmp_path / "whole.csv").capture

@@ -66,8 +66,8 @@ def test_a_mutated_plan_is_read_or_refused_cleanly(tmp_path, edits):
 
 @pytest.mark.parametrize("text, unit, channel, message", [
     ("t,reading_mm\n0,1\n", None, None, "no time column"),
-    ("time_s,a_mm,b_mm\n0,1,2\n", None, None, "cannot tell which column"),
-    ("time_s,reading\n0,1\n", None, None, "does not say its unit"),
+    ("time_s,a_mm,b_mm\n0,1,2\n", None, None, "channel must name the column"),
+    ("time_s,reading\n0,1\n", None, None, "unit must be given"),
     ("time_s,reading_mm\n0,1\n", "um", None, "in mm, not in um"),
     ("time_s,reading_mm\n0,1\n", None, "laser_um", "no column 'laser_um'"),
     ("time_s,reading_mm\n1,1\n0,1\n", None, None, "goes back"),
@@ -83,7 +83,7 @@ def test_an_rtx_recording_needs_its_unit(tmp_path):
     from axiscal.io.importers.rtx import write_rtx
 
     write_rtx(tmp_path / "c.rtx", [0.0, 1.0, 2.0], sample_rate_hz=10.0, unit="mm")
-    with pytest.raises(AxiscalError, match="give it"):
+    with pytest.raises(AxiscalError, match="unit must be given"):
         read_recording(tmp_path / "c.rtx")
     rec = read_recording(tmp_path / "c.rtx", unit="um")
     assert rec.reading_m.tolist() == pytest.approx([0.0, 1e-6, 2e-6]) and rec.time_s.tolist() == pytest.approx([0, 0.1, 0.2])

@@ -47,6 +47,14 @@ WRITES = [
     (("uncertainty", "volumetric"), "--plot", ["uncertainty", "volumetric", "--machine", "{ex}/xfyz_machine_u/machine.toml", "--grid", "X=0:800:400,Y=0:500:500,Z=0", "--plot", "{out}/u.png"]),
     (("volumetric",), "--output", ["volumetric", "--machine", "{ex}/xfyz_machine/machine.toml", "--grid", "X=0:600:300,Y=0:400:400,Z=0:300:300", "-o", "{out}/v.csv"]),
     (("volumetric",), "--plot", ["volumetric", "--machine", "{ex}/xfyz_machine/machine.toml", "--grid", "X=0:600:300,Y=0:400:400,Z=0:300:300", "--plot", "{out}/v.png"]),
+    (("capture",), "--output", ["capture", "{ex}/capture/plan_x.csv", "--from", "{ex}/capture/recording_x.csv", "-o", "{out}/run.csv"]),
+    (("simulate", "capture"), "--output", ["simulate", "capture", "{ex}/capture/x.ngc", "--machine", "{ex}/xz_module/machine.toml", "--axis", "X", "--rate-hz", "50", "-o", "{out}/rec.csv"]),
+    (("levels",), "--output", ["levels", "{ex}/levels/levels_run.csv", "--foot-mm", "100", "-o", "{out}/p.csv"]),
+    (("levels",), "--plot", ["levels", "{ex}/levels/levels_run.csv", "--foot-mm", "100", "--plot", "{out}/p.png"]),
+    (("flatness",), "--output", ["flatness", "{ex}/flatness/union_jack_levels.toml", "-o", "{out}/f.csv"]),
+    (("flatness",), "--plot", ["flatness", "{ex}/flatness/union_jack_levels.toml", "--plot", "{out}/f.png"]),
+    (("thermal", "etve"), "--plot", ["thermal", "etve", "{ex}/thermal/etve_run.csv", "--plot", "{out}/t.png"]),
+    (("thermal", "drift"), "--plot", ["thermal", "drift", "{ex}/thermal/drift_run.csv", "--plot", "{out}/t.png"]),
     (("live",), "--record", ["live", "--no-server", "--no-pace", "--duration", "0.05", "--record", "{out}/live.csv"]),
 ]
 WRITING_FLAGS = ("--output", "--plot", "--gcode", "--record")

@@ -21,7 +21,7 @@ from axiscal.capture.run import Capture, StopReading, capture
 from axiscal.capture.steps import PlanSteps, plan_steps
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_path
-from axiscal.io.jsonio import write_sidecar
+from axiscal.io.jsonio import named_from, write_sidecar
 from axiscal.io.tabular import read_csv, write_csv
 from axiscal.positioning.plan import PositioningTestPlan
 from axiscal.units import MM, UM
@@ -168,8 +168,8 @@ def capture_to_file(
     if resume:
         resumed, environment = _read_partial(partial, steps)
     elif partial.exists():
-        raise AxiscalError("a partial capture is here from an interrupted run: continue it with --resume (resume=True),"
-                           " or delete it", path=partial)
+        raise AxiscalError("resume=True continues the partial capture an interrupted run left here (or delete it)",
+                           path=partial)
     writer: _PartialWriter | None = None
 
     observe = options.pop("on_stop", None)
@@ -196,11 +196,12 @@ def capture_to_file(
         kind="positioning run (captured)",
         units={"deviation_um": "um, (reading - offset) - target" + (
             "; the raw reading, compensated for the air when read" if result.environment else "")},
-        sources=[s for s in (steps.source, result.source) if s and not s.startswith("<")],
+        sources=[named_from(s, output) for s in (steps.source, result.source) if s and not s.startswith("<")
+                 and Path(s).is_file()],
         standard="ISO 230-2",
-        plan=steps.source,
+        plan=named_from(steps.source, output) if Path(steps.source).is_file() else steps.source,
         plan_seed=steps.seed,
-        source=result.source,
+        source=named_from(result.source, output) if Path(result.source).is_file() else result.source,
         settings=result.settings.as_dict(),
         recording_header=dict(result.header),
         stops=[{"step": int(steps.step[r.index]), "start_s": r.start_s, "window_std_um": r.window_std_m / UM,

@@ -127,7 +127,7 @@ def read_recording(path: str | Path, *, unit: str | None = None, channel: str | 
         raise AxiscalError(f"unknown unit '{unit}' for the readings; use one of {', '.join(READING_UNITS)}")
     if path.suffix.lower() == ".rtx":
         if unit is None:
-            raise AxiscalError("an .rtx capture does not say the unit of its samples: give it (--unit mm, um, nm, m or in)",
+            raise AxiscalError("unit must be given (mm, um, nm, m or in): an .rtx capture does not say the unit of its samples",
                                path=path)
         capture = read_rtx(path, unit=unit)
         return Recording(capture.time_s, capture.samples_m, {}, str(path), dict(capture.header), None)
@@ -148,7 +148,7 @@ def read_recording(path: str | Path, *, unit: str | None = None, channel: str | 
         if len(candidates) != 1:
             found = ", ".join(candidates) if candidates else "none"
             raise AxiscalError(
-                f"cannot tell which column holds the reading (columns named with a length unit: {found}): name it (--channel)",
+                f"channel must name the column that holds the reading: columns named with a length unit: {found}",
                 path=path, line=table.header_line,
             )
         name = candidates[0]
@@ -157,7 +157,7 @@ def read_recording(path: str | Path, *, unit: str | None = None, channel: str | 
         raise AxiscalError(f"column {name} is in {named}, not in {unit} as the unit given says", path=path, line=table.header_line)
     used = named or unit
     if used is None:
-        raise AxiscalError(f"column {name} does not say its unit: give it (--unit mm, um, nm, m or in)", path=path,
+        raise AxiscalError(f"unit must be given (mm, um, nm, m or in): column {name} does not say its unit", path=path,
                            line=table.header_line)
     time_s = table.numeric(time_name)
     if np.any(np.diff(time_s) < 0):

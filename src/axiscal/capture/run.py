@@ -229,14 +229,14 @@ def _feed_source(source: Any, detector: StopDetector, take: Callable[[Stop], Non
     if channel is None:
         lengths = [n for n in names if split_unit(n)[1] in READING_UNITS and n not in detector.channels]
         if len(lengths) != 1:
-            raise AxiscalError(f"cannot tell which channel holds the reading ({', '.join(names) or 'none'}): name it (--channel)")
+            raise AxiscalError(f"channel must name the channel that holds the reading: the source has {', '.join(names) or 'none'}")
         channel = lengths[0]
     if channel not in names:
         raise AxiscalError(f"the source has no channel '{channel}' (it has {', '.join(names)})")
     named = split_unit(channel)[1]
     factor = READING_UNITS.get(named) or (READING_UNITS.get(unit) if unit else None)
     if factor is None:
-        raise AxiscalError(f"channel {channel} does not say its unit: give it (--unit mm, um, nm, m or in)")
+        raise AxiscalError(f"unit must be given (mm, um, nm, m or in): channel {channel} does not say its unit")
     column = names.index(channel)
     env_columns = [names.index(n) for n in detector.channels]
     import time

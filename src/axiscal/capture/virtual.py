@@ -39,7 +39,7 @@ from axiscal.instruments.air import refractive_index
 from axiscal.instruments.interferometer import HENE_WAVELENGTH_NM
 from axiscal.io.arguments import check_count, check_instance, check_number
 from axiscal.io.atomic import atomic_write
-from axiscal.io.jsonio import write_sidecar
+from axiscal.io.jsonio import named_from, write_sidecar
 from axiscal.model.machine import Machine
 from axiscal.units import MM, UM
 
@@ -323,8 +323,12 @@ def write_recording(simulated: SimulatedRecording, path: str | Path, *, program:
     for name, fmt in formats.items():
         frame[name] = frame[name].map(fmt.__mod__) if len(frame) < 2000 else np.char.mod(fmt, frame[name].to_numpy())
     atomic_write(path, lambda target: frame.to_csv(target, index=False, lineterminator="\n"))
+    settings = dict(simulated.settings)
+    for key in ("program", "compensation_file"):
+        if settings.get(key):
+            settings[key] = named_from(settings[key], path)
     write_sidecar(path, kind="laser recording (virtual machine)", units={"reading_mm": "mm, raw reading computed with the"
-                  " vacuum wavelength"}, sources=[program] if program else [], **dict(simulated.settings))
+                  " vacuum wavelength"}, sources=[named_from(program, path)] if program else [], **settings)
     return Path(path)
 
 

@@ -20,7 +20,8 @@ from axiscal.units import MM, UM
 
 __all__ = ["capture_command", "register"]
 
-_FLAGS = {"stability_m": "--stability-um", "window_s": "--window-s", "tolerance_m": "--tolerance-mm", "offset_m": "--offset-mm"}
+_FLAGS = {"stability_m": "--stability-um", "window_s": "--window-s", "tolerance_m": "--tolerance-mm", "offset_m": "--offset-mm",
+          "unit": "--unit", "channel": "--channel", "resume=True": "--resume"}
 
 
 def _progress_line(console):
@@ -102,8 +103,9 @@ def capture_command(plan_csv, recording, source_spec, output, unit, channel, sta
     else:
         source = recording
     try:
-        files = capture_to_file(plan_csv, source, output, resume=resume, settings=settings, unit=unit, channel=channel,
-                                **options)
+        with flags_named(_FLAGS):
+            files = capture_to_file(plan_csv, source, output, resume=resume, settings=settings, unit=unit, channel=channel,
+                                    **options)
     finally:
         if live is not None and live.is_started:
             live.stop()

@@ -19,7 +19,7 @@ from axiscal.io.arguments import check_instance, check_path
 from axiscal.io.atomic import write_text
 from axiscal.version import __version__
 
-__all__ = ["to_plain", "dumps", "write_json", "read_json", "json_line", "sidecar_path", "write_sidecar"]
+__all__ = ["to_plain", "dumps", "write_json", "read_json", "json_line", "sidecar_path", "write_sidecar", "named_from"]
 
 
 def to_plain(value: Any) -> Any:
@@ -184,3 +184,29 @@ def write_sidecar(
         payload["sources"] = [str(s) for s in sources]
     payload.update(metadata)
     return write_json(sidecar_path(csv_path), payload)
+
+
+def named_from(path: str | Path, beside: str | Path) -> str:
+    """How a sidecar beside ``beside`` names ``path``: relative to ``beside``'s folder when it lies
+    within it (so a folder moved elsewhere still names its own files), else as it was given.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file named (a source, a program).
+    beside : str or Path
+        The file whose sidecar names it.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> named_from("/data/run/x.ngc", "/data/run/recording.csv")
+    'x.ngc'
+    """
+    try:
+        return str(Path(path).resolve().relative_to(Path(beside).resolve().parent))
+    except ValueError:
+        return str(path)
