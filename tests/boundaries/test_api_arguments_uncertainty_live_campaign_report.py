@@ -393,6 +393,15 @@ bad(C, "plot_volume", "machine", lambda: ca.plot_volume(None, NEVER + ".svg"), l
 bad(C, "plot_volume", "path", lambda: ca.plot_volume(MACHINE, None))
 bad(C, "plot_volume", "figure format", lambda: ca.plot_volume(MACHINE, NEVER + ".txt"))
 bad(C, "plot_volume", "count", lambda: ca.plot_volume(MACHINE, NEVER + ".svg", count=1), lambda: ca.plot_volume(MACHINE, NEVER + ".svg", count=NAN))
+MAP2 = {"axes": ["X", "Z"], "grid_mm": {"X": [0.0, 1.0], "Z": [0.0, 1.0]}, "e_um": [[0.0, 1.0], [1.0, 2.0]]}
+bad(C, "volumetric_section", "before", lambda: ca.volumetric_section(EXAMPLES / "xfyz_machine_u" / "machine.toml", ca.svg_of, before=[1]))
+bad(C, "same_grid", "now", lambda: ca.same_grid(None, MAP2), lambda: ca.same_grid({"axes": ["X"]}, MAP2))
+bad(C, "same_grid", "before", lambda: ca.same_grid(MAP2, {**MAP2, "e_um": [[0.0]]}), lambda: ca.same_grid(MAP2, {**MAP2, "axes": "XZ"}))
+bad(C, "plot_volume_change", "now", lambda: ca.plot_volume_change(5, MAP2, NEVER + ".svg"),
+    lambda: ca.plot_volume_change({**MAP2, "grid_mm": {"X": [0.0, NAN], "Z": [0.0, 1.0]}}, MAP2, NEVER + ".svg"))
+bad(C, "plot_volume_change", "different grids", lambda: ca.plot_volume_change(MAP2, {**MAP2, "grid_mm": {"X": [0.0, 2.0], "Z": [0.0, 1.0]}}, NEVER + ".svg"))
+bad(C, "plot_volume_change", "figure format", lambda: ca.plot_volume_change(MAP2, MAP2, NEVER + ".txt"))
+bad(C, "plot_volume_change", "label", lambda: ca.plot_volume_change(MAP2, MAP2, NEVER + ".svg", label=3))
 
 
 # ---------------------------------------------------------------- report
