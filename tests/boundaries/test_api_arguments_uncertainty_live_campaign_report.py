@@ -419,6 +419,8 @@ bad(R, "previous_figures", "compare", lambda: rp.previous_figures(NAN), lambda: 
 bad(R, "compare_label", "compare", lambda: rp.compare_label(NAN), lambda: rp.compare_label([]))
 bad(R, "verdict_rows", "results", lambda: rp.verdict_rows(None, None))
 bad(R, "verdict_rows", "before", lambda: rp.verdict_rows(RESULTS, ["E"]))
+bad(R, "verdict_rows", "before_uncertainty", lambda: rp.verdict_rows(RESULTS, None, before_uncertainty=["E"]))
+bad(R, "previous_uncertainty", "compare", lambda: rp.previous_uncertainty(NAN), lambda: rp.previous_uncertainty({"tests": "all"}))
 bad(R, "sections", "tests", lambda: rp.sections(None), lambda: rp.sections([None]), lambda: rp.sections("tests"))
 bad(R, "write_report", "results", lambda: rp.write_report(None, NEVER))
 bad(R, "write_report", "out_dir", lambda: rp.write_report(RESULTS, None))

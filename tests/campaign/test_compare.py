@@ -303,3 +303,50 @@ def test_a_mutated_compared_profile_draws_or_is_refused_cleanly(compared, key, v
         assert "straightness-X-1" in exc.message and "compared results.json" in exc.message
     else:
         assert result.plots[0].svg.startswith("<svg")
+
+
+def test_the_verdict_table_says_before_after_and_change(compared):
+    from axiscal.report import previous_figures, verdict_rows
+
+    html = compared["vmc850"].html.read_text()
+    head = html.split('id="verdict-table"', 1)[1].split("</thead>", 1)[0]
+    columns = [cell.rsplit(">", 1)[1] for cell in head.split("</th>")[:-1]]
+    assert columns == ["Test", "Axis", "Figure", "Before", "After", "Change", "Tolerance", "Result"]
+    rows = verdict_rows(compared["vmc850"].results_data, previous_figures(compared["before"]["vmc850"]))
+    row = next(r for r in rows if r["test_id"] == "straightness-X-1")
+    after, before = float(row["value"]), float(row["before"])
+    assert before == pytest.approx(SCALE * after, abs=2e-3)  # the scaled copy's straightness
+    assert float(row["change"]) == pytest.approx(after - before, abs=2e-3)
+
+
+def test_u_stands_beside_before_when_the_compared_results_have_it(compared):
+    from axiscal.report import render_html
+
+    other = copy.deepcopy(compared["before"]["vmc850"])
+    results = compared["vmc850"].results_data
+    assert "U before" not in render_html(results, compare=other)
+    other["tests"][0]["uncertainty"] = {"k": 2, "E": 1.25, "A": 2.5}
+    html = render_html(results, compare=other)
+    head = html.split('id="verdict-table"', 1)[1].split("</thead>", 1)[0]
+    assert "<th class=\"num\">Before</th><th class=\"num\">U before (k=2)</th><th class=\"num\">After</th>" in head
+    body = html.split('id="verdict-table"', 1)[1].split("</table>", 1)[0]
+    assert "1.250" in body and "2.500" in body
+
+
+def test_the_pdf_prints_before_after_and_the_volumetric_change(compared, tmp_path):
+    from axiscal.report.pdf import write_pdf
+
+    for name in ("vmc850", "xz"):
+        other = copy.deepcopy(compared["before"][name])
+        other["tests"][0]["uncertainty"] = {"k": 2, "E": 1.25}
+        path = write_pdf(compared[name].results_data, tmp_path / f"{name}.pdf", compare=other)
+        assert path.read_bytes().startswith(b"%PDF-")
+
+
+def test_the_diagonal_check_compares_with_the_diagonal_before(compared):
+    from axiscal.report import previous_figures, verdict_rows
+
+    rows = verdict_rows(compared["xz"].results_data, previous_figures(compared["before"]["xz"]))
+    (row,) = [r for r in rows if r["test_id"] == "diagonal-1"]
+    assert row["figure"] == "diagonal_error / um"
+    assert float(row["before"]) == pytest.approx(SCALE * float(row["value"]), abs=0.05)

@@ -9,6 +9,7 @@ from __future__ import annotations
 import re
 import tempfile
 from collections.abc import Callable, Mapping
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -362,7 +363,9 @@ def _diagonal(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] | N
     figures = result.summary()
     figures["points"] = {k: np.asarray(v, dtype=float).tolist() for k, v in figures["points"].items()}
     figures["diagonal_error_um"] = figures.get("E_BD_range_um", figures["model_error_range_um"])
-    checks = check_figures({"diagonal": figures["diagonal_error_um"]}, spec.tolerances, {"diagonal_um": "um"})
+    # the tolerance is keyed diagonal_um; the figure it holds, and a compared campaign's, is diagonal_error_um
+    checks = [replace(c, figure="diagonal_error_um")
+              for c in check_figures({"diagonal": figures["diagonal_error_um"]}, spec.tolerances, {"diagonal_um": "um"})]
     title = f"Diagonal {options['from']} to {options['to']}: displacement error (actual minus nominal)"
     overlay = _overlay(spec, compare, "points")
     svg = _drawn(spec, lambda p: plot_diagonal(result, p, title=title, overlay=overlay), overlay)
