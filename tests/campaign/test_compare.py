@@ -350,3 +350,13 @@ def test_the_diagonal_check_compares_with_the_diagonal_before(compared):
     (row,) = [r for r in rows if r["test_id"] == "diagonal-1"]
     assert row["figure"] == "diagonal_error / um"
     assert float(row["before"]) == pytest.approx(SCALE * float(row["value"]), abs=0.05)
+
+
+def test_a_malformed_compared_map_is_named(compared, tmp_path):
+    broken = copy.deepcopy(compared["before"]["xz"])
+    broken["volumetric"]["map"]["e_um"] = [[1.0, 2.0]]
+    path = tmp_path / "broken.json"
+    path.write_text(json.dumps(broken))
+    with pytest.raises(AxiscalError, match="compared results.json's volumetric map: before e_um must have shape"):
+        report_campaign(compared["root"] / "xz", tmp_path / "report", compare=path)
+    assert not (tmp_path / "report").exists()
