@@ -290,17 +290,36 @@ _series_values = hs.one_of(
 )
 
 
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
-@given(key=hs.sampled_from(["position_mm", "deviation_um", "residual_um", "label"]), value=_series_values)
-def test_a_mutated_compared_profile_draws_or_is_refused_cleanly(compared, key, value):
+def _paths(series, prefix=()):
+    """Every key path into a nested series object (mappings only; lists are leaves)."""
+    out = []
+    for key, value in series.items():
+        out.append((*prefix, key))
+        if isinstance(value, dict):
+            out.extend(_paths(value, (*prefix, key)))
+    return out
+
+
+#: test id -> the series key its plot reads from the compared results.json
+MUTATED = {"straightness-X-1": "profile", "squareness-XY-1": "runs", "separation-X-1": "columns", "ballbar-XY-1": "trace"}
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(data=hs.data())
+def test_a_mutated_compared_series_draws_or_is_refused_cleanly(compared, data):
+    test_id = data.draw(hs.sampled_from(sorted(MUTATED)), label="test")
     campaign = load_campaign(compared["root"] / "vmc850")
-    spec = next(s for s in campaign.tests if s.id == "straightness-X-1")
-    profile = dict(_series(compared["before"]["vmc850"], "straightness-X-1")["profile"])
-    profile[key] = value
+    spec = next(s for s in campaign.tests if s.id == test_id)
+    series = copy.deepcopy(_series(compared["before"]["vmc850"], test_id)[MUTATED[test_id]])
+    *parents, leaf = data.draw(hs.sampled_from(_paths(series)), label="path")
+    target = series
+    for key in parents:
+        target = target[key]
+    target[leaf] = data.draw(_series_values, label="value")
     try:
-        result = run_test(campaign, spec, compare={spec.id: {"profile": profile}})
+        result = run_test(campaign, spec, compare={spec.id: {MUTATED[test_id]: series}})
     except AxiscalError as exc:
-        assert "straightness-X-1" in exc.message and "compared results.json" in exc.message
+        assert test_id in exc.message and "compared results.json" in exc.message
     else:
         assert result.plots[0].svg.startswith("<svg")
 
