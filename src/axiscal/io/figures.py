@@ -1,7 +1,9 @@
 """The one place that imports matplotlib, lazily, and saves figures atomically.
 
 Plot modules of every room call :func:`pyplot` when a plot is asked for, so importing axiscal
-never imports matplotlib.
+never imports matplotlib. A plot that draws another campaign's series behind its own (an
+*overlay*, as ``axiscal report --compare`` asks) reads them with :func:`overlay_series` and draws
+them in :data:`OVERLAY_STYLE`, so every kind of plot shows the compared campaign the same way.
 """
 
 from __future__ import annotations
@@ -72,6 +74,8 @@ def overlay_series(overlay: Mapping[str, Any], key: str, *, length: int | None =
     if values is None:
         return None
     if isinstance(values, (list, tuple)):
+        if any(isinstance(v, (bool, np.bool_)) for v in values):
+            raise AxiscalError(f"{name} {key} must be numbers (or null), not {values!r:.60}")
         values = [np.nan if v is None else v for v in values]
     series = check_array(f"{name} {key}", values, ndim=1, finite=False, unit="")
     if length is not None and series.size != length:
