@@ -24,11 +24,11 @@ from axiscal.report.html import (
     compare_label,
     decision_statement,
     previous_figures,
-    previous_uncertainty,
     sections,
     template_environment,
     verdict_rows,
 )
+from axiscal.report.html import previous_uncertainty
 from axiscal.version import __version__
 
 __all__ = ["typst_string", "typst_text", "write_pdf"]
