@@ -243,7 +243,7 @@ def test_a_malformed_compared_series_is_one_line(compared, tmp_path, run_cli):
     path.write_text(json.dumps(broken))
     status, _, err = run_cli("report", compared["root"] / "vmc850", "-o", tmp_path / "report", "--compare", path)
     assert status == 2 and err.count("\n") == 1 and "Traceback" not in err
-    assert "ballbar-XY-1" in err and "compared results.json" in err
+    assert "ballbar-XY-1" in err and "compared results.json" in err and f"{path}: " in err
     assert not (tmp_path / "report").exists()
 
 
