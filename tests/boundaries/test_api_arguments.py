@@ -289,6 +289,12 @@ bad(S, "plot_straightness", "line", lambda: st_.plot_straightness("/tmp/never.pn
 bad(S, "plot_straightness", "path", lambda: st_.plot_straightness(None, [0.0, 1.0], [0.0, 0.0], LINE))
 bad(S, "plot_separation", "result", lambda: st_.plot_separation("/tmp/never.png", None))
 bad(S, "plot_separation", "path", lambda: st_.plot_separation(None, st_.reversal([0.0, 1.0], [0.0, 0.0], [0.0, 0.0])))
+bad(S, "plot_straightness", "overlay", lambda: st_.plot_straightness("/tmp/never.png", [0.0, 1.0], [0.0, 0.0], LINE, overlay=5),
+    lambda: st_.plot_straightness("/tmp/never.png", [0.0, 1.0], [0.0, 0.0], LINE, overlay={"position_mm": "0,1"}),
+    lambda: st_.plot_straightness("/tmp/never.png", [0.0, 1.0], [0.0, 0.0], LINE, overlay={"position_mm": [0, 1], "deviation_um": [1.0]}))
+bad(S, "plot_separation", "overlay", lambda: st_.plot_separation("/tmp/never.png", st_.reversal([0.0, 1.0], [0.0, 0.0], [0.0, 0.0]), overlay=[1]),
+    lambda: st_.plot_separation("/tmp/never.png", st_.reversal([0.0, 1.0], [0.0, 0.0], [0.0, 0.0]),
+                                overlay={"position_mm": [0, 1], "profile_um": [0, 1], "motion_um": [True, False]}))
 bad(S, "render_report", "template", lambda: st_.render_report("none.txt.j2"), lambda: st_.render_report(None), lambda: st_.render_report("straightness.txt.j2"))
 
 
@@ -369,6 +375,9 @@ bad(Q, "gauge_block_study", "squareness", lambda: sq.gauge_block_study(None))
 bad(Q, "plot_squareness", "result", lambda: sq.plot_squareness("/tmp/never.png", sq.squareness_from_slopes(0.0, 0.0), ((XS, YS), (XS, YS))), lambda: sq.plot_squareness("/tmp/never.png", None, ()))
 bad(Q, "plot_squareness", "runs", lambda: sq.plot_squareness("/tmp/never.png", FIT, (XS, YS)), lambda: sq.plot_squareness("/tmp/never.png", FIT, (([NAN], [0.0]), (XS, YS))))
 bad(Q, "plot_squareness", "path", lambda: sq.plot_squareness(None, FIT, ((XS, YS), (XS, YS))))
+bad(Q, "plot_squareness", "overlay", lambda: sq.plot_squareness("/tmp/never.png", FIT, ((XS, YS), (XS, YS)), overlay=(1, 2)),
+    lambda: sq.plot_squareness("/tmp/never.png", FIT, ((XS, YS), (XS, YS)), overlay={"first": [1, 2]}),
+    lambda: sq.plot_squareness("/tmp/never.png", FIT, ((XS, YS), (XS, YS)), overlay={"second": {"position_mm": [0], "deviation_um": "1"}}))
 bad(Q, "plot_pentaprism", "table", lambda: sq.plot_pentaprism("/tmp/never.png", None))
 bad(Q, "plot_pentaprism", "path", lambda: sq.plot_pentaprism(5, ins.pentaprism_sensitivity([0.0, 1e-3])))
 
@@ -447,6 +456,12 @@ bad(C, "plot_ballbar", "result", lambda: ci.plot_ballbar(None, "/tmp/never.png")
 bad(C, "plot_ballbar", "figure format", lambda: ci.plot_ballbar(RESULT, "/tmp/never.xyz"))
 bad(C, "plot_ballbar", "path", lambda: ci.plot_ballbar(RESULT, None))
 bad(C, "plot_ballbar", "title", lambda: ci.plot_ballbar(RESULT, "/tmp/never.png", title=5))
+bad(C, "plot_ballbar", "overlay", lambda: ci.plot_ballbar(RESULT, "/tmp/never.png", overlay="before"),
+    lambda: ci.plot_ballbar(RESULT, "/tmp/never.png", overlay={"ccw": [1, 2]}),
+    lambda: ci.plot_ballbar(RESULT, "/tmp/never.png", overlay={"cw": {"angle_deg": [0, 1], "deviation_um": [0]}}))
+bad(C, "circle_deviations", "result", lambda: ci.circle_deviations(None), lambda: ci.circle_deviations(TRACE))
+bad(C, "trace_payload", "result", lambda: ci.trace_payload(None))
+bad(C, "trace_payload", "max_points", lambda: ci.trace_payload(RESULT, max_points=1), lambda: ci.trace_payload(RESULT, max_points=NAN))
 
 
 # ---------------------------------------------------------------- measurement

@@ -430,6 +430,8 @@ bad(M, "plot_volumetric", "orientation_rad", lambda: mo.plot_volumetric(Q, np.ze
 bad(M, "plot_volumetric", "path", lambda: mo.plot_volumetric(Q, np.zeros((2, 3)), None))
 bad(M, "plot_diagonal", "result", lambda: mo.plot_diagonal(None, NEVER / "d.png"), lambda: mo.plot_diagonal({"nominal_m": [0.0]}, NEVER / "d.png"))
 bad(M, "plot_diagonal", "path", lambda: mo.plot_diagonal(DIAG, None))
+bad(M, "plot_diagonal", "overlay", lambda: mo.plot_diagonal(DIAG, NEVER / "d.png", overlay=3),
+    lambda: mo.plot_diagonal(DIAG, NEVER / "d.png", overlay={"nominal_mm": [0, 1], "E_BD_um": [0, 1, 2]}))
 bad(M, "plot_diagonal_experiment", "result", lambda: mo.plot_diagonal_experiment(None, NEVER / "d.png"), lambda: mo.plot_diagonal_experiment(DIAG, NEVER / "d.png"))
 bad(M, "plot_diagonal_experiment", "path", lambda: mo.plot_diagonal_experiment(
     SimpleNamespace(x_m=np.zeros(2), z_m=np.zeros(2), before_m=np.zeros(2), after_m=np.zeros(2), scales_only_m=np.zeros(2)), None))

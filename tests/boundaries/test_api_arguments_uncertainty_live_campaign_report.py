@@ -393,6 +393,15 @@ bad(C, "plot_volume", "machine", lambda: ca.plot_volume(None, NEVER + ".svg"), l
 bad(C, "plot_volume", "path", lambda: ca.plot_volume(MACHINE, None))
 bad(C, "plot_volume", "figure format", lambda: ca.plot_volume(MACHINE, NEVER + ".txt"))
 bad(C, "plot_volume", "count", lambda: ca.plot_volume(MACHINE, NEVER + ".svg", count=1), lambda: ca.plot_volume(MACHINE, NEVER + ".svg", count=NAN))
+MAP2 = {"axes": ["X", "Z"], "grid_mm": {"X": [0.0, 1.0], "Z": [0.0, 1.0]}, "e_um": [[0.0, 1.0], [1.0, 2.0]]}
+bad(C, "volumetric_section", "before", lambda: ca.volumetric_section(EXAMPLES / "xfyz_machine_u" / "machine.toml", ca.svg_of, before=[1]))
+bad(C, "same_grid", "now", lambda: ca.same_grid(None, MAP2), lambda: ca.same_grid({"axes": ["X"]}, MAP2))
+bad(C, "same_grid", "before", lambda: ca.same_grid(MAP2, {**MAP2, "e_um": [[0.0]]}), lambda: ca.same_grid(MAP2, {**MAP2, "axes": "XZ"}))
+bad(C, "plot_volume_change", "now", lambda: ca.plot_volume_change(5, MAP2, NEVER + ".svg"),
+    lambda: ca.plot_volume_change({**MAP2, "grid_mm": {"X": [0.0, NAN], "Z": [0.0, 1.0]}}, MAP2, NEVER + ".svg"))
+bad(C, "plot_volume_change", "different grids", lambda: ca.plot_volume_change(MAP2, {**MAP2, "grid_mm": {"X": [0.0, 2.0], "Z": [0.0, 1.0]}}, NEVER + ".svg"))
+bad(C, "plot_volume_change", "figure format", lambda: ca.plot_volume_change(MAP2, MAP2, NEVER + ".txt"))
+bad(C, "plot_volume_change", "label", lambda: ca.plot_volume_change(MAP2, MAP2, NEVER + ".svg", label=3))
 
 
 # ---------------------------------------------------------------- report
@@ -411,6 +420,8 @@ bad(R, "previous_figures", "compare", lambda: rp.previous_figures(NAN), lambda: 
 bad(R, "compare_label", "compare", lambda: rp.compare_label(NAN), lambda: rp.compare_label([]))
 bad(R, "verdict_rows", "results", lambda: rp.verdict_rows(None, None))
 bad(R, "verdict_rows", "before", lambda: rp.verdict_rows(RESULTS, ["E"]))
+bad(R, "verdict_rows", "before_uncertainty", lambda: rp.verdict_rows(RESULTS, None, before_uncertainty=["E"]))
+bad(R, "previous_uncertainty", "compare", lambda: rp.previous_uncertainty(NAN), lambda: rp.previous_uncertainty({"tests": "all"}))
 bad(R, "sections", "tests", lambda: rp.sections(None), lambda: rp.sections([None]), lambda: rp.sections("tests"))
 bad(R, "write_report", "results", lambda: rp.write_report(None, NEVER))
 bad(R, "write_report", "out_dir", lambda: rp.write_report(RESULTS, None))

@@ -73,3 +73,28 @@ def test_polar_plot_is_written(result, tmp_path):
     assert path.stat().st_size > 10_000 and path.read_bytes()[:4] == b"\x89PNG"
     with pytest.raises(AxiscalError, match="figure format"):
         plot_ballbar(result, tmp_path / "polar.txt")
+
+
+def test_the_trace_payload_is_every_kth_point_of_the_plotted_deviation(result):
+    from axiscal.circular.report import circle_deviations, trace_payload
+
+    full = circle_deviations(result)
+    thin = trace_payload(result, max_points=100)
+    for d, (a, r) in full.items():
+        step = math.ceil(a.size / 100)
+        assert len(thin[d]["angle_deg"]) <= 100
+        assert thin[d]["angle_deg"] == pytest.approx([math.degrees(v) for v in a[::step]], abs=1e-4)
+        assert thin[d]["deviation_um"] == pytest.approx(list(r[::step] / UM), abs=1e-4)
+
+
+def test_the_polar_scale_fits_an_overlay(result, tmp_path):
+    from axiscal.circular.plot import plot_ballbar
+    from axiscal.circular.report import trace_payload
+
+    alone = plot_ballbar(result, tmp_path / "alone.svg").read_text()
+    larger = {d: {"angle_deg": p["angle_deg"], "deviation_um": [3 * v for v in p["deviation_um"]]}
+              for d, p in trace_payload(result).items()}
+    text = plot_ballbar(result, tmp_path / "both.svg", overlay=larger).read_text()
+    assert "before: ccw" in text and "before: cw" in text
+    ring = lambda svg: svg.split("outer ring +", 1)[1].split(" ", 1)[0]  # noqa: E731
+    assert float(ring(text)) > float(ring(alone))

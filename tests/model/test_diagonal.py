@@ -119,3 +119,19 @@ def test_before_minus_after_is_the_models_error(ppm, offsets_um):
     np.testing.assert_allclose(result.error_before_m - result.error_after_m, result.model_error_m, atol=1e-15)
     if abs(ppm) > 1e-3:
         assert np.sign(result.model_error_m[-1]) == np.sign(ppm)
+
+
+def test_the_diagonal_plot_draws_another_test_behind(tmp_path):
+    from importlib import resources
+    from pathlib import Path
+
+    from axiscal.model import load_machine
+    from axiscal.model.plot import plot_diagonal
+
+    folder = Path(str(resources.files("axiscal") / "data" / "xz_module"))
+    result = diagonal_test(load_machine(folder / "machine.toml"), "X=0,Z=0", "X=190,Z=190", readings=folder / "diagonal_laser.csv")
+    points = result.summary()["points"]
+    overlay = {k: [float(v) * (1 if k.endswith("_mm") else 2) for v in values] for k, values in points.items()}
+    plot_diagonal(result, tmp_path / "d.svg", overlay=overlay)
+    text = (tmp_path / "d.svg").read_text()
+    assert "before: model prediction" in text and "before: E_BD" in text and "before: E_AD" in text

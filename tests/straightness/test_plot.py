@@ -25,3 +25,19 @@ def test_an_unknown_format_is_refused(tmp_path):
     x = np.linspace(0, 1, 5)
     with pytest.raises(AxiscalError, match="figure format"):
         plot_straightness(tmp_path / "zone.txt", x, x, reference_line(x, x))
+
+
+def test_an_overlay_is_drawn_behind_with_its_legend(tmp_path):
+    x = np.linspace(0, 300, 31) * MM
+    y = np.sin(x / (100 * MM)) * UM
+    line = reference_line(x, y)
+    overlay = {"position_mm": list(x / MM), "deviation_um": [None] + list(2 * y[1:] / UM), "residual_um": list(y / UM)}
+    text = plot_straightness(tmp_path / "zone.svg", x, y, line, overlay=overlay).read_text()
+    assert "before: profile" in text and "before: about its line" in text  # a null is a gap, not an error
+    text = plot_straightness(tmp_path / "as-found.svg", x, y, line, overlay={**overlay, "label": "as found"}).read_text()
+    assert "as found: profile" in text
+    assert "before" not in plot_straightness(tmp_path / "none.svg", x, y, line, overlay={"label": "x"}).read_text()
+    result = reversal(x, y, -y)
+    separated = {"position_mm": list(x / MM), "profile_um": list(2 * y / UM), "motion_um": [None] * x.size}
+    text = plot_separation(tmp_path / "sep.svg", result, overlay=separated).read_text()
+    assert "before: profile R" in text and "before: motion S" in text

@@ -35,6 +35,8 @@ from axiscal.campaign.runner import (
 from axiscal.campaign.volumetric import (
     GRID_POINTS,
     plot_volume,
+    plot_volume_change,
+    same_grid,
     volumetric_section,
 )
 
@@ -66,4 +68,6 @@ __all__ = [
     "GRID_POINTS",
     "volumetric_section",
     "plot_volume",
+    "plot_volume_change",
+    "same_grid",
 ]

@@ -9,6 +9,7 @@ from __future__ import annotations
 import re
 import tempfile
 from collections.abc import Callable, Mapping
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -133,12 +134,9 @@ def _positioning(campaign: Campaign, spec: TestSpec, campaign_compare: Mapping[s
     uncertainty = _uncertainty(campaign, spec, evaluation)
     checks = check_figures(axis_figures, spec.tolerances, {}, uncertainty=uncertainty, rule=campaign.decision_rule)
     title = f"{spec.axis} axis positioning ({evaluation.result.standard})"
-    overlay = None
-    previous = (campaign_compare or {}).get(spec.id)
-    if previous and isinstance(previous.get("targets"), dict):
-        overlay = {**previous["targets"], "label": "compared"}
+    overlay = _overlay(spec, campaign_compare, "targets")
     # the report shows the figures in its own table beside the plot
-    svg = svg_of(lambda p: evaluation.plot(p, title=title, overlay=overlay, figures_table=False))
+    svg = _drawn(spec, lambda p: evaluation.plot(p, title=title, overlay=overlay, figures_table=False), overlay)
     compensation = []
     if campaign.controller is not None:
         options = {"axis": spec.axis} if campaign.controller in ("siemens", "heidenhain") else {}
@@ -179,20 +177,51 @@ def evaluation_is_raw(path: Path) -> bool:
     return any(name.startswith("actual_") for name in header) or "air_temperature_c" in header
 
 
-def _captured(call: Callable[[Path], Any]) -> tuple[Any, str]:
-    """Run ``call(plot_path)`` once: its result and the SVG of the plot it wrote."""
-    holder: list[Any] = []
-    svg = svg_of(lambda p: holder.append(call(p)))
-    return holder[0], svg
+#: decimals of the series results.json carries for the plots of a compared campaign
+SERIES_DECIMALS = 4
 
 
-def _straightness(campaign: Campaign, spec: TestSpec) -> TestResult:
+def _series(values: np.ndarray, unit: float) -> list[float]:
+    """A series in a display unit, rounded for results.json (NaN kept; it is written null)."""
+    return np.round(np.asarray(values, dtype=float) / unit, SERIES_DECIMALS).tolist()
+
+
+def _overlay(spec: TestSpec, compare: Mapping[str, Any] | None, key: str) -> dict[str, Any] | None:
+    """The compared campaign's series ``key`` of the test with this id, labelled for the legend; None
+    when there is no comparison, no such test, or its results.json is older than the key."""
+    from axiscal.io.figures import OVERLAY_LABEL
+
+    previous = (compare or {}).get(spec.id)
+    series = previous.get(key) if isinstance(previous, Mapping) else None
+    return {**series, "label": OVERLAY_LABEL} if isinstance(series, Mapping) else None
+
+
+def _drawn(spec: TestSpec, draw: Callable[[Path], Any], overlay: Mapping[str, Any] | None) -> str:
+    """The SVG of ``draw``; a compared campaign's series that cannot be drawn is named as such."""
+    try:
+        return svg_of(draw)
+    except AxiscalError as exc:
+        if overlay is None or not exc.message.startswith("overlay"):
+            raise
+        raise AxiscalError(f"test '{spec.id}' of the compared results.json: {exc.message}") from None
+
+
+def _straightness(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] | None = None) -> TestResult:
     from axiscal.straightness.files import evaluate_straightness_file
+    from axiscal.straightness.plot import plot_straightness
 
     path = spec.options["file"]
     reference = spec.options.get("reference", "least-squares")
-    evaluation, svg = _captured(lambda p: evaluate_straightness_file(path, reference=reference, plot_path=p))
+    evaluation = evaluate_straightness_file(path, reference=reference)
+    profile, line = evaluation.profile, evaluation.line
+    overlay = _overlay(spec, compare, "profile")
+    svg = _drawn(spec, lambda p: plot_straightness(p, profile.position_m, profile.deviation_m, line, overlay=overlay), overlay)
     figures = evaluation.payload()
+    figures["profile"] = {
+        "position_mm": _series(profile.position_m, MM),
+        "deviation_um": _series(profile.deviation_m, UM),
+        "residual_um": _series(line.residuals(profile.position_m, profile.deviation_m), UM),
+    }
     uncertainty = _uncertainty(campaign, spec, evaluation)
     checks = check_figures(figures, spec.tolerances, {"straightness_um": "um"}, uncertainty=uncertainty,
                            rule=campaign.decision_rule)
@@ -206,8 +235,9 @@ def _straightness(campaign: Campaign, spec: TestSpec) -> TestResult:
     )
 
 
-def _separation(campaign: Campaign, spec: TestSpec) -> TestResult:
+def _separation(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] | None = None) -> TestResult:
     from axiscal.straightness.files import separate_file
+    from axiscal.straightness.plot import plot_separation
     from axiscal.straightness.reference import reference_line
 
     options = spec.options
@@ -217,7 +247,7 @@ def _separation(campaign: Campaign, spec: TestSpec) -> TestResult:
     spacing = options.get("spacing_mm")
     spacing_bc = options.get("spacing_bc_mm")
     calibration = options.get("calibration_mm")
-    run, svg = _captured(lambda p: separate_file(
+    run = separate_file(
         path, method=method,
         spacing_ab_m=None if spacing is None else spacing * MM,
         spacing_bc_m=None if spacing_bc is None else spacing_bc * MM,
@@ -226,9 +256,10 @@ def _separation(campaign: Campaign, spec: TestSpec) -> TestResult:
         min_gain=options.get("min_gain", 0.05),
         parabola=not options.get("periodic", False),
         calibration_m=None if calibration is None else (calibration[0] * MM, calibration[1] * MM),
-        plot_path=p,
-    ))
+    )
     separation = run.separation
+    overlay = _overlay(spec, compare, "columns")
+    svg = _drawn(spec, lambda p: plot_separation(p, separation, overlay=overlay), overlay)
     motion = np.isfinite(separation.motion_m)
     slide = reference_line(separation.position_m[motion], separation.motion_m[motion], reference=reference)
     workpiece = reference_line(separation.position_m, separation.profile_m, reference=reference)
@@ -239,7 +270,11 @@ def _separation(campaign: Campaign, spec: TestSpec) -> TestResult:
         "profile_straightness_um": workpiece.straightness_m / UM,
         "reference": reference,
         "points": int(separation.position_m.size),
+        "columns": {"position_mm": _series(separation.position_m, MM), "profile_um": _series(separation.profile_m, UM),
+                    "motion_um": _series(separation.motion_m, UM)},
     }
+    if np.any(np.isfinite(separation.yaw_rad)):
+        figures["columns"]["yaw_urad"] = _series(separation.yaw_rad, URAD)
     checks = check_figures(figures, spec.tolerances, {"straightness_um": "um"})
     direction = options.get("direction")
     label = f"E{direction}{spec.axis}" if direction and spec.axis else "slide motion"
@@ -253,18 +288,27 @@ def _separation(campaign: Campaign, spec: TestSpec) -> TestResult:
     )
 
 
-def _squareness(campaign: Campaign, spec: TestSpec) -> TestResult:
+def _squareness(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] | None = None) -> TestResult:
     from axiscal.squareness.evaluation import squareness_from_files
+    from axiscal.squareness.plot import plot_squareness
 
     first, second = spec.options["first"], spec.options["second"]
-    evaluation, svg = _captured(lambda p: squareness_from_files(
+    evaluation = squareness_from_files(
         first, second, plane=spec.options["plane"],
         prism_deviation_rad=spec.options.get("prism_deviation_arcsec", 0.0) * ARCSEC,
         reference=spec.options.get("reference", "least-squares"),
         convention=spec.options.get("convention", "included-angle"),
-        plot_path=p,
-    ))
+    )
+    runs = ((evaluation.first.position_m, evaluation.first.deviation_m),
+            (evaluation.second.position_m, evaluation.second.deviation_m))
+    overlay = _overlay(spec, compare, "runs")
+    svg = _drawn(spec, lambda p: plot_squareness(p, evaluation.result, runs, overlay=overlay), overlay)
     figures = evaluation.payload()
+    figures["runs"] = {
+        which: {"position_mm": _series(x, MM), "deviation_um": _series(y, UM),
+                "line_um": _series(line.slope * x + line.intercept_m, UM)}
+        for which, (x, y), line in zip(("first", "second"), runs, (evaluation.result.first_line, evaluation.result.second_line))
+    }
     uncertainty = _uncertainty(campaign, spec, evaluation)
     checks = check_figures(figures, spec.tolerances, {"squareness_arcsec": "arcsec"}, uncertainty=uncertainty,
                            rule=campaign.decision_rule)
@@ -278,10 +322,10 @@ def _squareness(campaign: Campaign, spec: TestSpec) -> TestResult:
     )
 
 
-def _ballbar(campaign: Campaign, spec: TestSpec) -> TestResult:
+def _ballbar(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] | None = None) -> TestResult:
     from axiscal.circular.evaluation import MM_PER_MIN
     from axiscal.circular.plot import plot_ballbar
-    from axiscal.circular.report import ballbar_payload, evaluate_ballbar_file
+    from axiscal.circular.report import ballbar_payload, evaluate_ballbar_file, trace_payload
 
     path = spec.options["file"]
     feed = spec.options.get("feed_mm_min")
@@ -294,7 +338,9 @@ def _ballbar(campaign: Campaign, spec: TestSpec) -> TestResult:
     figures["circular_deviation_um"] = max(deviations) if deviations else None
     checks = check_figures(figures, spec.tolerances, {"circular_deviation_um": "um"})
     title = f"{spec.axis} circular test (ISO 230-4), radius {spec.options['radius_mm']:g} mm"
-    svg = svg_of(lambda p: plot_ballbar(result, p, title=title))
+    overlay = _overlay(spec, compare, "trace")
+    svg = _drawn(spec, lambda p: plot_ballbar(result, p, title=title, overlay=overlay), overlay)
+    figures["trace"] = trace_payload(result)
     table = [Figure(label, figures[key], unit) for key, label, unit in (
         ("G_ccw_um", "circular deviation G ccw", "um"), ("G_cw_um", "circular deviation G cw", "um"),
         ("H_um", "circular hysteresis H", "um"), ("squareness_urad", "squareness", "urad"),
@@ -306,8 +352,9 @@ def _ballbar(campaign: Campaign, spec: TestSpec) -> TestResult:
     )
 
 
-def _diagonal(campaign: Campaign, spec: TestSpec) -> TestResult:
+def _diagonal(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] | None = None) -> TestResult:
     from axiscal.model.diagonal import diagonal_test
+    from axiscal.model.plot import plot_diagonal
 
     options = spec.options
     readings = options.get("interferometer")
@@ -316,11 +363,14 @@ def _diagonal(campaign: Campaign, spec: TestSpec) -> TestResult:
         measure=options.get("measure", "projection"),
     )
     figures = result.summary()
-    figures.pop("points", None)
+    figures["points"] = {k: np.asarray(v, dtype=float).tolist() for k, v in figures["points"].items()}
     figures["diagonal_error_um"] = figures.get("E_BD_range_um", figures["model_error_range_um"])
-    checks = check_figures({"diagonal": figures["diagonal_error_um"]}, spec.tolerances, {"diagonal_um": "um"})
+    # the tolerance is keyed diagonal_um; the figure it holds, and a compared campaign's, is diagonal_error_um
+    checks = [replace(c, figure="diagonal_error_um")
+              for c in check_figures({"diagonal": figures["diagonal_error_um"]}, spec.tolerances, {"diagonal_um": "um"})]
     title = f"Diagonal {options['from']} to {options['to']}: displacement error (actual minus nominal)"
-    svg = svg_of(lambda p: result.plot(p, title=title))
+    overlay = _overlay(spec, compare, "points")
+    svg = _drawn(spec, lambda p: plot_diagonal(result, p, title=title, overlay=overlay), overlay)
     table = [Figure("model error range", figures["model_error_range_um"], "um")]
     if "E_BD_range_um" in figures:
         table += [Figure("measured error range, before the model (E_BD)", figures["E_BD_range_um"], "um"),
@@ -569,6 +619,9 @@ KIND_RUNNERS: dict[str, Callable[[Campaign, TestSpec], TestResult]] = {
     "sixdof_diagonal": _sixdof_diagonal,
 }
 
+#: kinds whose plot draws the compared campaign's test of the same id behind its own
+OVERLAID_KINDS = ("positioning", "straightness", "separation", "squareness", "ballbar", "diagonal")
+
 
 def run_test(campaign: Campaign, spec: TestSpec, *, compare: Mapping[str, Any] | None = None) -> TestResult:
     """Run one test of a campaign through the library call of its kind.
@@ -579,8 +632,9 @@ def run_test(campaign: Campaign, spec: TestSpec, *, compare: Mapping[str, Any] |
     spec : TestSpec
         One of ``campaign.tests``.
     compare : mapping, keyword-only
-        Figures of another campaign by test id (its results.json): a positioning plot draws the
-        other campaign's mean deviations behind this one's.
+        Figures of another campaign by test id (its results.json): the plot of a kind in
+        :data:`OVERLAID_KINDS` draws the other campaign's series of the same test id behind this
+        one's (none when that results.json does not carry them).
 
     Returns
     -------
@@ -598,7 +652,7 @@ def run_test(campaign: Campaign, spec: TestSpec, *, compare: Mapping[str, Any] |
     runner = KIND_RUNNERS.get(spec.kind)
     if runner is None:
         raise AxiscalError(f"tests of kind '{spec.kind}' cannot be run yet", path=campaign.folder / "campaign.toml", line=spec.line)
-    if spec.kind == "positioning":
+    if spec.kind in OVERLAID_KINDS:
         return runner(campaign, spec, compare)
     return runner(campaign, spec)
 
@@ -619,7 +673,8 @@ def run_campaign(
         Called as ``progress(done, total, spec)`` before each test and once at the end with
         ``done == total`` (the command line draws a progress bar with it).
     compare : mapping, keyword-only
-        Another campaign's results.json: its positioning means are drawn in this one's plots.
+        Another campaign's results.json: each plot draws its test of the same id behind this
+        one's, and the volumetric section maps the change of the volumetric error.
 
     Returns
     -------
@@ -651,8 +706,9 @@ def run_campaign(
     if campaign.model is not None:
         from axiscal.campaign.volumetric import volumetric_section
 
-        model = volumetric_section(campaign.model, svg_of)
+        before = compare.get("volumetric") if compare is not None else None
+        model = volumetric_section(campaign.model, svg_of, before=before if isinstance(before, Mapping) else None)
     if progress is not None and total:
         progress(total, total, campaign.tests[-1])
     return CampaignResults(campaign.campaign, campaign.machine, campaign.instrument, results, model=model,
-                           decision_rule=campaign.decision_rule)
+                           decision_rule=campaign.decision_rule, warnings=list(model.get("warnings", [])))

@@ -1,13 +1,14 @@
-"""The volumetric section of a campaign: the model's error over the working volume.
+"""The volumetric section of a campaign: the model's error over the working volume, and its change.
 
 The map is always drawn against the axis positions: a line per component for one axis, a colour
 map of |e| for two axes, and for three axes a colour map in the plane of the first two axes at the
-start, middle and end of the third.
+start, middle and end of the third. Against another campaign's map on the same grid, the change
+|e| now - |e| before is drawn the same way on a diverging colour scale centred on zero.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -15,13 +16,13 @@ import numpy as np
 
 from axiscal.campaign.results import Figure, Plot
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_count, check_path
+from axiscal.io.arguments import check_count, check_mapping, check_path
 from axiscal.io.arguments import check_instance, type_name
 from axiscal.model.machine import Machine, load_machine
 from axiscal.model.volumetric import volumetric_map
 from axiscal.units import MM, UM
 
-__all__ = ["GRID_POINTS", "volumetric_section", "plot_volume"]
+__all__ = ["GRID_POINTS", "volumetric_section", "plot_volume", "plot_volume_change", "same_grid"]
 
 #: grid points along each linear axis of the report's map
 GRID_POINTS = 21
@@ -46,7 +47,11 @@ def plot_volume(machine: Machine, path: str | Path, *, count: int = GRID_POINTS)
     Returns
     -------
     dict
-        ``max_um``, ``rms_um``, ``max_at_mm`` (axis -> position) over the grid.
+        ``max_um``, ``rms_um``, ``max_at_mm`` (axis -> position) over the grid, and ``map``: the
+        values drawn, ``axes`` (letters), ``grid_mm`` (letter -> positions drawn: every grid
+        position of the first two axes, the three slices of a third), ``e_um`` (|e| on that
+        grid, nested in the order of ``axes``) and, for one axis, ``components_um`` (``ex``,
+        ``ey``, ``ez``).
 
     Raises
     ------
@@ -109,10 +114,156 @@ def plot_volume(machine: Machine, path: str | Path, *, count: int = GRID_POINTS)
         "max_um": result.max_m / UM,
         "rms_um": result.rms_m / UM,
         "max_at_mm": {k: v / MM for k, v in result.max_at_m.items()},
+        "map": _drawn_map(letters, axes, magnitude, error),
     }
 
 
-def volumetric_section(model: str | Path, svg_of: Callable[[Callable[[Path], Any]], str]) -> dict[str, Any]:
+def _drawn_map(letters: list[str], axes: dict[str, np.ndarray], magnitude_um: np.ndarray, error_m: np.ndarray) -> dict[str, Any]:
+    """The values the map draws, for results.json: |e| (um) on the grid of the plotted axes and slices."""
+    grid = {letter: axes[letter] for letter in letters}
+    e_um = magnitude_um.reshape([axes[letter].size for letter in letters])
+    if len(letters) == 3:
+        values = grid[letters[2]]
+        picks = [0, values.size // 2, values.size - 1]
+        grid[letters[2]] = values[picks]
+        e_um = e_um[:, :, picks]
+    out: dict[str, Any] = {
+        "axes": list(letters),
+        "grid_mm": {letter: np.round(q / MM, 6).tolist() for letter, q in grid.items()},
+        "e_um": np.round(e_um, 4).tolist(),
+    }
+    if len(letters) == 1:
+        out["components_um"] = {name: np.round(error_m[:, i] / UM, 4).tolist() for i, name in enumerate(("ex", "ey", "ez"))}
+    return out
+
+
+def _map_arrays(name: str, drawn: Mapping[str, Any]) -> tuple[list[str], dict[str, np.ndarray], np.ndarray, dict[str, np.ndarray]]:
+    """A map of :func:`plot_volume` checked: axes, grid (mm), |e| (um) and components (um, one axis only)."""
+    from axiscal.io.arguments import check_array
+
+    check_mapping(name, drawn, ("axes", "grid_mm", "e_um"), what="a volumetric map (axes, grid_mm, e_um)")
+    letters = drawn["axes"]
+    if not isinstance(letters, list) or not 1 <= len(letters) <= 3 or not all(isinstance(k, str) for k in letters):
+        raise AxiscalError(f"{name} axes must be a list of one to three axis letters, not {letters!r}")
+    check_mapping(f"{name} grid_mm", drawn["grid_mm"], letters, what="a mapping of axis letters to positions")
+    grid = {k: check_array(f"{name} grid_mm[{k!r}]", drawn["grid_mm"][k], ndim=1, min_len=1, unit="mm") for k in letters}
+    e_um = check_array(f"{name} e_um", drawn["e_um"], ndim=len(letters), finite=False, unit="um")
+    if e_um.shape != tuple(grid[k].size for k in letters):
+        raise AxiscalError(f"{name} e_um must have shape {tuple(grid[k].size for k in letters)} (its grid), not {e_um.shape}")
+    components = {}
+    if len(letters) == 1 and isinstance(drawn.get("components_um"), Mapping):
+        for key in ("ex", "ey", "ez"):
+            if key in drawn["components_um"]:
+                components[key] = check_array(f"{name} components_um[{key!r}]", drawn["components_um"][key], ndim=1,
+                                              finite=False, unit="um")
+                if components[key].size != e_um.size:
+                    raise AxiscalError(f"{name} components_um[{key!r}] must have {e_um.size} values, not {components[key].size}")
+    return letters, grid, e_um, components
+
+
+def same_grid(now: Mapping[str, Any], before: Mapping[str, Any]) -> bool:
+    """Whether two maps of :func:`plot_volume` were drawn on the same axes and grid (to 1 nm).
+
+    Parameters
+    ----------
+    now, before : mapping
+        The ``map`` of two volumetric sections.
+
+    Returns
+    -------
+    bool
+
+    Raises
+    ------
+    AxiscalError
+        For a map that is not one (see :func:`plot_volume`).
+    """
+    a_axes, a_grid, _, _ = _map_arrays("now", now)
+    b_axes, b_grid, _, _ = _map_arrays("before", before)
+    return a_axes == b_axes and all(
+        a_grid[k].shape == b_grid[k].shape and np.allclose(a_grid[k], b_grid[k], rtol=0.0, atol=1e-6) for k in a_axes
+    )
+
+
+def plot_volume_change(now: Mapping[str, Any], before: Mapping[str, Any], path: str | Path, *, label: str = "before") -> Path:
+    """Draw the change of the volumetric error between two maps on the same grid: |e| now - |e| before.
+
+    Two or three axes: a colour map per slice on a diverging scale centred on zero (blue where the
+    error is smaller now, red where it is larger), the same scale for every slice. One axis: the
+    change of |e| and of each component against the position.
+
+    Parameters
+    ----------
+    now, before : mapping
+        The ``map`` of :func:`plot_volume` for this campaign and the compared one (as results.json
+        holds it, ``volumetric.map``), on the same grid.
+    path : str or Path
+        The figure to write (format from the suffix).
+    label : str, keyword-only
+        How the figure names the compared campaign (default "before").
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    Raises
+    ------
+    AxiscalError
+        For a map that is not one, maps on different grids (see :func:`same_grid`), a path
+        without a figure suffix, a label that is not text.
+    """
+    from axiscal.io.figures import check_figure_path, pyplot, save_figure
+
+    letters, grid, e_now, c_now = _map_arrays("now", now)
+    _, _, e_before, c_before = _map_arrays("before", before)
+    if not same_grid(now, before):
+        raise AxiscalError("the two volumetric maps are on different grids (axes or travel differ): no change can be drawn")
+    check_figure_path(path)
+    check_instance("label", label, str)
+    change = e_now - e_before
+    plt = pyplot()
+    title = f"Change of the volumetric error: |e| now − |e| {label}"
+    if len(letters) == 1:
+        (a,) = letters
+        fig, ax = plt.subplots(figsize=(7.5, 3.6))
+        for key in ("ex", "ey", "ez"):
+            if key in c_now and key in c_before:
+                ax.plot(grid[a], c_now[key] - c_before[key], label=f"{key} now − {key} {label}")
+        ax.plot(grid[a], change, "k", label=f"|e| now − |e| {label}")
+        ax.axhline(0.0, color="0.6", linewidth=0.6)
+        ax.set_xlabel(f"{a} / mm")
+        ax.set_ylabel("change / um")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+    else:
+        a, b = letters[:2]
+        if len(letters) == 2:
+            panels = [(None, change)]
+        else:
+            c = letters[2]
+            panels = [(f"{c} = {v:g} mm", change[:, :, k]) for k, v in enumerate(grid[c])]
+        finite = change[np.isfinite(change)]
+        span = float(np.max(np.abs(finite))) if finite.size else 0.0
+        span = span if span > 0 else 1e-3
+        fig, grid_axes = plt.subplots(1, len(panels), figsize=(4.2 * len(panels) + 1.2, 4.0), squeeze=False,
+                                      layout="constrained")
+        for ax, (caption, image) in zip(grid_axes[0], panels):
+            mesh_plot = ax.pcolormesh(grid[a], grid[b], image.T, shading="auto", cmap="RdBu_r", vmin=-span, vmax=span)
+            ax.set_xlabel(f"{a} / mm")
+            if ax is grid_axes[0][0]:
+                ax.set_ylabel(f"{b} / mm")
+            ax.set_aspect("equal")
+            if caption:
+                ax.set_title(caption, fontsize=10)
+        fig.colorbar(mesh_plot, ax=grid_axes[0].tolist(), label=f"|e| now − |e| {label} / um")
+    fig.suptitle(title, fontsize=11)
+    return save_figure(fig, path)
+
+
+def volumetric_section(
+    model: str | Path, svg_of: Callable[[Callable[[Path], Any]], str], *, before: Mapping[str, Any] | None = None
+) -> dict[str, Any]:
     """The report's volumetric section for a machine description.
 
     Parameters
@@ -121,29 +272,54 @@ def volumetric_section(model: str | Path, svg_of: Callable[[Callable[[Path], Any
         The machine description (TOML).
     svg_of : callable
         Turns a plot-writing function into SVG text (:func:`axiscal.campaign.runner.svg_of`).
+    before : mapping, keyword-only
+        The ``volumetric`` object of another campaign's results.json: when it holds a ``map`` on
+        the same grid, a second plot draws the change |e| now - |e| before
+        (:func:`plot_volume_change`); on another grid, a warning says why none is drawn; a
+        results.json without a map (older than the key) draws none.
 
     Returns
     -------
     dict
-        ``method``, ``table`` (list of Figure), ``plots`` (list of Plot) and ``figures`` (for results.json).
+        ``method``, ``table`` (list of Figure), ``plots`` (list of Plot), ``figures`` (for
+        results.json) and ``warnings`` (list of str).
 
     Raises
     ------
     AxiscalError
-        For a bad machine description (naming the file and line) or an ``svg_of`` that is not callable.
+        For a bad machine description (naming the file and line), an ``svg_of`` that is not
+        callable, a ``before`` that is not a mapping or whose map is not one.
     """
     model = check_path("model", model)
     if not callable(svg_of):
         raise AxiscalError(f"svg_of must be a function that turns a plot into SVG text, not {type_name(svg_of)}")
+    if before is not None:
+        check_mapping("before", before, what="the volumetric object of another campaign's results.json")
     machine = load_machine(model)
     holder: list[dict[str, Any]] = []
     svg = svg_of(lambda p: holder.append(plot_volume(machine, p)))
     figures = holder[0]
     where = ", ".join(f"{k} = {v:g}" for k, v in figures["max_at_mm"].items())
+    plots = [Plot("Volumetric error |e| against the axis positions", svg)]
+    warnings = []
+    previous = None if before is None else before.get("map")
+    if previous is not None:
+        try:
+            matched = same_grid(figures["map"], previous)
+        except AxiscalError as exc:
+            raise AxiscalError(f"the compared results.json's volumetric map: {exc.message}") from None
+        if matched:
+            change = svg_of(lambda p: plot_volume_change(figures["map"], previous, p))
+            plots.append(Plot("Change of the volumetric error since the compared campaign: |e| now − |e| before on the "
+                              "same grid (blue: smaller now, red: larger)", change))
+        else:
+            warnings.append("volumetric: the compared campaign's map is on another grid (axes or travel differ), "
+                            "so no change of the volumetric error is drawn")
     return {
         "method": f"HTM model of {machine.name or machine.chain} (chain {machine.chain}), {GRID_POINTS} points along each axis",
         "table": [Figure("largest |e|", figures["max_um"], "um"), Figure("rms |e|", figures["rms_um"], "um"),
                   Figure("largest |e| at", where, "mm")],
-        "plots": [Plot("Volumetric error |e| against the axis positions", svg)],
+        "plots": plots,
         "figures": figures,
+        "warnings": warnings,
     }

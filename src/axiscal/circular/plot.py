@@ -7,15 +7,16 @@ plot is asked for.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
-from axiscal.circular.evaluation import radial_deviations
-from axiscal.circular.report import BallbarResult, ballbar_payload, format_number
+from axiscal.circular.report import BallbarResult, ballbar_payload, circle_deviations, format_number
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_instance, check_path
-from axiscal.io.figures import check_figure_path, pyplot, save_figure
+from axiscal.io.arguments import check_instance, check_mapping, check_path
+from axiscal.io.figures import OVERLAY_STYLE, check_figure_path, overlay_label, overlay_series, pyplot, save_figure
 from axiscal.units import MM, UM
 
 __all__ = ["plot_ballbar"]
@@ -61,7 +62,24 @@ def _figure_lines(result: BallbarResult) -> list[str]:
     return lines
 
 
-def plot_ballbar(result: BallbarResult, path: str | Path, *, title: str = "") -> Path:
+def _ballbar_overlay(overlay: Mapping[str, Any]) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Each direction of the overlay as (angle in radians, deviation in um)."""
+    check_mapping("overlay", overlay, what="another circular test's trace ({'ccw': ..., 'cw': ...})")
+    paths = {}
+    for d in ("ccw", "cw"):
+        trace = overlay.get(d)
+        if trace is None:
+            continue
+        name = f"overlay['{d}']"
+        check_mapping(name, trace, what="a path (angle_deg, deviation_um)")
+        angle = overlay_series(trace, "angle_deg", name=name)
+        deviation = None if angle is None else overlay_series(trace, "deviation_um", length=angle.size, name=name)
+        if deviation is not None and angle.size:
+            paths[d] = (np.radians(angle), deviation)
+    return paths
+
+
+def plot_ballbar(result: BallbarResult, path: str | Path, *, title: str = "", overlay: Mapping[str, Any] | None = None) -> Path:
     """Write the polar plot of a ballbar test to ``path`` (format from its suffix, e.g. .png, .svg, .pdf).
 
     Each direction's path is drawn as its distance from the least-squares centre of all points,
@@ -76,6 +94,11 @@ def plot_ballbar(result: BallbarResult, path: str | Path, *, title: str = "") ->
         The figure file.
     title : str, keyword-only
         Replaces the default title (file, plane, radius).
+    overlay : mapping, keyword-only
+        Another circular test of the same plane (e.g. before compensation), drawn behind in grey,
+        dashed: ``ccw`` and ``cw``, each a mapping of ``angle_deg`` and ``deviation_um`` (from its
+        own least-squares circle), shape (m,); and an optional ``label`` for the legend (default
+        "before"). The deviation scale is chosen so both fit.
 
     Returns
     -------
@@ -85,20 +108,20 @@ def plot_ballbar(result: BallbarResult, path: str | Path, *, title: str = "") ->
     Raises
     ------
     AxiscalError
-        If the suffix names no figure format, or the file cannot be written.
+        If the suffix names no figure format, or the file cannot be written; an overlay whose
+        series are not lists of numbers of one length per direction.
     """
     check_instance("result", result, BallbarResult, what="a BallbarResult (evaluate_ballbar)")
     if not isinstance(title, str):
         raise AxiscalError(f"title must be text, not {title!r}")
     path = check_figure_path(check_path("path", path))
+    before = {} if overlay is None else _ballbar_overlay(overlay)
     plt = pyplot()
-    trace, fig_ = result.trace, result.figures
-    deviations = {}
-    for d in trace.present:
-        a, dev = trace.path(d)
-        r = radial_deviations(a, dev, trace.radius, fig_.centre) - fig_.radius_offset
-        deviations[d] = (np.append(a, a[0] + 2 * math.pi), np.append(r, r[0]) / UM)
+    trace = result.trace
+    deviations = {d: (np.append(a, a[0] + 2 * math.pi), np.append(r, r[0]) / UM) for d, (a, r) in circle_deviations(result).items()}
     span = max(float(np.max(np.abs(r))) for _, r in deviations.values())
+    spans = [np.abs(r[np.isfinite(r)]) for _, r in before.values()]
+    span = max([span, *(float(v.max()) for v in spans if v.size)])
     limit = _nice_ceiling(max(span, 0.1))
     fig = plt.figure(figsize=(11.0, 6.6))
     ax = fig.add_axes([0.04, 0.08, 0.6, 0.82], projection="polar")
@@ -114,6 +137,9 @@ def plot_ballbar(result: BallbarResult, path: str | Path, *, title: str = "") ->
     )
     ring = np.linspace(0, 2 * math.pi, 721)
     ax.plot(ring, np.zeros_like(ring), "--", color="0.2", linewidth=1.0, label="least-squares circle")
+    for d, (a, r) in before.items():
+        style = OVERLAY_STYLE if d == "ccw" else {**OVERLAY_STYLE, "linestyle": (0, (1, 1.5))}
+        ax.plot(a, np.clip(r, -limit, limit), **style, label=f"{overlay_label(overlay)}: {d}")
     for d, (a, r) in deviations.items():
         arrow = "↺" if d == "ccw" else "↻"
         ax.plot(a, np.clip(r, -limit, limit), "-", color=_COLOURS[d], linewidth=1.0, label=f"{d} {arrow}")

@@ -13,6 +13,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from axiscal.circular.diagnostics import BallbarDiagnostics, diagnose
 from axiscal.circular.evaluation import (
     MM_PER_MIN,
@@ -20,11 +22,12 @@ from axiscal.circular.evaluation import (
     CircularFigures,
     iso230_4,
     plane_axes,
+    radial_deviations,
 )
 from axiscal.circular.reader import read_ballbar
 from axiscal.conventions import SQUARENESS_TERMS
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_instance, check_number, is_real
+from axiscal.io.arguments import check_count, check_instance, check_number, is_real
 from axiscal.units import ANGLE_UNITS, LENGTH_UNITS, MM, UM
 
 __all__ = [
@@ -36,6 +39,9 @@ __all__ = [
     "evaluate_ballbar",
     "evaluate_ballbar_file",
     "ballbar_payload",
+    "circle_deviations",
+    "trace_payload",
+    "TRACE_POINTS",
     "format_number",
     "render_report",
 ]
@@ -205,6 +211,66 @@ def ballbar_payload(result: BallbarResult) -> dict[str, Any]:
         "residual_rms_um": _um(d.residual_rms),
         "warnings": list(d.warnings),
     }
+
+
+#: most points per direction :func:`trace_payload` keeps (one each degree of a full circle)
+TRACE_POINTS = 360
+
+
+def circle_deviations(result: BallbarResult) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Each direction's path as its distance from the least-squares circle: what the polar plot draws.
+
+    The distance of each point from the least-squares centre of all points
+    (:func:`~axiscal.circular.evaluation.radial_deviations`) minus the least-squares radius.
+
+    Parameters
+    ----------
+    result : BallbarResult
+
+    Returns
+    -------
+    dict of str to (ndarray, ndarray)
+        Direction (``"ccw"``, ``"cw"``, those measured) -> angles (radians in [0, 2 pi), sorted)
+        and deviations (metres), each shape (n,).
+    """
+    _result(result)
+    trace, figures = result.trace, result.figures
+    out = {}
+    for d in trace.present:
+        a, dev = trace.path(d)
+        out[d] = (a, radial_deviations(a, dev, trace.radius, figures.centre) - figures.radius_offset)
+    return out
+
+
+def trace_payload(result: BallbarResult, *, max_points: int = TRACE_POINTS) -> dict[str, dict[str, list[float]]]:
+    """The paths of :func:`circle_deviations` as a JSON object, thinned for a results file.
+
+    Every k-th point of a direction is kept, k the smallest step leaving at most ``max_points``
+    (a 3600-point trace keeps every tenth point: one each degree).
+
+    Parameters
+    ----------
+    result : BallbarResult
+    max_points : int, keyword-only
+        Most points kept per direction (default :data:`TRACE_POINTS`).
+
+    Returns
+    -------
+    dict
+        Direction -> ``{"angle_deg": [...], "deviation_um": [...]}`` (4 decimals).
+
+    Raises
+    ------
+    AxiscalError
+        For a ``result`` that is not a BallbarResult or a ``max_points`` below 2.
+    """
+    max_points = check_count("max_points", max_points, minimum=2)
+    out = {}
+    for d, (a, r) in circle_deviations(result).items():
+        step = max(1, -(-a.size // max_points))
+        out[d] = {"angle_deg": np.round(np.degrees(a[::step]), 4).tolist(),
+                  "deviation_um": np.round(r[::step] / UM, 4).tolist()}
+    return out
 
 
 def format_number(value: float | None, fmt: str = "{:+.2f}") -> str:

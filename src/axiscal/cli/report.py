@@ -40,7 +40,8 @@ def _progress(enabled: bool):
 @click.command("report")
 @click.argument("campaign_dir", type=click.Path(file_okay=True, dir_okay=True))
 @click.option("-o", "--output", "out_dir", type=click.Path(file_okay=False), help="Report folder [CAMPAIGN_DIR/report].")
-@click.option("--compare", type=click.Path(dir_okay=False), help="results.json of another campaign (e.g. before compensation).")
+@click.option("--compare", type=click.Path(dir_okay=False), help="results.json of another campaign (e.g. before compensation): drawn behind every plot, and each figure "
+                   "before, after and its change in the verdict table.")
 @click.option("--pdf", is_flag=True, help="Also write report.pdf.")
 @click.option("--exit-code", is_flag=True,
               help="Exit with status 1 when the verdict is fail, or inconclusive under a guard-band rule (for scripts and CI).")

@@ -6,14 +6,15 @@ Every error plotted is actual minus nominal (docs/conventions.md), in um (transl
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_instance, check_mapping, check_path
-from axiscal.io.figures import pyplot, save_figure
+from axiscal.io.figures import OVERLAY_STYLE, overlay_label, overlay_series, pyplot, save_figure
 from axiscal.model.machine import AXIS_UNITS, Machine
 from axiscal.units import ANGLE_UNITS, MM, UM
 
@@ -164,7 +165,13 @@ def plot_volumetric(
     save_figure(fig, path, dpi=120)
 
 
-def plot_diagonal(result: DiagonalResult, path: str | Path, *, title: str = "Diagonal displacement error") -> None:
+def plot_diagonal(
+    result: DiagonalResult,
+    path: str | Path,
+    *,
+    title: str = "Diagonal displacement error",
+    overlay: Mapping[str, Any] | None = None,
+) -> None:
     """Paper 000 Fig. 22 style: the model's diagonal error and, with readings, E_BD and E_AD.
 
     All three are actual minus nominal along the diagonal (:mod:`axiscal.model.diagonal`): the
@@ -179,6 +186,11 @@ def plot_diagonal(result: DiagonalResult, path: str | Path, *, title: str = "Dia
         Figure file; the format follows the suffix.
     title : str
         Figure title.
+    overlay : mapping, keyword-only
+        Another test of the same diagonal (e.g. before compensation), drawn behind in grey: the
+        ``points`` of its ``axiscal diagonal --json`` (``nominal_mm``, ``model_error_um`` and, with
+        readings, ``E_BD_um`` and ``E_AD_um``, shape (m,)) and an optional ``label`` for the legend
+        (default "before").
 
     Returns
     -------
@@ -188,14 +200,27 @@ def plot_diagonal(result: DiagonalResult, path: str | Path, *, title: str = "Dia
     Raises
     ------
     AxiscalError
-        If the suffix is not a figure format or the file cannot be written.
+        If the suffix is not a figure format or the file cannot be written; an overlay whose
+        series are not lists of numbers of one length.
     """
     from axiscal.model.diagonal import DiagonalResult
 
     check_instance("result", result, DiagonalResult)
     check_path("path", path)
+    before = []
+    if overlay is not None:
+        check_mapping("overlay", overlay, what="the points of another diagonal test (nominal_mm, E_BD_um ...)")
+        x_before = overlay_series(overlay, "nominal_mm")
+        label = overlay_label(overlay)
+        for key, dashes, name in (("model_error_um", (0, (6, 2)), "model prediction"), ("E_BD_um", (0, (4, 2)), "E_BD"),
+                                  ("E_AD_um", (0, (1, 1.5)), "E_AD")):
+            values = None if x_before is None else overlay_series(overlay, key, length=x_before.size)
+            if values is not None:
+                before.append((x_before, values, dashes, f"{label}: {name}"))
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(8, 4.5))
+    for x_before, values, dashes, name in before:
+        ax.plot(x_before, values, **{**OVERLAY_STYLE, "linestyle": dashes}, label=name)
     nominal_mm = result.nominal_m / MM
     ax.plot(nominal_mm, result.model_error_m / UM, "k--", label="model prediction (predicted - nominal)")
     if result.error_before_m is not None and result.error_after_m is not None:

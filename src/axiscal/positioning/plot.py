@@ -17,7 +17,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_instance, check_mapping, check_path
-from axiscal.io.figures import pyplot, save_figure
+from axiscal.io.figures import OVERLAY_STYLE, overlay_label, pyplot, save_figure
 from axiscal.positioning.evaluation import Iso230Result, PositioningRun, Vdi3441Result
 from axiscal.units import ARCSEC, DEG, MM, UM
 
@@ -71,7 +71,8 @@ def plot_positioning(
     overlay : mapping, keyword-only
         Another test of the same axis to draw behind this one (e.g. before compensation): the
         ``targets`` object of its ``axiscal positioning --json`` (``target_mm`` or ``target_deg``,
-        ``mean_up_um``/``mean_down_um`` or the ``_arcsec`` forms) and an optional ``label``.
+        ``mean_up_um``/``mean_down_um`` or the ``_arcsec`` forms) and an optional ``label`` for
+        the legend (default "before").
     figures_table : bool, keyword-only
         Draw the axis figures in a table beside the plot (default True).
 
@@ -142,8 +143,8 @@ def plot_positioning(
                 if x_over.size != y_over.size:
                     raise AxiscalError(f"overlay {key} must have one value per target, not {y_over.size} for {x_over.size}")
                 ax.plot(x_over, y_over,
-                        linestyle=style, color="0.45", linewidth=1.2,
-                        label=f"{overlay.get('label', 'compared')}: mean x̄{arrow}")
+                        linestyle=style, color=OVERLAY_STYLE["color"], linewidth=OVERLAY_STYLE["linewidth"],
+                        label=f"{overlay_label(overlay)}: mean x̄{arrow}")
     ax.plot([], [], ".", color="0.5", label="single runs")
     ax.axhline(0.0, color="0.6", linewidth=0.6)
     ax.set_xlabel(f"target position / {'degree' if run.rotary else 'mm'}")

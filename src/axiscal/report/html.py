@@ -27,6 +27,7 @@ __all__ = [
     "format_number",
     "decision_statement",
     "previous_figures",
+    "previous_uncertainty",
     "compare_label",
     "verdict_rows",
     "sections",
@@ -157,6 +158,36 @@ def previous_figures(compare: Mapping[str, Any] | None) -> dict[str, Any] | None
     return {t.get("id"): t.get("figures", {}) for t in compare.get("tests", []) if isinstance(t, Mapping)}
 
 
+def previous_uncertainty(compare: Mapping[str, Any] | None) -> dict[str, dict[str, float]] | None:
+    """The expanded uncertainties (k = 2) of another campaign's figures, by test id.
+
+    Parameters
+    ----------
+    compare : mapping or None
+        Another campaign's results.json.
+
+    Returns
+    -------
+    dict or None
+        Test id -> figure key -> U, in the figure's unit, for the tests whose results carry an
+        uncertainty (a campaign with a budget); None without a comparison.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``compare`` that is not a results.json object.
+    """
+    if compare is None:
+        return None
+    check_compare(compare)
+    out = {}
+    for test in compare.get("tests", []):
+        if isinstance(test, Mapping) and isinstance(test.get("uncertainty"), Mapping):
+            out[test.get("id")] = {k: float(v) for k, v in test["uncertainty"].items()
+                                   if k != "k" and is_real(v) and math.isfinite(v)}
+    return out
+
+
 def compare_label(compare: Mapping[str, Any] | None) -> str | None:
     """How the report names the campaign it is compared with.
 
@@ -184,45 +215,63 @@ def compare_label(compare: Mapping[str, Any] | None) -> str | None:
     return f"{info.get('title', 'another campaign')} ({info.get('date', 'undated')})"
 
 
-def verdict_rows(results: CampaignResults, before: Mapping[str, Any] | None) -> list[dict[str, str]]:
-    """The rows of the verdict table.
+def verdict_rows(
+    results: CampaignResults,
+    before: Mapping[str, Any] | None,
+    *,
+    before_uncertainty: Mapping[str, Any] | None = None,
+) -> list[dict[str, str]]:
+    """The rows of the verdict table: each figure, and with a comparison its value before and the change.
 
     Parameters
     ----------
     results : CampaignResults
     before : mapping or None
         Figures of a campaign to compare with, by test id (see :func:`previous_figures`).
+    before_uncertainty : mapping, keyword-only
+        Expanded uncertainties of that campaign's figures, by test id (see
+        :func:`previous_uncertainty`).
 
     Returns
     -------
     list of dict
-        One row per toleranced figure, or per test without a tolerance; texts ready to print.
+        One row per toleranced figure, or per test without a tolerance; texts ready to print:
+        ``value`` (this campaign's, the *after* of a comparison), ``U``, ``limit``, ``before``,
+        ``before_U``, ``change`` (``|after| - |before|``, signed), ``result`` and ``css``.
 
     Raises
     ------
     AxiscalError
-        For ``results`` that are not a CampaignResults or ``before`` that is not a mapping.
+        For ``results`` that are not a CampaignResults, ``before`` or ``before_uncertainty``
+        that is not a mapping.
     """
     check_instance("results", results, CampaignResults)
     if before is not None:
         check_mapping("before", before, what="a mapping of test ids to figures")
+    if before_uncertainty is not None:
+        check_mapping("before_uncertainty", before_uncertainty, what="a mapping of test ids to uncertainties")
     rows = []
     for test in results.tests:
         old = (before or {}).get(test.id, {})
+        old_u = (before_uncertainty or {}).get(test.id, {})
         if not test.checks:
             rows.append({"test_id": test.id, "axis": test.axis or "", "figure": "no tolerance given", "value": "",
-                         "U": "", "limit": "", "before": "", "change": "", "result": "not assessed", "css": "na"})
+                         "U": "", "limit": "", "before": "", "before_U": "", "change": "", "result": "not assessed",
+                         "css": "na"})
             continue
         for check in test.checks:
             previous = old.get(check.figure) if isinstance(old, Mapping) else None
-            change = "" if previous is None else f"{abs(check.value) - abs(float(previous)):+.3f}"
+            previous = float(previous) if is_real(previous) and math.isfinite(previous) else None
+            previous_u = old_u.get(check.figure) if isinstance(old_u, Mapping) else None
+            change = "" if previous is None or not math.isfinite(check.value) else f"{abs(check.value) - abs(previous):+.3f}"
             rows.append({
                 "test_id": test.id, "axis": test.axis or "",
                 "figure": f"{check.figure.removesuffix('_' + check.unit)} / {check.unit}",
                 "value": format_number(abs(check.value)), "limit": format_number(check.limit),
                 "U": "" if check.U is None else format_number(check.U),
-                "before": "" if previous is None else format_number(abs(float(previous))), "change": change,
-                "result": check.result, "css": check.result,
+                "before": "" if previous is None else format_number(abs(previous)),
+                "before_U": format_number(previous_u) if is_real(previous_u) else "",
+                "change": change, "result": check.result, "css": check.result,
             })
     return rows
 
@@ -347,7 +396,7 @@ def render_html(
         What the campaign's tests gave.
     compare : mapping, keyword-only
         Another campaign's results.json (e.g. before compensation): the verdict table shows each
-        figure's value there and its change.
+        figure before (with its U when that results.json has one), after, and the change.
     volumetric : mapping, keyword-only
         The volumetric section (``method``, ``table``, ``plots``), when the campaign has a model.
     generated : str, keyword-only
@@ -372,6 +421,7 @@ def render_html(
         raise AxiscalError(f"generated must be a str (when the report was made), not {type_name(generated)}")
     before = previous_figures(compare)
     label = compare_label(compare)
+    rows = verdict_rows(results, before, before_uncertainty=previous_uncertainty(compare))
     payload = results_payload(results)
     methods = sorted({t.method for t in results.tests if t.method})
     methods.append(decision_statement(results.decision_rule))
@@ -384,8 +434,9 @@ def render_html(
         instrument=results.instrument,
         facts=report_facts(results),
         verdict=results.verdict,
-        verdict_rows=verdict_rows(results, before),
+        verdict_rows=rows,
         has_u=any(c.U is not None for test in results.tests for c in test.checks),
+        has_u_before=any(row["before_U"] for row in rows),
         warnings=payload["warnings"],
         sections=sections(results.tests),
         volumetric=volumetric if volumetric is not None else (results.model or None),

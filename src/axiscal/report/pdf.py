@@ -29,6 +29,7 @@ from axiscal.report.html import (
     template_environment,
     verdict_rows,
 )
+from axiscal.report.html import previous_uncertainty
 from axiscal.version import __version__
 
 __all__ = ["typst_string", "typst_text", "write_pdf"]
@@ -127,7 +128,16 @@ def write_pdf(
                                 "table": test.table, "plots": files, "environment": test.environment,
                                 "warnings": test.warnings})
             section["tests"] = plotted
-        before = previous_figures(compare)
+        rows = verdict_rows(results, previous_figures(compare), before_uncertainty=previous_uncertainty(compare))
+        volumetric = None
+        if results.model:
+            files = []
+            for plot in results.model.get("plots", []):
+                counter += 1
+                name = f"plot{counter}.svg"
+                (root / name).write_text(plot.svg, encoding="utf-8")
+                files.append({"file": name, "title": plot.title})
+            volumetric = {"method": results.model.get("method", ""), "plots": files}
         source = env.get_template("report/report.typ.j2").render(
             version=__version__,
             generated=generated or _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
@@ -135,10 +145,11 @@ def write_pdf(
             machine=results.machine,
             facts=report_facts(results),
             verdict=results.verdict,
-            verdict_rows=verdict_rows(results, before),
+            verdict_rows=rows,
+            has_u_before=any(row["before_U"] for row in rows),
             warnings=results_payload(results)["warnings"],
             sections=section_list,
-            volumetric=None,
+            volumetric=volumetric,
             compensation=results.compensation,
             methods=[*sorted({t.method for t in results.tests if t.method}), decision_statement(results.decision_rule)],
             compare={"label": compare_label(compare)} if compare is not None else None,

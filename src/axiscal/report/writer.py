@@ -201,7 +201,12 @@ def report_campaign(
         other = read_json(compare)
         if not isinstance(other, dict) or other.get("schema") != "axiscal-results/1":
             raise AxiscalError("not an axiscal results.json (schema axiscal-results/1)", path=compare)
-    results = run_campaign(campaign, progress=progress, compare=other)
+    try:
+        results = run_campaign(campaign, progress=progress, compare=other)
+    except AxiscalError as exc:
+        if other is not None and exc.path is None and "compared results.json" in exc.message:
+            raise exc.located(path=compare) from None  # a series of the other campaign that cannot be drawn
+        raise
     target = Path(out_dir) if out_dir is not None else campaign.folder / "report"
     files = {entry["file"]: entry["text"] for t in results.tests for entry in t.compensation if "text" in entry}
     return write_report(results, target, compare=other, pdf=pdf, extra_files=files)

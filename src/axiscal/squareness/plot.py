@@ -7,16 +7,17 @@ Drawn through :func:`axiscal.io.figures.pyplot` and saved atomically with
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from axiscal.conventions import PLANES
 from axiscal.instruments.optics import PentaprismSensitivity
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_array, check_instance, check_path
-from axiscal.io.figures import pyplot, save_figure
+from axiscal.io.arguments import check_array, check_instance, check_mapping, check_path
+from axiscal.io.figures import OVERLAY_STYLE, overlay_label, overlay_series, pyplot, save_figure
 from axiscal.units import ARCMIN, ARCSEC, MM, UM
 
 if TYPE_CHECKING:  # the result type only annotates: its module imports this one to plot
@@ -25,10 +26,34 @@ if TYPE_CHECKING:  # the result type only annotates: its module imports this one
 __all__ = ["plot_squareness", "plot_pentaprism"]
 
 
+def _squareness_overlay(overlay: Mapping[str, Any]) -> list[tuple[np.ndarray, np.ndarray, np.ndarray | None] | None]:
+    """Each run of the overlay as (position_mm, deviation_um, line_um or None), None for a run it lacks."""
+    check_mapping("overlay", overlay, what="another squareness test's runs ({'first': ..., 'second': ...})")
+    runs = []
+    for which in ("first", "second"):
+        run = overlay.get(which)
+        if run is None:
+            runs.append(None)
+            continue
+        name = f"overlay['{which}']"
+        check_mapping(name, run, what="a run (position_mm, deviation_um, line_um)")
+        x = overlay_series(run, "position_mm", name=name)
+        y = None if x is None else overlay_series(run, "deviation_um", length=x.size, name=name)
+        runs.append(None if y is None else (x, y, overlay_series(run, "line_um", length=x.size, name=name)))
+    return runs
+
+
 def plot_squareness(
-    path: str | Path, result: SquarenessResult, runs: tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
+    path: str | Path,
+    result: SquarenessResult,
+    runs: tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
+    *,
+    overlay: Mapping[str, Any] | None = None,
 ) -> Path:
     """Plot both runs with their fitted lines, deviation in um against position in mm.
+
+    With ``overlay``, the runs of another squareness test of the same plane (e.g. before
+    compensation) and their lines are drawn behind, grey: the runs as hollow points, the lines dashed.
 
     Parameters
     ----------
@@ -38,6 +63,10 @@ def plot_squareness(
         From :func:`axiscal.squareness.evaluation.squareness` (it carries both fitted lines).
     runs : ((position_m, deviation_m), (position_m, deviation_m))
         The first and the second run, metres.
+    overlay : mapping, keyword-only
+        The other test's runs: ``first`` and ``second``, each a mapping of ``position_mm``,
+        ``deviation_um`` and ``line_um`` (its fitted line at each position), shape (m,); and an
+        optional ``label`` for the legend (default "before").
 
     Returns
     -------
@@ -47,7 +76,8 @@ def plot_squareness(
     Raises
     ------
     AxiscalError
-        An unknown image format or a file that cannot be written.
+        An unknown image format or a file that cannot be written; an overlay whose series are not
+        lists of numbers of one length per run.
     """
     from axiscal.squareness.evaluation import SquarenessResult
 
@@ -62,12 +92,19 @@ def plot_squareness(
         (check_array(f"runs[{k}] position_m", x, ndim=1, min_len=1), check_array(f"runs[{k}] deviation_m", y, ndim=1, min_len=1))
         for k, (x, y) in enumerate(runs)
     )
+    before = [None, None] if overlay is None else _squareness_overlay(overlay)
+    label = None if overlay is None else overlay_label(overlay)
     plt = pyplot()
     a, b = PLANES[result.plane][:2]
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.6), constrained_layout=True)
-    for ax, (position, deviation), line, (moving, across) in zip(
-        axes, runs, (result.first_line, result.second_line), ((a, b), (b, a))
+    for ax, (position, deviation), line, (moving, across), other in zip(
+        axes, runs, (result.first_line, result.second_line), ((a, b), (b, a)), before
     ):
+        if other is not None:
+            x_before, y_before, line_before = other
+            ax.plot(x_before, y_before, "o", ms=4, mfc="none", mec=OVERLAY_STYLE["color"], label=f"{label}: measured")
+            if line_before is not None:
+                ax.plot(x_before, line_before, **OVERLAY_STYLE, label=f"{label}: line")
         ax.plot(position / MM, deviation / UM, "o", ms=4, label="measured")
         ends = np.array([position.min(), position.max()])
         ax.plot(ends / MM, (line.slope * ends + line.intercept_m) / UM, "-", label=f"{line.reference} line")
