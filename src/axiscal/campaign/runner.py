@@ -61,6 +61,13 @@ def svg_of(draw: Callable[[Path], Any]) -> str:
     return re.sub(r"\s*<metadata>.*?</metadata>", "", text, count=1, flags=re.S)
 
 
+def _captured(call: Callable[[Path], Any]) -> tuple[Any, str]:
+    """Run ``call(plot_path)`` once: its result and the SVG of the plot it wrote."""
+    holder: list[Any] = []
+    svg = svg_of(lambda p: holder.append(call(p)))
+    return holder[0], svg
+
+
 def _relative(campaign: Campaign, path: Path) -> str:
     return path.relative_to(campaign.folder).as_posix()
 
