@@ -21,7 +21,7 @@ from axiscal.identification.artefacts import (
     axis_positions,
 )
 from axiscal.identification.basis import MODEL_KINDS, ErrorModel, parse_model
-from axiscal.identification.files import read_artefact, write_identification, write_machine_folder
+from axiscal.identification.files import read_artefact, write_artefact, write_identification, write_machine_folder
 from axiscal.identification.parameters import ParameterSet, Term
 from axiscal.identification.result import Combination, Identification, Undetermined
 from axiscal.identification.solve import RANK_TOLERANCE, identify
@@ -47,6 +47,7 @@ __all__ = [
     "Identification",
     "identify",
     "read_artefact",
+    "write_artefact",
     "write_identification",
     "write_machine_folder",
 ]

@@ -33,7 +33,7 @@ from axiscal.io.templates import render_template
 from axiscal.model.machine import Machine
 from axiscal.units import ANGLE_UNITS, MM, UM
 
-__all__ = ["read_artefact", "write_machine_folder", "write_identification", "report_html", "ARTEFACT_KEYS"]
+__all__ = ["identify_files", "read_artefact", "write_artefact", "write_machine_folder", "write_identification", "report_html", "ARTEFACT_KEYS"]
 
 _URAD = ANGLE_UNITS["urad"]
 _DEG = ANGLE_UNITS["deg"]
@@ -264,6 +264,89 @@ def read_artefact(path: str | Path) -> Artefact:
     return _READERS[kind](f, name.strip(), tool)
 
 
+def _toml_vector(v: np.ndarray, unit: float = MM) -> str:
+    return "[" + ", ".join(f"{x / unit:.9g}" for x in v) + "]"
+
+
+def write_artefact(artefact: Artefact, path: str | Path) -> Path:
+    """Write an artefact as its TOML file and CSVs beside it (the formats :func:`read_artefact` reads).
+
+    Parameters
+    ----------
+    artefact : Artefact
+        Any artefact (e.g. one simulated on a virtual machine).
+    path : str or Path
+        The TOML file; the CSVs are named after its stem.
+
+    Returns
+    -------
+    Path
+        The TOML file.
+    """
+    path = check_path("path", path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    stem = path.stem
+    head = [f'kind = "{artefact.kind}"', f'name = "{artefact.name}"', f"tool_mm = {_toml_vector(artefact.tool_m)}"]
+    fmt = "{:.6f}"
+    if isinstance(artefact, (BallPlate, StepGauge)):
+        plate = isinstance(artefact, BallPlate)
+        labels = list(artefact.balls or [str(k + 1) for k in range(len(artefact.centres_m))]) if plate else list(
+            artefact.face_names or [str(k + 1) for k in range(len(artefact.faces_m))])
+        column = "ball" if plate else "face"
+        certificate = {column: labels}
+        if plate:
+            for c, name in enumerate(("x_mm", "y_mm", "z_mm")):
+                certificate[name] = artefact.centres_m[:, c] / MM
+            certificate["U_um"] = 2.0 * artefact.centre_u_m / UM
+        else:
+            certificate["position_mm"] = artefact.faces_m / MM
+            certificate["U_um"] = 2.0 * artefact.face_u_m / UM
+        index = artefact.ball if plate else artefact.face
+        measured = {column: [labels[k] for k in index]}
+        for c, name in enumerate(("x_mm", "y_mm", "z_mm")):
+            measured[name] = artefact.measured_m[:, c] / MM
+        write_csv(path.with_name(f"{stem}_certificate.csv"), certificate, fmt=fmt)
+        head.append(f'{"balls" if plate else "faces"} = "{stem}_certificate.csv"')
+        if plate:
+            if artefact.rotation is None:
+                head.append('pose = "fit"')
+            else:
+                head += ["", "[pose]", f"origin_mm = {_toml_vector(artefact.origin_m)}",
+                         f"x_direction = {_toml_vector(artefact.rotation[:, 0], 1.0)}", f"y_direction = {_toml_vector(artefact.rotation[:, 1], 1.0)}"]
+        else:
+            head += ["", "[line]", f"start_mm = {_toml_vector(artefact.start_m)}", f"direction = {_toml_vector(artefact.direction, 1.0)}"]
+    elif isinstance(artefact, BallbarNetwork):
+        names = list(artefact.setups or [str(k + 1) for k in range(len(artefact.centres_m))])
+        length = float(np.median(artefact.lengths_m))
+        measured = {"setup": [names[k] for k in artefact.setup]}
+        for c, axis in enumerate("xyz"):
+            measured[f"centre_{axis}_mm"] = artefact.centres_m[artefact.setup, c] / MM
+        for c, axis in enumerate("xyz"):
+            measured[f"end_{axis}_mm"] = artefact.ends_m[:, c] / MM
+        measured["deviation_um"] = (artefact.lengths_m - length) / UM
+        head += [f"length_mm = {length / MM:.9f}", f"length_U_um = {2.0 * artefact.length_u_m / UM:.6g}"]
+    elif isinstance(artefact, Multilateration):
+        names = list(artefact.stations or [str(k + 1) for k in range(artefact.size)])
+        measured = {"station": [names[k] for k in artefact.station]}
+        for c, axis in enumerate("xyz"):
+            measured[f"{axis}_mm"] = artefact.targets_m[:, c] / MM
+        measured["range_mm"] = artefact.ranges_m / MM
+        if artefact.stations_m is not None:
+            head += ["", "[stations]"] + [f'"{n}" = {_toml_vector(v)}' for n, v in zip(names, artefact.stations_m)]
+    elif isinstance(artefact, RTest):
+        measured = {}
+        for letter, q in artefact.axis_positions_m.items():
+            measured[f"{letter}_{'deg' if letter in ROTARY_LETTERS else 'mm'}"] = q / (_DEG if letter in ROTARY_LETTERS else MM)
+        for k in range(artefact.directions.shape[0]):
+            measured[f"sensor_{k + 1}_um"] = artefact.readings_m[:, k] / UM
+        head.insert(3, "sensors = [" + ", ".join(_toml_vector(d, 1.0) for d in artefact.directions) + "]")
+    else:
+        raise AxiscalError(f"cannot write an artefact of kind {type(artefact).__name__}")
+    write_csv(path.with_name(f"{stem}_measured.csv"), measured, fmt=fmt)
+    head.insert(3, f'measured = "{stem}_measured.csv"')
+    return write_text(path, "\n".join(head) + "\n")
+
+
 def _number(value: float) -> str:
     return f"{value:.6f}"
 
@@ -361,3 +444,33 @@ def write_identification(result, folder: str | Path) -> dict:
 
 def _slug(name: str) -> str:
     return "".join(c if c.isalnum() or c in "-_" else "_" for c in name)
+
+
+def identify_files(machine, artefacts, folder: str | Path, *, model: str = "poly:3", fix=()) -> tuple:
+    """What ``axiscal identify`` does: identify from files and write the machine folder and the report.
+
+    Parameters
+    ----------
+    machine : Machine, str or Path
+        The machine or its TOML file (the starting guess).
+    artefacts : sequence of str or Path
+        Artefact files.
+    folder : str or Path
+        The output machine folder.
+    model : str, keyword-only
+        ``"poly:N"`` or ``"spline:K"``.
+    fix : sequence of str, keyword-only
+        Terms kept at their starting values.
+
+    Returns
+    -------
+    (Identification, str)
+        The result and its summary as text.
+    """
+    from axiscal.identification.solve import identify
+
+    folder = check_path("folder", folder)
+    result = identify(machine, list(artefacts), model=model, fix=tuple(fix))
+    write_identification(result, folder)
+    text = render_template("identification/identify.txt.j2", summary=result.summary(), folder=str(folder))
+    return result, text

@@ -231,14 +231,14 @@ class ParameterSet:
     def identified_machine(self, theta: np.ndarray) -> Machine:
         """The machine of ``theta`` with its error motions written as tables over each axis' travel.
 
-        Axes the artefacts do not move keep their starting tables. A rotary axis' table covers the
+        Axes the artefacts do not move, or whose motions are all fixed, keep their starting tables. A rotary axis' table covers the
         angles measured and is not periodic unless they span a full turn.
         """
         machine = self.machine(theta)
         axes = {}
         for letter in machine.letters:
             old = machine.axes[letter]
-            if letter not in self.spans:
+            if letter not in self.spans or not any((letter, row) in self._free_components for row in range(6)):
                 axes[letter] = old
                 continue
             a, b = self.spans[letter]

@@ -38,6 +38,8 @@ __all__ = ["identify", "RANK_TOLERANCE"]
 RANK_TOLERANCE = 1e-5
 #: an entry of a null vector above this counts
 _NULL_ENTRY = 1e-6
+#: coefficients of a named combination below this (the largest being 1) are left out of its name
+_SHOWN = 1e-4
 
 
 class _Problem:
@@ -144,15 +146,21 @@ def _groups(null: np.ndarray) -> list[np.ndarray]:
 
 
 def _combination(names, coefficients, x=None, covariance=None) -> Combination:
-    scale = coefficients[np.argmax(np.abs(coefficients))]
-    c = coefficients / scale
-    keep = np.abs(c) > 1e-6
-    terms = {names[k]: float(c[k]) for k in np.flatnonzero(keep)}
+    """The combination ``coefficients`` (scaled so the largest is 1), named by its terms above 1e-4."""
+    c = coefficients / coefficients[np.argmax(np.abs(coefficients))]
+    terms = {names[k]: float(c[k]) for k in np.flatnonzero(np.abs(c) > _SHOWN)}
     if x is None:
         return Combination(terms)
-    full = np.zeros(len(x))
-    full[np.flatnonzero(keep)] = c[keep]
-    return Combination(terms, float(full @ x), float(np.sqrt(max(full @ covariance @ full, 0.0))))
+    return Combination(terms, float(c @ x), float(np.sqrt(max(c @ covariance @ c, 0.0))))
+
+
+def _pivoted(basis: np.ndarray, weight: np.ndarray) -> np.ndarray:
+    """The same span with one pivot unknown per column (coefficient 1, 0 in the others), pivots
+    chosen among the heavier-weighted unknowns first: combinations a reader can name."""
+    from scipy.linalg import qr
+
+    _, _, pivots = qr((basis * weight[:, None]).T, pivoting=True)
+    return basis @ np.linalg.inv(basis[pivots[: basis.shape[1]]])
 
 
 def identify(
@@ -185,7 +193,8 @@ def identify(
     travel : mapping of str to (float, float), keyword-only
         The travel of some axes (metres, radians for rotary axes): the error functions are
         normalised over it, zero at its start, and the tables written over it. Default: the
-        positions the artefacts reach.
+        range of the axis' error table in the machine file joined with the positions the
+        artefacts reach (those positions alone for an axis without a table).
 
     Returns
     -------
@@ -220,6 +229,10 @@ def identify(
         for letter, q in artefact.positions(machine).items():
             low, high = spans.get(letter, [np.inf, -np.inf])
             spans[letter] = [min(low, float(q.min())), max(high, float(q.max()))]
+    for letter in spans:
+        table = machine.axes[letter].table
+        if table is not None and not table.periodic:  # a table in the machine file states the travel
+            spans[letter] = [min(spans[letter][0], table.start_m), max(spans[letter][1], table.end_m)]
     if travel is not None:
         check_mapping("travel", travel, what="a mapping of axis letters to (start, end)")
         for letter, given in travel.items():
@@ -277,19 +290,22 @@ def identify(
     all_names = problem.names
     undetermined_mask = np.linalg.norm(null, axis=1) > _NULL_ENTRY if null.size else np.zeros(problem.size, bool)
     std = np.where(undetermined_mask, np.nan, np.sqrt(np.maximum(np.diag(covariance), 0.0)))
+    p = len(parameters.terms)
     undetermined = []
     for group in _groups(null) if null.size else []:
         block = (null @ null.T)[np.ix_(group, group)]
         w, v = np.linalg.eigh(block)
-        hidden = [_combination([all_names[k] for k in group], scale[group] * v[:, i]) for i in np.flatnonzero(w > 0.5)]
+        weight = np.where(group < p, 1.0, 1e-3)  # a machine term names a combination before an artefact's own unknown
+        hidden_basis = _pivoted(scale[group][:, None] * v[:, w > 0.5], weight)
+        hidden = [_combination([all_names[k] for k in group], hidden_basis[:, i]) for i in range(hidden_basis.shape[1])]
+        seen_basis = _pivoted(v[:, w <= 0.5] / scale[group][:, None], weight) if np.any(w <= 0.5) else np.zeros((len(group), 0))
         seen = []
-        for i in np.flatnonzero(w <= 0.5):
+        for i in range(seen_basis.shape[1]):
             c = np.zeros(problem.size)
-            c[group] = v[:, i] / scale[group]
+            c[group] = seen_basis[:, i]
             seen.append(_combination(all_names, c, x, covariance))
         undetermined.append(Undetermined(tuple(all_names[k] for k in group), tuple(hidden), tuple(seen)))
 
-    p = len(parameters.terms)
     residuals = {a.name: residual[r] for a, r in zip(artefacts, problem.r_slices)}
     return Identification(
         machine=parameters.identified_machine(x[:p]),
