@@ -21,7 +21,8 @@ from axiscal.identification.artefacts import (
     axis_positions,
 )
 from axiscal.identification.basis import MODEL_KINDS, ErrorModel, parse_model
-from axiscal.identification.files import read_artefact, write_artefact, write_identification, write_machine_folder
+from axiscal.identification.files import identify_files, read_artefact, write_artefact, write_identification, write_machine_folder
+from axiscal.identification.maps import map_difference
 from axiscal.identification.parameters import ParameterSet, Term
 from axiscal.identification.result import Combination, Identification, Undetermined
 from axiscal.identification.solve import RANK_TOLERANCE, identify
@@ -46,6 +47,8 @@ __all__ = [
     "Undetermined",
     "Identification",
     "identify",
+    "identify_files",
+    "map_difference",
     "read_artefact",
     "write_artefact",
     "write_identification",

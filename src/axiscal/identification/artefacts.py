@@ -27,6 +27,7 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
 from axiscal.errors import AxiscalError
@@ -93,13 +94,14 @@ def _skew(v: np.ndarray) -> np.ndarray:
 
 
 def _misfit(artefact: "Artefact", residual: np.ndarray, rows: np.ndarray, what: str) -> None:
-    """Refuse the first reading whose residual exceeds :data:`MISFIT_M`, naming its line."""
-    bad = np.flatnonzero(np.abs(residual) > MISFIT_M)
-    if bad.size:
-        k = int(rows[bad[0]])
+    """Refuse the worst reading if its residual exceeds :data:`MISFIT_M`, naming its line (a fit spreads
+    one wrong reading over the others; the worst is the one to look at)."""
+    worst = int(np.argmax(np.abs(residual))) if residual.size else 0
+    if residual.size and abs(residual[worst]) > MISFIT_M:
+        k = int(rows[worst])
         line = int(artefact.lines[k]) if len(artefact.lines) > k else None
         raise AxiscalError(
-            f"{artefact.name}: {what} {abs(residual[bad[0]]) / MM:.4g} mm off (more than {MISFIT_M / MM:g} mm)",
+            f"{artefact.name}: {what} {abs(residual[worst]) / MM:.4g} mm off (more than {MISFIT_M / MM:g} mm)",
             path=artefact.data_path or None,
             line=line,
         )
@@ -470,7 +472,11 @@ class Multilateration(Artefact):
                         path=self.data_path or None,
                     )
                 solution = np.linalg.lstsq(design, rho**2 - np.einsum("ij,ij->i", x, x), rcond=None)[0]
-                position, dead = solution[:3], float(solution[3])
+                # then the ranges themselves, robustly: one wrong range must stand out, not spread
+                refined = least_squares(
+                    lambda v: np.linalg.norm(x - v[:3], axis=1) + v[3] - rho, solution[:4], loss="soft_l1", f_scale=MISFIT_M / 10
+                ).x
+                position, dead = refined[:3], float(refined[3])
             p[4 * s : 4 * s + 3], p[4 * s + 3] = position, dead
         _misfit(self, self.residuals(nominal_m, error_m, p), np.arange(self.count), "range does not fit its station:")
         return p

@@ -255,7 +255,7 @@ def identify(
     j0 = problem.jacobian(nominal)
     norms = np.linalg.norm(j0, axis=0)
     scale = np.where(norms > 0, 1.0 / np.where(norms > 0, norms, 1.0), 1.0)
-    _, s, vt = np.linalg.svd(j0 * scale, full_matrices=True)
+    _, s, vt = np.linalg.svd(j0 * scale, full_matrices=problem.count < problem.size)
     s_full = np.zeros(problem.size)
     s_full[: len(s)] = s
     rank = int(np.sum(s_full > rank_tolerance * s_full[0]))
