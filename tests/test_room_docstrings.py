@@ -25,6 +25,7 @@ ROOMS = (
     "axiscal.instruments",
     "axiscal.measurement",
     "axiscal.live",
+    "axiscal.identification",
 )
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]

@@ -13,25 +13,61 @@ from axiscal.identification.artefacts import (
     ARTEFACT_KINDS,
     MISFIT_M,
     Artefact,
+    axis_positions,
     BallbarNetwork,
     BallPlate,
     Multilateration,
     RTest,
     StepGauge,
-    axis_positions,
 )
-from axiscal.identification.basis import MODEL_KINDS, ErrorModel, parse_model
-from axiscal.identification.files import identify_files, read_artefact, write_artefact, write_identification, write_machine_folder
-from axiscal.identification.maps import map_difference
-from axiscal.identification.parameters import ParameterSet, Term
-from axiscal.identification.result import Combination, Identification, Undetermined
-from axiscal.identification.solve import RANK_TOLERANCE, identify
+from axiscal.identification.basis import (
+    MAX_MODEL_ORDER,
+    MODEL_KINDS,
+    ErrorModel,
+    parse_model,
+)
+from axiscal.identification.files import (
+    ARTEFACT_KEYS,
+    identify_files,
+    read_artefact,
+    report_html,
+    write_artefact,
+    write_identification,
+    write_machine_folder,
+)
+from axiscal.identification.maps import (
+    map_difference,
+)
+from axiscal.identification.parameters import (
+    STEP,
+    ParameterSet,
+    Term,
+)
+from axiscal.identification.plot import (
+    plot_motions,
+    plot_residuals,
+)
+from axiscal.identification.result import (
+    Combination,
+    Identification,
+    Undetermined,
+)
+from axiscal.identification.simulate import (
+    plate_grid,
+    r_test_positions,
+    simulate_ball_plate,
+    simulate_ballbar,
+    simulate_multilateration,
+    simulate_r_test,
+    simulate_step_gauge,
+)
+from axiscal.identification.solve import (
+    RANK_TOLERANCE,
+    identify,
+)
 
 __all__ = [
-    "ARTEFACT_KINDS",
     "MISFIT_M",
-    "MODEL_KINDS",
-    "RANK_TOLERANCE",
     "Artefact",
     "BallPlate",
     "StepGauge",
@@ -39,18 +75,34 @@ __all__ = [
     "Multilateration",
     "RTest",
     "axis_positions",
+    "ARTEFACT_KINDS",
+    "MODEL_KINDS",
+    "MAX_MODEL_ORDER",
     "ErrorModel",
     "parse_model",
-    "ParameterSet",
+    "identify_files",
+    "read_artefact",
+    "write_artefact",
+    "write_machine_folder",
+    "write_identification",
+    "report_html",
+    "ARTEFACT_KEYS",
+    "map_difference",
     "Term",
+    "ParameterSet",
+    "STEP",
+    "plot_residuals",
+    "plot_motions",
     "Combination",
     "Undetermined",
     "Identification",
+    "simulate_ball_plate",
+    "simulate_step_gauge",
+    "simulate_ballbar",
+    "simulate_multilateration",
+    "simulate_r_test",
+    "r_test_positions",
+    "plate_grid",
     "identify",
-    "identify_files",
-    "map_difference",
-    "read_artefact",
-    "write_artefact",
-    "write_identification",
-    "write_machine_folder",
+    "RANK_TOLERANCE",
 ]

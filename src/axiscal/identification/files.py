@@ -404,7 +404,18 @@ def write_machine_folder(machine: Machine, folder: str | Path, *, comment: str =
 
 
 def report_html(result) -> str:
-    """``identify.html`` of an identification (figures referred to by their file names)."""
+    """``identify.html`` of an identification, rendered from its Jinja2 template.
+
+    Parameters
+    ----------
+    result : Identification
+        What :func:`axiscal.identify` returned.
+
+    Returns
+    -------
+    str
+        The HTML page; its figures are referred to by the file names :func:`write_identification` writes.
+    """
     summary = result.summary()
     return render_template(
         "identification/identify.html.j2",
