@@ -163,3 +163,33 @@ def test_the_command_line_refuses_a_bad_artefact_in_one_line(tmp_path, run_cli):
     (tmp_path / "m.toml").write_text('chain = "FYXZ"\n[axes.X]\nerrors = "x.csv"\n[axes.Y]\nerrors = "x.csv"\n[axes.Z]\nerrors = "x.csv"\n')
     status, out, err = run_cli("identify", str(tmp_path / "m.toml"), str(path), "-o", str(tmp_path / "o"))
     assert status == 2 and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+def test_the_command_line_keeps_fixed_terms_and_prints_json(tmp_path, examples, run_cli):
+    folder = examples / "identification"
+    status, out, err = run_cli("identify", str(folder / "start" / "machine.toml"), str(folder / "plate_xy.toml"), str(folder / "plate_xz.toml"),
+                               "--model", "poly:1", "--fix", "squareness", "--fix", "Z", "--json", "-o", str(tmp_path / "out"))
+    assert status == 0, err
+    summary = json.loads(out)
+    names = {p["name"] for p in summary["parameters"] if p["machine"]}
+    assert not names & {"EC0Y", "EB0Z", "EA0Z", "EZZ:1", "ECZ:1"} and "EXX:1" in names
+    assert set(summary["fixed"]) >= {"EC0Y", "EZZ:1"}
+    status, out, err = run_cli("identify", str(folder / "start" / "machine.toml"), str(folder / "plate_xy.toml"),
+                               "--fix", "EQQ", "-o", str(tmp_path / "o2"))
+    assert status == 2 and "--fix EQQ" in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_mutated_certificate_is_refused_cleanly_or_read(tmp_path):
+    path = _plate(tmp_path)
+    certificate = tmp_path / "plate_certificate.csv"
+    original = certificate.read_text()
+    for row, column, text in ((1, 4, "-1"), (2, 0, "1"), (3, 1, "abc"), (0, 4, "V_um")):
+        lines = original.splitlines()
+        cells = lines[row].split(",")
+        cells[column] = text
+        lines[row] = ",".join(cells)
+        certificate.write_text("\n".join(lines) + "\n")
+        try:
+            read_artefact(path)
+        except AxiscalError as exc:
+            assert str(exc).startswith(str(certificate)), str(exc)

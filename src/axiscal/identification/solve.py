@@ -123,6 +123,23 @@ class _Problem:
         return np.hstack(blocks), np.concatenate(u)
 
 
+def _singular(matrix: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Singular values and right singular vectors (all n of them) of an (M, n) matrix.
+
+    A tall matrix is reduced to its triangular factor first (``J = QR`` has the singular values and
+    right vectors of R), which is several times faster than the SVD of J itself.
+    """
+    from scipy.linalg import qr
+
+    rows, columns = matrix.shape
+    if rows > columns:
+        matrix = qr(matrix, mode="r")[0][:columns]
+    _, s, vt = np.linalg.svd(matrix, full_matrices=True)
+    full = np.zeros(columns)
+    full[: len(s)] = s
+    return full, vt
+
+
 def _groups(null: np.ndarray) -> list[np.ndarray]:
     """Unknowns that the null space ties together: connected components of its projector."""
     projector = null @ null.T
@@ -255,10 +272,8 @@ def identify(
     j0 = problem.jacobian(nominal)
     norms = np.linalg.norm(j0, axis=0)
     scale = np.where(norms > 0, 1.0 / np.where(norms > 0, norms, 1.0), 1.0)
-    _, s, vt = np.linalg.svd(j0 * scale, full_matrices=problem.count < problem.size)
-    s_full = np.zeros(problem.size)
-    s_full[: len(s)] = s
-    rank = int(np.sum(s_full > rank_tolerance * s_full[0]))
+    s, vt = _singular(j0 * scale)
+    rank = int(np.sum(s > rank_tolerance * s[0]))
     row_space, null = vt[:rank].T, vt[rank:].T
     if problem.count <= rank:
         raise AxiscalError(f"{problem.count} readings cannot determine {rank} unknowns with a residual to spare; measure more")
@@ -276,14 +291,14 @@ def identify(
     x = x0 + basis @ solution.x
     residual = problem.residuals(x)
     a = problem.jacobian(x) @ basis
-    u_a, s_a, vt_a = np.linalg.svd(a, full_matrices=False)
+    s_a, vt_a = _singular(a)
     dof = problem.count - rank
     variance = float(residual @ residual) / dof
-    pinv = (vt_a.T / s_a) @ u_a.T
-    cov_z = variance * (vt_a.T / s_a**2) @ vt_a
+    inverse = (vt_a.T / s_a**2) @ vt_a  # (AᵀA)⁻¹
+    cov_z = variance * inverse
     systematic, u_sys = problem.systematic()
     if u_sys.size:
-        spread = pinv @ systematic * u_sys
+        spread = inverse @ (a.T @ systematic) * u_sys  # A⁺ S diag(u)
         cov_z = cov_z + spread @ spread.T
     covariance = basis @ cov_z @ basis.T
 
