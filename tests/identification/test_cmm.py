@@ -96,3 +96,18 @@ def test_r_test_coverage_over_seeds():
         result = identify(trunnion(), r_tests(trunnion(LOCATION), np.random.default_rng(seed)), fix=("X", "Y", "Z", "A", "C", "squareness"))
         z += [abs(result.value(n)[0] - v) / result.value(n)[1] for n, v in LOCATION.items()]
     assert 0.9 <= np.mean(np.array(z) < 2.0) <= 1.0
+
+
+def test_r_test_with_enough_positions_recovers_the_error_motions_of_c_too(virtual):
+    from axiscal.identification import ParameterSet, parse_model
+
+    rng = np.random.default_rng(0)
+    travel = {"C": (0.0, np.deg2rad(330.0))}
+    fix = ("X", "Y", "Z", "A", "squareness")
+    parameters = ParameterSet(trunnion(LOCATION), parse_model("poly:2"), travel, fix=fix + ("location",))
+    theta = np.array([2e-6 if t.unit == "m" else 5e-6 for t in parameters.terms]) * rng.standard_normal(len(parameters.terms))
+    result = identify(trunnion(), r_tests(parameters.identified_machine(theta), rng), model="poly:2", fix=fix, travel=travel)
+    assert not result.undetermined
+    truth = dict(zip(parameters.names, theta)) | LOCATION
+    z = np.array([abs(result.value(name)[0] - value) / result.value(name)[1] for name, value in truth.items()])
+    assert z.size == 20 and np.all(z < 4.0) and np.mean(z < 2.0) >= 0.8

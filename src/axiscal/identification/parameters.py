@@ -116,7 +116,9 @@ class ParameterSet:
             if not isinstance(word, str):
                 raise AxiscalError(f"a fixed term is a name such as 'EBX:2', 'EBX', 'X' or 'squareness', not {word!r:.40}")
             hit = {t.name for t in candidates if word in (t.name, t.component, t.kind) or (t.kind == "motion" and word == t.letter)}
-            if not hit:
+            known = {"squareness", "location", *machine.letters, *(n for k in machine.letters for n in component_names(k))}
+            known |= {term for _, _, term, _ in PLANES.values()} | {n for k in machine.rotary for n in location_names(k)}
+            if not hit and word not in known:  # an axis or error the artefacts leave alone has nothing to fix
                 raise AxiscalError(
                     f"--fix {word}: no such free term of chain '{machine.chain}' under {model.text} "
                     "(use a term such as EBX:2, an error such as EBX or EC0Y, an axis letter, squareness or location)"
