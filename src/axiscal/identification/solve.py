@@ -3,7 +3,8 @@
 The unknowns are the machine's terms θ (:mod:`axiscal.identification.parameters`) and each
 artefact's own unknowns p (:mod:`axiscal.identification.artefacts`). The residuals r(θ, p) have the
 Jacobian ``J = [direction · ∂e/∂θ | ∂r/∂p]``. With D the column scaling (each column to unit
-length), the singular value decomposition ``J D = U S Vᵀ`` at the nominal machine splits the
+length), the singular value decomposition ``J D = U S Vᵀ`` at the nominal machine (S and V from
+the eigen-decomposition of ``(J D)ᵀ J D``) splits the
 unknowns into the combinations the data determine (singular values above ``rank_tolerance`` times
 the largest) and those it cannot separate (the null space). SciPy's ``least_squares`` solves for
 the determined combinations only, ``x = x₀ + D V_r z``, with the Jacobian ``J D V_r``; what the data
@@ -124,20 +125,16 @@ class _Problem:
 
 
 def _singular(matrix: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Singular values and right singular vectors (all n of them) of an (M, n) matrix.
+    """Singular values (descending) and right singular vectors (rows, all n) of an (M, n) matrix.
 
-    A tall matrix is reduced to its triangular factor first (``J = QR`` has the singular values and
-    right vectors of R), which is several times faster than the SVD of J itself.
+    From the eigen-decomposition of the n x n Gram matrix ``MᵀM``: its eigenvalues are the squared
+    singular values. The columns are scaled to unit length before, so singular values down to
+    about 1e-7 of the largest are resolved, below the rank tolerance; and forming ``MᵀM`` costs a
+    fraction of a decomposition of the tall matrix itself.
     """
-    from scipy.linalg import qr
-
-    rows, columns = matrix.shape
-    if rows > columns:
-        matrix = qr(matrix, mode="r")[0][:columns]
-    _, s, vt = np.linalg.svd(matrix, full_matrices=True)
-    full = np.zeros(columns)
-    full[: len(s)] = s
-    return full, vt
+    w, v = np.linalg.eigh(matrix.T @ matrix)
+    order = np.argsort(w)[::-1]
+    return np.sqrt(np.maximum(w[order], 0.0)), v[:, order].T
 
 
 def _groups(null: np.ndarray) -> list[np.ndarray]:
