@@ -25,6 +25,7 @@ from __future__ import annotations
 import dataclasses
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -125,6 +126,8 @@ class Artefact(ABC):
 
     name: str
     tool_m: np.ndarray
+    data_path: str = ""
+    lines: tuple[int, ...] = ()
 
     kind = ""
 
@@ -199,8 +202,6 @@ class BallPlate(Artefact):
     measured_m: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     rotation: np.ndarray | None = None
     origin_m: np.ndarray | None = None
-    data_path: str = ""
-    lines: tuple[int, ...] = ()
     balls: tuple[str, ...] = ()
 
     kind = "ball_plate"
@@ -221,6 +222,16 @@ class BallPlate(Artefact):
     def positions(self, machine: Machine) -> dict[str, np.ndarray]:
         return axis_positions(machine, self.measured_m, self.tool_m)
 
+    @cached_property
+    def reference_rotation(self) -> np.ndarray:
+        """The plate's orientation (3, 3) fitted to the measured centres as reported (Kabsch); the
+        pose's rotation unknowns turn the plate from there."""
+        plate = self.centres_m[self.ball]
+        if np.linalg.matrix_rank(plate - plate.mean(axis=0), tol=1e-6) < 2:
+            raise AxiscalError(f"{self.name}: the pose of a plate needs at least 3 balls not on one line")
+        rotation, _ = Rotation.align_vectors(self.measured_m - self.measured_m.mean(axis=0), plate - plate.mean(axis=0))
+        return rotation.as_matrix()
+
     def start(self, nominal_m: np.ndarray, error_m: np.ndarray) -> np.ndarray:
         actual = nominal_m + error_m
         plate = self.centres_m[self.ball]
@@ -228,18 +239,15 @@ class BallPlate(Artefact):
         if self.rotation is not None:
             placed = plate @ self.rotation.T + self.origin_m
             _misfit(self, np.linalg.norm(actual - placed, axis=1), rows, "ball measured where the stated pose does not put it:")
-        if np.linalg.matrix_rank(plate - plate.mean(axis=0), tol=1e-6) < 2:
-            raise AxiscalError(f"{self.name}: the pose of a plate needs at least 3 balls not on one line")
-        mean_p, mean_a = plate.mean(axis=0), actual.mean(axis=0)
-        rotation, _ = Rotation.align_vectors(actual - mean_a, plate - mean_p)
-        object.__setattr__(self, "_rotation0", rotation.as_matrix())
-        origin = mean_a - rotation.apply(mean_p)
-        _misfit(self, np.linalg.norm(actual - rotation.apply(plate) - origin, axis=1), rows,
-                "ball does not fit the plate (wrong ball name?):")
-        return np.concatenate([np.zeros(3), origin])
+        rotation, _ = Rotation.align_vectors(actual - actual.mean(axis=0), plate - plate.mean(axis=0))
+        turn = rotation.as_matrix() @ self.reference_rotation.T
+        turned = plate @ rotation.as_matrix().T
+        origin = actual.mean(axis=0) - turned.mean(axis=0)
+        _misfit(self, np.linalg.norm(actual - turned - origin, axis=1), rows, "ball does not fit the plate (wrong ball name?):")
+        return np.concatenate([Rotation.from_matrix(turn).as_rotvec(), origin])
 
     def _placed(self, p: np.ndarray) -> np.ndarray:
-        rotation = Rotation.from_rotvec(p[:3]).as_matrix() @ self._rotation0
+        rotation = Rotation.from_rotvec(p[:3]).as_matrix() @ self.reference_rotation
         return self.centres_m[self.ball] @ rotation.T + p[3:], rotation
 
     def residuals(self, nominal_m, error_m, p):
@@ -255,8 +263,7 @@ class BallPlate(Artefact):
     def systematic(self):
         n, b = len(self.ball), len(self.centres_m)
         s = np.zeros((n, 3, b, 3))
-        rotation = getattr(self, "_rotation0", np.eye(3))
-        s[np.arange(n), :, self.ball, :] = -rotation
+        s[np.arange(n), :, self.ball, :] = -self.reference_rotation
         return s.reshape(3 * n, 3 * b), np.repeat(self.centre_u_m, 3)
 
 
@@ -288,8 +295,6 @@ class StepGauge(Artefact):
     face_u_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
     face: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
     measured_m: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
-    data_path: str = ""
-    lines: tuple[int, ...] = ()
     face_names: tuple[str, ...] = ()
 
     kind = "step_gauge"
@@ -357,8 +362,6 @@ class BallbarNetwork(Artefact):
     ends_m: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     lengths_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
     length_u_m: float = 0.0
-    data_path: str = ""
-    lines: tuple[int, ...] = ()
     setups: tuple[str, ...] = ()
 
     kind = "ballbar_network"
@@ -426,8 +429,6 @@ class Multilateration(Artefact):
     targets_m: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     ranges_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
     stations_m: np.ndarray | None = None
-    data_path: str = ""
-    lines: tuple[int, ...] = ()
     stations: tuple[str, ...] = ()
 
     kind = "multilateration"
@@ -516,8 +517,6 @@ class RTest(Artefact):
     axis_positions_m: dict = field(default_factory=dict)
     directions: np.ndarray = field(default_factory=lambda: np.eye(3))
     readings_m: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
-    data_path: str = ""
-    lines: tuple[int, ...] = ()
 
     kind = "r_test"
 

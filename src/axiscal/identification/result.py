@@ -164,11 +164,12 @@ class Identification:
 
     def summary(self) -> dict:
         """Everything of ``identify.json`` (display units spelled in the keys)."""
-        def display(name: str, kind: str | None = None) -> tuple[float, str]:
-            term = next((t for t in self.terms if t.name == name), None)
-            if term is None:
-                return (1.0 / UM, "um") if not name.endswith(("rx", "ry", "rz")) else (1.0 / _URAD, "urad")
-            return (1.0 / UM, "um") if term.unit == "m" else (1.0 / _URAD, "urad")
+        units = {t.name: t.unit for t in self.terms}
+
+        def display(name: str) -> tuple[float, str]:
+            """Factor to and name of the display unit: um for lengths, urad for angles (a pose's rx, ry, rz)."""
+            angle = units.get(name) == "rad" or (name not in units and name.endswith((":rx", ":ry", ":rz")))
+            return (1.0 / _URAD, "urad") if angle else (1.0 / UM, "um")
 
         parameters = []
         for k, name in enumerate(self.names):
