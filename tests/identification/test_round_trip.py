@@ -131,3 +131,23 @@ def test_spline_model_round_trip_without_noise(virtual, model):
     determined = result.determined[: len(theta)]
     assert determined.any()
     assert np.allclose(result.values[: len(theta)][determined], theta[determined], atol=1e-10)
+
+
+def test_artefacts_of_different_noise_are_weighted_by_their_own_variance(virtual):
+    zs, spread = [], []
+    for seed in range(15):
+        rng = np.random.default_rng(seed)
+        ideal, true, theta = virtual.polynomial_machine("FXY", "poly:2", TRAVEL_XY, rng)
+        artefacts = [
+            simulate_ball_plate(true, plate_grid(3, 0.15), np.eye(3), np.zeros(3), np.array(tool), noise_m=0.5e-6, rng=rng, name=f"plate{k}")
+            for k, tool in enumerate(PROBES)
+        ] + [
+            simulate_step_gauge(true, np.zeros(3), np.array(d) / np.linalg.norm(d), np.linspace(0.0, 0.3, 7), np.zeros(3),
+                                noise_m=0.02e-6, rng=rng, name=f"gauge{k}")
+            for k, d in enumerate(((1, 0, 0), (0, 1, 0), (1, 1, 0)))
+        ]
+        result = identify(ideal, artefacts, model="poly:2", travel=TRAVEL_XY)
+        zs.append(virtual.coverage(result, theta))
+        spread.append([result.kind_std["ball_plate"], result.kind_std["step_gauge"]])
+    assert np.allclose(np.median(spread, axis=0), [0.5e-6, 0.02e-6], rtol=0.2)
+    assert 0.9 <= np.mean(np.concatenate(zs) < 2.0) <= 0.99

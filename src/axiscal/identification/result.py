@@ -100,11 +100,14 @@ class Identification:
     condition : float
         Condition number of the determined part of the scaled Jacobian.
     residual_std : float
-        Standard deviation of the residuals (the fit's), metres.
+        Standard deviation of all residuals (unweighted), metres.
     fixed : tuple of str
         Terms kept at their starting values.
     spans : dict of str to (float, float)
         The travel of each identified axis (metres, radians).
+    kind_std : dict of str to float
+        The residual standard deviation of each kind of artefact, by which its residuals were
+        weighted, metres.
     """
 
     machine: Machine
@@ -122,6 +125,7 @@ class Identification:
     residual_std: float
     fixed: tuple = ()
     spans: dict = field(default_factory=dict)
+    kind_std: dict = field(default_factory=dict)
 
     @property
     def covariance(self) -> np.ndarray:
@@ -187,6 +191,7 @@ class Identification:
             "unknowns": len(self.names),
             "condition_number": self.condition,
             "residual_std_um": self.residual_std / UM,
+            "residual_std_um_by_kind": {k: v / UM for k, v in self.kind_std.items()},
             "fixed": list(self.fixed),
             "travel": {k: list(v) for k, v in self.spans.items()},
             "parameters": parameters,

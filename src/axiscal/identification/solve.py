@@ -10,9 +10,13 @@ the largest) and those it cannot separate (the null space). SciPy's ``least_squa
 the determined combinations only, ``x = x₀ + D V_r z``, with the Jacobian ``J D V_r``; what the data
 cannot see keeps its starting value and is reported, never silently zeroed.
 
-Covariance (GUM 6.2 with the least-squares sensitivity): with ``A = J D V_r`` at the solution,
-``Σ_x = D V_r (s² (AᵀA)⁻¹ + A⁺ S diag(u²) Sᵀ A⁺ᵀ) V_rᵀ D``: ``s²`` the residual variance
-``rss / (M - r)`` and ``S, u`` the artefacts' calibration (certificate) uncertainties.
+Each kind of artefact has its own residual variance (a plate and a step gauge are read with
+different noise): after a first fit, the residuals of each kind are weighted by the inverse of
+their standard deviation (each kind's share ``M_k (1 - r / M)`` of the degrees of freedom) and the
+fit is repeated until the weights settle. Covariance (GUM 6.2 with the least-squares sensitivity): with ``A = W J D V_r`` at
+the solution, ``Σ_x = D V_r (s² (AᵀA)⁻¹ + A⁺ W S diag(u²) Sᵀ W A⁺ᵀ) V_rᵀ D``: ``s²`` the weighted
+residual variance ``rss_w / (M - r)`` and ``S, u`` the artefacts' calibration (certificate)
+uncertainties.
 """
 
 from __future__ import annotations
@@ -39,6 +43,8 @@ __all__ = ["identify", "RANK_TOLERANCE"]
 RANK_TOLERANCE = 1e-5
 #: an entry of a null vector above this counts
 _NULL_ENTRY = 1e-6
+#: most weighted fits while the kinds' variances settle (to 1 %)
+_REWEIGHTS = 8
 #: coefficients of a named combination below this (the largest being 1) are left out of its name
 _SHOWN = 1e-4
 
@@ -278,24 +284,36 @@ def identify(
     x0 = problem.starting(theta0)
     basis = scale[:, None] * row_space
 
-    def fun(z):
-        return problem.residuals(x0 + basis @ z)
-
-    def jac(z):
-        return problem.jacobian(x0 + basis @ z) @ basis
-
-    solution = least_squares(fun, np.zeros(rank), jac=jac, method="lm", xtol=1e-13, ftol=1e-13, gtol=1e-13)
-    x = x0 + basis @ solution.x
+    # one variance per kind of artefact: a fit, the kinds' residual variances, a weighted fit again
+    kinds = sorted({a.kind for a in artefacts})
+    rows = {kind: np.concatenate([np.arange(problem.count)[r] for a, r in zip(artefacts, problem.r_slices) if a.kind == kind]) for kind in kinds}
+    weight = np.ones(problem.count)
+    z = np.zeros(rank)
+    for _ in range(_REWEIGHTS if len(kinds) > 1 else 1):
+        before = weight.copy()
+        solution = least_squares(
+            lambda z: weight * problem.residuals(x0 + basis @ z),
+            z,
+            jac=lambda z: weight[:, None] * (problem.jacobian(x0 + basis @ z) @ basis),
+            method="lm", xtol=1e-13, ftol=1e-13, gtol=1e-13,
+        )
+        z = solution.x
+        residual = problem.residuals(x0 + basis @ z)
+        for kind, k in rows.items():  # each kind's share of the degrees of freedom
+            weight[k] = 1.0 / max(np.sqrt(float(residual[k] @ residual[k]) / (k.size * (1.0 - rank / problem.count))), 1e-15)
+        if np.allclose(weight / weight[0], before / before[0], rtol=0.01):
+            break
+    x = x0 + basis @ z
     residual = problem.residuals(x)
-    a = problem.jacobian(x) @ basis
+    a = weight[:, None] * (problem.jacobian(x) @ basis)
     s_a, vt_a = _singular(a)
     dof = problem.count - rank
-    variance = float(residual @ residual) / dof
+    variance = float((weight * residual) @ (weight * residual)) / dof
     inverse = (vt_a.T / s_a**2) @ vt_a  # (AᵀA)⁻¹
     cov_z = variance * inverse
     systematic, u_sys = problem.systematic()
     if u_sys.size:
-        spread = inverse @ (a.T @ systematic) * u_sys  # A⁺ S diag(u)
+        spread = inverse @ (a.T @ (weight[:, None] * systematic)) * u_sys  # A⁺ W S diag(u)
         cov_z = cov_z + spread @ spread.T
     covariance = basis @ cov_z @ basis.T
 
@@ -307,10 +325,10 @@ def identify(
     for group in _groups(null) if null.size else []:
         block = (null @ null.T)[np.ix_(group, group)]
         w, v = np.linalg.eigh(block)
-        weight = np.where(group < p, 1.0, 1e-3)  # a machine term names a combination before an artefact's own unknown
-        hidden_basis = _pivoted(scale[group][:, None] * v[:, w > 0.5], weight)
+        preference = np.where(group < p, 1.0, 1e-3)  # a machine term names a combination before an artefact's own unknown
+        hidden_basis = _pivoted(scale[group][:, None] * v[:, w > 0.5], preference)
         hidden = [_combination([all_names[k] for k in group], hidden_basis[:, i]) for i in range(hidden_basis.shape[1])]
-        seen_basis = _pivoted(v[:, w <= 0.5] / scale[group][:, None], weight) if np.any(w <= 0.5) else np.zeros((len(group), 0))
+        seen_basis = _pivoted(v[:, w <= 0.5] / scale[group][:, None], preference) if np.any(w <= 0.5) else np.zeros((len(group), 0))
         seen = []
         for i in range(seen_basis.shape[1]):
             c = np.zeros(problem.size)
@@ -332,7 +350,8 @@ def identify(
         undetermined=tuple(undetermined),
         rank=rank,
         condition=float(s_a[0] / s_a[-1]),
-        residual_std=float(np.sqrt(variance)),
+        residual_std=float(np.sqrt(float(residual @ residual) / dof)),
+        kind_std={kind: float(1.0 / weight[k][0]) for kind, k in rows.items()},
         fixed=parameters.fixed,
         spans=dict(parameters.spans),
     )
