@@ -13,7 +13,8 @@ import dataclasses
 import numpy as np
 
 from axiscal.identification.artefacts import BallbarNetwork, BallPlate, Multilateration, RTest, StepGauge, axis_positions
-from axiscal.io.arguments import check_array, check_instance, check_number
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_count, check_instance, check_mapping, check_number
 from axiscal.model.machine import Machine
 
 __all__ = [
@@ -28,7 +29,15 @@ __all__ = [
 
 
 def _tooled(machine: Machine, tool_m) -> Machine:
-    return dataclasses.replace(machine, tool_m=tuple(float(v) for v in tool_m))
+    tool = check_array("tool_m", tool_m, ndim=1, last=3)
+    return dataclasses.replace(machine, tool_m=tuple(float(v) for v in tool))
+
+
+def _checked(machine, noise_m, rng) -> float:
+    """The arguments every simulation shares, checked at its entry."""
+    check_instance("machine", machine, Machine)
+    check_instance("rng", rng, np.random.Generator, what="a numpy.random.Generator (numpy.random.default_rng(seed))")
+    return check_number("noise_m", noise_m, nonnegative=True)
 
 
 def _reported(machine: Machine, true_m: np.ndarray) -> np.ndarray:
@@ -54,6 +63,8 @@ def plate_grid(count: int, pitch_m: float) -> np.ndarray:
     ndarray, shape (count², 3)
         Metres.
     """
+    count = check_count("count", count)
+    pitch_m = check_number("pitch_m", pitch_m, positive=True)
     i, j = np.meshgrid(np.arange(count), np.arange(count), indexing="ij")
     return np.column_stack([i.ravel() * pitch_m, j.ravel() * pitch_m, np.zeros(count * count)])
 
@@ -88,9 +99,9 @@ def simulate_ball_plate(machine, centres_m, rotation, origin_m, tool_m, *, noise
     -------
     BallPlate
     """
-    check_instance("machine", machine, Machine)
+    noise = _checked(machine, noise_m, rng)
     centres = check_array("centres_m", centres_m, ndim=2, last=3)
-    noise = check_number("noise_m", noise_m, nonnegative=True)
+    check_count("repeats", repeats)
     true = centres @ np.asarray(rotation, dtype=float).T + check_array("origin_m", origin_m, ndim=1, last=3)
     tooled = _tooled(machine, tool_m)
     reported = _reported(tooled, true)
@@ -123,8 +134,13 @@ def simulate_step_gauge(machine, start_m, direction, faces_m, tool_m, *, noise_m
     -------
     StepGauge
     """
-    direction = np.asarray(direction, dtype=float) / np.linalg.norm(direction)
+    noise_m = _checked(machine, noise_m, rng)
+    direction = check_array("direction", direction, ndim=1, last=3)
+    if not 0.999 < np.linalg.norm(direction) < 1.001:
+        raise AxiscalError(f"direction must be a unit vector, not of length {np.linalg.norm(direction):.6g}")
+    direction = direction / np.linalg.norm(direction)
     faces = check_array("faces_m", faces_m, ndim=1)
+    check_count("repeats", repeats)
     true = np.asarray(start_m, dtype=float) + faces[:, None] * direction
     reported = _reported(_tooled(machine, tool_m), true)
     face = np.tile(np.arange(len(faces)), repeats)
@@ -158,9 +174,13 @@ def simulate_ballbar(machine, centres_m, ends_m, setup, length_m, tool_m, *, noi
     -------
     BallbarNetwork
     """
+    noise_m = _checked(machine, noise_m, rng)
     tooled = _tooled(machine, tool_m)
     ends = check_array("ends_m", ends_m, ndim=2, last=3)
-    setup = np.asarray(setup, dtype=int)
+    centres_m = check_array("centres_m", centres_m, ndim=2, last=3)
+    setup = check_array("setup", setup, ndim=1).astype(int)
+    if setup.size != len(ends) or setup.min() < 0 or setup.max() >= len(centres_m):
+        raise AxiscalError("setup must give the centre (0 .. S-1) of every reading")
     actual = ends + tooled.volumetric_error(axis_positions(tooled, ends, np.array(tooled.tool_m)), workers=1)
     lengths = np.linalg.norm(actual - np.asarray(centres_m)[setup], axis=1) + noise_m * rng.standard_normal(len(ends))
     return BallbarNetwork(name, np.asarray(tool_m, dtype=float), setup=setup, centres_m=np.asarray(centres_m, dtype=float),
@@ -190,8 +210,12 @@ def simulate_multilateration(machine, stations_m, dead_paths_m, targets_m, tool_
     -------
     Multilateration
     """
+    noise_m = _checked(machine, noise_m, rng)
     tooled = _tooled(machine, tool_m)
     stations = check_array("stations_m", stations_m, ndim=2, last=3)
+    dead_paths_m = check_array("dead_paths_m", dead_paths_m, ndim=1)
+    if dead_paths_m.size != len(stations):
+        raise AxiscalError(f"dead_paths_m must give one dead path per station ({len(stations)}), not {dead_paths_m.size}")
     targets = check_array("targets_m", targets_m, ndim=2, last=3)
     actual = targets + tooled.volumetric_error(axis_positions(tooled, targets, np.array(tooled.tool_m)), workers=1)
     station = np.repeat(np.arange(len(stations)), len(targets))
@@ -219,7 +243,12 @@ def r_test_positions(machine: Machine, rotary_m: dict, ball_workpiece_m: np.ndar
         Every axis of the chain: the angles given and the linear positions (metres) from the
         nominal kinematics (affine in the linear axes for fixed angles).
     """
-    n = len(next(iter(rotary_m.values())))
+    check_instance("machine", machine, Machine)
+    if not machine.rotary:
+        raise AxiscalError(f"chain '{machine.chain}' has no rotary axis to turn")
+    check_mapping("rotary_m", rotary_m, machine.rotary, what="a mapping of every rotary axis of the chain to its angles")
+    ball_workpiece_m = check_array("ball_workpiece_m", ball_workpiece_m, ndim=1, last=3)
+    n = len(check_array(f"rotary_m[{machine.rotary[0]!r}]", rotary_m[machine.rotary[0]], ndim=1, unit=""))
     linear = [k for k in machine.letters if k not in machine.rotary]
     base = {k: np.asarray(rotary_m[k], dtype=float) for k in machine.rotary} | {k: np.zeros(n) for k in linear}
     p0 = machine.nominal_point(base)
@@ -259,6 +288,7 @@ def simulate_r_test(machine, positions_m, directions, *, noise_m, rng, zeros_m=N
     -------
     RTest
     """
+    noise_m = _checked(machine, noise_m, rng)
     directions = check_array("directions", directions, ndim=2, last=3)
     error = machine.volumetric_error(positions_m, workers=1)
     zeros = np.zeros(len(directions)) if zeros_m is None else np.asarray(zeros_m, dtype=float)
