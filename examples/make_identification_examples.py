@@ -1,5 +1,8 @@
 """Make examples/identification/: a moving-bridge CMM with known polynomial errors, measured with a 5 x 5 ball plate in four positions.
 
+The positions: XY; XZ; YZ with the stylus 30 mm along X; XZ again with the stylus 30 mm along Y.
+Together they determine every term of poly:3 (docs/identification.md).
+
 Run from the repository root: ``python examples/make_identification_examples.py``. The true machine
 is written too (``examples/identification/true_machine/``), so the identification can be checked
 against it.
@@ -40,9 +43,9 @@ def main() -> None:
     eye = np.eye(3)
     poses = {
         "plate_xy": (eye, [0.05, 0.05, 0.05], (0.0, 0.0, 0.0)),
-        "plate_xz": (np.column_stack([eye[0], eye[2], -eye[1]]), [0.05, 0.45, 0.05], (0.0, 0.03, 0.0)),
+        "plate_xz": (np.column_stack([eye[0], eye[2], -eye[1]]), [0.05, 0.45, 0.05], (0.0, 0.0, 0.0)),
         "plate_yz": (np.column_stack([eye[1], eye[2], eye[0]]), [0.45, 0.05, 0.05], (0.03, 0.0, 0.0)),
-        "plate_xy_high": (eye, [0.05, 0.05, 0.4], (0.03, 0.0, 0.0)),
+        "plate_xz_probe_y": (np.column_stack([eye[0], eye[2], -eye[1]]), [0.05, 0.45, 0.05], (0.0, 0.03, 0.0)),
     }
     for name, (rotation, origin, tool) in poses.items():
         artefact = simulate_ball_plate(true, plate, rotation, np.array(origin), np.array(tool), noise_m=0.2e-6, rng=rng,

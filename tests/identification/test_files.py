@@ -153,7 +153,7 @@ def test_the_command_line_writes_a_machine_folder_that_volumetric_reads(tmp_path
     machine = load_machine(tmp_path / "out" / "machine.toml")
     assert machine.chain == "FYXZ" and machine.travel_m("X") == pytest.approx((0.0, 0.5))
     summary = json.loads((tmp_path / "out" / "identify.json").read_text())
-    assert set(summary["residuals"]) == {"plate_xy", "plate_xy_high", "plate_xz", "plate_yz"}
+    assert set(summary["residuals"]) == {"plate_xy", "plate_xz", "plate_xz_probe_y", "plate_yz"}
     assert len(summary["covariance_si"]["matrix"]) == len(summary["covariance_si"]["names"])
     assert summary["residual_std_um"] < 0.3  # the plates were measured with 0.2 um of noise
     assert "Identification from artefacts" in (tmp_path / "out" / "identify.html").read_text()
