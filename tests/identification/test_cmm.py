@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from axiscal.identification import identify, map_difference
-from axiscal.identification.simulate import plate_grid, r_test_positions, simulate_ball_plate, simulate_r_test
+from axiscal.identification import r_test_positions
+from axiscal.identification.simulate import plate_grid, simulate_ball_plate, simulate_r_test
 from axiscal.model.machine import Axis, Machine, axis_positions_from_grid
 
 TRAVEL = {"X": (0.0, 0.5), "Y": (0.0, 0.5), "Z": (0.0, 0.5)}

@@ -11,10 +11,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from axiscal.errors import AxiscalError
-from axiscal.identification import read_artefact, write_artefact
+from axiscal.identification import r_test_positions, read_artefact, write_artefact
 from axiscal.identification.simulate import (
     plate_grid,
-    r_test_positions,
     simulate_ball_plate,
     simulate_ballbar,
     simulate_multilateration,
@@ -197,3 +196,17 @@ def test_a_mutated_certificate_is_refused_cleanly_or_read(tmp_path):
             read_artefact(path)
         except AxiscalError as exc:
             assert str(exc).startswith(str(certificate)), str(exc)
+
+
+def test_an_r_test_file_may_give_the_rotary_axes_only_and_the_ball_on_the_table(tmp_path):
+    rtest = artefacts(np.random.default_rng(4))[4]
+    path = write_artefact(rtest, tmp_path / "r.toml")
+    measured = tmp_path / "r_measured.csv"
+    table = [line.split(",") for line in measured.read_text().splitlines()]
+    keep = [k for k, name in enumerate(table[0]) if not name.endswith("_mm")]
+    measured.write_text("\n".join(",".join(row[k] for k in keep) for row in table) + "\n")
+    path.write_text(path.read_text().replace("sensors =", "ball_on_table_mm = [100, 0, 50]\nsensors =", 1))
+    machine = Machine("CAFXYZ", {"A": Axis("A", origin_m=(0, 0, -0.3)), "C": Axis("C")} | {k: Axis(k) for k in "XYZ"})
+    positions = read_artefact(path).positions(machine)
+    for letter in "XYZ":
+        assert np.allclose(positions[letter], rtest.axis_positions_m[letter], atol=1e-12)

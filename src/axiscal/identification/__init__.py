@@ -17,6 +17,7 @@ from axiscal.identification.artefacts import (
     BallbarNetwork,
     BallPlate,
     Multilateration,
+    r_test_positions,
     RTest,
     StepGauge,
 )
@@ -54,7 +55,6 @@ from axiscal.identification.result import (
 )
 from axiscal.identification.simulate import (
     plate_grid,
-    r_test_positions,
     simulate_ball_plate,
     simulate_ballbar,
     simulate_multilateration,
@@ -75,6 +75,7 @@ __all__ = [
     "Multilateration",
     "RTest",
     "axis_positions",
+    "r_test_positions",
     "ARTEFACT_KINDS",
     "MODEL_KINDS",
     "MAX_MODEL_ORDER",
@@ -101,7 +102,6 @@ __all__ = [
     "simulate_ballbar",
     "simulate_multilateration",
     "simulate_r_test",
-    "r_test_positions",
     "plate_grid",
     "identify",
     "RANK_TOLERANCE",

@@ -32,6 +32,7 @@ from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_array, check_instance, check_mapping
 from axiscal.model.machine import Machine
 from axiscal.units import MM
 
@@ -44,6 +45,7 @@ __all__ = [
     "Multilateration",
     "RTest",
     "axis_positions",
+    "r_test_positions",
     "ARTEFACT_KINDS",
 ]
 
@@ -82,6 +84,47 @@ def axis_positions(machine: Machine, points_m: np.ndarray, tool_m: np.ndarray) -
         sign = 1.0 if letter in machine.tool_side else -1.0
         index = "XYZ".index(letter)
         out[letter] = sign * (points_m[:, index] - offset[index])
+    return out
+
+
+def r_test_positions(machine: Machine, rotary_m: dict, ball_workpiece_m: np.ndarray) -> dict:
+    """Linear axis positions that keep the ball at ``ball_workpiece_m`` (workpiece frame) while the rotary axes turn.
+
+    Parameters
+    ----------
+    machine : Machine
+        A chain with rotary axes; its tool point is the ball.
+    rotary_m : dict of str to ndarray, shape (N,)
+        Angles of every rotary axis, radians.
+    ball_workpiece_m : ndarray, shape (3,)
+        Where the ball sits relative to the workpiece point, in the workpiece frame, metres.
+
+    Returns
+    -------
+    dict of str to ndarray, shape (N,)
+        Every axis of the chain: the angles given and the linear positions (metres) from the
+        nominal kinematics (affine in the linear axes for fixed angles).
+    """
+    check_instance("machine", machine, Machine)
+    if not machine.rotary:
+        raise AxiscalError(f"chain '{machine.chain}' has no rotary axis to turn")
+    check_mapping("rotary_m", rotary_m, machine.rotary, what="a mapping of every rotary axis of the chain to its angles")
+    ball_workpiece_m = check_array("ball_workpiece_m", ball_workpiece_m, ndim=1, last=3)
+    n = len(check_array(f"rotary_m[{machine.rotary[0]!r}]", rotary_m[machine.rotary[0]], ndim=1, unit=""))
+    linear = [k for k in machine.letters if k not in machine.rotary]
+    base = {k: np.asarray(rotary_m[k], dtype=float) for k in machine.rotary} | {k: np.zeros(n) for k in linear}
+    p0 = machine.nominal_point(base)
+    columns = []
+    for letter in linear:
+        moved = dict(base)
+        moved[letter] = np.ones(n)
+        columns.append(machine.nominal_point(moved) - p0)
+    matrix = np.stack(columns, axis=2)  # (N, 3, L)
+    out = dict(base)
+    target = np.asarray(ball_workpiece_m, dtype=float) - p0
+    q = np.stack([np.linalg.lstsq(matrix[i], target[i], rcond=None)[0] for i in range(n)])
+    for k, letter in enumerate(linear):
+        out[letter] = q[:, k]
     return out
 
 
@@ -512,11 +555,15 @@ class RTest(Artefact):
         Unit sensing direction of each sensor in the workpiece (table) frame.
     readings_m : ndarray, shape (N, K)
         Sensor readings, metres (each sensor's zero unknown).
+    ball_table_m : ndarray, shape (3,) or None
+        Where the ball nominally stays on the table (workpiece frame), metres: with it, linear
+        axes missing from ``axis_positions_m`` follow from the nominal kinematics.
     """
 
     axis_positions_m: dict = field(default_factory=dict)
     directions: np.ndarray = field(default_factory=lambda: np.eye(3))
     readings_m: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    ball_table_m: np.ndarray | None = None
 
     kind = "r_test"
 
@@ -530,6 +577,10 @@ class RTest(Artefact):
 
     def positions(self, machine: Machine) -> dict[str, np.ndarray]:
         missing = [k for k in machine.letters if k not in self.axis_positions_m]
+        if missing and self.ball_table_m is not None and not set(missing) & set(machine.rotary):
+            tooled = dataclasses.replace(machine, tool_m=tuple(float(v) for v in self.tool_m))
+            solved = r_test_positions(tooled, {k: self.axis_positions_m[k] for k in machine.rotary}, self.ball_table_m)
+            return {k: self.axis_positions_m.get(k, solved[k]) for k in machine.letters}
         if missing:
             raise AxiscalError(f"{self.name}: no positions of axis {', '.join(missing)} of chain '{machine.chain}'", path=self.data_path or None)
         return {k: self.axis_positions_m[k] for k in machine.letters}

@@ -43,7 +43,7 @@ ARTEFACT_KEYS = {
     "step_gauge": {"kind", "name", "tool_mm", "measured", "faces", "line"},
     "ballbar_network": {"kind", "name", "tool_mm", "measured", "length_mm", "length_U_um"},
     "multilateration": {"kind", "name", "tool_mm", "measured", "stations"},
-    "r_test": {"kind", "name", "tool_mm", "measured", "sensors"},
+    "r_test": {"kind", "name", "tool_mm", "measured", "sensors", "ball_on_table_mm"},
 }
 
 
@@ -182,10 +182,14 @@ def _ballbar(f: _File, name: str, tool: np.ndarray) -> BallbarNetwork:
     moved = np.flatnonzero(np.linalg.norm(centres - centres[first][setup], axis=1) > 1e-9)
     if moved.size:
         raise AxiscalError("the centre of a setup must be the same on each of its rows", path=measured.path, line=measured.line_of(int(moved[0])))
-    measured.require("deviation_um")
+    if measured.has("length_mm"):
+        lengths = measured.numeric("length_mm") * MM
+    else:
+        measured.require("deviation_um")
+        lengths = length * MM + measured.numeric("deviation_um") * UM
     return BallbarNetwork(
         name, tool, setup=setup, centres_m=centres[first], ends_m=_points(measured, "end_"),
-        lengths_m=length * MM + measured.numeric("deviation_um") * UM, length_u_m=float(u) * UM / 2.0,
+        lengths_m=lengths, length_u_m=float(u) * UM / 2.0,
         data_path=measured.path, lines=tuple(measured.lines), setups=tuple(setups),
     )
 
@@ -221,8 +225,9 @@ def _r_test(f: _File, name: str, tool: np.ndarray) -> RTest:
             positions[letter] = measured.numeric(column) * MM
         elif letter in ROTARY_LETTERS and unit == "deg":
             positions[letter] = measured.numeric(column) * _DEG
+    ball = f.vector(f.data["ball_on_table_mm"], "ball_on_table_mm") if "ball_on_table_mm" in f.data else None
     return RTest(
-        name, tool, axis_positions_m=positions, directions=directions,
+        name, tool, axis_positions_m=positions, directions=directions, ball_table_m=ball,
         readings_m=np.column_stack([measured.numeric(c) for c in columns]) * UM, data_path=measured.path, lines=tuple(measured.lines),
     )
 
@@ -340,6 +345,8 @@ def write_artefact(artefact: Artefact, path: str | Path) -> Path:
         for k in range(artefact.directions.shape[0]):
             measured[f"sensor_{k + 1}_um"] = artefact.readings_m[:, k] / UM
         head.insert(3, "sensors = [" + ", ".join(_toml_vector(d, 1.0) for d in artefact.directions) + "]")
+        if artefact.ball_table_m is not None:
+            head.insert(3, f"ball_on_table_mm = {_toml_vector(artefact.ball_table_m)}")
     else:
         raise AxiscalError(f"cannot write an artefact of kind {type(artefact).__name__}")
     write_csv(path.with_name(f"{stem}_measured.csv"), measured, fmt=fmt)

@@ -12,7 +12,7 @@ import dataclasses
 
 import numpy as np
 
-from axiscal.identification.artefacts import BallbarNetwork, BallPlate, Multilateration, RTest, StepGauge, axis_positions
+from axiscal.identification.artefacts import BallbarNetwork, BallPlate, Multilateration, RTest, StepGauge, axis_positions, r_test_positions
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_count, check_instance, check_mapping, check_number
 from axiscal.model.machine import Machine
@@ -23,7 +23,6 @@ __all__ = [
     "simulate_ballbar",
     "simulate_multilateration",
     "simulate_r_test",
-    "r_test_positions",
     "plate_grid",
 ]
 
@@ -225,47 +224,6 @@ def simulate_multilateration(machine, stations_m, dead_paths_m, targets_m, tool_
     return Multilateration(name, np.asarray(tool_m, dtype=float), station=station, targets_m=targets[rows], ranges_m=ranges)
 
 
-def r_test_positions(machine: Machine, rotary_m: dict, ball_workpiece_m: np.ndarray) -> dict:
-    """Linear axis positions that keep the ball at ``ball_workpiece_m`` (workpiece frame) while the rotary axes turn.
-
-    Parameters
-    ----------
-    machine : Machine
-        A chain with rotary axes; its tool point is the ball.
-    rotary_m : dict of str to ndarray, shape (N,)
-        Angles of every rotary axis, radians.
-    ball_workpiece_m : ndarray, shape (3,)
-        Where the ball sits relative to the workpiece point, in the workpiece frame, metres.
-
-    Returns
-    -------
-    dict of str to ndarray, shape (N,)
-        Every axis of the chain: the angles given and the linear positions (metres) from the
-        nominal kinematics (affine in the linear axes for fixed angles).
-    """
-    check_instance("machine", machine, Machine)
-    if not machine.rotary:
-        raise AxiscalError(f"chain '{machine.chain}' has no rotary axis to turn")
-    check_mapping("rotary_m", rotary_m, machine.rotary, what="a mapping of every rotary axis of the chain to its angles")
-    ball_workpiece_m = check_array("ball_workpiece_m", ball_workpiece_m, ndim=1, last=3)
-    n = len(check_array(f"rotary_m[{machine.rotary[0]!r}]", rotary_m[machine.rotary[0]], ndim=1, unit=""))
-    linear = [k for k in machine.letters if k not in machine.rotary]
-    base = {k: np.asarray(rotary_m[k], dtype=float) for k in machine.rotary} | {k: np.zeros(n) for k in linear}
-    p0 = machine.nominal_point(base)
-    columns = []
-    for letter in linear:
-        moved = dict(base)
-        moved[letter] = np.ones(n)
-        columns.append(machine.nominal_point(moved) - p0)
-    matrix = np.stack(columns, axis=2)  # (N, 3, L)
-    out = dict(base)
-    target = np.asarray(ball_workpiece_m, dtype=float) - p0
-    q = np.stack([np.linalg.lstsq(matrix[i], target[i], rcond=None)[0] for i in range(n)])
-    for k, letter in enumerate(linear):
-        out[letter] = q[:, k]
-    return out
-
-
 def simulate_r_test(machine, positions_m, directions, *, noise_m, rng, zeros_m=None, name="rtest"):
     """R-test readings of sensors on the table against the ball on the tool.
 
@@ -274,7 +232,7 @@ def simulate_r_test(machine, positions_m, directions, *, noise_m, rng, zeros_m=N
     machine : Machine
         The true machine; its tool point is the ball.
     positions_m : dict of str to ndarray, shape (N,)
-        Every axis (e.g. from :func:`r_test_positions`).
+        Every axis (e.g. from :func:`axiscal.identification.r_test_positions`).
     directions : ndarray, shape (K, 3)
         Unit sensing directions in the workpiece frame.
     noise_m : float
