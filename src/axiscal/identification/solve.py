@@ -183,6 +183,99 @@ def _pivoted(basis: np.ndarray, weight: np.ndarray) -> np.ndarray:
     return basis @ np.linalg.inv(basis[pivots[: basis.shape[1]]])
 
 
+def _travel(machine: Machine, artefacts: Sequence[Artefact], travel) -> dict[str, tuple[float, float]]:
+    """The travel of each axis the artefacts move: the positions they reach joined with the range of
+    the axis' table in the machine file, or as ``travel`` states it."""
+    spans: dict[str, list[float]] = {}
+    for artefact in artefacts:
+        for letter, q in artefact.positions(machine).items():
+            low, high = spans.get(letter, [np.inf, -np.inf])
+            spans[letter] = [min(low, float(q.min())), max(high, float(q.max()))]
+    for letter in spans:
+        table = machine.axes[letter].table
+        if table is not None and not table.periodic:  # a table in the machine file states the travel
+            spans[letter] = [min(spans[letter][0], table.start_m), max(spans[letter][1], table.end_m)]
+    if travel is not None:
+        check_mapping("travel", travel, what="a mapping of axis letters to (start, end)")
+        for letter, given in travel.items():
+            if letter not in machine.letters:
+                raise AxiscalError(f"travel: chain '{machine.chain}' has no axis {letter!r}")
+            start, end = check_array(f"travel[{letter!r}]", given, ndim=1, last=2, unit="")
+            if end <= start:
+                raise AxiscalError(f"travel of axis {letter} must end after it starts, not {start:g} to {end:g}")
+            if letter in spans and (spans[letter][0] < start - 1e-9 or spans[letter][1] > end + 1e-9):
+                raise AxiscalError(
+                    f"the artefacts move axis {letter} from {spans[letter][0]:g} to {spans[letter][1]:g}, outside its travel {start:g} to {end:g}"
+                )
+            spans[letter] = [float(start), float(end)]
+    return {k: (v[0], v[1]) for k, v in spans.items()}
+
+
+def _fit(problem: _Problem, x0: np.ndarray, basis: np.ndarray, rank: int):
+    """Least squares over the determined combinations ``x = x₀ + basis z``, each kind of artefact
+    weighted by its own residual standard deviation; returns (x, residuals, covariance of x,
+    condition number, standard deviation by kind)."""
+    artefacts = problem.artefacts
+    # one variance per kind of artefact: a fit, the kinds' residual variances, a weighted fit again
+    kinds = sorted({a.kind for a in artefacts})
+    rows = {kind: np.concatenate([np.arange(problem.count)[r] for a, r in zip(artefacts, problem.r_slices) if a.kind == kind]) for kind in kinds}
+    weight = np.ones(problem.count)
+    z = np.zeros(rank)
+    for _ in range(_REWEIGHTS if len(kinds) > 1 else 1):
+        before = weight.copy()
+        solution = least_squares(
+            lambda z: weight * problem.residuals(x0 + basis @ z),
+            z,
+            jac=lambda z: weight[:, None] * (problem.jacobian(x0 + basis @ z) @ basis),
+            method="lm", xtol=1e-13, ftol=1e-13, gtol=1e-13,
+        )
+        z = solution.x
+        residual = problem.residuals(x0 + basis @ z)
+        for kind, k in rows.items():  # each kind's share of the degrees of freedom
+            weight[k] = 1.0 / max(np.sqrt(float(residual[k] @ residual[k]) / (k.size * (1.0 - rank / problem.count))), 1e-15)
+        if np.allclose(weight / weight[0], before / before[0], rtol=0.01):
+            break
+    x = x0 + basis @ z
+    residual = problem.residuals(x)
+    a = weight[:, None] * (problem.jacobian(x) @ basis)
+    s_a, vt_a = _singular(a)
+    dof = problem.count - rank
+    variance = float((weight * residual) @ (weight * residual)) / dof
+    inverse = (vt_a.T / s_a**2) @ vt_a  # (AᵀA)⁻¹
+    cov_z = variance * inverse
+    systematic, u_sys = problem.systematic()
+    if u_sys.size:
+        spread = inverse @ (a.T @ (weight[:, None] * systematic)) * u_sys  # A⁺ W S diag(u)
+        cov_z = cov_z + spread @ spread.T
+    covariance = basis @ cov_z @ basis.T
+    kind_std = {kind: float(1.0 / weight[k][0]) for kind, k in rows.items()}
+    return x, residual, covariance, float(s_a[0] / s_a[-1]), kind_std
+
+
+def _undetermined(problem: _Problem, null: np.ndarray, scale: np.ndarray, x: np.ndarray, covariance: np.ndarray):
+    """The unknowns' standard uncertainties (NaN where the null space touches them) and the groups
+    the data cannot separate, each with the combinations hidden and those determined instead."""
+    p = len(problem.parameters.terms)
+    all_names = problem.names
+    undetermined_mask = np.linalg.norm(null, axis=1) > _NULL_ENTRY if null.size else np.zeros(problem.size, bool)
+    std = np.where(undetermined_mask, np.nan, np.sqrt(np.maximum(np.diag(covariance), 0.0)))
+    undetermined = []
+    for group in _groups(null) if null.size else []:
+        block = (null @ null.T)[np.ix_(group, group)]
+        w, v = np.linalg.eigh(block)
+        preference = np.where(group < p, 1.0, 1e-3)  # a machine term names a combination before an artefact's own unknown
+        hidden_basis = _pivoted(scale[group][:, None] * v[:, w > 0.5], preference)
+        hidden = [_combination([all_names[k] for k in group], hidden_basis[:, i]) for i in range(hidden_basis.shape[1])]
+        seen_basis = _pivoted(v[:, w <= 0.5] / scale[group][:, None], preference) if np.any(w <= 0.5) else np.zeros((len(group), 0))
+        seen = []
+        for i in range(seen_basis.shape[1]):
+            c = np.zeros(problem.size)
+            c[group] = seen_basis[:, i]
+            seen.append(_combination(all_names, c, x, covariance))
+        undetermined.append(Undetermined(tuple(all_names[k] for k in group), tuple(hidden), tuple(seen)))
+    return all_names, std, tuple(undetermined)
+
+
 def identify(
     machine: Machine | str | Path,
     artefacts: Sequence[Artefact | str | Path],
@@ -244,29 +337,8 @@ def identify(
     if isinstance(fix, str) or not isinstance(fix, Sequence):
         raise AxiscalError(f"fix must be a sequence of term names, not {fix!r:.40}")
 
-    spans: dict[str, list[float]] = {}
-    for artefact in artefacts:
-        for letter, q in artefact.positions(machine).items():
-            low, high = spans.get(letter, [np.inf, -np.inf])
-            spans[letter] = [min(low, float(q.min())), max(high, float(q.max()))]
-    for letter in spans:
-        table = machine.axes[letter].table
-        if table is not None and not table.periodic:  # a table in the machine file states the travel
-            spans[letter] = [min(spans[letter][0], table.start_m), max(spans[letter][1], table.end_m)]
-    if travel is not None:
-        check_mapping("travel", travel, what="a mapping of axis letters to (start, end)")
-        for letter, given in travel.items():
-            if letter not in machine.letters:
-                raise AxiscalError(f"travel: chain '{machine.chain}' has no axis {letter!r}")
-            start, end = check_array(f"travel[{letter!r}]", given, ndim=1, last=2, unit="")
-            if end <= start:
-                raise AxiscalError(f"travel of axis {letter} must end after it starts, not {start:g} to {end:g}")
-            if letter in spans and (spans[letter][0] < start - 1e-9 or spans[letter][1] > end + 1e-9):
-                raise AxiscalError(
-                    f"the artefacts move axis {letter} from {spans[letter][0]:g} to {spans[letter][1]:g}, outside its travel {start:g} to {end:g}"
-                )
-            spans[letter] = [float(start), float(end)]
-    parameters = ParameterSet(machine, model, {k: tuple(v) for k, v in spans.items()}, fix)
+    spans = _travel(machine, artefacts, travel)
+    parameters = ParameterSet(machine, model, spans, fix)
     problem = _Problem(parameters, artefacts, machine)
     theta0 = parameters.start()
 
@@ -278,64 +350,18 @@ def identify(
     s, vt = _singular(j0 * scale)
     rank = int(np.sum(s > rank_tolerance * s[0]))
     row_space, null = vt[:rank].T, vt[rank:].T
+    if rank == 0:
+        raise AxiscalError("the artefacts determine nothing of this machine: every term is fixed or unseen")
     if problem.count <= rank:
         raise AxiscalError(f"{problem.count} readings cannot determine {rank} unknowns with a residual to spare; measure more")
 
     x0 = problem.starting(theta0)
     basis = scale[:, None] * row_space
 
-    # one variance per kind of artefact: a fit, the kinds' residual variances, a weighted fit again
-    kinds = sorted({a.kind for a in artefacts})
-    rows = {kind: np.concatenate([np.arange(problem.count)[r] for a, r in zip(artefacts, problem.r_slices) if a.kind == kind]) for kind in kinds}
-    weight = np.ones(problem.count)
-    z = np.zeros(rank)
-    for _ in range(_REWEIGHTS if len(kinds) > 1 else 1):
-        before = weight.copy()
-        solution = least_squares(
-            lambda z: weight * problem.residuals(x0 + basis @ z),
-            z,
-            jac=lambda z: weight[:, None] * (problem.jacobian(x0 + basis @ z) @ basis),
-            method="lm", xtol=1e-13, ftol=1e-13, gtol=1e-13,
-        )
-        z = solution.x
-        residual = problem.residuals(x0 + basis @ z)
-        for kind, k in rows.items():  # each kind's share of the degrees of freedom
-            weight[k] = 1.0 / max(np.sqrt(float(residual[k] @ residual[k]) / (k.size * (1.0 - rank / problem.count))), 1e-15)
-        if np.allclose(weight / weight[0], before / before[0], rtol=0.01):
-            break
-    x = x0 + basis @ z
-    residual = problem.residuals(x)
-    a = weight[:, None] * (problem.jacobian(x) @ basis)
-    s_a, vt_a = _singular(a)
-    dof = problem.count - rank
-    variance = float((weight * residual) @ (weight * residual)) / dof
-    inverse = (vt_a.T / s_a**2) @ vt_a  # (AᵀA)⁻¹
-    cov_z = variance * inverse
-    systematic, u_sys = problem.systematic()
-    if u_sys.size:
-        spread = inverse @ (a.T @ (weight[:, None] * systematic)) * u_sys  # A⁺ W S diag(u)
-        cov_z = cov_z + spread @ spread.T
-    covariance = basis @ cov_z @ basis.T
+    x, residual, covariance, condition, kind_std = _fit(problem, x0, basis, rank)
 
-    all_names = problem.names
-    undetermined_mask = np.linalg.norm(null, axis=1) > _NULL_ENTRY if null.size else np.zeros(problem.size, bool)
-    std = np.where(undetermined_mask, np.nan, np.sqrt(np.maximum(np.diag(covariance), 0.0)))
+    all_names, std, undetermined = _undetermined(problem, null, scale, x, covariance)
     p = len(parameters.terms)
-    undetermined = []
-    for group in _groups(null) if null.size else []:
-        block = (null @ null.T)[np.ix_(group, group)]
-        w, v = np.linalg.eigh(block)
-        preference = np.where(group < p, 1.0, 1e-3)  # a machine term names a combination before an artefact's own unknown
-        hidden_basis = _pivoted(scale[group][:, None] * v[:, w > 0.5], preference)
-        hidden = [_combination([all_names[k] for k in group], hidden_basis[:, i]) for i in range(hidden_basis.shape[1])]
-        seen_basis = _pivoted(v[:, w <= 0.5] / scale[group][:, None], preference) if np.any(w <= 0.5) else np.zeros((len(group), 0))
-        seen = []
-        for i in range(seen_basis.shape[1]):
-            c = np.zeros(problem.size)
-            c[group] = seen_basis[:, i]
-            seen.append(_combination(all_names, c, x, covariance))
-        undetermined.append(Undetermined(tuple(all_names[k] for k in group), tuple(hidden), tuple(seen)))
-
     residuals = {a.name: residual[r] for a, r in zip(artefacts, problem.r_slices)}
     return Identification(
         machine=parameters.identified_machine(x[:p]),
@@ -347,11 +373,11 @@ def identify(
         covariance_all=covariance,
         residuals=residuals,
         kinds={a.name: a.kind for a in artefacts},
-        undetermined=tuple(undetermined),
+        undetermined=undetermined,
         rank=rank,
-        condition=float(s_a[0] / s_a[-1]),
-        residual_std=float(np.sqrt(float(residual @ residual) / dof)),
-        kind_std={kind: float(1.0 / weight[k][0]) for kind, k in rows.items()},
+        condition=condition,
+        residual_std=float(np.sqrt(float(residual @ residual) / (problem.count - rank))),
+        kind_std=kind_std,
         fixed=parameters.fixed,
         spans=dict(parameters.spans),
     )
