@@ -210,3 +210,14 @@ def test_an_r_test_file_may_give_the_rotary_axes_only_and_the_ball_on_the_table(
     positions = read_artefact(path).positions(machine)
     for letter in "XYZ":
         assert np.allclose(positions[letter], rtest.axis_positions_m[letter], atol=1e-12)
+
+
+@pytest.mark.parametrize("folder", ["xfyz_machine", "trunnion_machine"])
+def test_a_machine_folder_written_reads_back_the_same_machine(tmp_path, examples, folder):
+    from axiscal.identification import write_machine_folder
+
+    machine = load_machine(examples / folder / "machine.toml")
+    again = load_machine(write_machine_folder(machine, tmp_path / "m"))
+    rng = np.random.default_rng(0)
+    positions = {k: rng.uniform(*machine.travel_m(k), 200) for k in machine.letters}
+    assert np.allclose(again.volumetric_error(positions), machine.volumetric_error(positions), atol=1e-12)
