@@ -38,9 +38,10 @@ from axiscal.model.machine import Machine, as_machine
 
 __all__ = ["identify", "RANK_TOLERANCE"]
 
-#: a singular value below this fraction of the largest (columns scaled to unit length) is a combination the data cannot see:
-#: readings taken at points a few um off the nominal ones break an exact degeneracy at about 1e-6
-RANK_TOLERANCE = 1e-5
+#: a singular value below this fraction of the largest (columns scaled to unit length) is a combination the data cannot
+#: see: readings taken a few um off their nominal places break an exact degeneracy at 1e-6 to 1e-5, and a combination
+#: determined only that way would carry the noise magnified 10^4 times
+RANK_TOLERANCE = 1e-4
 #: an entry of a null vector above this counts
 _NULL_ENTRY = 1e-6
 #: most weighted fits while the kinds' variances settle (to 1 %)
