@@ -11,7 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from axiscal.identification.parameters import Term
+from axiscal.errors import AxiscalError
+from axiscal.identification.basis import parse_model
 from axiscal.model.machine import Machine
 from axiscal.units import ANGLE_UNITS, UM
 
@@ -139,21 +140,47 @@ class Identification:
         return np.isfinite(self.std)
 
     def value(self, name: str) -> tuple[float, float]:
-        """Estimate and standard uncertainty (NaN if not determined alone) of unknown ``name``, SI units."""
-        from axiscal.errors import AxiscalError
+        """Estimate and standard uncertainty of one unknown.
 
+        Parameters
+        ----------
+        name : str
+            An unknown of :attr:`names` (``"EC0Y"``, ``"EXX:2"``, ``"plate_xy:tz"``).
+
+        Returns
+        -------
+        (float, float)
+            Value and standard uncertainty, SI units; the uncertainty is NaN for an unknown the
+            data determine only together with others.
+
+        Raises
+        ------
+        AxiscalError
+            No unknown of that name.
+        """
         if name not in self.names:
             raise AxiscalError(f"no unknown named {name!r}; e.g. {', '.join(self.names[:4])}")
         k = self.names.index(name)
         return float(self.values[k]), float(self.std[k])
 
     def motion_band(self, letter: str, row: int, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """An identified error motion and its standard uncertainty at positions ``q`` (SI units).
+        """An identified error motion and its standard uncertainty at chosen positions.
 
-        The uncertainty is NaN where the motion's coefficients are not all determined.
+        Parameters
+        ----------
+        letter : str
+            An identified axis.
+        row : int
+            The component, 0 to 5 (tx, ty, tz, ea, eb, ec).
+        q : ndarray, shape (N,)
+            Positions, metres (radians for a rotary axis).
+
+        Returns
+        -------
+        value, u : ndarray, shape (N,)
+            The motion and its standard uncertainty, metres or radians; the uncertainty is NaN
+            where the motion's coefficients are not all determined.
         """
-        from axiscal.identification.basis import parse_model
-
         model = parse_model(self.model)
         a, b = self.spans[letter]
         u = 2.0 * (q - a) / (b - a) - 1.0
