@@ -221,3 +221,19 @@ def test_a_machine_folder_written_reads_back_the_same_machine(tmp_path, examples
     rng = np.random.default_rng(0)
     positions = {k: rng.uniform(*machine.travel_m(k), 200) for k in machine.letters}
     assert np.allclose(again.volumetric_error(positions), machine.volumetric_error(positions), atol=1e-12)
+
+
+def test_a_stated_pose_is_checked_against_the_readings_and_refined(tmp_path):
+    import dataclasses
+
+    from axiscal.identification import identify
+
+    rng = np.random.default_rng(2)
+    plate = simulate_ball_plate(CMM, plate_grid(3, 0.1), np.eye(3), np.full(3, 0.05), np.zeros(3), noise_m=1e-7, rng=rng)
+    stated = dataclasses.replace(plate, rotation=np.eye(3), origin_m=np.full(3, 0.05))
+    back = read_artefact(write_artefact(stated, tmp_path / "posed.toml"))
+    assert np.allclose(back.rotation, np.eye(3)) and np.allclose(back.origin_m, 0.05)
+    assert identify(CMM, [back], model="poly:1").residual_std < 1e-6
+    moved = dataclasses.replace(stated, origin_m=np.array([0.05, 0.05, 0.06]))
+    with pytest.raises(AxiscalError, match="where the stated pose does not put it"):
+        identify(CMM, [moved], model="poly:1")
