@@ -29,6 +29,7 @@ ROOMS = (
     "axiscal.levels",
     "axiscal.flatness",
     "axiscal.thermal",
+    "axiscal.identification",
 )
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]

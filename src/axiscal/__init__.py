@@ -78,6 +78,9 @@ _PUBLIC: dict[str, str] = {
     "positioning_uncertainty": "axiscal.uncertainty.positioning",
     "volumetric_monte_carlo": "axiscal.uncertainty.volumetric",
     "volumetric_uncertainty_map": "axiscal.uncertainty.volumetric_map",
+    # identification of error tables from artefacts (ball plate, step gauge, ballbar, multilateration, R-test)
+    "identify": "axiscal.identification.solve",
+    "read_artefact": "axiscal.identification.files",
     # measurement from raw sensor frames (paper 000)
     "MeasurementSystem": "axiscal.measurement.pipeline",
     "VirtualModule": "axiscal.measurement.virtual",

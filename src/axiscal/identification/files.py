@@ -1,0 +1,494 @@
+"""Artefact files in, the identified machine folder out: the TOML and CSV formats of docs/identification.md.
+
+An artefact file (TOML) names its ``kind`` and its data CSV (``measured``) beside it; lengths are in
+mm, readings in um, directions unit vectors. What is written is a machine folder that
+:func:`axiscal.load_machine` (and so ``axiscal volumetric``, ``compensate`` and a campaign) reads
+unchanged, plus ``identify.json`` and ``identify.html``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.conventions import AXIS_INDEX, ROTARY_LETTERS, component_names
+from axiscal.errors import AxiscalError
+from axiscal.identification.artefacts import (
+    ARTEFACT_KINDS,
+    Artefact,
+    BallbarNetwork,
+    BallPlate,
+    Multilateration,
+    RTest,
+    StepGauge,
+)
+from axiscal.io.arguments import check_path
+from axiscal.io.atomic import write_text
+from axiscal.io.jsonio import write_json, write_sidecar
+from axiscal.io.schema import TomlLines, confined_path, finite_number
+from axiscal.io.tabular import CsvTable, read_csv, read_text, read_toml, write_csv
+from axiscal.io.templates import render_template
+from axiscal.model.machine import Machine
+from axiscal.units import ANGLE_UNITS, MM, UM
+
+__all__ = ["identify_files", "read_artefact", "write_artefact", "write_machine_folder", "write_identification", "report_html", "ARTEFACT_KEYS"]
+
+_URAD = ANGLE_UNITS["urad"]
+_DEG = ANGLE_UNITS["deg"]
+#: the keys of each kind of artefact file
+ARTEFACT_KEYS = {
+    "ball_plate": {"kind", "name", "tool_mm", "measured", "balls", "pose"},
+    "step_gauge": {"kind", "name", "tool_mm", "measured", "faces", "line"},
+    "ballbar_network": {"kind", "name", "tool_mm", "measured", "length_mm", "length_U_um"},
+    "multilateration": {"kind", "name", "tool_mm", "measured", "stations"},
+    "r_test": {"kind", "name", "tool_mm", "measured", "sensors", "ball_on_table_mm"},
+}
+
+
+class _File:
+    """An artefact file being read: its keys, and errors naming its lines."""
+
+    def __init__(self, path: Path):
+        self.path = path
+        self.data = read_toml(path)
+        self.lines = TomlLines(read_text(path))
+
+    def error(self, message: str, section: str = "", key: str | None = None) -> AxiscalError:
+        return AxiscalError(message, path=str(self.path), line=self.lines.of(section, key=key))
+
+    def vector(self, value, what: str, section: str = "", key: str | None = None, *, unit: float = MM) -> np.ndarray:
+        if not isinstance(value, list) or len(value) != 3 or not all(finite_number(v) for v in value):
+            raise self.error(f"{what} must be a list of 3 finite numbers", section, key or what)
+        return np.array(value, dtype=float) * unit
+
+    def direction(self, value, what: str, section: str = "", key: str | None = None) -> np.ndarray:
+        v = self.vector(value, what, section, key, unit=1.0)
+        norm = float(np.linalg.norm(v))
+        if abs(norm - 1.0) > 1e-3:
+            raise self.error(f"{what} must be a unit vector (its length is {norm:.6g})", section, key or what)
+        return v / norm
+
+    def csv(self, key: str) -> CsvTable:
+        name = self.data.get(key)
+        if not isinstance(name, str):
+            raise self.error(f"'{key}' must name a CSV file beside the artefact file", "", key)
+        try:
+            path = confined_path(self.path.parent, name)
+        except AxiscalError as exc:
+            raise self.error(exc.message, "", key) from None
+        if not path.is_file():
+            raise self.error(f"{key}: no file '{name}' beside the artefact file", "", key)
+        return read_csv(path)
+
+
+def _labels(table: CsvTable, column: str) -> list[str]:
+    table.require(column)
+    return table.text(column)
+
+
+def _points(table: CsvTable, prefix: str = "") -> np.ndarray:
+    names = [f"{prefix}{c}_mm" for c in "xyz"]
+    table.require(*names)
+    return np.column_stack([table.numeric(n) for n in names]) * MM
+
+
+def _index(table: CsvTable, column: str, known: list[str], what: str) -> np.ndarray:
+    """Row labels of ``column`` as indices into ``known``; an unknown label names its line."""
+    where = {label: k for k, label in enumerate(known)}
+    out = np.empty(len(table), dtype=int)
+    for row, label in enumerate(_labels(table, column)):
+        if label not in where:
+            raise AxiscalError(f"unknown {what} '{label}' (not in the certificate)", path=table.path, line=table.line_of(row))
+        out[row] = where[label]
+    return out
+
+
+def _certificate(table: CsvTable, column: str) -> tuple[list[str], np.ndarray]:
+    labels = _labels(table, column)
+    seen: dict[str, int] = {}
+    for row, label in enumerate(labels):
+        if label in seen:
+            raise AxiscalError(f"{column} '{label}' given twice", path=table.path, line=table.line_of(row))
+        seen[label] = row
+    u = table.numeric("U_um") * UM / 2.0 if table.has("U_um") else np.zeros(len(table))
+    if np.any(u < 0):
+        row = int(np.argmax(u < 0))
+        raise AxiscalError("U_um must not be negative", path=table.path, line=table.line_of(row))
+    return labels, u
+
+
+def _ball_plate(f: _File, name: str, tool: np.ndarray) -> BallPlate:
+    certificate = f.csv("balls")
+    labels, u = _certificate(certificate, "ball")
+    certificate.require("x_mm", "y_mm")
+    z = certificate.numeric("z_mm") if certificate.has("z_mm") else np.zeros(len(certificate))
+    centres = np.column_stack([certificate.numeric("x_mm"), certificate.numeric("y_mm"), z]) * MM
+    measured = f.csv("measured")
+    ball = _index(measured, "ball", labels, "ball")
+    pose = f.data.get("pose", "fit")
+    rotation = origin = None
+    if pose != "fit":
+        if not isinstance(pose, Mapping) or set(pose) - {"origin_mm", "x_direction", "y_direction"} or len(pose) != 3:
+            raise f.error("pose must be \"fit\" or a table of origin_mm, x_direction and y_direction", "pose")
+        origin = f.vector(pose["origin_mm"], "origin_mm", "pose")
+        x = f.direction(pose["x_direction"], "x_direction", "pose")
+        y = f.direction(pose["y_direction"], "y_direction", "pose")
+        if abs(float(x @ y)) > 1e-3:
+            raise f.error(f"the pose is not orthonormal: x_direction . y_direction = {float(x @ y):.4g}", "pose", "y_direction")
+        y = y - (x @ y) * x
+        y /= np.linalg.norm(y)
+        rotation = np.column_stack([x, y, np.cross(x, y)])
+    return BallPlate(
+        name, tool, centres_m=centres, centre_u_m=u, ball=ball, measured_m=_points(measured), rotation=rotation,
+        origin_m=origin, data_path=measured.path, lines=tuple(measured.lines), balls=tuple(labels),
+    )
+
+
+def _step_gauge(f: _File, name: str, tool: np.ndarray) -> StepGauge:
+    certificate = f.csv("faces")
+    labels, u = _certificate(certificate, "face")
+    certificate.require("position_mm")
+    measured = f.csv("measured")
+    line = f.data.get("line")
+    if not isinstance(line, Mapping) or set(line) != {"start_mm", "direction"}:
+        raise f.error("a step gauge needs [line] with start_mm and direction", "line")
+    return StepGauge(
+        name, tool, start_m=f.vector(line["start_mm"], "start_mm", "line"), direction=f.direction(line["direction"], "direction", "line"),
+        faces_m=certificate.numeric("position_mm") * MM, face_u_m=u, face=_index(measured, "face", labels, "face"),
+        measured_m=_points(measured), data_path=measured.path, lines=tuple(measured.lines), face_names=tuple(labels),
+    )
+
+
+def _groups(table: CsvTable, column: str) -> tuple[list[str], np.ndarray]:
+    labels = _labels(table, column)
+    names = list(dict.fromkeys(labels))
+    where = {label: k for k, label in enumerate(names)}
+    return names, np.array([where[label] for label in labels], dtype=int)
+
+
+def _ballbar(f: _File, name: str, tool: np.ndarray) -> BallbarNetwork:
+    length = f.data.get("length_mm")
+    if not finite_number(length) or length <= 0:
+        raise f.error("length_mm must be the bar's calibrated length, a positive number of mm", "", "length_mm")
+    u = f.data.get("length_U_um", 0.0)
+    if not finite_number(u) or u < 0:
+        raise f.error("length_U_um must be a number of um, not negative", "", "length_U_um")
+    measured = f.csv("measured")
+    setups, setup = _groups(measured, "setup")
+    centres = _points(measured, "centre_")
+    first = np.array([int(np.argmax(setup == s)) for s in range(len(setups))])
+    moved = np.flatnonzero(np.linalg.norm(centres - centres[first][setup], axis=1) > 1e-9)
+    if moved.size:
+        raise AxiscalError("the centre of a setup must be the same on each of its rows", path=measured.path, line=measured.line_of(int(moved[0])))
+    if measured.has("length_mm"):
+        lengths = measured.numeric("length_mm") * MM
+    else:
+        measured.require("deviation_um")
+        lengths = length * MM + measured.numeric("deviation_um") * UM
+    return BallbarNetwork(
+        name, tool, setup=setup, centres_m=centres[first], ends_m=_points(measured, "end_"),
+        lengths_m=lengths, length_u_m=float(u) * UM / 2.0,
+        data_path=measured.path, lines=tuple(measured.lines), setups=tuple(setups),
+    )
+
+
+def _multilateration(f: _File, name: str, tool: np.ndarray) -> Multilateration:
+    measured = f.csv("measured")
+    stations, station = _groups(measured, "station")
+    measured.require("range_mm")
+    given = f.data.get("stations")
+    positions = None
+    if given is not None:
+        if not isinstance(given, Mapping) or set(given) != set(stations):
+            raise f.error(f"[stations] must give the approximate position_mm of every station ({', '.join(stations)})", "stations")
+        positions = np.array([f.vector(given[s], s, "stations", s) for s in stations])
+    return Multilateration(
+        name, tool, station=station, targets_m=_points(measured), ranges_m=measured.numeric("range_mm") * MM,
+        stations_m=positions, data_path=measured.path, lines=tuple(measured.lines), stations=tuple(stations),
+    )
+
+
+def _r_test(f: _File, name: str, tool: np.ndarray) -> RTest:
+    sensors = f.data.get("sensors")
+    if not isinstance(sensors, list) or not sensors:
+        raise f.error("sensors must be a list of unit sensing directions, e.g. [[1, 0, 0], [0, 1, 0], [0, 0, 1]]", "", "sensors")
+    directions = np.array([f.direction(v, "sensors", "", "sensors") for v in sensors])
+    measured = f.csv("measured")
+    columns = [f"sensor_{k + 1}_um" for k in range(len(directions))]
+    measured.require(*columns)
+    positions = {}
+    for column in measured.header:
+        letter, _, unit = column.partition("_")
+        if letter in AXIS_INDEX and unit == "mm":
+            positions[letter] = measured.numeric(column) * MM
+        elif letter in ROTARY_LETTERS and unit == "deg":
+            positions[letter] = measured.numeric(column) * _DEG
+    ball = f.vector(f.data["ball_on_table_mm"], "ball_on_table_mm") if "ball_on_table_mm" in f.data else None
+    return RTest(
+        name, tool, axis_positions_m=positions, directions=directions, ball_table_m=ball,
+        readings_m=np.column_stack([measured.numeric(c) for c in columns]) * UM, data_path=measured.path, lines=tuple(measured.lines),
+    )
+
+
+_READERS = {"ball_plate": _ball_plate, "step_gauge": _step_gauge, "ballbar_network": _ballbar, "multilateration": _multilateration, "r_test": _r_test}
+
+
+def read_artefact(path: str | Path) -> Artefact:
+    """Read an artefact file (TOML) and its CSVs (docs/identification.md).
+
+    Parameters
+    ----------
+    path : str or Path
+        The artefact file; the CSVs it names are beside it.
+
+    Returns
+    -------
+    Artefact
+        A BallPlate, StepGauge, BallbarNetwork, Multilateration or RTest, in SI units.
+
+    Raises
+    ------
+    AxiscalError
+        An unknown kind or key, a missing file or column, an unknown ball or face, a pose that
+        is not orthonormal, a direction that is not a unit vector; naming the file and line.
+    """
+    path = check_path("path", path)
+    f = _File(path)
+    kind = f.data.get("kind")
+    if kind not in ARTEFACT_KINDS:
+        raise f.error(f"kind must be one of {', '.join(ARTEFACT_KINDS)}, not {kind!r}", "", "kind")
+    unknown = sorted(set(f.data) - ARTEFACT_KEYS[kind])
+    if unknown:
+        raise f.error(f"unknown key {unknown[0]} for a {kind}; known keys: {', '.join(sorted(ARTEFACT_KEYS[kind]))}", "", unknown[0])
+    name = f.data.get("name", path.stem)
+    if not isinstance(name, str) or not name.strip():
+        raise f.error("name must be a text", "", "name")
+    tool = f.vector(f.data.get("tool_mm", [0.0, 0.0, 0.0]), "tool_mm")
+    return _READERS[kind](f, name.strip(), tool)
+
+
+def _toml_vector(v: np.ndarray, unit: float = MM) -> str:
+    return "[" + ", ".join(f"{x / unit:.9g}" for x in v) + "]"
+
+
+def write_artefact(artefact: Artefact, path: str | Path) -> Path:
+    """Write an artefact as its TOML file and CSVs beside it (the formats :func:`read_artefact` reads).
+
+    Parameters
+    ----------
+    artefact : Artefact
+        Any artefact (e.g. one simulated on a virtual machine).
+    path : str or Path
+        The TOML file; the CSVs are named after its stem.
+
+    Returns
+    -------
+    Path
+        The TOML file.
+    """
+    path = check_path("path", path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    stem = path.stem
+    head = [f'kind = "{artefact.kind}"', f'name = "{artefact.name}"', f"tool_mm = {_toml_vector(artefact.tool_m)}"]
+    fmt = "{:.6f}"
+    if isinstance(artefact, (BallPlate, StepGauge)):
+        plate = isinstance(artefact, BallPlate)
+        labels = list(artefact.balls or [str(k + 1) for k in range(len(artefact.centres_m))]) if plate else list(
+            artefact.face_names or [str(k + 1) for k in range(len(artefact.faces_m))])
+        column = "ball" if plate else "face"
+        certificate = {column: labels}
+        if plate:
+            for c, name in enumerate(("x_mm", "y_mm", "z_mm")):
+                certificate[name] = artefact.centres_m[:, c] / MM
+            certificate["U_um"] = 2.0 * artefact.centre_u_m / UM
+        else:
+            certificate["position_mm"] = artefact.faces_m / MM
+            certificate["U_um"] = 2.0 * artefact.face_u_m / UM
+        index = artefact.ball if plate else artefact.face
+        measured = {column: [labels[k] for k in index]}
+        for c, name in enumerate(("x_mm", "y_mm", "z_mm")):
+            measured[name] = artefact.measured_m[:, c] / MM
+        write_csv(path.with_name(f"{stem}_certificate.csv"), certificate, fmt=fmt)
+        head.append(f'{"balls" if plate else "faces"} = "{stem}_certificate.csv"')
+        if plate:
+            if artefact.rotation is None:
+                head.append('pose = "fit"')
+            else:
+                head += ["", "[pose]", f"origin_mm = {_toml_vector(artefact.origin_m)}",
+                         f"x_direction = {_toml_vector(artefact.rotation[:, 0], 1.0)}", f"y_direction = {_toml_vector(artefact.rotation[:, 1], 1.0)}"]
+        else:
+            head += ["", "[line]", f"start_mm = {_toml_vector(artefact.start_m)}", f"direction = {_toml_vector(artefact.direction, 1.0)}"]
+    elif isinstance(artefact, BallbarNetwork):
+        names = list(artefact.setups or [str(k + 1) for k in range(len(artefact.centres_m))])
+        length = float(np.median(artefact.lengths_m))
+        measured = {"setup": [names[k] for k in artefact.setup]}
+        for c, axis in enumerate("xyz"):
+            measured[f"centre_{axis}_mm"] = artefact.centres_m[artefact.setup, c] / MM
+        for c, axis in enumerate("xyz"):
+            measured[f"end_{axis}_mm"] = artefact.ends_m[:, c] / MM
+        measured["deviation_um"] = (artefact.lengths_m - length) / UM
+        head += [f"length_mm = {length / MM:.9f}", f"length_U_um = {2.0 * artefact.length_u_m / UM:.6g}"]
+    elif isinstance(artefact, Multilateration):
+        names = list(artefact.stations or [str(k + 1) for k in range(artefact.size)])
+        measured = {"station": [names[k] for k in artefact.station]}
+        for c, axis in enumerate("xyz"):
+            measured[f"{axis}_mm"] = artefact.targets_m[:, c] / MM
+        measured["range_mm"] = artefact.ranges_m / MM
+        if artefact.stations_m is not None:
+            head += ["", "[stations]"] + [f'"{n}" = {_toml_vector(v)}' for n, v in zip(names, artefact.stations_m)]
+    elif isinstance(artefact, RTest):
+        measured = {}
+        for letter, q in artefact.axis_positions_m.items():
+            measured[f"{letter}_{'deg' if letter in ROTARY_LETTERS else 'mm'}"] = q / (_DEG if letter in ROTARY_LETTERS else MM)
+        for k in range(artefact.directions.shape[0]):
+            measured[f"sensor_{k + 1}_um"] = artefact.readings_m[:, k] / UM
+        head.insert(3, "sensors = [" + ", ".join(_toml_vector(d, 1.0) for d in artefact.directions) + "]")
+        if artefact.ball_table_m is not None:
+            head.insert(3, f"ball_on_table_mm = {_toml_vector(artefact.ball_table_m)}")
+    else:
+        raise AxiscalError(f"cannot write an artefact of kind {type(artefact).__name__}")
+    write_csv(path.with_name(f"{stem}_measured.csv"), measured, fmt=fmt)
+    head.insert(3, f'measured = "{stem}_measured.csv"')
+    return write_text(path, "\n".join(head) + "\n")
+
+
+def _number(value: float) -> str:
+    return f"{value:.6f}"
+
+
+def write_machine_folder(machine: Machine, folder: str | Path, *, comment: str = "") -> Path:
+    """Write ``machine`` as a machine folder: ``machine.toml`` and one error table CSV per axis.
+
+    Parameters
+    ----------
+    machine : Machine
+        The machine.
+    folder : str or Path
+        Created if missing; ``machine.toml`` and ``<axis>_errors.csv`` are replaced.
+    comment : str, keyword-only
+        A first comment line of ``machine.toml``.
+
+    Returns
+    -------
+    Path
+        The ``machine.toml`` written.
+    """
+    folder = check_path("folder", folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    lines = [f"# {comment}"] if comment else []
+    lines += [f'name = "{machine.name}"', f'chain = "{machine.chain}"',
+              "tool_mm = [" + ", ".join(_number(v / MM) for v in machine.tool_m) + "]",
+              "workpiece_mm = [" + ", ".join(_number(v / MM) for v in machine.workpiece_m) + "]",
+              f'squareness_placement = "{machine.squareness_placement}"']
+    for letter in machine.letters:
+        table = machine.table(letter)
+        rotary = letter in ROTARY_LETTERS
+        unit, factor = ("deg", _DEG) if rotary else ("mm", MM)
+        columns = {f"position_{unit}": table.position_m / factor}
+        for row, name in enumerate(component_names(letter)):
+            columns[f"{name}_um" if row < 3 else f"{name}_urad"] = table.values[row] / (UM if row < 3 else _URAD)
+        positions = table.position_m
+        if table.periodic and positions[-1] - positions[0] > 2 * np.pi * (1 - 1e-12) and np.allclose(table.values[:, -1], table.values[:, 0]):
+            columns = {k: v[:-1] for k, v in columns.items()}
+        csv = folder / f"{letter.lower()}_errors.csv"
+        write_csv(csv, columns, fmt="{:.6f}")
+        write_sidecar(csv, kind="error table", axis=letter, interpolation=table.interpolation, method=comment or "machine")
+        origin = machine.axes[letter].origin_m
+        lines += ["", f"[axes.{letter}]", f'errors = "{csv.name}"',
+                  "origin_mm = [" + ", ".join(_number(v / MM) for v in origin) + "]",
+                  f'interpolation = "{table.interpolation}"', f"hold_ends = {'true' if table.hold_ends else 'false'}"]
+        if rotary:
+            lines.append(f"periodic = {'true' if table.periodic else 'false'}")
+    if machine.squareness_rad:
+        lines += ["", "[squareness]"] + [f"{k}_urad = {_number(v / _URAD)}" for k, v in machine.squareness_rad.items()]
+    if machine.location:
+        lines += ["", "[location]"] + [
+            f"{k}_um = {_number(v / UM)}" if k[1] in AXIS_INDEX else f"{k}_urad = {_number(v / _URAD)}" for k, v in machine.location.items()
+        ]
+    return write_text(folder / "machine.toml", "\n".join(lines) + "\n")
+
+
+def report_html(result) -> str:
+    """``identify.html`` of an identification, rendered from its Jinja2 template.
+
+    Parameters
+    ----------
+    result : Identification
+        What :func:`axiscal.identify` returned.
+
+    Returns
+    -------
+    str
+        The HTML page; its figures are referred to by the file names :func:`write_identification` writes.
+    """
+    summary = result.summary()
+    return render_template(
+        "identification/identify.html.j2",
+        summary=summary,
+        artefacts=[(name, f"residuals_{_slug(name)}.png") for name in result.residuals],
+        axes=[(letter, f"motions_{letter.lower()}.png") for letter in result.spans],
+    )
+
+
+def write_identification(result, folder: str | Path) -> dict:
+    """Write an identification: the machine folder, ``identify.json``, ``identify.html`` and its figures.
+
+    Parameters
+    ----------
+    result : Identification
+        What :func:`axiscal.identify` returned.
+    folder : str or Path
+        The output folder (created).
+
+    Returns
+    -------
+    dict of str to Path
+        ``machine``, ``json``, ``html`` and each figure.
+    """
+    from axiscal.identification.plot import plot_motions, plot_residuals
+
+    folder = check_path("folder", folder)
+    files = {"machine": write_machine_folder(result.machine, folder, comment=f"identified by axiscal identify ({result.model})")}
+    files["json"] = write_json(folder / "identify.json", result.summary())
+    for name in result.residuals:
+        files[f"residuals_{name}"] = plot_residuals(result, name, folder / f"residuals_{_slug(name)}.png")
+    for letter in result.spans:
+        files[f"motions_{letter}"] = plot_motions(result, letter, folder / f"motions_{letter.lower()}.png")
+    files["html"] = write_text(folder / "identify.html", report_html(result))
+    return files
+
+
+def _slug(name: str) -> str:
+    return "".join(c if c.isalnum() or c in "-_" else "_" for c in name)
+
+
+def identify_files(machine, artefacts, folder: str | Path, *, model: str = "poly:3", fix=()) -> tuple:
+    """What ``axiscal identify`` does: identify from files and write the machine folder and the report.
+
+    Parameters
+    ----------
+    machine : Machine, str or Path
+        The machine or its TOML file (the starting guess).
+    artefacts : sequence of str or Path
+        Artefact files.
+    folder : str or Path
+        The output machine folder.
+    model : str, keyword-only
+        ``"poly:N"`` or ``"spline:K"``.
+    fix : sequence of str, keyword-only
+        Terms kept at their starting values.
+
+    Returns
+    -------
+    (Identification, str)
+        The result and its summary as text.
+    """
+    from axiscal.identification.solve import identify
+
+    folder = check_path("folder", folder)
+    result = identify(machine, list(artefacts), model=model, fix=tuple(fix))
+    write_identification(result, folder)
+    text = render_template("identification/identify.txt.j2", summary=result.summary(), folder=str(folder))
+    return result, text

@@ -1,0 +1,85 @@
+"""Plots of an identification: residuals per artefact and the identified error motions with their uncertainty bands (matplotlib imported lazily).
+
+Translations in um, rotations in urad; bands are ± 2 standard uncertainties (k = 2).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.conventions import ROTARY_LETTERS, component_names
+from axiscal.io.figures import pyplot, save_figure
+from axiscal.units import ANGLE_UNITS, MM, UM
+
+__all__ = ["plot_residuals", "plot_motions"]
+
+_URAD = ANGLE_UNITS["urad"]
+_DEG = ANGLE_UNITS["deg"]
+
+
+def plot_residuals(result, name: str, path: str | Path) -> Path:
+    """The residuals of artefact ``name`` in reading order, um.
+
+    Parameters
+    ----------
+    result : Identification
+        The identification.
+    name : str
+        An artefact of it.
+    path : str or Path
+        Figure file (format from the suffix).
+
+    Returns
+    -------
+    Path
+    """
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(8, 3))
+    r = result.residuals[name] / UM
+    ax.plot(np.arange(1, r.size + 1), r, ".", ms=3)
+    ax.axhline(0.0, color="0.5", lw=0.8)
+    ax.set_xlabel("reading")
+    ax.set_ylabel("residual (um)")
+    ax.set_title(f"{name} ({result.kinds[name]})")
+    fig.tight_layout()
+    return save_figure(fig, path)
+
+
+def plot_motions(result, letter: str, path: str | Path) -> Path:
+    """The six identified error motions of axis ``letter`` with their k = 2 bands.
+
+    Parameters
+    ----------
+    result : Identification
+        The identification.
+    letter : str
+        An identified axis.
+    path : str or Path
+        Figure file (format from the suffix).
+
+    Returns
+    -------
+    Path
+    """
+    plt = pyplot()
+    a, b = result.spans[letter]
+    q = np.linspace(a, b, 201)
+    rotary = letter in ROTARY_LETTERS
+    x = q / (_DEG if rotary else MM)
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.5))
+    for row, name in enumerate(component_names(letter)):
+        value, band = result.motion_band(letter, row, q)
+        factor = UM if row < 3 else _URAD
+        ax = axes[0 if row < 3 else 1]
+        line, = ax.plot(x, value / factor, label=name)
+        if np.all(np.isfinite(band)):
+            ax.fill_between(x, (value - 2 * band) / factor, (value + 2 * band) / factor, color=line.get_color(), alpha=0.2)
+    for ax, unit in zip(axes, ("um", "urad")):
+        ax.set_xlabel(f"{letter} ({'deg' if rotary else 'mm'})")
+        ax.set_ylabel(f"error ({unit})")
+        ax.legend(fontsize=8)
+    fig.suptitle(f"Axis {letter}: identified error motions (k = 2 bands)")
+    fig.tight_layout()
+    return save_figure(fig, path)
