@@ -55,6 +55,7 @@ WRITES = [
     (("flatness",), "--plot", ["flatness", "{ex}/flatness/union_jack_levels.toml", "--plot", "{out}/f.png"]),
     (("thermal", "etve"), "--plot", ["thermal", "etve", "{ex}/thermal/etve_run.csv", "--plot", "{out}/t.png"]),
     (("thermal", "drift"), "--plot", ["thermal", "drift", "{ex}/thermal/drift_run.csv", "--plot", "{out}/t.png"]),
+    (("identify",), "--output", ["identify", "{ex}/identification/start/machine.toml", "{ex}/identification/plate_xy.toml", "--model", "poly:1", "-o", "{out}/id"]),
     (("live",), "--record", ["live", "--no-server", "--no-pace", "--duration", "0.05", "--record", "{out}/live.csv"]),
 ]
 WRITING_FLAGS = ("--output", "--plot", "--gcode", "--record")

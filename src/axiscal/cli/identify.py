@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from axiscal.cli.common import echo_json
+from axiscal.cli.common import echo_json, flags_named
 from axiscal.identification.basis import MODEL_KINDS
 from axiscal.identification.files import identify_files
 
@@ -27,7 +27,8 @@ def identify_command(machine_path, artefacts, model, fix, output, as_json):
     campaign as they are), identify.json (every term with its standard uncertainty, the covariance,
     the residuals, the combinations the data cannot separate) and identify.html.
     """
-    result, text = identify_files(machine_path, artefacts, output, model=model, fix=fix)
+    with flags_named({"fix": "--fix"}):
+        result, text = identify_files(machine_path, artefacts, output, model=model, fix=fix)
     if as_json:
         echo_json(result.summary())
     else:

@@ -120,7 +120,7 @@ class ParameterSet:
             known |= {term for _, _, term, _ in PLANES.values()} | {n for k in machine.rotary for n in location_names(k)}
             if not hit and word not in known:  # an axis or error the artefacts leave alone has nothing to fix
                 raise AxiscalError(
-                    f"--fix {word}: no such free term of chain '{machine.chain}' under {model.text} "
+                    f"fix {word}: no such free term of chain '{machine.chain}' under {model.text} "
                     "(use a term such as EBX:2, an error such as EBX or EC0Y, an axis letter, squareness or location)"
                 )
             fixed |= hit
