@@ -20,6 +20,7 @@ apart from the header comment.
 from __future__ import annotations
 
 import math
+import operator
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -146,8 +147,8 @@ def rewrite_program(
     if rotary and len(linear) != 3:
         raise AxiscalError(f"a machine with rotary axes is pre-compensated with three linear axes, not chain '{model.chain}'")
     program = read_program(text, dialect=spec, source=source, work_offset_m=work_offset_m)
-    moves = _moves(program, model, linear, rotary, source)
-    pieces = _build_pieces(program, moves, linear, rotary, tolerance_m, max_segment_m)
+    moves = _Moves(program, model, linear, rotary, source)
+    pieces = _build_pieces(moves, linear, rotary, tolerance_m, max_segment_m)
     reach = [AXIS_INDEX[k] for k in linear] if not rotary else [0, 1, 2]
     _solve(model, pieces, np.ones(pieces.p1.shape[0], dtype=bool), program, moves, linear, rotary, source)
     verbatim, residual = _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, max_segment_m, source)
@@ -156,7 +157,7 @@ def rewrite_program(
     lines, rewritten = _write(program, moves, pieces, verbatim, linear, rotary, text, header)
     corrections = np.linalg.norm(pieces.exact - pieces.p1, axis=1) if pieces.p1.size else np.zeros(1)
     return Precompensation(
-        text=lines, lines_in=len(program.blocks), lines_out=len(split_lines(lines)), moves=len(moves), rewritten=rewritten,
+        text=lines, lines_in=len(program.blocks), lines_out=len(split_lines(lines)), moves=len(moves.index), rewritten=rewritten,
         largest_correction_m=float(corrections.max(initial=0.0)), largest_residual_m=float(residual),
         tolerance_m=tolerance_m, max_segment_m=max_segment_m, machine=model.name or model.chain, dialect=spec.name,
     )
@@ -166,77 +167,119 @@ def _fail(message: str, source: str | None, line: int) -> AxiscalError:
     return AxiscalError(message, path=source, line=line)
 
 
-def _moves(program: Program, model: Machine, linear, rotary, source) -> list[int]:
-    """Indices of the blocks that move, checked against the machine model."""
-    moves = []
-    for index, block in enumerate(program.blocks):
-        motion = block.motion
-        if motion is None or motion.kind == "dwell":
-            continue
-        foreign = [k for k in motion.end_m if k not in model.letters and k != "E"]
-        if foreign:
-            raise _fail(f"{foreign[0]} is not an axis of the machine model (chain '{model.chain}')", source, block.line)
-        missing = [k for k in model.letters if k not in motion.end_m]
-        if missing:
-            raise _fail(f"a move before the program has set {', '.join(missing)}, an axis of the machine model:"
-                        " program every axis in the first move", source, block.line)
-        turned = [k for k in rotary if motion.start_m.get(k) != motion.end_m[k]]
-        if turned and motion.kind != "rapid":
-            raise _fail(f"a move that turns {', '.join(turned)} while it cuts is not pre-compensated"
-                        " (rotary axes stand still in the moves pre-compensated)", source, block.line)
-        moves.append(index)
-    return moves
+class _Moves:
+    """The program's moves (block indices) with what each block says about its frame, per move."""
+
+    def __init__(self, program: Program, model: Machine, linear, rotary, source):
+        self.index: list[int] = []
+        letters = set(model.letters)
+        allowed = letters | {"E"}
+        seen = -1
+        for index, block in enumerate(program.blocks):
+            motion = block.motion
+            if motion is None or motion.kind == "dwell":
+                continue
+            end = motion.end_m
+            if len(end) != seen:
+                seen = len(end)
+                foreign = [k for k in end if k not in allowed]
+                if foreign:
+                    raise _fail(f"{foreign[0]} is not an axis of the machine model (chain '{model.chain}')", source, block.line)
+                missing = [k for k in model.letters if k not in end]
+                if missing:
+                    raise _fail(f"a move before the program has set {', '.join(missing)}, an axis of the machine model:"
+                                " program every axis in the first move", source, block.line)
+            if rotary and motion.kind != "rapid":
+                turned = [k for k in rotary if motion.start_m.get(k) != end[k]]
+                if turned:
+                    raise _fail(f"a move that turns {', '.join(turned)} while it cuts is not pre-compensated"
+                                " (rotary axes stand still in the moves pre-compensated)", source, block.line)
+            self.index.append(index)
+        blocks = [program.blocks[i] for i in self.index]
+        self.motions = [b.motion for b in blocks]
+        rows: dict[int, list[float]] = {}
+        offsets = []
+        for b in blocks:
+            row = rows.get(id(b.offset_m))
+            if row is None:
+                row = rows[id(b.offset_m)] = [b.offset_m.get(k, 0.0) for k in linear]
+            offsets.append(row)
+        self.offset = np.array(offsets, dtype=float).reshape(len(blocks), len(linear))
+        self.per_unit = np.array([b.metres_per_unit for b in blocks], dtype=float)
+        self.line = [b.line for b in blocks]
+        moving = {index: number for number, index in enumerate(self.index)}
+        #: the blocks that set or use the motion mode, with their move number (None: a mode word alone)
+        self.events = [(index, moving.get(index)) for index, block in enumerate(program.blocks)
+                       if index in moving or block.motion_word is not None]
+
+    def __len__(self) -> int:
+        return len(self.index)
 
 
-def _build_pieces(program: Program, moves, linear, rotary, tolerance_m, max_segment_m) -> _Pieces:
-    rows_move, rows_p0, rows_p1, rows_rot, rows_t0, rows_t1, rows_limit, rows_check = [], [], [], [], [], [], [], []
+def _build_pieces(moves: _Moves, linear, rotary, tolerance_m, max_segment_m) -> _Pieces:
+    """One piece per straight move, chords for each arc; rapid moves and the first move: their end only."""
+    motions = moves.motions
+    m = len(motions)
+    end = _columns(motions, linear)
+    rot = _columns(motions, rotary)
+    kinds = [mo.kind for mo in motions]
+    path = np.array([k != "rapid" for k in kinds], dtype=bool)
+    if m:
+        path[0] = False
+    start = np.where(path[:, None], np.vstack([end[:1], end[:-1]]), end)
+    counts = np.ones(m, dtype=np.int64)
+    chords: dict[int, np.ndarray] = {}
     chord_sagitta = tolerance_m / 4.0
-    for number, index in enumerate(moves):
-        motion = program.blocks[index].motion
-        end = [motion.end_m[k] for k in linear]
-        rot = [motion.end_m[k] for k in rotary]
-        path = motion.kind != "rapid" and all(k in motion.start_m for k in linear)
-        start = [motion.start_m[k] for k in linear] if path else end
-        if motion.kind != "arc" or not path:
-            rows_move.append(number), rows_p0.append(start), rows_p1.append(end), rows_rot.append(rot)
-            rows_t0.append(0.0), rows_t1.append(1.0), rows_limit.append(tolerance_m), rows_check.append(path)
+    for number, kind in enumerate(kinds):
+        if kind != "arc" or not path[number]:
             continue
+        motion = motions[number]
         a, b, normal = PLANE_AXES[motion.plane]
         ca, cb = motion.centre_m[a], motion.centre_m[b]
         radius = math.hypot(motion.start_m[a] - ca, motion.start_m[b] - cb)
         sweep = motion.sweep_rad
         step = min(2.0 * math.acos(max(1.0 - chord_sagitta / radius, -1.0)), max_segment_m / radius)
         count = max(1, math.ceil(abs(sweep) / step - 1e-9))
-        theta0 = math.atan2(motion.start_m[b] - cb, motion.start_m[a] - ca)
-        previous = start
-        for i in range(1, count + 1):
-            if i == count:
-                point = end
-            else:
-                f = i / count
-                theta = theta0 + sweep * f
-                where = dict(motion.start_m) | {a: ca + radius * math.cos(theta), b: cb + radius * math.sin(theta)}
-                if normal in motion.end_m:
-                    where[normal] = motion.start_m.get(normal, motion.end_m[normal]) * (1 - f) + motion.end_m[normal] * f
-                point = [where[k] for k in linear]
-            rows_move.append(number), rows_p0.append(previous), rows_p1.append(point), rows_rot.append(rot)
-            rows_t0.append((i - 1) / count), rows_t1.append(i / count), rows_limit.append(0.75 * tolerance_m)
-            rows_check.append(True)
-            previous = point
-    d, r = len(linear), len(rotary)
-    return _Pieces(
-        np.array(rows_move, dtype=np.int64), np.array(rows_p0, dtype=float).reshape(-1, d),
-        np.array(rows_p1, dtype=float).reshape(-1, d), np.array(rows_rot, dtype=float).reshape(len(rows_rot), r),
-        np.array(rows_t0), np.array(rows_t1), np.array(rows_limit), np.array(rows_check, dtype=bool),
-    )
+        f = np.arange(1, count + 1) / count
+        points = np.repeat(start[number][None, :], count, axis=0)
+        theta = math.atan2(motion.start_m[b] - cb, motion.start_m[a] - ca) + sweep * f
+        for letter, value in ((a, ca + radius * np.cos(theta)), (b, cb + radius * np.sin(theta))):
+            if letter in linear:
+                points[:, linear.index(letter)] = value
+        if normal in linear:
+            j = linear.index(normal)
+            points[:, j] = start[number][j] + f * (end[number][j] - start[number][j])
+        points[-1] = end[number]
+        chords[number] = points
+        counts[number] = count
+    owner = np.repeat(np.arange(m), counts)
+    first = np.cumsum(counts) - counts
+    within = np.arange(owner.size) - first[owner]
+    p1 = end[owner].copy()
+    t1 = np.ones(owner.size)
+    limit = np.full(owner.size, tolerance_m)
+    for number, points in chords.items():
+        rows = slice(first[number], first[number] + counts[number])
+        p1[rows] = points
+        t1[rows] = np.arange(1, counts[number] + 1) / counts[number]
+        limit[rows] = 0.75 * tolerance_m
+    p0 = np.where((within == 0)[:, None], start[owner], np.vstack([p1[:1], p1[:-1]]))
+    t0 = np.where(within == 0, 0.0, np.r_[0.0, t1[:-1]])
+    return _Pieces(owner, p0, p1, rot[owner], t0, t1, limit, path[owner])
 
 
-def _units(program: Program, moves, pieces: _Pieces, linear):
-    """Offset (metres), metres per unit and resolution (metres) of each piece's block."""
-    blocks = [program.blocks[moves[m]] for m in range(len(moves))]
-    offset = np.array([[b.offset_m.get(k, 0.0) for k in linear] for b in blocks], dtype=float).reshape(-1, len(linear))
-    per_unit = np.array([b.metres_per_unit for b in blocks], dtype=float)
-    return offset[pieces.move], per_unit[pieces.move]
+def _columns(motions, letters) -> np.ndarray:
+    """The end positions of ``letters`` of every motion, shape (len(motions), len(letters))."""
+    if not letters:
+        return np.zeros((len(motions), 0))
+    get = operator.itemgetter(*letters)
+    rows = [get(mo.end_m) for mo in motions]
+    return np.array(rows, dtype=float).reshape(len(motions), len(letters))
+
+
+def _units(moves: _Moves, pieces: _Pieces):
+    """Offset (metres) and metres per unit of each piece's block."""
+    return moves.offset[pieces.move], moves.per_unit[pieces.move]
 
 
 def _solve(model, pieces: _Pieces, which: np.ndarray, program, moves, linear, rotary, source) -> None:
@@ -248,9 +291,9 @@ def _solve(model, pieces: _Pieces, which: np.ndarray, program, moves, linear, ro
         solved = solve_commands(model, programmed)
     except CommandError as error:
         piece = np.flatnonzero(which)[error.index]
-        raise _fail(error.message, source, program.blocks[moves[pieces.move[piece]]].line) from None
+        raise _fail(error.message, source, moves.line[pieces.move[piece]]) from None
     command = np.column_stack([solved[k] for k in linear])
-    offset, per_unit = _units(program, moves, pieces, linear)
+    offset, per_unit = _units(moves, pieces)
     places = np.where(per_unit[which] == _MM, PLACES["mm"], PLACES["inch"])
     scale = (10.0 ** places / per_unit[which])[:, None]
     pieces.exact[which] = command
@@ -259,7 +302,7 @@ def _solve(model, pieces: _Pieces, which: np.ndarray, program, moves, linear, ro
 
 def _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, max_segment_m, source):
     """Decide which moves are kept as written and cut pieces until every sampled path is in tolerance."""
-    offset, per_unit = _units(program, moves, pieces, linear)
+    offset, per_unit = _units(moves, pieces)
     verbatim = _keep(program, moves, pieces, per_unit)
     dirty = np.ones(pieces.p1.shape[0], dtype=bool)
     worst = 0.0
@@ -298,7 +341,7 @@ def _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, m
         cut = failing & ~np.isin(pieces.move, flips)
         tiny = cut & (np.linalg.norm(pieces.p1 - pieces.p0, axis=1) < 1e-6)
         if tiny.any():
-            line = program.blocks[moves[pieces.move[np.argmax(tiny)]]].line
+            line = moves.line[pieces.move[np.argmax(tiny)]]
             raise _fail(f"the path cannot be held within {tolerance_m / UM:g} um of the nominal one", source, line)
         old_out = out
         if cut.any():
@@ -307,7 +350,7 @@ def _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, m
             counts = np.where(cut, np.maximum(need, 2), 1).astype(np.int64)
             inner = pieces.split(counts)
             _solve(model, pieces, inner, program, moves, linear, rotary, source)
-            offset, per_unit = _units(program, moves, pieces, linear)
+            offset, per_unit = _units(moves, pieces)
             old_out = old_out[np.repeat(np.arange(counts.size), counts)]
             changed_piece = np.repeat(cut, counts)
         else:
@@ -315,7 +358,7 @@ def _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, m
         new_out = np.where(verbatim[pieces.move][:, None], pieces.p1, pieces.command)
         changed = changed_piece | np.any(new_out != old_out, axis=1)
         dirty = changed | np.concatenate([[False], changed[:-1]])
-    raise _fail("the path could not be held within the tolerance", source, program.blocks[moves[0]].line)
+    raise _fail("the path could not be held within the tolerance", source, moves.line[0])
 
 
 def _deviation(model, command, programmed, rot, linear, rotary, reach) -> np.ndarray:
@@ -326,25 +369,24 @@ def _deviation(model, command, programmed, rot, linear, rotary, reach) -> np.nda
     return np.linalg.norm(miss[:, reach], axis=1)
 
 
-def _keep(program: Program, moves, pieces: _Pieces, per_unit, forced: np.ndarray | None = None) -> np.ndarray:
+def _keep(program: Program, moves: _Moves, pieces: _Pieces, per_unit, forced: np.ndarray | None = None) -> np.ndarray:
     """Which moves are written as they were: corrections below half the written resolution, modes consistent."""
     half = 0.5 * np.where(per_unit == _MM, 10.0 ** -PLACES["mm"], 10.0 ** -PLACES["inch"]) * per_unit
     small = np.all(np.abs(pieces.command - pieces.p1) < half[:, None], axis=1)
     first = np.r_[0, np.flatnonzero(np.diff(pieces.move)) + 1]
     move_small = np.logical_and.reduceat(small, first) if small.size else np.zeros(0, dtype=bool)
     keep = move_small if forced is None else move_small & forced
+    if not keep.any():
+        return keep
+    last = np.r_[first[1:] - 1, small.size - 1]
     modal_program = modal_out = None
     out_here = None
-    last = np.r_[first[1:] - 1, small.size - 1] if small.size else np.zeros(0, dtype=np.int64)
-    move_of_block = {index: number for number, index in enumerate(moves)}
-    for index, block in enumerate(program.blocks):
+    for index, number in moves.events:
+        block = program.blocks[index]
         word = block.motion_word
-        number = move_of_block.get(index)
         if number is None:
-            if word is not None:
-                modal_program = modal_out = word
+            modal_program = modal_out = word
             continue
-        kind = block.motion.kind
         written = word if word is not None else modal_program
         if keep[number]:
             consistent = word is not None or modal_out == modal_program
@@ -353,79 +395,98 @@ def _keep(program: Program, moves, pieces: _Pieces, per_unit, forced: np.ndarray
                 consistent = consistent and bool(np.all(np.abs(out_here - start) < half[first[number]]))
             keep[number] = consistent
         modal_program = written
-        modal_out = written if keep[number] else ("G0" if kind == "rapid" else "G1")
+        modal_out = written if keep[number] else ("G0" if block.motion.kind == "rapid" else "G1")
         out_here = pieces.p1[last[number]] if keep[number] else pieces.command[last[number]]
     return keep
 
 
-def _write(program: Program, moves, pieces: _Pieces, verbatim, linear, rotary, text: str, header: str) -> tuple[str, int]:
+def _formatted(values: np.ndarray, places: np.ndarray) -> list[str]:
+    """Numbers with ``places`` decimals each (4 or 6), never ``-0``."""
+    values = values + 0.0
+    out = np.empty(values.shape, dtype=object)
+    for count in np.unique(places):
+        rows = places == count
+        out[rows] = np.char.mod(f"%.{int(count)}f", np.round(values[rows], int(count)) + 0.0)
+    return out.tolist()
+
+
+def _write(program: Program, moves: _Moves, pieces: _Pieces, verbatim, linear, rotary, text: str, header: str) -> tuple[str, int]:
     """The output program's text and the number of moves written anew."""
     spec = program.dialect
     lines = split_lines(text)
+    n = pieces.move.size
+    first = np.r_[0, np.flatnonzero(np.diff(pieces.move)) + 1] if n else np.zeros(0, dtype=np.int64)
+    stop = np.r_[first[1:], n] if n else np.zeros(0, dtype=np.int64)
+    offset, per_unit = _units(moves, pieces)
+    places = np.where(per_unit == _MM, PLACES["mm"], PLACES["inch"])
+    scale = (10.0 ** places / per_unit)[:, None]
+    out_at = np.where(verbatim[pieces.move][:, None], pieces.p1, pieces.command)
+    before = np.vstack([pieces.p0[:1], out_at[:-1]]) if n else out_at
+    now = np.rint((out_at - offset) * scale)
+    absolute = np.array([program.blocks[i].absolute for i in moves.index], dtype=bool)[pieces.move] if n else np.zeros(0, bool)
+    value = np.where(absolute[:, None], now, now - np.rint((before - offset) * scale)) / 10.0 ** places[:, None]
+    columns = [[letter + v for v in _formatted(value[:, j], places)] for j, letter in enumerate(linear)] if n else []
+    body = list(map(" ".join, zip(*columns)))
+    extruder = _extruder_text(program, moves, pieces, places) if n else None
+    with_e = body if extruder is None else [f"{b} E{e}" for b, e in zip(body, extruder)]
+    move_of_block = {index: number for number, index in enumerate(moves.index)}
     out: list[str] = []
-    first = np.r_[0, np.flatnonzero(np.diff(pieces.move)) + 1]
-    stop = np.r_[first[1:], pieces.move.size]
-    move_of_block = {index: number for number, index in enumerate(moves)}
-    header = _sanitize_comment(header, spec.comment_style)
     rewritten = 0
-    here = pieces.p0[0] if pieces.p0.size else None
-    program_here = None
+    here = program_here = None
     for index, block in enumerate(program.blocks):
         number = move_of_block.get(index)
-        if number is None and here is not None and program_here is not None and _sets_position(block, spec):
-            out.append(_shifted(block, spec, here - program_here, linear, lines[index]))
+        if number is None:
+            if here is not None and _sets_position(block, spec):
+                out.append(_shifted(block, spec, here - program_here, linear, lines[index]))
+            else:
+                out.append(lines[index])
             continue
-        if number is None or verbatim[number]:
+        last = stop[number] - 1
+        here, program_here = out_at[last], pieces.p1[last]
+        if verbatim[number]:
             out.append(lines[index])
-            if number is not None:
-                here = program_here = pieces.p1[stop[number] - 1]
             continue
         rewritten += 1
-        motion = block.motion
-        places = PLACES["mm"] if block.metres_per_unit == _MM else PLACES["inch"]
-        offset = np.array([block.offset_m.get(k, 0.0) for k in linear])
-        written = {letter for letter, _ in block.words}
-        keep_words = [f"{letter}{raw}" for letter, raw in block.words
-                      if letter not in spec.axes and letter not in _ARC_WORDS
-                      and not (letter == "G" and _g(raw) in _MOTION)]
-        rotary_words = [f"{letter}{raw}" for letter, raw in block.words if letter in rotary]
-        word = spec.rapid_word if motion.kind == "rapid" and not spec.rapid_at_feed else spec.feed_word
-        e_start = motion.start_m.get("E", 0.0) if "E" in motion.end_m else None
-        for k in range(first[number], stop[number]):
-            target = pieces.command[k]
-            values = []
-            for j, letter in enumerate(linear):
-                scale = 10.0 ** places / block.metres_per_unit
-                now = round((target[j] - offset[j]) * scale)
-                if block.absolute:
-                    values.append(f"{letter}{decimal(now / 10.0 ** places, places, point=spec.decimal_point_needed)}")
-                else:
-                    before = round((here[j] - offset[j]) * scale)
-                    values.append(f"{letter}{decimal((now - before) / 10.0 ** places, places, point=spec.decimal_point_needed)}")
-            parts = []
-            if k == first[number]:
-                parts += [block.number] if block.number else []
-                parts += [w for w in keep_words if w.startswith("G")]
-            parts += [word, *values]
-            if k == first[number]:
-                parts += rotary_words
-            if e_start is not None and "E" in written:
-                e_end = e_start + pieces.t1[k] * (motion.end_m["E"] - e_start)
-                e_prev = e_start + pieces.t0[k] * (motion.end_m["E"] - e_start)
-                e_value = e_end - block.offset_m.get("E", 0.0) if not block.extruder_relative else e_end - e_prev
-                parts.append(f"E{decimal(e_value / block.metres_per_unit, 5)}")
-            if k == first[number]:
-                parts += [w for w in keep_words if not w.startswith("G")]
-                parts += [block.comment] if block.comment else []
-            out.append(" ".join(p for p in parts if p))
-            here = target
-        program_here = pieces.p1[stop[number] - 1]
+        word = spec.rapid_word if block.motion.kind == "rapid" and not spec.rapid_at_feed else spec.feed_word
+        head, tail, rotary_words = [], [], []
+        for letter, raw in block.words:
+            if letter in spec.axes:
+                if letter in rotary:
+                    rotary_words.append(f"{letter}{raw}")
+            elif letter == "G":
+                if _g(raw) not in _MOTION:
+                    head.append(f"G{raw}")
+            elif letter not in _ARC_WORDS:
+                tail.append(f"{letter}{raw}")
+        words = with_e if extruder is not None and any(letter == "E" for letter, _ in block.words) else body
+        k = first[number]
+        parts = ([block.number] if block.number else []) + head + [word, words[k]] + rotary_words + tail
+        out.append(" ".join(parts + ([block.comment] if block.comment else [])))
+        if stop[number] > k + 1:
+            out.extend([f"{word} {words[j]}" for j in range(k + 1, stop[number])])
     at = 0
     while at < len(out) and (out[at].strip() == "%" or (spec.name == "fanuc" and out[at].strip()[:1] in "Oo" and out[at].strip())):
         at += 1
-    out.insert(at, header)
+    out.insert(at, _sanitize_comment(header, spec.comment_style))
     end = program.line_end
     return end.join(out) + (end if text.endswith(("\n", "\r")) else ""), rewritten
+
+
+def _extruder_text(program: Program, moves: _Moves, pieces: _Pieces, places) -> list[str] | None:
+    """The E word of every piece (absolute or relative as the block is), shared out along the move."""
+    motions = moves.motions
+    if not any("E" in m.end_m for m in motions):
+        return None
+    e_end = np.array([m.end_m.get("E", 0.0) for m in motions])[pieces.move]
+    e_start = np.array([m.start_m.get("E", 0.0) for m in motions])[pieces.move]
+    blocks = [program.blocks[i] for i in moves.index]
+    shift = np.array([b.offset_m.get("E", 0.0) for b in blocks])[pieces.move]
+    relative = np.array([b.extruder_relative for b in blocks], dtype=bool)[pieces.move]
+    per_unit = np.array([b.metres_per_unit for b in blocks])[pieces.move]
+    at_end = e_start + pieces.t1 * (e_end - e_start)
+    at_start = e_start + pieces.t0 * (e_end - e_start)
+    value = np.where(relative, at_end - at_start, at_end - shift) / per_unit
+    return _formatted(value, np.full(value.size, 5))
 
 
 def _sets_position(block, spec) -> bool:

@@ -162,6 +162,9 @@ class ControlState:
         self.ended = False
         self.motions: list[Motion] = []
         self.blocks: list[Block] = []
+        self._view: Mapping[str, float] = _EMPTY
+        self._offsets: tuple[tuple, Mapping[str, float]] = ((), _EMPTY)
+        self._shift_version = 0
 
     def fail(self, message: str) -> AxiscalError:
         """An error naming the source and the current line."""
@@ -197,8 +200,9 @@ class ControlState:
     def target(self, targets: Mapping[str, tuple[str, bool]], *, implicit: bool = True) -> dict[str, float]:
         """Axis positions after a move to ``targets`` (letter -> (number text, incremental))."""
         end = dict(self.position)
+        plain = self.metres_per_unit if not self.spec.decimal_point_needed else None
         for letter, (raw, incremental) in targets.items():
-            value = self.length(letter, raw, implicit=implicit)
+            value = float(raw) * plain if plain is not None and letter not in ROTARY else self.length(letter, raw, implicit=implicit)
             if incremental:
                 if letter not in self.position and letter != "E":
                     raise self.fail(f"an incremental move of {letter} before its position is known")
@@ -214,9 +218,11 @@ class ControlState:
         if kind in ("feed", "arc") and self.feed is None:
             raise self.fail("a feed move before any feed (F) is programmed")
         feed = self.feed if kind in ("feed", "arc") else None
-        motion = Motion(self.line, kind, MappingProxyType(end), feed, 0.0, MappingProxyType(dict(self.position)),
-                        MappingProxyType(dict(centre)), self.plane if kind == "arc" else None, clockwise)
+        view = MappingProxyType(end)
+        motion = Motion(self.line, kind, view, feed, 0.0, self._view,
+                        MappingProxyType(dict(centre)) if centre else _EMPTY, self.plane if kind == "arc" else None, clockwise)
         self.position = end
+        self._view = view
         self.motions.append(motion)
         return motion
 
@@ -224,8 +230,7 @@ class ControlState:
         """Record a dwell of ``seconds``."""
         if not seconds >= 0.0:
             raise self.fail(f"a negative dwell ({seconds:g} s)")
-        here = MappingProxyType(dict(self.position))
-        motion = Motion(self.line, "dwell", here, None, seconds, here)
+        motion = Motion(self.line, "dwell", self._view, None, seconds, self._view)
         self.motions.append(motion)
         return motion
 
@@ -245,12 +250,15 @@ class ControlState:
                 raise self.fail(f"G92 sets {letter} before its position is known")
             value = self.length(letter, raw)
             self.shift[letter] = self.position[letter] - self.work_offset.get(letter, 0.0) - value
+        self._shift_version += 1
 
     def record(self, text: str, motion: Motion | None, words: tuple[tuple[str, str], ...], number: str,
                comment: str, motion_word: str | None) -> None:
         """Keep the block as read, with the modes in force."""
+        key = (len(self.position), self._shift_version, len(self.shift))
+        if self._offsets[0] != key:
+            self._offsets = (key, MappingProxyType({k: self.offset(k) for k in self.position}))
         self.blocks.append(Block(
             self.line, text, motion, words, number, comment, motion_word, self.absolute is not False,
-            self.metres_per_unit or _MM, MappingProxyType({k: self.offset(k) for k in self.position}),
-            self.extruder_relative(),
+            self.metres_per_unit or _MM, self._offsets[1], self.extruder_relative(),
         ))

@@ -137,6 +137,11 @@ class Dialect:
     g90_sets_extruder: bool = False
 
     @property
+    def set_position_codes(self) -> frozenset[str]:
+        """:attr:`set_position` as a set."""
+        return frozenset(self.set_position)
+
+    @property
     def comment_style(self) -> str:
         """The comment syntax the writer uses: "paren" or "semicolon"."""
         return self.comments[0]

@@ -59,9 +59,18 @@ _PLANE = {"G17": "XY", "G18": "ZX", "G19": "YZ"}
 _OFFSET_LETTER = {"X": "I", "Y": "J", "Z": "K"}
 
 
+_CODES: dict[tuple[str, str], str] = {}
+
+
 def _code(letter: str, raw: str) -> str:
-    value = float(raw)
-    return f"{letter}{int(value)}" if value == int(value) else f"{letter}{value:g}"
+    """``G01`` -> ``G1``, ``G91.1`` -> ``G91.1`` (remembered: a program repeats a few codes)."""
+    code = _CODES.get((letter, raw))
+    if code is None:
+        value = float(raw)
+        code = f"{letter}{int(value)}" if value == int(value) else f"{letter}{value:g}"
+        if len(_CODES) < 4096:
+            _CODES[(letter, raw)] = code
+    return code
 
 
 def _strip_comments(text: str, styles: tuple[str, ...], state: ControlState) -> tuple[str, str]:
@@ -112,7 +121,7 @@ def run_block(text: str, state: ControlState) -> None:
         state.record(text, None, (), "", "", None)
         return
     code, comment = _strip_comments(stripped, spec.comments, state)
-    if not code.strip():
+    if not code or code.isspace():
         state.record(text, None, (), "", comment, None)
         return
     if state.ended:
@@ -127,7 +136,7 @@ def run_block(text: str, state: ControlState) -> None:
     number = ""
     for index, (letter, raw) in enumerate(_WORD.findall(code)):
         letter = letter.upper()
-        if letter.startswith("CR"):
+        if len(letter) > 1:
             if "CR" not in spec.arc_words:
                 raise state.fail(f"CR= is not a word of {spec.controller}")
             letter = "CR"
@@ -148,12 +157,12 @@ def run_block(text: str, state: ControlState) -> None:
             words[letter] = raw
     if spec.syntax == "printer" and len(gs) + len(ms) != 1:
         raise state.fail(f"{spec.controller} takes one G or M command a line, with its parameters")
-    motion = _modes(gs, ms, state)
+    motion = _modes(gs, ms, state) if gs or ms else None
     if "G4" in gs:
         _dwell(words, gs, ms, state)
         state.record(text, state.motions[-1], tuple(written), number, comment, None)
         return
-    if any(g in spec.set_position for g in gs):
+    if gs and spec.set_position and not spec.set_position_codes.isdisjoint(gs):
         if len(gs) > 1 or ms or any(letter not in spec.axes for letter in words):
             raise state.fail(f"{spec.set_position[0]} takes only axis words, in a block of its own")
         state.set_coordinates(words)
@@ -237,9 +246,9 @@ def _dwell(words: dict[str, str], gs: list[str], ms: list[str], state: ControlSt
 def _motion(words: dict[str, str], gs: list[str], ms: list[str], motion: str | None, state: ControlState):
     """Run the block's move, if it has one; return its Motion or None."""
     spec = state.spec
-    arc_words = {letter: raw for letter, raw in words.items() if letter in spec.arc_words}
+    arc_words = {letter: raw for letter, raw in words.items() if letter in spec.arc_words} if spec.arc_words else {}
     for letter in words:
-        if letter not in spec.axes and letter not in "FS" and letter not in arc_words:
+        if letter not in spec.axes and letter != "F" and letter != "S" and letter not in arc_words:
             raise state.fail(f"{letter} is not a word of {spec.controller} this reader follows")
     if "S" in words and spec.syntax == "printer":
         raise state.fail(f"S is not a parameter of {' '.join(gs + ms)}")
@@ -259,8 +268,9 @@ def _motion(words: dict[str, str], gs: list[str], ms: list[str], motion: str | N
     if state.absolute is None:
         raise state.fail(f"a move before the distance mode is set (G90 or G91): {spec.controller}'s mode at"
                          " power-on is a setting of the machine")
-    incremental = {letter: not state.absolute or (letter == "E" and state.extruder_relative()) for letter in targets}
-    end = state.target({letter: (raw, incremental[letter]) for letter, raw in targets.items()})
+    absolute = state.absolute
+    end = state.target({letter: (raw, not absolute or (letter == "E" and state.extruder_relative()))
+                        for letter, raw in targets.items()})
     if state.motion in ("G2", "G3"):
         return _arc(end, arc_words, state)
     kind = "feed" if state.motion == "G1" or spec.rapid_at_feed else "rapid"
