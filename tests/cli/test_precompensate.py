@@ -44,3 +44,15 @@ def test_bad_programs_are_one_line_with_exit_2(run_cli, tmp_path, examples):
     status, _, err = run_cli("precompensate", tmp_path / "macro.ngc", "--machine", machine, "--dialect", "grbl",
                              "-o", tmp_path / "o.nc", "--tolerance-um", "0.05")
     assert status == 2 and err.startswith("axiscal: error: --tolerance-um must be at least 0.2 um")
+
+
+def test_export_grid_writes_the_csv_and_its_sidecar(run_cli, tmp_path, examples):
+    out = tmp_path / "grid.csv"
+    status, stdout, err = run_cli("export", "grid", "--machine", examples / "xfyz_machine" / "machine.toml",
+                                  "--grid", "X=50:750:100,Y=50:450:100,Z=50:350:100", "-o", out)
+    assert status == 0 and stdout == "" and "160 grid points" in err
+    assert out.read_text().splitlines()[0] == "x_mm,y_mm,z_mm,x_correction_um,y_correction_um,z_correction_um"
+    assert json.loads((tmp_path / "grid.json").read_text())["kind"] == "pre-compensation grid"
+    status, _, err = run_cli("export", "grid", "--machine", examples / "xfyz_machine" / "machine.toml",
+                             "--grid", "X=0:800:100,Y=0:500:100,Z=0:300:100", "-o", out)
+    assert status == 2 and err.count("\n") == 1 and "keep the grid inside the error tables" in err

@@ -9,6 +9,13 @@ tools that interpolate a 3D table (:func:`correction_grid`).
 
 from __future__ import annotations
 
+from axiscal.precompensation.grid import (
+    GRID_COLUMNS,
+    CorrectionGrid,
+    correction_grid,
+    export_correction_grid,
+    write_correction_grid,
+)
 from axiscal.precompensation.points import PrecompensatedPoints, precompensate_points
 from axiscal.precompensation.program import (
     Precompensation,
@@ -18,6 +25,11 @@ from axiscal.precompensation.program import (
 )
 
 __all__ = [
+    "GRID_COLUMNS",
+    "CorrectionGrid",
+    "correction_grid",
+    "export_correction_grid",
+    "write_correction_grid",
     "PrecompensatedPoints",
     "precompensate_points",
     "Precompensation",
