@@ -211,3 +211,19 @@ def test_random_straight_paths_land_on_their_nominal_path(points, dialect):
     result = rewrite_program(text, machine, dialect=dialect)
     assert largest_departure(machine, text, result.text, dialect) <= TOLERANCE + 1e-9
     assert np.isfinite(result.largest_residual_m)
+
+
+@settings(max_examples=40)
+@given(st.sampled_from(list(PARTS)), st.data())
+def test_a_mutated_program_is_rewritten_or_refused_in_one_line(dialect, data):
+    text = PARTS[dialect]
+    position = data.draw(st.integers(0, len(text)))
+    cut = data.draw(st.integers(0, 4))
+    insert = data.draw(st.text(alphabet="GMXYZIJKRFPN0123456789.-+;()% #=E\n", max_size=5))
+    mutated = text[:position] + insert + text[position + cut:]
+    try:
+        result = rewrite_program(mutated, MACHINES["xfyz"], dialect=dialect, source="m.nc")
+    except AxiscalError as error:
+        assert str(error).startswith("m.nc:") and "\n" not in str(error)
+    else:
+        assert result.largest_residual_m <= TOLERANCE and result.text.count("\n") >= mutated.count("\n")
