@@ -133,7 +133,7 @@ BAD = [
     ("linuxcnc", "G21\nG1 X1 F100\nM2\n", 2, "before the distance mode is set"),
     ("linuxcnc", "G21 G90\nG1 X1\nM2\n", 2, "before any feed"),
     ("linuxcnc", "G21 G90\nG1 X1 F100\n", 2, "no end (M2, M30 or a closing %)"),
-    ("linuxcnc", "G21 G90\nG81 X1 Z-1 R1\nM2\n", 2, "G81 is not a LinuxCNC G code"),
+    ("linuxcnc", "G21 G90\nG81 X1 Z-1 R1\nM2\n", 2, "a canned cycle (G81) is not followed"),
     ("linuxcnc", "G21 G90\nG4 P1 X3\nM2\n", 2, "X is not a dwell word"),
     ("linuxcnc", "G21 G90\nM2\nG1 X1 F10\n", 3, "after the program end"),
     ("linuxcnc", "G21 G91\nG1 X1 F100\nM2\n", 2, "incremental move of X before its position is known"),
@@ -144,7 +144,7 @@ BAD = [
     ("sinumerik", "G71 G90\nG1 X1 G4 F2\nM30\n", 2, "block of its own"),
     ("grbl", "%\nG4 P1\n", 1, "'%' is not a Grbl block"),
     ("marlin", "G1 X1 Y2 F100 G4 P1\n", 1, "one G or M command a line"),
-    ("marlin", "G1 X1 E2 F100\n", 1, "extruder moves"),
+    ("marlin", "G1 X1 E2 F100 G4\n", 1, "one G or M command a line"),
     ("klipper", "G20\n", 1, "G20 is not a Klipper G code"),
     ("klipper", "G4 S2\n", 1, "S is not a dwell word of Klipper"),
     ("klipper", "PRINT_START\n", 1, "cannot read"),
@@ -232,3 +232,53 @@ def test_a_mutated_program_is_read_or_refused_cleanly(name, data):
         assert str(error).startswith("m:") and "\n" not in str(error)
     else:
         assert all(m.kind in ("rapid", "feed", "dwell") and m.dwell_s >= 0 for m in motions)
+
+
+def _mm(motion, letter):
+    return round(motion.end_m[letter] / MM, 9)
+
+
+def test_arcs_by_centre_and_by_radius_in_each_plane():
+    motions = program_motions("G21 G90 G17\nG0 X0 Y0 Z0\nG2 X10 Y0 I5 J0 F100\nG3 X0 Y0 R5 Z-1\nM2\n", dialect="linuxcnc")
+    first, second = motions[1], motions[2]
+    assert first.kind == "arc" and first.clockwise and first.plane == "XY"
+    assert (round(first.centre_m["X"] / MM, 9), round(first.centre_m["Y"] / MM, 9)) == (5.0, 0.0)
+    assert first.sweep_rad == pytest.approx(-math.pi) and second.sweep_rad == pytest.approx(math.pi)
+    assert _mm(second, "Z") == -1.0 and second.feed_m_per_s == pytest.approx(100 * MM / 60)
+    # a quarter circle clockwise by its radius: the centre on the right of the chord
+    (quarter,) = program_motions("G0 X0 Y0\nG2 X10 Y10 R10 F60\n", dialect="grbl")[1:]
+    assert round(quarter.centre_m["X"] / MM, 9) == 10.0 and abs(quarter.centre_m["Y"]) < 1e-15
+    assert quarter.sweep_rad == pytest.approx(-math.pi / 2)
+    # G18 is the ZX plane: centre offsets K (Z) and I (X); a full circle when the end is the start
+    (full,) = program_motions("%\nO1\nG21\nG90 G94 G18\nG00 X0 Y0 Z0\nG02 I5. F100.\nM30\n%\n", dialect="fanuc")[1:]
+    assert full.plane == "ZX" and full.sweep_rad == pytest.approx(-2 * math.pi)
+    (yz,) = program_motions("G71 G90 G19\nG0 Y0 Z0\nG3 Y10 Z0 CR=5 F100\nM30\n", dialect="sinumerik")[1:]
+    assert yz.plane == "YZ" and round(yz.centre_m["Y"] / MM, 9) == 5.0 and not yz.clockwise
+
+
+def test_g92_and_the_work_offset_shift_program_coordinates_to_axis_positions():
+    motions = program_motions("G21 G90\nG54 G0 X10\nG92 X0\nG0 X5\nG92.1\nG0 X5\nM2\n", dialect="linuxcnc",
+                              work_offset_m={"X": 0.1})
+    assert [_mm(m, "X") for m in motions] == [110.0, 115.0, 105.0]
+    with pytest.raises(AxiscalError, match="prog:2: work offset G55 is not followed"):
+        program_motions("G21 G90\nG55\nM2\n", dialect="linuxcnc", source="prog")
+
+
+def test_the_extruder_follows_m83_and_g90_as_each_firmware_documents():
+    program = "M83\nG1 X1 E0.5 F100\nG1 X2 E0.5\nG90\nG1 X3 E2\n"
+    marlin = program_motions(program, dialect="marlin")
+    klipper = program_motions(program, dialect="klipper")
+    assert [_mm(m, "E") for m in marlin] == [0.5, 1.0, 2.0]      # Marlin: G90 makes E absolute again
+    assert [_mm(m, "E") for m in klipper] == [0.5, 1.0, 3.0]     # Klipper: M83 holds until M82
+
+
+@pytest.mark.parametrize(("program", "message"), [
+    ("G21 G90\nG0 X0 Y0\nG2 X10 Y1 I5 J0 F100\nM2\n", "end point is not on its circle"),
+    ("G21 G90\nG0 X0 Y0\nG2 X30 Y0 R5 F100\nM2\n", "shorter than half the distance"),
+    ("G21 G90\nG0 X0 Y0\nG2 X10 Y0 I5 R5 F100\nM2\n", "not both"),
+    ("G21 G90\nG0 X0 Y0\nG2 X10 Y0 K5 F100\nM2\n", "K is not a centre offset in the XY plane"),
+    ("G21 G90\nG0 X0 Y0\nG1 X10 I5 F100\nM2\n", "without a circular move"),
+])
+def test_bad_arcs_are_refused_with_the_line(program, message):
+    with pytest.raises(AxiscalError, match=f"^p:3: .*{message}"):
+        program_motions(program, dialect="linuxcnc", source="p")

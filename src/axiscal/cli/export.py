@@ -21,9 +21,10 @@ from axiscal.compensation.skew import (
 )
 from axiscal.errors import AxiscalError
 from axiscal.io.atomic import write_text
+from axiscal.precompensation.grid import export_correction_grid
 from axiscal.units import ARCSEC, MM, UM
 
-__all__ = ["export_group", "export_skew_command", "export_backlash_command", "export_screwmap_command", "export_sag_command", "register"]
+__all__ = ["export_group", "export_skew_command", "export_backlash_command", "export_screwmap_command", "export_sag_command", "export_grid_command", "register"]
 
 
 @click.group("export")
@@ -182,6 +183,17 @@ def _write_table(table, output) -> None:
         click.echo(table.text(), nl=False)
     if table.note:
         click.echo(f"axiscal: note: {table.note}", err=True)
+
+
+@export_group.command("grid")
+@click.option("--machine", required=True, type=click.Path(dir_okay=False), help="The machine model (TOML).")
+@click.option("--grid", required=True, help='Programmed points: "X=0:800:50,Y=0:500:50,Z=0:300:50" (mm; start:end:step or one value; rotary axes one angle in deg).')
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="The grid CSV (its sidecar NAME.json beside it).")
+def export_grid_command(machine, grid, output):
+    """The pre-compensation correction on a regular 3D grid (command = programmed + correction), as a plain CSV."""
+    result = export_correction_grid(machine, grid, output)
+    largest = float(abs(result.correction_m).max()) / UM
+    click.echo(f"axiscal: {output}: {len(result.programmed_m)} grid points, largest correction {largest:.3f} um", err=True)
 
 
 def register(group: click.Group) -> None:

@@ -1,7 +1,8 @@
 """The one tabular reader and writer (CSV with units in column names), TOML and JSON files, atomic
 writes, JSON sidecars, the importers of instrument exports, the checks of the arguments public
-functions share (:mod:`axiscal.io.arguments`), and the lazy entry to matplotlib for plots
-(:mod:`axiscal.io.figures`)."""
+functions share (:mod:`axiscal.io.arguments`), the lazy entry to matplotlib for plots
+(:mod:`axiscal.io.figures`), and G-code: every control's dialect, its reader and its writer
+(:mod:`axiscal.io.gcode`)."""
 
 from __future__ import annotations
 

@@ -9,7 +9,8 @@ writes its programs through the writer; the same reader follows them.
 from __future__ import annotations
 
 from axiscal.io.gcode.dialects import DIALECT_NAMES, DIALECTS, Dialect, dialect
-from axiscal.io.gcode.reader import MM_PER_INCH, Motion, program_motions, split_lines
+from axiscal.io.gcode.blocks import MM_PER_INCH, PLANE_AXES, Block, Motion
+from axiscal.io.gcode.reader import Program, program_motions, read_program, split_lines
 from axiscal.io.gcode.writer import ProgramWriter, decimal
 
 __all__ = [
@@ -18,8 +19,12 @@ __all__ = [
     "Dialect",
     "dialect",
     "MM_PER_INCH",
+    "PLANE_AXES",
+    "Block",
     "Motion",
+    "Program",
     "program_motions",
+    "read_program",
     "split_lines",
     "ProgramWriter",
     "decimal",

@@ -79,7 +79,23 @@ class Dialect:
     block_numbers : {"optional", "required"}
         Whether every block carries a number (HEIDENHAIN conversational) or may (``N10``).
     axes : tuple of str
-        Axis letters the dialect moves; A, B and C are rotary (degrees in the program).
+        Axis letters the dialect moves; A, B and C are rotary (degrees in the program); E is a
+        printer's extruder (millimetres of filament).
+    arc_words : tuple of str
+        Words of a circular move (``G2``, ``G3``) the dialect has: the centre's offsets from the
+        start (I, J, K) and the radius ("R"; "CR" for SINUMERIK's ``CR=``); empty where arcs are
+        not read.
+    planes : tuple of str
+        The plane selection words (``G17``, ``G18``, ``G19``); empty where arcs lie in XY only.
+    set_position, clear_position : tuple of str
+        The words that set the current point's coordinates (``G92``) and cancel that again
+        (``G92.1``); empty where the dialect has none.
+    work_offset_words : tuple of str
+        The work offset selection the reader follows (``G54``, the one the control starts in); its
+        offset is the one given to the reader.
+    g90_sets_extruder : bool
+        Whether G90 and G91 also switch the extruder between absolute and relative (Marlin), or
+        only ``M82``/``M83`` do besides a G91 (Klipper).
     sources : tuple of str
         The manuals and source files the description was taken from.
     """
@@ -113,6 +129,17 @@ class Dialect:
     block_numbers: str
     axes: tuple[str, ...]
     sources: tuple[str, ...]
+    arc_words: tuple[str, ...] = ("I", "J", "K", "R")
+    planes: tuple[str, ...] = ("G17", "G18", "G19")
+    set_position: tuple[str, ...] = ("G92",)
+    clear_position: tuple[str, ...] = ()
+    work_offset_words: tuple[str, ...] = ("G54",)
+    g90_sets_extruder: bool = False
+
+    @property
+    def set_position_codes(self) -> frozenset[str]:
+        """:attr:`set_position` as a set."""
+        return frozenset(self.set_position)
 
     @property
     def comment_style(self) -> str:
@@ -135,18 +162,19 @@ DIALECTS: Mapping[str, Dialect] = MappingProxyType({
         program_start=("%",), setup=("G21 G90 G94",), program_end=("M2", "%"), end_words=("M2", "M30"),
         end_required=True, percent=True, default_units=None, default_distance=None,
         dwell_words=_frozen({"P": 1.0}), dwell_places=3,
-        axes=("X", "Y", "Z", "A", "B", "C", "U", "V", "W"),
+        axes=("X", "Y", "Z", "A", "B", "C", "U", "V", "W"), clear_position=("G92.1", "G92.2"),
         sources=("LinuxCNC G-code reference, G4 Dwell ('P seconds to dwell'), G20/G21, G90/G91, G94; "
-                 "Overview: comments in parentheses or after ';', '%' program demarcation, M2/M30 program end "
-                 "(linuxcnc.org/docs/html/gcode/g-code.html, overview.html)",),
+                 "G2/G3 (centre and radius formats; end off the circle by more than 0.002 mm refused), G17-G19, "
+                 "G92/G92.1, G54; Overview: comments in parentheses or after ';', '%' program demarcation, M2/M30 "
+                 "program end (linuxcnc.org/docs/html/gcode/g-code.html, overview.html)",),
         **_RS274),
     "grbl": Dialect(
         name="grbl", controller="Grbl", extension=".nc", comments=("paren", "semicolon"),
         program_start=(), setup=("G21 G90 G94",), program_end=("M2",), end_words=("M2", "M30"),
         end_required=False, percent=False, default_units="mm", default_distance="absolute",
-        dwell_words=_frozen({"P": 1.0}), dwell_places=3, axes=("X", "Y", "Z"),
-        sources=("Grbl v1.1 wiki, Commands and G-code support: 'G4 Dwell', P in seconds; power-up modes "
-                 "G21 G90 G94 (github.com/gnea/grbl/wiki, grbl/gcode.c)",),
+        dwell_words=_frozen({"P": 1.0}), dwell_places=3, axes=("X", "Y", "Z"), clear_position=("G92.1",),
+        sources=("Grbl v1.1 wiki, Commands and G-code support: 'G4 Dwell', P in seconds; G2/G3 (I J K and R), "
+                 "G17-G19, G92/G92.1, G54; power-up modes G21 G90 G94 (github.com/gnea/grbl/wiki, grbl/gcode.c)",),
         **_RS274),
     "fanuc": Dialect(
         name="fanuc", controller="FANUC Series 0i (M, G code system A)", extension=".nc",
@@ -159,7 +187,8 @@ DIALECTS: Mapping[str, Dialect] = MappingProxyType({
                  "G04 P in milliseconds without a decimal point; II.8 'Inch/metric conversion (G20, G21)' in a "
                  "block of its own at the head of the program; II.9 'Decimal point programming': a number "
                  "without a decimal point counts least input increments (IS-B: 0.001 mm, 0.0001 in, 0.001 s); "
-                 "program number O, '%' at tape start and end, M30 end of program",),
+                 "circular interpolation G02/G03 (I J K or R) in the plane of G17/G18/G19; G92 coordinate system "
+                 "setting; program number O, '%' at tape start and end, M30 end of program",),
         **{**_RS274, "feed_word": "G01", "rapid_word": "G00", "dwell_word": "G04",
            "decimal_point_needed": True, "implicit_increment": 0.001}),
     "sinumerik": Dialect(
@@ -167,9 +196,11 @@ DIALECTS: Mapping[str, Dialect] = MappingProxyType({
         comments=("semicolon",), program_start=(), setup=("G71 G90 G94",), program_end=("M30",),
         end_words=("M2", "M30"), end_required=True, percent=False, default_units=None, default_distance=None,
         dwell_words=_frozen({"F": 1.0}), dwell_places=3, axes=("X", "Y", "Z", "A", "B", "C"),
+        arc_words=("I", "J", "K", "CR"), set_position=(),
         sources=("SINUMERIK 840D sl Programming Manual Fundamentals, 'Dwell time (G4)': G4 F in seconds, "
                  "G4 S in spindle revolutions, in a block of its own, the programmed F and S kept; "
-                 "'Inch or metric dimensions (G70/G700, G71/G710)'; comments after ';'; M30 end of program",),
+                 "'Inch or metric dimensions (G70/G700, G71/G710)'; circular interpolation G2/G3 with I J K "
+                 "(incremental centre) or CR= (radius); G17-G19; comments after ';'; M30 end of program",),
         **{**_RS274, "metric_words": ("G71", "G710"), "inch_words": ("G70", "G700"),
            "refused_dwell_words": _frozen({"S": "G4 S counts spindle revolutions, not seconds"}),
            "dwell_keeps_feed": True}),
@@ -181,7 +212,8 @@ DIALECTS: Mapping[str, Dialect] = MappingProxyType({
         rapid_at_feed=False, dwell_words=_frozen({"DWELL": 1.0}), dwell_places=3,
         refused_dwell_words=_frozen({}), dwell_alone=True, dwell_keeps_feed=False,
         decimal_point_needed=False, implicit_increment=0.0, block_numbers="required",
-        axes=("X", "Y", "Z", "A", "B", "C", "U", "V", "W"),
+        axes=("X", "Y", "Z", "A", "B", "C", "U", "V", "W"), arc_words=(), planes=(), set_position=(),
+        work_offset_words=(),
         sources=("HEIDENHAIN TNC 640 User's Manual, Conversational Programming: 'BEGIN PGM name MM' ... "
                  "'END PGM name MM', numbered blocks, comments after ';', path function L with absolute or "
                  "incremental (I) coordinates, F in mm/min kept until changed, FMAX for one block only",
@@ -193,9 +225,11 @@ DIALECTS: Mapping[str, Dialect] = MappingProxyType({
         setup=("G21", "G90"), program_end=(), end_words=(), end_required=False, percent=False,
         default_units="mm", default_distance="absolute",
         dwell_words=_frozen({"P": 0.001, "S": 1.0}), dwell_places=0,
-        axes=("X", "Y", "Z"),
+        axes=("X", "Y", "Z", "E"), arc_words=("I", "J", "R"), planes=(), work_offset_words=(),
+        g90_sets_extruder=True,
         sources=("Marlin G-code reference 'G4 - Dwell': P milliseconds, S seconds; 'G0-G1 - Linear Move' "
-                 "(G0 moves at the feed like G1); G20/G21, G90/G91 (marlinfw.org/docs/gcode; "
+                 "(G0 moves at the feed like G1); 'G2-G3 - Arc or Circle Move' (I J or R, in XY unless built with "
+                 "CNC_WORKSPACE_PLANES); G20/G21, G90/G91, G92, M82/M83 (marlinfw.org/docs/gcode; "
                  "Marlin/src/gcode/gcode_d.cpp and G4.cpp); one command a line, comments after ';'",),
         **{**_RS274, "syntax": "printer", "rapid_at_feed": True}),
     "klipper": Dialect(
@@ -203,10 +237,11 @@ DIALECTS: Mapping[str, Dialect] = MappingProxyType({
         setup=("G90",), program_end=(), end_words=(), end_required=False, percent=False,
         default_units="mm", default_distance="absolute",
         dwell_words=_frozen({"P": 0.001}), dwell_places=0,
-        axes=("X", "Y", "Z"),
+        axes=("X", "Y", "Z", "E"), arc_words=("I", "J", "K"), work_offset_words=(),
         sources=("Klipper docs/G-Codes.md: 'Move (G0 or G1): G1 [X<pos>] [Y<pos>] [Z<pos>] [E<pos>] [F<speed>]', "
-                 "'Dwell: G4 P<milliseconds>', G90/G91, G92; millimetres only (no G20); "
-                 "one command a line, comments after ';'",),
+                 "'Dwell: G4 P<milliseconds>', G90/G91, G92, M82/M83; millimetres only (no G20); "
+                 "docs/Config_Reference.md [gcode_arcs]: G2/G3 by the centre (I J, with G17-G19 I K or J K), "
+                 "no R; one command a line, comments after ';'",),
         **{**_RS274, "syntax": "printer", "rapid_at_feed": True, "inch_words": ()}),
 })
 

@@ -1,0 +1,498 @@
+"""Pre-compensation of a part program: every point moved to its pre-compensated command, paths kept in tolerance.
+
+A control moves straight between the points it is given, so correcting only the end points of a
+move leaves the error's variation along it: with the commands c0, c1 at the ends of the programmed
+move p0 -> p1, the tool is off the nominal path by ``e(c(t)) - [(1 - t) e(c0) + t e(c1)]``, the
+error's departure from its chord (the nominal kinematics being linear in the axes). Each move is
+sampled at least every half ``max_segment_m``; where the tool would leave the nominal path by more
+than the tolerance (the distance along the directions the machine's axes move), the move is cut
+into pieces of at most ``max_segment_m`` (halved again where that is not enough) and each piece
+end is pre-compensated. Arcs are linearised into chords whose sagitta is a quarter of the
+tolerance, the rest of it left to the error along each chord. Rapid moves get their end points
+corrected; their path is not checked, a control need not move straight at rapid.
+
+Positions are written with 0.1 um resolution (4 decimals in mm, 6 in inch), in the block's units
+and distance mode, relative to its work offset and G92 shift. Blocks whose correction rounds to
+nothing are written as they were, so a program on a machine without errors comes out unchanged
+apart from the header comment.
+"""
+
+from __future__ import annotations
+
+import math
+import operator
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.conventions import AXIS_INDEX
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_instance, check_number, check_path
+from axiscal.io.atomic import write_text
+from axiscal.io.gcode import PLANE_AXES, Program, dialect as find_dialect, read_program, split_lines
+from axiscal.io.tabular import read_text
+from axiscal.model.machine import Machine
+from axiscal.precompensation.points import CommandError, machine_with_tool, solve_commands
+from axiscal.precompensation.text import PLACES, program_text
+from axiscal.units import UM
+from axiscal.version import __version__
+
+__all__ = ["Precompensation", "precompensate_program", "rewrite_program", "precompensate_file", "PLACES"]
+
+_MM = 1e-3
+_MAX_ROUNDS = 40
+
+
+@dataclass(frozen=True)
+class Precompensation:
+    """A rewritten program and what was done to it.
+
+    Attributes
+    ----------
+    text : str
+        The pre-compensated program.
+    lines_in, lines_out : int
+        Lines of the program read and written.
+    moves, rewritten : int
+        Moves read, and moves written anew (the others kept as they were).
+    largest_correction_m : float
+        Largest distance between a programmed point and its command, metres.
+    largest_residual_m : float
+        Largest distance of the tool from the nominal path the model predicts, over the sampled
+        path of every straight move and arc and the end of every rapid move, along the directions
+        the machine's axes move, metres.
+    tolerance_m, max_segment_m : float
+        The settings used, metres.
+    machine : str
+        The machine model's name.
+    dialect : str
+        The program's dialect.
+    """
+
+    text: str
+    lines_in: int
+    lines_out: int
+    moves: int
+    rewritten: int
+    largest_correction_m: float
+    largest_residual_m: float
+    tolerance_m: float
+    max_segment_m: float
+    machine: str
+    dialect: str
+
+
+class _Pieces:
+    """The straight pieces the program's moves are followed by: programmed ends, commands, checks."""
+
+    def __init__(self, move, p0, p1, rot, t0, t1, limit, check):
+        self.move, self.p0, self.p1, self.rot = move, p0, p1, rot
+        self.t0, self.t1, self.limit, self.check = t0, t1, limit, check
+        self.command = np.empty_like(p1)
+        self.exact = np.empty_like(p1)
+
+    def split(self, counts: np.ndarray) -> np.ndarray:
+        """Cut piece i into ``counts[i]`` equal pieces; return the mask of the new inner ends."""
+        idx = np.repeat(np.arange(counts.size), counts)
+        j = np.arange(idx.size) - np.repeat(np.cumsum(counts) - counts, counts)
+        k = counts[idx].astype(float)
+        f0, f1 = j / k, (j + 1) / k
+        span = (self.p1 - self.p0)[idx]
+        tspan = (self.t1 - self.t0)[idx]
+        self.p0, self.p1 = self.p0[idx] + f0[:, None] * span, self.p0[idx] + f1[:, None] * span
+        self.t0, self.t1 = self.t0[idx] + f0 * tspan, self.t0[idx] + f1 * tspan
+        self.move, self.rot, self.limit, self.check = self.move[idx], self.rot[idx], self.limit[idx], self.check[idx]
+        self.command, self.exact = self.command[idx], self.exact[idx]
+        return j < counts[idx] - 1
+
+
+def rewrite_program(
+    text: str,
+    machine: Machine | str,
+    *,
+    dialect: str,
+    max_segment_m: float = 2e-3,
+    tolerance_m: float = 0.5e-6,
+    tool_m: tuple[float, float, float] | None = None,
+    work_offset_m: Mapping[str, float] | None = None,
+    source: str | None = None,
+) -> Precompensation:
+    """Pre-compensate a part program and say what was done; see :func:`precompensate_program`.
+
+    Returns
+    -------
+    Precompensation
+        The program written anew, with the counts, the largest correction and the largest residual.
+    """
+    spec = find_dialect(dialect)
+    if spec.syntax == "conversational":
+        raise AxiscalError(f"{spec.controller} programs are not pre-compensated; use a word dialect"
+                           " (linuxcnc, fanuc, sinumerik, grbl, marlin, klipper)")
+    tolerance_m = check_number("tolerance_m", tolerance_m, positive=True)
+    max_segment_m = check_number("max_segment_m", max_segment_m, positive=True)
+    if tolerance_m < 0.2 * UM:
+        raise AxiscalError(f"tolerance_m must be at least 0.2 um (positions are written to 0.1 um), not {tolerance_m / UM:g} um")
+    model = machine_with_tool(machine, tool_m)
+    rotary = list(model.rotary)
+    linear = [k for k in model.letters if k not in model.rotary]
+    if rotary and len(linear) != 3:
+        raise AxiscalError(f"a machine with rotary axes is pre-compensated with three linear axes, not chain '{model.chain}'")
+    program = read_program(text, dialect=spec, source=source, work_offset_m=work_offset_m)
+    moves = _Moves(program, model, linear, rotary, source)
+    pieces = _build_pieces(moves, linear, rotary, tolerance_m, max_segment_m)
+    reach = [AXIS_INDEX[k] for k in linear] if not rotary else [0, 1, 2]
+    _solve(model, pieces, np.ones(pieces.p1.shape[0], dtype=bool), program, moves, linear, rotary, source)
+    verbatim, residual = _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, max_segment_m, source)
+    header = (f"axiscal {__version__} precompensate: machine {model.name or model.chain} ({model.chain}),"
+              f" tolerance {tolerance_m / UM:g} um, segments up to {max_segment_m / _MM:g} mm")
+    lines, rewritten = program_text(program, moves, pieces, verbatim, linear, rotary, text, header)
+    corrections = np.linalg.norm(pieces.exact - pieces.p1, axis=1) if pieces.p1.size else np.zeros(1)
+    return Precompensation(
+        text=lines, lines_in=len(program.blocks), lines_out=len(split_lines(lines)), moves=len(moves.index), rewritten=rewritten,
+        largest_correction_m=float(corrections.max(initial=0.0)), largest_residual_m=float(residual),
+        tolerance_m=tolerance_m, max_segment_m=max_segment_m, machine=model.name or model.chain, dialect=spec.name,
+    )
+
+
+def _fail(message: str, source: str | None, line: int) -> AxiscalError:
+    return AxiscalError(message, path=source, line=line)
+
+
+class _Moves:
+    """The program's moves (block indices) with what each block says about its frame, per move."""
+
+    def __init__(self, program: Program, model: Machine, linear, rotary, source):
+        self.index: list[int] = []
+        letters = set(model.letters)
+        allowed = letters | {"E"}
+        seen = -1
+        for index, block in enumerate(program.blocks):
+            motion = block.motion
+            if motion is None or motion.kind == "dwell":
+                continue
+            end = motion.end_m
+            if len(end) != seen:
+                seen = len(end)
+                foreign = [k for k in end if k not in allowed]
+                if foreign:
+                    raise _fail(f"{foreign[0]} is not an axis of the machine model (chain '{model.chain}')", source, block.line)
+                missing = [k for k in model.letters if k not in end]
+                if missing:
+                    raise _fail(f"a move before the program has set {', '.join(missing)}, an axis of the machine model:"
+                                " program every axis in the first move", source, block.line)
+            if rotary and motion.kind != "rapid":
+                turned = [k for k in rotary if motion.start_m.get(k) != end[k]]
+                if turned:
+                    raise _fail(f"a move that turns {', '.join(turned)} while it cuts is not pre-compensated"
+                                " (rotary axes stand still in the moves pre-compensated)", source, block.line)
+            self.index.append(index)
+        blocks = [program.blocks[i] for i in self.index]
+        self.motions = [b.motion for b in blocks]
+        rows: dict[int, list[float]] = {}
+        offsets = []
+        for b in blocks:
+            row = rows.get(id(b.offset_m))
+            if row is None:
+                row = rows[id(b.offset_m)] = [b.offset_m.get(k, 0.0) for k in linear]
+            offsets.append(row)
+        self.offset = np.array(offsets, dtype=float).reshape(len(blocks), len(linear))
+        self.per_unit = np.array([b.metres_per_unit for b in blocks], dtype=float)
+        self.line = [b.line for b in blocks]
+        moving = {index: number for number, index in enumerate(self.index)}
+        #: the blocks that set or use the motion mode, with their move number (None: a mode word alone)
+        self.events = [(index, moving.get(index)) for index, block in enumerate(program.blocks)
+                       if index in moving or block.motion_word is not None]
+
+    def __len__(self) -> int:
+        return len(self.index)
+
+
+def _build_pieces(moves: _Moves, linear, rotary, tolerance_m, max_segment_m) -> _Pieces:
+    """One piece per straight move, chords for each arc; rapid moves and the first move: their end only."""
+    motions = moves.motions
+    m = len(motions)
+    end = _columns(motions, linear)
+    rot = _columns(motions, rotary)
+    kinds = [mo.kind for mo in motions]
+    path = np.array([k != "rapid" for k in kinds], dtype=bool)
+    if m:
+        path[0] = False
+    start = np.where(path[:, None], np.vstack([end[:1], end[:-1]]), end)
+    counts = np.ones(m, dtype=np.int64)
+    chords: dict[int, np.ndarray] = {}
+    chord_sagitta = tolerance_m / 4.0
+    for number, kind in enumerate(kinds):
+        if kind != "arc" or not path[number]:
+            continue
+        motion = motions[number]
+        a, b, normal = PLANE_AXES[motion.plane]
+        ca, cb = motion.centre_m[a], motion.centre_m[b]
+        radius = math.hypot(motion.start_m[a] - ca, motion.start_m[b] - cb)
+        sweep = motion.sweep_rad
+        step = min(2.0 * math.acos(max(1.0 - chord_sagitta / radius, -1.0)), max_segment_m / radius)
+        count = max(1, math.ceil(abs(sweep) / step - 1e-9))
+        f = np.arange(1, count + 1) / count
+        points = np.repeat(start[number][None, :], count, axis=0)
+        theta = math.atan2(motion.start_m[b] - cb, motion.start_m[a] - ca) + sweep * f
+        for letter, value in ((a, ca + radius * np.cos(theta)), (b, cb + radius * np.sin(theta))):
+            if letter in linear:
+                points[:, linear.index(letter)] = value
+        if normal in linear:
+            j = linear.index(normal)
+            points[:, j] = start[number][j] + f * (end[number][j] - start[number][j])
+        points[-1] = end[number]
+        chords[number] = points
+        counts[number] = count
+    owner = np.repeat(np.arange(m), counts)
+    first = np.cumsum(counts) - counts
+    within = np.arange(owner.size) - first[owner]
+    p1 = end[owner].copy()
+    t1 = np.ones(owner.size)
+    limit = np.full(owner.size, tolerance_m)
+    for number, points in chords.items():
+        rows = slice(first[number], first[number] + counts[number])
+        p1[rows] = points
+        t1[rows] = np.arange(1, counts[number] + 1) / counts[number]
+        limit[rows] = 0.75 * tolerance_m
+    p0 = np.where((within == 0)[:, None], start[owner], np.vstack([p1[:1], p1[:-1]]))
+    t0 = np.where(within == 0, 0.0, np.r_[0.0, t1[:-1]])
+    return _Pieces(owner, p0, p1, rot[owner], t0, t1, limit, path[owner])
+
+
+def _columns(motions, letters) -> np.ndarray:
+    """The end positions of ``letters`` of every motion, shape (len(motions), len(letters))."""
+    if not letters:
+        return np.zeros((len(motions), 0))
+    get = operator.itemgetter(*letters)
+    rows = [get(mo.end_m) for mo in motions]
+    return np.array(rows, dtype=float).reshape(len(motions), len(letters))
+
+
+def _units(moves: _Moves, pieces: _Pieces):
+    """Offset (metres) and metres per unit of each piece's block."""
+    return moves.offset[pieces.move], moves.per_unit[pieces.move]
+
+
+def _solve(model, pieces: _Pieces, which: np.ndarray, program, moves, linear, rotary, source) -> None:
+    """Pre-compensated commands of the pieces' ends where ``which``, rounded as they will be written."""
+    if not which.any():
+        return
+    programmed = {k: pieces.p1[which, j] for j, k in enumerate(linear)} | {k: pieces.rot[which, j] for j, k in enumerate(rotary)}
+    try:
+        solved = solve_commands(model, programmed)
+    except CommandError as error:
+        piece = np.flatnonzero(which)[error.index]
+        raise _fail(error.message, source, moves.line[pieces.move[piece]]) from None
+    command = np.column_stack([solved[k] for k in linear])
+    offset, per_unit = _units(moves, pieces)
+    places = np.where(per_unit[which] == _MM, PLACES["mm"], PLACES["inch"])
+    scale = (10.0 ** places / per_unit[which])[:, None]
+    pieces.exact[which] = command
+    pieces.command[which] = np.round((command - offset[which]) * scale) / scale + offset[which]
+
+
+def _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, max_segment_m, source):
+    """Decide which moves are kept as written and cut pieces until every sampled path is in tolerance."""
+    offset, per_unit = _units(moves, pieces)
+    verbatim = _keep(program, moves, pieces, per_unit)
+    dirty = np.ones(pieces.p1.shape[0], dtype=bool)
+    worst = 0.0
+    for _ in range(_MAX_ROUNDS):
+        out = np.where(verbatim[pieces.move][:, None], pieces.p1, pieces.command)
+        start = np.vstack([out[:1], out[:-1]])
+        check = pieces.check & dirty
+        ends = ~pieces.check & dirty
+        if ends.any():
+            miss = _deviation(model, out[ends], pieces.p1[ends], pieces.rot[ends], linear, rotary, reach)
+            worst = max(worst, float(miss.max()))
+        failing = np.zeros(pieces.p1.shape[0], dtype=bool)
+        if check.any():
+            idx = np.flatnonzero(check)
+            length = np.linalg.norm(pieces.p1[idx] - pieces.p0[idx], axis=1)
+            counts = np.maximum(2, np.ceil(length / (max_segment_m / 2.0))).astype(np.int64)
+            owner = np.repeat(idx, counts)
+            t = (np.arange(owner.size) - np.repeat(np.cumsum(counts) - counts, counts) + 1) / counts[np.repeat(np.arange(idx.size), counts)]
+            c_t = start[owner] + t[:, None] * (out[owner] - start[owner])
+            p_t = pieces.p0[owner] + t[:, None] * (pieces.p1[owner] - pieces.p0[owner])
+            miss = _deviation(model, c_t, p_t, pieces.rot[owner], linear, rotary, reach)
+            largest = np.maximum.reduceat(miss, np.cumsum(counts) - counts)
+            bad = largest > pieces.limit[idx]
+            failing[idx[bad]] = True
+            excess = np.ones(pieces.p1.shape[0])
+            excess[idx] = largest / pieces.limit[idx]
+            ok = largest[~bad]
+            if ok.size:
+                worst = max(worst, float(ok.max()))
+        if not failing.any():
+            return verbatim, worst
+        flips = np.unique(pieces.move[failing & verbatim[pieces.move]])
+        if flips.size:
+            verbatim[flips] = False
+            verbatim = _keep(program, moves, pieces, per_unit, forced=verbatim)
+        cut = failing & ~np.isin(pieces.move, flips)
+        tiny = cut & (np.linalg.norm(pieces.p1 - pieces.p0, axis=1) < 1e-6)
+        if tiny.any():
+            line = moves.line[pieces.move[np.argmax(tiny)]]
+            raise _fail(f"the path cannot be held within {tolerance_m / UM:g} um of the nominal one", source, line)
+        old_out = out
+        if cut.any():
+            # the departure from the chord grows with the square of the piece's length
+            need = np.ceil(1.25 * np.sqrt(np.maximum(excess, 1.0)))
+            counts = np.where(cut, np.maximum(need, 2), 1).astype(np.int64)
+            inner = pieces.split(counts)
+            _solve(model, pieces, inner, program, moves, linear, rotary, source)
+            offset, per_unit = _units(moves, pieces)
+            old_out = old_out[np.repeat(np.arange(counts.size), counts)]
+            changed_piece = np.repeat(cut, counts)
+        else:
+            changed_piece = np.zeros(pieces.p1.shape[0], dtype=bool)
+        new_out = np.where(verbatim[pieces.move][:, None], pieces.p1, pieces.command)
+        changed = changed_piece | np.any(new_out != old_out, axis=1)
+        dirty = changed | np.concatenate([[False], changed[:-1]])
+    raise _fail("the path could not be held within the tolerance", source, moves.line[0])
+
+
+def _deviation(model, command, programmed, rot, linear, rotary, reach) -> np.ndarray:
+    """Distance of the tool at ``command`` from the nominal point of ``programmed``, along the axes' directions."""
+    at = {k: command[:, j] for j, k in enumerate(linear)} | {k: rot[:, j] for j, k in enumerate(rotary)}
+    want = {k: programmed[:, j] for j, k in enumerate(linear)} | {k: rot[:, j] for j, k in enumerate(rotary)}
+    miss = model.actual_point(at) - model.nominal_point(want)
+    return np.linalg.norm(miss[:, reach], axis=1)
+
+
+def _keep(program: Program, moves: _Moves, pieces: _Pieces, per_unit, forced: np.ndarray | None = None) -> np.ndarray:
+    """Which moves are written as they were: corrections below half the written resolution, modes consistent."""
+    half = 0.5 * np.where(per_unit == _MM, 10.0 ** -PLACES["mm"], 10.0 ** -PLACES["inch"]) * per_unit
+    small = np.all(np.abs(pieces.command - pieces.p1) < half[:, None], axis=1)
+    first = np.r_[0, np.flatnonzero(np.diff(pieces.move)) + 1]
+    move_small = np.logical_and.reduceat(small, first) if small.size else np.zeros(0, dtype=bool)
+    keep = move_small if forced is None else move_small & forced
+    if not keep.any():
+        return keep
+    last = np.r_[first[1:] - 1, small.size - 1]
+    modal_program = modal_out = None
+    out_here = None
+    for index, number in moves.events:
+        block = program.blocks[index]
+        word = block.motion_word
+        if number is None:
+            modal_program = modal_out = word
+            continue
+        written = word if word is not None else modal_program
+        if keep[number]:
+            consistent = word is not None or modal_out == modal_program
+            if not block.absolute and out_here is not None:
+                start = pieces.p0[first[number]]
+                consistent = consistent and bool(np.all(np.abs(out_here - start) < half[first[number]]))
+            keep[number] = consistent
+        modal_program = written
+        modal_out = written if keep[number] else ("G0" if block.motion.kind == "rapid" else "G1")
+        out_here = pieces.p1[last[number]] if keep[number] else pieces.command[last[number]]
+    return keep
+
+
+def precompensate_program(
+    text: str,
+    machine: Machine | str,
+    *,
+    dialect: str,
+    max_segment_m: float = 2e-3,
+    tolerance_m: float = 0.5e-6,
+    tool_m: tuple[float, float, float] | None = None,
+    work_offset_m: Mapping[str, float] | None = None,
+    source: str | None = None,
+) -> str:
+    """A part program with every point moved to its pre-compensated command.
+
+    Parameters
+    ----------
+    text : str
+        The program, in ``dialect`` (:data:`axiscal.io.gcode.DIALECT_NAMES` but "heidenhain").
+    machine : Machine or str
+        The machine model, or its description file. The program's coordinates, shifted by the
+        work offset and G92, are the positions of the model's axes.
+    dialect : str, keyword-only
+        The control's dialect.
+    max_segment_m : float, keyword-only
+        Longest piece a move is cut into where it must be cut, metres (default 2 mm); the error is
+        sampled along every move at least every half of it.
+    tolerance_m : float, keyword-only
+        Largest distance of the tool from the nominal path the model may predict along the
+        rewritten program, metres (default 0.5 um, at least 0.2 um).
+    tool_m : sequence of 3 floats, optional, keyword-only
+        The functional point in the last tool-side carriage's frame, metres (default: the machine's).
+    work_offset_m : Mapping[str, float], optional, keyword-only
+        Axis position minus program coordinate of the work offset the program runs in (G54),
+        metres; default none.
+    source : str, optional, keyword-only
+        The program's file, named in errors.
+
+    Returns
+    -------
+    str
+        The program written anew: a header comment naming the machine, axiscal's version and the
+        tolerance; every block that moves written with its pre-compensated commands (cut into
+        pieces, arcs linearised, where the error varies along it), with its block number, its
+        other words (feed, spindle, coolant) and its comment on the first piece; every other line
+        as it was. A block whose correction rounds to nothing is kept as it was.
+
+    Raises
+    ------
+    AxiscalError
+        Naming the line: a block the dialect's reader cannot follow (macros, subprogram calls,
+        canned cycles, unknown words, an arc whose end is not on its circle), a move of an axis the
+        machine does not have, a move before every axis of the machine is set, a rotary axis that
+        turns while cutting, a command outside the error tables.
+
+    Examples
+    --------
+    >>> out = precompensate_program(open("part.ngc").read(), "machine.toml", dialect="linuxcnc")  # doctest: +SKIP
+    """
+    return rewrite_program(text, machine, dialect=dialect, max_segment_m=max_segment_m, tolerance_m=tolerance_m,
+                           tool_m=tool_m, work_offset_m=work_offset_m, source=source).text
+
+
+def precompensate_file(
+    program_path: str | Path,
+    machine: Machine | str | Path,
+    output_path: str | Path,
+    *,
+    dialect: str,
+    max_segment_m: float = 2e-3,
+    tolerance_m: float = 0.5e-6,
+    tool_m: tuple[float, float, float] | None = None,
+    work_offset_m: Mapping[str, float] | None = None,
+) -> Precompensation:
+    """Pre-compensate the program in ``program_path`` and write it atomically to ``output_path``.
+
+    Parameters
+    ----------
+    program_path, output_path : str or Path
+        The program read and the program written.
+    machine : Machine, str or Path
+        The machine model or its description file.
+    dialect, max_segment_m, tolerance_m, tool_m, work_offset_m : keyword-only
+        See :func:`precompensate_program`.
+
+    Returns
+    -------
+    Precompensation
+        What was written and the summary (lines, largest correction, largest residual).
+
+    Raises
+    ------
+    AxiscalError
+        As :func:`precompensate_program`, naming ``program_path``; a file that cannot be read or written.
+    """
+    program_path = check_path("program_path", program_path)
+    output_path = check_path("output_path", output_path)
+    if isinstance(machine, Path):
+        machine = str(machine)
+    check_instance("machine", machine, (Machine, str))
+    text = read_text(program_path)
+    result = rewrite_program(text, machine, dialect=dialect, max_segment_m=max_segment_m, tolerance_m=tolerance_m,
+                             tool_m=tool_m, work_offset_m=work_offset_m, source=str(program_path))
+    write_text(output_path, result.text)
+    return result
