@@ -56,6 +56,8 @@ WRITES = [
     (("thermal", "etve"), "--plot", ["thermal", "etve", "{ex}/thermal/etve_run.csv", "--plot", "{out}/t.png"]),
     (("thermal", "drift"), "--plot", ["thermal", "drift", "{ex}/thermal/drift_run.csv", "--plot", "{out}/t.png"]),
     (("identify",), "--output", ["identify", "{ex}/identification/start/machine.toml", "{ex}/identification/plate_xy.toml", "--model", "poly:1", "-o", "{out}/id"]),
+    (("precompensate",), "--output", ["precompensate", "{ex}/precompensation/part.ngc", "--machine", "{ex}/xfyz_machine/machine.toml", "--dialect", "linuxcnc", "-o", "{out}/x.ngc"]),
+    (("export", "grid"), "--output", ["export", "grid", "--machine", "{ex}/xfyz_machine/machine.toml", "--grid", "X=50:750:350,Y=50:450:400,Z=50:350:300", "-o", "{out}/g.csv"]),
     (("live",), "--record", ["live", "--no-server", "--no-pace", "--duration", "0.05", "--record", "{out}/live.csv"]),
 ]
 WRITING_FLAGS = ("--output", "--plot", "--gcode", "--record")

@@ -6,7 +6,7 @@ import math
 
 import click
 
-from axiscal.cli.common import echo_json, flags_named
+from axiscal.cli.common import FINITE, echo_json, flags_named
 from axiscal.errors import AxiscalError
 from axiscal.io.gcode import DIALECT_NAMES
 from axiscal.precompensation.program import precompensate_file
@@ -36,9 +36,9 @@ def _vector_mm(flag: str):
 @click.option("--machine", required=True, type=click.Path(dir_okay=False), help="The machine model (TOML).")
 @click.option("--dialect", required=True, type=click.Choice(_WORD_DIALECTS), help="The control's G-code dialect.")
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="The pre-compensated program.")
-@click.option("--max-segment-mm", type=float, default=2.0, show_default=True,
+@click.option("--max-segment-mm", type=FINITE, default=2.0, show_default=True,
               help="The error is checked along every move at least every half of this; arcs are linearised into chords no longer.")
-@click.option("--tolerance-um", type=float, default=0.5, show_default=True,
+@click.option("--tolerance-um", type=FINITE, default=0.5, show_default=True,
               help="Largest distance of the tool from the nominal path along the rewritten program.")
 @click.option("--tool-mm", callback=_vector_mm("--tool-mm"), help="Functional point X,Y,Z in the last carriage's frame [the machine's tool_mm].")
 @click.option("--work-offset-mm", callback=_vector_mm("--work-offset-mm"),
