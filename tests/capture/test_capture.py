@@ -143,3 +143,25 @@ def test_the_command_line_cycle_and_its_one_line_error(machine, tmp_path, capsys
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "cut.csv" in err[0] and "the recording ends before it" in err[0] and "run " in err[0]
     assert main(["capture", str(tmp_path / "plan.csv"), "--from", str(tmp_path / "rec.csv"), "-o", str(tmp_path / "r2.csv"), "--resume"]) == 0
+
+
+@pytest.mark.parametrize("trailer", [b"\r\nEOF::", b"EOF::\r\n"])
+def test_the_same_recording_as_rtx_captures_to_the_same_run(machine, tmp_path, trailer):
+    # an .rtx capture holds the reading alone, at a fixed rate: the run is that of the CSV without the air columns
+    from axiscal.io.importers.rtx import write_rtx
+
+    plan = small_plan()
+    simulated = simulate(machine, plan)
+    rec = simulated.recording
+    write_rtx(tmp_path / "rec.rtx", rec.reading_m / MM, sample_rate_hz=500.0, unit="mm", trailer=trailer,
+              header={"Owner": "CARTO-Dynamic", "Version no": "4.13.9237.28405", "Date": "10/02/2025 12:58:22",
+                      "Flags": "0 1 2 0 2", "Machine": ""})
+    from_rtx = capture_to_file(plan, tmp_path / "rec.rtx", tmp_path / "run.csv", unit="mm").capture
+    bare = Recording(rec.time_s, rec.reading_m, {}, "rec.csv")
+    from_csv = capture(plan, bare)
+    assert [r.deviation_m for r in from_rtx.readings] == pytest.approx([r.deviation_m for r in from_csv.readings], abs=1e-12)
+    # the capture's header travels into the run's sidecar
+    import json
+
+    header = json.loads((tmp_path / "run.json").read_text())["recording_header"]
+    assert header["Owner"] == "CARTO-Dynamic" and header["Machine"] == ""
