@@ -582,6 +582,7 @@ bad(M, "squareness_runs", "points", lambda: me.squareness_runs(MODULE, points=1)
 bad(M, "squareness_runs", "seed", lambda: me.squareness_runs(MODULE, seed=-2))
 bad(M, "write_campaign", "folder", lambda: me.write_campaign(None))
 bad(M, "write_campaign", "seed", lambda: me.write_campaign("/tmp/never-written", seed=-1), lambda: me.write_campaign("/tmp/never-written", seed=1.5))
+bad(M, "campaign_toml", "seed", lambda: me.campaign_toml(-1), lambda: me.campaign_toml(1.5))
 bad(M, "SimulatedCampaign", "folder", lambda: me.SimulatedCampaign(None, 0, ()))
 bad(M, "SimulatedCampaign", "files", lambda: me.SimulatedCampaign(Path("/tmp"), 0, "a.csv"))
 

@@ -330,6 +330,9 @@ bad(L, "create_app", "state", lambda: lv.create_app(None), lambda: lv.create_app
 bad(L, "create_app", "update_hz", lambda: lv.create_app(STATE, update_hz=NAN))
 bad(L, "create_app", "allowed_hosts", lambda: lv.create_app(STATE, allowed_hosts="monitor.lan"), lambda: lv.create_app(STATE, allowed_hosts=[None]))
 bad(L, "create_app", "allowed host", lambda: lv.create_app(STATE, allowed_hosts=["a:80"]))
+bad(L, "create_board_app", "snapshot", lambda: lv.create_board_app(None, page="capture.html"))
+bad(L, "create_board_app", "page", lambda: lv.create_board_app(dict, page="nothing.html"), lambda: lv.create_board_app(dict, page=None))
+bad(L, "create_board_app", "allowed_hosts", lambda: lv.create_board_app(dict, page="capture.html", allowed_hosts="monitor.lan"))
 bad(L, "LiveServer", "app", lambda: lv.LiveServer(None), lambda: lv.LiveServer(STATE))
 bad(L, "LiveServer", "port", lambda: lv.LiveServer(APP, port=-1), lambda: lv.LiveServer(APP, port="80"), lambda: lv.LiveServer(APP, port=NAN))
 bad(L, "LiveServer", "host", lambda: lv.LiveServer(APP, host=None))
@@ -439,6 +442,11 @@ bad(R, "write_pdf", "compare", lambda: rp.write_pdf(RESULTS, NEVER + ".pdf", com
 bad(R, "write_pdf", "generated", lambda: rp.write_pdf(RESULTS, NEVER + ".pdf", generated=5))
 bad(R, "run_demo", "output_dir", lambda: rp.run_demo(None), lambda: rp.run_demo(5))
 bad(R, "run_demo", "seed", lambda: rp.run_demo(NEVER, seed=-1), lambda: rp.run_demo(NEVER, seed=NAN))
+bad(R, "write_as_found_campaign", "folder", lambda: rp.write_as_found_campaign(None))
+bad(R, "write_as_found_campaign", "seed", lambda: rp.write_as_found_campaign(NEVER, seed=-1))
+bad(R, "write_as_left_campaign", "folder", lambda: rp.write_as_left_campaign(None, NEVER))
+bad(R, "write_as_left_campaign", "compensation", lambda: rp.write_as_left_campaign(NEVER, None))
+bad(R, "write_as_left_campaign", "seed", lambda: rp.write_as_left_campaign(NEVER, NEVER, seed=1.5))
 
 
 # ---------------------------------------------------------------- the check

@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 from axiscal.errors import AxiscalError
 from axiscal.model.diagonal import diagonal_check, diagonal_test
 from axiscal.model.machine import Axis, Machine
+from axiscal.model.plot import plot_diagonal
 from axiscal.model.output import SIGN_CONVENTION
 from axiscal.model.tables import ErrorTable
 
@@ -77,7 +78,7 @@ def test_one_sign_actual_minus_nominal_in_every_output(tmp_path, monkeypatch):
     assert summary["points"]["model_error_um"][-1] > 0 and summary["points"]["E_BD_um"][-1] == pytest.approx(3.0)
     captured = {}
     monkeypatch.setattr("axiscal.model.plot.save_figure", lambda fig, path, dpi=120: captured.setdefault("fig", fig))
-    result.plot(tmp_path / "d.png")
+    plot_diagonal(result, tmp_path / "d.png")
     lines = {line.get_label().split(" ")[0]: line.get_ydata() for line in captured["fig"].axes[0].lines}
     np.testing.assert_allclose(lines["model"], result.model_error_m * 1e6)
     np.testing.assert_allclose(lines["E_BD"], result.error_before_m * 1e6)

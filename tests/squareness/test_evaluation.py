@@ -223,8 +223,12 @@ def test_squareness_from_files_reproduces_paper_002(examples, tmp_path):
     # paper 002 section 4: D = 2.7 arcsec leaves 20.9 arcsec (20.954 unrounded)
     run = squareness_from_files(
         examples / "squareness_x.csv", examples / "squareness_y.csv", prism_deviation_rad=2.7 * ARCSEC,
-        plot_path=tmp_path / "runs.png",
     )
+    # the plot takes the result (the result never imports its plot)
+    from axiscal.squareness.plot import plot_squareness
+
+    plot_squareness(tmp_path / "runs.png", run.result, ((run.first.position_m, run.first.deviation_m),
+                                                        (run.second.position_m, run.second.deviation_m)))
     assert math.floor(run.result.squareness_rad / ARCSEC * 10) / 10 == 20.9
     assert (tmp_path / "runs.png").read_bytes()[:4] == b"\x89PNG"
     body = run.payload()

@@ -65,8 +65,12 @@ def squareness_command(first_csv, second_csv, plane, prism_deviation_arcsec, ref
         prism_deviation_rad=prism_deviation_arcsec * ARCSEC,
         reference=reference,
         convention=convention,
-        plot_path=plot_path,
     )
+    if plot_path:
+        from axiscal.squareness.plot import plot_squareness
+
+        plot_squareness(plot_path, run.result, ((run.first.position_m, run.first.deviation_m),
+                                                (run.second.position_m, run.second.deviation_m)))
     if as_json:
         echo_json(run.payload())
     else:

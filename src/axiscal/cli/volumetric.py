@@ -67,7 +67,9 @@ def diagonal_command(machine_path, start, end, steps, interferometer, measure, o
     else:
         click.echo(result.text(), nl=False)
     if plot:
-        result.plot(plot)
+        from axiscal.model.plot import plot_diagonal
+
+        plot_diagonal(result, plot)
 
 
 @click.command("inverse")

@@ -54,6 +54,16 @@ class ControllerCompensation:
     plus_m: np.ndarray
     minus_m: np.ndarray
 
+    def __post_init__(self) -> None:
+        check_choice("controller", self.controller, CONTROLLERS)
+        nodes = check_array("nodes_m", self.nodes_m, ndim=1, min_len=1, unit="metres")
+        for name in ("plus_m", "minus_m"):
+            values = check_array(name, getattr(self, name), ndim=1, unit="metres")
+            if values.shape != nodes.shape:
+                raise AxiscalError(f"{name} must hold one correction per node ({nodes.size}), not {values.size}")
+        if np.any(np.diff(nodes) <= 0):
+            raise AxiscalError("nodes_m must strictly increase")
+
     def correction(self, x, direction: str) -> np.ndarray:
         """Correction added to commanded positions ``x`` moving in ``direction``, metres.
 

@@ -159,31 +159,6 @@ class DiagonalResult(TableResult):
             after_um=None if self.measured_m is None else self.range_after_m / UM,
         )
 
-    def plot(self, path: str | Path, *, title: str = "Diagonal displacement error") -> Path:
-        """Write the figure of :func:`axiscal.model.plot.plot_diagonal` to ``path``.
-
-        Parameters
-        ----------
-        path : str or Path
-            Figure file; the format follows the suffix.
-        title : str
-            Figure title.
-
-        Returns
-        -------
-        Path
-            ``path``.
-
-        Raises
-        ------
-        AxiscalError
-            If the suffix is not a figure format or the file cannot be written.
-        """
-        from axiscal.model.plot import plot_diagonal
-
-        plot_diagonal(self, path, title=title)
-        return Path(path)
-
 
 def diagonal_positions(start_m: Mapping[str, float], end_m: Mapping[str, float], steps: int) -> dict[str, np.ndarray]:
     """Evenly spaced axis positions from a start to an end point, all axes moving together.

@@ -537,7 +537,6 @@ def squareness_from_files(
     prism_deviation_rad: float = 0.0,
     reference: str = "least-squares",
     convention: str = "included-angle",
-    plot_path: str | Path | None = None,
 ) -> SquarenessEvaluation:
     """Squareness of two axes from two straightness run files (paper 002 eqs 1, 15 and 21).
 
@@ -552,8 +551,6 @@ def squareness_from_files(
         As in :func:`squareness_from_slopes`.
     reference : {"least-squares", "end-points"}, keyword-only
         Line fitted to each run (default least squares, eq 15).
-    plot_path : str or Path, optional, keyword-only
-        Write both runs and their lines to this image.
 
     Returns
     -------
@@ -588,8 +585,4 @@ def squareness_from_files(
         reference=reference,
         convention=convention,
     )
-    if plot_path is not None:
-        from axiscal.squareness.plot import plot_squareness
-
-        plot_squareness(plot_path, result, ((first.position_m, first.deviation_m), (second.position_m, second.deviation_m)))
     return SquarenessEvaluation(result, first, second)
