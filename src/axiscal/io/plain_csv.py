@@ -26,7 +26,8 @@ import numpy as np
 
 from axiscal.io.lines import Lines
 
-__all__ = ["PlainCsv", "pandas_options", "read_plain", "stamp"]
+#: nothing public: the entry is :func:`axiscal.io.read_csv`, which tries this path first
+__all__: list[str] = []
 
 #: bytes of the file's start searched for the header (a header further down takes the strict reader)
 _HEAD = 1 << 16

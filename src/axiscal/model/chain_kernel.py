@@ -1,0 +1,399 @@
+"""The kinematic chain carried point by point in one compiled pass (numba): the forward model's fast core.
+
+Implements exactly the composition of :mod:`axiscal.model.kinematics` (paper 000 eqs 6-10 for
+linear axes, ISO 230-7 for rotary axes): per point, the six error motions of every axis are
+interpolated from its table, and the functional point (and, when asked, the tool direction) is
+carried through ``T_wp⁻¹ · T_tool`` with and without errors, as three scalars. Nothing is
+linearised: the inverse of ``I + [e]x`` is applied in closed form, as in the NumPy composition.
+One loop over the points replaces some hundred array passes, so no temporary array is made; the
+loop releases the GIL and large inputs are split into chunks run on threads.
+
+The interpolation is that of :meth:`axiscal.model.tables.ErrorTable.evaluate` (same segment, same
+arithmetic); a cubic table, and error motions given per point, are evaluated before and passed
+in. The compiled functions are cached on disk by numba, so a new process loads them instead of
+compiling them again.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from axiscal.model.kinematics import RotaryLink
+from axiscal.model.tables import _TURN
+
+#: nothing public: the entries are :class:`axiscal.model.Machine` and :mod:`axiscal.model.kinematics`
+__all__: list[str] = []
+
+#: what :func:`run_chain` returns per point: the position error (3 columns), the position error and
+#: the orientation error of the tool axis (5 columns), or the nominal point (3 columns)
+ERROR, POSE, NOMINAL = 0, 1, 2
+#: points per chunk of work (the unit the threads share)
+CHUNK = 65536
+
+
+@dataclass(frozen=True)
+class PackedChain:
+    """A chain's links as flat arrays in the order they are applied to the tool point.
+
+    The tool-side links come first, from the last carriage inward (forward), then the workpiece-side
+    links from the frame outward (inverted). ``L`` links; the tables' rows are concatenated.
+
+    Parameters
+    ----------
+    letters : tuple of str
+        Axis letter of each link, shape (L,).
+    rotary, axis, forward : ndarray of int64, shape (L,)
+        1 for a rotary link; the coordinate (0, 1, 2) it moves along or turns about; 1 when applied
+        forward (tool side), 0 when inverted (workpiece side).
+    origin, square, offset : ndarray, shape (L, 3)
+        Carriage origin or pivot (m); squareness of a linear link or tilt of a rotary one (rad);
+        position error of a rotary axis line (m, zero for a linear link).
+    first_row, rows : ndarray of int64, shape (L,)
+        Where each table's rows start in ``position``, and how many there are.
+    start, end, inverse_step : ndarray, shape (L,)
+        Table range (m or rad) and ``1 / step`` of a table of even steps (0 otherwise).
+    first_bin, inverse_bin : ndarray, shape (L,)
+        For an uneven table, where its bins start in ``bins`` (-1: none, search the rows) and
+        ``1 / width`` of a bin (:class:`~axiscal.model.tables.ErrorTable` makes them).
+    bins : ndarray of int64, shape (B,)
+        Every uneven table's row at the start of each bin.
+    periodic : ndarray of int64, shape (L,)
+        1 for a table that wraps every 360 degrees.
+    position : ndarray, shape (T,)
+        Every table's positions.
+    values, slopes : ndarray, shape (T, 6)
+        Every table's rows and the slopes to the next row.
+    tables : tuple of ErrorTable
+        The links' tables, shape (L,).
+    """
+
+    letters: tuple[str, ...]
+    rotary: np.ndarray
+    axis: np.ndarray
+    forward: np.ndarray
+    origin: np.ndarray
+    square: np.ndarray
+    offset: np.ndarray
+    first_row: np.ndarray
+    rows: np.ndarray
+    start: np.ndarray
+    end: np.ndarray
+    inverse_step: np.ndarray
+    first_bin: np.ndarray
+    inverse_bin: np.ndarray
+    bins: np.ndarray
+    periodic: np.ndarray
+    position: np.ndarray
+    values: np.ndarray
+    slopes: np.ndarray
+    tables: tuple
+
+
+def pack_chain(tool_links, workpiece_links) -> PackedChain:
+    """The links of a chain (ChainLink or RotaryLink, each branch from the frame outward) packed for the kernel."""
+    order = [(link, 1) for link in reversed(tuple(tool_links))] + [(link, 0) for link in workpiece_links]
+    first, size = [], []
+    positions, values, slopes = [], [], []
+    total = 0
+    for link, _ in order:
+        table = link.table
+        first.append(total)
+        size.append(table.position_m.size)
+        total += table.position_m.size
+        positions.append(table.position_m)
+        values.append(table.values.T)
+        slopes.append(np.vstack([table._slopes.T, np.zeros((1, 6))]))
+    rotary = [isinstance(link, RotaryLink) for link, _ in order]
+    zero = np.zeros(3)
+
+    def vectors(rows) -> np.ndarray:
+        return np.ascontiguousarray(np.reshape(rows, (len(order), 3)), dtype=np.float64)
+
+    step = [link.table._uniform_step for link, _ in order]
+    first_bin, bins, count = [], [], 0
+    for link, _ in order:
+        rows = link.table._bin_rows
+        first_bin.append(-1 if rows is None or link.table._uniform_step is not None else count)
+        if first_bin[-1] >= 0:
+            bins.append(rows)
+            count += rows.size
+    return PackedChain(
+        letters=tuple(link.letter for link, _ in order),
+        rotary=np.array(rotary, dtype=np.int64),
+        axis=np.array([link.index for link, _ in order], dtype=np.int64),
+        forward=np.array([f for _, f in order], dtype=np.int64),
+        origin=vectors([link.origin_m for link, _ in order]),
+        square=vectors([link.tilt_rad if r else link.squareness_rad for (link, _), r in zip(order, rotary)]),
+        offset=vectors([link.offset_m if r else zero for (link, _), r in zip(order, rotary)]),
+        first_row=np.array(first, dtype=np.int64),
+        rows=np.array(size, dtype=np.int64),
+        start=np.array([link.table.start_m for link, _ in order], dtype=np.float64),
+        end=np.array([link.table.end_m for link, _ in order], dtype=np.float64),
+        inverse_step=np.array([1.0 / s if s is not None else 0.0 for s in step], dtype=np.float64),
+        first_bin=np.array(first_bin, dtype=np.int64),
+        inverse_bin=np.array([1.0 / link.table._bin_width for link, _ in order], dtype=np.float64),
+        bins=np.ascontiguousarray(np.concatenate(bins) if bins else np.zeros(0), dtype=np.int64),
+        periodic=np.array([int(link.table.periodic) for link, _ in order], dtype=np.int64),
+        position=np.ascontiguousarray(np.concatenate(positions) if positions else np.zeros(0)),
+        values=np.ascontiguousarray(np.vstack(values) if values else np.zeros((0, 6))),
+        slopes=np.ascontiguousarray(np.vstack(slopes) if slopes else np.zeros((0, 6))),
+        tables=tuple(link.table for link, _ in order),
+    )
+
+
+def run_chain(chain: PackedChain, positions: dict, tool_m, *, mode: int = ERROR, errors=None, workers=None) -> np.ndarray:
+    """Error (or nominal point) of the functional point at N sets of axis positions, on threads.
+
+    Parameters
+    ----------
+    chain : PackedChain
+    positions : dict of str to ndarray, shape (N,)
+        Checked positions of every axis (finite; m, rad for a rotary axis).
+    tool_m : ndarray, shape (3,)
+        The functional point in the last tool-side carriage, m.
+    mode : {ERROR, POSE, NOMINAL}
+    errors : dict of str to ndarray, shape (6, N), optional
+        Checked error motions of every axis, instead of its table.
+    workers : int, optional
+        Threads (default: the number of cores).
+
+    Returns
+    -------
+    ndarray, shape (N, 3) or (N, 5)
+        Metres (and radians for the two orientation columns).
+
+    Raises
+    ------
+    AxiscalError
+        A position outside a table that neither holds its ends nor is periodic.
+    """
+    q = tuple(_plain(positions[letter]) for letter in chain.letters)
+    n = q[0].size if q else len(next(iter(positions.values())))
+    given = np.zeros(len(q), dtype=np.int64)
+    motions = []
+    for k, letter in enumerate(chain.letters):
+        table = chain.tables[k]
+        if mode == NOMINAL:
+            motions.append(_NO_MOTIONS)
+        elif errors is not None:
+            given[k] = 1
+            motions.append(_plain(errors[letter]))
+        elif table.interpolation != "linear":
+            given[k] = 1
+            motions.append(_plain(table.evaluate(q[k])))
+        else:
+            if not (table.hold_ends or table.periodic) and n and (
+                q[k].min() < table.start_m or q[k].max() > table.end_m
+            ):
+                table.check_range(q[k])
+            motions.append(_NO_MOTIONS)
+    out = np.empty((n, 5 if mode == POSE else 3))
+    tool = np.ascontiguousarray(tool_m, dtype=np.float64)
+    if not q:  # a chain of no axis: the tool point, with no error
+        out[:] = 0.0
+        if mode == NOMINAL:
+            out[:] = tool
+        return out
+    motions = tuple(motions)
+
+    def fill(start: int) -> None:
+        _carry_points(q, motions, given, chain.rotary, chain.axis, chain.forward, chain.origin, chain.square,
+                      chain.offset, chain.first_row, chain.rows, chain.start, chain.end, chain.inverse_step,
+                      chain.first_bin, chain.inverse_bin, chain.bins, chain.periodic, chain.position, chain.values, chain.slopes, tool, mode, _TURN,
+                      start, min(start + CHUNK, n), out)
+
+    workers = workers or os.cpu_count() or 1
+    if workers == 1 or n <= CHUNK:
+        for start in range(0, n, CHUNK):
+            fill(start)
+    else:
+        with ThreadPoolExecutor(min(workers, -(-n // CHUNK))) as pool:
+            list(pool.map(fill, range(0, n, CHUNK)))
+    return out
+
+
+_NO_MOTIONS = np.zeros((6, 1))
+
+
+def _plain(values) -> np.ndarray:
+    """``values`` as a C-contiguous, aligned, writable float64 array (one type for the compiled
+    function, whatever view a caller passed: a read-only column of a table, a strided slice)."""
+    return np.require(values, np.float64, ("C", "A", "W"))
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _rotate(ex, ey, ez, px, py, pz):
+    """``(I + [e]x) p``."""
+    return px + (ey * pz - ez * py), py + (ez * px - ex * pz), pz + (ex * py - ey * px)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _unrotate(ex, ey, ez, px, py, pz):
+    """``(I + [e]x)⁻¹ p = (p - e × p + e (e · p)) / (1 + |e|²)``, exact."""
+    dot = ex * px + ey * py + ez * pz
+    scale = 1.0 / (1.0 + ex * ex + ey * ey + ez * ez)
+    return (
+        (px - (ey * pz - ez * py) + ex * dot) * scale,
+        (py - (ez * px - ex * pz) + ey * dot) * scale,
+        (pz - (ex * py - ey * px) + ez * dot) * scale,
+    )
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _turn(index, c, s, px, py, pz):
+    """Exact rotation of p about coordinate axis ``index`` by the angle with cosine c and sine s."""
+    if index == 0:
+        return px, c * py - s * pz, s * py + c * pz
+    if index == 1:
+        return c * px + s * pz, py, -s * px + c * pz
+    return c * px - s * py, s * px + c * py, pz
+
+
+@njit(cache=True, nogil=True)
+def _carry(px, py, pz, errors, point, q, v, cs, rotary, axis, forward, origin, square, offset):
+    """``T_wp⁻¹ · T_tool`` applied to p (a point, or a direction if not ``point``), with or without errors.
+
+    ``q``: position of each link; ``v``: its six error motions (L, 6); ``cs``: cos and sin of a
+    rotary link's angle (L, 2). Per link: ``A_k`` forward (tool side) or ``A_k⁻¹`` (workpiece side), as the module
+    docstring of :mod:`axiscal.model.kinematics` writes them."""
+    for k in range(rotary.size):
+        if rotary[k]:
+            c, s = cs[k, 0], cs[k, 1]
+            ox = oy = oz = 0.0
+            if point:
+                ox, oy, oz = origin[k, 0], origin[k, 1], origin[k, 2]
+            dx = dy = dz = 0.0
+            if errors and point:
+                dx, dy, dz = offset[k, 0], offset[k, 1], offset[k, 2]
+            if forward[k]:
+                px, py, pz = px - dx, py - dy, pz - dz
+                if errors:
+                    px, py, pz = _unrotate(square[k, 0], square[k, 1], square[k, 2], px, py, pz)
+                px, py, pz = _turn(axis[k], c, s, px, py, pz)
+                if errors:
+                    px, py, pz = _rotate(v[k, 3], v[k, 4], v[k, 5], px, py, pz)
+                    if point:
+                        px, py, pz = px + v[k, 0], py + v[k, 1], pz + v[k, 2]
+                    px, py, pz = _rotate(square[k, 0], square[k, 1], square[k, 2], px, py, pz)
+                px, py, pz = px + dx + ox, py + dy + oy, pz + dz + oz
+            else:
+                px, py, pz = px - dx - ox, py - dy - oy, pz - dz - oz
+                if errors:
+                    px, py, pz = _unrotate(square[k, 0], square[k, 1], square[k, 2], px, py, pz)
+                    if point:
+                        px, py, pz = px - v[k, 0], py - v[k, 1], pz - v[k, 2]
+                    px, py, pz = _unrotate(v[k, 3], v[k, 4], v[k, 5], px, py, pz)
+                px, py, pz = _turn(axis[k], c, -s, px, py, pz)
+                if errors:
+                    px, py, pz = _rotate(square[k, 0], square[k, 1], square[k, 2], px, py, pz)
+                px, py, pz = px + dx, py + dy, pz + dz
+            continue
+        along = axis[k]
+        if forward[k]:
+            if errors:
+                px, py, pz = _rotate(v[k, 3], v[k, 4], v[k, 5], px, py, pz)
+                if point:
+                    px, py, pz = px + v[k, 0], py + v[k, 1], pz + v[k, 2]
+            if point:
+                px, py, pz = px + origin[k, 0], py + origin[k, 1], pz + origin[k, 2]
+                if along == 0:
+                    px += q[k]
+                elif along == 1:
+                    py += q[k]
+                else:
+                    pz += q[k]
+            if errors:
+                px, py, pz = _rotate(square[k, 0], square[k, 1], square[k, 2], px, py, pz)
+        else:
+            if errors:
+                px, py, pz = _unrotate(square[k, 0], square[k, 1], square[k, 2], px, py, pz)
+            if point:
+                px, py, pz = px - origin[k, 0], py - origin[k, 1], pz - origin[k, 2]
+                if along == 0:
+                    px -= q[k]
+                elif along == 1:
+                    py -= q[k]
+                else:
+                    pz -= q[k]
+                if errors:
+                    px, py, pz = px - v[k, 0], py - v[k, 1], pz - v[k, 2]
+            if errors:
+                px, py, pz = _unrotate(v[k, 3], v[k, 4], v[k, 5], px, py, pz)
+    return px, py, pz
+
+
+@njit(cache=True, nogil=True)
+def _carry_points(positions, motions, given, rotary, axis, forward, origin, square, offset, first_row, rows,
+                  start, end, inverse_step, first_bin, inverse_bin, bins, periodic, table_position, table_values, table_slopes, tool, mode, turn,
+                  begin, stop, out):
+    """Points ``begin`` to ``stop``: interpolate every link's motions, carry, write ``out`` rows."""
+    links = rotary.size
+    q = np.empty(links)
+    v = np.empty((links, 6))
+    cs = np.empty((links, 2))
+    for i in range(begin, stop):
+        for k in range(links):
+            qk = positions[k][i]
+            q[k] = qk
+            if rotary[k]:
+                cs[k, 0] = math.cos(qk)
+                cs[k, 1] = math.sin(qk)
+            if mode == NOMINAL:
+                continue
+            if given[k]:
+                for r in range(6):
+                    v[k, r] = motions[k][r, i]
+                continue
+            x = qk
+            if periodic[k]:
+                x = start[k] + (x - start[k]) % turn
+            if x < start[k]:
+                x = start[k]
+            elif x > end[k]:
+                x = end[k]
+            base = first_row[k]
+            last = rows[k] - 2
+            if inverse_step[k] > 0.0:
+                j = int((x - start[k]) * inverse_step[k])
+                if j > last:
+                    j = last
+            elif first_bin[k] >= 0:  # the bin's first row, or the next one when x is past it
+                j = bins[first_bin[k] + int((x - start[k]) * inverse_bin[k])]
+                if x >= table_position[base + j + 1]:
+                    j += 1
+                if j > last:
+                    j = last
+            else:  # the last row at or below x, as searchsorted(side="right") - 1
+                lo, hi = 0, rows[k]
+                while lo < hi:
+                    mid = (lo + hi) // 2
+                    if table_position[base + mid] <= x:
+                        lo = mid + 1
+                    else:
+                        hi = mid
+                j = min(max(lo - 1, 0), last)
+            row = base + j
+            dq = x - table_position[row]
+            for r in range(6):
+                v[k, r] = table_values[row, r] + table_slopes[row, r] * dq
+        if mode == NOMINAL:
+            px, py, pz = _carry(tool[0], tool[1], tool[2], False, True, q, v, cs, rotary, axis, forward, origin, square, offset)
+            out[i, 0], out[i, 1], out[i, 2] = px, py, pz
+            continue
+        ax, ay, az = _carry(tool[0], tool[1], tool[2], True, True, q, v, cs, rotary, axis, forward, origin, square, offset)
+        nx, ny, nz = _carry(tool[0], tool[1], tool[2], False, True, q, v, cs, rotary, axis, forward, origin, square, offset)
+        out[i, 0], out[i, 1], out[i, 2] = ax - nx, ay - ny, az - nz
+        if mode == POSE:
+            tx, ty, tz = _carry(0.0, 0.0, 1.0, True, False, q, v, cs, rotary, axis, forward, origin, square, offset)
+            zx, zy, zz = _carry(0.0, 0.0, 1.0, False, False, q, v, cs, rotary, axis, forward, origin, square, offset)
+            xx, xy, xz = _carry(1.0, 0.0, 0.0, False, False, q, v, cs, rotary, axis, forward, origin, square, offset)
+            yx, yy, yz = _carry(0.0, 1.0, 0.0, False, False, q, v, cs, rotary, axis, forward, origin, square, offset)
+            cx, cy, cz = zy * tz - zz * ty, zz * tx - zx * tz, zx * ty - zy * tx
+            out[i, 3] = xx * cx + xy * cy + xz * cz
+            out[i, 4] = yx * cx + yy * cy + yz * cz
