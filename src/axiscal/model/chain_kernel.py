@@ -51,9 +51,10 @@ class PackedChain:
     rotary, axis, forward : ndarray of int64, shape (L,)
         1 for a rotary link; the coordinate (0, 1, 2) it moves along or turns about; 1 when applied
         forward (tool side), 0 when inverted (workpiece side).
-    origin, square, offset : ndarray, shape (L, 3)
-        Carriage origin or pivot (m); squareness of a linear link or tilt of a rotary one (rad);
-        position error of a rotary axis line (m, zero for a linear link).
+    origin, offset : ndarray, shape (L, 3)
+        Carriage origin or pivot (m); position error of a rotary axis line (m, zero for a linear link).
+    square : ndarray, shape (L, 4)
+        Squareness of a linear link or tilt of a rotary one (rad), and ``1 / (1 + |s|²)``.
     first_row, rows : ndarray of int64, shape (L,)
         Where each table's rows start in ``position``, and how many there are.
     start, end, inverse_step : ndarray, shape (L,)
@@ -129,7 +130,7 @@ def pack_chain(tool_links, workpiece_links) -> PackedChain:
         axis=np.array([link.index for link, _ in order], dtype=np.int64),
         forward=np.array([f for _, f in order], dtype=np.int64),
         origin=vectors([link.origin_m for link, _ in order]),
-        square=vectors([link.tilt_rad if r else link.squareness_rad for (link, _), r in zip(order, rotary)]),
+        square=_with_scale(vectors([link.tilt_rad if r else link.squareness_rad for (link, _), r in zip(order, rotary)])),
         offset=vectors([link.offset_m if r else zero for (link, _), r in zip(order, rotary)]),
         first_row=np.array(first, dtype=np.int64),
         rows=np.array(size, dtype=np.int64),
@@ -145,6 +146,12 @@ def pack_chain(tool_links, workpiece_links) -> PackedChain:
         slopes=np.ascontiguousarray(np.vstack(slopes) if slopes else np.zeros((0, 6))),
         tables=tuple(link.table for link, _ in order),
     )
+
+
+def _with_scale(rotations: np.ndarray) -> np.ndarray:
+    """Rotation vectors (L, 3) with ``1 / (1 + |e|²)`` as a fourth column (as :func:`_scale` works it out)."""
+    scale = np.array([1.0 / (1.0 + ex * ex + ey * ey + ez * ez) for ex, ey, ez in rotations.tolist()]).reshape(-1, 1)
+    return np.ascontiguousarray(np.hstack([rotations, scale]))
 
 
 def run_chain(chain: PackedChain, positions: dict, tool_m, *, mode: int = ERROR, errors=None, workers=None) -> np.ndarray:
@@ -234,15 +241,21 @@ def _rotate(ex, ey, ez, px, py, pz):
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _unrotate(ex, ey, ez, px, py, pz):
-    """``(I + [e]x)⁻¹ p = (p - e × p + e (e · p)) / (1 + |e|²)``, exact."""
+def _unrotate(ex, ey, ez, scale, px, py, pz):
+    """``(I + [e]x)⁻¹ p = (p - e × p + e (e · p)) / (1 + |e|²)``, exact; ``scale`` is ``1 / (1 + |e|²)``
+    (:func:`_scale`), worked out once for every use of the same e."""
     dot = ex * px + ey * py + ez * pz
-    scale = 1.0 / (1.0 + ex * ex + ey * ey + ez * ez)
     return (
         (px - (ey * pz - ez * py) + ex * dot) * scale,
         (py - (ez * px - ex * pz) + ey * dot) * scale,
         (pz - (ex * py - ey * px) + ez * dot) * scale,
     )
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _scale(ex, ey, ez):
+    """``1 / (1 + |e|²)``."""
+    return 1.0 / (1.0 + ex * ex + ey * ey + ez * ez)
 
 
 @njit(cache=True, nogil=True, inline="always")
@@ -274,7 +287,7 @@ def _carry(px, py, pz, errors, point, q, v, cs, rotary, axis, forward, origin, s
             if forward[k]:
                 px, py, pz = px - dx, py - dy, pz - dz
                 if errors:
-                    px, py, pz = _unrotate(square[k, 0], square[k, 1], square[k, 2], px, py, pz)
+                    px, py, pz = _unrotate(square[k, 0], square[k, 1], square[k, 2], square[k, 3], px, py, pz)
                 px, py, pz = _turn(axis[k], c, s, px, py, pz)
                 if errors:
                     px, py, pz = _rotate(v[k, 3], v[k, 4], v[k, 5], px, py, pz)
@@ -285,10 +298,10 @@ def _carry(px, py, pz, errors, point, q, v, cs, rotary, axis, forward, origin, s
             else:
                 px, py, pz = px - dx - ox, py - dy - oy, pz - dz - oz
                 if errors:
-                    px, py, pz = _unrotate(square[k, 0], square[k, 1], square[k, 2], px, py, pz)
+                    px, py, pz = _unrotate(square[k, 0], square[k, 1], square[k, 2], square[k, 3], px, py, pz)
                     if point:
                         px, py, pz = px - v[k, 0], py - v[k, 1], pz - v[k, 2]
-                    px, py, pz = _unrotate(v[k, 3], v[k, 4], v[k, 5], px, py, pz)
+                    px, py, pz = _unrotate(v[k, 3], v[k, 4], v[k, 5], v[k, 6], px, py, pz)
                 px, py, pz = _turn(axis[k], c, -s, px, py, pz)
                 if errors:
                     px, py, pz = _rotate(square[k, 0], square[k, 1], square[k, 2], px, py, pz)
@@ -312,7 +325,7 @@ def _carry(px, py, pz, errors, point, q, v, cs, rotary, axis, forward, origin, s
                 px, py, pz = _rotate(square[k, 0], square[k, 1], square[k, 2], px, py, pz)
         else:
             if errors:
-                px, py, pz = _unrotate(square[k, 0], square[k, 1], square[k, 2], px, py, pz)
+                px, py, pz = _unrotate(square[k, 0], square[k, 1], square[k, 2], square[k, 3], px, py, pz)
             if point:
                 px, py, pz = px - origin[k, 0], py - origin[k, 1], pz - origin[k, 2]
                 if along == 0:
@@ -324,7 +337,7 @@ def _carry(px, py, pz, errors, point, q, v, cs, rotary, axis, forward, origin, s
                 if errors:
                     px, py, pz = px - v[k, 0], py - v[k, 1], pz - v[k, 2]
             if errors:
-                px, py, pz = _unrotate(v[k, 3], v[k, 4], v[k, 5], px, py, pz)
+                px, py, pz = _unrotate(v[k, 3], v[k, 4], v[k, 5], v[k, 6], px, py, pz)
     return px, py, pz
 
 
@@ -335,7 +348,7 @@ def _carry_points(positions, motions, given, rotary, axis, forward, origin, squa
     """Points ``begin`` to ``stop``: interpolate every link's motions, carry, write ``out`` rows."""
     links = rotary.size
     q = np.empty(links)
-    v = np.empty((links, 6))
+    v = np.empty((links, 7))  # the six motions and _scale of the three rotations
     cs = np.empty((links, 2))
     for i in range(begin, stop):
         for k in range(links):
@@ -349,6 +362,7 @@ def _carry_points(positions, motions, given, rotary, axis, forward, origin, squa
             if given[k]:
                 for r in range(6):
                     v[k, r] = motions[k][r, i]
+                v[k, 6] = _scale(v[k, 3], v[k, 4], v[k, 5])
                 continue
             x = qk
             if periodic[k]:
@@ -382,6 +396,7 @@ def _carry_points(positions, motions, given, rotary, axis, forward, origin, squa
             dq = x - table_position[row]
             for r in range(6):
                 v[k, r] = table_values[row, r] + table_slopes[row, r] * dq
+            v[k, 6] = _scale(v[k, 3], v[k, 4], v[k, 5])
         if mode == NOMINAL:
             px, py, pz = _carry(tool[0], tool[1], tool[2], False, True, q, v, cs, rotary, axis, forward, origin, square, offset)
             out[i, 0], out[i, 1], out[i, 2] = px, py, pz
@@ -390,10 +405,10 @@ def _carry_points(positions, motions, given, rotary, axis, forward, origin, squa
         nx, ny, nz = _carry(tool[0], tool[1], tool[2], False, True, q, v, cs, rotary, axis, forward, origin, square, offset)
         out[i, 0], out[i, 1], out[i, 2] = ax - nx, ay - ny, az - nz
         if mode == POSE:
+            # the turn of the tool direction t about the nominal frame's x and y axes: x · (z × t) and
+            # y · (z × t), which for the right-handed orthonormal (x, y, z) are -(y · t) and x · t
             tx, ty, tz = _carry(0.0, 0.0, 1.0, True, False, q, v, cs, rotary, axis, forward, origin, square, offset)
-            zx, zy, zz = _carry(0.0, 0.0, 1.0, False, False, q, v, cs, rotary, axis, forward, origin, square, offset)
             xx, xy, xz = _carry(1.0, 0.0, 0.0, False, False, q, v, cs, rotary, axis, forward, origin, square, offset)
             yx, yy, yz = _carry(0.0, 1.0, 0.0, False, False, q, v, cs, rotary, axis, forward, origin, square, offset)
-            cx, cy, cz = zy * tz - zz * ty, zz * tx - zx * tz, zx * ty - zy * tx
-            out[i, 3] = xx * cx + xy * cy + xz * cz
-            out[i, 4] = yx * cx + yy * cy + yz * cz
+            out[i, 3] = -(yx * tx + yy * ty + yz * tz)
+            out[i, 4] = xx * tx + xy * ty + xz * tz
