@@ -6,7 +6,8 @@ interpolated from its table, and the functional point (and, when asked, the tool
 carried through ``T_wp⁻¹ · T_tool`` with and without errors, as three scalars. Nothing is
 linearised: the inverse of ``I + [e]x`` is applied in closed form, as in the NumPy composition.
 One loop over the points replaces some hundred array passes, so no temporary array is made; the
-loop releases the GIL and large inputs are split into chunks run on threads.
+loop releases the GIL and large inputs are split into chunks run on threads. The model runs it
+from 65536 points on; fewer points take the NumPy arrays of :mod:`axiscal.model.kinematics`.
 
 The interpolation is that of :meth:`axiscal.model.tables.ErrorTable.evaluate` (same segment, same
 arithmetic); a cubic table, and error motions given per point, are evaluated before and passed
@@ -30,9 +31,9 @@ from axiscal.model.tables import _TURN
 #: nothing public: the entries are :class:`axiscal.model.Machine` and :mod:`axiscal.model.kinematics`
 __all__: list[str] = []
 
-#: what :func:`run_chain` returns per point: the position error (3 columns), the position error and
-#: the orientation error of the tool axis (5 columns), or the nominal point (3 columns)
-ERROR, POSE, NOMINAL = 0, 1, 2
+#: what :func:`run_chain` returns per point: the position error (3 columns), or the position error
+#: and the orientation error of the tool axis (5 columns)
+ERROR, POSE = 0, 1
 #: points per chunk of work (the unit the threads share)
 CHUNK = 65536
 
@@ -155,7 +156,7 @@ def _with_scale(rotations: np.ndarray) -> np.ndarray:
 
 
 def run_chain(chain: PackedChain, positions: dict, tool_m, *, mode: int = ERROR, errors=None, workers=None) -> np.ndarray:
-    """Error (or nominal point) of the functional point at N sets of axis positions, on threads.
+    """Error of the functional point (and of the tool axis) at N sets of axis positions, on threads.
 
     Parameters
     ----------
@@ -164,7 +165,7 @@ def run_chain(chain: PackedChain, positions: dict, tool_m, *, mode: int = ERROR,
         Checked positions of every axis (finite; m, rad for a rotary axis).
     tool_m : ndarray, shape (3,)
         The functional point in the last tool-side carriage, m.
-    mode : {ERROR, POSE, NOMINAL}
+    mode : {ERROR, POSE}
     errors : dict of str to ndarray, shape (6, N), optional
         Checked error motions of every axis, instead of its table.
     workers : int, optional
@@ -173,7 +174,7 @@ def run_chain(chain: PackedChain, positions: dict, tool_m, *, mode: int = ERROR,
     Returns
     -------
     ndarray, shape (N, 3) or (N, 5)
-        Metres (and radians for the two orientation columns).
+        Metres (and radians for the two orientation columns of POSE).
 
     Raises
     ------
@@ -186,9 +187,7 @@ def run_chain(chain: PackedChain, positions: dict, tool_m, *, mode: int = ERROR,
     motions = []
     for k, letter in enumerate(chain.letters):
         table = chain.tables[k]
-        if mode == NOMINAL:
-            motions.append(_NO_MOTIONS)
-        elif errors is not None:
+        if errors is not None:
             given[k] = 1
             motions.append(_plain(errors[letter]))
         elif table.interpolation != "linear":
@@ -202,10 +201,8 @@ def run_chain(chain: PackedChain, positions: dict, tool_m, *, mode: int = ERROR,
             motions.append(_NO_MOTIONS)
     out = np.empty((n, 5 if mode == POSE else 3))
     tool = np.ascontiguousarray(tool_m, dtype=np.float64)
-    if not q:  # a chain of no axis: the tool point, with no error
+    if not q:  # a chain of no axis: no error
         out[:] = 0.0
-        if mode == NOMINAL:
-            out[:] = tool
         return out
     motions = tuple(motions)
 
@@ -357,8 +354,6 @@ def _carry_points(positions, motions, given, rotary, axis, forward, origin, squa
             if rotary[k]:
                 cs[k, 0] = math.cos(qk)
                 cs[k, 1] = math.sin(qk)
-            if mode == NOMINAL:
-                continue
             if given[k]:
                 for r in range(6):
                     v[k, r] = motions[k][r, i]
@@ -397,10 +392,6 @@ def _carry_points(positions, motions, given, rotary, axis, forward, origin, squa
             for r in range(6):
                 v[k, r] = table_values[row, r] + table_slopes[row, r] * dq
             v[k, 6] = _scale(v[k, 3], v[k, 4], v[k, 5])
-        if mode == NOMINAL:
-            px, py, pz = _carry(tool[0], tool[1], tool[2], False, True, q, v, cs, rotary, axis, forward, origin, square, offset)
-            out[i, 0], out[i, 1], out[i, 2] = px, py, pz
-            continue
         ax, ay, az = _carry(tool[0], tool[1], tool[2], True, True, q, v, cs, rotary, axis, forward, origin, square, offset)
         nx, ny, nz = _carry(tool[0], tool[1], tool[2], False, True, q, v, cs, rotary, axis, forward, origin, square, offset)
         out[i, 0], out[i, 1], out[i, 2] = ax - nx, ay - ny, az - nz

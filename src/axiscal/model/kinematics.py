@@ -19,9 +19,10 @@ The volumetric error is the origin of ``T_wp⁻¹ · T_tool`` minus the same wit
 expressed in the workpiece frame.
 
 :func:`volumetric_error` evaluates this without forming matrices: it carries the tool point
-through the chain as three coordinates, point by point in one compiled pass
-(:mod:`axiscal.model.chain_kernel`), which is exact (no linearisation: the inverse of
-``I + [eps]x`` is applied in closed form).
+through the chain as three coordinates, which is exact (no linearisation: the inverse of
+``I + [eps]x`` is applied in closed form). Up to 65536 points it does so as NumPy arrays; from
+there on, point by point in one compiled pass on threads (:mod:`axiscal.model.chain_kernel`,
+numba), so that a process that only asks for small maps never loads the compiler.
 :func:`reference_volumetric_error` is the plain per-point product of 4x4 matrices, kept for tests
 and benchmarks.
 
@@ -37,7 +38,7 @@ A rotary axis R (A, B, C: about X, Y, Z, right-hand rule, ISO 841) contributes
   line through ``o_k``. A pure offset ``d`` moves a point turned by θ by ``(I - R(θ)) d``.
 
 :func:`pose_error` carries the functional point and the tool direction (+Z of the last tool-side
-carriage) through such a chain, in the same pass; the orientation error of the tool axis is returned as
+carriage) through such a chain, vectorised; the orientation error of the tool axis is returned as
 its rotation about the nominal tool frame's X and Y axes.
 """
 
@@ -129,6 +130,65 @@ class RotaryLink:
         return ROTARY_INDEX[self.letter]
 
 
+def _turn(index, c, s, px, py, pz):
+    """Exact rotation of p about coordinate axis ``index`` by the angle with cosine c and sine s."""
+    if index == 0:
+        return px, c * py - s * pz, s * py + c * pz
+    if index == 1:
+        return c * px + s * pz, py, -s * px + c * pz
+    return c * px - s * py, s * px + c * py, pz
+
+
+def _carry(link, q, v, p, forward, errors, point):
+    """Apply link ``A_k`` (forward) or its inverse to p (a point, or a direction if not ``point``).
+
+    For a rotary link ``q`` is the pair (cos θ, sin θ)."""
+    px, py, pz = p
+    if isinstance(link, RotaryLink):
+        c, s = q
+        d = link.offset_m if errors else np.zeros(3)
+        tilt = link.tilt_rad if errors else np.zeros(3)
+        o = link.origin_m if point else np.zeros(3)
+        if not point:
+            d = np.zeros(3)
+        if forward:
+            px, py, pz = _unrotate(*tilt, px - d[0], py - d[1], pz - d[2])
+            px, py, pz = _turn(link.index, c, s, px, py, pz)
+            if errors:
+                px, py, pz = _rotate(v[3], v[4], v[5], px, py, pz)
+                if point:
+                    px, py, pz = px + v[0], py + v[1], pz + v[2]
+            px, py, pz = _rotate(*tilt, px, py, pz)
+            return px + d[0] + o[0], py + d[1] + o[1], pz + d[2] + o[2]
+        px, py, pz = _unrotate(*tilt, px - d[0] - o[0], py - d[1] - o[1], pz - d[2] - o[2])
+        if errors:
+            if point:
+                px, py, pz = px - v[0], py - v[1], pz - v[2]
+            px, py, pz = _unrotate(v[3], v[4], v[5], px, py, pz)
+        px, py, pz = _turn(link.index, c, -s, px, py, pz)
+        px, py, pz = _rotate(*tilt, px, py, pz)
+        return px + d[0], py + d[1], pz + d[2]
+    square = link.squareness_rad if errors else np.zeros(3)
+    shift = np.zeros(3) if not point else link.origin_m
+    if forward:
+        if errors:
+            px, py, pz = _rotate(v[3], v[4], v[5], px, py, pz)
+            if point:
+                px, py, pz = px + v[0], py + v[1], pz + v[2]
+        p = [px + shift[0], py + shift[1], pz + shift[2]]
+        if point:
+            p[link.index] = p[link.index] + q
+        return _rotate(*square, *p) if errors else tuple(p)
+    if errors:
+        px, py, pz = _unrotate(*square, px, py, pz)
+    p = [px - shift[0], py - shift[1], pz - shift[2]]
+    if point:
+        p[link.index] = p[link.index] - q
+        if errors:
+            p = [p[0] - v[0], p[1] - v[1], p[2] - v[2]]
+    return _unrotate(v[3], v[4], v[5], *p) if errors else tuple(p)
+
+
 def _check_link(link, vectors: tuple[str, ...]) -> None:
     """The table and the 3-vectors of a link, checked once when it is made."""
     check_instance("table", link.table, ErrorTable)
@@ -173,6 +233,29 @@ def _checked_chain(tool_links, workpiece_links, tool_m, positions_m, errors, wor
     return positions, errors, tool, workpiece
 
 
+def _link_inputs(links, positions_m):
+    """Per link: its position, or (cos θ, sin θ) for a rotary link (computed once for every pass)."""
+    out = {}
+    for link in links:
+        q = positions_m[link.letter]
+        out[link.letter] = (np.cos(q), np.sin(q)) if isinstance(link, RotaryLink) else q
+    return out
+
+
+def _through_chain(tool_links, workpiece_links, positions_m, motions, start, point, errors, inputs=None):
+    """``T_wp⁻¹ · T_tool`` applied to ``start`` (a point or a direction), with or without errors.
+
+    ``motions``: the error motions (6, N) of each axis letter (unused without errors)."""
+    if inputs is None:
+        inputs = _link_inputs(tuple(tool_links) + tuple(workpiece_links), positions_m)
+    p = start
+    for link in reversed(tool_links):
+        p = _carry(link, inputs[link.letter], motions[link.letter] if errors else None, p, True, errors, point)
+    for link in workpiece_links:
+        p = _carry(link, inputs[link.letter], motions[link.letter] if errors else None, p, False, errors, point)
+    return p
+
+
 def pose_error(
     tool_links: Sequence[ChainLink | RotaryLink],
     workpiece_links: Sequence[ChainLink | RotaryLink],
@@ -211,6 +294,8 @@ def pose_error(
         A position outside an error table (unless it holds its ends or is periodic).
     """
     positions_m, errors, tool_m, _ = _checked_chain(tool_links, workpiece_links, tool_m, positions_m, errors)
+    if not _compiled(positions_m):
+        return _pose_error(tool_links, workpiece_links, tool_m, positions_m, errors, orientation=bool(orientation))
     kernel = _chain_kernel()
     chain = kernel.pack_chain(tool_links, workpiece_links)
     if not orientation:
@@ -219,11 +304,65 @@ def pose_error(
     return out[:, :3], out[:, 3:]
 
 
+#: from this many points on, the chain runs compiled (:mod:`axiscal.model.chain_kernel`)
+_COMPILED_FROM = 65536
+
+
+def _compiled(positions_m: Mapping[str, np.ndarray]) -> bool:
+    """Whether checked positions are enough points to run the chain compiled."""
+    return len(next(iter(positions_m.values()))) >= _COMPILED_FROM
+
+
 def _chain_kernel():
     """:mod:`axiscal.model.chain_kernel`, imported on first use (numba takes a moment to load)."""
     from axiscal.model import chain_kernel
 
     return chain_kernel
+
+
+def _pose_error(tool_links, workpiece_links, tool_m, positions_m, errors=None, *, orientation=True):
+    """:func:`pose_error` of checked arguments."""
+    n = len(next(iter(positions_m.values())))
+    links = tuple(tool_links) + tuple(workpiece_links)
+    if errors is None:
+        motions = {link.letter: link.table.evaluate(positions_m[link.letter]) for link in links}
+    else:
+        motions = errors
+    inputs = _link_inputs(links, positions_m)
+
+    def run(vector, point, with_errors):
+        start = tuple(np.full(n, float(c)) for c in vector)
+        return np.column_stack(
+            _through_chain(tool_links, workpiece_links, positions_m, motions, start, point, with_errors, inputs)
+        )
+
+    error = run(tool_m, True, True) - run(tool_m, True, False)
+    if not orientation:
+        return error, None
+    tool = run((0.0, 0.0, 1.0), False, True)
+    nominal = run((0.0, 0.0, 1.0), False, False)
+    cross = np.cross(nominal, tool)
+    turn = np.column_stack([
+        np.einsum("ij,ij->i", run((1.0, 0.0, 0.0), False, False), cross),
+        np.einsum("ij,ij->i", run((0.0, 1.0, 0.0), False, False), cross),
+    ])
+    return error, turn
+
+
+def _rotate(ex, ey, ez, px, py, pz):
+    """``(I + [e]x) p``: p + e × p, component-wise."""
+    return px + (ey * pz - ez * py), py + (ez * px - ex * pz), pz + (ex * py - ey * px)
+
+
+def _unrotate(ex, ey, ez, px, py, pz):
+    """``(I + [e]x)⁻¹ p = (p - e × p + e (e · p)) / (1 + |e|²)``, exact."""
+    dot = ex * px + ey * py + ez * pz
+    scale = 1.0 / (1.0 + ex * ex + ey * ey + ez * ez)
+    return (
+        (px - (ey * pz - ez * py) + ex * dot) * scale,
+        (py - (ez * px - ex * pz) + ey * dot) * scale,
+        (pz - (ex * py - ey * px) + ez * dot) * scale,
+    )
 
 
 def volumetric_error(
@@ -259,11 +398,53 @@ def volumetric_error(
     AxiscalError
         A position outside an error table (unless it holds its ends).
     """
-    # T_wp⁻¹ ends with Trans(-workpiece), which shifts actual and nominal alike: workpiece_m cancels.
     positions_m, errors, tool_m, workpiece_m = _checked_chain(
         tool_links, workpiece_links, tool_m, positions_m, errors, workpiece_m)
+    if not _compiled(positions_m):
+        return _volumetric_error(tool_links, workpiece_links, tool_m, workpiece_m, positions_m, errors)
+    # T_wp⁻¹ ends with Trans(-workpiece), which shifts actual and nominal alike: workpiece_m cancels.
     kernel = _chain_kernel()
     return kernel.run_chain(kernel.pack_chain(tool_links, workpiece_links), positions_m, tool_m, mode=kernel.ERROR, errors=errors)
+
+
+def _volumetric_error(tool_links, workpiece_links, tool_m, workpiece_m, positions_m, errors=None):
+    """:func:`volumetric_error` of checked arguments."""
+    n = len(next(iter(positions_m.values())))
+    px = np.full(n, float(tool_m[0]))
+    py = np.full(n, float(tool_m[1]))
+    pz = np.full(n, float(tool_m[2]))
+    # T_wp⁻¹ ends with Trans(-workpiece), which shifts actual and nominal alike: it cancels.
+    nominal = np.array(tool_m, dtype=float)
+    nominal_q = [np.zeros(n), np.zeros(n), np.zeros(n)]
+    def motions(link: ChainLink, q: np.ndarray) -> np.ndarray:
+        return link.table.evaluate(q) if errors is None else errors[link.letter]
+
+    for link in reversed(tool_links):
+        q = positions_m[link.letter]
+        v = motions(link, q)
+        px, py, pz = _rotate(v[3], v[4], v[5], px, py, pz)
+        p = [px + v[0], py + v[1], pz + v[2]]
+        p[link.index] = p[link.index] + q
+        nominal_q[link.index] = nominal_q[link.index] + q
+        px, py, pz = p[0] + link.origin_m[0], p[1] + link.origin_m[1], p[2] + link.origin_m[2]
+        nominal = nominal + link.origin_m
+        if np.any(link.squareness_rad):
+            px, py, pz = _rotate(*link.squareness_rad, px, py, pz)
+    for link in workpiece_links:
+        q = positions_m[link.letter]
+        v = motions(link, q)
+        if np.any(link.squareness_rad):
+            px, py, pz = _unrotate(*link.squareness_rad, px, py, pz)
+        p = [px - link.origin_m[0] - v[0], py - link.origin_m[1] - v[1], pz - link.origin_m[2] - v[2]]
+        p[link.index] = p[link.index] - q
+        nominal_q[link.index] = nominal_q[link.index] - q
+        nominal = nominal - link.origin_m
+        px, py, pz = _unrotate(v[3], v[4], v[5], *p)
+    out = np.empty((n, 3))
+    out[:, 0] = px - nominal[0] - nominal_q[0]
+    out[:, 1] = py - nominal[1] - nominal_q[1]
+    out[:, 2] = pz - nominal[2] - nominal_q[2]
+    return out
 
 
 def translation_matrix(t: Sequence[float]) -> np.ndarray:

@@ -25,6 +25,10 @@ from axiscal.model.kinematics import (
     ChainLink,
     RotaryLink,
     _chain_kernel,
+    _compiled,
+    _pose_error,
+    _through_chain,
+    _volumetric_error,
     reference_volumetric_error,
 )
 from axiscal.model.tables import (
@@ -364,7 +368,9 @@ class Machine:
         q = self._positions(positions)
         n = len(next(iter(q.values())))
         if self.rotary:
-            return self._run(q, _chain_kernel().NOMINAL) - np.array(self.workpiece_m)
+            start = tuple(np.full(n, c) for c in self.tool_m)
+            p = _through_chain(self._tool_links, self._workpiece_links, q, {}, start, True, False)
+            return np.column_stack(p) - np.array(self.workpiece_m)
         p = np.tile(np.subtract(self.tool_m, self.workpiece_m), (n, 1))
         for link in self._tool_links:
             p += link.origin_m
@@ -391,8 +397,8 @@ class Machine:
             The axes' error motions given per point (rows tx, ty, tz in m; ea, eb, ec in rad),
             e.g. measured live; default: read from the error tables at ``positions``.
         workers : int, optional
-            Threads for large N (default: the number of cores). Work is split into chunks of
-            65536 points, which the threads share.
+            Threads for N of 65536 points or more (default: the number of cores), which then run
+            compiled, in chunks of 65536 points the threads share.
 
         Returns
         -------
@@ -424,7 +430,7 @@ class Machine:
                 raise AxiscalError(f"errors of axis {bad[0]} hold non-finite values")
         if workers is not None:
             check_count("workers", workers)
-        return self._run(q, _chain_kernel().ERROR, errors=errors, workers=workers)
+        return self._run(q, pose=False, errors=errors, workers=workers)
 
     def pose_error(
         self, positions: Mapping[str, np.ndarray], *, workers: int | None = None
@@ -465,15 +471,24 @@ class Machine:
         q = self._positions(positions)
         if workers is not None:
             check_count("workers", workers)
-        out = self._run(q, _chain_kernel().POSE, workers=workers)
+        out = self._run(q, pose=True, workers=workers)
         return out[:, :3], out[:, 3:]
 
-    def _run(self, q: dict[str, np.ndarray], mode: int, *, errors=None, workers: int | None = None) -> np.ndarray:
-        """The compiled chain over checked positions (and error motions): see :func:`axiscal.model.chain_kernel.run_chain`."""
+    def _run(self, q: dict[str, np.ndarray], *, pose: bool, errors=None, workers: int | None = None) -> np.ndarray:
+        """The chain over checked positions (and error motions): the error (N, 3), with the tool
+        axis orientation (N, 5) when ``pose``. Up to 65536 points as NumPy arrays, beyond that
+        compiled (:func:`axiscal.model.chain_kernel.run_chain`), on threads."""
+        tool = np.array(self.tool_m)
+        if not _compiled(q):
+            if pose:
+                return np.column_stack(_pose_error(self._tool_links, self._workpiece_links, tool, q))
+            if self.rotary:
+                return _pose_error(self._tool_links, self._workpiece_links, tool, q, errors, orientation=False)[0]
+            return _volumetric_error(self._tool_links, self._workpiece_links, tool, np.array(self.workpiece_m), q, errors)
         kernel = _chain_kernel()
         if self._packed is None:
             object.__setattr__(self, "_packed", kernel.pack_chain(self._tool_links, self._workpiece_links))
-        return kernel.run_chain(self._packed, q, np.array(self.tool_m), mode=mode, errors=errors, workers=workers)
+        return kernel.run_chain(self._packed, q, tool, mode=kernel.POSE if pose else kernel.ERROR, errors=errors, workers=workers)
 
     def reference_volumetric_error(self, positions: Mapping[str, np.ndarray]) -> np.ndarray:
         """:meth:`volumetric_error` by a plain per-point loop of 4x4 matrix products (slow; for checks).
