@@ -100,31 +100,19 @@ class PackedChain:
 def pack_chain(tool_links, workpiece_links) -> PackedChain:
     """The links of a chain (ChainLink or RotaryLink, each branch from the frame outward) packed for the kernel."""
     order = [(link, 1) for link in reversed(tuple(tool_links))] + [(link, 0) for link in workpiece_links]
-    first, size = [], []
-    positions, values, slopes = [], [], []
-    total = 0
-    for link, _ in order:
-        table = link.table
-        first.append(total)
-        size.append(table.position_m.size)
-        total += table.position_m.size
-        positions.append(table.position_m)
-        values.append(table.values.T)
-        slopes.append(np.vstack([table._slopes.T, np.zeros((1, 6))]))
+    tables = [link.table for link, _ in order]
     rotary = [isinstance(link, RotaryLink) for link, _ in order]
+    first_row = np.cumsum([0] + [table.position_m.size for table in tables])[:-1]
+    binned = [table._bin_rows if table._uniform_step is None and table._bin_rows is not None else None for table in tables]
+    first_bin = np.cumsum([0] + [0 if rows is None else rows.size for rows in binned])[:-1]
     zero = np.zeros(3)
 
     def vectors(rows) -> np.ndarray:
         return np.ascontiguousarray(np.reshape(rows, (len(order), 3)), dtype=np.float64)
 
-    step = [link.table._uniform_step for link, _ in order]
-    first_bin, bins, count = [], [], 0
-    for link, _ in order:
-        rows = link.table._bin_rows
-        first_bin.append(-1 if rows is None or link.table._uniform_step is not None else count)
-        if first_bin[-1] >= 0:
-            bins.append(rows)
-            count += rows.size
+    def stacked(arrays, width: int) -> np.ndarray:
+        return np.ascontiguousarray(np.vstack(arrays) if arrays else np.zeros((0, width)))
+
     return PackedChain(
         letters=tuple(link.letter for link, _ in order),
         rotary=np.array(rotary, dtype=np.int64),
@@ -133,19 +121,19 @@ def pack_chain(tool_links, workpiece_links) -> PackedChain:
         origin=vectors([link.origin_m for link, _ in order]),
         square=_with_scale(vectors([link.tilt_rad if r else link.squareness_rad for (link, _), r in zip(order, rotary)])),
         offset=vectors([link.offset_m if r else zero for (link, _), r in zip(order, rotary)]),
-        first_row=np.array(first, dtype=np.int64),
-        rows=np.array(size, dtype=np.int64),
-        start=np.array([link.table.start_m for link, _ in order], dtype=np.float64),
-        end=np.array([link.table.end_m for link, _ in order], dtype=np.float64),
-        inverse_step=np.array([1.0 / s if s is not None else 0.0 for s in step], dtype=np.float64),
-        first_bin=np.array(first_bin, dtype=np.int64),
-        inverse_bin=np.array([1.0 / link.table._bin_width for link, _ in order], dtype=np.float64),
-        bins=np.ascontiguousarray(np.concatenate(bins) if bins else np.zeros(0), dtype=np.int64),
-        periodic=np.array([int(link.table.periodic) for link, _ in order], dtype=np.int64),
-        position=np.ascontiguousarray(np.concatenate(positions) if positions else np.zeros(0)),
-        values=np.ascontiguousarray(np.vstack(values) if values else np.zeros((0, 6))),
-        slopes=np.ascontiguousarray(np.vstack(slopes) if slopes else np.zeros((0, 6))),
-        tables=tuple(link.table for link, _ in order),
+        first_row=np.array(first_row, dtype=np.int64),
+        rows=np.array([table.position_m.size for table in tables], dtype=np.int64),
+        start=np.array([table.start_m for table in tables], dtype=np.float64),
+        end=np.array([table.end_m for table in tables], dtype=np.float64),
+        inverse_step=np.array([0.0 if t._uniform_step is None else 1.0 / t._uniform_step for t in tables], dtype=np.float64),
+        first_bin=np.array([-1 if rows is None else k for rows, k in zip(binned, first_bin)], dtype=np.int64),
+        inverse_bin=np.array([1.0 / table._bin_width for table in tables], dtype=np.float64),
+        bins=np.ascontiguousarray(np.concatenate([rows for rows in binned if rows is not None] or [np.zeros(0)]), dtype=np.int64),
+        periodic=np.array([int(table.periodic) for table in tables], dtype=np.int64),
+        position=np.ascontiguousarray(np.concatenate([table.position_m for table in tables] or [np.zeros(0)])),
+        values=stacked([table.values.T for table in tables], 6),
+        slopes=stacked([np.vstack([table._slopes.T, np.zeros((1, 6))]) for table in tables], 6),
+        tables=tuple(tables),
     )
 
 
@@ -161,6 +149,7 @@ def run_chain(chain: PackedChain, positions: dict, tool_m, *, mode: int = ERROR,
     Parameters
     ----------
     chain : PackedChain
+        From :func:`pack_chain`.
     positions : dict of str to ndarray, shape (N,)
         Checked positions of every axis (finite; m, rad for a rotary axis).
     tool_m : ndarray, shape (3,)
@@ -209,8 +198,8 @@ def run_chain(chain: PackedChain, positions: dict, tool_m, *, mode: int = ERROR,
     def fill(start: int) -> None:
         _carry_points(q, motions, given, chain.rotary, chain.axis, chain.forward, chain.origin, chain.square,
                       chain.offset, chain.first_row, chain.rows, chain.start, chain.end, chain.inverse_step,
-                      chain.first_bin, chain.inverse_bin, chain.bins, chain.periodic, chain.position, chain.values, chain.slopes, tool, mode, _TURN,
-                      start, min(start + CHUNK, n), out)
+                      chain.first_bin, chain.inverse_bin, chain.bins, chain.periodic, chain.position, chain.values,
+                      chain.slopes, tool, mode, _TURN, start, min(start + CHUNK, n), out)
 
     workers = workers or os.cpu_count() or 1
     if workers == 1 or n <= CHUNK:
