@@ -8,7 +8,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from axiscal.errors import AxiscalError
-from axiscal.io.plain_csv import read_plain, stamp
+from axiscal.io.plain_csv import HEAD, read_plain, stamp
 from axiscal.io.tabular import MAX_MAGNITUDE, _parse, read_csv
 
 SETTINGS = settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
@@ -135,6 +135,30 @@ def test_a_header_past_the_first_64_kib_is_left_to_the_strict_reader(tmp_path):
     data = b"# long preamble\n" * 5000 + b"a,b\n1,2\n"
     path = tmp_path / "f.csv"
     path.write_bytes(data)
-    assert read_plain(data, path, stamp(path), MAX_MAGNITUDE) is None
+    assert read_plain(data[:HEAD], path, stamp(path), MAX_MAGNITUDE) is None
     table = read_csv(path)
     assert table.header_line == 5001 and table.numeric("b").tolist() == [2.0]
+
+
+def test_rows_ended_by_any_line_end_keep_their_lines(tmp_path):
+    """LF, CRLF and lone CR mixed among the rows of a file large enough for pandas' threads."""
+    rng = np.random.default_rng(4)
+    ends = rng.choice(["\n", "\r\n", "\r"], 150_000)
+    text = "# x\r\nposition_mm,deviation_um\n" + "".join(f"{k},{k * 0.25}{end}" for k, end in enumerate(ends))
+    path = tmp_path / "ends.csv"
+    path.write_bytes(text.encode())
+    table = read_csv(path)
+    assert table._checked and len(table) == 150_000 and table.line_of(149_999) == 150_002
+    np.testing.assert_array_equal(table.numeric("position_mm"), np.arange(150_000))
+    assert table.text("deviation_um")[:3] == ["0.0", "0.25", "0.5"]
+
+
+def test_the_text_of_a_file_changed_since_it_was_read_is_refused(tmp_path):
+    path = tmp_path / "f.csv"
+    path.write_bytes(b"a,b\n1,2\n3,4\n")
+    table = read_csv(path)
+    assert table.numeric("b").tolist() == [2.0, 4.0]
+    path.write_bytes(b"a,b\n1,2\n3,4\n5,6\n")
+    with pytest.raises(AxiscalError, match="changed while it was being read") as info:
+        table.text("b")
+    assert info.value.path == str(path) or str(path) in str(info.value)

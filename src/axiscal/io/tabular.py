@@ -11,6 +11,7 @@ first line).
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import io
 import math
@@ -27,7 +28,7 @@ from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_instance, check_mapping, check_path, check_same_length
 from axiscal.io.atomic import write_text
 from axiscal.io.lines import Lines
-from axiscal.io.plain_csv import pandas_options, read_plain
+from axiscal.io.plain_csv import HEAD, pandas_options, read_body, read_plain
 from axiscal.io.plain_csv import stamp as _stamp
 
 #: the largest magnitude a numeric cell may hold, in its column's unit (1e12 mm is 1e9 m)
@@ -361,22 +362,35 @@ def read_csv(path: str | Path, *, min_rows: int = 1) -> CsvTable:
     array([ 1.5, -2. ])
     """
     path = check_path("path", path)
-    try:
-        stamp = _stamp(path)
+    with _reading(path):
+        stamp = _stamp(path)  # before any read: a later change of the file shows against it
+        with open(path, "rb") as handle:
+            head = handle.read(HEAD)
+    table = _read_plain(head, str(path), min_rows, path, stamp)
+    if table is not None:
+        return table
+    with _reading(path):
         data = path.read_bytes()
+    return _parse(data, str(path), min_rows, file=path, stamp=stamp)
+
+
+@contextlib.contextmanager
+def _reading(path: Path):
+    """Reading ``path``: a missing, unreadable or folder path raises AxiscalError naming it."""
+    try:
+        yield
     except FileNotFoundError:
         raise AxiscalError("file not found", path=path) from None
     except IsADirectoryError:
         raise AxiscalError("is a folder, not a file", path=path) from None
     except OSError as exc:
         raise AxiscalError(f"cannot read file ({exc.strerror or exc})", path=path) from None
-    return _read_plain(data, str(path), min_rows, path, stamp) or _parse(data, str(path), min_rows, file=path, stamp=stamp)
 
 
-def _read_plain(data: bytes, path: str, min_rows: int, file: Path, stamp: tuple) -> CsvTable | None:
+def _read_plain(head: bytes, path: str, min_rows: int, file: Path, stamp: tuple) -> CsvTable | None:
     """The table of a file of plain numbers, read by pandas in one pass; None for any other file
     (the strict reading of :func:`_parse` then reads it and names what is wrong)."""
-    plain = read_plain(data, file, stamp, MAX_MAGNITUDE)
+    plain = read_plain(head, file, stamp, MAX_MAGNITUDE)
     if plain is None or len(plain.frame) < min_rows:
         return None
     try:
@@ -391,7 +405,8 @@ def _read_plain(data: bytes, path: str, min_rows: int, file: Path, stamp: tuple)
     def reread(i: int) -> np.ndarray:
         import pandas as pd
 
-        column = pd.read_csv(io.BytesIO(plain.body), usecols=[i], dtype=str, **options)[i]
+        body = read_body(file, stamp, plain.body_start)
+        column = pd.read_csv(io.BytesIO(body), usecols=[i], dtype=str, **options)[i]
         return column.str.strip().to_numpy(dtype=object)
 
     table._set(_frame=plain.frame, _reread=reread, _checked=frozenset(range(len(header))))
