@@ -254,7 +254,7 @@ def _turn(index, c, s, px, py, pz):
     return c * px - s * py, s * px + c * py, pz
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _carry(px, py, pz, errors, point, q, v, cs, rotary, axis, forward, origin, square, offset):
     """``T_wp⁻¹ · T_tool`` applied to p (a point, or a direction if not ``point``), with or without errors.
 
