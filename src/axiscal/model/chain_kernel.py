@@ -187,19 +187,25 @@ def run_chain(chain: PackedChain, positions: dict, tool_m, *, mode: int = ERROR,
                 q[k].min() < table.start_m or q[k].max() > table.end_m
             ):
                 table.check_range(q[k])
-            motions.append(_NO_MOTIONS)
+            motions.append(None)
     out = np.empty((n, 5 if mode == POSE else 3))
     tool = np.ascontiguousarray(tool_m, dtype=np.float64)
     if not q:  # a chain of no axis: no error
         out[:] = 0.0
         return out
-    motions = tuple(motions)
+    any_given = bool(given.any())
 
     def fill(start: int) -> None:
-        _carry_points(q, motions, given, chain.rotary, chain.axis, chain.forward, chain.origin, chain.square,
+        # one array of the chunk's positions (and given motions) per chunk, whatever the number of
+        # links: one compiled signature serves every machine
+        stop = min(start + CHUNK, n)
+        chunk = np.stack([v[start:stop] for v in q])
+        given_chunk = np.stack([m[:, start:stop] if g else _no_motions(stop - start) for m, g in zip(motions, given)]) \
+            if any_given else _NO_MOTIONS
+        _carry_points(chunk, given_chunk, given, chain.rotary, chain.axis, chain.forward, chain.origin, chain.square,
                       chain.offset, chain.first_row, chain.rows, chain.start, chain.end, chain.inverse_step,
                       chain.first_bin, chain.inverse_bin, chain.bins, chain.periodic, chain.position, chain.values,
-                      chain.slopes, tool, mode, _TURN, start, min(start + CHUNK, n), out)
+                      chain.slopes, tool, mode, _TURN, start, stop, out)
 
     workers = workers or os.cpu_count() or 1
     if workers == 1 or n <= CHUNK:
@@ -211,7 +217,12 @@ def run_chain(chain: PackedChain, positions: dict, tool_m, *, mode: int = ERROR,
     return out
 
 
-_NO_MOTIONS = np.zeros((6, 1))
+_NO_MOTIONS = np.zeros((1, 6, 1))
+
+
+def _no_motions(size: int) -> np.ndarray:
+    """Zero motions of one link over ``size`` points (a link read from its table among given ones)."""
+    return np.zeros((6, size))
 
 
 def _plain(values) -> np.ndarray:
@@ -331,21 +342,24 @@ def _carry(px, py, pz, errors, point, q, v, cs, rotary, axis, forward, origin, s
 def _carry_points(positions, motions, given, rotary, axis, forward, origin, square, offset, first_row, rows,
                   start, end, inverse_step, first_bin, inverse_bin, bins, periodic, table_position, table_values, table_slopes, tool, mode, turn,
                   begin, stop, out):
-    """Points ``begin`` to ``stop``: interpolate every link's motions, carry, write ``out`` rows."""
+    """Points ``begin`` to ``stop``: interpolate every link's motions, carry, write ``out`` rows.
+
+    ``positions`` (L, stop - begin) and ``motions`` (L, 6, stop - begin) hold the chunk's points;
+    ``motions[k]`` is read only for a link with ``given[k]``."""
     links = rotary.size
     q = np.empty(links)
     v = np.empty((links, 7))  # the six motions and _scale of the three rotations
     cs = np.empty((links, 2))
     for i in range(begin, stop):
         for k in range(links):
-            qk = positions[k][i]
+            qk = positions[k, i - begin]
             q[k] = qk
             if rotary[k]:
                 cs[k, 0] = math.cos(qk)
                 cs[k, 1] = math.sin(qk)
             if given[k]:
                 for r in range(6):
-                    v[k, r] = motions[k][r, i]
+                    v[k, r] = motions[k, r, i - begin]
                 v[k, 6] = _scale(v[k, 3], v[k, 4], v[k, 5])
                 continue
             x = qk
