@@ -360,11 +360,15 @@ def _carry_points(positions, motions, given, rotary, axis, forward, origin, squa
             if given[k]:
                 for r in range(6):
                     v[k, r] = motions[k, r, i - begin]
-                v[k, 6] = _scale(v[k, 3], v[k, 4], v[k, 5])
+                if not forward[k]:
+                    v[k, 6] = _scale(v[k, 3], v[k, 4], v[k, 5])
                 continue
             x = qk
             if periodic[k]:
-                x = start[k] + (x - start[k]) % turn
+                d = x - start[k]
+                if d < 0.0 or d >= turn:  # the remainder of a value already in [0, turn) is itself
+                    d = d % turn
+                x = start[k] + d
             if x < start[k]:
                 x = start[k]
             elif x > end[k]:
@@ -394,7 +398,8 @@ def _carry_points(positions, motions, given, rotary, axis, forward, origin, squa
             dq = x - table_position[row]
             for r in range(6):
                 v[k, r] = table_values[row, r] + table_slopes[row, r] * dq
-            v[k, 6] = _scale(v[k, 3], v[k, 4], v[k, 5])
+            if not forward[k]:  # only an inverted link undoes its rotations
+                v[k, 6] = _scale(v[k, 3], v[k, 4], v[k, 5])
         ax, ay, az = _carry(tool[0], tool[1], tool[2], True, True, q, v, cs, rotary, axis, forward, origin, square, offset)
         nx, ny, nz = _carry(tool[0], tool[1], tool[2], False, True, q, v, cs, rotary, axis, forward, origin, square, offset)
         out[i, 0], out[i, 1], out[i, 2] = ax - nx, ay - ny, az - nz
