@@ -11,6 +11,7 @@ first line).
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import io
 import math
@@ -27,6 +28,8 @@ from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_instance, check_mapping, check_path, check_same_length
 from axiscal.io.atomic import write_text
 from axiscal.io.lines import Lines
+from axiscal.io.plain_csv import HEAD, pandas_options, read_body, read_plain
+from axiscal.io.plain_csv import stamp as _stamp
 
 #: the largest magnitude a numeric cell may hold, in its column's unit (1e12 mm is 1e9 m)
 MAX_MAGNITUDE = 1e12
@@ -141,6 +144,7 @@ class CsvTable:
             _frame=None,  # pandas' columns, with the dtypes its parser inferred
             _reread=None,  # reads one column as text from the same bytes
             _strings={},
+            _checked=frozenset(),  # columns of _frame known to be finite numbers within MAX_MAGNITUDE
         )
 
     def _set(self, **values) -> None:
@@ -163,7 +167,7 @@ class CsvTable:
         return tuple(zip(*columns)) if columns and self._n else ()
 
     def _build_lines(self) -> tuple[int, ...]:
-        return tuple(self._row_lines.tolist())
+        return tuple(int(line) for line in self._row_lines) if isinstance(self._row_lines, range) else tuple(self._row_lines.tolist())
 
     @property
     def header_line(self) -> int:
@@ -231,6 +235,8 @@ class CsvTable:
         """
         self.require(name)
         i = self._index[name]
+        if i in self._checked:
+            return self._frame[i].to_numpy(dtype=np.float64, copy=True)
         if self._frame is not None and self._frame[i].dtype.kind in "iuf":
             values = self._frame[i].to_numpy(dtype=np.float64, copy=True)
             with np.errstate(invalid="ignore"):
@@ -356,16 +362,55 @@ def read_csv(path: str | Path, *, min_rows: int = 1) -> CsvTable:
     array([ 1.5, -2. ])
     """
     path = check_path("path", path)
-    try:
-        stamp = _stamp(path)
+    with _reading(path):
+        stamp = _stamp(path)  # before any read: a later change of the file shows against it
+        with open(path, "rb") as handle:
+            head = handle.read(HEAD)
+    table = _read_plain(head, str(path), min_rows, path, stamp)
+    if table is not None:
+        return table
+    with _reading(path):
         data = path.read_bytes()
+    return _parse(data, str(path), min_rows, file=path, stamp=stamp)
+
+
+@contextlib.contextmanager
+def _reading(path: Path):
+    """Reading ``path``: a missing, unreadable or folder path raises AxiscalError naming it."""
+    try:
+        yield
     except FileNotFoundError:
         raise AxiscalError("file not found", path=path) from None
     except IsADirectoryError:
         raise AxiscalError("is a folder, not a file", path=path) from None
     except OSError as exc:
         raise AxiscalError(f"cannot read file ({exc.strerror or exc})", path=path) from None
-    return _parse(data, str(path), min_rows, file=path, stamp=stamp)
+
+
+def _read_plain(head: bytes, path: str, min_rows: int, file: Path, stamp: tuple) -> CsvTable | None:
+    """The table of a file of plain numbers, read by pandas in one pass; None for any other file
+    (the strict reading of :func:`_parse` then reads it and names what is wrong)."""
+    plain = read_plain(head, file, stamp, MAX_MAGNITUDE)
+    if plain is None or len(plain.frame) < min_rows:
+        return None
+    try:
+        header = _checked_header(plain.header, path, plain.header_line)
+    except AxiscalError:
+        return None
+    first = plain.header_line + 1
+    rows = range(first, first + len(plain.frame))
+    table = CsvTable._parsed(path, header, rows, plain.header_line, comma=plain.delimiter != ",")  # type: ignore[arg-type]
+    options = pandas_options(len(header), plain.delimiter, plain.delimiter != ",")
+
+    def reread(i: int) -> np.ndarray:
+        import pandas as pd
+
+        body = read_body(file, stamp, plain.body_start)
+        column = pd.read_csv(io.BytesIO(body), usecols=[i], dtype=str, **options)[i]
+        return column.str.strip().to_numpy(dtype=object)
+
+    table._set(_frame=plain.frame, _reread=reread, _checked=frozenset(range(len(header))))
+    return table
 
 
 def parse_csv(lines: Iterable[str], *, path: str = "<input>", min_rows: int = 1) -> CsvTable:
@@ -471,18 +516,7 @@ def _read_frame(
     first = lines.data.count(sep, start, int(lines.ends[rows[0]]))
     if first != width - 1 or np.count_nonzero(seps == ord(sep)) != (width - 1) * len(rows):
         _check_cell_counts(table, lines.count(sep, rows) + 1)
-    options = dict(
-        sep=delimiter,
-        header=None,
-        names=list(range(width)),
-        index_col=False,
-        na_filter=False,
-        quoting=csv.QUOTE_NONE,
-        skip_blank_lines=False,
-        decimal="," if table.decimal_comma else ".",
-        engine="c",
-        encoding="utf-8",
-    )
+    options = pandas_options(width, delimiter, table.decimal_comma)
     try:
         with warnings.catch_warnings():
             # parsed in chunks, a column may mix numbers and text: numeric() then reads its text
@@ -505,12 +539,6 @@ def _read_frame(
 
     table._set(_frame=frame, _reread=reread)
     return None
-
-
-def _stamp(path: Path) -> tuple[int, int, int]:
-    """Size, modification time and inode of a file: a change means it was rewritten."""
-    found = os.stat(path)
-    return found.st_size, found.st_mtime_ns, found.st_ino
 
 
 def _check_cell_counts(table: CsvTable, counts: Sequence[int] | np.ndarray) -> None:

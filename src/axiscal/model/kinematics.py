@@ -19,8 +19,10 @@ The volumetric error is the origin of ``T_wp⁻¹ · T_tool`` minus the same wit
 expressed in the workpiece frame.
 
 :func:`volumetric_error` evaluates this without forming matrices: it carries the tool point
-through the chain as three coordinate arrays, which is exact (no linearisation: the inverse of
-``I + [eps]x`` is applied in closed form) and vectorised over points.
+through the chain as three coordinates, which is exact (no linearisation: the inverse of
+``I + [eps]x`` is applied in closed form). Up to 65536 points it does so as NumPy arrays; from
+there on, point by point in one compiled pass on threads (:mod:`axiscal.model.chain_kernel`,
+numba), so that a process that only asks for small maps never loads the compiler.
 :func:`reference_volumetric_error` is the plain per-point product of 4x4 matrices, kept for tests
 and benchmarks.
 
@@ -292,7 +294,30 @@ def pose_error(
         A position outside an error table (unless it holds its ends or is periodic).
     """
     positions_m, errors, tool_m, _ = _checked_chain(tool_links, workpiece_links, tool_m, positions_m, errors)
-    return _pose_error(tool_links, workpiece_links, tool_m, positions_m, errors, orientation=bool(orientation))
+    if not _compiled(positions_m):
+        return _pose_error(tool_links, workpiece_links, tool_m, positions_m, errors, orientation=bool(orientation))
+    kernel = _chain_kernel()
+    chain = kernel.pack_chain(tool_links, workpiece_links)
+    if not orientation:
+        return kernel.run_chain(chain, positions_m, tool_m, mode=kernel.ERROR, errors=errors), None
+    out = kernel.run_chain(chain, positions_m, tool_m, mode=kernel.POSE, errors=errors)
+    return out[:, :3], out[:, 3:]
+
+
+#: from this many points on, the chain runs compiled (:mod:`axiscal.model.chain_kernel`)
+_COMPILED_FROM = 65536
+
+
+def _compiled(positions_m: Mapping[str, np.ndarray]) -> bool:
+    """Whether checked positions are enough points to run the chain compiled."""
+    return len(next(iter(positions_m.values()))) >= _COMPILED_FROM
+
+
+def _chain_kernel():
+    """:mod:`axiscal.model.chain_kernel`, imported on first use (numba takes a moment to load)."""
+    from axiscal.model import chain_kernel
+
+    return chain_kernel
 
 
 def _pose_error(tool_links, workpiece_links, tool_m, positions_m, errors=None, *, orientation=True):
@@ -375,7 +400,11 @@ def volumetric_error(
     """
     positions_m, errors, tool_m, workpiece_m = _checked_chain(
         tool_links, workpiece_links, tool_m, positions_m, errors, workpiece_m)
-    return _volumetric_error(tool_links, workpiece_links, tool_m, workpiece_m, positions_m, errors)
+    if not _compiled(positions_m):
+        return _volumetric_error(tool_links, workpiece_links, tool_m, workpiece_m, positions_m, errors)
+    # T_wp⁻¹ ends with Trans(-workpiece), which shifts actual and nominal alike: workpiece_m cancels.
+    kernel = _chain_kernel()
+    return kernel.run_chain(kernel.pack_chain(tool_links, workpiece_links), positions_m, tool_m, mode=kernel.ERROR, errors=errors)
 
 
 def _volumetric_error(tool_links, workpiece_links, tool_m, workpiece_m, positions_m, errors=None):

@@ -9,9 +9,7 @@ carries Y and Z. The volumetric error is the tool point relative to the workpiec
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Mapping, Sequence
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -26,6 +24,8 @@ from axiscal.model.kinematics import (
     AXIS_INDEX,
     ChainLink,
     RotaryLink,
+    _chain_kernel,
+    _compiled,
     _pose_error,
     _through_chain,
     _volumetric_error,
@@ -63,7 +63,6 @@ __all__ = [
     "positions_from_points",
 ]
 
-_CHUNK = 65536
 #: squareness term -> (axis whose guideway it turns, reference axis, index of the rotation vector component)
 _SQUARENESS_PLACE = {"EC0Y": ("Y", "X", 2), "EB0Z": ("Z", "X", 1), "EA0Z": ("Z", "Y", 0)}
 #: where a squareness term sits in the chain; the first is the default (docs/conventions.md)
@@ -258,6 +257,7 @@ class Machine:
 
         object.__setattr__(self, "_workpiece_links", tuple(link(k) for k in workpiece_side))
         object.__setattr__(self, "_tool_links", tuple(link(k) for k in tool_side))
+        object.__setattr__(self, "_packed", None)  # the chain packed for the compiled kernel, on first use
         for label in ("tool_m", "workpiece_m"):
             value = _floats(getattr(self, label), label)
             if value.shape != (3,) or not np.all(np.isfinite(value)):
@@ -397,8 +397,8 @@ class Machine:
             The axes' error motions given per point (rows tx, ty, tz in m; ea, eb, ec in rad),
             e.g. measured live; default: read from the error tables at ``positions``.
         workers : int, optional
-            Threads for large N (default: the number of cores). Work is split into chunks of
-            65536 points, which also keeps the temporaries in cache.
+            Threads for N of 65536 points or more (default: the number of cores), which then run
+            compiled, in chunks of 65536 points the threads share.
 
         Returns
         -------
@@ -428,16 +428,9 @@ class Machine:
             bad = [k for k, v in errors.items() if not np.isfinite(v).all()]
             if bad:
                 raise AxiscalError(f"errors of axis {bad[0]} hold non-finite values")
-        tool, workpiece = np.array(self.tool_m), np.array(self.workpiece_m)
-
-        def run(start: int, stop: int) -> np.ndarray:
-            part = {k: v[start:stop] for k, v in q.items()}
-            given = None if errors is None else {k: v[:, start:stop] for k, v in errors.items()}
-            if self.rotary:
-                return _pose_error(self._tool_links, self._workpiece_links, tool, part, given, orientation=False)[0]
-            return _volumetric_error(self._tool_links, self._workpiece_links, tool, workpiece, part, given)
-
-        return self._chunked(run, q, n, errors is None, workers, 3)
+        if workers is not None:
+            check_count("workers", workers)
+        return self._run(q, pose=False, errors=errors, workers=workers)
 
     def pose_error(
         self, positions: Mapping[str, np.ndarray], *, workers: int | None = None
@@ -476,38 +469,26 @@ class Machine:
         [[2e-05, 0.0, 0.0]]
         """
         q = self._positions(positions)
-        n = len(next(iter(q.values())))
-        tool = np.array(self.tool_m)
-
-        def run(start: int, stop: int) -> np.ndarray:
-            part = {k: v[start:stop] for k, v in q.items()}
-            return np.column_stack(_pose_error(self._tool_links, self._workpiece_links, tool, part))
-
-        out = self._chunked(run, q, n, True, workers, 5)
-        return out[:, :3], out[:, 3:]
-
-    def _chunked(self, run, q: dict[str, np.ndarray], n: int, check: bool, workers: int | None, width: int) -> np.ndarray:
-        """``run(start, stop)`` over chunks of points, in threads; the results stacked."""
         if workers is not None:
             check_count("workers", workers)
-        if n <= _CHUNK:
-            return run(0, n)
-        if check:
-            for letter in self.letters:
-                self.table(letter).check_range(q[letter])
-        out = np.empty((n, width))
+        out = self._run(q, pose=True, workers=workers)
+        return out[:, :3], out[:, 3:]
 
-        def fill(start: int) -> None:
-            out[start : start + _CHUNK] = run(start, start + _CHUNK)
-
-        workers = workers or os.cpu_count() or 1
-        if workers == 1:
-            for start in range(0, n, _CHUNK):
-                fill(start)
-        else:
-            with ThreadPoolExecutor(workers) as pool:
-                list(pool.map(fill, range(0, n, _CHUNK)))
-        return out
+    def _run(self, q: dict[str, np.ndarray], *, pose: bool, errors=None, workers: int | None = None) -> np.ndarray:
+        """The chain over checked positions (and error motions): the error (N, 3), with the tool
+        axis orientation (N, 5) when ``pose``. Up to 65536 points as NumPy arrays, beyond that
+        compiled (:func:`axiscal.model.chain_kernel.run_chain`), on threads."""
+        tool = np.array(self.tool_m)
+        if not _compiled(q):
+            if pose:
+                return np.column_stack(_pose_error(self._tool_links, self._workpiece_links, tool, q))
+            if self.rotary:
+                return _pose_error(self._tool_links, self._workpiece_links, tool, q, errors, orientation=False)[0]
+            return _volumetric_error(self._tool_links, self._workpiece_links, tool, np.array(self.workpiece_m), q, errors)
+        kernel = _chain_kernel()
+        if self._packed is None:
+            object.__setattr__(self, "_packed", kernel.pack_chain(self._tool_links, self._workpiece_links))
+        return kernel.run_chain(self._packed, q, tool, mode=kernel.POSE if pose else kernel.ERROR, errors=errors, workers=workers)
 
     def reference_volumetric_error(self, positions: Mapping[str, np.ndarray]) -> np.ndarray:
         """:meth:`volumetric_error` by a plain per-point loop of 4x4 matrix products (slow; for checks).
