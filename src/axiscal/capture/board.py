@@ -8,6 +8,7 @@ from typing import Any
 
 from axiscal.capture.run import CaptureProgress, StopReading
 from axiscal.capture.steps import PlanSteps
+from axiscal.io.arguments import check_instance
 from axiscal.units import MM, UM
 
 __all__ = ["CaptureBoard"]
@@ -25,7 +26,8 @@ class CaptureBoard:
     """
 
     def __init__(self, steps: PlanSteps, source: str = ""):
-        self._steps = steps
+        self._steps = check_instance("steps", steps, PlanSteps)
+        check_instance("source", source, str)
         self._lock = threading.Lock()
         targets = [k for k in range(steps.step.size) if math.isfinite(steps.target_m[k])]
         self._plan = [{"step": int(steps.step[k]), "target_mm": float(steps.target_m[k] / MM), "run": int(steps.run[k]),

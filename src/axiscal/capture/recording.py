@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_path
+from axiscal.io.arguments import check_array, check_instance, check_mapping, check_path
 from axiscal.io.importers.columnmap import IMPORT_UNITS
 from axiscal.io.importers.rtx import read_rtx
 from axiscal.io.tabular import read_csv
@@ -48,10 +48,17 @@ def environment_columns(names) -> tuple[str, ...]:
     tuple of str
         ``air_temperature_c``, ``pressure_pa``, ``humidity_pct`` and every ``material_temperature*_c``,
         in the order given.
+
+    Raises
+    ------
+    AxiscalError
+        For ``names`` that are not a sequence of names.
     """
+    if isinstance(names, str) or not hasattr(names, "__iter__"):
+        raise AxiscalError(f"names must be a sequence of column names, not {names!r}")
     return tuple(
         n for n in names
-        if n in ENVIRONMENT_COLUMNS[:3] or (n.startswith("material_temperature") and n.endswith("_c"))
+        if isinstance(n, str) and (n in ENVIRONMENT_COLUMNS[:3] or (n.startswith("material_temperature") and n.endswith("_c")))
     )
 
 
@@ -81,6 +88,19 @@ class Recording:
     source: str = "<recording>"
     header: Mapping[str, str] = field(default_factory=dict)
     locate: Callable[[int], int] | None = None
+
+    def __post_init__(self) -> None:
+        time_s = check_array("time_s", self.time_s, ndim=1, unit="s")
+        reading = check_array("reading_m", self.reading_m, ndim=1, finite=False, unit="m")
+        if reading.shape != time_s.shape:
+            raise AxiscalError(f"reading_m must hold one reading per time ({time_s.size}), not {reading.size}")
+        check_mapping("channels", self.channels, what="a mapping of sensor columns to arrays")
+        for name, values in self.channels.items():
+            if not isinstance(name, str) or np.shape(values) != time_s.shape:
+                raise AxiscalError(f"channels must map names to arrays of {time_s.size} values, not {name!r}")
+        check_instance("source", self.source, str)
+        if self.locate is not None and not callable(self.locate):
+            raise AxiscalError(f"locate must be a function of the sample index, not {self.locate!r}")
 
     def line_of(self, index: int) -> int | None:
         """Line of the file holding sample ``index`` (None for a file without lines)."""

@@ -23,7 +23,7 @@ import numpy as np
 
 from axiscal.capture.stops import Stop
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_instance
+from axiscal.io.arguments import check_array, check_count, check_instance, check_number
 from axiscal.io.jsonio import read_json, sidecar_path
 from axiscal.io.tabular import read_csv
 from axiscal.positioning.plan import PositioningTestPlan
@@ -62,6 +62,15 @@ class PlanSteps:
     move_to_m: np.ndarray
     seed: int | None = None
     source: str = "<plan>"
+
+    def __post_init__(self) -> None:
+        n = check_array("step", self.step, ndim=1, min_len=1, unit="").size
+        for name in ("run", "target_m", "move_to_m"):
+            values = check_array(name, getattr(self, name), ndim=1, finite=name != "target_m", unit="")
+            if values.size != n:
+                raise AxiscalError(f"{name} must hold one value per step ({n}), not {values.size}")
+        if len(self.direction) != n or not all(d in ("+", "-") for d in self.direction):
+            raise AxiscalError(f"direction must hold '+' or '-' for each of the {n} steps")
 
     @property
     def readings(self) -> int:
@@ -177,9 +186,12 @@ class StepMatcher:
     """
 
     def __init__(self, steps: PlanSteps, *, tolerance_m: float, offset_m: float, start: int = 0, locate=None):
-        self.steps = steps
-        self.tolerance_m = tolerance_m
-        self.offset_m = offset_m
+        self.steps = check_instance("steps", steps, PlanSteps)
+        self.tolerance_m = check_number("tolerance_m", tolerance_m, positive=True, unit="m")
+        self.offset_m = check_number("offset_m", offset_m, unit="m")
+        start = check_count("start", start, minimum=0)
+        if locate is not None and not callable(locate):
+            raise AxiscalError(f"locate must be a function of a stop, not {locate!r}")
         self._targets = np.flatnonzero(np.isfinite(steps.target_m))
         self._passed = start  # every step before this index has been taken or passed
         self._locate = locate or (lambda stop: (None, None))

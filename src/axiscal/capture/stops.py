@@ -167,6 +167,8 @@ class StopDetector:
     def __init__(self, *, stability_m: float, window_s: float, channels: Sequence[str] = ()):
         self.stability_m = check_number("stability_m", stability_m, positive=True, unit="m")
         self.window_s = check_number("window_s", window_s, positive=True, unit="s")
+        if isinstance(channels, str) or not all(isinstance(c, str) for c in channels):
+            raise AxiscalError(f"channels must be a sequence of column names, not {channels!r}")
         self.channels = tuple(channels)
         width = 2 + len(self.channels)
         self._buffer = np.empty((0, width))  # t, reading, channels: the tail kept for the next batch

@@ -1,0 +1,81 @@
+"""Every public callable of the capture room refuses bad arguments with AxiscalError naming them.
+
+The same table harness as the other rooms (api_cases.CaseTable). The result objects a capture
+returns (a Capture and its stops, the files written, a simulated recording) are made by the room
+itself and are exempt.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from api_cases import EXAMPLES, CaseTable, api
+
+from axiscal.model import load_machine
+
+ROOMS = ("capture",)
+NAN, INF = float("nan"), float("inf")
+TABLE = CaseTable(ROOMS)
+bad = TABLE.bad
+ca = api("capture")
+C = "capture"
+PLAN = EXAMPLES / "capture" / "plan_x.csv"
+RECORDING = EXAMPLES / "capture" / "recording_x.csv"
+PROGRAM = EXAMPLES / "capture" / "x.ngc"
+MACHINE = EXAMPLES / "xz_module" / "machine.toml"
+NEVER = EXAMPLES / "no such folder" / "run.csv"
+STEPS = ca.plan_steps(PLAN)
+T = np.arange(5.0)
+
+bad(C, "detect_stops", "time_s", lambda: ca.detect_stops(np.array([0.0, NAN]), np.zeros(2), stability_m=1e-6, window_s=0.5),
+    lambda: ca.detect_stops("t", np.zeros(2), stability_m=1e-6, window_s=0.5))
+bad(C, "detect_stops", "one length", lambda: ca.detect_stops(T, np.zeros(3), stability_m=1e-6, window_s=0.5))
+bad(C, "detect_stops", "stability_m", lambda: ca.detect_stops(T, T, stability_m=-1.0, window_s=0.5),
+    lambda: ca.detect_stops(T, T, stability_m=INF, window_s=0.5))
+bad(C, "detect_stops", "window_s", lambda: ca.detect_stops(T, T, stability_m=1e-6, window_s=0.0))
+bad(C, "StopDetector", "stability_m", lambda: ca.StopDetector(stability_m=NAN, window_s=0.5))
+bad(C, "StopDetector", "channels", lambda: ca.StopDetector(stability_m=1e-6, window_s=0.5, channels="air_temperature_c"))
+bad(C, "Recording", "reading_m", lambda: ca.Recording(T, np.zeros(3)))
+bad(C, "Recording", "time_s", lambda: ca.Recording(np.array([0.0, INF]), np.zeros(2)))
+bad(C, "Recording", "channels", lambda: ca.Recording(T, T, {"air_temperature_c": np.zeros(2)}), lambda: ca.Recording(T, T, None))
+bad(C, "read_recording", "path", lambda: ca.read_recording(None))
+bad(C, "read_recording", "unknown unit", lambda: ca.read_recording(RECORDING, unit="furlong"))
+bad(C, "read_recording", "no column", lambda: ca.read_recording(RECORDING, channel="laser_um"))
+bad(C, "environment_columns", "names", lambda: ca.environment_columns(None))
+bad(C, "plan_steps", "plan", lambda: ca.plan_steps(None), lambda: ca.plan_steps(5))
+bad(C, "PlanSteps", "run", lambda: ca.PlanSteps(np.arange(2), np.arange(3), np.array(["+", "-"]), np.zeros(2), np.zeros(2)))
+bad(C, "PlanSteps", "direction", lambda: ca.PlanSteps(np.arange(2), np.arange(2), np.array(["+", "up"]), np.zeros(2), np.zeros(2)))
+bad(C, "StepMatcher", "steps", lambda: ca.StepMatcher(None, tolerance_m=1e-3, offset_m=0.0))
+bad(C, "StepMatcher", "tolerance_m", lambda: ca.StepMatcher(STEPS, tolerance_m=0.0, offset_m=0.0))
+bad(C, "StepMatcher", "start", lambda: ca.StepMatcher(STEPS, tolerance_m=1e-3, offset_m=0.0, start=-1))
+bad(C, "CaptureSettings", "stability_m", lambda: ca.CaptureSettings(stability_m=0.0))
+bad(C, "CaptureSettings", "window_s", lambda: ca.CaptureSettings(window_s=NAN))
+bad(C, "CaptureSettings", "offset_m", lambda: ca.CaptureSettings(offset_m=INF), lambda: ca.CaptureSettings(offset_m="0"))
+bad(C, "capture", "settings", lambda: ca.capture(PLAN, RECORDING, settings={"window_s": 0.5}))
+bad(C, "capture", "recording", lambda: ca.capture(PLAN, 5), lambda: ca.capture(PLAN, None))
+bad(C, "capture", "plan", lambda: ca.capture(None, RECORDING))
+bad(C, "capture_run", "recording", lambda: ca.capture_run(PLAN, 5))
+bad(C, "capture_to_file", "output", lambda: ca.capture_to_file(PLAN, RECORDING, None))
+bad(C, "capture_to_file", "resume", lambda: ca.capture_to_file(PLAN, RECORDING, NEVER, resume="yes"))
+bad(C, "partial_path", "output", lambda: ca.partial_path(None))
+bad(C, "VirtualAxis", "acceleration_m_s2", lambda: ca.VirtualAxis(acceleration_m_s2=0.0))
+bad(C, "VirtualAxis", "noise_m", lambda: ca.VirtualAxis(noise_m=-1e-9), lambda: ca.VirtualAxis(noise_m=NAN))
+bad(C, "simulate_motions", "machine", lambda: ca.simulate_motions([], None, axis="X"))
+bad(C, "simulate_motions", "axis", lambda: ca.simulate_motions([], load_machine(MACHINE), axis="Q"))
+bad(C, "simulate_capture", "not a linear axis", lambda: ca.simulate_capture(PROGRAM, MACHINE, axis="Y"))
+bad(C, "simulate_capture", "rate_hz", lambda: ca.simulate_capture(PROGRAM, MACHINE, axis="X", rate_hz=-1.0))
+bad(C, "simulate_capture", "controller", lambda: ca.simulate_capture(PROGRAM, MACHINE, axis="X", compensation=PROGRAM))
+bad(C, "write_recording", "simulated", lambda: ca.write_recording(None, NEVER))
+bad(C, "plan_motions", "dwell_s", lambda: ca.plan_motions(STEPS, dwell_s=-1.0))
+bad(C, "plan_motions", "feed_mm_per_min", lambda: ca.plan_motions(STEPS, feed_mm_per_min=0.0))
+bad(C, "open_capture_source", "unknown source", lambda: ca.open_capture_source("udp:1.2.3.4:5"))
+bad(C, "open_capture_source", "needs the plan", lambda: ca.open_capture_source("sim"))
+bad(C, "measure_axis", "folder", lambda: ca.measure_axis(None, MACHINE, axis="X", start_m=0.0, end_m=0.19, targets=5))
+bad(C, "measure_axis", "targets", lambda: ca.measure_axis(NEVER.parent, MACHINE, axis="X", start_m=0.0, end_m=0.19, targets=2))
+bad(C, "CaptureBoard", "steps", lambda: ca.CaptureBoard(None))
+bad(C, "CaptureBoard", "source", lambda: ca.CaptureBoard(STEPS, None))
+
+EXEMPT = {C: {"Capture", "CaptureFiles", "CaptureProgress", "CapturedStop", "Stop", "StopReading", "SimulatedRecording",
+              "AxisMeasurement"}}
+
+test_bad_arguments_raise_axiscal_error_naming_them, test_every_public_callable_has_a_bad_argument_case = TABLE.tests(EXEMPT)
