@@ -156,5 +156,7 @@ bad(T, "evaluate_drift", "path", lambda: th.evaluate_drift(3), lambda: th.evalua
 bad(T, "plot_thermal", "run", lambda: th.plot_thermal("x.png", None))
 bad(T, "plot_thermal", "title", lambda: th.plot_thermal("x.png", th.read_thermal_run(DRIFT), title=None))
 bad(T, "plot_thermal", "figure format", lambda: th.plot_thermal("x.nope", th.read_thermal_run(DRIFT)))
+bad(T, "plot_etve", "evaluation", lambda: th.plot_etve("x.png", None), lambda: th.plot_etve("x.png", th.read_thermal_run(DRIFT)))
+bad(T, "plot_drift", "evaluation", lambda: th.plot_drift("x.png", None), lambda: th.plot_drift("x.png", th.read_thermal_run(DRIFT)))
 
 test_bad_arguments, test_every_public_callable_has_a_case = TABLE.tests({})

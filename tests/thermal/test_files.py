@@ -53,7 +53,10 @@ def test_etve_needs_a_temperature(tmp_path):
 
 def test_the_etve_example_recovers_its_sensitivities(examples, tmp_path):
     plot = tmp_path / "etve.svg"
-    result = evaluate_etve(examples / "thermal" / "etve_run.csv", max_lag_s=3 * 3600, plot_path=plot)
+    result = evaluate_etve(examples / "thermal" / "etve_run.csv", max_lag_s=3 * 3600)
+    from axiscal.thermal.plot import plot_etve
+
+    plot_etve(plot, result)
     payload = result.payload()
     assert set(payload["etve_um"]) == {"X", "Y", "Z"} and set(payload["etve_urad"]) == {"A", "B"}
     by = {(c["direction"], c["sensor"]): c for c in payload["correlations"]}
@@ -72,7 +75,10 @@ def test_the_etve_example_recovers_its_sensitivities(examples, tmp_path):
 
 def test_the_drift_example_recovers_its_time_constant(examples, tmp_path):
     plot = tmp_path / "drift.png"
-    result = evaluate_drift(examples / "thermal" / "drift_run.csv", plot_path=plot)
+    result = evaluate_drift(examples / "thermal" / "drift_run.csv")
+    from axiscal.thermal.plot import plot_drift
+
+    plot_drift(plot, result)
     payload = result.payload()
     assert payload["heating_phases"] == 2
     assert payload["time_constant_h"]["Z"] == pytest.approx(0.8, rel=0.03)

@@ -61,13 +61,6 @@ def svg_of(draw: Callable[[Path], Any]) -> str:
     return re.sub(r"\s*<metadata>.*?</metadata>", "", text, count=1, flags=re.S)
 
 
-def _captured(call: Callable[[Path], Any]) -> tuple[Any, str]:
-    """Run ``call(plot_path)`` once: its result and the SVG of the plot it wrote."""
-    holder: list[Any] = []
-    svg = svg_of(lambda p: holder.append(call(p)))
-    return holder[0], svg
-
-
 def _relative(campaign: Campaign, path: Path) -> str:
     return path.relative_to(campaign.folder).as_posix()
 
@@ -560,11 +553,12 @@ def _flatness(campaign: Campaign, spec: TestSpec) -> TestResult:
 
 def _thermal_etve(campaign: Campaign, spec: TestSpec) -> TestResult:
     from axiscal.thermal.files import evaluate_etve
+    from axiscal.thermal.plot import plot_etve
 
     path = spec.options["file"]
     lag = spec.options.get("max_lag_h")
-    evaluation, svg = _captured(lambda p: _options_refused(campaign, spec, lambda: evaluate_etve(
-        path, max_lag_s=None if lag is None else lag * 3600.0, plot_path=p)))
+    evaluation = _options_refused(campaign, spec, lambda: evaluate_etve(path, max_lag_s=None if lag is None else lag * 3600.0))
+    svg = svg_of(lambda p: plot_etve(p, evaluation))
     figures = evaluation.payload()
     linear = [v for k, v in figures["etve_um"].items() if k in "XYZ"]
     checks = check_figures({"etve": max(linear)} if linear else {}, spec.tolerances, {"etve_um": "um"},
@@ -587,9 +581,11 @@ def _thermal_etve(campaign: Campaign, spec: TestSpec) -> TestResult:
 
 def _thermal_drift(campaign: Campaign, spec: TestSpec) -> TestResult:
     from axiscal.thermal.files import evaluate_drift
+    from axiscal.thermal.plot import plot_drift
 
     path = spec.options["file"]
-    evaluation, svg = _captured(lambda p: evaluate_drift(path, plot_path=p))
+    evaluation = evaluate_drift(path)
+    svg = svg_of(lambda p: plot_drift(p, evaluation))
     figures = evaluation.payload()
     largest = [abs(v) for v in figures.get("drift_max_um", {}).values()]
     checks = check_figures({"thermal_drift": max(largest)} if largest else {}, spec.tolerances,

@@ -29,7 +29,11 @@ def levels_command(run: str, foot_mm: float, reference: str, as_json: bool, outp
     """Straightness and pitch (or roll) of RUN (CSV: position_mm and angle_arcsec, angle_urad or angle_um_per_m)."""
     if not (math.isfinite(foot_mm) and foot_mm > 0):
         raise AxiscalError(f"--foot-mm must be a positive number, got {foot_mm:g}")
-    result = evaluate_levels(run, foot_m=foot_mm * MM, reference=reference, output=output, plot_path=plot_path)
+    result = evaluate_levels(run, foot_m=foot_mm * MM, reference=reference, output=output)
+    if plot_path:
+        from axiscal.levels.plot import plot_levels
+
+        plot_levels(plot_path, result)
     if as_json:
         echo_json(result.payload())
     else:

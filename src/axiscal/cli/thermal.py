@@ -27,7 +27,11 @@ def thermal_etve_command(run: str, max_lag_h: float | None, as_json: bool, plot_
     """ETVE of RUN (CSV: time_s or time_h, x_um/y_um/z_um[, a_urad, b_urad], temperature_<place>_c)."""
     if max_lag_h is not None and not (math.isfinite(max_lag_h) and max_lag_h >= 0):
         raise AxiscalError(f"--max-lag-h must be a number of hours, zero or more, got {max_lag_h:g}")
-    result = evaluate_etve(run, max_lag_s=None if max_lag_h is None else max_lag_h * 3600.0, plot_path=plot_path)
+    result = evaluate_etve(run, max_lag_s=None if max_lag_h is None else max_lag_h * 3600.0)
+    if plot_path:
+        from axiscal.thermal.plot import plot_etve
+
+        plot_etve(plot_path, result)
     if as_json:
         echo_json(result.payload())
     else:
@@ -41,7 +45,11 @@ def thermal_etve_command(run: str, max_lag_h: float | None, as_json: bool, plot_
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write the drift plot with the temperatures.")
 def thermal_drift_command(run: str, as_json: bool, plot_path: str | None) -> None:
     """Thermal drift of RUN (CSV as for etve, with running = 1 while heating, 0 while cooling)."""
-    result = evaluate_drift(run, plot_path=plot_path)
+    result = evaluate_drift(run)
+    if plot_path:
+        from axiscal.thermal.plot import plot_drift
+
+        plot_drift(plot_path, result)
     if as_json:
         echo_json(result.payload())
     else:

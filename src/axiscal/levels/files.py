@@ -175,7 +175,6 @@ def evaluate_levels(
     foot_m: float,
     reference: str = "least-squares",
     output: str | Path | None = None,
-    plot_path: str | Path | None = None,
 ) -> LevelEvaluation:
     """Straightness and angular error motion of a level run file (what ``axiscal levels`` does).
 
@@ -189,8 +188,6 @@ def evaluate_levels(
         The reference line of the straightness (default least squares).
     output : str or Path, optional, keyword-only
         Write the profile (``position_mm, deviation_um``) here, with its JSON sidecar.
-    plot_path : str or Path, optional, keyword-only
-        Write a plot of the profile in its zone and of the angles.
 
     Returns
     -------
@@ -227,8 +224,4 @@ def evaluate_levels(
         write_sidecar(output, kind="straightness profile from levels", sources=[path], foot_mm=foot_m / MM,
                       integration=profile.integration, differential=run.reference_rad is not None,
                       method="ISO 230-1, level readings integrated over the foot spacing")
-    if plot_path is not None:
-        from axiscal.levels.plot import plot_levels
-
-        plot_levels(plot_path, evaluation)
     return evaluation

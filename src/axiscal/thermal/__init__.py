@@ -21,7 +21,7 @@ from axiscal.thermal.files import (
     evaluate_etve,
     read_thermal_run,
 )
-from axiscal.thermal.plot import plot_thermal
+from axiscal.thermal.plot import plot_drift, plot_etve, plot_thermal
 
 __all__ = [
     "DIRECTIONS",
@@ -40,4 +40,6 @@ __all__ = [
     "DriftEvaluation",
     "evaluate_drift",
     "plot_thermal",
+    "plot_etve",
+    "plot_drift",
 ]

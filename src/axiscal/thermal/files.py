@@ -170,7 +170,7 @@ class EtveEvaluation:
         return render_checked(render_template, "thermal_etve.txt.j2", **self.payload()).rstrip("\n")
 
 
-def evaluate_etve(path: str | Path, *, max_lag_s: float | None = None, plot_path: str | Path | None = None) -> EtveEvaluation:
+def evaluate_etve(path: str | Path, *, max_lag_s: float | None = None) -> EtveEvaluation:
     """The ETVE of a run file (what ``axiscal thermal etve`` does).
 
     Parameters
@@ -179,8 +179,6 @@ def evaluate_etve(path: str | Path, *, max_lag_s: float | None = None, plot_path
         The run, read by :func:`read_thermal_run`; it needs a temperature column.
     max_lag_s : float, optional, keyword-only
         The largest lag of the correlations, seconds (default a quarter of the duration).
-    plot_path : str or Path, optional, keyword-only
-        Write the drift plot with the temperatures.
 
     Returns
     -------
@@ -200,12 +198,6 @@ def evaluate_etve(path: str | Path, *, max_lag_s: float | None = None, plot_path
         result = etve(run.time_s, run.displacements, run.temperatures_c, max_lag_s=max_lag_s)
     except AxiscalError as exc:
         raise exc.located(path=path) from None
-    if plot_path is not None:
-        from axiscal.thermal.plot import plot_thermal
-
-        um = result.etve
-        plot_thermal(plot_path, run, title="ETVE " + ", ".join(
-            f"{k} {v / (URAD if k in 'AB' else UM):.2f} {'urad' if k in 'AB' else 'um'}" for k, v in um.items()))
     return EtveEvaluation(run, result)
 
 
@@ -261,15 +253,13 @@ class DriftEvaluation:
                               temperature_range_c=payload["temperature_range_c"]).rstrip("\n")
 
 
-def evaluate_drift(path: str | Path, *, plot_path: str | Path | None = None) -> DriftEvaluation:
+def evaluate_drift(path: str | Path) -> DriftEvaluation:
     """The thermal drift of a distortion run file (what ``axiscal thermal drift`` does).
 
     Parameters
     ----------
     path : str or Path
         The run, read by :func:`read_thermal_run`.
-    plot_path : str or Path, optional, keyword-only
-        Write the drift plot with the temperatures and the heating phases shaded.
 
     Returns
     -------
@@ -285,10 +275,4 @@ def evaluate_drift(path: str | Path, *, plot_path: str | Path | None = None) -> 
         result = thermal_drift(run.time_s, run.displacements, run.temperatures_c, running=run.running)
     except AxiscalError as exc:
         raise exc.located(path=path) from None
-    if plot_path is not None:
-        from axiscal.thermal.plot import plot_thermal
-
-        plot_thermal(plot_path, run, title="Thermal drift, " + ", ".join(
-            f"{k} {v / (URAD if k in 'AB' else UM):+.2f} {'urad' if k in 'AB' else 'um'}" for k, v in result.drift_max.items())
-            + " (largest)")
     return DriftEvaluation(run, result)

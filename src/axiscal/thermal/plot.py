@@ -13,10 +13,10 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_path
 from axiscal.io.figures import pyplot, save_figure
-from axiscal.thermal.files import HOUR, ThermalRun
+from axiscal.thermal.files import HOUR, DriftEvaluation, EtveEvaluation, ThermalRun
 from axiscal.units import UM, URAD
 
-__all__ = ["plot_thermal"]
+__all__ = ["plot_thermal", "plot_etve", "plot_drift"]
 
 
 def plot_thermal(path: str | Path, run: ThermalRun, *, title: str = "") -> Path:
@@ -80,3 +80,54 @@ def plot_thermal(path: str | Path, run: ThermalRun, *, title: str = "") -> Path:
     axes[-1, 0].set_xlabel("time / h")
     fig.tight_layout()
     return save_figure(fig, path)
+
+
+def _figures(values: dict, fmt: str) -> str:
+    return ", ".join(f"{k} {v / (URAD if k in 'AB' else UM):{fmt}} {'urad' if k in 'AB' else 'um'}" for k, v in values.items())
+
+
+def plot_etve(path: str | Path, evaluation: EtveEvaluation) -> Path:
+    """Plot an ETVE run (:func:`plot_thermal`) titled with its ETVE per direction.
+
+    Parameters
+    ----------
+    path : str or Path
+        Image to write (format from the suffix).
+    evaluation : EtveEvaluation
+        What :func:`axiscal.thermal.evaluate_etve` gave.
+
+    Returns
+    -------
+    Path
+
+    Raises
+    ------
+    AxiscalError
+        An evaluation of another kind, an unknown image format, a file that cannot be written.
+    """
+    check_instance("evaluation", evaluation, EtveEvaluation, what="an EtveEvaluation (evaluate_etve)")
+    return plot_thermal(path, evaluation.run, title="ETVE " + _figures(evaluation.result.etve, ".2f"))
+
+
+def plot_drift(path: str | Path, evaluation: DriftEvaluation) -> Path:
+    """Plot a thermal drift run (:func:`plot_thermal`) titled with its largest drift per direction.
+
+    Parameters
+    ----------
+    path : str or Path
+        Image to write (format from the suffix).
+    evaluation : DriftEvaluation
+        What :func:`axiscal.thermal.evaluate_drift` gave.
+
+    Returns
+    -------
+    Path
+
+    Raises
+    ------
+    AxiscalError
+        An evaluation of another kind, an unknown image format, a file that cannot be written.
+    """
+    check_instance("evaluation", evaluation, DriftEvaluation, what="a DriftEvaluation (evaluate_drift)")
+    return plot_thermal(path, evaluation.run, title="Thermal drift, " + _figures(evaluation.result.drift_max, "+.2f")
+                        + " (largest)")
