@@ -25,6 +25,7 @@ ROOMS = (
     "axiscal.instruments",
     "axiscal.measurement",
     "axiscal.live",
+    "axiscal.history",
 )
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]
