@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import click
 
+from axiscal.cli.common import echo_json
+from axiscal.history.analysis import figure_trend
 from axiscal.history.database import DB_ENVIRONMENT
 from axiscal.history.store import (
     add_results,
@@ -92,6 +94,35 @@ def upgrade_command(db: str | None) -> None:
     """Bring the database's schema to this axiscal's (opening it does the same)."""
     where, revision = upgrade_database(db)
     click.echo(f"{where}: schema revision {revision}")
+
+
+@history_group.command("trend")
+@click.argument("machine")
+@click.option("--figure", required=True, help="The figure, KIND.AXIS.FIGURE (e.g. positioning.X.E; see `history show`).")
+@click.option("--robust", is_flag=True, help="Fit the drift with Huber weights (outlying campaigns count less).")
+@click.option("--risk", type=float, default=0.05, show_default=True,
+              help="Accepted probability of being out of tolerance at the next calibration (fixed-risk rule).")
+@click.option("--plot", type=click.Path(dir_okay=False), help="Write the trend plot (PNG, SVG, PDF).")
+@click.option("--json", "as_json", is_flag=True, help="Print the trend as JSON.")
+@_db_option
+def trend_command(machine: str, figure: str, robust: bool, risk: float, plot: str | None, as_json: bool,
+                  db: str | None) -> None:
+    """A figure of MACHINE over time: drift, the date it leaves its tolerance, the next calibration date."""
+    trend = figure_trend(machine, figure, url=db, method="robust" if robust else "wls", risk=risk, plot=plot)
+    if as_json:
+        echo_json(trend.payload())
+        return
+    p = trend.payload()
+    fit, nxt = p["fit"], p["next_calibration"]
+    click.echo(f"{trend.machine}: {trend.figure} over {len(trend.dates)} campaigns, tolerance {trend.tolerance:g} {trend.unit}")
+    click.echo(f"drift {fit['slope_per_year']:+.4g} {trend.unit}/year, u = {fit['u_slope_per_year']:.2g} ({fit['method']})")
+    low, high = p["crossing_interval"]
+    click.echo(f"reaches the tolerance {p['crossing_date'] or 'never (no drift)'}"
+               f" (k = {trend.k:g}: {low or 'unbounded'} .. {high or 'unbounded'})")
+    click.echo(f"next calibration {nxt['recommended']} (fixed risk {trend.risk:.0%}: {nxt['fixed_risk'] or 'beyond the horizon'};"
+               f" staircase: {nxt['staircase']})")
+    if plot:
+        click.echo(f"plot {plot}")
 
 
 def register(group: click.Group) -> None:

@@ -8,6 +8,11 @@ next calibration date by the methods of ILAC-G24 / OIML D 10 (2007).
 
 from __future__ import annotations
 
+from axiscal.history.analysis import (
+    figure_trend,
+    history_trend,
+    machine_trends,
+)
 from axiscal.history.database import (
     DB_ENVIRONMENT,
     MIGRATIONS,
@@ -43,13 +48,26 @@ from axiscal.history.store import (
     remove_campaign,
     upgrade_database,
 )
+from axiscal.history.plot import plot_trend
 from axiscal.history.synthetic import (
     Drift,
     drifting_results,
     write_results,
 )
+from axiscal.history.trend import (
+    TREND_METHODS,
+    DriftFit,
+    Trend,
+    crossing,
+    fit_drift,
+    staircase,
+    trend_of,
+)
 
 __all__ = [
+    "figure_trend",
+    "history_trend",
+    "machine_trends",
     "DB_ENVIRONMENT",
     "MIGRATIONS",
     "default_url",
@@ -77,7 +95,15 @@ __all__ = [
     "machine_label",
     "remove_campaign",
     "upgrade_database",
+    "plot_trend",
     "Drift",
     "drifting_results",
     "write_results",
+    "TREND_METHODS",
+    "DriftFit",
+    "Trend",
+    "crossing",
+    "fit_drift",
+    "staircase",
+    "trend_of",
 ]
