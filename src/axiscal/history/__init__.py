@@ -22,6 +22,7 @@ from axiscal.history.database import (
     schema_revision,
     shown_url,
 )
+from axiscal.history.integrity import integrity_problems
 from axiscal.history.models import (
     Base,
     CampaignRow,
@@ -75,6 +76,7 @@ __all__ = [
     "resolve_url",
     "schema_revision",
     "shown_url",
+    "integrity_problems",
     "Base",
     "CampaignRow",
     "FigureRow",
