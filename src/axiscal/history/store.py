@@ -344,7 +344,9 @@ def _find_machine(session: Any, machine: str) -> MachineRow:
     check_instance("machine", machine, str, what="a machine's name, serial, 'name (serial)' or id")
     rows = session.execute(select(MachineRow)).scalars().all()
     text = machine.strip()
-    found = [r for r in rows if text in (r.name, machine_label(r.name, r.serial), str(r.id))]
+    found = [r for r in rows if text == machine_label(r.name, r.serial)]
+    if not found:
+        found = [r for r in rows if text in (r.name, str(r.id))]
     if not found:
         found = [r for r in rows if r.serial and text == r.serial]
     if len(found) == 1:

@@ -9,6 +9,7 @@ from axiscal.report.demo import (
     builtin_example,
     run_demo,
 )
+from axiscal.report.history import history_section
 from axiscal.report.html import (
     compare_label,
     decision_statement,
@@ -31,6 +32,7 @@ from axiscal.report.writer import (
 )
 
 __all__ = [
+    "history_section",
     "decision_statement",
     "template_environment",
     "render_html",
