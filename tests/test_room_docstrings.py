@@ -26,6 +26,7 @@ ROOMS = (
     "axiscal.measurement",
     "axiscal.live",
     "axiscal.history",
+    "axiscal.fleet",
 )
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]
