@@ -100,3 +100,21 @@ def test_a_mutated_results_file_is_read_or_refused_cleanly(results_files, tmp_pa
     else:
         assert record.machine and record.date.year >= 1
         assert all(f.key.count(".") >= 2 for f in record.figures)
+
+
+def test_the_url_forms(tmp_path, monkeypatch):
+    from axiscal.history import resolve_url
+
+    monkeypatch.delenv("AXISCAL_DB", raising=False)
+    assert resolve_url(str(tmp_path / "h.sqlite")) == f"sqlite:///{tmp_path / 'h.sqlite'}"
+    assert resolve_url("postgresql://cal@db.local/history") == "postgresql+psycopg://cal@db.local/history"
+    assert resolve_url("postgres://cal@db.local/history") == "postgresql+psycopg://cal@db.local/history"
+    assert resolve_url("sqlite:///x.sqlite") == "sqlite:///x.sqlite"
+    monkeypatch.setenv("AXISCAL_DB", "postgresql+psycopg://cal@server/h")
+    assert resolve_url() == "postgresql+psycopg://cal@server/h"
+
+
+def test_report_db_without_history_is_refused(run_cli, examples, tmp_path):
+    status, _, err = run_cli("report", examples / "campaign", "-o", tmp_path / "r", "--db", tmp_path / "h.sqlite")
+    assert status == 2 and err == "axiscal: error: --db (db) applies only with --history (history=True)\n"
+    assert not (tmp_path / "r").exists()

@@ -25,7 +25,7 @@ def fleet_group() -> None:
 @click.option("--scheduler-timeout-s", "timeout_s", type=float, default=SCHEDULER_TIMEOUT_S, show_default=True,
               help="Seconds to wait for a scheduler given by address.")
 @click.option("--history", is_flag=True, help="Store every campaign in the calibration history; trends use all stored campaigns.")
-@click.option("--db", envvar="AXISCAL_DB", help="History database URL or SQLite file [$AXISCAL_DB, else the user's data folder].")
+@click.option("--db", help="With --history: the database URL or SQLite file [$AXISCAL_DB, else the user's data folder].")
 def fleet_report_command(campaigns_dir: str, out_dir: str, scheduler: str, workers: int, timeout_s: float,
                          history: bool, db: str | None) -> None:
     """Report every campaign under CAMPAIGNS_DIR (folders with campaign.toml); exit 1 when any could not be."""

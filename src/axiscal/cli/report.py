@@ -46,7 +46,7 @@ def _progress(enabled: bool):
               help="Exit with status 1 when the verdict is fail, or inconclusive under a guard-band rule (for scripts and CI).")
 @click.option("--history", "history", is_flag=True,
               help="Also store the campaign in the calibration history and add the machine's trends to the report.")
-@click.option("--db", envvar="AXISCAL_DB", help="History database URL or SQLite file [$AXISCAL_DB, else the user's data folder].")
+@click.option("--db", help="With --history: the database URL or SQLite file [$AXISCAL_DB, else the user's data folder].")
 def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, pdf: bool, exit_code: bool,
                    history: bool, db: str | None) -> None:
     """Run every test of CAMPAIGN_DIR (campaign.toml) and write report.html, results.json and the compensation files."""

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from axiscal.fleet.page import MachineRow, fleet_payload, machine_rows, render_fleet_html
 from axiscal.fleet.runner import SCHEDULER_TIMEOUT_S, FleetRun, find_campaigns, run_fleet
+from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_path
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import dumps
@@ -98,6 +99,8 @@ def fleet_report(
     """
     out_dir = check_path("out_dir", out_dir)
     workers = check_count("workers", workers)
+    if db is not None and not history:
+        raise AxiscalError("--db (db) applies only with --history (history=True)")
     campaigns = find_campaigns(campaigns_dir, exclude=out_dir)
     run = run_fleet(campaigns, out_dir, scheduler=scheduler, workers=workers, processes=processes, history=history,
                     db=db, timeout_s=timeout_s, progress=progress)

@@ -204,6 +204,9 @@ def report_campaign(
     if compare is not None:
         check_path("compare", compare)
     check_instance("pdf", pdf, bool)
+    check_instance("history", history, bool)
+    if db is not None and not history:
+        raise AxiscalError("--db (db) applies only with --history (history=True)")
     campaign: Campaign = load_campaign(campaign_dir)
     other = None
     if compare is not None:
@@ -213,7 +216,6 @@ def report_campaign(
     results = run_campaign(campaign, progress=progress, compare=other)
     target = Path(out_dir) if out_dir is not None else campaign.folder / "report"
     files = {entry["file"]: entry["text"] for t in results.tests for entry in t.compensation if "text" in entry}
-    check_instance("history", history, bool)
     section = None
     if history:
         from axiscal.report.history import history_section
