@@ -218,6 +218,7 @@ def render_fleet_html(run: FleetRun, rows: Sequence[MachineRow], *, out_dir: str
         "worst_text": "" if r.worst_value is None else
         f"{format_number(abs(r.worst_value))} / {format_number(r.worst_tolerance)} {r.unit}",
         "ratio": "" if r.worst_ratio is None else f"{100 * r.worst_ratio:.0f}",
+        "ratio_sort": "" if r.worst_ratio is None else f"{r.worst_ratio:.9g}",
         "drift": "" if r.drift_per_year is None else
         f"{r.drift_per_year:+.3g} ± {r.u_drift_per_year:.2g} {r.unit}/year ({r.drift_figure})",
         "drift_sort": "" if r.drift_per_year is None else f"{r.drift_per_year:.6g}",
