@@ -135,3 +135,30 @@ def test_trend_writes_its_plot(tmp_path, run_cli):
     assert status == 0 and "next calibration" in out and (tmp_path / "t.svg").read_text().count("<svg") == 1
     trend = figure_trend("M", "positioning.X.E", url=str(db))
     assert date_of(years(trend.dates[-1])) == trend.dates[-1]
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+_reals = st.one_of(st.floats(-100.0, 100.0), st.floats(allow_nan=True, allow_infinity=True, width=64))
+
+
+@settings(max_examples=300)
+@given(data=st.data(), robust=st.booleans(), tolerance=_reals)
+def test_any_numbers_give_a_finite_fit_or_a_clean_refusal(data, robust, tolerance):
+    n = data.draw(st.integers(0, 8))
+    same = data.draw(st.booleans())
+    t = data.draw(st.lists(_reals, min_size=n, max_size=n) if same else st.lists(_reals, max_size=8))
+    y = data.draw(st.lists(_reals, min_size=n, max_size=n))
+    U = data.draw(st.one_of(st.none(), st.lists(_reals, min_size=n, max_size=n)))
+    try:
+        fit = fit_drift(np.array(t), np.array(y), None if U is None else np.array(U),
+                        method="robust" if robust else "wls")
+    except AxiscalError:
+        return
+    assert np.isfinite(fit.b) or not np.all(np.isfinite(np.array(y)))
+    try:
+        t_cross, low, high = crossing(fit, tolerance)
+    except AxiscalError:
+        return
+    assert (low is None) == (high is None)

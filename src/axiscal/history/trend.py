@@ -38,6 +38,11 @@ __all__ = ["TREND_METHODS", "DriftFit", "Trend", "fit_drift", "crossing", "stair
 TREND_METHODS = ("wls", "robust")
 _YEAR_DAYS = 365.25
 _HUBER_C = 1.345
+# bounds that keep the normal equations far from overflow: dates within 100 000 years, figures and
+# uncertainties within 1e15 of their unit, an uncertainty not below 1e-100
+_MAX_YEARS = 1e5
+_MAX_VALUE = 1e15
+_MIN_U = 1e-100
 
 
 @dataclass(frozen=True)
@@ -169,13 +174,15 @@ def fit_drift(
         raise AxiscalError(f"a drift fit needs three campaigns at least, not {len(t)}")
     if not (np.all(np.isfinite(t)) and np.all(np.isfinite(y))):
         raise AxiscalError("t_years and values must be finite numbers")
-    if np.ptp(t) <= 0:
+    if np.max(np.abs(t)) > _MAX_YEARS or np.max(np.abs(y)) > _MAX_VALUE:
+        raise AxiscalError(f"t_years must lie within ±{_MAX_YEARS:g} years and values within ±{_MAX_VALUE:g}")
+    if np.ptp(t) < 1e-6 * max(1.0, float(np.max(np.abs(t)))):
         raise AxiscalError("a drift fit needs campaigns on two dates at least")
     stated = U is not None
     if stated:
         U = np.asarray(U, dtype=float)
-        if U.shape != t.shape or not np.all(np.isfinite(U)) or np.any(U <= 0):
-            raise AxiscalError("U must hold one positive, finite expanded uncertainty per campaign")
+        if U.shape != t.shape or not np.all(np.isfinite(U)) or np.any(U < _MIN_U) or np.any(U > _MAX_VALUE):
+            raise AxiscalError(f"U must hold one expanded uncertainty per campaign, between {_MIN_U:g} and {_MAX_VALUE:g}")
         base = 1.0 / (U / 2.0) ** 2
     else:
         base = np.ones_like(t)
@@ -193,6 +200,8 @@ def fit_drift(
             w = new
             t0, a, b, cov, chi2 = _wls(t, y, w)
     dof = len(t) - 2
+    if not (np.isfinite(a) and np.isfinite(b) and np.all(np.isfinite(cov)) and np.isfinite(chi2)):
+        raise AxiscalError("the drift line is not defined by these campaigns (their times or weights are too unequal)")
     if stated:
         cov = cov * max(1.0, chi2 / dof)
     else:
