@@ -5,14 +5,14 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 export NO_MKDOCS_2_WARNING := 1
 
-.PHONY: demo test lint docs chromium clean
+.PHONY: demo test lint docs chromium postgresql clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
 $(STAMP): $(BIN)/python pyproject.toml
-	$(BIN)/python -m pip install --quiet -e '.[test,docs,dask]'
+	$(BIN)/python -m pip install --quiet -e '.[test,docs,dask,postgresql]'
 	touch $(STAMP)
 
 demo: $(STAMP)
@@ -37,7 +37,18 @@ chromium:
 	    exit 1; \
 	  fi; }
 
-test: lint docs chromium
+# the history's tests start a real PostgreSQL server (Debian's postgresql); install it when we are root, else say how
+postgresql:
+	@{ command -v pg_ctl >/dev/null 2>&1 || ls /usr/lib/postgresql/*/bin/pg_ctl >/dev/null 2>&1; } || { \
+	  if [ "$$(id -u)" = "0" ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "installing Debian's postgresql for the history tests"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq postgresql >/dev/null; \
+	  else \
+	    echo "make test: the history tests need Debian's postgresql: run 'sudo apt-get install postgresql', or make test as root"; \
+	    exit 1; \
+	  fi; }
+
+test: lint docs chromium postgresql
 	$(BIN)/python -m pytest -q
 
 clean:

@@ -30,6 +30,8 @@ ROOMS = (
     "axiscal.flatness",
     "axiscal.thermal",
     "axiscal.identification",
+    "axiscal.history",
+    "axiscal.fleet",
 )
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]

@@ -45,10 +45,15 @@ def _progress(enabled: bool):
 @click.option("--pdf", is_flag=True, help="Also write report.pdf.")
 @click.option("--exit-code", is_flag=True,
               help="Exit with status 1 when the verdict is fail, or inconclusive under a guard-band rule (for scripts and CI).")
-def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, pdf: bool, exit_code: bool) -> None:
+@click.option("--history", "history", is_flag=True,
+              help="Also store the campaign in the calibration history and add the machine's trends to the report.")
+@click.option("--db", help="With --history: the database URL or SQLite file [$AXISCAL_DB, else the user's data folder].")
+def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, pdf: bool, exit_code: bool,
+                   history: bool, db: str | None) -> None:
     """Run every test of CAMPAIGN_DIR (campaign.toml) and write report.html, results.json and the compensation files."""
     with _progress(sys.stderr.isatty()) as progress:
-        files = report_campaign(campaign_dir, out_dir, compare=compare, pdf=pdf, progress=progress)
+        files = report_campaign(campaign_dir, out_dir, compare=compare, pdf=pdf, progress=progress,
+                                history=history, db=db)
     verdict = files.results_data.verdict
     click.echo(f"{verdict.upper()}: {len(files.results_data.tests)} tests; report {files.html}")
     click.echo(f"results {files.results}")

@@ -12,6 +12,7 @@ from axiscal.report.demo import (
     write_as_found_campaign,
     write_as_left_campaign,
 )
+from axiscal.report.history import history_section
 from axiscal.report.html import (
     compare_label,
     decision_statement,
@@ -36,6 +37,7 @@ from axiscal.report.writer import (
 )
 
 __all__ = [
+    "history_section",
     "decision_statement",
     "template_environment",
     "render_html",

@@ -387,6 +387,7 @@ def render_html(
     compare: Mapping[str, Any] | None = None,
     volumetric: Mapping[str, Any] | None = None,
     generated: str | None = None,
+    history: Mapping[str, Any] | None = None,
 ) -> str:
     """The report page of a campaign.
 
@@ -401,6 +402,9 @@ def render_html(
         The volumetric section (``method``, ``table``, ``plots``), when the campaign has a model.
     generated : str, keyword-only
         When the report was made (default: now, UTC, to the minute).
+    history : mapping, keyword-only
+        The history section (:func:`~axiscal.report.history.history_section`): shown when the
+        machine has earlier campaigns.
 
     Returns
     -------
@@ -443,4 +447,5 @@ def render_html(
         compensation=results.compensation,
         methods=methods,
         compare={"label": label} if compare is not None else None,
+        history=history if history is not None and history.get("campaigns", 0) > 1 else None,
     )

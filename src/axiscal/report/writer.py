@@ -67,6 +67,7 @@ def write_report(
     compare: Mapping[str, Any] | None = None,
     pdf: bool = False,
     extra_files: Mapping[str, str] | None = None,
+    history: Mapping[str, Any] | None = None,
 ) -> ReportFiles:
     """Write the report folder of ``results`` atomically.
 
@@ -81,6 +82,8 @@ def write_report(
         Also write ``report.pdf``.
     extra_files : mapping, keyword-only
         Relative path -> text of further files (the compensation tables).
+    history : mapping, keyword-only
+        The history section (:func:`~axiscal.report.history.history_section`).
 
     Returns
     -------
@@ -110,7 +113,7 @@ def write_report(
     except OSError as exc:
         raise AxiscalError(f"cannot make the report folder: {exc.strerror or exc}", path=out_dir) from None
     try:
-        html = render_html(results, compare=compare)
+        html = render_html(results, compare=compare, history=history)
         (staging / "report.html").write_text(html, encoding="utf-8")
         (staging / "results.json").write_text(dumps(results_payload(results)), encoding="utf-8")
         written = []
@@ -158,6 +161,8 @@ def report_campaign(
     compare: str | Path | None = None,
     pdf: bool = False,
     progress: Callable[[int, int, TestSpec], None] | None = None,
+    history: bool = False,
+    db: str | None = None,
 ) -> ReportFiles:
     """Run a campaign and write its report: what ``axiscal report`` does.
 
@@ -173,6 +178,10 @@ def report_campaign(
         Also write report.pdf.
     progress : callable, keyword-only
         See :func:`~axiscal.campaign.runner.run_campaign`.
+    history : bool, keyword-only
+        Also store the campaign in the calibration history and add its history section.
+    db : str, keyword-only
+        The history database (default ``$AXISCAL_DB``, else the user's SQLite file).
 
     Returns
     -------
@@ -195,6 +204,9 @@ def report_campaign(
     if compare is not None:
         check_path("compare", compare)
     check_instance("pdf", pdf, bool)
+    check_instance("history", history, bool)
+    if db is not None and not history:
+        raise AxiscalError("--db (db) applies only with --history (history=True)")
     campaign: Campaign = load_campaign(campaign_dir)
     other = None
     if compare is not None:
@@ -209,4 +221,9 @@ def report_campaign(
         raise
     target = Path(out_dir) if out_dir is not None else campaign.folder / "report"
     files = {entry["file"]: entry["text"] for t in results.tests for entry in t.compensation if "text" in entry}
-    return write_report(results, target, compare=other, pdf=pdf, extra_files=files)
+    section = None
+    if history:
+        from axiscal.report.history import history_section
+
+        section = history_section(results, url=db, source=str(target / "results.json"))
+    return write_report(results, target, compare=other, pdf=pdf, extra_files=files, history=section)
