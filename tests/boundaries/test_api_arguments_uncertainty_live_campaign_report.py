@@ -447,6 +447,7 @@ bad(R, "write_as_found_campaign", "seed", lambda: rp.write_as_found_campaign(NEV
 bad(R, "write_as_left_campaign", "folder", lambda: rp.write_as_left_campaign(None, NEVER))
 bad(R, "write_as_left_campaign", "compensation", lambda: rp.write_as_left_campaign(NEVER, None))
 bad(R, "write_as_left_campaign", "seed", lambda: rp.write_as_left_campaign(NEVER, NEVER, seed=1.5))
+bad(R, "history_section", "results", lambda: rp.history_section(None), lambda: rp.history_section({}))
 
 
 # ---------------------------------------------------------------- the check

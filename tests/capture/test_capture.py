@@ -17,7 +17,7 @@ from axiscal.cli.main import main
 from axiscal.errors import AxiscalError
 from axiscal.io.gcode import Motion
 from axiscal.model.machine import load_machine
-from axiscal.positioning.evaluation import PositioningRun, iso230_2
+from axiscal.positioning.evaluation import iso230_2
 from axiscal.positioning.plan import plan_test, write_plan
 from axiscal.report.demo import builtin_example
 from axiscal.units import MM, UM

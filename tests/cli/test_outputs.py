@@ -58,6 +58,9 @@ WRITES = [
     (("identify",), "--output", ["identify", "{ex}/identification/start/machine.toml", "{ex}/identification/plate_xy.toml", "--model", "poly:1", "-o", "{out}/id"]),
     (("precompensate",), "--output", ["precompensate", "{ex}/precompensation/part.ngc", "--machine", "{ex}/xfyz_machine/machine.toml", "--dialect", "linuxcnc", "-o", "{out}/x.ngc"]),
     (("export", "grid"), "--output", ["export", "grid", "--machine", "{ex}/xfyz_machine/machine.toml", "--grid", "X=50:750:350,Y=50:450:400,Z=50:350:300", "-o", "{out}/g.csv"]),
+    (("history", "export"), "--output", ["history", "export", "M", "--db", "{tmp}/h.db", "-o", "{out}/h.csv"]),
+    (("history", "trend"), "--plot", ["history", "trend", "M", "--figure", "positioning.X.E", "--db", "{tmp}/h.db", "--plot", "{out}/t.png"]),
+    (("fleet", "report"), "--output", ["fleet", "report", "{tmp}/fleet", "--scheduler", "threads", "-o", "{out}/fleet"]),
     (("live",), "--record", ["live", "--no-server", "--no-pace", "--duration", "0.05", "--record", "{out}/live.csv"]),
 ]
 WRITING_FLAGS = ("--output", "--plot", "--gcode", "--record")
@@ -75,6 +78,15 @@ def test_every_writing_option_is_tried():
 @pytest.mark.parametrize("path, flag, argv", [pytest.param(*w, id=" ".join(w[0]) + " " + w[1]) for w in WRITES])
 def test_a_command_makes_the_folders_of_its_output(run_cli, examples, tmp_path, path, flag, argv):
     (tmp_path / "points.csv").write_text("x_mm,y_mm,z_mm\n-200,100,-100\n")
+    if path[0] == "history":  # a database holding three campaigns of machine M
+        from axiscal.history import Drift, add_results, drifting_results, write_results
+
+        payloads = drifting_results({"positioning.X.E": Drift(5.0, 1.0, 1.0, 20.0)}, machine="M", campaigns=3)
+        add_results(write_results(tmp_path / "m", payloads), url=str(tmp_path / "h.db"))
+    if path[0] == "fleet":  # a folder of one campaign
+        from axiscal.fleet.generate import generated_fleet
+
+        generated_fleet(tmp_path / "fleet", machines=1, campaigns=1)
     out = tmp_path / OUT
     line = [a.format(ex=examples, tmp=tmp_path, out=out) for a in argv]
     status, _, err = run_cli(*line)

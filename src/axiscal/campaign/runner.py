@@ -6,8 +6,6 @@ report and in results.json are the numbers that command prints for the same file
 
 from __future__ import annotations
 
-import re
-import tempfile
 from collections.abc import Callable, Mapping
 from dataclasses import replace
 from pathlib import Path
@@ -23,6 +21,9 @@ from axiscal.campaign.results import (
     TestResult,
     check_figures,
 )
+from axiscal.campaign.sensor_kinds import _sensor_calibration, _sixdof, _sixdof_diagonal
+from axiscal.campaign.standard_kinds import _flatness, _levels, _thermal_drift, _thermal_etve
+from axiscal.campaign.svg import relative_name, svg_of
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_mapping, check_path
 from axiscal.io.arguments import check_instance, type_name
@@ -30,39 +31,6 @@ from axiscal.positioning.evaluation import Iso230Result
 from axiscal.units import ARCSEC, MM, UM, URAD
 
 __all__ = ["COMPENSATION_FILES", "KIND_RUNNERS", "evaluation_is_raw", "run_campaign", "run_test", "svg_of"]
-
-
-def svg_of(draw: Callable[[Path], Any]) -> str:
-    """The SVG text of a plot, for placing inline in a page.
-
-    Parameters
-    ----------
-    draw : callable
-        Writes the plot to the ``.svg`` path it is given.
-
-    Returns
-    -------
-    str
-        The ``<svg>`` element, without XML prolog and metadata.
-
-    Raises
-    ------
-    AxiscalError
-        For a ``draw`` that is not callable.
-    """
-    if not callable(draw):
-        raise AxiscalError(f"draw must be a function that writes a plot to the path it is given, not {type_name(draw)}")
-    with tempfile.TemporaryDirectory(prefix="axiscal-plot-") as folder:
-        path = Path(folder) / "plot.svg"
-        draw(path)
-        text = path.read_text(encoding="utf-8")
-    start = text.find("<svg")
-    text = text[start:] if start >= 0 else text
-    return re.sub(r"\s*<metadata>.*?</metadata>", "", text, count=1, flags=re.S)
-
-
-def _relative(campaign: Campaign, path: Path) -> str:
-    return path.relative_to(campaign.folder).as_posix()
 
 
 def _environment(path: Path) -> dict[str, Any]:
@@ -144,7 +112,7 @@ def _positioning(campaign: Campaign, spec: TestSpec, campaign_compare: Mapping[s
         name = "compensation/" + COMPENSATION_FILES[campaign.controller].format(axis=spec.axis)
         compensation.append({"controller": campaign.controller, "axis": spec.axis, "file": name, "text": table.text})
     return TestResult(
-        id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, path)], figures=figures,
+        id=spec.id, kind=spec.kind, axis=spec.axis, files=[relative_name(campaign, path)], figures=figures,
         checks=checks, plots=[Plot(title, svg)], table=[Figure(k, v, unit) for k, v in axis_figures.items()],
         environment=_environment(path), warnings=list(evaluation.warnings), compensation=compensation,
         method=f"Positioning: {evaluation.result.standard}", uncertainty=uncertainty,
@@ -228,7 +196,7 @@ def _straightness(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any]
     direction = spec.options.get("direction")
     label = f"E{direction}{spec.axis}" if direction else f"straightness of {spec.axis}"
     return TestResult(
-        id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, path)], figures=figures,
+        id=spec.id, kind=spec.kind, axis=spec.axis, files=[relative_name(campaign, path)], figures=figures,
         checks=checks, plots=[Plot(f"{label}: profile and {reference} reference line", svg)],
         table=[Figure(f"straightness {label}", figures["straightness_um"], "um"), Figure("slope", figures["slope_urad"], "urad")],
         method=f"Straightness: ISO 230-1 {reference} reference line", uncertainty=uncertainty,
@@ -278,7 +246,7 @@ def _separation(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] |
     checks = check_figures(figures, spec.tolerances, {"straightness_um": "um"})
     direction = options.get("direction")
     label = f"E{direction}{spec.axis}" if direction and spec.axis else "slide motion"
-    files = [_relative(campaign, path)] + ([_relative(campaign, options["reversed"])] if "reversed" in options else [])
+    files = [relative_name(campaign, path)] + ([relative_name(campaign, options["reversed"])] if "reversed" in options else [])
     return TestResult(
         id=spec.id, kind=spec.kind, axis=spec.axis, files=files, figures=figures, checks=checks,
         plots=[Plot(f"{separation.method} separation: workpiece profile and slide motion", svg)],
@@ -314,7 +282,7 @@ def _squareness(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] |
                            rule=campaign.decision_rule)
     result = evaluation.result
     return TestResult(
-        id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, first), _relative(campaign, second)],
+        id=spec.id, kind=spec.kind, axis=spec.axis, files=[relative_name(campaign, first), relative_name(campaign, second)],
         figures=figures, checks=checks, plots=[Plot(f"{result.plane} squareness: both runs and their lines", svg)],
         table=[Figure(f"squareness {result.plane} ({result.convention})", figures["squareness_arcsec"], "arcsec"),
                Figure(f"{result.iso_term} (ISO 230-1 sign)", figures["iso_value_arcsec"], "arcsec")],
@@ -347,7 +315,7 @@ def _ballbar(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] | No
         ("scale_mismatch_ppm", "scale mismatch", "ppm"),
     ) if figures.get(key) is not None]
     return TestResult(
-        id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, path)], figures=figures,
+        id=spec.id, kind=spec.kind, axis=spec.axis, files=[relative_name(campaign, path)], figures=figures,
         checks=checks, plots=[Plot(title, svg)], table=table, method="Circular test: ISO 230-4 (ballbar)",
     )
 
@@ -375,7 +343,7 @@ def _diagonal(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] | N
     if "E_BD_range_um" in figures:
         table += [Figure("measured error range, before the model (E_BD)", figures["E_BD_range_um"], "um"),
                   Figure("left after the model (E_AD)", figures["E_AD_range_um"], "um")]
-    files = [_relative(campaign, campaign.model)] + ([_relative(campaign, readings)] if readings is not None else [])
+    files = [relative_name(campaign, campaign.model)] + ([relative_name(campaign, readings)] if readings is not None else [])
     return TestResult(
         id=spec.id, kind=spec.kind, axis=None, files=files, figures=figures, checks=checks,
         plots=[Plot(title, svg)], table=table,
@@ -383,229 +351,6 @@ def _diagonal(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] | N
     )
 
 
-def _sixdof(campaign: Campaign, spec: TestSpec) -> TestResult:
-    from axiscal.measurement.offline import measure_file
-
-    path = spec.options["file"]
-    machine = spec.options.get("machine")
-    result = measure_file(path, machine=machine)
-    figures = result.summary()
-    svg = svg_of(lambda p: _plot_recording(result, p))
-    files = [_relative(campaign, path)] + ([_relative(campaign, machine)] if machine is not None else [])
-    return TestResult(
-        id=spec.id, kind=spec.kind, axis=spec.axis, files=files, figures=figures, checks=[],
-        plots=[Plot("Spatial error of the functional point during the recording", svg)],
-        table=[Figure("frames", figures["frames"], ""), Figure("faulty frames", figures["faulty_frames"], ""),
-               Figure("largest spatial error |e|", figures["max_e_um"], "um"),
-               Figure("mean spatial error |e|", figures["mean_e_um"], "um")],
-        method="6-DOF measurement from raw sensor frames (paper 000)",
-    )
-
-
-def _sensor_calibration(campaign: Campaign, spec: TestSpec) -> TestResult:
-    from axiscal.measurement.sensor_runs import calibrate_sensor_runs
-
-    path = spec.options["file"]
-    machine = spec.options.get("machine")
-    runs = calibrate_sensor_runs(path, machine=machine)
-    figures = runs.figures()
-    checks = check_figures(figures, spec.tolerances, {"calibration_um": "um", "calibration_arcsec": "arcsec"},
-                           rule=campaign.decision_rule)
-    table = []
-    for row in runs.rows():
-        figures[f"{row['channel']}_gain"] = row["gain"]
-        figures[f"{row['channel']}_residual_max_{row['unit']}"] = row["residual_max"]
-        if row["residual_max_arcsec"] is not None:
-            figures[f"{row['channel']}_residual_max_arcsec"] = row["residual_max_arcsec"]
-        table.append(Figure(f"{row['channel']}: gain", row["gain"], ""))
-        table.append(Figure(f"{row['channel']}: largest residual", row["residual_max"], row["unit"]))
-        if row["residual_max_arcsec"] is not None:
-            table.append(Figure(f"{row['channel']}: largest residual as an angle", row["residual_max_arcsec"], "arcsec"))
-    files = [_relative(campaign, path)] + ([_relative(campaign, machine)] if machine is not None else [])
-    return TestResult(
-        id=spec.id, kind=spec.kind, axis=None, files=files, figures=figures, checks=checks, plots=[], table=table,
-        method="Sensor calibration against reference instruments, least-squares gain and offset (paper 000 section 4.1)",
-    )
-
-
-def _sixdof_diagonal(campaign: Campaign, spec: TestSpec) -> TestResult:
-    from axiscal.measurement.sensor_diagonal import sensor_diagonal
-    from axiscal.model.inputs import parse_point
-
-    options = spec.options
-    readings, frames, machine = options["file"], options["frames"], options.get("machine")
-    result = sensor_diagonal(readings, frames, start=parse_point(options["from"], "from"), end=parse_point(options["to"], "to"),
-                             machine=machine)
-    figures = result.figures()
-    title = f"Diagonal {options['from']} to {options['to']} with the 6-DOF sensors (paper 000 eq 13)"
-    svg = svg_of(lambda p: _plot_sensor_diagonal(result, p))
-    files = [_relative(campaign, readings), _relative(campaign, frames)] + ([_relative(campaign, machine)] if machine else [])
-    return TestResult(
-        id=spec.id, kind=spec.kind, axis=None, files=files, figures=figures, checks=[], plots=[Plot(title, svg)],
-        table=[Figure("largest error before the model (E_BD)", figures["E_BD_max_um"], "um"),
-               Figure("largest error left with the measured spatial error (E_AD)", figures["E_AD_max_um"], "um"),
-               Figure("largest error left with the scales alone", figures["scales_only_max_um"], "um"),
-               Figure("stops", figures["stops"], ""), Figure("frames per stop", figures["samples_per_stop"], "")],
-        method="Diagonal against a laser interferometer with the live 6-DOF measurement (paper 000 section 5, eq 13)",
-    )
-
-
-def _plot_sensor_diagonal(result, path: Path) -> None:
-    from axiscal.io.figures import pyplot, save_figure
-
-    plt = pyplot()
-    along = np.hypot(result.x_m, result.z_m) / MM
-    fig, ax = plt.subplots(figsize=(7.5, 3.4))
-    ax.plot(along, result.before_m / UM, "o-", label="E_BD: before the model")
-    ax.plot(along, result.scales_only_m / UM, "s--", label="scales alone")
-    ax.plot(along, result.after_m / UM, "k^-", label="E_AD: with the measured spatial error")
-    ax.set_xlabel("nominal displacement along the diagonal / mm")
-    ax.set_ylabel("error / um")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    save_figure(fig, path)
-
-
-def _plot_recording(result, path: Path) -> None:
-    from axiscal.io.figures import pyplot, save_figure
-
-    plt = pyplot()
-    r = result.results
-    good = result.fault == 0
-    fig, ax = plt.subplots(figsize=(7.5, 3.4))
-    for name in ("ex_m", "ey_m", "ez_m", "e_m"):
-        if name in r:
-            ax.plot(r["t_s"][good], r[name][good] / UM, "k" if name == "e_m" else "-", lw=1.2 if name == "e_m" else 0.9,
-                    label="|e|" if name == "e_m" else name[:2])
-    bad = ~good
-    if bad.any():
-        ax.plot(r["t_s"][bad], np.zeros(int(bad.sum())), "rx", label="faulty frame")
-    ax.set_xlabel("time / s")
-    ax.set_ylabel("error / um")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, ncol=5)
-    fig.tight_layout()
-    save_figure(fig, path)
-
-
-def _options_refused(campaign: Campaign, spec: TestSpec, call: Callable[[], Any]) -> Any:
-    """``call()``, an option the library refuses (no file named) naming campaign.toml and the test's line."""
-    for key, low in (("foot_mm", "positive"), ("max_lag_h", "non-negative")):
-        value = spec.options.get(key)
-        if value is not None and (value < 0 or low == "positive" and value == 0):
-            raise AxiscalError(f"{spec.id}: {key} must be a {low} number, not {value:g}",
-                               path=campaign.folder / "campaign.toml", line=spec.line)
-    try:
-        return call()
-    except AxiscalError as exc:
-        raise exc.located(path=campaign.folder / "campaign.toml", line=spec.line) from None
-
-
-def _levels(campaign: Campaign, spec: TestSpec) -> TestResult:
-    from axiscal.levels.files import evaluate_levels
-    from axiscal.levels.plot import plot_levels
-
-    path = spec.options["file"]
-    reference = spec.options.get("reference", "least-squares")
-    evaluation = _options_refused(campaign, spec, lambda: evaluate_levels(
-        path, foot_m=spec.options["foot_mm"] * MM, reference=reference))
-    figures = evaluation.payload()
-    checks = check_figures(figures, spec.tolerances, {"straightness_um": "um"}, rule=campaign.decision_rule)
-    direction = spec.options.get("direction")
-    label = f"straightness E{direction}{spec.axis}" if direction else f"straightness of {spec.axis}"
-    svg = svg_of(lambda p: plot_levels(p, evaluation))
-    return TestResult(
-        id=spec.id, kind=spec.kind, axis=spec.axis, files=[_relative(campaign, path)], figures=figures, checks=checks,
-        plots=[Plot(f"{label.capitalize()} from electronic levels: profile in its {reference} zone, and the readings", svg)],
-        table=[Figure(label, figures["straightness_um"], "um"),
-               Figure("angular error motion (range of the readings)", figures["angular_error_arcsec"], "arcsec"),
-               Figure("foot spacing", figures["foot_mm"], "mm")],
-        method=f"Straightness and angular error from electronic levels: ISO 230-1 {reference} reference line"
-        + (", differential set-up" if figures["differential"] else ""),
-    )
-
-
-def _flatness(campaign: Campaign, spec: TestSpec) -> TestResult:
-    from axiscal.flatness.files import evaluate_flatness
-    from axiscal.flatness.plot import plot_flatness
-
-    path = spec.options["file"]
-    evaluation = spec.options.get("evaluation", "least-squares")
-    result = evaluate_flatness(path, evaluation=evaluation)
-    figures = result.payload()
-    checks = check_figures(figures, spec.tolerances, {"flatness_um": "um"}, rule=campaign.decision_rule)
-    svg = svg_of(lambda p: plot_flatness(p, result.surface, title=result.source.title))
-    table = [Figure("flatness (minimum zone)", figures["flatness_um"], "um"),
-             Figure("flatness (least-squares plane)", figures["flatness_least_squares_um"], "um")]
-    if "flatness_moody_um" in figures:
-        table.append(Figure("flatness (Moody's reference)", figures["flatness_moody_um"], "um"))
-    table.append(Figure("largest closure error", figures["closure_max_um"], "um"))
-    return TestResult(
-        id=spec.id, kind=spec.kind, axis=None, files=[_relative(campaign, path)], figures=figures, checks=checks,
-        plots=[Plot(f"Flatness{': ' + result.source.title if result.source.title else ''}: heights about the "
-                    "least-squares plane, closure errors at the crossings", svg)],
-        table=table, warnings=list(figures["warnings"]),
-        method="Flatness: ISO 230-1 minimum zone and least-squares plane, lines joined by "
-        + ("Moody's method (1955)" if evaluation == "moody" else "least squares"),
-    )
-
-
-def _thermal_etve(campaign: Campaign, spec: TestSpec) -> TestResult:
-    from axiscal.thermal.files import evaluate_etve
-    from axiscal.thermal.plot import plot_etve
-
-    path = spec.options["file"]
-    lag = spec.options.get("max_lag_h")
-    evaluation = _options_refused(campaign, spec, lambda: evaluate_etve(path, max_lag_s=None if lag is None else lag * 3600.0))
-    svg = svg_of(lambda p: plot_etve(p, evaluation))
-    figures = evaluation.payload()
-    linear = [v for k, v in figures["etve_um"].items() if k in "XYZ"]
-    checks = check_figures({"etve": max(linear)} if linear else {}, spec.tolerances, {"etve_um": "um"},
-                           rule=campaign.decision_rule)
-    table = [Figure(f"ETVE {k}", v, "um") for k, v in figures["etve_um"].items()]
-    table += [Figure(f"ETVE {k}", v, "urad") for k, v in figures.get("etve_urad", {}).items()]
-    table += [Figure(f"temperature range, {k}", v, "K") for k, v in figures["temperature_range_c"].items()]
-    for c in figures["correlations"]:
-        if c["r_at_lag"] is not None and abs(c["r_at_lag"]) >= 0.8:
-            unit = "um/K" if "sensitivity_um_per_k" in c else "urad/K"
-            value = c.get("sensitivity_um_per_k", c.get("sensitivity_urad_per_k"))
-            table.append(Figure(f"{c['direction']} follows {c['sensor']} {c['lag_h']:.2f} h late (r {c['r_at_lag']:.2f})",
-                                value, unit))
-    return TestResult(
-        id=spec.id, kind=spec.kind, axis=None, files=[_relative(campaign, path)], figures=figures, checks=checks,
-        plots=[Plot(f"Environmental temperature variation over {figures['duration_h']:.1f} h: displacements and temperatures", svg)],
-        table=table, method="Thermal: ISO 230-3 environmental temperature variation error (ETVE)",
-    )
-
-
-def _thermal_drift(campaign: Campaign, spec: TestSpec) -> TestResult:
-    from axiscal.thermal.files import evaluate_drift
-    from axiscal.thermal.plot import plot_drift
-
-    path = spec.options["file"]
-    evaluation = evaluate_drift(path)
-    svg = svg_of(lambda p: plot_drift(p, evaluation))
-    figures = evaluation.payload()
-    largest = [abs(v) for v in figures.get("drift_max_um", {}).values()]
-    checks = check_figures({"thermal_drift": max(largest)} if largest else {}, spec.tolerances,
-                           {"thermal_drift_um": "um"}, rule=campaign.decision_rule)
-    table = []
-    for unit in ("um", "urad"):
-        for k, v in figures.get(f"drift_max_{unit}", {}).items():
-            table.append(Figure(f"largest drift {k}", v, unit))
-            if k in figures.get(f"drift_heating_end_{unit}", {}):
-                table.append(Figure(f"drift {k} at the end of heating", figures[f"drift_heating_end_{unit}"][k], unit))
-            tau = figures["time_constant_h"].get(k)
-            table.append(Figure(f"time constant {k}", "none found" if tau is None else tau, "h"))
-    return TestResult(
-        id=spec.id, kind=spec.kind, axis=None, files=[_relative(campaign, path)], figures=figures, checks=checks,
-        plots=[Plot(f"Thermal drift over {figures['heating_phases']} heating phase(s) (shaded) and the temperatures", svg)],
-        table=table, method="Thermal: ISO 230-3 thermal distortion (drift over heating and cooling cycles)",
-    )
-
-
-#: kind -> the function that runs a test of that kind
 KIND_RUNNERS: dict[str, Callable[[Campaign, TestSpec], TestResult]] = {
     "positioning": _positioning,
     "straightness": _straightness,

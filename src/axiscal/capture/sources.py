@@ -47,7 +47,7 @@ def plan_motions(steps: PlanSteps, *, axis: str = "X", dwell_s: float = 2.0, fee
     """
     dwell_s = check_number("dwell_s", dwell_s, nonnegative=True, unit="s")
     feed = check_number("feed_mm_per_min", feed_mm_per_min, positive=True, unit="mm/min") * MM / 60.0
-    out: list[PlanMotion] = []
+    out: list[Motion] = []
     for k in range(steps.step.size):
         out.append(Motion(k + 1, "feed", {axis: float(steps.move_to_m[k])}, feed, 0.0))
         if np.isfinite(steps.target_m[k]):

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import click
 
+from axiscal.cli.common import FINITE
+from axiscal.errors import AxiscalError
+
 from axiscal.fleet.report import fleet_report
 from axiscal.fleet.runner import SCHEDULER_TIMEOUT_S
 
@@ -22,13 +25,15 @@ def fleet_group() -> None:
 @click.option("--scheduler", default="local", show_default=True,
               help='"local" (a Dask LocalCluster), "threads" (this process) or a scheduler address (tcp://host:8786).')
 @click.option("--workers", type=int, default=2, show_default=True, help="Workers of the LocalCluster, or threads.")
-@click.option("--scheduler-timeout-s", "timeout_s", type=float, default=SCHEDULER_TIMEOUT_S, show_default=True,
+@click.option("--scheduler-timeout-s", "timeout_s", type=FINITE, default=SCHEDULER_TIMEOUT_S, show_default=True,
               help="Seconds to wait for a scheduler given by address.")
 @click.option("--history", is_flag=True, help="Store every campaign in the calibration history; trends use all stored campaigns.")
 @click.option("--db", help="With --history: the database URL or SQLite file [$AXISCAL_DB, else the user's data folder].")
 def fleet_report_command(campaigns_dir: str, out_dir: str, scheduler: str, workers: int, timeout_s: float,
                          history: bool, db: str | None) -> None:
     """Report every campaign under CAMPAIGNS_DIR (folders with campaign.toml); exit 1 when any could not be."""
+    if db is not None and not history:
+        raise AxiscalError("--db applies only with --history")
     fleet = fleet_report(campaigns_dir, out_dir, scheduler=scheduler, workers=workers, timeout_s=timeout_s,
                          history=history, db=db)
     run = fleet.run

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from axiscal.cli.common import echo_json
+from axiscal.cli.common import FINITE, echo_json
 from axiscal.history.analysis import figure_trend
 from axiscal.history.database import DB_ENVIRONMENT
 from axiscal.history.store import (
@@ -100,7 +100,7 @@ def upgrade_command(db: str | None) -> None:
 @click.argument("machine")
 @click.option("--figure", required=True, help="The figure, KIND.AXIS.FIGURE (e.g. positioning.X.E; see `history show`).")
 @click.option("--robust", is_flag=True, help="Fit the drift with Huber weights (outlying campaigns count less).")
-@click.option("--risk", type=float, default=0.05, show_default=True,
+@click.option("--risk", type=FINITE, default=0.05, show_default=True,
               help="Accepted probability of being out of tolerance at the next calibration (fixed-risk rule).")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Write the trend plot (PNG, SVG, PDF).")
 @click.option("--json", "as_json", is_flag=True, help="Print the trend as JSON.")

@@ -7,6 +7,8 @@ from contextlib import contextmanager
 
 import click
 
+from axiscal.errors import AxiscalError
+
 from axiscal.report.writer import report_campaign
 
 __all__ = ["report_command", "register"]
@@ -51,6 +53,8 @@ def _progress(enabled: bool):
 def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, pdf: bool, exit_code: bool,
                    history: bool, db: str | None) -> None:
     """Run every test of CAMPAIGN_DIR (campaign.toml) and write report.html, results.json and the compensation files."""
+    if db is not None and not history:
+        raise AxiscalError("--db applies only with --history")
     with _progress(sys.stderr.isatty()) as progress:
         files = report_campaign(campaign_dir, out_dir, compare=compare, pdf=pdf, progress=progress,
                                 history=history, db=db)

@@ -13,7 +13,6 @@ from pathlib import Path
 
 import numpy as np
 
-from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_instance, check_number, check_path
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar

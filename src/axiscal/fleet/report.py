@@ -100,7 +100,7 @@ def fleet_report(
     out_dir = check_path("out_dir", out_dir)
     workers = check_count("workers", workers)
     if db is not None and not history:
-        raise AxiscalError("--db (db) applies only with --history (history=True)")
+        raise AxiscalError("db applies only with history=True")
     campaigns = find_campaigns(campaigns_dir, exclude=out_dir)
     run = run_fleet(campaigns, out_dir, scheduler=scheduler, workers=workers, processes=processes, history=history,
                     db=db, timeout_s=timeout_s, progress=progress)

@@ -12,9 +12,9 @@ import dataclasses
 
 import numpy as np
 
-from axiscal.identification.artefacts import BallbarNetwork, BallPlate, Multilateration, RTest, StepGauge, axis_positions, r_test_positions
+from axiscal.identification.artefacts import BallbarNetwork, BallPlate, Multilateration, RTest, StepGauge, axis_positions
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_array, check_count, check_instance, check_mapping, check_number
+from axiscal.io.arguments import check_array, check_count, check_instance, check_number
 from axiscal.model.machine import Machine
 
 __all__ = [

@@ -23,8 +23,6 @@ import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-
 from axiscal.errors import AxiscalError
 from axiscal.io.lines import Lines
 

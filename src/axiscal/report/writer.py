@@ -206,7 +206,7 @@ def report_campaign(
     check_instance("pdf", pdf, bool)
     check_instance("history", history, bool)
     if db is not None and not history:
-        raise AxiscalError("--db (db) applies only with --history (history=True)")
+        raise AxiscalError("db applies only with history=True")
     campaign: Campaign = load_campaign(campaign_dir)
     other = None
     if compare is not None:
