@@ -6,7 +6,6 @@ import click
 
 from axiscal.cli.common import FINITE
 from axiscal.errors import AxiscalError
-
 from axiscal.fleet.report import fleet_report
 from axiscal.fleet.runner import SCHEDULER_TIMEOUT_S
 
