@@ -6,7 +6,7 @@ import click
 
 from axiscal.cli.common import echo_json, flags_named
 from axiscal.identification.basis import MODEL_KINDS
-from axiscal.identification.files import identify_files
+from axiscal.identification.solve import identify_files
 
 __all__ = ["identify_command", "register"]
 

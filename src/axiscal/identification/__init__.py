@@ -29,10 +29,11 @@ from axiscal.identification.basis import (
 )
 from axiscal.identification.files import (
     ARTEFACT_KEYS,
-    identify_files,
     read_artefact,
-    report_html,
     write_artefact,
+)
+from axiscal.identification.output import (
+    report_html,
     write_identification,
     write_machine_folder,
 )
@@ -64,6 +65,7 @@ from axiscal.identification.simulate import (
 from axiscal.identification.solve import (
     RANK_TOLERANCE,
     identify,
+    identify_files,
 )
 
 __all__ = [

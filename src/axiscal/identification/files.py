@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from axiscal.conventions import AXIS_INDEX, ROTARY_LETTERS, component_names
+from axiscal.conventions import AXIS_INDEX, ROTARY_LETTERS
 from axiscal.errors import AxiscalError
 from axiscal.identification.artefacts import (
     ARTEFACT_KINDS,
@@ -26,14 +26,11 @@ from axiscal.identification.artefacts import (
 )
 from axiscal.io.arguments import check_path
 from axiscal.io.atomic import write_text
-from axiscal.io.jsonio import write_json, write_sidecar
 from axiscal.io.schema import TomlLines, confined_path, finite_number
 from axiscal.io.tabular import CsvTable, read_csv, read_text, read_toml, write_csv
-from axiscal.io.templates import render_template
-from axiscal.model.machine import Machine
 from axiscal.units import ANGLE_UNITS, MM, UM
 
-__all__ = ["identify_files", "read_artefact", "write_artefact", "write_machine_folder", "write_identification", "report_html", "ARTEFACT_KEYS"]
+__all__ = ["read_artefact", "write_artefact", "ARTEFACT_KEYS"]
 
 _URAD = ANGLE_UNITS["urad"]
 _DEG = ANGLE_UNITS["deg"]
@@ -352,143 +349,3 @@ def write_artefact(artefact: Artefact, path: str | Path) -> Path:
     write_csv(path.with_name(f"{stem}_measured.csv"), measured, fmt=fmt)
     head.insert(3, f'measured = "{stem}_measured.csv"')
     return write_text(path, "\n".join(head) + "\n")
-
-
-def _number(value: float) -> str:
-    return f"{value:.6f}"
-
-
-def write_machine_folder(machine: Machine, folder: str | Path, *, comment: str = "") -> Path:
-    """Write ``machine`` as a machine folder: ``machine.toml`` and one error table CSV per axis.
-
-    Parameters
-    ----------
-    machine : Machine
-        The machine.
-    folder : str or Path
-        Created if missing; ``machine.toml`` and ``<axis>_errors.csv`` are replaced.
-    comment : str, keyword-only
-        A first comment line of ``machine.toml``.
-
-    Returns
-    -------
-    Path
-        The ``machine.toml`` written.
-    """
-    folder = check_path("folder", folder)
-    folder.mkdir(parents=True, exist_ok=True)
-    lines = [f"# {comment}"] if comment else []
-    lines += [f'name = "{machine.name}"', f'chain = "{machine.chain}"',
-              "tool_mm = [" + ", ".join(_number(v / MM) for v in machine.tool_m) + "]",
-              "workpiece_mm = [" + ", ".join(_number(v / MM) for v in machine.workpiece_m) + "]",
-              f'squareness_placement = "{machine.squareness_placement}"']
-    for letter in machine.letters:
-        table = machine.table(letter)
-        rotary = letter in ROTARY_LETTERS
-        unit, factor = ("deg", _DEG) if rotary else ("mm", MM)
-        columns = {f"position_{unit}": table.position_m / factor}
-        for row, name in enumerate(component_names(letter)):
-            columns[f"{name}_um" if row < 3 else f"{name}_urad"] = table.values[row] / (UM if row < 3 else _URAD)
-        positions = table.position_m
-        if table.periodic and positions[-1] - positions[0] > 2 * np.pi * (1 - 1e-12) and np.allclose(table.values[:, -1], table.values[:, 0]):
-            columns = {k: v[:-1] for k, v in columns.items()}
-        csv = folder / f"{letter.lower()}_errors.csv"
-        write_csv(csv, columns, fmt="{:.6f}")
-        write_sidecar(csv, kind="error table", axis=letter, interpolation=table.interpolation, method=comment or "machine")
-        origin = machine.axes[letter].origin_m
-        lines += ["", f"[axes.{letter}]", f'errors = "{csv.name}"',
-                  "origin_mm = [" + ", ".join(_number(v / MM) for v in origin) + "]",
-                  f'interpolation = "{table.interpolation}"', f"hold_ends = {'true' if table.hold_ends else 'false'}"]
-        if rotary:
-            lines.append(f"periodic = {'true' if table.periodic else 'false'}")
-    if machine.squareness_rad:
-        lines += ["", "[squareness]"] + [f"{k}_urad = {_number(v / _URAD)}" for k, v in machine.squareness_rad.items()]
-    if machine.location:
-        lines += ["", "[location]"] + [
-            f"{k}_um = {_number(v / UM)}" if k[1] in AXIS_INDEX else f"{k}_urad = {_number(v / _URAD)}" for k, v in machine.location.items()
-        ]
-    return write_text(folder / "machine.toml", "\n".join(lines) + "\n")
-
-
-def report_html(result) -> str:
-    """``identify.html`` of an identification, rendered from its Jinja2 template.
-
-    Parameters
-    ----------
-    result : Identification
-        What :func:`axiscal.identify` returned.
-
-    Returns
-    -------
-    str
-        The HTML page; its figures are referred to by the file names :func:`write_identification` writes.
-    """
-    summary = result.summary()
-    return render_template(
-        "identification/identify.html.j2",
-        summary=summary,
-        artefacts=[(name, f"residuals_{_slug(name)}.png") for name in result.residuals],
-        axes=[(letter, f"motions_{letter.lower()}.png") for letter in result.spans],
-    )
-
-
-def write_identification(result, folder: str | Path) -> dict:
-    """Write an identification: the machine folder, ``identify.json``, ``identify.html`` and its figures.
-
-    Parameters
-    ----------
-    result : Identification
-        What :func:`axiscal.identify` returned.
-    folder : str or Path
-        The output folder (created).
-
-    Returns
-    -------
-    dict of str to Path
-        ``machine``, ``json``, ``html`` and each figure.
-    """
-    from axiscal.identification.plot import plot_motions, plot_residuals
-
-    folder = check_path("folder", folder)
-    files = {"machine": write_machine_folder(result.machine, folder, comment=f"identified by axiscal identify ({result.model})")}
-    files["json"] = write_json(folder / "identify.json", result.summary())
-    for name in result.residuals:
-        files[f"residuals_{name}"] = plot_residuals(result, name, folder / f"residuals_{_slug(name)}.png")
-    for letter in result.spans:
-        files[f"motions_{letter}"] = plot_motions(result, letter, folder / f"motions_{letter.lower()}.png")
-    files["html"] = write_text(folder / "identify.html", report_html(result))
-    return files
-
-
-def _slug(name: str) -> str:
-    return "".join(c if c.isalnum() or c in "-_" else "_" for c in name)
-
-
-def identify_files(machine, artefacts, folder: str | Path, *, model: str = "poly:3", fix=()) -> tuple:
-    """What ``axiscal identify`` does: identify from files and write the machine folder and the report.
-
-    Parameters
-    ----------
-    machine : Machine, str or Path
-        The machine or its TOML file (the starting guess).
-    artefacts : sequence of str or Path
-        Artefact files.
-    folder : str or Path
-        The output machine folder.
-    model : str, keyword-only
-        ``"poly:N"`` or ``"spline:K"``.
-    fix : sequence of str, keyword-only
-        Terms kept at their starting values.
-
-    Returns
-    -------
-    (Identification, str)
-        The result and its summary as text.
-    """
-    from axiscal.identification.solve import identify
-
-    folder = check_path("folder", folder)
-    result = identify(machine, list(artefacts), model=model, fix=tuple(fix))
-    write_identification(result, folder)
-    text = render_template("identification/identify.txt.j2", summary=result.summary(), folder=str(folder))
-    return result, text

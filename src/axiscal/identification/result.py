@@ -1,6 +1,6 @@
 """The result of an identification: the identified machine, each unknown with its uncertainty, the residuals and what the data cannot separate.
 
-Results hold numbers; :mod:`axiscal.identification.files` writes them (the machine folder,
+Results hold numbers; :mod:`axiscal.identification.output` writes them (the machine folder,
 ``identify.json``) and :mod:`axiscal.identification.plot` draws them for ``identify.html``.
 """
 
@@ -244,12 +244,12 @@ class Identification:
 
     def write(self, folder: str | Path) -> dict:
         """Write the machine folder, ``identify.json`` and ``identify.html`` (see :func:`axiscal.identification.write_identification`)."""
-        from axiscal.identification.files import write_identification
+        from axiscal.identification.output import write_identification
 
         return write_identification(self, folder)
 
     def report(self) -> str:
         """The HTML report as text (figures referred to by file name; :meth:`write` writes them)."""
-        from axiscal.identification.files import report_html
+        from axiscal.identification.output import report_html
 
         return report_html(self)

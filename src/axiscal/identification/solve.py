@@ -30,12 +30,15 @@ from scipy.optimize import least_squares
 from axiscal.errors import AxiscalError
 from axiscal.identification.artefacts import Artefact
 from axiscal.identification.basis import parse_model
+from axiscal.identification.files import read_artefact
+from axiscal.identification.output import write_identification
 from axiscal.identification.parameters import ParameterSet
 from axiscal.identification.result import Combination, Identification, Undetermined
-from axiscal.io.arguments import check_array, check_instance, check_mapping, check_number
+from axiscal.io.arguments import check_array, check_instance, check_mapping, check_number, check_path
+from axiscal.io.templates import render_template
 from axiscal.model.machine import Machine, as_machine
 
-__all__ = ["identify", "RANK_TOLERANCE"]
+__all__ = ["identify", "identify_files", "RANK_TOLERANCE"]
 
 #: a singular value below this fraction of the largest (columns scaled to unit length) is a combination the data cannot
 #: see: readings taken a few um off their nominal places break an exact degeneracy at 1e-6 to 1e-5, and a combination
@@ -321,7 +324,6 @@ def identify(
         An unknown model or fixed term, a bad artefact (naming its file and line), readings that do
         not fit the artefact's nominal geometry, or fewer readings than determined unknowns.
     """
-    from axiscal.identification.files import read_artefact
 
     machine = as_machine(machine)
     if isinstance(artefacts, (str, Path, Artefact)) or not isinstance(artefacts, Sequence) or not artefacts:
@@ -381,3 +383,31 @@ def identify(
         fixed=parameters.fixed,
         spans=dict(parameters.spans),
     )
+
+
+def identify_files(machine, artefacts, folder: str | Path, *, model: str = "poly:3", fix=()) -> tuple:
+    """What ``axiscal identify`` does: identify from files and write the machine folder and the report.
+
+    Parameters
+    ----------
+    machine : Machine, str or Path
+        The machine or its TOML file (the starting guess).
+    artefacts : sequence of str or Path
+        Artefact files.
+    folder : str or Path
+        The output machine folder.
+    model : str, keyword-only
+        ``"poly:N"`` or ``"spline:K"``.
+    fix : sequence of str, keyword-only
+        Terms kept at their starting values.
+
+    Returns
+    -------
+    (Identification, str)
+        The result and its summary as text.
+    """
+    folder = check_path("folder", folder)
+    result = identify(machine, list(artefacts), model=model, fix=tuple(fix))
+    write_identification(result, folder)
+    text = render_template("identification/identify.txt.j2", summary=result.summary(), folder=str(folder))
+    return result, text
