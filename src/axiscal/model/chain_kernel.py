@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from axiscal.model.kinematics import RotaryLink
+from axiscal.conventions import ROTARY_LETTERS
 from axiscal.model.tables import _TURN
 
 #: nothing public: the entries are :class:`axiscal.model.Machine` and :mod:`axiscal.model.kinematics`
@@ -101,7 +101,7 @@ def pack_chain(tool_links, workpiece_links) -> PackedChain:
     """The links of a chain (ChainLink or RotaryLink, each branch from the frame outward) packed for the kernel."""
     order = [(link, 1) for link in reversed(tuple(tool_links))] + [(link, 0) for link in workpiece_links]
     tables = [link.table for link, _ in order]
-    rotary = [isinstance(link, RotaryLink) for link, _ in order]
+    rotary = [link.letter in ROTARY_LETTERS for link, _ in order]  # a RotaryLink turns about A, B or C
     first_row = np.cumsum([0] + [table.position_m.size for table in tables])[:-1]
     binned = [table._bin_rows if table._uniform_step is None and table._bin_rows is not None else None for table in tables]
     first_bin = np.cumsum([0] + [0 if rows is None else rows.size for rows in binned])[:-1]
