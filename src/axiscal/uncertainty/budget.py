@@ -32,7 +32,7 @@ from axiscal.errors import AxiscalError
 from axiscal.instruments.air import METHODS, refractive_index
 from axiscal.io.arguments import check_mapping, check_number
 from axiscal.io.arguments import check_instance, type_name
-from axiscal.io.tabular import read_text, read_toml
+from axiscal.io.tabular import parse_toml, read_text
 from axiscal.units import ARCSEC, UM
 
 __all__ = [
@@ -323,8 +323,8 @@ def read_budget(path: str | Path) -> Budget:
     AxiscalError
         A missing or malformed file, or a bad key, naming the file and line.
     """
-    data = read_toml(path)
-    return budget_from_dict(data, source=str(path), text=read_text(path))
+    text = read_text(path)  # read once: parsed, and kept to name the line of a bad key
+    return budget_from_dict(parse_toml(text, path=path), source=str(path), text=text)
 
 
 def air_sensitivities(budget: Budget) -> dict[str, float]:
