@@ -133,6 +133,7 @@ def capture_to_file(
     output: str | Path,
     *,
     resume: bool = False,
+    engine: Any = None,
     **options: Any,
 ) -> CaptureFiles:
     """Capture a run into ``output`` (``axiscal capture``): partial file as it goes, the run atomically at the end.
@@ -145,6 +146,9 @@ def capture_to_file(
         The run CSV to write; ``OUTPUT.partial`` holds the stops as they are taken.
     resume : bool, keyword-only
         Continue the partial capture ``OUTPUT.partial`` with this recording (the rest of the run).
+    engine : callable, optional, keyword-only
+        What takes the readings, called as ``engine(steps, recording, resumed=..., on_stop=..., **options)``:
+        :func:`~axiscal.capture.run.capture` (default), or a driven run (:func:`axiscal.capture.drive.drive_plan`).
     **options
         ``settings``, ``unit``, ``channel``, ``environment``, ``progress``, ``timeout_s`` and
         ``on_stop`` (called after each stop is written to the partial file) of :func:`capture`.
@@ -183,7 +187,7 @@ def capture_to_file(
             observe(reading)
 
     try:
-        result = capture(steps, recording, resumed=resumed, on_stop=on_stop, **options)
+        result = (capture if engine is None else engine)(steps, recording, resumed=resumed, on_stop=on_stop, **options)
     finally:
         if writer is not None:
             writer.close()

@@ -102,6 +102,8 @@ def plan_steps(plan: PositioningTestPlan | str | Path) -> PlanSteps:
         Naming the file and line: a missing column, a direction that is not ``+``/``-``, step
         numbers that do not increase, a target that is not where its move ends, or no target at all.
     """
+    if isinstance(plan, PlanSteps):
+        return plan
     if isinstance(plan, PositioningTestPlan):
         k = plan.moves.size
         return PlanSteps(np.arange(1, k + 1), plan.move_run.copy(), plan.move_direction.astype(str),
