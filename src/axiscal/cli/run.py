@@ -113,7 +113,9 @@ def run_command(plan_csv, controller_spec, source_spec, output, axis, feed_mm_mi
     if dry_run:
         from axiscal.devices.controllers import open_controller
 
-        controller = open_controller(controller_spec, ini=ini)
+        from axiscal.capture.connected import sim_machine
+
+        controller = open_controller(controller_spec, ini=ini, sim=lambda: sim_machine(axis=axis).controller())
         try:
             resume_from = 0
             if resume:
@@ -194,7 +196,7 @@ def cycle_command(plan_csv, controller_spec, source_spec, fmt, output_dir, resta
     results) and OUTPUT/cycle.json. Between the two runs the controller must load the compensation file:
     --restart-command does it, else the cycle prints exactly what to do and waits for Enter.
     """
-    from axiscal.capture.cycle_devices import CycleSettings, closed_cycle
+    from axiscal.report.cycle import CycleSettings, closed_cycle
     from axiscal.capture.drive import DriveSettings
     from axiscal.capture.run import CaptureSettings
 

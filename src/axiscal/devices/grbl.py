@@ -103,6 +103,8 @@ class GrblController(Controller):
             if line.startswith("Grbl") or line.startswith("GrblHAL"):
                 self.banner = line
             if self._take(line) is not None:
+                while self.io.next_line(0.15) is not None:  # what answered the wake-up line
+                    pass
                 break
         else:
             raise AxiscalError(f"{self.description}: no grbl answers (no banner, no status within 2.5 s): check the port and"
@@ -188,7 +190,7 @@ class GrblController(Controller):
             line = self.io.next_line(0.05)
             if line is None:
                 continue
-            if line == "ok":
+            if line == "ok" and settings:
                 break
             m = re.match(r"^\$(\d+)=([-\d.]+)", line)
             if m:

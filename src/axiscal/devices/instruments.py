@@ -162,10 +162,9 @@ class _Simulated:
         self._source.close()
         self._simulator.stop()
         if self._fd is not None:
-            try:
-                os.close(self._fd)
-            except OSError:
-                pass
+            from axiscal.devices.simulators import close_pty_pair
+
+            close_pty_pair(self._fd)
 
 
 def _open_sim(kind: str, options: InstrumentOptions, spec: str, position: Callable[[float], float] | None, *,
@@ -197,7 +196,7 @@ def _open_sim(kind: str, options: InstrumentOptions, spec: str, position: Callab
         source = _open_real(kind, path, options, spec)
     except Exception:
         simulator.stop()
-        os.close(fd)
+        sims.close_pty_pair(fd)
         raise
     source.status.description = f"simulated {source.status.description}"
     return _Simulated(source, simulator, fd)

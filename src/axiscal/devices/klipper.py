@@ -78,6 +78,11 @@ class KlipperSocket:
             self._buffer += data
 
     def close(self) -> None:
+        """Close the connection; a reply awaited on another thread ends at once (shutdown wakes it)."""
+        try:
+            self.sock.shutdown(socket.SHUT_RDWR)
+        except OSError:
+            pass
         try:
             self.sock.close()
         except OSError:

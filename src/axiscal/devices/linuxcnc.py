@@ -117,6 +117,11 @@ class RshConnection:
             return self._read_line(self.timeout_s if timeout_s == -1.0 else timeout_s)
 
     def close(self) -> None:
+        """Close the session; a reply awaited on another thread ends at once (shutdown wakes it)."""
+        try:
+            self.sock.shutdown(socket.SHUT_RDWR)
+        except OSError:
+            pass
         try:
             self.sock.close()
         except OSError:

@@ -21,6 +21,7 @@ from axiscal.errors import AxiscalError
 __all__ = ["MarlinController"]
 
 _POSITION = re.compile(r"([XYZE]):\s*(-?\d+(?:\.\d+)?)")
+_ENDSTOP = re.compile(r"([XYZ])\s*:?\s*(-?\d+(?:\.\d+)?)")
 
 
 class MarlinController(Controller):
@@ -54,8 +55,8 @@ class MarlinController(Controller):
             head = line.split("Count")[0]
             self._pos = {k: float(v) for k, v in _POSITION.findall(head)}
         if "Soft endstops" in line and "Min:" in line and "Max:" in line:
-            mins = dict(_POSITION.findall(line.split("Min:")[1].split("Max:")[0]))
-            maxs = dict(_POSITION.findall(line.split("Max:")[1]))
+            mins = dict(_ENDSTOP.findall(line.split("Min:")[1].split("Max:")[0]))
+            maxs = dict(_ENDSTOP.findall(line.split("Max:")[1]))
             self._soft = {k: (float(mins[k]), float(maxs[k])) for k in mins if k in maxs}
             if "Off" in line.split("Min:")[0]:
                 self._soft = {}

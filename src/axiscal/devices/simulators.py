@@ -23,11 +23,17 @@ import numpy as np
 
 from axiscal.devices.umd import HENE_VACUUM_WAVELENGTH_M, umd_line
 
-__all__ = ["open_pty_pair", "UmdSimulator", "SylvacSimulator", "MahrSimulator", "TouchDroSimulator", "AttocubeSimulator"]
+__all__ = ["open_pty_pair", "close_pty_pair", "UmdSimulator", "SylvacSimulator", "MahrSimulator", "TouchDroSimulator", "AttocubeSimulator"]
+
+
+_HELD_SLAVES: dict[int, int] = {}
 
 
 def open_pty_pair() -> tuple[int, str]:
     """A pseudo-terminal in raw mode: the master's file descriptor (the device's end) and the slave's path.
+
+    The slave is held open here until :func:`close_pty_pair`, as a device's port stays there whether or not
+    a program has it open (a master whose slave is closed fails every read and write).
 
     Returns
     -------
@@ -36,8 +42,23 @@ def open_pty_pair() -> tuple[int, str]:
     master, slave = os.openpty()
     tty.setraw(slave)
     path = os.ttyname(slave)
-    os.close(slave)
+    _HELD_SLAVES[master] = slave
     return master, path
+
+
+def close_pty_pair(master: int) -> None:
+    """Close a pair made by :func:`open_pty_pair`.
+
+    Parameters
+    ----------
+    master : int
+    """
+    for fd in (_HELD_SLAVES.pop(master, None), master):
+        if fd is not None:
+            try:
+                os.close(fd)
+            except OSError:
+                pass
 
 
 class _Simulator:

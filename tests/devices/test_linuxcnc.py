@@ -1,0 +1,176 @@
+"""axiscal drives a real LinuxCNC (Debian's linuxcnc-uspace, headless sim) and reads a µMD laser through a pty.
+
+The machine is LinuxCNC itself: linuxcncrsh on TCP 5007, core_sim HAL, soft limits -1 .. 201 mm; the laser
+reads joint 0's motor position (HAL sampler, 1 kHz) plus a known mechanical error (linuxcnc_harness.py).
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from axiscal.capture.connected import dry_run, open_run_devices, run_to_file
+from axiscal.capture.drive import DriveSettings
+from axiscal.capture.run import CaptureSettings
+from axiscal.errors import AxiscalError
+from axiscal.io.tabular import read_csv
+from axiscal.positioning.plan import plan_test, write_plan as _write_plan
+
+
+def write_plan(plan, path: Path) -> Path:
+    _write_plan(plan, path)
+    return path
+from axiscal.report.cycle import CycleSettings, closed_cycle
+
+sys.path.insert(0, str(Path(__file__).parent))
+from linuxcnc_harness import LinuxcncSim, mechanical_error_mm  # noqa: E402
+
+CONTROLLER = "linuxcnc:127.0.0.1"
+DRIVE = DriveSettings(axis="X", feed_m_per_s=0.1, dwell_s=0.4)
+SETTINGS = CaptureSettings(stability_m=0.2e-6, window_s=0.2)
+
+
+@pytest.fixture(scope="module")
+def machine():
+    # outside pytest's own temporary folder, which is private to root: LinuxCNC runs as another user
+    folder = Path(tempfile.mkdtemp(prefix="axiscal-linuxcnc-"))
+    sim = LinuxcncSim(folder)
+    sim.start()
+    yield sim
+    sim.close()
+    shutil.rmtree(folder, ignore_errors=True)
+
+
+@pytest.fixture(scope="module")
+def plan_csv(tmp_path_factory) -> Path:
+    plan = plan_test(0.010, 0.190, 5, runs=2, overrun_m=0.005, seed=4)
+    return write_plan(plan, tmp_path_factory.mktemp("plan") / "plan.csv")
+
+
+def _devices(machine):
+    return open_run_devices(CONTROLLER, f"umd:{machine.pty}", ini=machine.ini)
+
+
+def test_run_takes_every_stop_within_50_nm_of_the_truth(machine, plan_csv, tmp_path):
+    controller, source = _devices(machine)
+    try:
+        files = run_to_file(plan_csv, controller, source, tmp_path / "run.csv", drive=DRIVE, settings=SETTINGS)
+    finally:
+        source.close()
+        controller.close()
+    table = read_csv(files.run_csv)
+    target = table.numeric("target_mm")
+    deviation = table.numeric("deviation_um")
+    truth = np.array([mechanical_error_mm(x) for x in target]) * 1e3
+    assert len(target) == 20
+    assert np.max(np.abs(deviation - truth)) < 0.05
+
+
+def test_cycle_on_linuxcnc_restarted_with_its_comp_file(machine, plan_csv, tmp_path):
+    result = closed_cycle(plan_csv, CONTROLLER, f"umd:{machine.pty}", tmp_path / "cycle",
+                          CycleSettings(restart=machine.restart, ini=str(machine.ini)), drive=DRIVE, settings=SETTINGS)
+    found, left = result.summary["as_found"]["E_um"], result.summary["as_left"]["E_um"]
+    assert found > 30
+    assert left <= 0.2 * found
+    assert (tmp_path / "cycle" / "as-left" / "report" / "report.html").is_file()
+    assert "COMP_FILE" in machine.ini.read_text()
+
+
+def test_targets_beyond_the_soft_limits_are_refused_before_any_move(machine, tmp_path):
+    plan = write_plan(plan_test(0.150, 0.200, 5, runs=1, overrun_m=0.005, seed=1), tmp_path / "far.csv")
+    controller, source = _devices(machine)
+    try:
+        before = controller.position("X")
+        with pytest.raises(AxiscalError, match=r"beyond the soft limits of LinuxCNC .* nothing was moved"):
+            dry_run(plan, controller)
+        with pytest.raises(AxiscalError, match="beyond the soft limits"):
+            run_to_file(plan, controller, source, tmp_path / "far_run.csv", drive=DRIVE, settings=SETTINGS)
+        assert controller.position("X") == before
+    finally:
+        source.close()
+        controller.close()
+
+
+def test_without_the_ini_linuxcnc_s_own_refusal_ends_the_run_at_its_step(machine, tmp_path):
+    plan = write_plan(plan_test(0.150, 0.200, 5, runs=1, overrun_m=0.005, seed=1), tmp_path / "far.csv")
+    controller, source = open_run_devices(CONTROLLER, f"umd:{machine.pty}")
+    try:
+        with pytest.raises(AxiscalError, match=r"step \d+.*refused the move .*would exceed X's positive limit|refused the move"):
+            run_to_file(plan, controller, source, tmp_path / "far_run.csv", drive=DRIVE, settings=SETTINGS)
+    finally:
+        source.close()
+        controller.close()
+
+
+def test_a_linuxcnc_that_stops_answering_ends_the_run_within_2_s(machine, plan_csv, tmp_path):
+    controller, source = _devices(machine)
+    rsh = subprocess.run(["pgrep", "-x", "linuxcncrsh"], capture_output=True, text=True).stdout.split()
+    assert rsh
+    frozen_at = []
+
+    def freeze(progress):
+        if progress.taken == 2 and not frozen_at:
+            for pid in rsh:
+                os.kill(int(pid), signal.SIGSTOP)
+            frozen_at.append(time.monotonic())
+
+    try:
+        with pytest.raises(AxiscalError, match="run stopped"):
+            run_to_file(plan_csv, controller, source, tmp_path / "run.csv", drive=DRIVE, settings=SETTINGS, progress=freeze)
+        assert time.monotonic() - frozen_at[0] < 2.0 + DRIVE.dwell_s + 1.0  # the step's dwell, then the move: silence
+    finally:
+        for pid in rsh:
+            os.kill(int(pid), signal.SIGCONT)
+        source.close()
+        controller.close()
+    assert (tmp_path / "run.csv.partial").is_file()
+
+
+def test_ctrl_c_stops_keeps_the_partial_and_resume_finishes(machine, plan_csv, tmp_path):
+    out = tmp_path / "run.csv"
+    command = [sys.executable, "-m", "axiscal.cli.main", "run", str(plan_csv), "--controller", CONTROLLER, "--source",
+               f"umd:{machine.pty}", "--ini", str(machine.ini), "-o", str(out), "--feed-mm-min", "6000", "--dwell-s", "0.4",
+               "--window-s", "0.2", "--stability-um", "0.2"]
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).parents[2] / "src")}
+    process = subprocess.Popen(command, stderr=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env)
+    partial = tmp_path / "run.csv.partial"
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and (not partial.is_file() or len(partial.read_text().splitlines()) < 4):
+        time.sleep(0.1)
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=30)
+    assert process.returncode == 2
+    lines = [line for line in err.splitlines() if line.startswith("axiscal: error")]
+    assert len(lines) == 1 and "--resume" in lines[0] and "run.csv.partial" in lines[0]
+    done = subprocess.run(command + ["--resume"], capture_output=True, text=True, env=env, timeout=120)
+    assert done.returncode == 0, done.stderr
+    table = read_csv(out)
+    assert len(table) == 20
+    truth = np.array([mechanical_error_mm(x) for x in table.numeric("target_mm")]) * 1e3
+    assert np.max(np.abs(table.numeric("deviation_um") - truth)) < 0.05
+
+
+def test_not_homed_after_a_restart_is_one_line(machine, plan_csv, tmp_path):
+    machine.stop()
+    machine.home = lambda: machine._rsh(["set estop off", "set machine on"])  # on, but not homed again after the restart
+    try:
+        machine.start()
+        controller, source = _devices(machine)
+        try:
+            with pytest.raises(AxiscalError, match=r"axis X \(joint 0\) is not homed: home the machine first"):
+                run_to_file(plan_csv, controller, source, tmp_path / "run.csv", drive=DRIVE, settings=SETTINGS)
+        finally:
+            source.close()
+            controller.close()
+    finally:
+        del machine.home
+        machine.restart(None)
