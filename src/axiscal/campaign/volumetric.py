@@ -22,9 +22,9 @@ from typing import Any
 import numpy as np
 
 from axiscal.campaign.results import Figure, Plot
-from axiscal.compensation.readback import ControllerCompensation, read_compensation
+from axiscal.compensation.readback import CONTROLLERS, ControllerCompensation, read_compensation
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_count, check_mapping, check_path
+from axiscal.io.arguments import check_choice, check_count, check_mapping, check_path
 from axiscal.io.arguments import check_instance, type_name
 from axiscal.io.tabular import read_text
 from axiscal.model.machine import Machine, load_machine
@@ -122,6 +122,7 @@ def read_loaded_compensation(files: Mapping[str, str | Path], controller: str) -
         For a file that is missing or that the controller would refuse, naming it.
     """
     check_mapping("files", files, what="a mapping of axis letters to compensation files")
+    check_choice("controller", controller, CONTROLLERS)
     loaded = {}
     for letter, name in files.items():
         path = check_path(f"files[{letter!r}]", name)
