@@ -10,7 +10,8 @@
   a foot of their length / 14), readings in um/m rounded to 0.01 um/m.
 * examples/flatness/grid.toml: the same plate measured as a grid (5 lines along x, 5 along y,
   and the two diagonals through their crossings) with a straightedge: each line's deviations in
-  um every 100 mm (the diagonals every 180 mm), with an offset and tilt of its own.
+  um every 100 mm (the diagonals every 180 mm, their stations written to 0.1 um so that they
+  fall on the crossings), with an offset and tilt of its own.
 """
 
 from __future__ import annotations
@@ -89,7 +90,7 @@ def grid() -> str:
         x, y = start[0] + t * (end[0] - start[0]), start[1] + t * (end[1] - start[1])
         deviation = plate_um(x, y) + rng.normal(0.0, 0.3) + rng.normal(0.0, 2.0) * t + rng.normal(0.0, 0.01, s.size)
         out += ["[[lines]]", f'name = "{name}"', f"from_mm = {numbers(start, '{:g}')}", f"to_mm = {numbers(end, '{:g}')}",
-                f"position_mm = {numbers(s, '{:g}')}", f"deviation_um = {numbers(deviation, '{:.3f}')}", ""]
+                f"position_mm = {numbers(s, '{:.4f}')}", f"deviation_um = {numbers(deviation, '{:.3f}')}", ""]
     return "\n".join(out)
 
 

@@ -243,3 +243,46 @@ def test_a_line_against_gravity_is_placed_by_one_crossing():
     assert surface.zone.minimum_zone_m == pytest.approx(0.0, abs=1e-15)  # one plane rising along y
     with pytest.raises(AxiscalError, match="line 'd' crosses the other lines at 1"):
         surface_from_lines([*base, FlatnessLine("d", [0, 1], [-1, 1], [0, 1], [0, 0])])
+
+
+def bowl_3600(x, y):
+    """A bowl 3.600 um deep from the corners to the centre of a 1.2 x 0.8 m plate."""
+    return 1.8e-6 * ((x / 0.6 - 1) ** 2 + (y / 0.4 - 1) ** 2)
+
+
+@pytest.mark.parametrize("evaluate", [surface_from_lines, moody_union_jack])
+def test_a_union_jack_without_stations_where_its_lines_cross_is_refused_by_both_evaluations(evaluate):
+    """11 steps along x leave the W-E centre line and the S and N edges without a middle station: Moody's
+    method interpolated there (the 3.600 um bowl read 3.570 um, with 0.030 um closures that are not in the
+    readings) and least squares refused it speaking of rows and columns. Both now name the lines and the place."""
+    assert moody_union_jack(union_jack(bowl_3600)).zone.minimum_zone_m == pytest.approx(3.6e-6, rel=1e-9)
+    with pytest.raises(AxiscalError) as caught:
+        evaluate(union_jack(bowl_3600, steps=(11, 8, 14)))
+    assert caught.value.message.startswith("lines 'SW-NE' and 'W-E' cross at x = 600 mm, y = 400 mm, where 'W-E' has no"
+                                           " station: lines are joined only at stations they share")
+
+
+def test_a_centre_line_ending_between_an_edge_s_stations_is_refused():
+    """The S-N centre line ends on the S edge's middle; 11 steps along x put no station of the edge there."""
+    lines = union_jack(bowl_3600, steps=(12, 8, 14))
+    edge = union_jack(bowl_3600, steps=(11, 8, 14))[2]  # SW-SE with 11 steps
+    lines[2] = edge
+    with pytest.raises(AxiscalError, match=r"lines 'SW-SE' and 'S-N' cross at x = 600 mm, y = 0 mm, where 'SW-SE' has no"):
+        moody_union_jack(lines)
+
+
+def test_a_grid_line_whose_stations_miss_the_crossings_is_refused():
+    """A row stepped half a pitch off the columns met them only at its ends, and was silently joined there alone."""
+    def plate(x, y):
+        return 2e-6 * (x / 0.6 - 1) * (y / 0.4 - 1)
+    lines = []
+    for y in (0.0, 0.4, 0.8):
+        s = np.linspace(0, 1.2, 5) if y != 0.4 else np.r_[0.0, np.linspace(0.15, 1.05, 4), 1.2]
+        lines.append(FlatnessLine(f"row {y:g}", [0, y], [1.2, y], s, plate(s, y)))
+    for x in (0.0, 0.6, 1.2):
+        s = np.linspace(0, 0.8, 3)
+        lines.append(FlatnessLine(f"col {x:g}", [x, 0], [x, 0.8], s, plate(x, s)))
+    d = np.linspace(0, np.hypot(1.2, 0.8), 3)
+    lines.append(FlatnessLine("diagonal", [0, 0], [1.2, 0.8], d, plate(d / np.hypot(1.2, 0.8) * 1.2, d / np.hypot(1.2, 0.8) * 0.8)))
+    with pytest.raises(AxiscalError, match=r"lines 'row 0.4' and 'col 0.6' cross at x = 600 mm, y = 400 mm, where 'row 0.4'"):
+        surface_from_lines(lines)

@@ -62,3 +62,49 @@ def test_bad_inputs(examples, tmp_path):
         sensor_diagonal(campaign / "diagonal_2kg.csv", campaign / "sixdof_stops_2kg.csv", start={"X": 0.0}, end={"X": 0.0})
     with pytest.raises(AxiscalError, match="XZ plane"):
         sensor_diagonal(campaign / "diagonal_2kg.csv", campaign / "sixdof_stops_2kg.csv", start={"Y": 0.0}, end={"X": 0.1})
+
+
+def _scaled_nominal(source, target, factor):
+    lines = source.read_text().splitlines()
+    rows = [line.split(",") for line in lines[1:]]
+    target.write_text("\n".join([lines[0]] + [f"{float(n) * factor:.6f},{m}" for n, m in rows]) + "\n")
+    return target
+
+
+def test_readings_whose_nominal_positions_do_not_match_the_stops_are_refused(examples, tmp_path):
+    """Doubled nominal positions gave an E_BD of 268 768 um with exit 0: the stops the scales read are at
+    half those distances along the diagonal."""
+    campaign = examples / "campaign"
+    doubled = _scaled_nominal(campaign / "diagonal_0kg.csv", tmp_path / "diagonal.csv", 2.0)
+    with pytest.raises(AxiscalError) as info:
+        sensor_diagonal(doubled, campaign / "sixdof_stops_0kg.csv", machine=campaign / "sensors_machine.toml", **ENDS)
+    assert info.value.path == str(doubled) and info.value.line == 3
+    assert info.value.message == ("nominal_mm 28.2843 puts stop 2 at X=20 Z=20 mm on the diagonal, but the scales of"
+                                  " sixdof_stops_0kg.csv put it at X=9.99877 Z=9.99936 mm: the readings do not match"
+                                  " the diagonal's stops")
+
+
+def test_stops_beyond_the_diagonal_s_end_are_refused(examples, tmp_path):
+    """The scales agree with the readings, but the campaign's `to` ends the diagonal at the sixth stop."""
+    campaign = examples / "campaign"
+    with pytest.raises(AxiscalError) as info:
+        sensor_diagonal(campaign / "diagonal_0kg.csv", campaign / "sixdof_stops_0kg.csv",
+                        machine=campaign / "sensors_machine.toml", start={"X": 0.0, "Z": 0.0}, end={"X": 0.05, "Z": 0.05})
+    assert info.value.line == 8 and info.value.message.startswith("nominal_mm 84.8528 is off the diagonal from X=0 Z=0"
+                                                                  " to X=50 Z=50 mm, which is 70.7107 mm long")
+
+
+def test_report_refuses_such_a_test_in_one_line(examples, tmp_path, run_cli):
+    campaign = examples / "campaign"
+    for name in ("sixdof_stops_0kg.csv", "sensors_machine.toml", "sensors_calibration.json", "sensors_x_errors.csv",
+                 "sensors_z_errors.csv"):
+        (tmp_path / name).write_bytes((campaign / name).read_bytes())
+    _scaled_nominal(campaign / "diagonal_0kg.csv", tmp_path / "diagonal_0kg.csv", 2.0)
+    (tmp_path / "campaign.toml").write_text(
+        '[campaign]\ntitle = "t"\ndate = 2026-11-20\noperator = "o"\n\n[machine]\nname = "XZ"\n\n'
+        '[[tests]]\nkind = "sixdof_diagonal"\nfile = "diagonal_0kg.csv"\nframes = "sixdof_stops_0kg.csv"\n'
+        'machine = "sensors_machine.toml"\nfrom = "X=0,Z=0"\nto = "X=190,Z=190"\n')
+    status, out, err = run_cli("report", tmp_path, "-o", tmp_path / "report")
+    assert status == 2 and err.count("\n") == 1, err
+    assert err.startswith(f"axiscal: error: {tmp_path / 'diagonal_0kg.csv'}:3: nominal_mm 28.2843 puts stop 2 at X=20 Z=20")
+    assert not (tmp_path / "report").exists()

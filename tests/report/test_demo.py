@@ -140,3 +140,21 @@ def test_the_as_found_campaign_differs_from_the_example_only_by_its_captured_run
     captured = {f"{kind}_{axis}.{ext}" for axis in "xz" for kind, ext in
                 (("plan", "csv"), ("plan", "json"), ("recording", "csv"), ("recording", "json"))} | {"x.ngc", "z.ngc"}
     assert set(demo.campaign.files) == shipped | captured | {"uncertainty_budget.toml"}
+
+
+def test_the_as_left_volumetric_section_is_the_compensated_machine_s(demo):
+    """The as-left report showed the as-found model (largest |e| 84.3 um in both) and a blank change map. Its
+    campaign now names the files the controller loaded, and the section draws what is left: EXX and EZZ
+    compensated, the 42.4 arcsec squareness of paper 000 left (42.4 arcsec over Z's 190 mm: 39.06 um)."""
+    found = json.loads(demo.files["results"].read_text())["volumetric"]
+    left = json.loads(demo.files["as_left_results"].read_text())["volumetric"]
+    campaign = load_campaign(demo.as_left.folder)
+    assert campaign.compensation == {a: demo.as_left.folder / f"{a}.comp" for a in "XZ"}
+    assert found["max_um"] == pytest.approx(84.33, abs=0.01)
+    assert left["max_um"] == pytest.approx(190.0 * 42.4 / 206.264806, abs=1.0)  # the squareness alone, to 1 um
+    change = [b - a for row_a, row_b in zip(found["map"]["e_um"], left["map"]["e_um"]) for a, b in zip(row_a, row_b)]
+    assert max(change) < -10.0 and min(change) < -40.0  # |e| smaller everywhere: the change map is not blank
+    html = demo.files["as_left_report"].read_text()
+    assert "with the linuxcnc compensation loaded (X: X.comp, Z: Z.comp): what is left" in html
+    assert "Change of the volumetric error since the compared campaign" in html
+    assert "Compensation loaded" in html and "X X.comp, Z Z.comp" in html

@@ -26,14 +26,18 @@ def toml_value(table: str, key: str, kind: type, index: int):
         return '"machine.toml"', "machine.toml"
     if (table, key) == ("machine", "controller"):
         return '"fanuc"', "fanuc"
+    if (table, key) == ("machine", "compensation"):
+        return '{ X = "X.comp" }', "X X.comp"
     return f'"value of {table} {key}"', f"value of {table} {key}"
 
 
 @pytest.fixture
-def everything(tmp_path, examples):
+def everything(tmp_path, examples, run_cli):
     """The example campaign with every field of the three tables stated."""
     folder = tmp_path / "campaign"
     shutil.copytree(examples / "campaign", folder, ignore=shutil.ignore_patterns("report"))
+    status, _, err = run_cli("compensate", folder / "positioning_x.csv", "--format", "fanuc", "-o", folder / "X.comp")
+    assert status == 0, err
     text = (folder / "campaign.toml").read_text()
     shown = {}
     index = 0

@@ -141,3 +141,12 @@ def test_any_displacements_give_finite_figures_or_are_refused(values):
     except AxiscalError:
         return
     assert np.isfinite(result.drift_max["Z"]) and np.isfinite(result.drift_range["Z"])
+
+
+def test_tilts_alone_are_refused():
+    """The ETVE and the drift are displacements of the functional point: X, Y or Z, the tilts beside one."""
+    t = np.arange(5) * 60.0
+    with pytest.raises(AxiscalError, match=r"displacements must hold X, Y or Z \(the tilts A, B are read beside one"):
+        etve(t, {"A": np.zeros(5), "B": np.ones(5)}, {"air": np.arange(5.0)})
+    with pytest.raises(AxiscalError, match="displacements must hold X, Y or Z"):
+        thermal_drift(t, {"B": np.zeros(5)})

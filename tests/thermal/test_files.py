@@ -106,3 +106,24 @@ def test_mutated_runs_are_refused_with_a_line_or_read_correctly(tmp_path, exampl
         assert exc.path == str(path)
         return
     assert np.all(np.diff(run.time_s) > 0) and all(np.all(np.isfinite(v)) for v in run.displacements.values())
+
+
+@pytest.mark.parametrize("tilts", ["a_urad", "b_urad", "a_urad,b_urad"])
+def test_a_run_of_tilts_alone_is_refused_as_the_docs_say(tmp_path, tilts):
+    """docs/thermal.md: one of x_um, y_um, z_um at least. A run of tilts alone was taken, and in a campaign its
+    `etve_um` tolerance was then checked against nothing."""
+    cells = ",".join("1" for _ in tilts.split(","))
+    path = write(tmp_path, f"time_s,{tilts},temperature_air_c\n0,{cells},20\n60,{cells},21\n120,{cells},22\n")
+    with pytest.raises(AxiscalError) as caught:
+        read_thermal_run(path)
+    assert caught.value.path == str(path) and caught.value.line == 1
+    assert "no displacement column: give one of x_um, y_um, z_um" in caught.value.message
+
+
+def test_the_command_refuses_a_run_of_tilts_alone_in_one_line(run_cli, tmp_path):
+    path = write(tmp_path, "time_h,a_urad,temperature_air_c\n0,0,20\n1,-2,21\n2,-3,21.5\n")
+    for command in ("etve", "drift"):
+        status, out, err = run_cli("thermal", command, path)
+        assert status == 2 and out == "" and err == (
+            f"axiscal: error: {path}:1: no displacement column: give one of x_um, y_um, z_um"
+            " (the tilts a_urad, b_urad are read beside one, never alone)\n")

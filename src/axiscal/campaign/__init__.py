@@ -34,8 +34,10 @@ from axiscal.campaign.runner import (
 )
 from axiscal.campaign.volumetric import (
     GRID_POINTS,
+    compensated_machine,
     plot_volume,
     plot_volume_change,
+    read_loaded_compensation,
     same_grid,
     volumetric_section,
 )
@@ -70,4 +72,6 @@ __all__ = [
     "plot_volume",
     "plot_volume_change",
     "same_grid",
+    "compensated_machine",
+    "read_loaded_compensation",
 ]

@@ -40,7 +40,8 @@ CAMPAIGN_FILE = "campaign.toml"
 TABLE_KEYS: dict[str, dict[str, tuple[type, bool]]] = {
     "campaign": {"title": (str, True), "date": (_dt.date, True), "operator": (str, True), "customer": (str, False),
                  "notes": (str, False)},
-    "machine": {"name": (str, True), "serial": (str, False), "model": (str, False), "controller": (str, False)},
+    "machine": {"name": (str, True), "serial": (str, False), "model": (str, False), "controller": (str, False),
+                "compensation": (dict, False)},
     "instrument": {"name": (str, False), "serial": (str, False), "certificate": (str, False),
                    "calibrated": (_dt.date, False), "vacuum_wavelength_nm": (float, False)},
 }
@@ -188,6 +189,10 @@ class Campaign:
         The machine description (``[machine] model``), absolute.
     controller : str or None
         ``[machine] controller``.
+    compensation : dict of str to Path, or None
+        ``[machine] compensation``: the compensation files the controller had loaded while the
+        campaign was measured (axis letter -> file, absolute); the volumetric section draws the
+        model of the compensated machine.
     budget : axiscal.uncertainty.Budget or None
         The uncertainty budget (``uncertainty = "budget.toml"`` or an ``[uncertainty]`` table).
     decision_rule : str
@@ -211,6 +216,7 @@ class Campaign:
     controller: str | None = None
     budget: Any = None
     decision_rule: str = "simple"
+    compensation: dict[str, Path] | None = None
 
     def __post_init__(self) -> None:
         from axiscal.uncertainty.budget import Budget
@@ -225,6 +231,12 @@ class Campaign:
             check_instance("model", self.model, Path)
         if self.controller is not None:
             check_choice("controller", self.controller, CONTROLLERS)
+        if self.compensation is not None:
+            check_mapping("compensation", self.compensation, what="a mapping of axis letters to files")
+            for letter, path in self.compensation.items():
+                check_instance(f"compensation[{letter!r}]", path, Path)
+            if self.controller is None:
+                raise AxiscalError("compensation files need the controller that loaded them")
         if self.budget is not None:
             check_instance("budget", self.budget, Budget)
         check_choice("decision rule", self.decision_rule, DECISION_RULES)
@@ -311,6 +323,10 @@ def load_campaign(folder: str | Path) -> Campaign:
     model = None
     if "model" in machine:
         model = _inside(folder, machine["model"], lambda m: fail(m, "machine", 0, "model"))
+    compensation = None
+    if "compensation" in machine:
+        compensation = _compensation(machine["compensation"], folder, model, controller,
+                                     lambda m: fail(m, "machine", 0, "compensation"))
 
     raw_tests = data.get("tests", [])
     if not isinstance(raw_tests, list) or not all(isinstance(t, dict) for t in raw_tests):
@@ -326,7 +342,28 @@ def load_campaign(folder: str | Path) -> Campaign:
         if ids.index(test_id) != index:
             raise fail(f"two tests have the id '{test_id}'", "tests", index, "id")
     return Campaign(folder, campaign, machine, instrument, tolerances, tuple(tests), model, controller,
-                    budget=budget, decision_rule=rule)
+                    budget=budget, decision_rule=rule, compensation=compensation)
+
+
+def _compensation(value: dict, folder: Path, model: Path | None, controller: str | None, fail) -> dict[str, Path]:
+    """``[machine] compensation`` checked: linear axis letters to files inside the folder, read as the
+    controller reads them (a file it would refuse is refused here, naming it)."""
+    from axiscal.campaign.volumetric import read_loaded_compensation
+
+    if model is None:
+        raise fail("[machine] compensation needs [machine] model: the compensated machine is that model with the"
+                   " files loaded")
+    if controller is None:
+        raise fail("[machine] compensation needs [machine] controller: whose files they are")
+    if not value:
+        raise fail("[machine] compensation names no file: give { X = \"X.comp\", ... } or leave it out")
+    files = {}
+    for letter, name in value.items():
+        if letter not in ("X", "Y", "Z"):
+            raise fail(f"[machine] compensation: '{letter}' is not a linear axis (X, Y or Z)")
+        files[letter] = _inside(folder, name, lambda m, k=letter: fail(f"[machine] compensation {k}: {m}"))
+    read_loaded_compensation(files, controller)
+    return files
 
 
 def _test(raw, index, folder, campaign_tolerances, model, counters, fail) -> TestSpec:

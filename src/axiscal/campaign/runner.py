@@ -455,7 +455,8 @@ def run_campaign(
         from axiscal.campaign.volumetric import volumetric_section
 
         before = compare.get("volumetric") if compare is not None else None
-        model = volumetric_section(campaign.model, svg_of, before=before if isinstance(before, Mapping) else None)
+        model = volumetric_section(campaign.model, svg_of, before=before if isinstance(before, Mapping) else None,
+                                   compensation=campaign.compensation, controller=campaign.controller)
     if progress is not None and total:
         progress(total, total, campaign.tests[-1])
     return CampaignResults(campaign.campaign, campaign.machine, campaign.instrument, results, model=model,

@@ -1,5 +1,11 @@
 """The volumetric section of a campaign: the model's error over the working volume, and its change.
 
+A campaign measured with a controller's pitch compensation loaded (``[machine] compensation``, an
+as-left campaign) draws the model of the compensated machine (:func:`compensated_machine`): the
+controller moves each compensated axis to ``m = c + correction(c)`` when ``c`` is commanded, so
+what is left at ``c`` is ``e(m) + correction(c)`` (the relation
+:mod:`axiscal.compensation.readback` states and the virtual machine simulates).
+
 The map is always drawn against the axis positions: a line per component for one axis, a colour
 map of |e| for two axes, and for three axes a colour map in the plane of the first two axes at the
 start, middle and end of the third. Against another campaign's map on the same grid, the change
@@ -8,6 +14,7 @@ start, middle and end of the third. Against another campaign's map on the same g
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
@@ -15,17 +22,115 @@ from typing import Any
 import numpy as np
 
 from axiscal.campaign.results import Figure, Plot
+from axiscal.compensation.readback import CONTROLLERS, ControllerCompensation, read_compensation
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_count, check_mapping, check_path
+from axiscal.io.arguments import check_choice, check_count, check_mapping, check_path
 from axiscal.io.arguments import check_instance, type_name
+from axiscal.io.tabular import read_text
 from axiscal.model.machine import Machine, load_machine
+from axiscal.model.tables import ErrorTable
 from axiscal.model.volumetric import volumetric_map
 from axiscal.units import MM, UM
 
-__all__ = ["GRID_POINTS", "volumetric_section", "plot_volume", "plot_volume_change", "same_grid"]
+__all__ = ["GRID_POINTS", "volumetric_section", "plot_volume", "plot_volume_change", "same_grid", "compensated_machine",
+           "read_loaded_compensation"]
 
 #: grid points along each linear axis of the report's map
 GRID_POINTS = 21
+
+
+def compensated_machine(machine: Machine, corrections: Mapping[str, ControllerCompensation]) -> Machine:
+    """The model of the machine with a controller's pitch compensation loaded.
+
+    For each compensated linear axis the controller moves to ``m = c + k(c)`` when ``c`` is
+    commanded, ``k`` the mean of its corrections for travel in + and in - (the model holds one
+    curve per error motion, no reversal). The axis' six error motions are then those at ``m``,
+    and its own positioning error (``EXX`` of X, ``EZZ`` of Z) gains ``k(c)``: the compensated
+    axis' error at ``c`` is ``e(m) + k(c)``. The new table is sampled at the old table's positions
+    and the correction's points within them (the correction is linear between its points), and
+    keeps the old table's interpolation and travel.
+
+    Parameters
+    ----------
+    machine : Machine
+        The model of the machine as found (no compensation loaded).
+    corrections : mapping of str to ControllerCompensation
+        Axis letter (X, Y or Z) -> the correction its controller applies
+        (:func:`~axiscal.compensation.readback.read_compensation`).
+
+    Returns
+    -------
+    Machine
+        The same machine but for the compensated axes' error tables.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``machine`` that is not a Machine, corrections that are not a mapping of
+        ControllerCompensation, or a letter that is not a linear axis of the machine.
+
+    Examples
+    --------
+    >>> from axiscal.model.machine import Axis
+    >>> table = ErrorTable.from_components("X", [0.0, 0.2], {"EXX": [0.0, 20e-6]})
+    >>> machine = Machine("FX", {"X": Axis("X", table)})
+    >>> loaded = ControllerCompensation("linuxcnc", np.array([0.0, 0.2]), np.array([0.0, -20e-6]), np.array([0.0, -20e-6]))
+    >>> left = compensated_machine(machine, {"X": loaded})
+    >>> round(float(left.table("X").evaluate(np.array([0.1]))[0, 0]) * 1e9, 3)  # EXX at 100 mm, nm: 10 um less 10 um
+    -1.0
+
+    The -1 nm is real: sent 10 um short, the axis stands where ``EXX`` is 1 nm smaller.
+    """
+    check_instance("machine", machine, Machine)
+    check_mapping("corrections", corrections, what="a mapping of axis letters to ControllerCompensation")
+    axes = dict(machine.axes)
+    for letter, correction in corrections.items():
+        check_instance(f"corrections[{letter!r}]", correction, ControllerCompensation)
+        if not isinstance(letter, str) or letter not in "XYZ" or letter not in axes:
+            raise AxiscalError(f"a compensation for axis {letter!r}: the machine's linear axes are "
+                               f"{', '.join(k for k in machine.letters if k in 'XYZ')}")
+        table = machine.table(letter)
+        inside = correction.nodes_m[(correction.nodes_m > table.start_m) & (correction.nodes_m < table.end_m)]
+        command = np.union1d(table.position_m, inside)
+        mean = 0.5 * (correction.correction(command, "+") + correction.correction(command, "-"))
+        values = table.evaluate(np.clip(command + mean, table.start_m, table.end_m))
+        values["XYZ".index(letter)] += mean
+        left = ErrorTable(letter, command, values, interpolation=table.interpolation, hold_ends=table.hold_ends)
+        axes[letter] = dataclasses.replace(axes[letter], table=left)
+    return dataclasses.replace(machine, axes=axes)
+
+
+def read_loaded_compensation(files: Mapping[str, str | Path], controller: str) -> dict[str, ControllerCompensation]:
+    """The compensation files a controller has loaded, read as it reads them.
+
+    Parameters
+    ----------
+    files : mapping of str to str or Path
+        Axis letter -> its compensation file (``[machine] compensation`` of a campaign).
+    controller : {"linuxcnc", "fanuc", "siemens", "heidenhain"}
+        Whose files they are; each is read with
+        :func:`~axiscal.compensation.readback.read_compensation`'s defaults (LinuxCNC's
+        ``COMP_FILE_TYPE`` 1 in mm; FANUC's reference at 0 and units of 1 um).
+
+    Returns
+    -------
+    dict of str to ControllerCompensation
+
+    Raises
+    ------
+    AxiscalError
+        For a file that is missing or that the controller would refuse, naming it.
+    """
+    check_mapping("files", files, what="a mapping of axis letters to compensation files")
+    check_choice("controller", controller, CONTROLLERS)
+    loaded = {}
+    for letter, name in files.items():
+        path = check_path(f"files[{letter!r}]", name)
+        try:
+            loaded[letter] = read_compensation(read_text(path), controller)
+        except AxiscalError as exc:
+            raise exc.located(path=path) from None
+    return loaded
 
 
 def _axis_grid(machine: Machine, letter: str, count: int) -> np.ndarray:
@@ -262,7 +367,8 @@ def plot_volume_change(now: Mapping[str, Any], before: Mapping[str, Any], path: 
 
 
 def volumetric_section(
-    model: str | Path, svg_of: Callable[[Callable[[Path], Any]], str], *, before: Mapping[str, Any] | None = None
+    model: str | Path, svg_of: Callable[[Callable[[Path], Any]], str], *, before: Mapping[str, Any] | None = None,
+    compensation: Mapping[str, str | Path] | None = None, controller: str | None = None,
 ) -> dict[str, Any]:
     """The report's volumetric section for a machine description.
 
@@ -277,6 +383,12 @@ def volumetric_section(
         the same grid, a second plot draws the change |e| now - |e| before
         (:func:`plot_volume_change`); on another grid, a warning says why none is drawn; a
         results.json without a map (older than the key) draws none.
+    compensation : mapping of str to str or Path, keyword-only
+        The compensation files the controller had loaded while the campaign was measured (axis
+        letter -> file, ``[machine] compensation``): the section draws the model of the
+        compensated machine (:func:`compensated_machine`), what is left.
+    controller : str, keyword-only
+        Whose files ``compensation`` holds (needed with it).
 
     Returns
     -------
@@ -288,7 +400,8 @@ def volumetric_section(
     ------
     AxiscalError
         For a bad machine description (naming the file and line), an ``svg_of`` that is not
-        callable, a ``before`` that is not a mapping or whose map is not one.
+        callable, a ``before`` that is not a mapping or whose map is not one, a compensation
+        file the controller would refuse or without its controller.
     """
     model = check_path("model", model)
     if not callable(svg_of):
@@ -296,6 +409,13 @@ def volumetric_section(
     if before is not None:
         check_mapping("before", before, what="the volumetric object of another campaign's results.json")
     machine = load_machine(model)
+    loaded = ""
+    if compensation:
+        if controller is None:
+            raise AxiscalError("compensation files need the controller that loaded them")
+        machine = compensated_machine(machine, read_loaded_compensation(compensation, controller))
+        loaded = (f", with the {controller} compensation loaded "
+                  f"({', '.join(f'{k}: {Path(v).name}' for k, v in compensation.items())}): what is left")
     holder: list[dict[str, Any]] = []
     svg = svg_of(lambda p: holder.append(plot_volume(machine, p)))
     figures = holder[0]
@@ -316,7 +436,8 @@ def volumetric_section(
             warnings.append("volumetric: the compared campaign's map is on another grid (axes or travel differ), "
                             "so no change of the volumetric error is drawn")
     return {
-        "method": f"HTM model of {machine.name or machine.chain} (chain {machine.chain}), {GRID_POINTS} points along each axis",
+        "method": f"HTM model of {machine.name or machine.chain} (chain {machine.chain}){loaded}, {GRID_POINTS} points"
+                  " along each axis",
         "table": [Figure("largest |e|", figures["max_um"], "um"), Figure("rms |e|", figures["rms_um"], "um"),
                   Figure("largest |e| at", where, "mm")],
         "plots": plots,

@@ -22,6 +22,7 @@ from axiscal.flatness.surface import (
     Closure,
     FlatnessLine,
     FlatnessSurface,
+    _check_crossings,
     _check_lines,
     _nodes,
     flatness_zone,
@@ -31,8 +32,8 @@ __all__ = ["moody_union_jack"]
 
 
 def _middle(line: FlatnessLine, heights: np.ndarray) -> float:
-    """The height at the line's middle (between the two middle stations for an odd count of steps)."""
-    return float(np.interp(0.5 * line.length_m, line.distance_m, heights))
+    """The height of the line's middle station (the crossings are checked to be stations)."""
+    return float(heights[np.argmin(np.abs(line.distance_m - 0.5 * line.length_m))])
 
 
 def _ends(line: FlatnessLine, heights: np.ndarray, first: float, last: float) -> np.ndarray:
@@ -61,8 +62,9 @@ def moody_union_jack(lines: Sequence[FlatnessLine]) -> FlatnessSurface:
     Raises
     ------
     AxiscalError
-        Lines that do not make a Union Jack (naming what is missing), or a line whose stations do
-        not reach both its ends.
+        Lines that do not make a Union Jack (naming what is missing), a line whose stations do
+        not reach both its ends, or two lines that meet at a place (the centre, an edge's middle)
+        that is not a station of both (naming them and the place): nothing is interpolated.
 
     Examples
     --------
@@ -105,6 +107,9 @@ def moody_union_jack(lines: Sequence[FlatnessLine]) -> FlatnessSurface:
         if line.distance_m[0] > slack or line.distance_m[-1] < line.length_m - slack:
             raise AxiscalError(f"line {line.name!r}: Moody's method needs stations at both ends of every line")
         roles[pair] = k
+    # every place where two lines meet (the centre, the edges' middles) must be a station of both:
+    # nothing is interpolated
+    _check_crossings(lines)
     wanted = [frozenset(p) for p in (("SW", "NE"), ("NW", "SE"), ("SW", "SE"), ("NW", "NE"), ("SW", "NW"),
                                      ("SE", "NE"), ("W", "E"), ("S", "N"))]
     missing = ["-".join(sorted(p)) for p in wanted if p not in roles]

@@ -351,6 +351,40 @@ def _check_lines(lines: Sequence[FlatnessLine]) -> tuple[FlatnessLine, ...]:
     return lines
 
 
+def _check_crossings(lines: tuple[FlatnessLine, ...]) -> None:
+    """Refuse two lines that cross (or where one ends on the other) at a place that is not a station of both.
+
+    Lines are joined only at shared stations: a crossing that one line has no station at would be
+    left out of the join (or, in Moody's method, filled in by interpolation) without a word.
+    Parallel lines do not cross; the places are compared to 1e-6 of the surface's extent.
+    """
+    points = np.vstack([line.points_m for line in lines])
+    extent = float(max(np.ptp(points[:, 0]), np.ptp(points[:, 1])))
+    tolerance = 1e-6 * extent
+    for i, a in enumerate(lines):
+        u = (a.end_m - a.start_m) / a.length_m
+        for b in lines[i + 1:]:
+            v = (b.end_m - b.start_m) / b.length_m
+            turn = u[0] * v[1] - u[1] * v[0]
+            if abs(turn) < 1e-9:
+                continue
+            gap = b.start_m - a.start_m
+            t = (gap[0] * v[1] - gap[1] * v[0]) / turn  # along a
+            r = (gap[0] * u[1] - gap[1] * u[0]) / turn  # along b
+            if not (-tolerance <= t <= a.length_m + tolerance and -tolerance <= r <= b.length_m + tolerance):
+                continue
+            for line, along in ((a, t), (b, r)):
+                if np.min(np.abs(line.distance_m - along)) > tolerance:
+                    x, y = (a.start_m + t * u) / 1e-3
+                    other = b if line is a else a
+                    raise AxiscalError(
+                        f"lines {a.name!r} and {b.name!r} cross at x = {x:.6g} mm, y = {y:.6g} mm, where {line.name!r} has"
+                        f" no station: lines are joined only at stations they share, so {line.name!r} needs one there"
+                        f" (a Union Jack's centre lines, diagonals and edges an even number of steps; a grid's lines stepped"
+                        f" to meet), or {other.name!r} must not cross it"
+                    )
+
+
 def _nodes(points: np.ndarray, extent: float) -> tuple[np.ndarray, np.ndarray]:
     """Merge points closer than 1e-6 of the extent: the node of every point and the nodes' places."""
     from scipy.spatial import cKDTree
@@ -392,8 +426,10 @@ def surface_from_lines(lines: Sequence[FlatnessLine]) -> FlatnessSurface:
     Raises
     ------
     AxiscalError
-        Lines that are not FlatnessLine, two lines of one name, or lines that do not tie the
-        surface together (a line crossing the others at fewer than 2 stations, naming it).
+        Lines that are not FlatnessLine, two lines of one name, two lines that cross (or where
+        one ends on the other) at a place that is not a station of both (naming them and the
+        place), or lines that do not tie the surface together (a line crossing the others at
+        fewer than 2 stations, naming it).
 
     Examples
     --------
@@ -406,6 +442,7 @@ def surface_from_lines(lines: Sequence[FlatnessLine]) -> FlatnessSurface:
     1.0
     """
     lines = _check_lines(lines)
+    _check_crossings(lines)
     points = np.vstack([line.points_m for line in lines])
     owner = np.concatenate([np.full(line.distance_m.size, k) for k, line in enumerate(lines)])
     extent = float(max(np.ptp(points[:, 0]), np.ptp(points[:, 1])))

@@ -4,8 +4,10 @@ Every artefact reads the machine at N points (axis positions and a tool point). 
 volumetric error there (actual minus nominal, workpiece frame, :meth:`axiscal.model.Machine.volumetric_error`)
 and ``x_i`` the nominal point the machine reports, the residuals are:
 
-- ball plate (Kunzmann, Trapet and Waeldele 1990): ``x_i + e_i - (R c_b + t)`` per coordinate,
-  ``c_b`` the certified centre of the ball probed, ``(R, t)`` the plate's pose (fitted);
+- ball plate (Kunzmann, Trapet and Waeldele 1990): ``x_i + e_i - (R (c_b - c̄) + t)`` per
+  coordinate, ``c_b`` the certified centre of the ball probed, ``c̄`` the centroid of the balls
+  measured, ``(R, t)`` the plate's pose (fitted): its turn about that centroid and where the
+  centroid stands, so that nothing depends on the frame of the certificate;
 - step gauge: ``n · (x_i - s) + n · e_i - (p + L_f)``, ``s, n`` the line, ``L_f`` the certified face
   position, ``p`` the gauge's place along the line (fitted);
 - ballbar network: ``|x_i + e_i - c_k| - ℓ_i``, ``c_k`` the centre ball of setup k (fitted),
@@ -275,6 +277,15 @@ class BallPlate(Artefact):
         rotation, _ = Rotation.align_vectors(self.measured_m - self.measured_m.mean(axis=0), plate - plate.mean(axis=0))
         return rotation.as_matrix()
 
+    @cached_property
+    def centred_m(self) -> np.ndarray:
+        """The certified centres of the balls measured (N, 3) about their centroid, metres: the pose
+        turns the plate about that centroid and moves it by ``t``, so that the pose's unknowns, and
+        so the machine identified, do not depend on where the certificate puts its origin or how
+        it turns its axes."""
+        plate = self.centres_m[self.ball]
+        return plate - plate.mean(axis=0)
+
     def start(self, nominal_m: np.ndarray, error_m: np.ndarray) -> np.ndarray:
         actual = nominal_m + error_m
         plate = self.centres_m[self.ball]
@@ -282,16 +293,16 @@ class BallPlate(Artefact):
         if self.rotation is not None:
             placed = plate @ self.rotation.T + self.origin_m
             _misfit(self, np.linalg.norm(actual - placed, axis=1), rows, "ball measured where the stated pose does not put it:")
-        rotation, _ = Rotation.align_vectors(actual - actual.mean(axis=0), plate - plate.mean(axis=0))
+        rotation, _ = Rotation.align_vectors(actual - actual.mean(axis=0), self.centred_m)
         turn = rotation.as_matrix() @ self.reference_rotation.T
-        turned = plate @ rotation.as_matrix().T
-        origin = actual.mean(axis=0) - turned.mean(axis=0)
+        turned = self.centred_m @ rotation.as_matrix().T
+        origin = actual.mean(axis=0)  # where the centroid of the balls measured stands
         _misfit(self, np.linalg.norm(actual - turned - origin, axis=1), rows, "ball does not fit the plate (wrong ball name?):")
         return np.concatenate([Rotation.from_matrix(turn).as_rotvec(), origin])
 
     def _placed(self, p: np.ndarray) -> np.ndarray:
         rotation = Rotation.from_rotvec(p[:3]).as_matrix() @ self.reference_rotation
-        return self.centres_m[self.ball] @ rotation.T + p[3:], rotation
+        return self.centred_m @ rotation.T + p[3:], rotation
 
     def residuals(self, nominal_m, error_m, p):
         placed, _ = self._placed(p)
@@ -307,6 +318,9 @@ class BallPlate(Artefact):
         n, b = len(self.ball), len(self.centres_m)
         s = np.zeros((n, 3, b, 3))
         s[np.arange(n), :, self.ball, :] = -self.reference_rotation
+        # a centre also moves the centroid the plate turns about, by its share of the balls measured
+        share = np.bincount(self.ball, minlength=b) / n
+        s += share[None, None, :, None] * self.reference_rotation[None, :, None, :]
         return s.reshape(3 * n, 3 * b), np.repeat(self.centre_u_m, 3)
 
 

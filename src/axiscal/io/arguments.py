@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from axiscal.errors import AxiscalError
+from axiscal.errors import AxiscalError, exponent_form
 
 __all__ = [
     "unit_words", "check_number", "check_count", "check_array", "check_same_length", "check_broadcast", "check_choice",
@@ -79,7 +79,14 @@ def _of(name: str, unit: str | None, lead: str = " of ") -> str:
 
 
 def _shown(value: Any) -> str:
-    text = repr(value) if isinstance(value, str) else str(value)
+    """What a message shows of a value: a string quoted, a number whole (a long one in exponent form,
+    never cut short into another number), anything else cut at 40 characters."""
+    if isinstance(value, str):
+        text = repr(value)
+    elif is_real(value):
+        return exponent_form(str(value))
+    else:
+        text = str(value)
     return text if len(text) <= 40 else text[:37] + "..."
 
 

@@ -74,7 +74,7 @@ from axiscal.measurement.virtual import (
     diagonal_experiment,
 )
 
-from axiscal.measurement.sensor_diagonal import SensorDiagonal, sensor_diagonal
+from axiscal.measurement.sensor_diagonal import STOP_TOLERANCE_M, SensorDiagonal, sensor_diagonal
 from axiscal.measurement.sensor_runs import SENSOR_RUN_COLUMNS, SensorRuns, calibrate_sensor_runs
 
 __all__ = [
@@ -142,4 +142,5 @@ __all__ = [
     "calibrate_sensor_runs",
     "SensorDiagonal",
     "sensor_diagonal",
+    "STOP_TOLERANCE_M",
 ]

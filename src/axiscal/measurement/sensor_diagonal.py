@@ -27,7 +27,12 @@ from axiscal.io.tabular import read_csv
 from axiscal.measurement.pipeline import diagonal_errors
 from axiscal.units import MM, UM
 
-__all__ = ["SensorDiagonal", "sensor_diagonal"]
+__all__ = ["STOP_TOLERANCE_M", "SensorDiagonal", "sensor_diagonal"]
+
+#: how far a stop may lie from the diagonal's point at its ``nominal_mm``, metres: far beyond any
+#: positioning error, so that readings paired with the wrong stops (a nominal doubled, a stop left
+#: out) are refused instead of read as an error of hundreds of millimetres
+STOP_TOLERANCE_M = 1.0 * MM
 
 
 @dataclass(frozen=True)
@@ -82,6 +87,10 @@ def _xz_ends(name: str, point: Mapping[str, float]) -> tuple[float, float]:
     return float(values[0]), float(values[1])
 
 
+def _point(x_m: float, z_m: float) -> str:
+    return f"X={x_m / MM:.6g} Z={z_m / MM:.6g}"
+
+
 def sensor_diagonal(
     readings_path: str | Path,
     frames_path: str | Path,
@@ -114,8 +123,9 @@ def sensor_diagonal(
     ------
     AxiscalError
         For unreadable files (naming the file and the line), ends that coincide or leave the XZ
-        plane, a number of frames that is not a whole number per stop, or a stop whose frames
-        are all faulty.
+        plane, a number of frames that is not a whole number per stop, a stop whose frames
+        are all faulty, a ``nominal_mm`` off the diagonal (before its start or beyond its end) or
+        more than :data:`STOP_TOLERANCE_M` from where the scales put that stop.
     """
     from axiscal.measurement.offline import measure_file
 
@@ -150,6 +160,18 @@ def sensor_diagonal(
     error = np.column_stack([means["ex_m"], means["ey_m"], means["ez_m"]])
     x = (x1 - x0) * nominal / length
     z = (z1 - z0) * nominal / length
+    apart = np.hypot(means["x_m"] - (x0 + x), means["z_m"] - (z0 + z))
+    if np.any(apart > STOP_TOLERANCE_M):
+        k = int(np.argmax(apart > STOP_TOLERANCE_M))
+        raise AxiscalError(
+            f"nominal_mm {nominal[k] / MM:g} puts stop {k + 1} at {_point(x0 + x[k], z0 + z[k])} mm on the diagonal, but"
+            f" the scales of {frames_path.name} put it at {_point(means['x_m'][k], means['z_m'][k])} mm: the readings"
+            f" do not match the diagonal's stops", path=readings_path, line=table.lines[k])
+    off = (nominal < -STOP_TOLERANCE_M) | (nominal > length + STOP_TOLERANCE_M)
+    if off.any():
+        k = int(np.argmax(off))
+        raise AxiscalError(f"nominal_mm {nominal[k] / MM:g} is off the diagonal from {_point(x0, z0)} to {_point(x1, z1)}"
+                           f" mm, which is {length / MM:g} mm long", path=readings_path, line=table.lines[k])
     before, after = diagonal_errors(x, z, error - error[0], laser)
     scales_only = np.hypot(means["x_m"] - means["x_m"][0], means["z_m"] - means["z_m"][0]) - laser
     return SensorDiagonal(x, z, laser, before, after, scales_only, samples)

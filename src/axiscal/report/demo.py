@@ -25,6 +25,7 @@ from axiscal.capture.virtual import VirtualAxis
 from axiscal.io.arguments import check_count, check_path
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_json
+from axiscal.io.tabular import read_text
 from axiscal.io.templates import render_template
 from axiscal.measurement.campaign_sim import (
     DIAGONAL_LOADS_KG,
@@ -115,6 +116,10 @@ def write_as_found_campaign(folder: str | Path, *, seed: int = 0) -> SimulatedCa
 def write_as_left_campaign(folder: str | Path, compensation: str | Path, *, seed: int = 0) -> SimulatedCampaign:
     """The as-left campaign: the as-found compensation files loaded, each axis measured again.
 
+    The compensation files are copied into the campaign folder and named by its ``[machine]
+    compensation``, so that its model (and the report's volumetric section) is that of the
+    compensated machine: what is left.
+
     Parameters
     ----------
     folder : str or Path
@@ -140,7 +145,9 @@ def write_as_left_campaign(folder: str | Path, compensation: str | Path, *, seed
         write_text(folder / name, (builtin_example() / name).read_text(encoding="utf-8"))
     files = {}
     for k, axis in enumerate(DEMO_AXES):
-        files[axis] = compensation / f"{axis}.comp"
+        # the files the controller loaded are kept with the campaign: its model is the compensated machine's
+        files[axis] = folder / f"{axis}.comp"
+        write_text(files[axis], read_text(compensation / f"{axis}.comp"))
         measure_axis(folder, folder / "machine.toml", axis=axis, start_m=0.0, end_m=STROKE_M, targets=TARGETS, runs=RUNS,
                      seed=seed, run_seed=seed + 10 * k + 1, spec=DEMO_AXES[axis], wavelength_nm=VACUUM_WAVELENGTH_NM,
                      compensation=files[axis], controller=CONTROLLER)

@@ -330,6 +330,7 @@ _FACT_LABELS = {
     ("machine", "name"): "Machine",
     ("machine", "model"): "Machine model",
     ("machine", "controller"): "Controller",
+    ("machine", "compensation"): "Compensation loaded",
     ("campaign", "date"): "Date",
     ("campaign", "operator"): "Operator",
     ("campaign", "customer"): "Customer",
@@ -339,6 +340,13 @@ _FACT_LABELS = {
 }
 _JOINED = {("machine", "name"): ("serial",), ("instrument", "name"): ("serial", "certificate", "calibrated")}
 _SHOWN_ELSEWHERE = {("campaign", "title")}  # the report's heading
+
+
+def _fact_text(value: Any) -> str:
+    """A field as the report shows it: a table of files (``[machine] compensation``) as ``X X.comp, Z Z.comp``."""
+    if isinstance(value, Mapping):
+        return ", ".join(f"{k} {v}" for k, v in value.items())
+    return str(value)
 
 
 def report_facts(results: CampaignResults) -> list[tuple[str, str]]:
@@ -373,10 +381,10 @@ def report_facts(results: CampaignResults) -> list[tuple[str, str]]:
                 facts.append((label, ", ".join(parts) or "not stated"))
         elif values.get(key) not in (None, ""):
             value = values[key]
-            facts.append((label, f"{value} nm" if key.endswith("_nm") else str(value)))
+            facts.append((label, f"{value} nm" if key.endswith("_nm") else _fact_text(value)))
     done = set(_FACT_LABELS) | joined | _SHOWN_ELSEWHERE
     for table, keys in TABLE_KEYS.items():
-        facts += [(f"[{table}] {key}", str(tables[table][key])) for key in keys
+        facts += [(f"[{table}] {key}", _fact_text(tables[table][key])) for key in keys
                   if (table, key) not in done and tables[table].get(key) not in (None, "")]
     return facts
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from axiscal.thermal.analysis import (
     DIRECTIONS,
+    LINEAR_DIRECTIONS,
     Correlation,
     DriftResult,
     EtveResult,
@@ -25,6 +26,7 @@ from axiscal.thermal.plot import plot_drift, plot_etve, plot_thermal
 
 __all__ = [
     "DIRECTIONS",
+    "LINEAR_DIRECTIONS",
     "Correlation",
     "correlate",
     "fit_time_constant",

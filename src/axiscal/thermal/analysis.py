@@ -25,6 +25,7 @@ from axiscal.io.arguments import check_array, check_count, check_mapping, check_
 
 __all__ = [
     "DIRECTIONS",
+    "LINEAR_DIRECTIONS",
     "Correlation",
     "correlate",
     "fit_time_constant",
@@ -36,6 +37,9 @@ __all__ = [
 
 #: displacement directions: X, Y, Z (metres) and the tilts A, B (radians)
 DIRECTIONS = ("X", "Y", "Z", "A", "B")
+#: the directions of which a test needs one at least: the ETVE and the drift are displacements of the
+#: functional point, the tilts are read beside them (a run of tilts alone has no figure to check)
+LINEAR_DIRECTIONS = ("X", "Y", "Z")
 #: the largest value taken, in SI (m, rad, s, degC)
 _LIMIT = 1e9
 
@@ -301,6 +305,9 @@ def _directions(displacements: Mapping, time: np.ndarray) -> dict[str, np.ndarra
     for key in series:
         if key not in DIRECTIONS:
             raise AxiscalError(f"unknown direction {key!r}; use {', '.join(DIRECTIONS)}")
+    if not set(series) & set(LINEAR_DIRECTIONS):
+        raise AxiscalError(f"displacements must hold {', '.join(LINEAR_DIRECTIONS[:-1])} or {LINEAR_DIRECTIONS[-1]}"
+                           f" (the tilts {', '.join(sorted(series))} are read beside one, never alone)")
     return series
 
 

@@ -1,7 +1,8 @@
 """Thermal test files: the run reader and the evaluations behind ``axiscal thermal etve`` and ``drift``.
 
 ISO 230-3 runs (see :mod:`axiscal.thermal.analysis`): ``time_s`` or ``time_h``; the displacements
-``x_um``, ``y_um``, ``z_um`` and the tilts ``a_urad``, ``b_urad`` (those measured, one at least);
+``x_um``, ``y_um``, ``z_um`` (those measured, one at least: the ETVE and the drift are displacements
+of the functional point) and the tilts ``a_urad``, ``b_urad`` beside them;
 temperatures ``temperature_<place>_c``; for a distortion test optionally ``running`` (1 while the
 spindle rotates or the axis moves, 0 while it stands). Other columns are ignored.
 """
@@ -19,7 +20,7 @@ from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_instance, check_mapping, check_number, check_path, render_checked
 from axiscal.io.tabular import read_csv
 from axiscal.io.templates import render_template
-from axiscal.thermal.analysis import DriftResult, EtveResult, etve, thermal_drift
+from axiscal.thermal.analysis import LINEAR_DIRECTIONS, DriftResult, EtveResult, etve, thermal_drift
 from axiscal.units import UM, URAD
 
 __all__ = ["DISPLACEMENT_COLUMNS", "ThermalRun", "read_thermal_run", "EtveEvaluation", "evaluate_etve",
@@ -79,7 +80,8 @@ def read_thermal_run(path: str | Path) -> ThermalRun:
     Raises
     ------
     AxiscalError
-        A missing file, no time column or both, no displacement column, a cell that is not a
+        A missing file, no time column or both, no displacement column (x_um, y_um or z_um: tilts
+        alone are refused), a cell that is not a
         finite number, fewer than 3 rows, a time not after the one before, a ``running`` cell other
         than 0 or 1; naming the file and, where there is one, the line.
 
@@ -103,9 +105,11 @@ def read_thermal_run(path: str | Path) -> ThermalRun:
         k = int(np.flatnonzero(steps <= 0.0)[0]) + 1
         raise AxiscalError("times must increase", path=table.path, line=table.lines[k])
     displacements = {d: table.numeric(c) * f for c, (d, f) in DISPLACEMENT_COLUMNS.items() if table.has(c)}
-    if not displacements:
-        raise AxiscalError(f"no displacement column: give one of {', '.join(DISPLACEMENT_COLUMNS)}",
-                           path=table.path, line=table.header_line)
+    if not set(displacements) & set(LINEAR_DIRECTIONS):
+        linear = [c for c, (d, _) in DISPLACEMENT_COLUMNS.items() if d in LINEAR_DIRECTIONS]
+        tilts = [c for c, (d, _) in DISPLACEMENT_COLUMNS.items() if d not in LINEAR_DIRECTIONS]
+        raise AxiscalError(f"no displacement column: give one of {', '.join(linear)} (the tilts {', '.join(tilts)} are"
+                           " read beside one, never alone)", path=table.path, line=table.header_line)
     temperatures = {}
     for name in table.header:
         found = _TEMPERATURE.fullmatch(name)
