@@ -124,7 +124,7 @@ _SQUARENESS_HELP = (
 
 @click.group("cmm")
 def cmm_group() -> None:
-    """Squareness compensation of a coordinate measuring machine (paper 004)."""
+    """Coordinate measuring machines: ISO 10360 length and probing tests, squareness compensation (paper 004)."""
 
 
 @cmm_group.command("compensate")
