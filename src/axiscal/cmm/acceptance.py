@@ -211,6 +211,11 @@ class LengthSet:
     range_m: float
     outside: int
 
+    def __post_init__(self) -> None:
+        check_choice("test", self.test, ("E0", "E150"))
+        object.__setattr__(self, "nominal_m", check_number("nominal_m", self.nominal_m, positive=True))
+        object.__setattr__(self, "range_m", check_number("range_m", self.range_m, nonnegative=True))
+
 
 def combined_verdict(verdicts: Any) -> str:
     """The verdict of several: ``"fail"`` if any fails, else ``"inconclusive"`` if any is, else ``"pass"``.
