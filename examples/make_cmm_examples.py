@@ -32,6 +32,10 @@ DIRECTIONS = {
     "1": (1, 1, 1), "2": (-1, 1, 1), "3": (1, -1, 1), "4": (1, 1, -1),
     "5": (1, 0, 0), "6": (0, 1, 0), "7": (0, 0, 1),
 }
+#: stylus -> (the pole of its points, the offset of its centre in mm)
+STYLI = {"T1": ((0, 0, 1), (0, 0, 0)), "T2": ((-1, 0, 0.2), (0.3e-3, -0.1e-3, 0.2e-3)),
+         "T3": ((1, 0, 0.2), (-0.2e-3, 0.2e-3, -0.3e-3)), "T4": ((0, -1, 0.2), (0.1e-3, 0.4e-3, 0.1e-3)),
+         "T5": ((0, 1, 0.2), (-0.1e-3, -0.3e-3, 0.0))}
 SCALE = np.array([2.5e-6, 1.5e-6, -1.0e-6])
 SQUARENESS_XY = 4e-6
 
@@ -96,10 +100,7 @@ def main() -> None:
     (HERE / "sphere_single.csv").write_text(
         "x_mm,y_mm,z_mm\n" + "".join(f"{x:.4f},{y:.4f},{z:.4f}\n" for x, y, z in single))
     rows = ["stylus,x_mm,y_mm,z_mm"]
-    styli = {"T1": ((0, 0, 1), (0, 0, 0)), "T2": ((-1, 0, 0.2), (0.3e-3, -0.1e-3, 0.2e-3)),
-             "T3": ((1, 0, 0.2), (-0.2e-3, 0.2e-3, -0.3e-3)), "T4": ((0, -1, 0.2), (0.1e-3, 0.4e-3, 0.1e-3)),
-             "T5": ((0, 1, 0.2), (-0.1e-3, -0.3e-3, 0.0))}
-    for name, (axis, offset) in styli.items():
+    for name, (axis, offset) in STYLI.items():
         for x, y, z in sphere_points(rng, axis, offset, lobes=0.4e-3):
             rows.append(f"{name},{x:.4f},{y:.4f},{z:.4f}")
     (HERE / "sphere_five_styli.csv").write_text("\n".join(rows) + "\n")

@@ -153,3 +153,21 @@ def test_degenerate_points_and_bad_files(tmp_path):
     path.write_text("x_mm,y_mm,z_mm\n1,0,0\n0,1,0\n0,0,1\n-1,0,0\n0,-1,0\n")
     with pytest.raises(AxiscalError, match="several styli"):
         evaluate_probing(path, calibrated_diameter_m=2 * MM, mpe_m={"ploc": 1 * UM})
+
+
+def test_the_simulated_styli_are_recovered_from_the_example(examples):
+    """examples/make_cmm_examples.py offsets each stylus's centre by a few tenths of a um; the fits find them."""
+    from importlib import util
+
+    spec = util.spec_from_file_location("make_cmm", examples / "make_cmm_examples.py")
+    module = util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    r = evaluate_probing(examples / "cmm" / "sphere_five_styli.csv", calibrated_diameter_m=module.SPHERE_MM * MM)
+    first = r.fits["T1"].centre_m
+    for name, (_, offset_mm) in module.STYLI.items():
+        found = (r.fits[name].centre_m - first) / MM
+        # the noise (0.15 um), the rounding (0.1 um) and the probe's lobing seen over half a sphere
+        # move a centre by up to 0.17 um
+        assert np.abs(found - np.array(offset_mm)).max() < 0.2e-3, name
+    # the simulated probe reads 0.2 um large in radius: the size error is near +0.4 um
+    assert r.figures_m["psize"] / UM == pytest.approx(0.4, abs=0.15)
