@@ -1,4 +1,4 @@
-"""``axiscal cmm acceptance`` and ``axiscal cmm probing``: the ISO 10360-2 length test and the ISO 10360-5 probing test."""
+"""``axiscal cmm``: the group, with ``acceptance`` (the ISO 10360-2 length test) and ``probing`` (the ISO 10360-5 probing test); ``compensate`` and ``gauge-blocks`` are in :mod:`axiscal.cli.squareness`."""
 
 from __future__ import annotations
 
@@ -13,10 +13,15 @@ from axiscal.errors import AxiscalError
 from axiscal.uncertainty.decision import DECISION_RULES
 from axiscal.units import MM, UM
 
-__all__ = ["acceptance_command", "probing_command", "register"]
+__all__ = ["cmm_group", "acceptance_command", "probing_command", "register"]
 
 _RULE_HELP = ("guard-band (ISO 14253-1): a value proves conformance within MPE - U, non-conformance beyond MPE + U, "
               "no decision between; simple: against the MPE itself.")
+
+
+@click.group("cmm")
+def cmm_group() -> None:
+    """Coordinate measuring machines: ISO 10360 length and probing tests, squareness compensation (paper 004)."""
 
 
 def _positive(values: dict[str, float | None], *, zero: bool = False) -> None:
@@ -39,7 +44,7 @@ def _mpe(prefix: str, a_um: float | None, k: float | None, b_um: float | None) -
         return Mpe(a_um * UM, k=k, b_m=None if b_um is None else b_um * UM)
 
 
-@click.command("acceptance")
+@cmm_group.command("acceptance")
 @click.argument("measurements", type=click.Path(dir_okay=False))
 @click.option("--mpe-a-um", type=FINITE, help="E0,MPE = ±min(A + L/K, B): A in um.")
 @click.option("--mpe-k", type=FINITE, help="K of E0,MPE (L in mm, L/K read in um); leave out for a constant MPE.")
@@ -83,7 +88,7 @@ _PROBING_MPE = {"pform": "--pform-mpe-um", "psize": "--psize-mpe-um", "pform_ms"
                 "psize_ms": "--psize-ms-mpe-um", "ploc": "--ploc-mpe-um"}
 
 
-@click.command("probing")
+@cmm_group.command("probing")
 @click.argument("points", type=click.Path(dir_okay=False))
 @click.option("--diameter-mm", type=FINITE, required=True, help="The test sphere's calibrated diameter, mm.")
 @click.option("--pform-mpe-um", type=FINITE, help="PForm.Sph.1x25::SS:Tact,MPE, um.")
@@ -121,9 +126,6 @@ def probing_command(points, diameter_mm, pform_mpe_um, psize_mpe_um, pform_ms_mp
 
 
 def register(group: click.Group) -> None:
-    from axiscal.cli.squareness import cmm_group
+    import axiscal.cli.squareness  # noqa: F401  (adds the group's compensate and gauge-blocks)
 
-    cmm_group.add_command(acceptance_command)
-    cmm_group.add_command(probing_command)
-    if "cmm" not in group.commands:
-        group.add_command(cmm_group)
+    group.add_command(cmm_group)
