@@ -17,6 +17,8 @@ WRITES = [
     (("ballbar",), "--plot", ["ballbar", "{ex}/ballbar/ballbar_run.csv", "--radius-mm", "100", "--plane", "XY", "--plot", "{out}/polar.png"]),
     (("calibrate", "mirror"), "--output", ["calibrate", "mirror", "{ex}/xz_module/sensors_mirror_run.csv", "--axis", "x", "-o", "{out}/cal.json"]),
     (("calibrate", "sensitivity"), "--output", ["calibrate", "sensitivity", "{ex}/xz_module/sensors_psd_run.csv", "--channel", "x_psd_y_um", "-o", "{out}/cal.json"]),
+    (("cmm", "acceptance"), "--plot", ["cmm", "acceptance", "{ex}/cmm/e0_gauge_blocks.csv", "--mpe-a-um", "1.8", "--mpe-k", "300", "--plot", "{out}/e0.png"]),
+    (("cmm", "probing"), "--plot", ["cmm", "probing", "{ex}/cmm/sphere_single.csv", "--diameter-mm", "25.00018", "--plot", "{out}/p.png"]),
     (("cmm", "compensate"), "--output", ["cmm", "compensate", "--squareness-arcmin", "8.05,27.1,-16.6", "{ex}/cmm_points.csv", "-o", "{out}/c.csv"]),
     (("compensate",), "--output", ["compensate", "{ex}/positioning_run.csv", "--format", "linuxcnc", "-o", "{out}/x.comp"]),
     (("demo",), "--output", ["demo", "-o", "{out}/demo"]),

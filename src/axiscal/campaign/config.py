@@ -60,6 +60,10 @@ _TOLERANCE_KEYS = {
     "thermal_drift_um": float,
     "calibration_um": float,
     "calibration_arcsec": float,
+    # ISO 10360-2: E0,MPE = min(A + L/K, B), E150,MPE likewise, R0,MPL; ISO 10360-5: the probing MPEs
+    "cmm_e0_a_um": float, "cmm_e0_k": float, "cmm_e0_b_um": float,
+    "cmm_e150_a_um": float, "cmm_e150_k": float, "cmm_e150_b_um": float, "cmm_r0_um": float,
+    "pform_um": float, "psize_um": float, "pform_ms_um": float, "psize_ms_um": float, "ploc_um": float,
 }
 
 # option types: "str", "float", "int", "bool", "file", "floats2", ("choice", values)
@@ -103,6 +107,8 @@ KINDS: dict[str, dict[str, Any]] = {
     "thermal_drift": {"file": "file"},
     "sensor_calibration": {"file": "file", "machine": "file"},
     "sixdof_diagonal": {"file": "file", "frames": "file", "machine": "file", "from": "str", "to": "str"},
+    "cmm_acceptance": {"file": "file", "uncertainty_um": "float", "uncertainty_um_per_m": "float"},
+    "cmm_probing": {"file": "file", "diameter_mm": "float", "uncertainty_um": "float"},
 }
 #: the kinds held against one tolerance of the campaign's (or their own)
 _OWN_TOLERANCE = {"levels": "straightness_um", "flatness": "flatness_um", "thermal_etve": "etve_um",
@@ -122,6 +128,14 @@ _REQUIRED = {
     "thermal_drift": ("file",),
     "sensor_calibration": ("file",),
     "sixdof_diagonal": ("file", "frames", "from", "to"),
+    "cmm_acceptance": ("file",),
+    "cmm_probing": ("file", "diameter_mm"),
+}
+#: the tolerances of the CMM kinds (the MPE as the maker states it)
+_CMM_TOLERANCES = {
+    "cmm_acceptance": ("cmm_e0_a_um", "cmm_e0_k", "cmm_e0_b_um", "cmm_e150_a_um", "cmm_e150_k", "cmm_e150_b_um",
+                       "cmm_r0_um"),
+    "cmm_probing": ("pform_um", "psize_um", "pform_ms_um", "psize_ms_um", "ploc_um"),
 }
 
 
@@ -483,6 +497,9 @@ def _merged_tolerances(
     elif kind == "sensor_calibration":
         for source in (campaign, own):
             out.update({k: source[k] for k in ("calibration_um", "calibration_arcsec") if k in source})
+    elif kind in _CMM_TOLERANCES:
+        for source in (campaign, own):
+            out.update({k: source[k] for k in _CMM_TOLERANCES[kind] if k in source})
     return {k: float(v) for k, v in out.items()}
 
 

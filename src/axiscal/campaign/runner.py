@@ -21,6 +21,7 @@ from axiscal.campaign.results import (
     TestResult,
     check_figures,
 )
+from axiscal.campaign.cmm_kinds import _cmm_acceptance, _cmm_probing
 from axiscal.campaign.sensor_kinds import _sensor_calibration, _sixdof, _sixdof_diagonal
 from axiscal.campaign.standard_kinds import _flatness, _levels, _thermal_drift, _thermal_etve
 from axiscal.campaign.svg import relative_name, svg_of
@@ -365,6 +366,8 @@ KIND_RUNNERS: dict[str, Callable[[Campaign, TestSpec], TestResult]] = {
     "thermal_drift": _thermal_drift,
     "sensor_calibration": _sensor_calibration,
     "sixdof_diagonal": _sixdof_diagonal,
+    "cmm_acceptance": _cmm_acceptance,
+    "cmm_probing": _cmm_probing,
 }
 
 #: kinds whose plot draws the compared campaign's test of the same id behind its own

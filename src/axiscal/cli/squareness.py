@@ -12,6 +12,7 @@ import math
 
 import click
 
+from axiscal.cli.cmm import cmm_group
 from axiscal.cli.common import FINITE, echo_json
 from axiscal.errors import AxiscalError
 from axiscal.instruments.optics import BK7_INDEX
@@ -120,11 +121,6 @@ _SQUARENESS_HELP = (
     "a_xy,a_xz,a_yz in arc minutes: each the included angle of the two axes minus 90 deg "
     "(paper 004's signs; as ISO terms EC0Y = a_xy, EB0Z = -a_xz, EA0Z = a_yz)."
 )
-
-
-@click.group("cmm")
-def cmm_group() -> None:
-    """Squareness compensation of a coordinate measuring machine (paper 004)."""
 
 
 @cmm_group.command("compensate")

@@ -40,6 +40,8 @@ _OWN_SECTIONS = {
     "flatness": ("flatness", "Flatness"),
     "thermal_etve": ("thermal", "Thermal tests (ISO 230-3)"),
     "thermal_drift": ("thermal", "Thermal tests (ISO 230-3)"),
+    "cmm_acceptance": ("cmm", "CMM tests (ISO 10360)"),
+    "cmm_probing": ("cmm", "CMM tests (ISO 10360)"),
 }
 _SECTION_TITLES = {"sensor_calibration": "Sensor calibration", "sixdof_diagonal": "Diagonal with the 6-DOF sensors"}
 
