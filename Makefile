@@ -5,7 +5,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 export NO_MKDOCS_2_WARNING := 1
 
-.PHONY: demo test lint docs chromium postgresql clean
+.PHONY: demo test lint docs chromium postgresql linuxcnc clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -48,7 +48,22 @@ postgresql:
 	    exit 1; \
 	  fi; }
 
-test: lint docs chromium postgresql
+# the devices' tests drive a real LinuxCNC (Debian's linuxcnc-uspace, a headless simulator, run as an ordinary
+# user since LinuxCNC refuses root); install it and make that user when we are root, else say how
+LINUXCNC_USER := axiscal-sim
+linuxcnc:
+	@command -v linuxcnc >/dev/null 2>&1 && command -v halsampler >/dev/null 2>&1 || { \
+	  if [ "$$(id -u)" = "0" ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "installing Debian's linuxcnc-uspace for the devices tests"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends linuxcnc-uspace >/dev/null; \
+	  else \
+	    echo "make test: the devices tests need Debian's LinuxCNC: run 'sudo apt-get install --no-install-recommends linuxcnc-uspace', or make test as root"; \
+	    exit 1; \
+	  fi; }
+	@if [ "$$(id -u)" = "0" ] && ! id -u $(LINUXCNC_USER) >/dev/null 2>&1; then \
+	  useradd --system --create-home --shell /usr/sbin/nologin $(LINUXCNC_USER); fi
+
+test: lint docs chromium postgresql linuxcnc
 	$(BIN)/python -m pytest -q
 
 clean:

@@ -47,15 +47,34 @@ def _options(wavelength_nm, optics_multiplier, channel, rate_hz, umd_version, ma
                                  unit=unit, counts_per_mm=counts_per_mm)
 
 
-def _progress_line(console, total_hint: str = ""):
-    """One Rich line: step k of n, the target, the reading, still or moving, time left."""
+class _Plain:
+    """What stands in for the Rich line when stderr is not a terminal: one plain line per step taken."""
+
+    is_started = False
+
+    def stop(self) -> None:
+        pass
+
+
+def _progress_line(console):
+    """One Rich line on a terminal (step k of n, target, reading, still or moving, time left); a line per step in a log."""
     import time
 
     from rich.live import Live
     from rich.text import Text
 
-    live = Live(Text("connecting"), console=console, refresh_per_second=8, transient=False)
     began = time.monotonic()
+    if not console.is_terminal:
+        shown = [-1]
+
+        def log(p) -> None:
+            if p.taken != shown[0] and p.taken:
+                shown[0] = p.taken
+                click.echo(f"axiscal: run {p.taken} of {p.total} taken ({time.monotonic() - began:.0f} s)", err=True)
+
+        return _Plain(), log
+
+    live = Live(Text("connecting"), console=console, refresh_per_second=8, transient=False)
 
     def show(p) -> None:
         if not live.is_started:
