@@ -33,6 +33,7 @@ ROOMS = (
     "axiscal.history",
     "axiscal.fleet",
     "axiscal.cmm",
+    "axiscal.devices",
 )
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]

@@ -60,7 +60,20 @@ from axiscal.capture.board import (
     CaptureBoard,
 )
 
+from axiscal.capture.drive import DriveSettings, InstrumentReader, drive_plan, planned_moves
+from axiscal.capture.connected import DryRun, SimMachine, dry_run, open_run_devices, run_to_file, sim_machine
+
 __all__ = [
+    "DriveSettings",
+    "InstrumentReader",
+    "drive_plan",
+    "planned_moves",
+    "DryRun",
+    "SimMachine",
+    "dry_run",
+    "open_run_devices",
+    "run_to_file",
+    "sim_machine",
     "Stop",
     "StopDetector",
     "detect_stops",

@@ -7,20 +7,12 @@ capture --source``, ``axiscal run``). The simulators of the instruments, which `
 serves and the tests read through real pseudo-terminals, are in :mod:`axiscal.devices.simulators`.
 """
 
-from axiscal.devices.attocube import *  # noqa: F401,F403
-from axiscal.devices.base import *  # noqa: F401,F403
-from axiscal.devices.controller import *  # noqa: F401,F403
-from axiscal.devices.controllers import *  # noqa: F401,F403
-from axiscal.devices.grbl import *  # noqa: F401,F403
-from axiscal.devices.instruments import *  # noqa: F401,F403
-from axiscal.devices.klipper import *  # noqa: F401,F403
-from axiscal.devices.lines import *  # noqa: F401,F403
-from axiscal.devices.links import *  # noqa: F401,F403
-from axiscal.devices.linuxcnc import *  # noqa: F401,F403
-from axiscal.devices.mahr import *  # noqa: F401,F403
-from axiscal.devices.marlin import *  # noqa: F401,F403
-from axiscal.devices.sim import *  # noqa: F401,F403
-from axiscal.devices.simulators import *  # noqa: F401,F403
-from axiscal.devices.sylvac import *  # noqa: F401,F403
-from axiscal.devices.touchdro import *  # noqa: F401,F403
-from axiscal.devices.umd import *  # noqa: F401,F403
+from importlib import import_module as _import_module
+
+__all__: list[str] = []
+for _name in ("attocube", "base", "controller", "controllers", "grbl", "instruments", "klipper", "lines", "links", "linuxcnc", "mahr", "marlin", "sim", "simulators", "sylvac", "touchdro", "umd"):
+    _module = _import_module(f"axiscal.devices.{_name}")
+    for _public in _module.__all__:
+        globals()[_public] = getattr(_module, _public)
+        __all__.append(_public)
+del _name, _module, _public, _import_module

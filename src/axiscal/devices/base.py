@@ -105,6 +105,12 @@ class InstrumentSource:
     Subclasses set ``channels``, ``status`` and implement ``_decode(data) -> Samples`` and, for polled
     instruments, ``_poll()`` (send the next request). The link is read in ``read``; a link the device
     closed ends the source (``finished``) with its status saying so.
+
+    Parameters
+    ----------
+    link : a link of :mod:`axiscal.devices.links`
+    description : str
+        The device and its port, for messages and status lights.
     """
 
     channels: tuple[str, ...] = (READING_CHANNEL,)
@@ -197,6 +203,11 @@ class PolledSource(InstrumentSource):
     ``_parse(reply) -> (metres or None, problem or None)``. The time of a reading is the host's
     monotonic clock when its reply arrived, from the source's start (a gauge has no clock of its own).
     A request unanswered for ``reply_timeout_s`` is asked again and counted as a fault.
+
+    Parameters
+    ----------
+    link : a link of :mod:`axiscal.devices.links`
+    description : str
     """
 
     request = b"?\r"

@@ -50,7 +50,14 @@ class ControllerStatus:
 
 
 class Controller:
-    """Base of the controller drivers (see the module's text for the interface)."""
+    """Base of the controller drivers (see the module's text for the interface).
+
+    Attributes
+    ----------
+    description : str
+        The controller and its address.
+    status : ControllerStatus
+    """
 
     description = "controller"
 

@@ -23,7 +23,13 @@ __all__ = ["LinkClosed", "SerialFraming", "SerialLink", "TcpLink", "parse_port"]
 
 
 class LinkClosed(OSError):
-    """The device closed the link (end of file on the port or the socket)."""
+    """The device closed the link (end of file on the port or the socket).
+
+    Parameters
+    ----------
+    errno, strerror :
+        As ``OSError`` takes them.
+    """
 
 
 @dataclass(frozen=True)

@@ -52,6 +52,10 @@ def close_pty_pair(master: int) -> None:
     Parameters
     ----------
     master : int
+
+    Returns
+    -------
+    None
     """
     for fd in (_HELD_SLAVES.pop(master, None), master):
         if fd is not None:
@@ -267,7 +271,18 @@ class _AnsweringSimulator(_Simulator):
 
 
 class SylvacSimulator(_AnsweringSimulator):
-    """A Sylvac Opto RS gauge: ``?\\r`` -> ``+12.345\\r`` (mm, 0.001 mm resolution unless told)."""
+    """A Sylvac Opto RS gauge: ``?\\r`` -> ``+12.345\\r`` (mm, 0.001 mm resolution unless told).
+
+    Parameters
+    ----------
+    fd : int
+        The pty's master.
+    position : callable
+        Metres at time t.
+    resolution_mm : float
+    inch : bool
+        Answer in inches.
+    """
 
     def __init__(self, fd, position, *, resolution_mm: float = 0.001, inch: bool = False, **kwargs):
         super().__init__(fd, position, **kwargs)
@@ -283,7 +298,15 @@ class SylvacSimulator(_AnsweringSimulator):
 
 
 class MahrSimulator(_AnsweringSimulator):
-    """A Mahr Millimar: ``?\\r`` -> ``+0012.3450mm\\r\\n``."""
+    """A Mahr Millimar: ``?\\r`` -> ``+0012.3450mm\\r\\n``.
+
+    Parameters
+    ----------
+    fd : int
+        The pty's master.
+    position : callable
+        Metres at time t.
+    """
 
     def reply(self, value_m: float) -> bytes:
         return f"{value_m * 1e3:+010.4f}mm\r\n".encode()

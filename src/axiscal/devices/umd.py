@@ -109,7 +109,21 @@ class UmdSettings:
 
 @dataclass
 class UmdState:
-    """What the stream has said of itself so far (filled from the LowSpeed codes)."""
+    """What the stream has said of itself so far (filled from the LowSpeed codes).
+
+    Attributes
+    ----------
+    rate_hz : float or None
+        Sample rate (code 8).
+    version, firmware : int or None
+        1 or 2, and the firmware number (code 10).
+    counts_per_cycle, homodyne_axes : int
+        Code 20.
+    phase_8bit : bool
+        Code 112's flag.
+    air_temperature_c, material_temperature_c, pressure_pa, humidity_pct : float
+        The last sensor values (NaN when absent).
+    """
 
     rate_hz: float | None = None
     version: int | None = None

@@ -12,6 +12,7 @@ from axiscal.report.demo import (
     write_as_found_campaign,
     write_as_left_campaign,
 )
+from axiscal.report.cycle import CycleResult, CycleSettings, closed_cycle
 from axiscal.report.history import history_section
 from axiscal.report.html import (
     compare_label,
@@ -37,6 +38,9 @@ from axiscal.report.writer import (
 )
 
 __all__ = [
+    "CycleResult",
+    "CycleSettings",
+    "closed_cycle",
     "history_section",
     "decision_statement",
     "template_environment",

@@ -2,3 +2,4 @@
 
 It calls the library as the command line does and computes nothing itself.
 """
+__all__: list[str] = []
