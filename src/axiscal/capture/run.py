@@ -252,9 +252,10 @@ def _feed_source(source: Any, detector: StopDetector, take: Callable[[Stop], Non
                 take(stop)
             if reading.size:
                 report(float(reading[-1]), detector.holding)
-            if last_step() and detector.held_s >= detector.window_s:
+            if last_step() and detector.held_s >= detector.window_s and not detector.standing_start:
                 # the plan's last stop: nothing moves the axis on, so it is taken once it has held a
-                # whole window after first holding still (the mean of its last window)
+                # whole window after first holding still (the mean of its last window); not where the
+                # axis stood when the stream began (a stop it has not come to)
                 for stop in detector.finish():
                     take(stop)
         if getattr(source, "finished", False):
@@ -296,7 +297,9 @@ def capture(
         The environment channels of a live source to average over each stop (default: those of its
         channels named as air and material sensors).
     resumed : sequence of StopReading, keyword-only
-        Stops already taken (a resumed capture): the plan goes on after the last.
+        Stops already taken (a resumed capture): the plan goes on after the last, with the stops of
+        the source that start after it (in the source's time: a source that reaches back over it,
+        such as the same recording again, is passed over up to it).
     on_stop : callable, optional, keyword-only
         Called with each new StopReading as it is taken (the partial file's writer).
     progress : callable, optional, keyword-only
@@ -327,6 +330,11 @@ def capture(
         description = source.source
     readings = list(resumed)
     start = readings[-1].index + 1 if readings else 0
+    # a resume takes only the stops that come after the partial's last one: a source that reaches back
+    # over it (the same recording again, the sim replaying the plan from its first step) is passed over
+    # up to it. The next stop starts a whole window after it at the earliest; half a window is margin
+    # enough for the same stop found again at another sample rate.
+    after_s = readings[-1].start_s + settings.window_s / 2 if readings else -math.inf
     if readings and not live:
         stated = tuple(readings[0].channels)
         if set(stated) != set(names):
@@ -340,6 +348,8 @@ def capture(
     detector = StopDetector(stability_m=settings.stability_m, window_s=settings.window_s, channels=names)
 
     def take(stop: Stop) -> None:
+        if stop.start_s <= after_s:
+            return  # the partial capture's stops, or before them
         if matcher.done and stop.first_index != 0:
             return  # the axis may go on moving after the plan's last step (back home): not a reading
         taken = matcher.take(stop)
@@ -361,7 +371,8 @@ def capture(
 
     if live:
         def last_step() -> bool:
-            return matcher.next_index is not None and matcher.taken == steps.readings - 1
+            # the stop in progress may be the plan's last: not one a resume passes over
+            return matcher.next_index is not None and matcher.taken == steps.readings - 1 and detector.start_s > after_s
 
         _feed_source(source, detector, take, channel, unit, lambda: matcher.done, last_step, report, timeout_s)
     else:

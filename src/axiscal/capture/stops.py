@@ -359,6 +359,11 @@ class StopDetector:
         return self._open is not None and self._open["first_index"] == 0
 
     @property
+    def start_s(self) -> float:
+        """When the stop in progress began (the first sample of its first still window), seconds; NaN when moving."""
+        return float("nan") if self._open is None else self._open["start_s"]
+
+    @property
     def held_s(self) -> float:
         """How long the reading has been still, seconds (0 when it is moving)."""
         return 0.0 if self._open is None else self._last_t - self._open["still_s"]
