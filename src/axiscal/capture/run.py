@@ -328,6 +328,10 @@ def capture(
     else:
         names = tuple(source.channels)
         description = source.source
+        duration = float(source.time_s[-1] - source.time_s[0]) if source.time_s.size else 0.0
+        if settings.window_s > duration:
+            raise AxiscalError(f"window_s {settings.window_s:.6g} s is longer than the recording ({duration:.6g} s): no stop"
+                               " can hold still for a whole window", path=description)
     readings = list(resumed)
     start = readings[-1].index + 1 if readings else 0
     # a resume takes only the stops that come after the partial's last one: a source that reaches back

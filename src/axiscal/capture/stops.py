@@ -252,7 +252,8 @@ class StopDetector:
         step = np.diff(bt)
         if step.size and step.min() > 0 and step.max() - step.min() <= 1e-6 * step.min():
             # evenly sampled: the window is the floor(window / interval) + 1 samples ending at i
-            span = int(np.floor(self.window_s / float(0.5 * (step.min() + step.max())) + 1e-6))
+            # (a window longer than the buffer reaches before its first sample: capped, it is not covered either)
+            span = int(min(np.floor(self.window_s / float(0.5 * (step.min() + step.max())) + 1e-6), buffer.shape[0]))
             first = np.maximum(idx - span, 0)
             covered = (idx - span >= 0) | (self._offset > 0)
         else:
