@@ -178,7 +178,9 @@ def capture_to_file(
     output : str or Path
         The run CSV to write; ``OUTPUT.partial`` holds the stops as they are taken.
     resume : bool, keyword-only
-        Continue the partial capture ``OUTPUT.partial`` with this recording (the rest of the run).
+        Continue the partial capture ``OUTPUT.partial`` with this recording or source: the rest of
+        the run, or a source that reaches back over the partial (its stops up to the partial's last
+        are passed over, by their start time).
     **options
         ``settings``, ``unit``, ``channel``, ``environment``, ``progress``, ``timeout_s`` and
         ``on_stop`` (called after each stop is written to the partial file) of :func:`capture`.
@@ -191,7 +193,9 @@ def capture_to_file(
     ------
     AxiscalError
         As :func:`capture` (the partial file then keeps every stop taken before); for a partial
-        file left from an interrupted capture when ``resume`` is not given, or none when it is.
+        file holding stops left from an interrupted capture when ``resume`` is not given (one
+        holding none is started afresh), or none when it is; for a row of the partial file that is
+        not the plan's step it names (target, run or direction), naming the file and the line.
     """
     output = check_path("output", output)
     check_instance("resume", resume, bool)

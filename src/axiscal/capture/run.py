@@ -315,8 +315,9 @@ def capture(
     ------
     AxiscalError
         One line naming the step, its target, run and direction, for a stop elsewhere, a missing
-        stop, an approach from the other side, or a recording that ends before the last step; and
-        whatever the recording's reader or the plan's refuse.
+        stop, an approach in the other direction, or a recording that ends before the last step;
+        for a window longer than the recording; and whatever the recording's reader or the plan's
+        refuse.
     """
     settings = CaptureSettings() if settings is None else check_instance("settings", settings, CaptureSettings)
     steps = plan if isinstance(plan, PlanSteps) else plan_steps(plan)
