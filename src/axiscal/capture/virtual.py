@@ -241,7 +241,7 @@ def simulate_motions(
     seg[:, 0] += lead_s
     total = float(seg[-1, 0] + seg[-1, 1]) + lead_s
     if total * rate_hz > 5e7:
-        raise AxiscalError(f"the program runs {total:.0f} s: {total * rate_hz:.3g} samples at {rate_hz:g} Hz is more than"
+        raise AxiscalError(f"the program runs {total:.6g} s: {total * rate_hz:.3g} samples at {rate_hz:g} Hz is more than"
                            " the virtual machine records (5e7)")
     time_s = np.arange(int(np.ceil(total * rate_hz))) / rate_hz
     commanded, k = _commanded(time_s, seg, spec.acceleration_m_s2)
