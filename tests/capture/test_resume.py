@@ -33,7 +33,7 @@ def case(tmp_path_factory):
     with pytest.raises(AxiscalError, match="the recording ends before it"):
         capture_to_file(folder / "plan.csv", first, folder / "part.csv")
     return {"folder": folder, "plan": folder / "plan.csv", "rec": folder / "rec.csv", "whole": whole,
-            "partial": partial_path(folder / "part.csv").read_text()}
+            "partial": partial_path(folder / "part.csv").read_text(), "recording": rec, "cut": k}
 
 
 def start(case, tmp_path, text=None):
@@ -49,6 +49,22 @@ def test_resuming_with_the_same_whole_recording_skips_to_after_the_partial(case,
     assert main(["capture", str(case["plan"]), "--from", str(case["rec"]), "-o", str(out), "--resume"]) == 0
     assert out.read_text() == case["whole"].run_csv.read_text()
     assert not partial_path(out).exists()
+
+
+@pytest.mark.parametrize("shift_s", [0.0, None, 2.0])
+def test_resuming_with_the_rest_whatever_its_clock(case, tmp_path, shift_s):
+    # the rest of the run recorded on: its clock goes on (None), or starts again at 0 or at 2 s (a new
+    # recording file, an .rtx capture): every stop of it is the run's
+    rec, k = case["recording"], case["cut"]
+    t = rec.time_s[k:] if shift_s is None else rec.time_s[k:] - rec.time_s[k] + shift_s
+    rest = Recording(t, rec.reading_m[k:], {n: v[k:] for n, v in rec.channels.items()}, "rest.csv")
+    out = start(case, tmp_path)
+    files = capture_to_file(case["plan"], rest, out, resume=True)
+    assert out.read_text() == case["whole"].run_csv.read_text()
+    assert [r.start_s for r in files.capture.readings[4:]] == pytest.approx([s.start_s for s in case["whole"].capture.readings[4:]]
+                                                                            if shift_s is None else
+                                                                            [s.start_s - rec.time_s[k] + shift_s
+                                                                             for s in case["whole"].capture.readings[4:]])
 
 
 def test_a_partial_holding_only_its_header_is_resumed_or_started_afresh(case, tmp_path, capsys):

@@ -3,7 +3,7 @@
 A capture to a file appends every stop to ``RUN.csv.partial`` as it is taken (flushed to disk), so
 a stream that dies leaves every stop before it; a resumed capture reads that file (each row checked
 against the plan's step: its target, run and direction) and goes on from the step after its last,
-with the stops of the source that start after it (a partial file that holds no stop yet, left by a
+with the stops of the source that come after it (a partial file that holds no stop yet, left by a
 capture stopped before its first, is started afresh); the run itself is written atomically at the end, with a JSON sidecar
 holding the plan's seed, the source, the settings and, per stop, its start time and the standard
 deviation of the reading over its window.
@@ -180,7 +180,7 @@ def capture_to_file(
     resume : bool, keyword-only
         Continue the partial capture ``OUTPUT.partial`` with this recording or source: the rest of
         the run, or a source that reaches back over the partial (its stops up to the partial's last
-        are passed over, by their start time).
+        are passed over, see :func:`capture`).
     **options
         ``settings``, ``unit``, ``channel``, ``environment``, ``progress``, ``timeout_s`` and
         ``on_stop`` (called after each stop is written to the partial file) of :func:`capture`.

@@ -205,6 +205,50 @@ def _arranged(targets: np.ndarray, runs: np.ndarray, directions: np.ndarray, dev
     return PositioningRun(unique, arrays["+"], arrays["-"], source=source)
 
 
+class _Replay:
+    """Which stops of a resumed capture's source are the partial capture's own, found again.
+
+    A resume takes only the stops that come after the partial's last one. A source may reach back
+    over the partial (the same recording again, the sim replaying the plan from its first step):
+    its stops up to the partial's last are then the partial's, each found again where and when the
+    partial took it (its start within a tenth of a window, its position within the stability), with
+    the ends of overrun moves between them. A source whose first stop is none of the partial's goes
+    on after it (the rest of the run, its clock going on or started again) and every stop is taken.
+    """
+
+    def __init__(self, steps: PlanSteps, readings: Sequence[StopReading], settings: CaptureSettings):
+        self.start_s = np.array([r.start_s for r in readings])
+        self.position_m = np.array([steps.target_m[r.index] + r.deviation_m for r in readings])
+        self.settings = settings
+        # the next stop starts a whole window after the partial's last at the earliest
+        self.after_s = readings[-1].start_s + settings.window_s / 2 if readings else -math.inf
+        self.matched = 0
+        self.over = not readings
+
+    def beyond(self, start_s: float) -> bool:
+        """Whether a stop that began at ``start_s`` cannot be one the partial holds."""
+        return self.over or start_s > self.after_s
+
+    def passes_over(self, stop: Stop) -> bool:
+        """Whether ``stop`` is the partial's (or lies among its stops, in a source that replays them)."""
+        if self.beyond(stop.start_s):
+            self.over = True
+            return False
+        if stop.first_index == 0:
+            return False  # where the axis stood when the source began: the walk passes it over
+        w = self.settings
+        same = (np.abs(self.start_s - stop.start_s) <= w.window_s / 10) & \
+            (np.abs(self.position_m - (stop.value_m - w.offset_m)) <= w.stability_m)
+        if same.any():
+            self.matched += 1
+            self.over = bool(same[-1])  # the partial's last: the stops after it are the run's
+            return True
+        if self.matched:
+            return True  # between the partial's stops (the end of an overrun move)
+        self.over = True
+        return False
+
+
 def _recording_source(recording: Any, unit: str | None, channel: str | None) -> Recording | Any:
     if isinstance(recording, Recording):
         return recording
@@ -298,8 +342,9 @@ def capture(
         channels named as air and material sensors).
     resumed : sequence of StopReading, keyword-only
         Stops already taken (a resumed capture): the plan goes on after the last, with the stops of
-        the source that start after it (in the source's time: a source that reaches back over it,
-        such as the same recording again, is passed over up to it).
+        the source that come after it. A source that reaches back over them (the same recording
+        again, the sim replaying the plan) is known by its stops found again where and when they
+        were taken, and passed over up to the last.
     on_stop : callable, optional, keyword-only
         Called with each new StopReading as it is taken (the partial file's writer).
     progress : callable, optional, keyword-only
@@ -335,11 +380,7 @@ def capture(
                                " can hold still for a whole window", path=description)
     readings = list(resumed)
     start = readings[-1].index + 1 if readings else 0
-    # a resume takes only the stops that come after the partial's last one: a source that reaches back
-    # over it (the same recording again, the sim replaying the plan from its first step) is passed over
-    # up to it. The next stop starts a whole window after it at the earliest; half a window is margin
-    # enough for the same stop found again at another sample rate.
-    after_s = readings[-1].start_s + settings.window_s / 2 if readings else -math.inf
+    replay = _Replay(steps, readings, settings)
     if readings and not live:
         stated = tuple(readings[0].channels)
         if set(stated) != set(names):
@@ -353,8 +394,8 @@ def capture(
     detector = StopDetector(stability_m=settings.stability_m, window_s=settings.window_s, channels=names)
 
     def take(stop: Stop) -> None:
-        if stop.start_s <= after_s:
-            return  # the partial capture's stops, or before them
+        if replay.passes_over(stop):
+            return  # a stop the partial capture holds, the source replaying it
         if matcher.done and stop.first_index != 0:
             return  # the axis may go on moving after the plan's last step (back home): not a reading
         taken = matcher.take(stop)
@@ -377,7 +418,7 @@ def capture(
     if live:
         def last_step() -> bool:
             # the stop in progress may be the plan's last: not one a resume passes over
-            return matcher.next_index is not None and matcher.taken == steps.readings - 1 and detector.start_s > after_s
+            return matcher.next_index is not None and matcher.taken == steps.readings - 1 and replay.beyond(detector.start_s)
 
         _feed_source(source, detector, take, channel, unit, lambda: matcher.done, last_step, report, timeout_s)
     else:
