@@ -4,9 +4,9 @@ A capture to a file appends every stop to ``RUN.csv.partial`` as it is taken (fl
 a stream that dies leaves every stop before it; a resumed capture reads that file (each row checked
 against the plan's step: its target, run and direction) and goes on from the step after its last,
 with the stops of the source that come after it (a partial file that holds no stop yet, left by a
-capture stopped before its first, is started afresh); the run itself is written atomically at the end, with a JSON sidecar
-holding the plan's seed, the source, the settings and, per stop, its start time and the standard
-deviation of the reading over its window.
+capture stopped before its first, is started afresh); the run itself is written atomically at the
+end, with a JSON sidecar holding the plan's seed, the source, the settings and, per stop, its start
+time and the standard deviation of the reading over its window; the partial file is removed last.
 """
 
 from __future__ import annotations
