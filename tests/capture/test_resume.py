@@ -51,6 +51,28 @@ def test_resuming_with_the_same_whole_recording_skips_to_after_the_partial(case,
     assert not partial_path(out).exists()
 
 
+def test_resuming_with_the_same_recording_whose_axis_also_stops_at_the_overruns(tmp_path):
+    # a program that dwells at the end of each overrun move too: those stops are the partial's as well
+    plan = plan_test(0.0, 0.19, 5, runs=2, seed=6)
+    steps = plan_steps(plan)
+    motions = []
+    for m in plan_motions(steps, dwell_s=1.0):
+        motions.append(m)
+        if m.kind == "feed" and not np.isfinite(steps.target_m[m.line - 1]):
+            motions.append(type(m)(m.line, "dwell", m.end_m, None, 1.0))
+    machine = load_machine(builtin_example() / "machine.toml")
+    simulated = simulate_motions(motions, machine, axis="X", rate_hz=200.0, seed=3)
+    rec = simulated.recording
+    whole = capture(plan, rec)
+    k = int(np.searchsorted(rec.time_s, simulated.dwells[6, 1] + 0.3))  # after a few targets and overruns
+    first = Recording(rec.time_s[:k], rec.reading_m[:k], {n: v[:k] for n, v in rec.channels.items()}, "first.csv")
+    out = tmp_path / "run.csv"
+    with pytest.raises(AxiscalError, match="the recording ends before it"):
+        capture_to_file(plan, first, out)
+    resumed = capture_to_file(plan, rec, out, resume=True).capture
+    assert [r.deviation_m for r in resumed.readings] == pytest.approx([r.deviation_m for r in whole.readings], abs=1e-11)
+
+
 @pytest.mark.parametrize("shift_s", [0.0, None, 2.0])
 def test_resuming_with_the_rest_whatever_its_clock(case, tmp_path, shift_s):
     # the rest of the run recorded on: its clock goes on (None), or starts again at 0 or at 2 s (a new

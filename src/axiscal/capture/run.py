@@ -220,6 +220,10 @@ class _Replay:
         self.start_s = np.array([r.start_s for r in readings])
         self.position_m = np.array([steps.target_m[r.index] + r.deviation_m for r in readings])
         self.settings = settings
+        # where the overrun moves up to the partial's last step end (a stop there is passed over either way)
+        upto = readings[-1].index + 1 if readings else 0
+        self.overrun_m = steps.move_to_m[:upto][~np.isfinite(steps.target_m[:upto])]
+        self.target_m = steps.target_m[np.isfinite(steps.target_m)]
         # the next stop starts a whole window after the partial's last at the earliest
         self.after_s = readings[-1].start_s + settings.window_s / 2 if readings else -math.inf
         self.matched = 0
@@ -245,6 +249,10 @@ class _Replay:
             return True
         if self.matched:
             return True  # between the partial's stops (the end of an overrun move)
+        position = stop.value_m - w.offset_m
+        overrun = np.abs(self.overrun_m - position).min(initial=np.inf)
+        if overrun <= w.tolerance_m and overrun < np.abs(self.target_m - position).min():
+            return True  # the end of an overrun move (nearer than any target), before the first of them
         self.over = True
         return False
 
