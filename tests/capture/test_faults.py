@@ -13,10 +13,8 @@ from __future__ import annotations
 
 import json
 import os
-import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -34,24 +32,37 @@ from axiscal.report.demo import builtin_example
 TRIALS = 16
 
 #: the process the commands are forked from: it runs the command once (its argv the script's
-#: argument) so that every module it uses is loaded, then for each line (a JSON argv) forks a child
-#: that runs the command, prints its pid, then how it ended
+#: argument) so that every module it uses is loaded, then for each line (a delay, or none, and a
+#: JSON argv) forks a child that runs the command, kills it after the delay if it is still running
+#: (the child is not reaped before, so its pid is its own), and prints how it ended and when
 FORKER = r"""
-import json, os, sys
+import json, os, signal, sys, time
 from axiscal.cli.main import main
 assert main(json.loads(sys.argv[1])) == 0
 print("ready", flush=True)
 for line in sys.stdin:
+    delay, argv = json.loads(line)
+    began = time.monotonic()
     pid = os.fork()
     if pid == 0:
-        os._exit(main(json.loads(line)))
-    print(pid, flush=True)
-    print(os.waitpid(pid, 0)[1], flush=True)
+        os._exit(main(argv))
+    killed = False
+    while True:
+        done, status = os.waitpid(pid, os.WNOHANG)
+        if done:
+            break
+        if delay is not None and time.monotonic() - began >= delay:
+            os.kill(pid, signal.SIGKILL)
+            killed = True
+            done, status = os.waitpid(pid, 0)
+            break
+        time.sleep(0.001)
+    print(json.dumps([status, killed, time.monotonic() - began]), flush=True)
 """
 
 
 class Forker:
-    """Runs ``axiscal`` commands in forked processes; kills them after a delay."""
+    """Runs ``axiscal`` commands in forked processes, killed after a delay."""
 
     def __init__(self, warm_up: list[str]):
         env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(Path(axiscal.__file__).parents[1]), os.environ.get("PYTHONPATH", "")]))
@@ -59,20 +70,13 @@ class Forker:
                                         stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, env=env)
         assert self.process.stdout.readline().strip() == "ready"
 
-    def run(self, argv: list[str], kill_after_s: float | None = None) -> tuple[int, float]:
-        """Run the command; kill it after ``kill_after_s`` (None: let it finish). Its wait status and how long it ran."""
-        began = time.monotonic()
-        self.process.stdin.write(json.dumps(argv) + "\n")
+    def run(self, argv: list[str], kill_after_s: float | None = None) -> tuple[int, bool, float]:
+        """Run the command; kill it after ``kill_after_s`` (None: let it finish). Its wait status, whether it was
+        killed, and how long it ran."""
+        self.process.stdin.write(json.dumps([kill_after_s, argv]) + "\n")
         self.process.stdin.flush()
-        pid = int(self.process.stdout.readline())
-        if kill_after_s is not None:
-            time.sleep(kill_after_s)
-            try:
-                os.kill(pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass  # it had finished
-        status = int(self.process.stdout.readline())
-        return status, time.monotonic() - began
+        status, killed, took = json.loads(self.process.stdout.readline())
+        return status, killed, took
 
     def close(self) -> None:
         self.process.stdin.close()
@@ -90,7 +94,7 @@ def setup(tmp_path_factory):
     for name, seed in (("rec.csv", 1), ("older.csv", 2)):
         write_recording(simulate_motions(motions, machine, axis="X", rate_hz=200.0, seed=seed), folder / name)
     forker = Forker(["capture", str(folder / "plan.csv"), "--from", str(folder / "older.csv"), "-o", str(folder / "old.csv")])
-    status, took = forker.run(["capture", str(folder / "plan.csv"), "--from", str(folder / "rec.csv"), "-o", str(folder / "new.csv")])
+    status, _, took = forker.run(["capture", str(folder / "plan.csv"), "--from", str(folder / "rec.csv"), "-o", str(folder / "new.csv")])
     assert status == 0
     yield {"folder": folder, "forker": forker, "took": took, "old": (folder / "old.csv").read_bytes(),
            "old_json": (folder / "old.json").read_bytes(), "new": (folder / "new.csv").read_bytes()}
@@ -100,7 +104,7 @@ def setup(tmp_path_factory):
 def test_a_killed_capture_leaves_the_old_run_or_the_new_one_and_a_resumable_partial(setup, tmp_path):
     rng = np.random.default_rng(2028)
     folder, forker = setup["folder"], setup["forker"]
-    outcomes = {"old": 0, "new": 0, "partial": 0, "temporaries left": 0}
+    outcomes = {"killed": 0, "old": 0, "new": 0, "partial": 0, "resumes killed": 0, "temporaries left": 0}
     for trial in range(TRIALS):
         here = tmp_path / f"trial{trial}"
         here.mkdir()
@@ -108,7 +112,8 @@ def test_a_killed_capture_leaves_the_old_run_or_the_new_one_and_a_resumable_part
         out.write_bytes(setup["old"])
         (here / "run.json").write_bytes(setup["old_json"])
         argv = ["capture", str(folder / "plan.csv"), "--from", str(folder / "rec.csv"), "-o", str(out)]
-        forker.run(argv, kill_after_s=float(rng.uniform(0.0, 1.2 * setup["took"])))
+        _, killed, _ = forker.run(argv, kill_after_s=float(rng.uniform(0.0, 1.2 * setup["took"])))
+        outcomes["killed"] += killed
         written = out.read_bytes()
         assert written in (setup["old"], setup["new"]), f"trial {trial}: RUN.csv mixed"
         check_pair(out, setup, trial)
@@ -116,13 +121,16 @@ def test_a_killed_capture_leaves_the_old_run_or_the_new_one_and_a_resumable_part
         if partial_path(out).exists():
             outcomes["partial"] += 1
             # a resume killed in its turn, then one that finishes: the run of a capture never interrupted
-            forker.run(argv + ["--resume"], kill_after_s=float(rng.uniform(0.0, 1.2 * setup["took"])))
+            _, killed, _ = forker.run(argv + ["--resume"], kill_after_s=float(rng.uniform(0.0, 1.2 * setup["took"])))
+            outcomes["resumes killed"] += killed
             assert out.read_bytes() in (setup["old"], setup["new"]), f"trial {trial}: RUN.csv mixed by a killed resume"
             check_pair(out, setup, trial)
-            if partial_path(out).exists():
-                capture_to_file(folder / "plan.csv", folder / "rec.csv", out, resume=True)
+        # what the user does next: resume what is left, or capture again where nothing is
+        if partial_path(out).exists():
+            capture_to_file(folder / "plan.csv", folder / "rec.csv", out, resume=True)
         elif out.read_bytes() == setup["old"]:
-            capture_to_file(folder / "plan.csv", folder / "rec.csv", out)  # killed before its first stop: nothing to resume
+            # killed before its first stop (a partial that held none is started afresh, so a killed resume may leave none)
+            capture_to_file(folder / "plan.csv", folder / "rec.csv", out)
         assert out.read_bytes() == setup["new"], f"trial {trial}: the finished run differs from an uninterrupted one"
         assert not partial_path(out).exists()
         outcomes["temporaries left"] += len(list(here.glob(".run.csv.*")) + list(here.glob(".run.json.*")))
