@@ -121,6 +121,46 @@ def test_a_recording_cut_short_then_resumed_finishes_the_run(machine, tmp_path):
     assert out.read_text() == (tmp_path / "whole.csv").read_text()
 
 
+def dwell_ends(simulated):
+    """When the axis leaves each dwell (the last: it stays until the recording ends)."""
+    return [*simulated.dwells[:-1, 1], simulated.recording.time_s[-1]]
+
+
+def ringing_recording(machine, plan, rate_hz=200.0):
+    """The plan run with a 10 Hz ringing and a 3 um creep after every arrival: the peak to peak over the
+    window hovers at the stability and crosses it several times at every stop."""
+    quiet = VirtualAxis(settle_m=0.0, creep_m=0.0, noise_m=0.0, repeatability_m=0.0, air_drift_c=0.0)
+    simulated = simulate_motions(plan_motions(plan_steps(plan), dwell_s=6.0), machine, axis="X", rate_hz=rate_hz, spec=quiet)
+    t, x = simulated.recording.time_s, simulated.recording.reading_m.copy()
+    for (arrive, _, _), leave, direction in zip(simulated.dwells, dwell_ends(simulated), simulated.directions):
+        on = (t >= arrive) & (t <= leave)
+        d = t[on] - arrive
+        x[on] += -(1 if direction == "+" else -1) * 3e-6 * np.exp(-d / 2.0) + 0.3e-6 * np.exp(-d / 10.0) * np.sin(2 * np.pi * 10 * d)
+    return simulated, Recording(t, x, {}, "ringing.csv")
+
+
+def test_a_ringing_axis_gives_one_stop_per_dwell(machine, tmp_path):
+    from axiscal.capture import detect_stops
+
+    plan = small_plan()
+    simulated, recording = ringing_recording(machine, plan)
+    stops = detect_stops(recording.time_s, recording.reading_m, stability_m=1e-6, window_s=WINDOW_S)
+    assert len(stops) == 1 + len(simulated.dwells)  # the standing start, then one per dwell
+    assert all(b.first_index > a.last_index for a, b in zip(stops, stops[1:]))
+    captured = capture(plan, recording)
+    t, x = recording.time_s, recording.reading_m
+    settled = [x[(t >= leave - WINDOW_S) & (t <= leave)].mean() for leave in dwell_ends(simulated)]
+    steps = captured.steps
+    got = [steps.target_m[r.index] + r.deviation_m for r in captured.readings]
+    assert got == pytest.approx(settled, abs=0.01 * UM)
+    # the same through the command line
+    write_plan(plan, tmp_path / "plan.csv")
+    lines = [f"{a:.6f},{b / MM:.9f}" for a, b in zip(t, x)]
+    (tmp_path / "ring.csv").write_text("time_s,reading_mm\n" + "\n".join(lines) + "\n")
+    assert main(["capture", str(tmp_path / "plan.csv"), "--from", str(tmp_path / "ring.csv"), "--stability-um", "1",
+                 "--window-s", str(WINDOW_S), "-o", str(tmp_path / "run.csv")]) == 0
+
+
 def test_capture_refuses_settings_out_of_range():
     with pytest.raises(AxiscalError, match="tolerance_m"):
         CaptureSettings(tolerance_m=-1.0)

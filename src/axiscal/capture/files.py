@@ -1,10 +1,12 @@
 """A capture written to files: the partial file as it goes, resume, the run and its sidecar at the end.
 
 A capture to a file appends every stop to ``RUN.csv.partial`` as it is taken (flushed to disk), so
-a stream that dies leaves every stop before it; a resumed capture reads that file and goes on from
-the step after its last; the run itself is written atomically at the end, with a JSON sidecar
-holding the plan's seed, the source, the settings and, per stop, its start time and the standard
-deviation of the reading over its window.
+a stream that dies leaves every stop before it; a resumed capture reads that file (each row checked
+against the plan's step: its target, run and direction) and goes on from the step after its last,
+with the stops of the source that come after it (a partial file that holds no stop yet, left by a
+capture stopped before its first, is started afresh); the run itself is written atomically at the
+end, with a JSON sidecar holding the plan's seed, the source, the settings and, per stop, its start
+time and the standard deviation of the reading over its window; the partial file is removed last.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from axiscal.io.arguments import check_instance, check_path
 from axiscal.io.jsonio import named_from, write_sidecar
 from axiscal.io.tabular import read_csv, write_csv
 from axiscal.positioning.plan import PositioningTestPlan
+from axiscal.positioning.reader import DIRECTIONS
 from axiscal.units import MM, UM
 
 __all__ = ["PARTIAL_COLUMNS", "CaptureFiles", "capture_to_file", "partial_path"]
@@ -84,14 +87,31 @@ class _PartialWriter:
         self._file.close()
 
 
-def _read_partial(path: Path, steps: PlanSteps) -> tuple[list[StopReading], tuple[str, ...]]:
-    """The stops a partial file holds, checked against the plan."""
+def _partial_rows(path: Path) -> int | None:
+    """Stops a partial file holds, None where it is not a partial capture's table (damaged, or another file)."""
+    try:
+        if not path.read_bytes().strip():
+            return 0  # emptied before its header reached the disk
+        table = read_csv(path, min_rows=0)
+        table.require(*PARTIAL_COLUMNS)
+    except (AxiscalError, OSError):
+        return None
+    return len(table)
+
+
+def _read_partial(path: Path, steps: PlanSteps) -> tuple[list[StopReading], tuple[str, ...] | None]:
+    """The stops a partial file holds, each row checked against the plan's step (None: no stop, no sensors)."""
     if not path.is_file():
         raise AxiscalError("nothing to resume: no partial capture here", path=path)
-    table = read_csv(path, min_rows=1)
+    if _partial_rows(path) == 0:
+        return [], None  # interrupted before its first stop: the capture starts from the plan's first step
+    table = read_csv(path, min_rows=0)
     table.require(*PARTIAL_COLUMNS)
     environment = environment_columns(table.header)
     number = table.numeric("step")
+    target = table.numeric("target_mm") * MM
+    run = table.numeric("run")
+    direction = table.text("direction")
     deviation = table.numeric("deviation_um") * UM
     start = table.numeric("start_s")
     std = table.numeric("window_std_um") * UM
@@ -102,9 +122,23 @@ def _read_partial(path: Path, steps: PlanSteps) -> tuple[list[StopReading], tupl
     last = -1
     for row in range(len(table)):
         k = index_of.get(int(number[row])) if number[row] == int(number[row]) else None
+        where = {"path": path, "line": table.line_of(row)}
         if k is None or not np.isfinite(steps.target_m[k]) or k <= last:
             raise AxiscalError(f"step {number[row]:g} is not the plan's next step with a target: this partial capture is"
-                               f" not of the plan {steps.source}", path=path, line=table.line_of(row))
+                               f" not of the plan {steps.source}", **where)
+        # the row is the plan's step: its target, run and direction (else the deviations belong to another plan)
+        problems = []
+        if abs(target[row] - steps.target_m[k]) > 1e-9:  # the partial writes targets to 1e-6 mm
+            problems.append(f"target {target[row] / MM:.6g} mm, not {steps.target_m[k] / MM:.6g} mm")
+        if run[row] != steps.run[k]:
+            problems.append(f"run {run[row]:g}, not {int(steps.run[k])}")
+        if DIRECTIONS.get(direction[row]) != steps.direction[k]:
+            problems.append(f"direction '{direction[row]}', not '{steps.direction[k]}'")
+        if problems:
+            raise AxiscalError(f"step {int(steps.step[k])} has {' and '.join(problems)} in the plan {steps.source}:"
+                               " this partial capture is not of that plan", **where)
+        if not (samples[row] >= 1 and samples[row] == int(samples[row])):
+            raise AxiscalError(f"samples {samples[row]:g} is not a count of samples", **where)
         readings.append(StopReading(k, float(deviation[row]), float(start[row]), float(std[row]), int(samples[row]),
                                     {n: float(env[n][row]) for n in environment if np.isfinite(env[n][row])}))
         last = k
@@ -145,7 +179,9 @@ def capture_to_file(
     output : str or Path
         The run CSV to write; ``OUTPUT.partial`` holds the stops as they are taken.
     resume : bool, keyword-only
-        Continue the partial capture ``OUTPUT.partial`` with this recording (the rest of the run).
+        Continue the partial capture ``OUTPUT.partial`` with this recording or source: the rest of
+        the run, or a source that reaches back over the partial (its stops up to the partial's last
+        are passed over, see :func:`capture`).
     engine : callable, optional, keyword-only
         What takes the readings, called as ``engine(steps, recording, resumed=..., on_stop=..., **options)``:
         :func:`~axiscal.capture.run.capture` (default), or a driven run (:func:`axiscal.capture.drive.drive_plan`).
@@ -161,7 +197,9 @@ def capture_to_file(
     ------
     AxiscalError
         As :func:`capture` (the partial file then keeps every stop taken before); for a partial
-        file left from an interrupted capture when ``resume`` is not given, or none when it is.
+        file holding stops left from an interrupted capture when ``resume`` is not given (one
+        holding none is started afresh), or none when it is; for a row of the partial file that is
+        not the plan's step it names (target, run or direction), naming the file and the line.
     """
     output = check_path("output", output)
     check_instance("resume", resume, bool)
@@ -171,17 +209,19 @@ def capture_to_file(
     environment: tuple[str, ...] | None = None
     if resume:
         resumed, environment = _read_partial(partial, steps)
-    elif partial.exists():
+    elif partial.exists() and _partial_rows(partial) != 0:
         raise AxiscalError("resume=True continues the partial capture an interrupted run left here (or delete it)",
                            path=partial)
+    if not resumed and partial.exists():
+        _remove(partial)  # it holds no stop (a capture killed before its first): start it afresh
     writer: _PartialWriter | None = None
 
     observe = options.pop("on_stop", None)
 
     def on_stop(reading: StopReading) -> None:
         nonlocal writer
-        if writer is None:
-            writer = _PartialWriter(partial, steps, tuple(reading.channels))
+        if writer is None:  # a resumed partial goes on in its own columns
+            writer = _PartialWriter(partial, steps, environment if resumed else tuple(reading.channels))
         writer.add(reading)
         if observe is not None:
             observe(reading)
@@ -216,3 +256,10 @@ def capture_to_file(
     except OSError:
         pass
     return CaptureFiles(result, output, sidecar)
+
+
+def _remove(path: Path) -> None:
+    try:
+        path.unlink()
+    except OSError as exc:
+        raise AxiscalError(f"cannot remove the partial capture that holds no stop ({exc.strerror or exc})", path=path) from None

@@ -205,6 +205,58 @@ def _arranged(targets: np.ndarray, runs: np.ndarray, directions: np.ndarray, dev
     return PositioningRun(unique, arrays["+"], arrays["-"], source=source)
 
 
+class _Replay:
+    """Which stops of a resumed capture's source are the partial capture's own, found again.
+
+    A resume takes only the stops that come after the partial's last one. A source may reach back
+    over the partial (the same recording again, the sim replaying the plan from its first step):
+    its stops up to the partial's last are then the partial's, each found again where and when the
+    partial took it (its start within a tenth of a window, its position within the stability), with
+    the ends of overrun moves between them. A source whose first stop is none of the partial's goes
+    on after it (the rest of the run, its clock going on or started again) and every stop is taken.
+    """
+
+    def __init__(self, steps: PlanSteps, readings: Sequence[StopReading], settings: CaptureSettings):
+        self.start_s = np.array([r.start_s for r in readings])
+        self.position_m = np.array([steps.target_m[r.index] + r.deviation_m for r in readings])
+        self.settings = settings
+        # where the overrun moves up to the partial's last step end (a stop there is passed over either way)
+        upto = readings[-1].index + 1 if readings else 0
+        self.overrun_m = steps.move_to_m[:upto][~np.isfinite(steps.target_m[:upto])]
+        self.target_m = steps.target_m[np.isfinite(steps.target_m)]
+        # the next stop starts a whole window after the partial's last at the earliest
+        self.after_s = readings[-1].start_s + settings.window_s / 2 if readings else -math.inf
+        self.matched = 0
+        self.over = not readings
+
+    def beyond(self, start_s: float) -> bool:
+        """Whether a stop that began at ``start_s`` cannot be one the partial holds."""
+        return self.over or start_s > self.after_s
+
+    def passes_over(self, stop: Stop) -> bool:
+        """Whether ``stop`` is the partial's (or lies among its stops, in a source that replays them)."""
+        if self.beyond(stop.start_s):
+            self.over = True
+            return False
+        if stop.first_index == 0:
+            return False  # where the axis stood when the source began: the walk passes it over
+        w = self.settings
+        same = (np.abs(self.start_s - stop.start_s) <= w.window_s / 10) & \
+            (np.abs(self.position_m - (stop.value_m - w.offset_m)) <= w.stability_m)
+        if same.any():
+            self.matched += 1
+            self.over = bool(same[-1])  # the partial's last: the stops after it are the run's
+            return True
+        if self.matched:
+            return True  # between the partial's stops (the end of an overrun move)
+        position = stop.value_m - w.offset_m
+        overrun = np.abs(self.overrun_m - position).min(initial=np.inf)
+        if overrun <= w.tolerance_m and overrun < np.abs(self.target_m - position).min():
+            return True  # the end of an overrun move (nearer than any target), before the first of them
+        self.over = True
+        return False
+
+
 def _recording_source(recording: Any, unit: str | None, channel: str | None) -> Recording | Any:
     if isinstance(recording, Recording):
         return recording
@@ -252,9 +304,10 @@ def _feed_source(source: Any, detector: StopDetector, take: Callable[[Stop], Non
                 take(stop)
             if reading.size:
                 report(float(reading[-1]), detector.holding)
-            if last_step() and detector.held_s >= detector.window_s:
+            if last_step() and detector.held_s >= detector.window_s and not detector.standing_start:
                 # the plan's last stop: nothing moves the axis on, so it is taken once it has held a
-                # whole window after first holding still (the mean of its last window)
+                # whole window after first holding still (the mean of its last window); not where the
+                # axis stood when the stream began (a stop it has not come to)
                 for stop in detector.finish():
                     take(stop)
         if getattr(source, "finished", False):
@@ -296,7 +349,10 @@ def capture(
         The environment channels of a live source to average over each stop (default: those of its
         channels named as air and material sensors).
     resumed : sequence of StopReading, keyword-only
-        Stops already taken (a resumed capture): the plan goes on after the last.
+        Stops already taken (a resumed capture): the plan goes on after the last, with the stops of
+        the source that come after it. A source that reaches back over them (the same recording
+        again, the sim replaying the plan) is known by its stops found again where and when they
+        were taken, and passed over up to the last.
     on_stop : callable, optional, keyword-only
         Called with each new StopReading as it is taken (the partial file's writer).
     progress : callable, optional, keyword-only
@@ -312,8 +368,9 @@ def capture(
     ------
     AxiscalError
         One line naming the step, its target, run and direction, for a stop elsewhere, a missing
-        stop, an approach from the other side, or a recording that ends before the last step; and
-        whatever the recording's reader or the plan's refuse.
+        stop, an approach in the other direction, or a recording that ends before the last step;
+        for a window longer than the recording; and whatever the recording's reader or the plan's
+        refuse.
     """
     settings = CaptureSettings() if settings is None else check_instance("settings", settings, CaptureSettings)
     steps = plan if isinstance(plan, PlanSteps) else plan_steps(plan)
@@ -325,8 +382,13 @@ def capture(
     else:
         names = tuple(source.channels)
         description = source.source
+        duration = float(source.time_s[-1] - source.time_s[0]) if source.time_s.size else 0.0
+        if settings.window_s > duration:
+            raise AxiscalError(f"window_s {settings.window_s:.6g} s is longer than the recording ({duration:.6g} s): no stop"
+                               " can hold still for a whole window", path=description)
     readings = list(resumed)
     start = readings[-1].index + 1 if readings else 0
+    replay = _Replay(steps, readings, settings)
     if readings and not live:
         stated = tuple(readings[0].channels)
         if set(stated) != set(names):
@@ -340,6 +402,8 @@ def capture(
     detector = StopDetector(stability_m=settings.stability_m, window_s=settings.window_s, channels=names)
 
     def take(stop: Stop) -> None:
+        if replay.passes_over(stop):
+            return  # a stop the partial capture holds, the source replaying it
         if matcher.done and stop.first_index != 0:
             return  # the axis may go on moving after the plan's last step (back home): not a reading
         taken = matcher.take(stop)
@@ -361,7 +425,8 @@ def capture(
 
     if live:
         def last_step() -> bool:
-            return matcher.next_index is not None and matcher.taken == steps.readings - 1
+            # the stop in progress may be the plan's last: not one a resume passes over
+            return matcher.next_index is not None and matcher.taken == steps.readings - 1 and replay.beyond(detector.start_s)
 
         _feed_source(source, detector, take, channel, unit, lambda: matcher.done, last_step, report, timeout_s)
     else:

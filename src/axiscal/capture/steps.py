@@ -6,7 +6,7 @@ with a target needs one stop there; an overrun step (no target) is passed over. 
 walked in order, each stop of the axis taken in turn:
 
 - a stop within ``tolerance`` of the next target is that step's reading, provided the axis came
-  to it from the side the step says (from below for ``+``);
+  to it moving in the step's direction (``+``: from below, ``-``: from above);
 - a stop at the end of an overrun move the axis has not yet passed is passed over;
 - a stop the axis was already at when the recording began (before the program) is passed over;
 - anything else is refused in one line naming the step, its target, run and direction: a stop
@@ -31,6 +31,15 @@ from axiscal.positioning.reader import DIRECTIONS
 from axiscal.units import MM
 
 __all__ = ["PlanSteps", "CapturedStop", "StepMatcher", "plan_steps"]
+
+#: how each direction of a step comes to its target, in words
+_APPROACH = {"+": "moving in the + direction (from below)", "-": "moving in the - direction (from above)"}
+
+
+def _mm(value_m: float, decimals: int) -> str:
+    """A position in mm for a message: fixed decimals, exponent form where that would be a long number."""
+    value = value_m / MM
+    return f"{value:.{decimals}f}" if abs(value) < 1e6 else f"{value:.{decimals}e}"
 
 
 @dataclass(frozen=True)
@@ -80,7 +89,7 @@ class PlanSteps:
     def describe(self, k: int) -> str:
         """Step ``k`` (0-based index) in words: ``step 7 (target 120.523 mm, run 1, +)``."""
         target = self.target_m[k]
-        where = f"target {target / MM:.3f} mm" if np.isfinite(target) else f"overrun to {self.move_to_m[k] / MM:.3f} mm"
+        where = f"target {_mm(target, 3)} mm" if np.isfinite(target) else f"overrun to {_mm(self.move_to_m[k], 3)} mm"
         return f"step {int(self.step[k])} ({where}, run {int(self.run[k])}, {self.direction[k]})"
 
 
@@ -232,12 +241,12 @@ class StepMatcher:
         if stop.first_index == 0:
             return None  # the axis stood there before the recording began: not a stop of the program
         if k is None:
-            raise self._refuse(stop, f"a stop at {position / MM:.4f} mm after the plan's last step")
+            raise self._refuse(stop, f"a stop at {_mm(position, 4)} mm after the plan's last step")
         steps, tol = self.steps, self.tolerance_m
         if abs(position - steps.target_m[k]) <= tol:
             if stop.approach != steps.direction[k]:
-                raise self._refuse(stop, f"{steps.describe(k)}: the axis came to the target from the"
-                                         f" {'+' if stop.approach == '-' else '-'} side, not from the {steps.direction[k]} side")
+                raise self._refuse(stop, f"{steps.describe(k)}: the axis came to the target {_APPROACH[stop.approach]},"
+                                         f" not {_APPROACH[steps.direction[k]]}")
             self._passed = k + 1
             return CapturedStop(k, stop, position, position - float(steps.target_m[k]))
         overruns = [j for j in range(self._passed, k) if abs(position - steps.move_to_m[j]) <= tol]
@@ -247,8 +256,8 @@ class StepMatcher:
         later = [int(j) for j in self._targets[self._targets > k] if abs(position - steps.target_m[j]) <= tol]
         if later:
             raise self._refuse(stop, f"{steps.describe(k)}: no stop there: the axis went on and stopped at"
-                                     f" {position / MM:.4f} mm, the target of step {int(steps.step[later[0]])}")
-        raise self._refuse(stop, f"{steps.describe(k)}: the axis stopped at {position / MM:.4f} mm, not within"
+                                     f" {_mm(position, 4)} mm, the target of step {int(steps.step[later[0]])}")
+        raise self._refuse(stop, f"{steps.describe(k)}: the axis stopped at {_mm(position, 4)} mm, not within"
                                  f" {tol / MM:g} mm of the target")
 
     def missing(self, source: str | None) -> AxiscalError:

@@ -2,9 +2,13 @@
 
 A sample ``i`` is *still* when every sample in the window ``[t_i - window_s, t_i]`` lies within
 ``stability_m`` peak to peak, and the recording reaches back at least ``window_s`` before it. A
-*stop* is a run of consecutive still samples. Its value is the mean of the reading over the last
-window of the stop, the ``window_s`` before the axis moved on: machines ring and creep after they
-arrive, so the value is where the axis settled, not where it first held still. The window is
+*stop* is a run of consecutive still samples; runs whose windows overlap are one stop (a ringing
+axis whose peak to peak over the window hovers at the stability breaks its stillness for a few
+samples, at the same place: the stops are disjoint). Its value is the mean of the reading over the
+last window of the stop, the ``window_s`` before the axis moved on: machines ring and creep after
+they arrive, so the value is where the axis settled, not where it first held still. A stop the
+axis stood at when the recording began (every sample up to its first still one within the
+stability) starts at sample 0, however unevenly the samples are spaced. The window is
 measured in time, so a recording with an uneven sample interval is read as it was taken; where
 the samples are evenly spaced (to a millionth of the interval) it is the ``floor(window_s /
 interval) + 1`` samples ending at each one.
@@ -54,7 +58,8 @@ class Stop:
         Samples in that window.
     first_index, last_index : int
         Index (from the first sample ever fed) of the first sample of the stop and of its last
-        still sample.
+        still sample. ``first_index`` is 0 exactly for a stop the axis stood at when the
+        recording began (a standing start).
     low_m, high_m : float, metres
         Lowest and highest reading between the previous stop and this one (the move that
         brought the axis here): the side it came from.
@@ -176,6 +181,10 @@ class StopDetector:
         self._fed = 0
         self._last_t = -np.inf
         self._open: dict | None = None  # the stop in progress: first index, start and still times
+        # a stop whose stillness broke: given once the next still run cannot overlap its window, else
+        # joined by it (the stop, and the state it was opened with)
+        self._pending: tuple[Stop, dict] | None = None
+        self._began = False  # whether any stop has begun (only the first can be a standing start)
         self._low = np.inf
         self._high = -np.inf
 
@@ -243,7 +252,8 @@ class StopDetector:
         step = np.diff(bt)
         if step.size and step.min() > 0 and step.max() - step.min() <= 1e-6 * step.min():
             # evenly sampled: the window is the floor(window / interval) + 1 samples ending at i
-            span = int(np.floor(self.window_s / float(0.5 * (step.min() + step.max())) + 1e-6))
+            # (a window longer than the buffer reaches before its first sample: capped, it is not covered either)
+            span = int(min(np.floor(self.window_s / float(0.5 * (step.min() + step.max())) + 1e-6), buffer.shape[0]))
             first = np.maximum(idx - span, 0)
             covered = (idx - span >= 0) | (self._offset > 0)
         else:
@@ -262,20 +272,32 @@ class StopDetector:
         return stops
 
     def _runs(self, buffer: np.ndarray, idx: np.ndarray, first: np.ndarray, still: np.ndarray) -> list[Stop]:
-        """Turn the still flags of a batch into stops, carrying an open stop over batches."""
+        """Turn the still flags of a batch into stops, carrying an open (or broken-off) stop over batches."""
         bx = buffer[:, 1]
         stops: list[Stop] = []
         prev = self._open is not None
         edges = np.flatnonzero(np.diff(np.concatenate([[prev], still]).astype(np.int8)))
         cursor = 0  # local position in the batch up to which the motion's extremes are taken
         for e in edges:
-            if still[e]:  # a stop begins at batch sample e
+            if still[e]:  # a still run begins at batch sample e
+                start = int(first[e])
+                if self._pending is not None:
+                    stop, opened = self._pending
+                    self._pending = None
+                    if self._offset + start <= stop.last_index:
+                        # its window reaches back into the stop that broke off: the same stop, still ringing
+                        self._open = opened
+                        continue
+                    stops.append(stop)
                 moving = bx[idx[cursor] : idx[e]]
                 moving = moving[np.isfinite(moving)]
                 if moving.size:
                     self._low = min(self._low, float(moving.min()))
                     self._high = max(self._high, float(moving.max()))
-                start = int(first[e])
+                standing = not self._began and self._offset == 0 and self._still_since_start(bx[: idx[e] + 1])
+                self._began = True
+                if standing:
+                    start = 0  # the axis stood here when the recording began
                 self._open = {
                     "first_index": self._offset + start,
                     "start_s": float(buffer[start, 0]),
@@ -283,8 +305,9 @@ class StopDetector:
                     "low": self._low,
                     "high": self._high,
                 }
-            else:  # the stop ended at batch sample e - 1
-                stops.append(self._close(buffer, int(idx[e] - 1)))
+            else:  # the still run ended at batch sample e - 1
+                opened = self._open
+                self._pending = (self._close(buffer, int(idx[e] - 1)), opened)
                 cursor = e
         if self._open is None:
             tail = bx[idx[cursor] :]
@@ -292,7 +315,15 @@ class StopDetector:
             if tail.size:
                 self._low = min(self._low, float(tail.min()))
                 self._high = max(self._high, float(tail.max()))
+            if self._pending is not None and idx.size and self._offset + int(first[-1]) > self._pending[0].last_index:
+                # the window has moved past the stop: no still run to come can reach back into it
+                stops.append(self._pending[0])
+                self._pending = None
         return stops
+
+    def _still_since_start(self, x: np.ndarray) -> bool:
+        """Whether the samples ``x`` (from the first ever fed) all lie within the stability."""
+        return bool(np.all(np.isfinite(x)) and float(x.max() - x.min()) <= self.stability_m)
 
     def _close(self, buffer: np.ndarray, last: int) -> Stop:
         """The open stop, ended at buffer sample ``last``."""
@@ -324,6 +355,16 @@ class StopDetector:
         return stop
 
     @property
+    def standing_start(self) -> bool:
+        """Whether the stop in progress is one the axis stood at when the recording began (not a stop it came to)."""
+        return self._open is not None and self._open["first_index"] == 0
+
+    @property
+    def start_s(self) -> float:
+        """When the stop in progress began (the first sample of its first still window), seconds; NaN when moving."""
+        return float("nan") if self._open is None else self._open["start_s"]
+
+    @property
     def held_s(self) -> float:
         """How long the reading has been still, seconds (0 when it is moving)."""
         return 0.0 if self._open is None else self._last_t - self._open["still_s"]
@@ -336,6 +377,9 @@ class StopDetector:
         list of Stop
             Zero or one stop.
         """
+        if self._pending is not None:
+            stop, self._pending = self._pending[0], None
+            return [stop]
         if self._open is None or self._buffer.shape[0] == 0:
             return []
         return [self._close(self._buffer, self._buffer.shape[0] - 1)]

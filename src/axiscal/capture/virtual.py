@@ -149,9 +149,21 @@ def _segments(motions: Sequence[Any], axis: str, spec: VirtualAxis, start_m: flo
         rows.append((t, duration, x, target, top, 0))
         t += duration
         x = target
-    if not rows:
-        raise AxiscalError(f"the program never moves axis {axis}")
+    if not any(row[5] == 0 for row in rows):  # nothing but dwells (or nothing at all): no stop to read
+        raise AxiscalError(f"the program never moves {axis}")
     return np.array(rows)
+
+
+def _moves(motions: Sequence[Any], axis: str) -> bool:
+    """Whether a straight move of the program takes ``axis`` anywhere (from 0, where the virtual axis starts)."""
+    x = 0.0
+    for motion in motions:
+        if motion.kind in ("rapid", "feed"):
+            target = float(motion.end_m.get(axis, x))
+            if target != x:
+                return True
+            x = target
+    return False
 
 
 def _commanded(time_s: np.ndarray, seg: np.ndarray, acceleration: float) -> tuple[np.ndarray, np.ndarray]:
@@ -229,7 +241,7 @@ def simulate_motions(
     seg[:, 0] += lead_s
     total = float(seg[-1, 0] + seg[-1, 1]) + lead_s
     if total * rate_hz > 5e7:
-        raise AxiscalError(f"the program runs {total:.0f} s: {total * rate_hz:.3g} samples at {rate_hz:g} Hz is more than"
+        raise AxiscalError(f"the program runs {total:.6g} s: {total * rate_hz:.3g} samples at {rate_hz:g} Hz is more than"
                            " the virtual machine records (5e7)")
     time_s = np.arange(int(np.ceil(total * rate_hz))) / rate_hz
     commanded, k = _commanded(time_s, seg, spec.acceleration_m_s2)
@@ -417,6 +429,8 @@ def simulate_capture(
             raise exc.located(path=compensation) from None
     elif controller is not None:
         raise AxiscalError("a controller is given without its compensation file")
+    if isinstance(axis, str) and axis in model.letters and not _moves(motions, axis):
+        raise AxiscalError(f"the program never moves {axis}", path=program)
     simulated = simulate_motions(motions, model, axis=axis, compensation=loaded, rate_hz=rate_hz, seed=seed, spec=spec,
                                  wavelength_nm=wavelength_nm)
     simulated = SimulatedRecording(simulated.recording, simulated.clean_m, simulated.dwells, simulated.directions,

@@ -24,6 +24,12 @@ _FLAGS = {"stability_m": "--stability-um", "window_s": "--window-s", "tolerance_
           "unit": "--unit", "channel": "--channel", "resume=True": "--resume"}
 
 
+def _mm(value_m: float, decimals: int) -> str:
+    """A position in mm: fixed decimals, exponent form where that would be a long number (a huge --offset-mm)."""
+    value = value_m / MM
+    return f"{value:.{decimals}f}" if abs(value) < 1e6 else f"{value:.{decimals}e}"
+
+
 def _progress_line(console):
     """A callback drawing one Rich line: step k of n, the target, the reading and whether it holds still."""
     from rich.live import Live
@@ -34,8 +40,8 @@ def _progress_line(console):
     def show(p) -> None:
         if not live.is_started:
             live.start()
-        target = "done" if p.step is None else f"step {p.step}: target {p.target_m / MM:.3f} mm"
-        reading = "-" if math.isnan(p.reading_m) else f"{p.reading_m / MM:.4f} mm"
+        target = "done" if p.step is None else f"step {p.step}: target {_mm(p.target_m, 3)} mm"
+        reading = "-" if math.isnan(p.reading_m) else f"{_mm(p.reading_m, 4)} mm"
         state = "[green]still[/]" if p.still else "[yellow]moving[/]"
         live.update(Text.from_markup(f"capture {p.taken} of {p.total}  {target}  reading {reading}  {state}"
                                      f"  ({p.samples} samples)"))
