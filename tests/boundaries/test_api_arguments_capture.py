@@ -77,8 +77,45 @@ bad(C, "measure_axis", "folder", lambda: ca.measure_axis(None, MACHINE, axis="X"
 bad(C, "measure_axis", "targets", lambda: ca.measure_axis(NEVER.parent, MACHINE, axis="X", start_m=0.0, end_m=0.19, targets=2))
 bad(C, "CaptureBoard", "steps", lambda: ca.CaptureBoard(None))
 bad(C, "CaptureBoard", "source", lambda: ca.CaptureBoard(STEPS, None))
+# the driven run: a controller and an instrument of axiscal.devices (or anything with their methods)
+class _Source:
+    """Anything with read and close is a source."""
+
+    channels = ("reading_mm",)
+
+    def read(self, timeout_s):
+        raise AssertionError("a bad argument is refused before anything is read")
+
+    def close(self):
+        pass
+
+
+SIM_CONTROLLER = ca.sim_machine().controller()
+bad(C, "DriveSettings", "axis", lambda: ca.DriveSettings(axis="XY"), lambda: ca.DriveSettings(axis=3))
+bad(C, "DriveSettings", "feed", lambda: ca.DriveSettings(feed_m_per_s=0.0), lambda: ca.DriveSettings(feed_m_per_s=NAN))
+bad(C, "DriveSettings", "dwell", lambda: ca.DriveSettings(dwell_s=-1.0), lambda: ca.DriveSettings(dwell_s=1e300))
+bad(C, "InstrumentReader", "source", lambda: ca.InstrumentReader(None), lambda: ca.InstrumentReader("umd:/dev/ttyACM0"))
+bad(C, "planned_moves", "steps", lambda: ca.planned_moves(None))
+bad(C, "planned_moves", "start", lambda: ca.planned_moves(STEPS, start=-1), lambda: ca.planned_moves(STEPS, start=10**6))
+bad(C, "drive_plan", "steps", lambda: ca.drive_plan(PLAN, SIM_CONTROLLER, None))
+bad(C, "drive_plan", "controller", lambda: ca.drive_plan(STEPS, "sim", None))
+bad(C, "drive_plan", "source", lambda: ca.drive_plan(STEPS, SIM_CONTROLLER, None))
+bad(C, "drive_plan", "drive", lambda: ca.drive_plan(STEPS, SIM_CONTROLLER, _Source(), drive={"axis": "X"}))
+bad(C, "drive_plan", "settings", lambda: ca.drive_plan(STEPS, SIM_CONTROLLER, _Source(), settings=0.5))
+bad(C, "dry_run", "controller", lambda: ca.dry_run(PLAN, None))
+bad(C, "dry_run", "beyond the soft limits", lambda: ca.dry_run(PLAN, ca.SimMachine("X", (0.0, 0.01), np.zeros(2) + [0, 1],
+                                                                                      np.zeros(2)).controller()))
+bad(C, "open_run_devices", "controller", lambda: ca.open_run_devices(None, "sim"))
+bad(C, "open_run_devices", "source", lambda: ca.open_run_devices("sim", 5))
+bad(C, "open_run_devices", "unknown instrument", lambda: ca.open_run_devices("sim", "laser:/dev/ttyUSB0"))
+bad(C, "open_run_devices", "unknown controller", lambda: ca.open_run_devices("fanuc:1.2.3.4", "sim"))
+bad(C, "open_run_devices", "machine", lambda: ca.open_run_devices("sim", "sim", machine="xz"))
+bad(C, "run_to_file", "output", lambda: ca.run_to_file(PLAN, SIM_CONTROLLER, None, None))
+bad(C, "run_to_file", "controller", lambda: ca.run_to_file(PLAN, None, None, NEVER))
+bad(C, "sim_machine", "axis", lambda: ca.sim_machine(axis="Q"), lambda: ca.sim_machine(axis=None))
+bad(C, "sim_machine", "machine", lambda: ca.sim_machine(machine=5))
 
 EXEMPT = {C: {"Capture", "CaptureFiles", "CaptureProgress", "CapturedStop", "Stop", "StopReading", "SimulatedRecording",
-              "AxisMeasurement"}}
+              "AxisMeasurement", "DryRun", "SimMachine"}}
 
 test_bad_arguments_raise_axiscal_error_naming_them, test_every_public_callable_has_a_bad_argument_case = TABLE.tests(EXEMPT)

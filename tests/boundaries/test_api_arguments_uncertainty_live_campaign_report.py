@@ -468,6 +468,14 @@ bad(R, "history_section", "results", lambda: rp.history_section(None), lambda: r
 
 
 # ---------------------------------------------------------------- the check
+bad(R, "CycleSettings", "fmt", lambda: rp.CycleSettings(fmt="fanuc"))
+bad(R, "CycleSettings", "restart_command", lambda: rp.CycleSettings(restart_command=["linuxcnc", "-r"]))
+bad(R, "CycleSettings", "restart", lambda: rp.CycleSettings(restart="restart.sh"))
+bad(R, "closed_cycle", "controller", lambda: rp.closed_cycle(CAMPAIGN, None, "sim", CAMPAIGN))
+bad(R, "closed_cycle", "source", lambda: rp.closed_cycle(CAMPAIGN, "sim", 5, CAMPAIGN))
+bad(R, "closed_cycle", "cycle", lambda: rp.closed_cycle(CAMPAIGN, "sim", "sim", CAMPAIGN, {"fmt": "linuxcnc"}))
+bad(R, "closed_cycle", "output_dir", lambda: rp.closed_cycle(CAMPAIGN, "sim", "sim", None))
+
 EXEMPT: dict[str, set[str]] = {
     # result records: the library fills them with what a function computed; a user reads them and
     # does not build them, so they take no user values to check
@@ -475,7 +483,7 @@ EXEMPT: dict[str, set[str]] = {
                     "VolumetricUncertainty"},
     "live": {"RunSummary", "FrameBatch", "Record", "SourceStatus", "ClientStats"},
     "campaign": {"Check", "Figure", "Plot", "TestResult", "CampaignResults"},
-    "report": {"ReportFiles", "DemoResult",
+    "report": {"ReportFiles", "DemoResult", "CycleResult",
                # functions of no arguments
                "template_environment", "builtin_example",
                # print any value (with str; None as empty): every value is a valid argument

@@ -64,6 +64,10 @@ WRITES = [
     (("history", "trend"), "--plot", ["history", "trend", "M", "--figure", "positioning.X.E", "--db", "{tmp}/h.db", "--plot", "{out}/t.png"]),
     (("fleet", "report"), "--output", ["fleet", "report", "{tmp}/fleet", "--scheduler", "threads", "-o", "{out}/fleet"]),
     (("live",), "--record", ["live", "--no-server", "--no-pace", "--duration", "0.05", "--record", "{out}/live.csv"]),
+    (("run",), "--output", ["run", "{tmp}/plan.csv", "--controller", "sim", "--source", "sim:umd", "--feed-mm-min", "20000",
+                            "--dwell-s", "0.25", "--window-s", "0.1", "-o", "{out}/run.csv"]),
+    (("cycle",), "--output", ["cycle", "{tmp}/plan.csv", "--controller", "sim", "--source", "sim:umd", "--feed-mm-min", "20000",
+                              "--dwell-s", "0.25", "--window-s", "0.1", "-o", "{out}/cycle"]),
 ]
 WRITING_FLAGS = ("--output", "--plot", "--gcode", "--record")
 
@@ -85,6 +89,10 @@ def test_a_command_makes_the_folders_of_its_output(run_cli, examples, tmp_path, 
 
         payloads = drifting_results({"positioning.X.E": Drift(5.0, 1.0, 1.0, 20.0)}, machine="M", campaigns=3)
         add_results(write_results(tmp_path / "m", payloads), url=str(tmp_path / "h.db"))
+    if path[0] in ("run", "cycle"):  # a short plan for the virtual controller
+        from axiscal.positioning.plan import plan_test, write_plan
+
+        write_plan(plan_test(0.010, 0.180, 5, runs=1, seed=3), tmp_path / "plan.csv")
     if path[0] == "fleet":  # a folder of one campaign
         from axiscal.fleet.generate import generated_fleet
 

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from axiscal.capture.drive import DriveSettings, drive_plan, planned_moves, _check_limits
+from axiscal.capture.drive import DriveSettings, _check_device, _check_limits, drive_plan, planned_moves
 from axiscal.capture.files import CaptureFiles, capture_to_file, partial_path
 from axiscal.capture.recording import environment_columns
 from axiscal.capture.run import CaptureSettings
@@ -26,7 +26,7 @@ from axiscal.capture.steps import PlanSteps, plan_steps
 from axiscal.devices.controllers import open_controller
 from axiscal.devices.instruments import InstrumentOptions, is_instrument_spec, open_instrument
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_path
+from axiscal.io.arguments import check_instance, check_path
 
 __all__ = ["SimMachine", "sim_machine", "open_run_devices", "run_to_file", "dry_run", "DryRun"]
 
@@ -90,6 +90,9 @@ def sim_machine(*, compensation: Any = None, machine: str | Path | None = None, 
     """
     from axiscal.model.machine import load_machine
 
+    check_instance("axis", axis, str)
+    if machine is not None:
+        machine = check_path("machine", machine)
     path = Path(str(resources.files("axiscal") / "data" / "xz_module" / "machine.toml")) if machine is None else Path(machine)
     model = load_machine(path)
     axis = axis.upper()
@@ -130,7 +133,11 @@ def open_run_devices(controller: str, source: str, *, options: InstrumentOptions
     AxiscalError
         For a spec either opener refuses, or a simulated instrument without the virtual controller.
     """
-    source = "sim:umd" if isinstance(source, str) and source.strip().lower() == "sim" else source
+    check_instance("controller", controller, str, what="a controller spec such as 'linuxcnc:127.0.0.1' or 'sim'")
+    check_instance("source", source, str, what="an instrument spec such as 'umd:/dev/ttyACM0' or 'sim:umd'")
+    if machine is not None:
+        check_instance("machine", machine, SimMachine)
+    source = "sim:umd" if source.strip().lower() == "sim" else source
     if not is_instrument_spec(source):
         raise AxiscalError(f"unknown instrument '{source}'; use umd:PORT[@BAUD], sylvac:PORT, mahr:PORT, touchdro:PORT,"
                            " attocube:HOST[:PORT] or sim:KIND")
@@ -140,7 +147,7 @@ def open_run_devices(controller: str, source: str, *, options: InstrumentOptions
     position = None if carriage is None else (lambda t: carriage())
     if source.lower().startswith("sim:") and position is None:
         made.close()
-        raise AxiscalError(f"the simulated instrument '{source}' reads the virtual controller's axis: use --controller sim")
+        raise AxiscalError(f"the simulated instrument '{source}' reads the virtual controller's axis: its controller must be 'sim'")
     try:
         instrument = open_instrument(source, options, position=position, seed=seed)
     except BaseException:
@@ -186,6 +193,8 @@ def dry_run(plan: str | Path | PlanSteps, controller, *, axis: str = "X", resume
         For a move beyond the soft limits (naming its step).
     """
     steps = plan if isinstance(plan, PlanSteps) else plan_steps(plan)
+    _check_device("controller", controller, ("limits",), "a controller")
+    check_instance("axis", axis, str)
     moves = planned_moves(steps, start=resume_from)
     limits = controller.limits(axis.upper())
     _check_limits(steps, moves, limits, controller.description)
@@ -236,6 +245,8 @@ def run_to_file(
     """
     output = check_path("output", output)
     steps = plan if isinstance(plan, PlanSteps) else plan_steps(plan)
+    _check_device("controller", controller, ("check_ready", "limits", "move_to", "stop"), "a controller")
+    _check_device("source", source, ("read", "close"), "an instrument or live source")
     environment = environment_columns(tuple(source.channels))
 
     def engine(steps_, source_, *, resumed, on_stop):
@@ -248,4 +259,4 @@ def run_to_file(
         partial = partial_path(output)
         kept = max(0, sum(1 for _ in open(partial, encoding="utf-8")) - 1) if partial.is_file() else 0
         raise AxiscalError(f"interrupted: the controller was stopped; {partial} keeps {kept} step(s): go on with the same"
-                           " command and --resume") from None
+                           " run and resume=True") from None

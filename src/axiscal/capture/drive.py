@@ -29,9 +29,17 @@ import numpy as np
 from axiscal.capture.run import Capture, CaptureProgress, CaptureSettings, StopReading
 from axiscal.capture.steps import PlanSteps
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_instance, type_name
 from axiscal.units import MM, UM
 
 __all__ = ["DriveSettings", "InstrumentReader", "planned_moves", "drive_plan"]
+
+
+def _check_device(name: str, value, methods: tuple[str, ...], what: str):
+    """A controller or a source: an object with the methods the run calls, else refused naming the argument."""
+    if not all(callable(getattr(value, m, None)) for m in methods):
+        raise AxiscalError(f"{name} must be {what} (with {', '.join(methods)}), not {type_name(value)}")
+    return value
 
 
 @dataclass(frozen=True)
@@ -74,8 +82,11 @@ class InstrumentReader:
     """
 
     def __init__(self, source, *, channel: int = 0, environment: Sequence[str] = ()):
-        self.source = source
-        names = tuple(source.channels)
+        self.source = _check_device("source", source, ("read", "close"), "an instrument or live source")
+        names = tuple(getattr(source, "channels", ()))
+        check_count("channel", channel, minimum=0, maximum=max(len(names) - 1, 0))
+        if isinstance(environment, str) or any(n not in names for n in environment):
+            raise AxiscalError(f"environment must name channels of the source ({', '.join(names)}), not {environment!r}")
         self.channel = channel
         self.environment = tuple(environment)
         self._env_index = [names.index(n) for n in self.environment]
@@ -166,6 +177,8 @@ def planned_moves(steps: PlanSteps, *, start: int = 0) -> list[tuple[int, float,
     -------
     list of tuple
     """
+    check_instance("steps", steps, PlanSteps)
+    start = check_count("start", start, minimum=0, maximum=steps.step.size)
     moves: list[tuple[int, float, bool]] = []
     if start > 0:
         moves.append((start - 1, float(steps.move_to_m[start - 1]), False))
@@ -230,8 +243,11 @@ def drive_plan(
         controller that is not ready, refuses a move or stops answering, a reading that does not hold
         still, or a fault inside a window; the readings taken before are kept (``on_stop``).
     """
-    drive = DriveSettings() if drive is None else drive
-    settings = CaptureSettings() if settings is None else settings
+    check_instance("steps", steps, PlanSteps)
+    _check_device("controller", controller, ("check_ready", "limits", "move_to", "stop"), "a controller")
+    _check_device("source", source, ("read", "close"), "an instrument or live source")
+    drive = DriveSettings() if drive is None else check_instance("drive", drive, DriveSettings)
+    settings = CaptureSettings() if settings is None else check_instance("settings", settings, CaptureSettings)
     readings = list(resumed)
     start = readings[-1].index + 1 if readings else 0
     moves = planned_moves(steps, start=start)
@@ -288,7 +304,7 @@ def drive_plan(
                 if last > deadline:
                     raise AxiscalError(f"{steps.describe(k)}: the reading did not hold still within {settings.stability_m / UM:g} um"
                                        f" over {window_s:g} s in {dwell_s + slide_s:g} s after the move (last peak to peak"
-                                       f" {ptp / UM:.3g} um): check the set-up, or raise --stability-um or --dwell-s")
+                                       f" {ptp / UM:.3g} um): check the set-up, or raise stability_m or dwell_s")
             report(k, False)
             count = mark + t.size
             if not reader.wait_for(count, 2.0):

@@ -14,7 +14,8 @@ __all__ = ["run_command", "cycle_command", "register", "instrument_options"]
 
 _FLAGS = {"stability_m": "--stability-um", "window_s": "--window-s", "offset_m": "--offset-mm", "dwell_s": "--dwell-s",
           "feed_m_per_s": "--feed-mm-min", "axis": "--axis", "wavelength_m": "--wavelength-nm", "rate_hz": "--rate-hz",
-          "channel": "--channel", "optics_multiplier": "--optics-multiplier", "counts_per_mm": "--counts-per-mm"}
+          "channel": "--channel", "optics_multiplier": "--optics-multiplier", "counts_per_mm": "--counts-per-mm",
+          "unit": "--unit", "umd_version": "--umd-version", "resume=True": "--resume"}
 
 
 def instrument_options(function):
@@ -158,7 +159,8 @@ def run_command(plan_csv, controller_spec, source_spec, output, axis, feed_mm_mi
         return
     from rich.console import Console
 
-    controller, source = open_run_devices(controller_spec, source_spec, options=options, ini=ini, seed=seed)
+    with flags_named(_FLAGS):
+        controller, source = open_run_devices(controller_spec, source_spec, options=options, ini=ini, seed=seed)
     live = None
     try:
         with flags_named(_FLAGS):
@@ -167,8 +169,9 @@ def run_command(plan_csv, controller_spec, source_spec, output, axis, feed_mm_mi
         console = Console(stderr=True)
         live, show = _progress_line(console)
         notes: list[str] = []
-        files = run_to_file(plan_csv, controller, source, output, drive=drive, settings=settings, resume=resume,
-                            progress=show, on_fault=notes.append)
+        with flags_named(_FLAGS):
+            files = run_to_file(plan_csv, controller, source, output, drive=drive, settings=settings, resume=resume,
+                                progress=show, on_fault=notes.append)
     finally:
         if live is not None and live.is_started:
             live.stop()
@@ -229,11 +232,12 @@ def cycle_command(plan_csv, controller_spec, source_spec, fmt, output_dir, resta
         click.echo(message, err=True)
         click.prompt("press Enter once it is done", default="", show_default=False, err=True)
 
-    result = closed_cycle(plan_csv, controller_spec, source_spec, output_dir,
-                          CycleSettings(fmt=fmt, restart_command=restart_command, ini=ini, seed=seed,
-                                        stability_given=stability_um is not None),
-                          drive=drive, settings=settings, options=options, ask=wait_for_user,
-                          note=lambda text: click.echo(f"axiscal: note: {text}", err=True))
+    with flags_named(_FLAGS):
+        result = closed_cycle(plan_csv, controller_spec, source_spec, output_dir,
+                              CycleSettings(fmt=fmt, restart_command=restart_command, ini=ini, seed=seed,
+                                            stability_given=stability_um is not None),
+                              drive=drive, settings=settings, options=options, ask=wait_for_user,
+                              note=lambda text: click.echo(f"axiscal: note: {text}", err=True))
     if as_json:
         echo_json(result.summary)
     click.echo(f"axiscal: note: as found E {result.summary['as_found']['E_um']:.2f} um -> as left"

@@ -86,7 +86,7 @@ class Controller:
         """The one line for a controller that stopped answering."""
         self.status.state = "lost"
         self.status.message = what
-        return AxiscalError(f"{self.description}: {what}: the run stopped (the partial run is kept; --resume goes on)")
+        return AxiscalError(f"{self.description}: {what}: the run stopped (the partial run is kept; resume=True goes on)")
 
 
 class Heartbeat:

@@ -86,7 +86,7 @@ def is_instrument_spec(spec: str) -> bool:
 def _channel(options: InstrumentOptions, allowed: tuple[str, ...], default: str, spec: str) -> str:
     channel = default if options.channel is None else str(options.channel).strip().upper()
     if channel not in allowed:
-        raise AxiscalError(f"source '{spec}': --channel must be one of {', '.join(allowed)}, not {options.channel!r}")
+        raise AxiscalError(f"channel must be one of {', '.join(allowed)} for the source '{spec}', not {options.channel!r}")
     return channel
 
 
@@ -110,7 +110,7 @@ def _open_real(kind: str, argument: str, options: InstrumentOptions, spec: str):
         from axiscal.devices.sylvac import SYLVAC_FRAMING, SylvacSource
 
         if options.unit not in ("mm", "in"):
-            raise AxiscalError(f"source '{spec}': a Sylvac gauge reads in mm or in (--unit), not {options.unit!r}")
+            raise AxiscalError(f"unit must be mm or in for a Sylvac gauge ('{spec}'), not {options.unit!r}")
         port, baud = parse_port(argument, what=spec, default_baud=SYLVAC_FRAMING.baud)
         link = SerialLink(port, SerialFraming(baud, 7, "E", 2))
         source = SylvacSource(link, options.unit, f"Sylvac gauge on {port}")
@@ -128,7 +128,7 @@ def _open_real(kind: str, argument: str, options: InstrumentOptions, spec: str):
 
         axis = _channel(options, TOUCHDRO_AXES, "X", spec)
         if options.counts_per_mm is None or not (math.isfinite(options.counts_per_mm) and options.counts_per_mm > 0):
-            raise AxiscalError(f"source '{spec}': give the scale's --counts-per-mm (e.g. 200 for a 5 um scale)")
+            raise AxiscalError(f"counts_per_mm must give the scale's counts per millimetre for '{spec}' (e.g. 200 for a 5 um scale)")
         port, baud = parse_port(argument, what=spec, default_baud=115200)
         return TouchDroSource(SerialLink(port, SerialFraming(baud)), axis, float(options.counts_per_mm),
                               f"TouchDRO {axis} scale on {port}")

@@ -210,9 +210,9 @@ class UmdDecoder:
         """After too many held lines: use the settings given, or refuse."""
         s = self.state
         if s.rate_hz is None and self.settings.rate_hz is None:
-            raise AxiscalError(f"the µMD stream has not said its sample rate (code 8) in {_HOLD_LINES} samples: give --rate-hz")
+            raise AxiscalError(f"the µMD stream has not said its sample rate (code 8) in {_HOLD_LINES} samples: give rate_hz")
         if s.version is None:
-            raise AxiscalError(f"the µMD stream has not said its firmware (code 10) in {_HOLD_LINES} samples: give --umd-version 1 or 2")
+            raise AxiscalError(f"the µMD stream has not said its firmware (code 10) in {_HOLD_LINES} samples: give umd_version 1 or 2")
 
     def _length_m(self, f: list[int]) -> tuple[float, str | None]:
         """The length of one sample, metres, or NaN and why it is not a reading."""

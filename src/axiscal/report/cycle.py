@@ -24,7 +24,7 @@ from axiscal.capture.drive import DriveSettings
 from axiscal.capture.run import CaptureSettings
 from axiscal.devices.instruments import InstrumentOptions, default_stability_m
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_path
+from axiscal.io.arguments import check_choice, check_instance, check_path
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import read_json, write_json
 from axiscal.io.templates import render_template
@@ -60,6 +60,13 @@ class CycleSettings:
     ini: str | None = None
     seed: int = 0
     stability_given: bool = True
+
+    def __post_init__(self) -> None:
+        check_choice("fmt", self.fmt, ("linuxcnc",))
+        if self.restart_command is not None:
+            check_instance("restart_command", self.restart_command, str)
+        if self.restart is not None and not callable(self.restart):
+            raise AxiscalError(f"restart must be a function of the compensation file's path, not {type(self.restart).__name__}")
 
 
 @dataclass(frozen=True)
@@ -135,9 +142,11 @@ def closed_cycle(
         As ``axiscal run``; for a restart command that fails; for no way to load the file (neither a
         restart nor ``ask``).
     """
-    cycle = CycleSettings() if cycle is None else cycle
-    drive = DriveSettings() if drive is None else drive
-    settings = CaptureSettings() if settings is None else settings
+    cycle = CycleSettings() if cycle is None else check_instance("cycle", cycle, CycleSettings)
+    drive = DriveSettings() if drive is None else check_instance("drive", drive, DriveSettings)
+    settings = CaptureSettings() if settings is None else check_instance("settings", settings, CaptureSettings)
+    check_instance("controller", controller, str, what="a controller spec such as 'linuxcnc:127.0.0.1'")
+    check_instance("source", source, str, what="an instrument spec such as 'umd:/dev/ttyACM0'")
     folder = check_path("output_dir", output_dir)
     say = note or (lambda text: None)
     axis = drive.axis.strip().upper()
