@@ -401,6 +401,8 @@ def capture(
     matcher = StepMatcher(steps, tolerance_m=settings.tolerance_m, offset_m=settings.offset_m, start=start, locate=locate)
     detector = StopDetector(stability_m=settings.stability_m, window_s=settings.window_s, channels=names)
 
+    faults_of = getattr(source, "faults_between", None) if live else None
+
     def take(stop: Stop) -> None:
         if replay.passes_over(stop):
             return  # a stop the partial capture holds, the source replaying it
@@ -409,6 +411,11 @@ def capture(
         taken = matcher.take(stop)
         if taken is None:
             return
+        if faults_of is not None:  # an instrument's fault inside the stop's window refuses the stop
+            inside = faults_of(stop.end_s - settings.window_s, stop.end_s)
+            if inside:
+                raise AxiscalError(f"{steps.describe(taken.index)}: the stop's window holds a fault of {description}:"
+                                   f" {inside[0].message} (at {inside[0].time_s:.3f} s)")
         sensors = {name: value for name, value in stop.channels.items() if np.isfinite(value)}
         reading = StopReading(taken.index, taken.deviation_m, stop.start_s, stop.std_m, stop.samples, sensors)
         readings.append(reading)

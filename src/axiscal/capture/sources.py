@@ -68,6 +68,21 @@ class _SimCaptureSource(ReplaySource):
         self._play(f"sim (virtual XZ module, X axis, {rate_hz:g} Hz)", channels, rec.time_s, values, pace=pace, max_batch=5000)
 
 
+def _virtual_position(steps: PlanSteps, seed: int):
+    """Where the virtual XZ module's X carriage is, t seconds after it starts the plan (metres, in vacuum)."""
+    from axiscal.instruments.air import refractive_index
+    from axiscal.instruments.interferometer import HENE_WAVELENGTH_NM
+    from axiscal.model.machine import load_machine
+
+    machine = load_machine(Path(str(resources.files("axiscal") / "data" / "xz_module" / "machine.toml")))
+    simulated = simulate_motions(plan_motions(steps), machine, axis="X", rate_hz=200.0, seed=seed)
+    rec = simulated.recording
+    n = refractive_index(rec.channels["air_temperature_c"], rec.channels["pressure_pa"], rec.channels["humidity_pct"],
+                         HENE_WAVELENGTH_NM)
+    position = simulated.clean_m / n
+    return lambda t: float(np.interp(t, rec.time_s, position))
+
+
 def open_capture_source(
     spec: str,
     *,
@@ -76,6 +91,7 @@ def open_capture_source(
     rate_hz: float = 1000.0,
     seed: int = 0,
     pace: bool = True,
+    instrument: Any = None,
 ) -> Any:
     """The live source a ``--source`` value names, asked for the reading's channel and the air sensors.
 
@@ -83,7 +99,9 @@ def open_capture_source(
     ----------
     spec : str
         ``sim``, ``tcp:HOST:PORT``, ``serial:DEVICE[:BAUD]`` (also ``replay:FILE`` and
-        ``rtx:FILE:UNIT:CHANNEL`` as ``axiscal live`` takes them).
+        ``rtx:FILE:UNIT:CHANNEL`` as ``axiscal live`` takes them), or an instrument of
+        :mod:`axiscal.devices` (``umd:PORT``, ``sylvac:PORT`` ..., ``sim:KIND``: its simulator reading
+        the virtual machine as it runs the plan).
     steps : PlanSteps, optional, keyword-only
         The plan (``sim`` runs it).
     channel : str, optional, keyword-only
@@ -92,6 +110,8 @@ def open_capture_source(
         Sample rate and noise seed of ``sim``.
     pace : bool, keyword-only
         ``sim`` and replays at their clock's pace (default) or as fast as read.
+    instrument : InstrumentOptions, optional, keyword-only
+        The instrument's flags (:class:`axiscal.devices.instruments.InstrumentOptions`).
 
     Returns
     -------
@@ -102,6 +122,15 @@ def open_capture_source(
     AxiscalError
         For a spec :func:`axiscal.live.sources.parse_source` refuses, or ``sim`` without a plan.
     """
+    from axiscal.devices.instruments import is_instrument_spec, open_instrument
+
+    if is_instrument_spec(spec):
+        position = None
+        if spec.strip().lower().startswith("sim:"):
+            if steps is None:
+                raise AxiscalError("a simulated instrument reads the virtual machine running the plan: it needs the plan's steps")
+            position = _virtual_position(steps, seed)
+        return open_instrument(spec, instrument, position=position, seed=seed, pace=pace)
     kind, _ = parse_source(spec)
     channel = channel or "reading_mm"
     channels = (channel,) + ENVIRONMENT_COLUMNS[:3]

@@ -35,6 +35,18 @@ def _progress_line(console):
     from rich.live import Live
     from rich.text import Text
 
+    if not console.is_terminal:  # a log: a plain line per stop taken
+        from axiscal.cli.run import _Plain
+
+        shown = [0]
+
+        def log(p) -> None:
+            if p.taken != shown[0]:
+                shown[0] = p.taken
+                click.echo(f"axiscal: capture {p.taken} of {p.total} taken", err=True)
+
+        return _Plain(), log
+
     live = Live(Text("waiting for the first reading"), console=console, refresh_per_second=8, transient=False)
 
     def show(p) -> None:
@@ -63,11 +75,11 @@ def _dashboard(steps, source, port: int):
 @click.command("capture")
 @click.argument("plan_csv", type=click.Path(dir_okay=False))
 @click.option("--from", "recording", type=click.Path(dir_okay=False), help="A recording: an .rtx capture or a CSV with time_s and the reading.")
-@click.option("--source", "source_spec", help="A live source: sim | tcp:HOST:PORT | serial:DEVICE[:BAUD].")
+@click.option("--source", "source_spec", help="A live source: sim | tcp:HOST:PORT | serial:DEVICE[:BAUD] | an instrument: umd:PORT | sylvac:PORT | mahr:PORT | touchdro:PORT | attocube:HOST | sim:KIND (docs/devices.md).")
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="The positioning run CSV to write.")
 @click.option("--unit", type=click.Choice(tuple(READING_UNITS)), default=None, help="Unit of the readings (a column name ending in _mm ... says it; an .rtx file needs it).")
 @click.option("--channel", default=None, help="The column or channel holding the laser reading [the only length column; reading_mm for a source].")
-@click.option("--stability-um", type=FINITE, default=1.0, show_default=True, help="Peak to peak of the reading over the window for a stop.")
+@click.option("--stability-um", type=FINITE, default=None, help="Peak to peak of the reading over the window for a stop [1.0; a gauge: two counts of its resolution].")
 @click.option("--window-s", type=FINITE, default=0.5, show_default=True, help="How long the reading must hold still; the value is the mean over the stop's last window.")
 @click.option("--tolerance-mm", type=FINITE, default=0.5, show_default=True, help="How far from the plan's target a stop may be.")
 @click.option("--offset-mm", type=FINITE, default=0.0, show_default=True, help="The reading at the datum, when the laser was not zeroed there.")
@@ -78,8 +90,16 @@ def _dashboard(steps, source, port: int):
 @click.option("--dashboard", is_flag=True, help="With --source: show the plan, the target awaited and the stops taken on a live page.")
 @click.option("--port", type=int, default=8765, show_default=True, help="Port of the --dashboard page on 127.0.0.1 (0: any free port).")
 @click.option("--json", "as_json", is_flag=True, help="Print the stops taken as JSON.")
+@click.option("--wavelength-nm", type=FINITE, default=632.991372, show_default=True, help="µMD: the laser's vacuum wavelength.")
+@click.option("--optics-multiplier", type=click.Choice(["1", "2", "4"]), default="1", show_default=True,
+              help="µMD: 1 linear retroreflector, 2 plane mirror, 4 high-resolution plane mirror.")
+@click.option("--umd-version", type=click.Choice(["1", "2"]), default=None, help="µMD: 1 or 2 [told by the stream's firmware code].")
+@click.option("--material-temperature-code", type=click.Choice(["4"]), default=None,
+              help="µMD: the LowSpeed code that carries a material temperature (4).")
+@click.option("--counts-per-mm", type=FINITE, default=None, help="TouchDRO: the scale's counts per millimetre.")
 def capture_command(plan_csv, recording, source_spec, output, unit, channel, stability_um, window_s, tolerance_mm, offset_mm,
-                    resume, rate_hz, seed, timeout_s, dashboard, port, as_json):
+                    resume, rate_hz, seed, timeout_s, dashboard, port, as_json, wavelength_nm, optics_multiplier, umd_version,
+                    material_temperature_code, counts_per_mm):
     """Capture a positioning run: walk PLAN_CSV's steps through a recording (--from) or a live stream (--source).
 
     Each step with a target needs one stop: the reading comes within --tolerance-mm of the target and
@@ -90,16 +110,32 @@ def capture_command(plan_csv, recording, source_spec, output, unit, channel, sta
         raise AxiscalError("give one of --from RECORDING or --source SPEC")
     if dashboard and source_spec is None:
         raise AxiscalError("--dashboard shows a live capture: it goes with --source")
+    from axiscal.devices.instruments import InstrumentOptions, default_stability_m, is_instrument_spec
+
+    device = source_spec is not None and is_instrument_spec(source_spec)
     with flags_named(_FLAGS):
-        settings = CaptureSettings(stability_m=stability_um * UM, window_s=window_s, tolerance_m=tolerance_mm * MM,
-                                   offset_m=offset_mm * MM)
+        settings = CaptureSettings(stability_m=1e-6 if stability_um is None else stability_um * UM, window_s=window_s,
+                                   tolerance_m=tolerance_mm * MM, offset_m=offset_mm * MM)
     live = server = None
     options = {}
     if source_spec is not None:
         from rich.console import Console
 
         steps = plan_steps(plan_csv)
-        source = open_capture_source(source_spec, steps=steps, channel=channel, rate_hz=rate_hz, seed=seed)
+        instrument = None
+        if device:  # --channel, --unit and --rate-hz speak to the instrument; its reading is reading_mm
+            with flags_named(_FLAGS | {"counts_per_mm": "--counts-per-mm", "umd_version": "--umd-version", "rate_hz": "--rate-hz"}):
+                instrument = InstrumentOptions(
+                    wavelength_m=float(wavelength_nm) * 1e-9, optics_multiplier=int(optics_multiplier), channel=channel,
+                    rate_hz=rate_hz if rate_hz != 1000.0 else None, umd_version=None if umd_version is None else int(umd_version),
+                    material_temperature_code=None if material_temperature_code is None else int(material_temperature_code),
+                    unit=unit if unit in ("mm", "in") else "mm", counts_per_mm=counts_per_mm)
+            channel, unit = None, None
+        with flags_named(_FLAGS | {"counts_per_mm": "--counts-per-mm", "umd_version": "--umd-version", "rate_hz": "--rate-hz"}):
+            source = open_capture_source(source_spec, steps=steps, channel=channel, rate_hz=rate_hz, seed=seed, instrument=instrument)
+        if device and stability_um is None:
+            settings = CaptureSettings(stability_m=default_stability_m(source, None), window_s=settings.window_s,
+                                       tolerance_m=settings.tolerance_m, offset_m=settings.offset_m)
         console = Console(stderr=True)
         live, show = _progress_line(console)
         options = {"progress": show, "timeout_s": timeout_s}
@@ -129,6 +165,10 @@ def capture_command(plan_csv, recording, source_spec, output, unit, channel, sta
                           "deviation_um": r.deviation_m / UM, "start_s": r.start_s, "window_std_um": r.window_std_m / UM}
                          for r in result.readings],
         })
+    faults = getattr(source, "faults", ()) if source_spec is not None else ()
+    if faults:
+        click.echo(f"axiscal: note: {len(faults)} fault(s) of the instrument outside every stop's window (the capture went on);"
+                   f" the first: {faults[0].message} at {faults[0].time_s:.3f} s", err=True)
     click.echo(f"axiscal: note: {len(result.readings)} stops captured from {result.source} into {files.run_csv}", err=True)
 
 
