@@ -249,7 +249,7 @@ class PlanRun:
 
             table = read_csv(partial, min_rows=1)
             for row in range(len(table)):
-                self.stops.append({name: float(table.numeric(name)[row]) for name in ("step", "target_mm", "deviation_um")}
+                self.stops.append({name: float(table.numeric(name)[row]) for name in ("step", "target_mm", "deviation_um", "start_s")}
                                   | {"run": int(table.numeric("run")[row]), "direction": table.text("direction")[row]})
         taken = len(self.stops)
         start_s = float(self._dwells[taken - 1, 1]) if taken else 0.0
@@ -339,7 +339,8 @@ class PlanRun:
         s = self.steps
         k = reading.index
         self.stops = self.stops + [{"step": int(s.step[k]), "target_mm": float(s.target_m[k] / MM), "run": int(s.run[k]),
-                                    "direction": str(s.direction[k]), "deviation_um": reading.deviation_m / UM}]
+                                    "direction": str(s.direction[k]), "deviation_um": reading.deviation_m / UM,
+                                    "start_s": reading.start_s}]
 
     def _on_progress(self, progress: CaptureProgress) -> None:
         self.progress = progress
