@@ -32,6 +32,7 @@ ROOMS = (
     "axiscal.identification",
     "axiscal.history",
     "axiscal.fleet",
+    "axiscal.workbench",
 )
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]

@@ -9,10 +9,8 @@ adapter that runs a plan on the machine (the virtual machine, ``sim``).
 from __future__ import annotations
 
 from axiscal.workbench.forms import (
-    ConnectForm,
+    FORMS,
     FormErrors,
-    PlanForm,
-    VisitForm,
     checked,
 )
 from axiscal.workbench.runner import (
@@ -40,10 +38,8 @@ from axiscal.workbench.server import (
 )
 
 __all__ = [
-    "ConnectForm",
+    "FORMS",
     "FormErrors",
-    "PlanForm",
-    "VisitForm",
     "checked",
     "CONTROLLERS",
     "INSTRUMENTS",

@@ -276,5 +276,11 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
 
 
 def new_token() -> str:
-    """A fresh session token (URL-safe, 24 characters)."""
+    """A fresh session token for a workbench bound beyond loopback.
+
+    Returns
+    -------
+    str
+        24 URL-safe characters from the operating system's random source.
+    """
     return secrets.token_urlsafe(18)

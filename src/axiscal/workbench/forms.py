@@ -8,14 +8,13 @@ each field to one sentence that the page prints next to it.
 from __future__ import annotations
 
 import datetime as _dt
-import math
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from axiscal.errors import AxiscalError
 
-__all__ = ["FormErrors", "VisitForm", "PlanForm", "ConnectForm", "checked"]
+__all__ = ["FORMS", "FormErrors", "checked"]
 
 _TEXT = dict(max_length=200)
 
@@ -35,13 +34,7 @@ class FormErrors(AxiscalError):
 
 
 class _Form(BaseModel):
-    model_config = ConfigDict(extra="forbid", str_strip_whitespace=True)
-
-
-def _finite(value: float) -> float:
-    if not math.isfinite(value):
-        raise ValueError("must be a finite number")
-    return value
+    model_config = ConfigDict(extra="forbid", str_strip_whitespace=True, allow_inf_nan=False)
 
 
 class VisitForm(_Form):
@@ -65,8 +58,6 @@ class VisitForm(_Form):
     B_um: float = Field(gt=0, le=10000)
     axes: list[Literal["X"]] = Field(min_length=1, max_length=1)
 
-    _check_finite = field_validator("wavelength_nm", "A_um", "E_um", "R_um", "B_um")(_finite)
-
 
 class PlanForm(_Form):
     """A positioning test's plan: travel in mm, dwell in s, the program's dialect."""
@@ -80,8 +71,6 @@ class PlanForm(_Form):
     dwell_s: float = Field(gt=0.0, le=60.0)
     dialect: Literal["linuxcnc", "fanuc", "sinumerik", "heidenhain", "grbl", "marlin"] = "linuxcnc"
     seed: int = Field(default=1, ge=0, le=2**31)
-
-    _check_finite = field_validator("start_mm", "end_mm", "overrun_mm", "dwell_s")(_finite)
 
     @model_validator(mode="after")
     def _travel(self) -> "PlanForm":
@@ -97,29 +86,36 @@ class ConnectForm(_Form):
     controller: str = Field(default="sim", min_length=1, max_length=200)
 
 
-def checked(form: type[_Form], data: Any) -> Any:
-    """``data`` read as ``form``; every refusal named by its field.
+#: the forms of the page by name
+FORMS: dict[str, type[_Form]] = {"visit": VisitForm, "plan": PlanForm, "connect": ConnectForm}
+
+
+def checked(form: str, data: Any) -> Any:
+    """``data`` read as the form ``form``; every refusal named by its field.
 
     Parameters
     ----------
-    form : type
-        :class:`VisitForm`, :class:`PlanForm` or :class:`ConnectForm`.
+    form : {"visit", "plan", "connect"}
+        Which form: the campaign of a new visit, a test's plan, the instrument and controller.
     data : Any
         What the page sent (a JSON object).
 
     Returns
     -------
-    an instance of ``form``
+    pydantic.BaseModel
+        The form's values, checked (numbers in the units of the field names).
 
     Raises
     ------
     FormErrors
         Naming each field that is missing or wrong, and each field that is not the form's.
     """
+    if not isinstance(form, str) or form not in FORMS:
+        raise AxiscalError(f"form must be one of {', '.join(FORMS)}, not {form!r}")
     if not isinstance(data, dict):
         raise FormErrors({"form": "the page must send the form's fields as a JSON object"})
     try:
-        return form.model_validate(data)
+        return FORMS[form].model_validate(data)
     except ValidationError as exc:
         fields: dict[str, str] = {}
         for error in exc.errors():

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_number
 from axiscal.live.server import LOOPBACK_HOSTS, LiveServer
 from axiscal.workbench.app import create_workbench_app, new_token
 from axiscal.workbench.visit import Workbench
@@ -84,6 +85,8 @@ def serve_workbench(
     """
     if not isinstance(host, str) or not host.strip():
         raise AxiscalError(f"host must be an address to listen on, not {host!r}")
+    port = check_count("port", port, minimum=0, maximum=65535)
+    update_hz = check_number("update_hz", update_hz, low=1.0, high=60.0, unit="Hz")
     bench = Workbench(data, db=db, speed=speed)
     loopback = host.strip().lower() in _LOOPBACK_ADDRESSES or host.startswith("127.")
     token = None if loopback else new_token()

@@ -28,6 +28,7 @@ from axiscal.io.arguments import check_path
 from axiscal.io.atomic import write_text
 from axiscal.io.templates import render_template
 from axiscal.units import MM, UM
+from axiscal.io.arguments import check_number
 from axiscal.workbench.forms import ConnectForm, PlanForm, VisitForm, checked
 from axiscal.workbench.runner import PlanRun, connect
 
@@ -65,13 +66,15 @@ class Workbench:
 
     def __init__(self, data: str | Path, *, db: str | None = None, speed: float = 1.0):
         data = check_path("data", data)
+        if db is not None and (not isinstance(db, str) or not db.strip()):
+            raise AxiscalError(f"db must be a database URL or SQLite file, not {db!r}")
+        self.speed = check_number("speed", speed, positive=True, high=1000.0)
+        self.db = db
         try:
             data.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
             raise AxiscalError(f"cannot make the data folder ({exc.strerror or exc})", path=data) from None
         self.data = data.resolve()
-        self.db = db
-        self.speed = speed
         self.folder: Path | None = None
         self.visit: VisitForm | None = None
         self.plan: PlanForm | None = None
@@ -129,7 +132,7 @@ class Workbench:
     # -- 2. new visit ------------------------------------------------------------------------------
     def new_visit(self, data: Any) -> dict[str, Any]:
         """Check the campaign form and write ``campaign.toml`` in a new visit folder."""
-        form = checked(VisitForm, data)
+        form = checked("visit", data)
         folder = self.data / f"{_slug(form.machine)}-{form.date.isoformat()}"
         text = render_template("workbench/campaign.toml.j2", filters={"toml": _toml}, keep_trailing_newline=True,
                                **form.model_dump())
@@ -159,7 +162,7 @@ class Workbench:
         from axiscal.io.gcode import dialect as find_dialect
         from axiscal.positioning.plan import plan_test, write_plan
 
-        form = checked(PlanForm, data)
+        form = checked("plan", data)
         folder = self._visit_folder()
         plan = plan_test(form.start_mm * MM, form.end_mm * MM, form.targets, runs=form.runs,
                          overrun_m=form.overrun_mm * MM, seed=form.seed)
@@ -182,7 +185,7 @@ class Workbench:
     # -- 4. connect --------------------------------------------------------------------------------
     def connect(self, data: Any) -> dict[str, Any]:
         """Open the instrument and the controller; their lights, the reading and the position."""
-        form = checked(ConnectForm, data)
+        form = checked("connect", data)
         c = connect(form.instrument, form.controller)
         self.connection = c
         return {"instrument": c.instrument, "controller": c.controller,
