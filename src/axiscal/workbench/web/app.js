@@ -3,6 +3,8 @@
 
 const $ = (selector) => document.querySelector(selector);
 const SVG = "http://www.w3.org/2000/svg";
+const UNITS = { um: "µm", arcsec: "″", mm: "mm" };
+const unit = (name) => UNITS[name] || name;
 const fmt = (value, digits) => (value === null || value === undefined || !Number.isFinite(value) ? "—" : value.toFixed(digits));
 
 const view = { plan: null, trace: { t: [], x: [] }, lastDraw: 0, runState: "idle", samples: 0 };
@@ -286,7 +288,8 @@ $("#show-results").addEventListener("click", async () => {
     const body = table.createTBody();
     for (const c of test.checks) {
       const tr = body.insertRow();
-      for (const v of [c.figure, `${fmt(c.value, 2)} ${c.unit}`, c.U === null ? "not stated" : `${fmt(c.U, 2)} ${c.unit}`, `${fmt(c.limit, 2)} ${c.unit}`, c.result]) tr.insertCell().textContent = v;
+      const u = unit(c.unit);
+      for (const v of [c.figure, `${fmt(c.value, 2)} ${u}`, c.U === null ? "not stated" : `${fmt(c.U, 2)} ${u}`, `${fmt(c.limit, 2)} ${u}`, c.result]) tr.insertCell().textContent = v;
       tr.cells[4].className = "verdict-" + c.result;
     }
     article.appendChild(table);
@@ -311,7 +314,8 @@ $("#before-after").addEventListener("click", async () => {
   const body = $("#changes tbody"); body.replaceChildren();
   for (const c of data.changes) {
     const tr = body.insertRow();
-    for (const v of [c.test, c.figure, `${fmt(c.before, 2)} ${c.unit}`, `${fmt(c.after, 2)} ${c.unit}`, `${fmt(c.limit, 2)} ${c.unit}`, c.result]) tr.insertCell().textContent = v;
+    const u = unit(c.unit);
+    for (const v of [c.test, c.figure, `${fmt(c.before, 2)} ${u}`, `${fmt(c.after, 2)} ${u}`, `${fmt(c.limit, 2)} ${u}`, c.result]) tr.insertCell().textContent = v;
   }
   const plots = $("#ba-plots"); plots.replaceChildren();
   for (const p of data.plots) { const div = document.createElement("div"); div.className = "plot"; div.innerHTML = p.svg; plots.appendChild(div); }
