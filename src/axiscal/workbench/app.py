@@ -232,6 +232,8 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
     async def stream(websocket: WebSocket) -> None:
         await websocket.accept()
         current, cursor = None, 0
+        loop = asyncio.get_running_loop()
+        due = loop.time()
         try:
             while True:
                 run_now = bench.run
@@ -246,7 +248,8 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
                     cursor = after
                 text = json.dumps({"run": bench.run_state(), "trace": trace, "reset": reset}, allow_nan=False)
                 await websocket.send_text(text)
-                await asyncio.sleep(interval)
+                due = max(due + interval, loop.time())  # on the beat; a late message is not made up for
+                await asyncio.sleep(due - loop.time())
         except (WebSocketDisconnect, RuntimeError, OSError):
             return
 

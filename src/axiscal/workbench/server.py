@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import contextlib
+import threading
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -96,4 +98,12 @@ def serve_workbench(
         allowed = None if host in ("0.0.0.0", "::") else LOOPBACK_HOSTS + (host.lower(),)
     app = create_workbench_app(bench, update_hz=update_hz, allowed_hosts=allowed, token=token)
     server = LiveServer(app, port=port, host=host).start()
+    # the history's first reading imports SQLAlchemy, its migrations and SciPy's statistics (seconds on a
+    # cold machine): done now, beside the server, so that the page's list of machines does not wait for it
+    threading.Thread(target=_warm_up, args=(bench,), name="axiscal-workbench-warm-up", daemon=True).start()
     return WorkbenchServer(server, bench, token)
+
+
+def _warm_up(bench: Workbench) -> None:
+    with contextlib.suppress(AxiscalError):
+        bench.machines()

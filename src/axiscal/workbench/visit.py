@@ -87,20 +87,17 @@ class Workbench:
     # -- 1. machines -------------------------------------------------------------------------------
     def machines(self) -> list[dict[str, Any]]:
         """The machines of the history: last visit, verdict, next due date, trend of the first figure."""
-        from axiscal.history import list_campaigns, machine_history, machine_label, machine_trends
+        from axiscal.history import machine_histories, machine_trends
 
-        campaigns = list_campaigns(url=self.db)
-        labels: dict[str, list[Any]] = {}
-        for c in campaigns:
-            labels.setdefault(machine_label(c.machine, c.serial), []).append(c)
         out = []
-        for label, rows in labels.items():
-            trends = machine_trends(machine_history(label, url=self.db))
+        for history in machine_histories(url=self.db):
+            trends = machine_trends(history)
             due = min((t.next_date for t in trends), default=None)
             first = trends[0] if trends else None
+            last = history.campaigns[-1]
             out.append({
-                "machine": label, "visits": len(rows), "last_date": rows[-1].date.isoformat(), "verdict": rows[-1].verdict,
-                "next_due": None if due is None else due.isoformat(),
+                "machine": history.label, "visits": len(history.campaigns), "last_date": last.date.isoformat(),
+                "verdict": last.verdict, "next_due": None if due is None else due.isoformat(),
                 "spark_figure": None if first is None else first.figure,
                 "spark": [] if first is None else [float(v / first.tolerance) for v in first.values],
             })
