@@ -82,6 +82,7 @@ def test_a_whole_visit_on_the_virtual_machine(browser_page, workbench):
 
     # 5. run: start, pause, resume; the connection cut, the stops kept, the run resumed to its end
     page.get_by_role("button", name="5 Run").click()
+    bench.speed = 10.0  # slow enough (about 4 s) for a loaded machine to pause and cut the run before it ends
     page.click("#start")
     page.wait_for_function("document.querySelectorAll('#stops tbody tr').length >= 2")
     page.click("#pause")
@@ -95,6 +96,7 @@ def test_a_whole_visit_on_the_virtual_machine(browser_page, workbench):
     assert page.get_attribute("#light-instrument", "data-state") == "lost"
     kept = count(page, "#stops tbody tr")
     assert kept >= 5
+    bench.speed = SPEED
     page.click("#resume-broken")
     page.wait_for_selector("#run-state[data-state=done]", timeout=60_000)
     page.wait_for_function(f"Number(document.body.dataset.samples) === {bench.run.samples_since(0)[2]}")
@@ -139,6 +141,11 @@ def test_a_whole_visit_on_the_virtual_machine(browser_page, workbench):
     assert report.ok and "<html" in report.text().lower()
     page.get_by_role("button", name="1 Machines").click()
     page.wait_for_function("document.querySelectorAll('#machines tbody tr').length === 2")
+    page.locator("#machines tbody tr", has_text="VMC 1 (S1)").get_by_role("button", name="Open").click()
+    page.wait_for_selector("#machine-title:has-text('VMC 1 (S1)')")
+    assert count(page, "#visits tbody tr") == 2
+    reports = [a.get_attribute("href") for a in page.locator("#visits tbody a").all()]
+    assert sorted(reports) == ["/files/vmc-1-2026-11-26/as-left/report/report.html", "/files/vmc-1-2026-11-26/report/report.html"]
     assert not browser_page.errors, browser_page.errors
     external = [u for u in browser_page.requests if not u.startswith(workbench.server.url.rstrip("/"))]
     assert external == []

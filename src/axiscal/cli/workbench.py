@@ -25,7 +25,7 @@ __all__ = ["workbench", "register"]
               help="Address to listen on; any other than loopback asks for the printed token (docs/workbench.md).")
 def workbench(db: str | None, data: str, port: int, host: str) -> None:
     """Open the workbench: machines and their history, a new visit, plan, connect, run, results, compensate, finish."""
-    with flags_named({"port": "--port", "host": "--host", "data": "--data", "choose another port or host": "choose another --port or --host"}):
+    with flags_named({"port": "--port", "host": "--host", "data": "--data", "db": "--db", "choose another port or host": "choose another --port or --host"}):
         server = serve_workbench(data, db=db, port=port, host=host)
     stop = threading.Event()
     main_thread = threading.current_thread() is threading.main_thread()

@@ -109,13 +109,26 @@ class Workbench:
 
         history = machine_history(label, url=self.db)
         trends = machine_trends(history)
+        reports = self._reports()
         return {
             "machine": history.label,
             "visits": [{"id": c.id, "date": c.date.isoformat(), "title": c.title, "verdict": c.verdict,
-                        "figures": len(c.figures)} for c in reversed(history.campaigns)],
+                        "figures": len(c.figures), "report": reports.get(c.results_sha256)}
+                       for c in reversed(history.campaigns)],
             "trends": [{"figure": t.figure, "unit": t.unit, "next_due": t.next_date.isoformat(),
                         "latest": float(t.values[-1]), "tolerance": t.tolerance} for t in trends],
         }
+
+    def _reports(self) -> dict[str, str]:
+        """The reports of the data folder's visits by their results.json's SHA-256 (as the history keys them)."""
+        import hashlib
+
+        found = {}
+        for results in [*self.data.glob("*/report/results.json"), *self.data.glob("*/as-left/report/results.json")]:
+            html = results.with_name("report.html")
+            if html.is_file():
+                found[hashlib.sha256(results.read_bytes()).hexdigest()] = self._rel(html)
+        return found
 
     def trend_svg(self, label: str, figure: str) -> str:
         """The history's trend plot of one figure of a machine, as SVG text."""

@@ -163,7 +163,12 @@ async function openMachine(name) {
   $("#machine-detail").hidden = false;
   $("#machine-title").textContent = m.machine;
   const body = $("#visits tbody"); body.replaceChildren();
-  for (const v of m.visits) { const tr = body.insertRow(); for (const c of [v.date, v.title, v.verdict, v.figures]) tr.insertCell().textContent = c; }
+  for (const v of m.visits) {
+    const tr = body.insertRow();
+    for (const c of [v.date, v.title, v.verdict, v.figures]) tr.insertCell().textContent = c;
+    const cell = tr.insertCell();
+    if (v.report) { const a = document.createElement("a"); a.href = "/files/" + v.report; a.target = "_blank"; a.textContent = "report"; cell.appendChild(a); }
+  }
   const select = $("#trend-figure"); select.replaceChildren();
   for (const t of m.trends) { const o = document.createElement("option"); o.value = t.figure; o.textContent = `${t.figure} (${t.unit}), next due ${t.next_due}`; select.appendChild(o); }
   select.onchange = () => showTrend(m.machine, select.value);
