@@ -68,6 +68,16 @@ function el(name, attrs, parent) {
   return node;
 }
 
+// round tick values (1, 2 or 5 times a power of ten), about five on an axis
+function ticks(low, high) {
+  const raw = (high - low) / 5, power = 10 ** Math.floor(Math.log10(raw));
+  const step = [1, 2, 5, 10].map((m) => m * power).find((s) => s >= raw);
+  const digits = Math.max(0, -Math.floor(Math.log10(step)));
+  const out = [];
+  for (let v = Math.ceil(low / step) * step; v <= high + step * 1e-9; v += step) out.push([v, v.toFixed(digits)]);
+  return out;
+}
+
 function frame(svg, xs, ys, xlabel, ylabel) {
   svg.replaceChildren();
   const box = { left: 64, right: 606, top: 24, bottom: 226 };
@@ -79,11 +89,8 @@ function frame(svg, xs, ys, xlabel, ylabel) {
   const sx = (v) => box.left + ((v - x0) / (x1 - x0)) * (box.right - box.left);
   const sy = (v) => box.bottom - ((v - y0) / (y1 - y0)) * (box.bottom - box.top);
   el("rect", { x: box.left, y: box.top, width: box.right - box.left, height: box.bottom - box.top, class: "axes" }, svg);
-  for (let i = 0; i <= 4; i++) {
-    const yv = y0 + ((y1 - y0) * i) / 4, xv = x0 + ((x1 - x0) * i) / 4;
-    el("text", { x: box.left - 4, y: sy(yv) + 4, class: "tick", "text-anchor": "end" }, svg).textContent = yv.toPrecision(4);
-    el("text", { x: sx(xv), y: box.bottom + 14, class: "tick", "text-anchor": "middle" }, svg).textContent = xv.toPrecision(4);
-  }
+  for (const [v, text] of ticks(y0, y1)) el("text", { x: box.left - 4, y: sy(v) + 4, class: "tick", "text-anchor": "end" }, svg).textContent = text;
+  for (const [v, text] of ticks(x0, x1)) el("text", { x: sx(v), y: box.bottom + 14, class: "tick", "text-anchor": "middle" }, svg).textContent = text;
   el("text", { x: (box.left + box.right) / 2, y: 256, class: "label", "text-anchor": "middle" }, svg).textContent = xlabel;
   el("text", { x: 8, y: 13, class: "label" }, svg).textContent = ylabel;
   return { sx, sy, box };
@@ -254,10 +261,12 @@ function showRun(run) {
   $("#live-reading").textContent = fmt(run.reading_mm, 6);
   $("#live-position").textContent = fmt(run.position_mm, 4);
   const body = $("#stops tbody");
+  const added = body.rows.length < run.stops.length;
   while (body.rows.length < run.stops.length) {
     const s = run.stops[body.rows.length], tr = body.insertRow();
     for (const v of [s.step, s.run, s.direction, fmt(s.target_mm, 4), fmt(s.deviation_um, 3), fmt(s.start_s, 2)]) tr.insertCell().textContent = v;
   }
+  if (added) body.closest(".scroll").scrollTop = body.closest(".scroll").scrollHeight;  // the newest stop in view
   while (body.rows.length > run.stops.length) body.deleteRow(-1);
   drawTrace(run.stops);
   drawDeviation(run.stops);
