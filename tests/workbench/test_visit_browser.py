@@ -106,6 +106,7 @@ def test_a_whole_visit_on_the_virtual_machine(browser_page, workbench):
     assert count(page, "#deviation circle") == 20
 
     # 6. results: the figures with U against the tolerance, the verdict, the plot
+    page.wait_for_selector("#results article.test", state="attached")  # evaluated as soon as the run ended
     page.get_by_role("button", name="6 Results").click()
     page.click("#show-results")
     page.wait_for_selector("#results article.test")

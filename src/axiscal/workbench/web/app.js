@@ -239,6 +239,8 @@ $("#resume-broken").addEventListener("click", () => startRun($("#phase").value, 
 for (const action of ["pause", "resume", "abort"]) $("#" + action).addEventListener("click", () => call("POST", "/api/run/" + action).catch(() => {}));
 
 function showRun(run) {
+  // a test that has just ended is evaluated at once: its figures wait in Results
+  if (run.state === "done" && (view.runState === "running" || view.runState === "paused")) showResults(run.phase).catch(() => {});
   view.runState = run.state;
   $("#run-state").textContent = run.state;
   $("#run-state").dataset.state = run.state;
@@ -290,8 +292,11 @@ function stream() {
 stream();
 
 // ---- 6. results -----------------------------------------------------------------------------------
-$("#show-results").addEventListener("click", async () => {
-  const data = await call("GET", "/api/results?phase=" + $("#results-phase").value);
+$("#show-results").addEventListener("click", () => showResults($("#results-phase").value));
+
+async function showResults(phase) {
+  $("#results-phase").value = phase;
+  const data = await call("GET", "/api/results?phase=" + phase);
   const out = $("#results"); out.replaceChildren();
   for (const test of data.tests) {
     const article = document.createElement("article"); article.className = "test"; article.id = "result-" + test.id;
@@ -310,7 +315,7 @@ $("#show-results").addEventListener("click", async () => {
     for (const p of test.plots) { const div = document.createElement("div"); div.className = "plot"; div.innerHTML = p.svg; article.appendChild(div); }
     out.appendChild(article);
   }
-});
+}
 
 // ---- 7. compensate --------------------------------------------------------------------------------
 $("#compensate").addEventListener("click", async () => {
