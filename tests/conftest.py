@@ -64,9 +64,12 @@ class BrowserPage:
     errors: list[str] = field(default_factory=list)
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def chromium():
-    """Headless Chromium (Debian's, ``--no-sandbox``) launched once by Playwright for the session.
+    """Headless Chromium (Debian's, ``--no-sandbox``) launched by Playwright once for a test module.
+
+    Closed with its module: no browser (nor Playwright's driver and its event loop) stays behind
+    while the rest of the suite runs.
 
     Without Chromium this fails: ``make chromium`` (and ``.ci/run``) install it.
     """
