@@ -20,6 +20,7 @@ import asyncio
 import contextlib
 import hmac
 import json
+import math
 import secrets
 from pathlib import Path
 from typing import Any
@@ -113,10 +114,21 @@ class _TooLarge(Exception):
     pass
 
 
+def _json_safe(value: Any) -> Any:
+    """``value`` with every NaN or infinity as None (JSON has neither: a figure not defined is shown as such)."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: _json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_safe(v) for v in value]
+    return value
+
+
 def _answer(call, *args, **kwargs):
     async def run() -> Response:
         try:
-            return JSONResponse(await run_in_threadpool(call, *args, **kwargs))
+            return JSONResponse(_json_safe(await run_in_threadpool(call, *args, **kwargs)))
         except FormErrors as exc:
             return JSONResponse({"error": str(exc), "fields": exc.fields}, status_code=422)
         except AxiscalError as exc:
@@ -199,7 +211,7 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
 
     async def run(request: Request) -> Response:
         if request.method == "GET":
-            return JSONResponse(bench.run_state())
+            return JSONResponse(_json_safe(bench.run_state()))
         body = await _body(request) or {}
         if not isinstance(body, dict):
             return JSONResponse({"error": "send the run's phase as a JSON object"}, status_code=400)
@@ -246,7 +258,7 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
                     trace = {"from": cursor, "t_s": [round(v, 4) for v in t.tolist()],
                              "reading_mm": [round(v, 7) for v in x.tolist()]}
                     cursor = after
-                text = json.dumps({"run": bench.run_state(), "trace": trace, "reset": reset}, allow_nan=False)
+                text = json.dumps(_json_safe({"run": bench.run_state(), "trace": trace, "reset": reset}), allow_nan=False)
                 await websocket.send_text(text)
                 due = max(due + interval, loop.time())  # on the beat; a late message is not made up for
                 await asyncio.sleep(due - loop.time())

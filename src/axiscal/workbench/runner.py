@@ -235,7 +235,9 @@ class PlanRun:
         loaded = None
         if compensation is not None:
             check_instance("compensation", compensation, str, what="the compensation file's text")
-            loaded = read_compensation(compensation, controller_kind)
+            # a FANUC table is zero at its reference position, the first target (compensation_table's default)
+            reference = float(np.nanmin(self.steps.target_m)) if controller_kind == "fanuc" else 0.0
+            loaded = read_compensation(compensation, controller_kind, reference_position_m=reference)
         machine = load_machine(Path(str(resources.files("axiscal") / "data" / "xz_module" / "machine.toml")))
         simulated = simulate_motions(plan_motions(self.steps, dwell_s=dwell_s), machine, axis="X", compensation=loaded,
                                      rate_hz=SIM_RATE_HZ, seed=seed)
