@@ -1,4 +1,4 @@
-"""Shared fixtures: the shipped examples folder and a CLI runner that returns (status, stdout, stderr)."""
+"""Shared fixtures: the shipped examples folder, a CLI runner that returns (status, stdout, stderr), and a browser page."""
 
 from __future__ import annotations
 
