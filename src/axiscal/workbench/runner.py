@@ -11,9 +11,17 @@ machine's clock (``speed`` times faster when asked), and the capture is
 taken, so a connection that breaks leaves every stop before it and :meth:`PlanRun` with
 ``resume=True`` goes on from the next.
 
-Instrument and controller specs follow ``axiscal run`` (``sim``, ``umd:PORT``, ``sylvac:PORT``;
-``sim``, ``linuxcnc:HOST``, ``grbl:PORT`` ...): only ``sim`` is driven here, other specs are
-refused in one line saying so.
+Instrument and controller specs are those of the controller-driven run (``sim``, ``umd:PORT``,
+``sylvac:PORT``; ``sim``, ``linuxcnc:HOST``, ``grbl:PORT`` ...): only ``sim`` is driven here, other
+specs are refused in one line saying so.
+
+What the rest of the workbench uses, and all that another implementation has to give:
+:func:`connect` (a :class:`Connection`: the two lights, the reading, the position) and
+:class:`PlanRun` -- made with the plan, the output, the specs, the compensation text and its
+controller, ``resume``, ``speed``, ``dwell_s`` and ``seed``; then ``start``, ``pause``, ``resume``,
+``abort``, ``wait``; ``state`` (``ready``, ``running``, ``paused``, ``done``, ``aborted``,
+``broken``, ``failed``) with ``message``; ``stops`` and ``total``; ``samples_since`` (the trace);
+``snapshot`` (what the page shows); ``result`` (the capture's files).
 """
 
 from __future__ import annotations
