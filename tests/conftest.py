@@ -1,9 +1,11 @@
-"""Shared fixtures: the shipped examples folder and a CLI runner that returns (status, stdout, stderr)."""
+"""Shared fixtures: the shipped examples folder, a CLI runner that returns (status, stdout, stderr), and a browser page."""
 
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import pytest
 from hypothesis import settings
@@ -49,90 +51,49 @@ def system(module):
     return module.measurement_system()
 
 
-CHROMIUM_FLAGS = (
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--remote-debugging-address=127.0.0.1",
-    "--remote-debugging-port=0",
-)
+CHROMIUM = "/usr/bin/chromium"
+"""Debian's chromium, which Playwright drives (no browser is downloaded)."""
 
 
-class DevTools:
-    """A minimal DevTools-protocol client for one page: commands with ids, events kept."""
+@dataclass
+class BrowserPage:
+    """A Playwright page and what it did: the URLs it requested and the errors its scripts threw."""
 
-    def __init__(self, socket):
-        self.socket = socket
-        self.next_id = 0
-        self.events: list[dict] = []
+    page: Any
+    requests: list[str] = field(default_factory=list)
+    errors: list[str] = field(default_factory=list)
 
-    def call(self, method: str, **params) -> dict:
-        import json
-        import time
 
-        self.next_id += 1
-        self.socket.send(json.dumps({"id": self.next_id, "method": method, "params": params}))
-        deadline = time.monotonic() + 15.0
-        while time.monotonic() < deadline:
-            message = json.loads(self.socket.recv(timeout=15.0))
-            if message.get("id") == self.next_id:
-                assert "error" not in message, message
-                return message["result"]
-            self.events.append(message)
-        raise TimeoutError(method)
+@pytest.fixture(scope="module")
+def chromium():
+    """Headless Chromium (Debian's, ``--no-sandbox``) launched by Playwright once for a test module.
 
-    def evaluate(self, expression: str):
-        result = self.call("Runtime.evaluate", expression=expression, returnByValue=True)
-        assert "exceptionDetails" not in result, result
-        return result["result"].get("value")
+    Closed with its module: no browser (nor Playwright's driver and its event loop) stays behind
+    while the rest of the suite runs.
+
+    Without Chromium this fails: ``make chromium`` (and ``.ci/run``) install it.
+    """
+    from playwright.sync_api import sync_playwright
+
+    assert Path(CHROMIUM).exists(), "headless Chromium is needed for browser tests: apt-get install chromium"
+    with sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox", "--disable-gpu"])
+        try:
+            yield browser
+        finally:
+            browser.close()
 
 
 @pytest.fixture
-def chromium_page(tmp_path):
-    """Headless Chromium (Debian's, ``--no-sandbox``) with one page, driven over DevTools.
-
-    Yields a :class:`DevTools` bound to the page. Without Chromium this fails: ``.ci/run`` installs
-    it.
-    """
-    import os
-    import shutil
-    import signal
-    import subprocess
-    import time
-
-    import httpx
-    from websockets.sync.client import connect
-
-    binary = shutil.which("chromium") or "/usr/bin/chromium"
-    assert Path(binary).exists(), "headless Chromium is needed for browser tests: apt-get install chromium"
-    profile = tmp_path / "chromium-profile"
-    process = subprocess.Popen(
-        [binary, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", "about:blank"],
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-        start_new_session=True,
-    )
+def browser_page(chromium):
+    """A fresh page (its own context, 1366x768) in :func:`chromium`, as a :class:`BrowserPage`."""
+    context = chromium.new_context(viewport={"width": 1366, "height": 768})
+    page = context.new_page()
+    page.set_default_timeout(20_000)
+    shown = BrowserPage(page)
+    page.on("request", lambda request: shown.requests.append(request.url))
+    page.on("pageerror", lambda error: shown.errors.append(str(error)))
     try:
-        port_file = profile / "DevToolsActivePort"
-        deadline = time.monotonic() + 20.0
-        while not (port_file.exists() and port_file.read_text().count("\n") >= 1):
-            assert process.poll() is None and time.monotonic() < deadline, "Chromium did not open its DevTools port"
-            time.sleep(0.05)
-        port = int(port_file.read_text().split("\n")[0])
-        targets = httpx.get(f"http://127.0.0.1:{port}/json/list", timeout=10).json()
-        page = next(t for t in targets if t["type"] == "page")
-        with connect(page["webSocketDebuggerUrl"], max_size=None, open_timeout=10) as socket:
-            yield DevTools(socket)
+        yield shown
     finally:
-        if process.poll() is None:
-            os.killpg(process.pid, signal.SIGTERM)
-            try:
-                process.wait(timeout=5)
-            except subprocess.TimeoutExpired:
-                os.killpg(process.pid, signal.SIGKILL)
-                process.wait(timeout=5)
+        context.close()

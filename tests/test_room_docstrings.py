@@ -34,6 +34,7 @@ ROOMS = (
     "axiscal.fleet",
     "axiscal.cmm",
     "axiscal.devices",
+    "axiscal.workbench",
 )
 
 PACKAGES = [importlib.import_module(name) for name in ROOMS]

@@ -1,12 +1,11 @@
 """The dashboard in a real browser: headless Chromium shows live values equal to the pipeline's own numbers.
 
-Chromium is driven over the DevTools protocol by the ``chromium_page`` fixture of tests/conftest.py, with the ``websockets``
-package; nothing else is needed. Without Chromium this test fails (CI installs it: .ci/run).
+Debian's Chromium is driven by Playwright through the ``browser_page`` fixture of tests/conftest.py. Without Chromium this
+test fails (CI installs it: .ci/run).
 """
 
 from __future__ import annotations
 
-import json
 import threading
 import time
 
@@ -21,8 +20,8 @@ from axiscal.live.state import LiveState, result_columns
 from axiscal.measurement.display import to_display
 from axiscal.measurement.virtual import VirtualModule
 
-READ_PAGE = """(() => {
-  if (!document.getElementById("v-t_s")) return "null";
+READ_PAGE = """() => {
+  if (!document.getElementById("v-t_s")) return null;
   const value = id => document.getElementById(id).dataset.value;
   const text = id => document.getElementById(id).textContent;
   const names = ["t_s", "ex_um", "ey_um", "ez_um", "e_um", "px_mm", "py_mm", "pz_mm"];
@@ -36,7 +35,7 @@ READ_PAGE = """(() => {
     }
     return count;
   };
-  return JSON.stringify({
+  return {
     version: Number(document.body.dataset.version),
     values: Object.fromEntries(names.map(n => [n, value("v-" + n)])),
     texts: Object.fromEntries(names.map(n => [n, text("v-" + n)])),
@@ -48,12 +47,12 @@ READ_PAGE = """(() => {
     historyInk: inked("history", [214, 39, 40]),
     profileInk: inked("profile-EXX_um", [31, 119, 180]),
     profiles: document.querySelectorAll("canvas[id^=profile-]").length,
-  });
-})()"""
+  };
+}"""
 
 
-ERROR_KINDS = """JSON.stringify(Object.fromEntries(
-  ["EXX", "EYX", "EZX", "EAX", "EBX", "ECX", "EXZ", "EYZ", "EZZ", "EAZ", "EBZ", "ECZ"].map(s => [s, errorKind(s, s[2])])))"""
+ERROR_KINDS = """() => Object.fromEntries(
+  ["EXX", "EYX", "EZX", "EAX", "EBX", "ECX", "EXZ", "EYZ", "EZZ", "EAZ", "EBZ", "ECZ"].map(s => [s, errorKind(s, s[2])]))"""
 
 
 class PsdDropsOut:
@@ -75,7 +74,7 @@ def module():
     return VirtualModule(seed=0)
 
 
-def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, module, chromium_page):
+def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, module, browser_page):
     system = module.measurement_system()
     record_path = tmp_path / "live.csv"
     recorder = Recorder(record_path, system.channels, result_columns(system.axes))
@@ -89,29 +88,28 @@ def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, mod
     runner.start()
     seen: list[dict] = []
     try:
-        tools = chromium_page
-        tools.call("Runtime.enable")
-        tools.call("Page.navigate", url=server.url)
+        page = browser_page.page
+        page.goto(server.url)
         deadline = time.monotonic() + 20.0
         while time.monotonic() < deadline:
-            shown = json.loads(tools.evaluate(READ_PAGE))
+            shown = page.evaluate(READ_PAGE)
             if shown and shown["version"] > 0 and shown["values"]["t_s"] and shown["historyInk"] > 50 and shown["profileInk"] > 50:
                 seen.append(shown)
                 if len(seen) >= 2 and seen[-1]["values"]["t_s"] != seen[0]["values"]["t_s"]:
                     break
-            time.sleep(0.2)
-        kinds = json.loads(tools.evaluate(ERROR_KINDS))
+            page.wait_for_timeout(200)
+        kinds = page.evaluate(ERROR_KINDS)
         # then a sensor drops out: the page must say so and mark the point's values as old
         instrument.from_s = time.monotonic() - source.clock_offset_s
         faulty = None
         deadline = time.monotonic() + 20.0
         while time.monotonic() < deadline:
-            shown = json.loads(tools.evaluate(READ_PAGE))
+            shown = page.evaluate(READ_PAGE)
             if shown["stale"] and shown["sensorSummary"].startswith("1 of"):
                 faulty = shown
                 break
-            time.sleep(0.2)
-        errors = [e for e in tools.events if e.get("method") == "Runtime.exceptionThrown"]
+            page.wait_for_timeout(200)
+        errors = list(browser_page.errors)
     finally:
         stop.set()
         runner.join(timeout=5)

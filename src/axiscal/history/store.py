@@ -37,6 +37,7 @@ __all__ = [
     "add_records",
     "list_campaigns",
     "machine_history",
+    "machine_histories",
     "export_history",
     "remove_campaign",
     "upgrade_database",
@@ -390,6 +391,43 @@ def machine_history(machine: str, *, url: str | None = None) -> MachineHistory:
                 .options(selectinload(CampaignRow.figures), selectinload(CampaignRow.machine))
                 .order_by(CampaignRow.date, CampaignRow.id)).scalars().all()
             return MachineHistory(row.name, row.serial, tuple(_stored(c, True) for c in campaigns))
+    finally:
+        engine.dispose()
+
+
+def machine_histories(*, url: str | None = None) -> list[MachineHistory]:
+    """Every machine's history at once, read in one session: what a page listing the machines needs.
+
+    Parameters
+    ----------
+    url : str, keyword-only
+        The database.
+
+    Returns
+    -------
+    list of MachineHistory
+        One per machine, by name then serial; each with its campaigns (oldest first) and figures.
+
+    Raises
+    ------
+    AxiscalError
+        For a database that cannot be opened.
+    """
+    from sqlalchemy import select
+    from sqlalchemy.orm import selectinload
+
+    engine = open_engine(url)
+    try:
+        with _session(engine) as session:
+            rows = session.execute(
+                select(CampaignRow).join(MachineRow)
+                .options(selectinload(CampaignRow.figures), selectinload(CampaignRow.machine))
+                .order_by(MachineRow.name, MachineRow.serial, MachineRow.id, CampaignRow.date, CampaignRow.id)).scalars().all()
+            grouped: dict[int, list[CampaignRow]] = {}
+            for row in rows:
+                grouped.setdefault(row.machine_id, []).append(row)
+            return [MachineHistory(c[0].machine.name, c[0].machine.serial, tuple(_stored(r, True) for r in c))
+                    for c in grouped.values()]
     finally:
         engine.dispose()
 

@@ -1,5 +1,59 @@
 """The workbench: one local web page that runs a whole visit at the machine.
 
-It calls the library as the command line does and computes nothing itself.
+It calls the library as the command line does and computes nothing itself. :func:`serve_workbench`
+is ``axiscal workbench``; :class:`Workbench` holds the visit (each step one library call);
+:func:`create_workbench_app` is the page's Starlette app; :mod:`axiscal.workbench.runner` is the one
+adapter that runs a plan on the machine (the virtual machine, ``sim``).
 """
-__all__: list[str] = []
+
+from __future__ import annotations
+
+from axiscal.workbench.forms import (
+    FORMS,
+    FormErrors,
+    checked,
+)
+from axiscal.workbench.runner import (
+    CONTROLLERS,
+    INSTRUMENTS,
+    SIM_RATE_HZ,
+    Connection,
+    PlanRun,
+    connect,
+)
+from axiscal.workbench.visit import (
+    PHASES,
+    Workbench,
+)
+from axiscal.workbench.app import (
+    MAX_BODY,
+    TOKEN_COOKIE,
+    WEB,
+    create_workbench_app,
+    new_token,
+)
+from axiscal.workbench.server import (
+    WorkbenchServer,
+    serve_workbench,
+)
+
+__all__ = [
+    "FORMS",
+    "FormErrors",
+    "checked",
+    "CONTROLLERS",
+    "INSTRUMENTS",
+    "SIM_RATE_HZ",
+    "Connection",
+    "PlanRun",
+    "connect",
+    "PHASES",
+    "Workbench",
+    "MAX_BODY",
+    "TOKEN_COOKIE",
+    "WEB",
+    "create_workbench_app",
+    "new_token",
+    "serve_workbench",
+    "WorkbenchServer",
+]

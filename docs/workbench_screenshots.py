@@ -1,0 +1,106 @@
+"""Take the screenshots of docs/workbench.md: each step of a visit on the virtual machine, in headless Chromium.
+
+Run from the repository root: ``.venv/bin/python docs/workbench_screenshots.py``. It needs Debian's
+chromium (``make chromium``) and Playwright (``make`` installs it). A history with one machine
+(three visits of a lathe, made by ``axiscal.history.drifting_results``) and an empty data folder are
+made in a temporary folder; the page is 1366x768, the laptop screen the workbench is made for.
+Writes docs/workbench_1_machines.png ... docs/workbench_8_finish.png.
+"""
+
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+
+from playwright.sync_api import sync_playwright
+
+from axiscal.history import Drift, add_results, drifting_results, write_results
+from axiscal.workbench import serve_workbench
+
+DOCS = Path(__file__).resolve().parent
+
+
+def main() -> None:
+    with tempfile.TemporaryDirectory(prefix="axiscal-shots-") as folder:
+        tmp = Path(folder)
+        db = str(tmp / "history.sqlite")
+        payloads = drifting_results({"positioning.X.E": Drift(12.0, 4.0, 0.5, 40.0)}, machine="Lathe 7", serial="L7",
+                                    campaigns=5)
+        add_results(write_results(tmp / "lathe", payloads), url=db)
+        server = serve_workbench(tmp / "data", db=db, port=0, speed=8.0)
+        try:
+            with sync_playwright() as playwright:
+                browser = playwright.chromium.launch(executable_path="/usr/bin/chromium", args=["--no-sandbox"])
+                page = browser.new_page(viewport={"width": 1366, "height": 768})
+                page.set_default_timeout(120_000)
+                visit(page, server)
+                browser.close()
+        finally:
+            server.stop()
+
+
+def shot(page, name: str) -> None:
+    path = DOCS / f"workbench_{name}.png"
+    page.screenshot(path=path)
+    print(path.relative_to(DOCS.parent))
+
+
+def visit(page, server) -> None:
+    page.goto(server.url)
+    page.get_by_role("button", name="Open").click()
+    page.wait_for_selector("#trend-plot svg")
+    shot(page, "1_machines")
+
+    page.get_by_role("button", name="2 New visit").click()
+    for name, value in (("title", "Acceptance after the ball screw was changed"), ("operator", "J. Doe"),
+                        ("customer", "Works 2"), ("machine", "VMC 1"), ("serial", "S1"), ("instrument_serial", "L-1204"),
+                        ("certificate", "CAL-2026-118"), ("A_um", "-3")):
+        page.fill(f"#visit-form [name={name}]", value)
+    page.click("#visit-form button[type=submit]")
+    page.wait_for_selector(".field-error[data-for=A_um]:not(:empty)")
+    shot(page, "2_visit")
+    page.fill("#visit-form [name=A_um]", "45")
+    page.click("#visit-form button[type=submit]")
+    page.wait_for_selector("#visit-saved:not([hidden])")
+
+    page.get_by_role("button", name="3 Plan").click()
+    page.fill("#plan-form [name=runs]", "2")
+    page.click("#plan-form button[type=submit]")
+    page.wait_for_selector("#plan-table tbody tr")
+    shot(page, "3_plan")
+
+    page.get_by_role("button", name="4 Connect").click()
+    page.click("#connect-form button[type=submit]")
+    page.wait_for_selector("#light-instrument[data-state=ok]")
+    shot(page, "4_connect")
+
+    page.get_by_role("button", name="5 Run").click()
+    page.click("#start")
+    page.wait_for_function("document.querySelectorAll('#stops tbody tr').length >= 7")
+    shot(page, "5_run")
+    page.wait_for_selector("#run-state[data-state=done]")
+
+    page.get_by_role("button", name="6 Results").click()
+    page.click("#show-results")
+    page.wait_for_selector("#results article.test")
+    shot(page, "6_results")
+
+    page.get_by_role("button", name="7 Compensate").click()
+    page.click("#compensate")
+    page.wait_for_selector("#comp-download:not([hidden])")
+    page.click("#run-as-left")
+    page.wait_for_selector("#run-phase:has-text('as-left')")
+    page.wait_for_selector("#run-state[data-state=done]")
+    page.get_by_role("button", name="7 Compensate").click()
+    page.click("#before-after")
+    page.wait_for_selector("#changes tbody tr")
+    shot(page, "7_compensate")
+
+    page.get_by_role("button", name="8 Finish").click()
+    page.click("#finish")
+    page.wait_for_selector("#report-links li")
+    shot(page, "8_finish")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,127 @@
+"""The workbench's forms, checked once where the page sends them: each mistake named with its field.
+
+A form arrives as JSON from the page (numbers in the units the labels say: mm, um, nm, s). Each is
+a pydantic model; :func:`checked` turns a refusal into :class:`FormErrors`, whose ``fields`` maps
+each field to one sentence that the page prints next to it.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+
+from axiscal.errors import AxiscalError
+
+__all__ = ["FORMS", "FormErrors", "checked"]
+
+_TEXT = dict(max_length=200)
+
+
+class FormErrors(AxiscalError):
+    """A form the page sent that cannot be used: ``fields`` maps each field to what is wrong with it.
+
+    Parameters
+    ----------
+    fields : dict of str to str
+        Field name -> one sentence.
+    """
+
+    def __init__(self, fields: dict[str, str]):
+        self.fields = dict(fields)
+        super().__init__("; ".join(f"{name}: {text}" for name, text in self.fields.items()) or "the form is empty")
+
+
+class _Form(BaseModel):
+    model_config = ConfigDict(extra="forbid", str_strip_whitespace=True, allow_inf_nan=False)
+
+
+class VisitForm(_Form):
+    """The campaign of a visit: what ``campaign.toml`` holds (tolerances in um, wavelength in nm)."""
+
+    title: str = Field(min_length=1, **_TEXT)
+    date: _dt.date
+    operator: str = Field(min_length=1, **_TEXT)
+    customer: str = Field(default="", **_TEXT)
+    notes: str = Field(default="", max_length=2000)
+    machine: str = Field(min_length=1, **_TEXT)
+    serial: str = Field(default="", **_TEXT)
+    controller: Literal["linuxcnc", "fanuc", "siemens", "heidenhain"] = "linuxcnc"
+    instrument: str = Field(min_length=1, **_TEXT)
+    instrument_serial: str = Field(default="", **_TEXT)
+    certificate: str = Field(default="", **_TEXT)
+    wavelength_nm: float = Field(default=632.99137, ge=400.0, le=1700.0)
+    A_um: float = Field(gt=0, le=10000)
+    E_um: float = Field(gt=0, le=10000)
+    R_um: float = Field(gt=0, le=10000)
+    B_um: float = Field(gt=0, le=10000)
+    axes: list[Literal["X"]] = Field(min_length=1, max_length=1)
+
+
+class PlanForm(_Form):
+    """A positioning test's plan: travel in mm, dwell in s, the program's dialect."""
+
+    axis: Literal["X"] = "X"
+    start_mm: float = Field(ge=0.0, le=200.0)
+    end_mm: float = Field(ge=0.0, le=200.0)
+    targets: int = Field(ge=2, le=100)
+    runs: int = Field(ge=1, le=10)
+    overrun_mm: float = Field(gt=0.0, le=50.0)
+    dwell_s: float = Field(gt=0.0, le=60.0)
+    dialect: Literal["linuxcnc", "fanuc", "sinumerik", "heidenhain", "grbl", "marlin"] = "linuxcnc"
+    seed: int = Field(default=1, ge=0, le=2**31)
+
+    @model_validator(mode="after")
+    def _travel(self) -> "PlanForm":
+        if self.end_mm <= self.start_mm:
+            raise ValueError("end_mm: the end must lie beyond the start")
+        return self
+
+
+class ConnectForm(_Form):
+    """The instrument and the controller, as ``axiscal run`` names them."""
+
+    instrument: str = Field(default="sim", min_length=1, max_length=200)
+    controller: str = Field(default="sim", min_length=1, max_length=200)
+
+
+#: the forms of the page by name
+FORMS: dict[str, type[_Form]] = {"visit": VisitForm, "plan": PlanForm, "connect": ConnectForm}
+
+
+def checked(form: str, data: Any) -> Any:
+    """``data`` read as the form ``form``; every refusal named by its field.
+
+    Parameters
+    ----------
+    form : {"visit", "plan", "connect"}
+        Which form: the campaign of a new visit, a test's plan, the instrument and controller.
+    data : Any
+        What the page sent (a JSON object).
+
+    Returns
+    -------
+    pydantic.BaseModel
+        The form's values, checked (numbers in the units of the field names).
+
+    Raises
+    ------
+    FormErrors
+        Naming each field that is missing or wrong, and each field that is not the form's.
+    """
+    if not isinstance(form, str) or form not in FORMS:
+        raise AxiscalError(f"form must be one of {', '.join(FORMS)}, not {form!r}")
+    if not isinstance(data, dict):
+        raise FormErrors({"form": "the page must send the form's fields as a JSON object"})
+    try:
+        return FORMS[form].model_validate(data)
+    except ValidationError as exc:
+        fields: dict[str, str] = {}
+        for error in exc.errors():
+            where = str(error["loc"][0]) if error["loc"] else ""
+            message = str(error["msg"]).removeprefix("Value error, ")
+            if not where and ": " in message:
+                where, message = message.split(": ", 1)
+            fields.setdefault(where or "form", message)
+        raise FormErrors(fields) from None

@@ -1,0 +1,399 @@
+"""The one adapter between the workbench and the machine: connect, run a plan, pause, resume, abort.
+
+Everything the workbench needs to run a positioning plan goes through this module, so that the
+page never speaks to an instrument or a controller itself. Its implementation drives the virtual
+machine (``sim`` instrument and ``sim`` controller): the plan's program is run on the built-in XZ
+module's X axis (:func:`axiscal.capture.virtual.simulate_motions`, with the controller's
+compensation loaded for an as-left run), the laser's samples are streamed at the pace of the
+machine's clock (``speed`` times faster when asked), and the capture is
+:func:`axiscal.capture.files.capture_to_file` fed by that stream: the stops are those its
+:class:`~axiscal.capture.stops.StopDetector` finds, each written to the partial file as it is
+taken, so a connection that breaks leaves every stop before it and :meth:`PlanRun` with
+``resume=True`` goes on from the next.
+
+Instrument and controller specs are those of the controller-driven run (``sim``, ``umd:PORT``,
+``sylvac:PORT``; ``sim``, ``linuxcnc:HOST``, ``grbl:PORT`` ...): only ``sim`` is driven here, other
+specs are refused in one line saying so.
+
+What the rest of the workbench uses, and all that another implementation has to give:
+:func:`connect` (a :class:`Connection`: the two lights, the reading, the position) and
+:class:`PlanRun` -- made with the plan, the output, the specs, the compensation text and its
+controller, ``resume``, ``speed``, ``dwell_s`` and ``seed``; then ``start``, ``pause``, ``resume``,
+``abort``, ``wait``; ``state`` (``ready``, ``running``, ``paused``, ``done``, ``aborted``,
+``broken``, ``failed``) with ``message``; ``stops`` and ``total``; ``samples_since`` (the trace);
+``snapshot`` (what the page shows); ``result`` (the capture's files).
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from axiscal.capture.files import CaptureFiles, capture_to_file, partial_path
+from axiscal.capture.recording import ENVIRONMENT_COLUMNS
+from axiscal.capture.run import CaptureProgress, CaptureSettings, StopReading
+from axiscal.capture.sources import plan_motions
+from axiscal.capture.steps import plan_steps
+from axiscal.capture.virtual import simulate_motions
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_instance, check_number, check_path
+from axiscal.live.protocol import FrameBatch
+from axiscal.live.sources import SourceStatus
+from axiscal.units import MM, UM
+
+__all__ = ["INSTRUMENTS", "CONTROLLERS", "SIM_RATE_HZ", "Connection", "connect", "PlanRun"]
+
+#: the instrument and controller specs this adapter drives
+INSTRUMENTS = ("sim",)
+CONTROLLERS = ("sim",)
+#: samples per second of the virtual laser
+SIM_RATE_HZ = 1000.0
+_CHANNELS = ("reading_mm",) + ENVIRONMENT_COLUMNS[:3]
+
+
+def _check_spec(name: str, spec: str, known: tuple[str, ...]) -> str:
+    if not isinstance(spec, str) or not spec.strip():
+        raise AxiscalError(f"{name} must be a spec such as 'sim', not {spec!r}")
+    spec = spec.strip()
+    kind = spec.split(":", 1)[0]
+    if kind not in known:
+        raise AxiscalError(f"{name} '{spec}': this workbench drives {', '.join(known)} only (the devices of"
+                           " `axiscal run` are not connected to it)")
+    return spec
+
+
+@dataclass(frozen=True)
+class Connection:
+    """The instrument and the controller a run uses, and what they say now.
+
+    Attributes
+    ----------
+    instrument, controller : str
+        Their specs (``sim``).
+    instrument_state, controller_state : str
+        ``"ok"``, ``"lost"`` or ``"off"`` (the status lights).
+    description : str
+        What is connected, one line.
+    reading_m : float, metres
+        The instrument's latest reading.
+    position_m : float, metres
+        The controller's commanded position.
+    """
+
+    instrument: str
+    controller: str
+    instrument_state: str
+    controller_state: str
+    description: str
+    reading_m: float
+    position_m: float
+
+
+def connect(instrument: str = "sim", controller: str = "sim", *, seed: int = 0) -> Connection:
+    """Open (check) the instrument and the controller and read them once.
+
+    Parameters
+    ----------
+    instrument, controller : str
+        Specs as ``axiscal run`` takes them; ``sim`` is the virtual machine (default).
+    seed : int, keyword-only
+        Seed of the virtual laser's noise.
+
+    Returns
+    -------
+    Connection
+
+    Raises
+    ------
+    AxiscalError
+        For a spec this adapter does not drive.
+    """
+    instrument = _check_spec("instrument", instrument, INSTRUMENTS)
+    controller = _check_spec("controller", controller, CONTROLLERS)
+    seed = check_count("seed", seed, minimum=0)
+    noise = float(np.random.default_rng([seed, 30]).normal(0.0, 20e-9))
+    return Connection(instrument, controller, "ok", "ok",
+                      f"virtual laser ({SIM_RATE_HZ:g} Hz) on the virtual XZ module's X axis", noise, 0.0)
+
+
+class _SimLaser:
+    """The virtual machine's laser streamed at its clock's pace times ``speed``; pausable, and cut on request."""
+
+    def __init__(self, time_s: np.ndarray, values: np.ndarray, *, start_s: float, speed: float,
+                 tap: Callable[[np.ndarray, np.ndarray], None]):
+        self.channels = _CHANNELS
+        self._t = time_s
+        self._values = values
+        self._next = int(np.searchsorted(time_s, start_s))
+        self._speed = speed
+        self._tap = tap
+        self._sim_at_resume = float(time_s[self._next]) if self._next < len(time_s) else 0.0
+        self._wall_at_resume: float | None = None
+        self.paused = False
+        self.stopped = False
+        self.cut = False
+        self.finished = self._next >= len(time_s)
+        self.status = SourceStatus(f"sim (virtual laser, {SIM_RATE_HZ:g} Hz)", state="streaming", connections=1)
+
+    def sim_now(self) -> float:
+        if self._wall_at_resume is None or self.paused:
+            return self._sim_at_resume
+        return self._sim_at_resume + (time.monotonic() - self._wall_at_resume) * self._speed
+
+    def pause(self) -> None:
+        if not self.paused:
+            self._sim_at_resume = self.sim_now()
+            self.paused = True
+
+    def resume(self) -> None:
+        if self.paused:
+            self._wall_at_resume = time.monotonic()
+            self.paused = False
+
+    def read(self, timeout_s: float) -> FrameBatch:
+        if self.cut:
+            self.status.state = "retrying"
+            raise AxiscalError("the connection to the instrument was lost: the stops taken are kept; resume to go on")
+        if self.stopped or self.finished:
+            self.finished = True
+            return FrameBatch(np.empty(0), np.empty((0, len(self.channels))), np.zeros(0, bool))
+        if self._wall_at_resume is None:
+            self._wall_at_resume = time.monotonic()
+        if self.paused:
+            time.sleep(min(timeout_s, 0.02))
+            return FrameBatch(np.empty(0), np.empty((0, len(self.channels))), np.zeros(0, bool))
+        now = self.sim_now()
+        stop = int(np.searchsorted(self._t, now, side="right"))
+        if stop <= self._next:
+            time.sleep(min(timeout_s, 0.005))
+            return FrameBatch(np.empty(0), np.empty((0, len(self.channels))), np.zeros(0, bool))
+        t = self._t[self._next:stop]
+        values = self._values[self._next:stop]
+        self._next = stop
+        self.finished = stop >= len(self._t)
+        self._tap(t, values[:, 0])
+        return FrameBatch(t.copy(), values.copy(), np.zeros(t.size, bool))
+
+    def close(self) -> None:
+        self.stopped = True
+
+
+class PlanRun:
+    """A plan run on the machine and captured stop by stop into a positioning run, in a thread.
+
+    Parameters
+    ----------
+    plan_csv : str or Path
+        The plan's cycle CSV (``axiscal plan`` writes it).
+    output : str or Path
+        The run CSV; ``OUTPUT.partial`` holds the stops as they are taken.
+    instrument, controller : str, keyword-only
+        Specs (``sim``).
+    compensation : str, optional, keyword-only
+        Text of a compensation file loaded into the controller (an as-left run).
+    controller_kind : str, keyword-only
+        Whose file ``compensation`` is (``linuxcnc``, ``fanuc``, ``siemens``, ``heidenhain``).
+    resume : bool, keyword-only
+        Go on from the partial file a broken run left.
+    speed : float, keyword-only
+        How many times faster than real time the virtual machine runs (default 1).
+    dwell_s : float, keyword-only
+        Dwell at each target, seconds.
+    seed : int, keyword-only
+        Seed of the virtual machine's scatter and noise.
+    settings : CaptureSettings, optional, keyword-only
+        Stop detection and matching.
+
+    Raises
+    ------
+    AxiscalError
+        For a spec not driven, a bad number, a plan that cannot be read, a compensation the
+        controller refuses, a partial file left without ``resume`` (or none with it).
+    """
+
+    def __init__(self, plan_csv: str | Path, output: str | Path, *, instrument: str = "sim", controller: str = "sim",
+                 compensation: str | None = None, controller_kind: str = "linuxcnc", resume: bool = False,
+                 speed: float = 1.0, dwell_s: float = 1.0, seed: int = 0, settings: CaptureSettings | None = None):
+        from axiscal.compensation.readback import read_compensation
+        from axiscal.model.machine import load_machine
+
+        self.instrument = _check_spec("instrument", instrument, INSTRUMENTS)
+        self.controller = _check_spec("controller", controller, CONTROLLERS)
+        self.plan_csv = check_path("plan_csv", plan_csv)
+        self.output = check_path("output", output)
+        check_instance("resume", resume, bool)
+        speed = check_number("speed", speed, positive=True, high=1000.0)
+        dwell_s = check_number("dwell_s", dwell_s, positive=True, high=600.0, unit="s")
+        seed = check_count("seed", seed, minimum=0)
+        self.settings = CaptureSettings() if settings is None else check_instance("settings", settings, CaptureSettings)
+        self.steps = plan_steps(self.plan_csv)
+        partial = partial_path(self.output)
+        if resume and not partial.is_file():
+            raise AxiscalError("nothing to resume: no partial capture here", path=partial)
+        if not resume and partial.exists():
+            raise AxiscalError("a broken run left its stops here: resume it (or delete the file)", path=partial)
+        loaded = None
+        if compensation is not None:
+            check_instance("compensation", compensation, str, what="the compensation file's text")
+            # a FANUC table is zero at its reference position, the first target (compensation_table's default)
+            reference = float(np.nanmin(self.steps.target_m)) if controller_kind == "fanuc" else 0.0
+            loaded = read_compensation(compensation, controller_kind, reference_position_m=reference)
+        machine = load_machine(Path(str(resources.files("axiscal") / "data" / "xz_module" / "machine.toml")))
+        simulated = simulate_motions(plan_motions(self.steps, dwell_s=dwell_s), machine, axis="X", compensation=loaded,
+                                     rate_hz=SIM_RATE_HZ, seed=seed)
+        rec = simulated.recording
+        self._dwells = simulated.dwells
+        values = np.column_stack([rec.reading_m / MM] + [rec.channels[n] for n in _CHANNELS[1:]])
+        self.total = self.steps.readings
+        self.stops: list[dict[str, Any]] = []
+        if resume:
+            from axiscal.io.tabular import read_csv
+
+            table = read_csv(partial, min_rows=1)
+            for row in range(len(table)):
+                self.stops.append({name: float(table.numeric(name)[row]) for name in ("step", "target_mm", "deviation_um", "start_s")}
+                                  | {"run": int(table.numeric("run")[row]), "direction": table.text("direction")[row]})
+        taken = len(self.stops)
+        start_s = float(self._dwells[taken - 1, 1]) if taken else 0.0
+        self._lock = threading.Lock()
+        self._trace_t: list[np.ndarray] = []
+        self._trace_x: list[np.ndarray] = []
+        self._trace_n = 0
+        self.source = _SimLaser(rec.time_s, values, start_s=start_s, speed=speed, tap=self._tap)
+        self._end_s = float(rec.time_s[-1])
+        self._resume = resume
+        self.state = "ready"
+        self.message = ""
+        self.result: CaptureFiles | None = None
+        self.progress: CaptureProgress | None = None
+        self._started = math.nan
+        self._thread = threading.Thread(target=self._run, name="axiscal-workbench-run", daemon=True)
+
+    # -- the trace -------------------------------------------------------------------------------
+    def _tap(self, t: np.ndarray, reading_mm: np.ndarray) -> None:
+        with self._lock:
+            self._trace_t.append(t.copy())
+            self._trace_x.append(reading_mm.copy())
+            self._trace_n += t.size
+
+    def samples_since(self, index: int) -> tuple[np.ndarray, np.ndarray, int]:
+        """The trace's samples from ``index`` on: times (s), readings (mm), and the index after them.
+
+        Parameters
+        ----------
+        index : int
+            The first sample wanted (0: all).
+
+        Returns
+        -------
+        time_s, reading_mm : ndarray, shape (n,)
+        next : int
+        """
+        with self._lock:
+            if len(self._trace_t) > 1:
+                self._trace_t = [np.concatenate(self._trace_t)]
+                self._trace_x = [np.concatenate(self._trace_x)]
+            total = self._trace_n
+            if not self._trace_t or index >= total:
+                return np.empty(0), np.empty(0), total
+            return self._trace_t[0][index:total], self._trace_x[0][index:total], total
+
+    # -- control ---------------------------------------------------------------------------------
+    def start(self) -> "PlanRun":
+        """Start the run in its thread."""
+        if self.state != "ready":
+            raise AxiscalError(f"the run is {self.state}: it cannot start again")
+        self.state = "running"
+        self._started = time.monotonic()
+        self._thread.start()
+        return self
+
+    def pause(self) -> None:
+        """Hold the machine (feed hold): the stream stops until :meth:`resume`."""
+        if self.state == "running":
+            self.source.pause()
+            self.state = "paused"
+
+    def resume(self) -> None:
+        """Go on after :meth:`pause`."""
+        if self.state == "paused":
+            self.source.resume()
+            self.state = "running"
+
+    def abort(self) -> None:
+        """Stop the run; the stops taken stay in the partial file."""
+        if self.state in ("running", "paused", "ready"):
+            self.state = "aborted"
+            self.message = "aborted: the stops taken are kept; resume to go on"
+            self.source.cut = True
+
+    def cut_connection(self) -> None:
+        """Break the instrument's connection now (what a pulled cable does)."""
+        self.source.cut = True
+
+    def wait(self, timeout_s: float | None = None) -> str:
+        """Wait for the run's thread to end; return the state."""
+        if self._thread.is_alive():
+            self._thread.join(timeout_s)
+        return self.state
+
+    def _on_stop(self, reading: StopReading) -> None:
+        s = self.steps
+        k = reading.index
+        self.stops = self.stops + [{"step": int(s.step[k]), "target_mm": float(s.target_m[k] / MM), "run": int(s.run[k]),
+                                    "direction": str(s.direction[k]), "deviation_um": reading.deviation_m / UM,
+                                    "start_s": reading.start_s}]
+
+    def _on_progress(self, progress: CaptureProgress) -> None:
+        self.progress = progress
+
+    def _run(self) -> None:
+        try:
+            self.result = capture_to_file(self.plan_csv, self.source, self.output, resume=self._resume,
+                                          settings=self.settings, channel="reading_mm", on_stop=self._on_stop,
+                                          progress=self._on_progress)
+            self.state = "done"
+        except AxiscalError as exc:
+            if self.state != "aborted":
+                self.state = "broken" if self.source.cut else "failed"
+                self.message = str(exc)
+        except Exception as exc:  # the thread must report, never die silently
+            self.state = "failed"
+            self.message = f"the run stopped: {exc}"
+
+    # -- what the page shows ---------------------------------------------------------------------
+    def snapshot(self) -> dict[str, Any]:
+        """The run as the page shows it (JSON-able; mm, um, s).
+
+        Returns
+        -------
+        dict
+            ``state``, ``message``, ``taken``, ``total``, ``remaining_s``, ``reading_mm``,
+            ``position_mm``, ``target_mm``, ``step``, ``still``, ``stops``, ``lights``.
+        """
+        p = self.progress
+        sim_now = self.source.sim_now()
+        taken = len(self.stops)
+        speed = self.source._speed
+        remaining = max(self._end_s - sim_now, 0.0) / speed if self.state in ("running", "paused", "ready") else 0.0
+        k = int(np.searchsorted(self._dwells[:, 1], sim_now))
+        position = float(self._dwells[min(k, len(self._dwells) - 1), 2]) / MM
+        lost = self.state == "broken"
+        return {
+            "state": self.state, "message": self.message, "taken": taken, "total": self.total,
+            "remaining_s": remaining, "sim_time_s": sim_now,
+            "reading_mm": None if p is None or math.isnan(p.reading_m) else p.reading_m / MM,
+            "target_mm": None if p is None or math.isnan(p.target_m) else p.target_m / MM,
+            "step": None if p is None else p.step, "still": bool(p.still) if p is not None else False,
+            "position_mm": position, "stops": self.stops,
+            "lights": {"instrument": "lost" if lost else "ok", "controller": "ok"},
+            "run_csv": str(self.output) if self.state == "done" else None,
+        }

@@ -1,0 +1,363 @@
+"""A visit held by the workbench: each step one call into the library, its files in the data folder.
+
+:class:`Workbench` is what the page's routes call. It keeps the visit in hand (the campaign
+folder, the plan, the run going on) and turns what the library returns into JSON-able answers in
+the units people read (mm, um, s). It computes no figure itself: the history's trends, the plan,
+the capture, the evaluation, the compensation table and its residuals, the report and the
+comparison are the library's.
+
+The folder of a visit is ``DATA/<machine>-<date>``: ``campaign.toml``, the plan (``plan_x.csv``
+and its program), the as-found run (``positioning_x.csv``), ``compensation/``, and ``as-left/``
+with the run taken with the compensation loaded; the reports go to ``report/`` and
+``as-left/report/``. Every file is written atomically.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import tempfile
+import threading
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_path
+from axiscal.io.atomic import write_text
+from axiscal.io.templates import render_template
+from axiscal.units import MM, UM
+from axiscal.io.arguments import check_number
+from axiscal.workbench.forms import ConnectForm, PlanForm, VisitForm, checked
+from axiscal.workbench.runner import PlanRun, connect
+
+__all__ = ["PHASES", "Workbench"]
+
+#: the two runs of a visit: before and after the compensation
+PHASES = ("as-found", "as-left")
+
+
+def _toml(text: str) -> str:
+    return json.dumps(text, ensure_ascii=False)
+
+
+def _slug(text: str) -> str:
+    return re.sub(r"[^A-Za-z0-9]+", "-", text).strip("-").lower()[:60] or "visit"
+
+
+class Workbench:
+    """The visit the page works on, and the history it reads.
+
+    Parameters
+    ----------
+    data : str or Path
+        The data folder: every file the workbench writes or serves lies inside it.
+    db : str, optional, keyword-only
+        The history's database URL (default: the user's SQLite file, or ``$AXISCAL_DB``).
+    speed : float, keyword-only
+        How many times faster than real time the virtual machine runs (default 1).
+
+    Raises
+    ------
+    AxiscalError
+        For a data folder that cannot be made.
+    """
+
+    def __init__(self, data: str | Path, *, db: str | None = None, speed: float = 1.0):
+        data = check_path("data", data)
+        if db is not None and (not isinstance(db, str) or not db.strip()):
+            raise AxiscalError(f"db must be a database URL or SQLite file, not {db!r}")
+        self.speed = check_number("speed", speed, positive=True, high=1000.0)
+        self.db = db
+        try:
+            data.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise AxiscalError(f"cannot make the data folder ({exc.strerror or exc})", path=data) from None
+        self.data = data.resolve()
+        self.folder: Path | None = None
+        self.visit: VisitForm | None = None
+        self.plan: PlanForm | None = None
+        self.connection = None
+        self.run: PlanRun | None = None
+        self.phase = "as-found"
+        self.compensation: dict[str, Any] | None = None
+        self._lock = threading.Lock()
+
+    # -- 1. machines -------------------------------------------------------------------------------
+    def machines(self) -> list[dict[str, Any]]:
+        """The machines of the history: last visit, verdict, next due date, trend of the first figure."""
+        from axiscal.history import machine_histories, machine_trends
+
+        out = []
+        for history in machine_histories(url=self.db):
+            trends = machine_trends(history)
+            due = min((t.next_date for t in trends), default=None)
+            first = trends[0] if trends else None
+            last = history.campaigns[-1]
+            out.append({
+                "machine": history.label, "visits": len(history.campaigns), "last_date": last.date.isoformat(),
+                "verdict": last.verdict, "next_due": None if due is None else due.isoformat(),
+                "spark_figure": None if first is None else first.figure,
+                "spark": [] if first is None else [float(v / first.tolerance) for v in first.values],
+            })
+        return out
+
+    def machine(self, label: str) -> dict[str, Any]:
+        """One machine's visits and the figures whose trend can be drawn."""
+        from axiscal.history import machine_history, machine_trends
+
+        history = machine_history(label, url=self.db)
+        trends = machine_trends(history)
+        reports = self._reports()
+        return {
+            "machine": history.label,
+            "visits": [{"id": c.id, "date": c.date.isoformat(), "title": c.title, "verdict": c.verdict,
+                        "figures": len(c.figures), "report": reports.get(c.results_sha256)}
+                       for c in reversed(history.campaigns)],
+            "trends": [{"figure": t.figure, "unit": t.unit, "next_due": t.next_date.isoformat(),
+                        "latest": float(t.values[-1]), "tolerance": t.tolerance} for t in trends],
+        }
+
+    def _reports(self) -> dict[str, str]:
+        """The reports of the data folder's visits by their results.json's SHA-256 (as the history keys them)."""
+        import hashlib
+
+        found = {}
+        for results in [*self.data.glob("*/report/results.json"), *self.data.glob("*/as-left/report/results.json")]:
+            html = results.with_name("report.html")
+            if html.is_file():
+                found[hashlib.sha256(results.read_bytes()).hexdigest()] = self._rel(html)
+        return found
+
+    def trend_svg(self, label: str, figure: str) -> str:
+        """The history's trend plot of one figure of a machine, as SVG text."""
+        from axiscal.history import figure_trend
+
+        with tempfile.TemporaryDirectory(prefix="axiscal-trend-") as folder:
+            path = Path(folder) / "trend.svg"
+            figure_trend(label, figure, url=self.db, plot=path)
+            return path.read_text(encoding="utf-8")
+
+    # -- 2. new visit ------------------------------------------------------------------------------
+    def new_visit(self, data: Any) -> dict[str, Any]:
+        """Check the campaign form and write ``campaign.toml`` in a new visit folder."""
+        form = checked("visit", data)
+        folder = self.data / f"{_slug(form.machine)}-{form.date.isoformat()}"
+        text = render_template("workbench/campaign.toml.j2", filters={"toml": _toml}, keep_trailing_newline=True,
+                               **form.model_dump())
+        write_text(folder / "campaign.toml", text)
+        with self._lock:
+            self.folder, self.visit, self.plan, self.run, self.compensation = folder, form, None, None, None
+            self.phase = "as-found"
+        return {"folder": self._rel(folder), "campaign": self._rel(folder / "campaign.toml"), "text": text}
+
+    def _visit_folder(self) -> Path:
+        if self.folder is None or self.visit is None:
+            raise AxiscalError("start a visit first (New visit)")
+        return self.folder
+
+    def _phase_folder(self, phase: str) -> Path:
+        folder = self._visit_folder()
+        if phase not in PHASES:
+            raise AxiscalError(f"phase must be one of {', '.join(PHASES)}, not {phase!r}")
+        return folder if phase == "as-found" else folder / "as-left"
+
+    def _rel(self, path: Path) -> str:
+        return path.resolve().relative_to(self.data).as_posix()
+
+    # -- 3. plan -----------------------------------------------------------------------------------
+    def make_plan(self, data: Any) -> dict[str, Any]:
+        """Check the plan form, write the cycle CSV and the program; return the table and the program."""
+        from axiscal.io.gcode import dialect as find_dialect
+        from axiscal.positioning.plan import plan_test, write_plan
+
+        form = checked("plan", data)
+        folder = self._visit_folder()
+        plan = plan_test(form.start_mm * MM, form.end_mm * MM, form.targets, runs=form.runs,
+                         overrun_m=form.overrun_mm * MM, seed=form.seed)
+        name = form.axis.lower()
+        csv_path = folder / f"plan_{name}.csv"
+        program = folder / f"{name}{find_dialect(form.dialect).extension}"
+        write_plan(plan, csv_path, gcode_path=program, axis=form.axis, dwell_s=form.dwell_s, dialect=form.dialect)
+        with self._lock:
+            self.plan = form
+        from axiscal.capture.steps import plan_steps
+
+        steps = plan_steps(csv_path)
+        rows = [{"step": int(steps.step[k]), "run": int(steps.run[k]), "direction": str(steps.direction[k]),
+                 "target_mm": None if not np.isfinite(steps.target_m[k]) else float(steps.target_m[k] / MM),
+                 "move_to_mm": float(steps.move_to_m[k] / MM)} for k in range(steps.step.size)]
+        return {"plan_csv": self._rel(csv_path), "program": self._rel(program),
+                "program_text": program.read_text(encoding="utf-8"), "steps": rows,
+                "targets_mm": [float(t / MM) for t in plan.targets], "readings": int(steps.readings)}
+
+    # -- 4. connect --------------------------------------------------------------------------------
+    def connect(self, data: Any) -> dict[str, Any]:
+        """Open the instrument and the controller; their lights, the reading and the position."""
+        form = checked("connect", data)
+        c = connect(form.instrument, form.controller)
+        self.connection = c
+        return {"instrument": c.instrument, "controller": c.controller,
+                "lights": {"instrument": c.instrument_state, "controller": c.controller_state},
+                "description": c.description, "reading_mm": c.reading_m / MM, "position_mm": c.position_m / MM}
+
+    # -- 5. run ------------------------------------------------------------------------------------
+    def start_run(self, phase: str = "as-found", *, resume: bool = False) -> dict[str, Any]:
+        """Start (or resume after a broken connection) the plan's run of a phase."""
+        folder = self._phase_folder(phase)
+        if self.plan is None:
+            raise AxiscalError("plan the test first (Plan)")
+        if self.connection is None:
+            raise AxiscalError("connect the instrument and the controller first (Connect)")
+        if self.run is not None and self.run.state in ("running", "paused"):
+            raise AxiscalError("a run is going on: pause, abort or wait for it")
+        compensation = None
+        if phase == "as-left":
+            if self.compensation is None:
+                raise AxiscalError("write the compensation table first (Compensate)")
+            compensation = self.compensation["text"]
+            self._write_as_left_campaign()
+        name = self.plan.axis.lower()
+        output = folder / f"positioning_{name}.csv"
+        run = PlanRun(self._visit_folder() / f"plan_{name}.csv", output, instrument=self.connection.instrument,
+                      controller=self.connection.controller, compensation=compensation,
+                      controller_kind=self.visit.controller, resume=resume, speed=self.speed,
+                      dwell_s=self.plan.dwell_s, seed=0 if phase == "as-found" else 1)
+        with self._lock:
+            self.run, self.phase = run, phase
+        run.start()
+        return self.run_state()
+
+    def control(self, action: str) -> dict[str, Any]:
+        """``pause``, ``resume`` or ``abort`` the run going on."""
+        if self.run is None:
+            raise AxiscalError("no run is going on")
+        if action not in ("pause", "resume", "abort"):
+            raise AxiscalError(f"action must be pause, resume or abort, not {action!r}")
+        getattr(self.run, action)()
+        return self.run_state()
+
+    def run_state(self) -> dict[str, Any]:
+        """The run going on (or the last), as the page shows it."""
+        if self.run is None:
+            return {"state": "idle", "phase": self.phase}
+        snap = self.run.snapshot()
+        if snap["run_csv"]:
+            snap["run_csv"] = self._rel(Path(snap["run_csv"]))
+        return snap | {"phase": self.phase}
+
+    # -- 6. results --------------------------------------------------------------------------------
+    def results(self, phase: str = "as-found") -> dict[str, Any]:
+        """Evaluate the phase's test as the campaign does: figures with U against the tolerance, the plot."""
+        from axiscal.campaign import load_campaign, run_test
+
+        campaign = load_campaign(self._phase_folder(phase))
+        out = []
+        for spec in campaign.tests:
+            result = run_test(campaign, spec)
+            out.append({
+                "id": result.id, "verdict": result.verdict, "method": result.method,
+                "checks": [{"figure": c.figure, "value": c.value, "U": c.U, "limit": c.limit, "unit": c.unit,
+                            "result": c.result} for c in result.checks],
+                "plots": [{"title": p.title, "svg": p.svg} for p in result.plots], "warnings": result.warnings,
+            })
+        return {"phase": phase, "tests": out}
+
+    # -- 7. compensate -----------------------------------------------------------------------------
+    def compensate(self) -> dict[str, Any]:
+        """The controller's table from the as-found run, its file, the measured error and the residual."""
+        from axiscal.campaign.runner import COMPENSATION_FILES
+        from axiscal.compensation import error_curve, residuals
+        from axiscal.compensation.formats import compensation_table
+        from axiscal.positioning.evaluation import target_statistics
+        from axiscal.positioning.reader import read_positioning_run
+
+        folder = self._visit_folder()
+        if self.plan is None:
+            raise AxiscalError("plan and run the test first")
+        axis = self.plan.axis
+        run_csv = folder / f"positioning_{axis.lower()}.csv"
+        if not run_csv.is_file():
+            raise AxiscalError("run the as-found test first (Run)")
+        controller = self.visit.controller
+        run = read_positioning_run(run_csv).run
+        options = {"axis": axis} if controller in ("siemens", "heidenhain") else {}
+        result = compensation_table(run, controller, **options)
+        curve = error_curve(target_statistics(run))
+        x = run.targets
+        directions = ("+", "-")
+        left = {d: (residuals(result.table, curve, x, d if d in ("+", "-") else "mean", offset=result.reference_offset_m)
+                    / UM).tolist() for d in directions}
+        path = folder / "compensation" / COMPENSATION_FILES[controller].format(axis=axis)
+        write_text(path, result.text)
+        self.compensation = {"text": result.text, "file": self._rel(path)}
+        return {"controller": controller, "file": self._rel(path), "text": result.text, "description": result.description,
+                "largest_residual_um": result.largest_residual_m / UM, "targets_mm": (x / MM).tolist(),
+                "measured_um": {"+": (curve.up / UM).tolist(), "-": (curve.down / UM).tolist()},
+                "residual_um": left}
+
+    def _write_as_left_campaign(self) -> None:
+        folder = self._visit_folder()
+        form = self.visit.model_dump() | {"title": f"{self.visit.title} (as left)"}
+        text = render_template("workbench/campaign.toml.j2", filters={"toml": _toml}, keep_trailing_newline=True, **form)
+        write_text(folder / "as-left" / "campaign.toml", text)
+
+    def before_after(self) -> dict[str, Any]:
+        """The as-left campaign run against the as-found one: the overlays and the change of each figure."""
+        from axiscal.campaign import load_campaign, results_payload, run_campaign
+
+        folder = self._visit_folder()
+        before = results_payload(run_campaign(load_campaign(folder)))
+        after = run_campaign(load_campaign(folder / "as-left"), compare=before)
+        previous = {t["id"]: t["figures"] for t in before["tests"]}
+        rows = []
+        for test in after.tests:
+            for c in test.checks:
+                was = previous.get(test.id, {})
+                old = _figure_of(was, c.figure)
+                rows.append({"test": test.id, "figure": c.figure, "unit": c.unit, "before": old, "after": c.value,
+                             "limit": c.limit, "result": c.result})
+        return {"changes": rows, "plots": [{"title": p.title, "svg": p.svg} for t in after.tests for p in t.plots]}
+
+    # -- 8. finish ---------------------------------------------------------------------------------
+    def finish(self, *, pdf: bool = True) -> dict[str, Any]:
+        """The reports (HTML, PDF) of both runs made and stored in the history; links to each file."""
+        from axiscal.report import report_campaign
+
+        folder = self._visit_folder()
+        links = []
+        found = report_campaign(folder, pdf=pdf, history=True, db=self.db)
+        links += self._links(found, "as-found")
+        if (folder / "as-left" / "positioning_x.csv").is_file():
+            left = report_campaign(folder / "as-left", compare=found.results, pdf=pdf, history=True, db=self.db)
+            links += self._links(left, "as-left")
+        return {"files": links, "verdict": found.results_data.verdict}
+
+    def _links(self, files: Any, phase: str) -> list[dict[str, str]]:
+        out = []
+        for name in ("html", "pdf", "results"):
+            path = getattr(files, name, None)
+            if path is not None and Path(path).is_file():
+                out.append({"phase": phase, "kind": name, "path": self._rel(Path(path))})
+        return out
+
+    # -- files -------------------------------------------------------------------------------------
+    def file(self, relative: str) -> Path:
+        """A file of the data folder named by its relative path (never one outside it)."""
+        if not isinstance(relative, str) or not relative or "\x00" in relative:
+            raise AxiscalError("name a file of the data folder")
+        path = (self.data / relative).resolve()
+        if path != self.data and self.data not in path.parents:
+            raise AxiscalError(f"{relative}: not inside the data folder")
+        if not path.is_file():
+            raise AxiscalError(f"{relative}: no such file in the data folder")
+        return path
+
+
+def _figure_of(figures: dict[str, Any], name: str) -> float | None:
+    for key in (name, f"{name}_um", f"{name}_arcsec"):
+        value = figures.get(key)
+        if isinstance(value, (int, float)):
+            return float(value)
+    return None

@@ -1,0 +1,152 @@
+"""A whole visit clicked through in headless Chromium on the virtual machine (``sim`` instrument and controller).
+
+Machines and their history, a new visit (with a mistake shown beside its field), the plan and its program, connect,
+the run (paused, resumed, its connection cut and the run resumed), the results, the compensation and the as-left run
+with the before/after table, the reports stored in the history. The page must show every sample the laser gave.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from axiscal.history import Drift, add_results, drifting_results, write_results
+from axiscal.workbench import serve_workbench
+
+SPEED = 40.0  # the virtual machine runs 40 times faster than real time
+
+
+@pytest.fixture
+def workbench(tmp_path):
+    db = str(tmp_path / "history.sqlite")
+    payloads = drifting_results({"positioning.X.E": Drift(12.0, 4.0, 0.5, 40.0)}, machine="Lathe 7", serial="L7", campaigns=3)
+    add_results(write_results(tmp_path / "lathe", payloads), url=db)
+    server = serve_workbench(tmp_path / "data", db=db, port=0, speed=SPEED)
+    try:
+        yield server
+    finally:
+        server.stop()
+
+
+def count(page, selector: str) -> int:
+    return page.locator(selector).count()
+
+
+def test_a_whole_visit_on_the_virtual_machine(browser_page, workbench):
+    page = browser_page.page
+    bench = workbench.bench
+    page.goto(workbench.url)
+
+    # 1. machines: the one in the history, its sparkline; opened, its visits and the trend plot
+    page.wait_for_selector("#machines tbody tr")
+    assert page.locator("#machines tbody tr td").first.text_content() == "Lathe 7 (L7)"
+    assert count(page, "#machines tbody svg.spark polyline") == 1
+    page.get_by_role("button", name="Open").click()
+    page.wait_for_selector("#trend-plot svg")
+    assert count(page, "#visits tbody tr") == 3
+
+    # 2. new visit: a wrong tolerance is named beside its field, then the campaign is written
+    page.get_by_role("button", name="2 New visit").click()
+    page.fill("#visit-form [name=title]", "Acceptance after rebuild")
+    page.fill("#visit-form [name=operator]", "J. Doe")
+    page.fill("#visit-form [name=machine]", "VMC 1")
+    page.fill("#visit-form [name=serial]", "S1")
+    page.fill("#visit-form [name=date]", "2026-11-26")
+    page.fill("#visit-form [name=A_um]", "-3")
+    page.click("#visit-form button[type=submit]")
+    page.wait_for_selector(".field-error[data-for=A_um]:not(:empty)")
+    assert page.locator(".field-error[data-for=A_um]").text_content() == "Input should be greater than 0"
+    assert page.get_attribute("#visit-form [name=A_um]", "aria-invalid") == "true"
+    page.fill("#visit-form [name=A_um]", "45")
+    page.click("#visit-form button[type=submit]")
+    page.wait_for_selector("#visit-saved:not([hidden])")
+    assert page.locator(".field-error[data-for=A_um]").text_content() == ""
+    assert (bench.data / "vmc-1-2026-11-26" / "campaign.toml").is_file()
+
+    # 3. plan: the table and the program, downloadable
+    page.get_by_role("button", name="3 Plan").click()
+    page.fill("#plan-form [name=runs]", "2")
+    page.click("#plan-form button[type=submit]")
+    page.wait_for_selector("#plan-table tbody tr")
+    assert page.locator("#plan-readings").text_content() == "20"
+    assert "G1" in page.locator("#program").text_content()
+    href = page.get_attribute("#program-download", "href")
+    download = page.request.get(workbench.server.url.rstrip("/") + href)
+    assert download.ok and "attachment" in download.headers["content-disposition"] and "G4" in download.text()
+
+    # 4. connect: both lights on, the reading and the position shown
+    page.get_by_role("button", name="4 Connect").click()
+    page.click("#connect-form button[type=submit]")
+    page.wait_for_selector("#light-instrument[data-state=ok]")
+    assert page.get_attribute("#light-controller", "data-state") == "ok"
+    assert page.locator("#live-position").text_content() == "0.0000"
+
+    # 5. run: start, pause, resume; the connection cut, the stops kept, the run resumed to its end
+    page.get_by_role("button", name="5 Run").click()
+    bench.speed = 10.0  # slow enough (about 4 s) for a loaded machine to pause and cut the run before it ends
+    page.click("#start")
+    page.wait_for_function("document.querySelectorAll('#stops tbody tr').length >= 2")
+    page.click("#pause")
+    page.wait_for_selector("#run-state[data-state=paused]")
+    page.click("#resume")
+    page.wait_for_selector("#run-state[data-state=running]")
+    page.wait_for_function("document.querySelectorAll('#stops tbody tr').length >= 5")
+    bench.run.cut_connection()
+    page.wait_for_selector("#run-state[data-state=broken]")
+    assert "connection to the instrument was lost" in page.locator("#run-message").text_content()
+    assert page.get_attribute("#light-instrument", "data-state") == "lost"
+    kept = count(page, "#stops tbody tr")
+    assert kept >= 5
+    bench.speed = SPEED
+    page.click("#resume-broken")
+    page.wait_for_selector("#run-state[data-state=done]", timeout=60_000)
+    page.wait_for_function(f"Number(document.body.dataset.samples) === {bench.run.samples_since(0)[2]}")
+    assert count(page, "#stops tbody tr") == 20
+    assert page.locator("#progress").text_content() == "20 of 20 stops"
+    assert count(page, "#trace circle.stop") == 20 and count(page, "#trace line, #trace polyline.target") >= 5
+    assert count(page, "#deviation circle") == 20
+
+    # 6. results: the figures with U against the tolerance, the verdict, the plot
+    page.wait_for_selector("#results article.test", state="attached")  # evaluated as soon as the run ended
+    page.get_by_role("button", name="6 Results").click()
+    page.click("#show-results")
+    page.wait_for_selector("#results article.test")
+    rows = page.locator("#results table.checks tbody tr")
+    assert rows.count() == 4 and rows.first.locator("td").first.text_content() == "A"
+    assert "µm" in rows.first.locator("td").nth(1).text_content()
+    assert count(page, "#results .plot svg") == 1
+
+    # 7. compensate: the table, its plot and file; the as-left run with it loaded; before and after
+    page.get_by_role("button", name="7 Compensate").click()
+    page.click("#compensate")
+    page.wait_for_selector("#comp-download:not([hidden])")
+    assert count(page, "#comp-plot polyline") == 4
+    assert page.locator("#comp-text").text_content().strip()
+    page.click("#run-as-left")
+    page.wait_for_selector("#run-phase:has-text('as-left')")
+    page.wait_for_selector("#run-state[data-state=done]", timeout=60_000)
+    page.get_by_role("button", name="7 Compensate").click()
+    page.click("#before-after")
+    page.wait_for_selector("#changes tbody tr")
+    changes = page.locator("#changes tbody tr")
+    assert changes.count() == 4
+    before, after = (float(changes.first.locator("td").nth(i).text_content().split()[0]) for i in (2, 3))
+    assert after < before / 3  # the table takes most of the error away
+
+    # 8. finish: both reports made (HTML, PDF, results) and stored; the machine is now in the history
+    page.get_by_role("button", name="8 Finish").click()
+    page.click("#finish")
+    page.wait_for_selector("#report-links li", timeout=60_000)
+    links = page.locator("#report-links a")
+    assert links.count() == 6
+    report = page.request.get(workbench.server.url.rstrip("/") + links.first.get_attribute("href"))
+    assert report.ok and "<html" in report.text().lower()
+    page.get_by_role("button", name="1 Machines").click()
+    page.wait_for_function("document.querySelectorAll('#machines tbody tr').length === 2")
+    page.locator("#machines tbody tr", has_text="VMC 1 (S1)").get_by_role("button", name="Open").click()
+    page.wait_for_selector("#machine-title:has-text('VMC 1 (S1)')")
+    assert count(page, "#visits tbody tr") == 2
+    reports = [a.get_attribute("href") for a in page.locator("#visits tbody a").all()]
+    assert sorted(reports) == ["/files/vmc-1-2026-11-26/as-left/report/report.html", "/files/vmc-1-2026-11-26/report/report.html"]
+    assert not browser_page.errors, browser_page.errors
+    external = [u for u in browser_page.requests if not u.startswith(workbench.server.url.rstrip("/"))]
+    assert external == []
