@@ -4,7 +4,9 @@
 through a recording or a live source and returns the positioning run; :func:`capture_to_file` is
 ``axiscal capture`` (a partial file as it goes, resume, the run written atomically);
 :func:`simulate_capture` runs a program on the virtual machine and records what a laser reads;
-:func:`measure_axis` does plan, program, run and capture for one axis of the virtual machine.
+:func:`measure_axis` does plan, program, run and capture for one axis of the virtual machine;
+:func:`on_the_fly_run` takes the readings as the axis passes the targets without stopping, from a
+recording that carries the machine's position stream beside the laser's reading.
 """
 
 from __future__ import annotations
@@ -59,6 +61,15 @@ from axiscal.capture.cycle import (
 from axiscal.capture.board import (
     CaptureBoard,
 )
+from axiscal.capture.on_the_fly import (
+    FlyRecording,
+    OnTheFly,
+    estimate_delay,
+    on_the_fly,
+    on_the_fly_run,
+    on_the_fly_to_file,
+    read_fly_recording,
+)
 
 __all__ = [
     "Stop",
@@ -93,4 +104,11 @@ __all__ = [
     "AxisMeasurement",
     "measure_axis",
     "CaptureBoard",
+    "FlyRecording",
+    "OnTheFly",
+    "estimate_delay",
+    "on_the_fly",
+    "on_the_fly_run",
+    "on_the_fly_to_file",
+    "read_fly_recording",
 ]
