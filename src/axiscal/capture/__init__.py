@@ -70,6 +70,7 @@ from axiscal.capture.on_the_fly import (
     on_the_fly_to_file,
     read_fly_recording,
 )
+from axiscal.capture.on_the_fly_plot import plot_on_the_fly
 
 __all__ = [
     "Stop",
@@ -111,4 +112,5 @@ __all__ = [
     "on_the_fly_run",
     "on_the_fly_to_file",
     "read_fly_recording",
+    "plot_on_the_fly",
 ]

@@ -138,18 +138,23 @@ def capture_command(plan_csv, recording, source_spec, output, unit, channel, sta
 @click.option("--reference-position-mm", type=FINITE, default=0.0, show_default=True, help="FANUC: machine position of the reference position.")
 @click.option("--rate-hz", type=FINITE, default=1000.0, show_default=True, help="Samples per second of the laser.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the laser's noise.")
+@click.option("--continuous", is_flag=True, help="Blend moves in one direction (path mode): the axis passes the targets without stopping.")
+@click.option("--position-delay-ms", type=FINITE, default=None, help="Also record the controller's position stream (position_mm), stamped this late.")
 def simulate_capture_command(program, machine, axis, output, dialect, compensation, controller, comp_type, reference_position_mm,
-                             rate_hz, seed):
+                             rate_hz, seed, continuous, position_delay_ms):
     """Run PROGRAM on the virtual machine and record what a laser on --axis reads over time.
 
     Moves are trapezoidal at the programmed feed, each stop rings and creeps, dwells are held; the axis
     carries the model's positioning error and a reversal; the reading is raw (vacuum wavelength) with
     the air sensors recorded beside it. With --compensation the virtual controller applies that file.
     """
-    with flags_named({"reference_position_m": "--reference-position-mm", "rate_hz": "--rate-hz"}):
+    with flags_named({"reference_position_m": "--reference-position-mm", "rate_hz": "--rate-hz",
+                      "position_delay_s": "--position-delay-ms"}):
         simulated = simulate_capture(program, machine, output, axis=axis.upper(), dialect=dialect, compensation=compensation,
                                      controller=controller, comp_type=int(comp_type),
-                                     reference_position_m=reference_position_mm * MM, rate_hz=rate_hz, seed=seed)
+                                     reference_position_m=reference_position_mm * MM, rate_hz=rate_hz, seed=seed,
+                                     continuous=continuous,
+                                     position_delay_s=None if position_delay_ms is None else position_delay_ms * 1e-3)
     click.echo(f"axiscal: note: {simulated.recording.time_s.size} samples over {simulated.settings['duration_s']:.1f} s,"
                f" {len(simulated.dwells)} dwells, written to {output}", err=True)
 

@@ -16,7 +16,6 @@ from axiscal.dynamics.motion import (
     StopDynamics,
     derivatives,
     savgol_bandwidth_hz,
-    stop_dynamics,
     welch_spectrum,
 )
 from axiscal.dynamics.analysis import (
@@ -32,6 +31,7 @@ from axiscal.dynamics.periodic import (
     periodic_error,
     periodic_from_file,
 )
+from axiscal.dynamics.plot import plot_dynamics, plot_periodic
 
 __all__ = [
     "Derivatives",
@@ -40,7 +40,6 @@ __all__ = [
     "StopDynamics",
     "derivatives",
     "savgol_bandwidth_hz",
-    "stop_dynamics",
     "welch_spectrum",
     "AxisDynamics",
     "DynamicsSettings",
@@ -51,4 +50,6 @@ __all__ = [
     "amplitude_spectrum",
     "periodic_error",
     "periodic_from_file",
+    "plot_dynamics",
+    "plot_periodic",
 ]

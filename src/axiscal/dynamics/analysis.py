@@ -23,8 +23,8 @@ from axiscal.dynamics.motion import (
     Spectrum,
     StopDynamics,
     _derivatives,
+    _stop_dynamics,
     _welch,
-    stop_dynamics,
 )
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_instance, check_number
@@ -251,7 +251,7 @@ def axis_dynamics(
         arrival = float(d.time_s[b - 1])
         if departure - arrival < settings.final_window_s:
             continue  # a turnaround or a pass, not a stop to settle at
-        stops.append(stop_dynamics(d.time_s, d.reading_m, arrival_s=arrival, departure_s=departure,
+        stops.append(_stop_dynamics(d.time_s, d.reading_m, arrival_s=arrival, departure_s=departure,
                                    direction=moves[-1].direction, band_m=settings.band_m,
                                    final_window_s=settings.final_window_s, ring_s=settings.ring_s))
     if steps is not None:

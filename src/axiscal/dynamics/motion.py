@@ -44,7 +44,6 @@ __all__ = [
     "savgol_bandwidth_hz",
     "derivatives",
     "welch_spectrum",
-    "stop_dynamics",
 ]
 
 
@@ -351,7 +350,7 @@ def _damped_sine(t: np.ndarray, y: np.ndarray) -> tuple[float, float]:
     return float(f), (math.inf if inv_tau == 0 else float(1 / inv_tau))
 
 
-def stop_dynamics(
+def _stop_dynamics(
     time_s: np.ndarray, reading_m: np.ndarray, *, arrival_s: float, departure_s: float, direction: str,
     band_m: float, final_window_s: float, ring_s: float,
 ) -> StopDynamics:
