@@ -239,21 +239,29 @@ def axis_dynamics(
     step = float(d.time_s[1] - d.time_s[0])
     pad = int(round(settings.window_s / step))
     moves, stops = [], []
-    for i, (a, b, sign) in enumerate(spans):
+    for a, b, sign in spans:
         # acceleration and jerk peak where the speed is still below the threshold: a window each side counts
         lo, hi = max(0, a - pad), min(d.time_s.size, b + pad)
         moves.append(MoveDynamics(
             float(d.time_s[a]), float(d.time_s[b - 1]), float(d.position_m[a]), float(d.position_m[b - 1]),
             float(np.max(np.abs(d.velocity_m_s[a:b]))), float(np.max(np.abs(d.acceleration_m_s2[lo:hi]))),
             float(np.max(np.abs(d.jerk_m_s3[lo:hi]))), "+" if sign > 0 else "-"))
-        # the stop ends half a window before the next move's speed crosses the threshold (the smoothing's reach)
-        departure = float(d.time_s[spans[i + 1][0]]) - 0.5 * d.window_s if i + 1 < len(spans) else float(d.time_s[-1]) + step
-        arrival = float(d.time_s[b - 1])
-        if departure - arrival < settings.final_window_s:
-            continue  # a turnaround or a pass, not a stop to settle at
-        stops.append(_stop_dynamics(d.time_s, d.reading_m, arrival_s=arrival, departure_s=departure,
-                                   direction=moves[-1].direction, band_m=settings.band_m,
-                                   final_window_s=settings.final_window_s, ring_s=settings.ring_s))
+    # a stop: a rest of at least final_window_s after a move (a turnaround, or ringing fast enough to pass the
+    # threshold, belongs to the approach); it is measured from the approach's last long move
+    group_start = 0
+    for i, (a, b, sign) in enumerate(spans):
+        nxt = spans[i + 1][0] if i + 1 < len(spans) else None
+        departure = float(d.time_s[nxt]) - 0.5 * d.window_s if nxt is not None else float(d.time_s[-1]) + step
+        rest = float(d.time_s[b - 1])
+        if departure - rest < settings.final_window_s:
+            continue
+        group = moves[group_start:i + 1]
+        longest = max(abs(m.to_m - m.from_m) for m in group)
+        last_long = [m for m in group if abs(m.to_m - m.from_m) >= 0.9 * longest][-1]
+        stops.append(_stop_dynamics(d.time_s, d.reading_m, move_s=last_long.start_s, rest_s=rest, departure_s=departure,
+                                    direction=last_long.direction, band_m=settings.band_m,
+                                    final_window_s=settings.final_window_s, ring_s=settings.ring_s))
+        group_start = i + 1
     if steps is not None:
         stops = _label(stops, steps, settings.tolerance_m)
     return AxisDynamics(d, spectrum, tuple(moves), tuple(stops), settings, recording.source)

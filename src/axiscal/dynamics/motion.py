@@ -195,7 +195,7 @@ def savgol_bandwidth_hz(window: int, polyorder: int, rate_hz: float) -> float:
     Examples
     --------
     >>> round(savgol_bandwidth_hz(21, 3, 1000.0), 1)
-    65.0
+    50.9
     """
     window = check_count("window", window, minimum=3)
     polyorder = check_count("polyorder", polyorder, minimum=0)
@@ -211,7 +211,7 @@ def _bandwidth(window: int, polyorder: int, rate_hz: float) -> float:
     h = savgol_coeffs(window, polyorder)
     m = (window - 1) // 2
     k = np.arange(-m, m + 1)
-    f = np.linspace(0.0, 0.5, 4097)
+    f = np.linspace(0.0, 0.5, 2049)
     gain = np.abs(np.cos(2 * np.pi * np.outer(f, k)) @ h)  # symmetric filter: a real response
     below = np.flatnonzero(gain < 1 / math.sqrt(2))
     if below.size == 0:
@@ -325,11 +325,15 @@ def _damped_sine(t: np.ndarray, y: np.ndarray) -> tuple[float, float]:
 
     if y.size < 8 or not np.any(y):
         return math.nan, math.nan
-    crossings = np.flatnonzero(np.signbit(y[1:]) != np.signbit(y[:-1]))
-    if crossings.size < 2:
+    # the starting frequency: the peak of the zero-padded spectrum (noise crossings in the decayed tail would mislead a count)
+    step = float(t[1] - t[0])
+    n = 16 * y.size
+    spectrum = np.abs(np.fft.rfft(y - y.mean(), n))
+    freq = np.fft.rfftfreq(n, step)
+    low = max(1, int(np.searchsorted(freq, 2.0 / (t[-1] - t[0]))))
+    if low >= freq.size - 1:
         return math.nan, math.nan
-    half = np.diff(t[crossings]).mean()
-    f0 = 1 / (2 * half)
+    f0 = float(freq[low + int(np.argmax(spectrum[low:]))])
     peak = float(np.max(np.abs(y)))
     span = t[-1] - t[0]
 
@@ -351,7 +355,7 @@ def _damped_sine(t: np.ndarray, y: np.ndarray) -> tuple[float, float]:
 
 
 def _stop_dynamics(
-    time_s: np.ndarray, reading_m: np.ndarray, *, arrival_s: float, departure_s: float, direction: str,
+    time_s: np.ndarray, reading_m: np.ndarray, *, move_s: float, rest_s: float, departure_s: float, direction: str,
     band_m: float, final_window_s: float, ring_s: float,
 ) -> StopDynamics:
     """Settling, overshoot and ringing of one stop (inner: its caller checked the arguments).
@@ -360,8 +364,12 @@ def _stop_dynamics(
     ----------
     time_s, reading_m : ndarray, shape (n,)
         The recording (seconds, metres).
-    arrival_s, departure_s : float, seconds
-        The stop's span.
+    move_s, rest_s, departure_s : float, seconds
+        Start of the last move before the stop, when its speed fell below the threshold, and
+        when the next move began. The final value is the mean over ``[rest, departure]``'s last
+        window; the stop begins (arrival) when the reading first reached the final value after
+        ``move_s``, so that an axis that overshoots by more than the threshold speed allows is
+        measured from its first arrival.
     direction : str
         ``"+"`` or ``"-"``, the direction of the move that ended.
     band_m : float, metres
@@ -375,13 +383,20 @@ def _stop_dynamics(
     -------
     StopDynamics
     """
-    a, b = np.searchsorted(time_s, [arrival_s, departure_s])
-    t, x = time_s[a:b] - arrival_s, reading_m[a:b]
-    if x.size == 0:
+    sign = 1.0 if direction == "+" else -1.0
+    r0, b = np.searchsorted(time_s, [rest_s, departure_s])
+    if b <= r0:
         nan = math.nan
-        return StopDynamics(arrival_s, departure_s, nan, nan, nan, nan, nan, nan, direction)
+        return StopDynamics(rest_s, departure_s, nan, nan, nan, nan, nan, nan, direction)
+    tail = time_s[r0:b] >= time_s[b - 1] - final_window_s
+    final_value = float(reading_m[r0:b][tail].mean())
+    m0 = int(np.searchsorted(time_s, move_s))
+    reached = np.flatnonzero(sign * (reading_m[m0:b] - final_value) >= 0)
+    a = m0 + int(reached[0]) if reached.size else r0
+    arrival_s = float(time_s[a])
+    t, x = time_s[a:b] - arrival_s, reading_m[a:b]
     last = t >= t[-1] - final_window_s
-    final = float(x[last].mean())
+    final = final_value
     outside = np.flatnonzero(np.abs(x - final) > band_m)
     if outside.size == 0:
         settling = 0.0
@@ -389,7 +404,6 @@ def _stop_dynamics(
         settling = math.nan
     else:
         settling = float(t[min(outside[-1] + 1, t.size - 1)])
-    sign = 1.0 if direction == "+" else -1.0
     overshoot = max(0.0, float(np.max(sign * (x - final))))
     ring = t <= ring_s
     f, tau = _damped_sine(t[ring], x[ring] - final)
