@@ -50,3 +50,20 @@ def test_step_cycle_plan_is_even_over_whole_periods():
     assert np.diff(plan.targets) == pytest.approx(np.full(24, 5e-3 / 12), abs=1.01e-6)  # targets to 1 um
     assert plan.targets[-1] - plan.targets[0] == pytest.approx(10e-3)
     assert plan.readings == 2 * 2 * 25 and plan.cycle == "step"
+
+
+def test_a_screw_error_on_the_virtual_machine_through_the_step_cycle():
+    # the virtual axis carries 0.4 um sin(2 pi m / 5 mm): the step cycle's captured run gives it back (periodic 0.8 um p-p)
+    from axiscal.capture import VirtualAxis, capture_run, simulate_motions
+    from axiscal.io.gcode import program_motions
+    from axiscal.model import load_machine
+    from axiscal.positioning import gcode_program
+
+    plan = plan_step_cycle(0.1, 5e-3, periods=2, steps_per_period=8)
+    spec = VirtualAxis(periodic_m=0.4e-6, pitch_m=5e-3, repeatability_m=0.02e-6)
+    simulated = simulate_motions(program_motions(gcode_program(plan, dwell_s=0.8, feed_mm_per_min=600), dialect="linuxcnc"),
+                                 load_machine("examples/xz_module/machine.toml"), axis="X", spec=spec, rate_hz=200.0)
+    result = periodic_error(capture_run(plan, simulated.recording))
+    assert result.main.amplitude_m == pytest.approx(0.4e-6, abs=0.03e-6)
+    assert result.main.period_m == pytest.approx(5e-3, rel=0.03)
+    assert result.main.spectrum_period_m == pytest.approx(5e-3, rel=0.1)

@@ -70,6 +70,9 @@ class VirtualAxis:
         Standard deviation of the laser's white noise (default 20 nm).
     air_drift_c : float
         Rise of the air temperature over the run (default 0.4 degC, from 20.2 degC).
+    periodic_m, pitch_m : float
+        A periodic error of the screw, ``periodic_m sin(2 pi m / pitch_m)`` at motor position
+        ``m`` (default none; pitch 5 mm).
     """
 
     acceleration_m_s2: float = 1.0
@@ -83,11 +86,13 @@ class VirtualAxis:
     creep_s: float = 0.25
     noise_m: float = 20e-9
     air_drift_c: float = 0.4
+    periodic_m: float = 0.0
+    pitch_m: float = 5e-3
 
     def __post_init__(self) -> None:
-        for name in ("acceleration_m_s2", "rapid_m_s", "settle_hz", "settle_s", "creep_s"):
+        for name in ("acceleration_m_s2", "rapid_m_s", "settle_hz", "settle_s", "creep_s", "pitch_m"):
             check_number(name, getattr(self, name), positive=True)
-        for name in ("reversal_m", "repeatability_m", "settle_m", "creep_m", "noise_m", "air_drift_c"):
+        for name in ("reversal_m", "repeatability_m", "settle_m", "creep_m", "noise_m", "air_drift_c", "periodic_m"):
             check_number(name, getattr(self, name), nonnegative=True)
 
 
@@ -289,6 +294,8 @@ def simulate_motions(
     rng = np.random.default_rng([seed, 20])
     scatter = rng.normal(0.0, spec.repeatability_m, len(seg))  # where each move ends, arrival to arrival
     position = motor + error - direction * spec.reversal_m / 2 + scatter[np.maximum(last_move, 0)][k]
+    if spec.periodic_m:
+        position += spec.periodic_m * np.sin(2 * np.pi * motor / spec.pitch_m)
     # settling and creep after each arrival (the end of every move), the last two arrivals summed
     arrive = seg[moves, 0] + seg[moves, 1]
     arrive_sign = move_sign[moves]
@@ -325,6 +332,8 @@ def simulate_motions(
                                  "settle_hz": spec.settle_hz, "settle_s": spec.settle_s, "creep_um": spec.creep_m / UM,
                                  "creep_s": spec.creep_s, "noise_um": spec.noise_m / UM, "air_drift_c": spec.air_drift_c},
                 "wavelength_nm": wavelength_nm}
+    if spec.periodic_m:
+        settings["virtual_axis"].update(periodic_um=spec.periodic_m / UM, pitch_mm=spec.pitch_m / MM)
     if continuous:
         settings["continuous"] = True
     position = None
