@@ -61,6 +61,10 @@ WRITES = [
     (("history", "export"), "--output", ["history", "export", "M", "--db", "{tmp}/h.db", "-o", "{out}/h.csv"]),
     (("history", "trend"), "--plot", ["history", "trend", "M", "--figure", "positioning.X.E", "--db", "{tmp}/h.db", "--plot", "{out}/t.png"]),
     (("fleet", "report"), "--output", ["fleet", "report", "{tmp}/fleet", "--scheduler", "threads", "-o", "{out}/fleet"]),
+    (("dynamics",), "--plot", ["dynamics", "{ex}/capture/recording_x.csv", "--plot", "{out}/d.png"]),
+    (("periodic",), "--plot", ["periodic", "{ex}/dynamics/step_cycle_run.csv", "--plot", "{out}/p.png"]),
+    (("on-the-fly",), "--output", ["on-the-fly", "{ex}/dynamics/fly_plan.csv", "--from", "{ex}/dynamics/fly_recording.csv", "-o", "{out}/r.csv"]),
+    (("on-the-fly",), "--plot", ["on-the-fly", "{ex}/dynamics/fly_plan.csv", "--from", "{ex}/dynamics/fly_recording.csv", "-o", "{tmp}/r.csv", "--plot", "{out}/f.png"]),
     (("live",), "--record", ["live", "--no-server", "--no-pace", "--duration", "0.05", "--record", "{out}/live.csv"]),
 ]
 WRITING_FLAGS = ("--output", "--plot", "--gcode", "--record")
