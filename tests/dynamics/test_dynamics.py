@@ -79,6 +79,7 @@ def test_virtual_machine_ringing_is_recovered():
     assert len(result.stops) == plan.readings
     assert [s.step for s in result.stops] == [k + 1 for k in range(plan.moves.size) if np.isfinite(plan.move_target[k])]
     assert np.median([s.ringing_hz for s in result.stops]) == pytest.approx(25.0, rel=0.02)
+    assert result.spectrum.over == "stops" and result.spectrum.peak_hz == pytest.approx(25.0, abs=result.spectrum.resolution_hz)
     assert np.median([s.damping_ratio for s in result.stops]) == pytest.approx(zeta, abs=0.01)
     summary = result.summary()
     assert summary["peak_velocity_mm_s"] == pytest.approx(2000 / 60, rel=0.01)

@@ -59,6 +59,9 @@ _TOLERANCE_KEYS = {
     "thermal_drift_um": float,
     "calibration_um": float,
     "calibration_arcsec": float,
+    "settling_s": float,
+    "overshoot_um": float,
+    "periodic_um": float,
 }
 
 # option types: "str", "float", "int", "bool", "file", "floats2", ("choice", values)
@@ -102,10 +105,16 @@ KINDS: dict[str, dict[str, Any]] = {
     "thermal_drift": {"file": "file"},
     "sensor_calibration": {"file": "file", "machine": "file"},
     "sixdof_diagonal": {"file": "file", "frames": "file", "machine": "file", "from": "str", "to": "str"},
+    "dynamics": {"axis": "axis", "file": "file", "plan": "file", "channel": "str", "window_ms": "float", "band_um": "float"},
+    "periodic": {"axis": "axis", "file": "file", "period_mm": "float"},
+    "on_the_fly": {
+        "axis": "axis", "file": "file", "plan": "file", "channel": "str", "delay_ms": "float",
+        "standard": ("choice", ("iso230-2:2014", "iso230-2:2006", "iso230-2:1997", "iso230-2:1988", "jis-b6192")),
+    },
 }
 #: the kinds held against one tolerance of the campaign's (or their own)
 _OWN_TOLERANCE = {"levels": "straightness_um", "flatness": "flatness_um", "thermal_etve": "etve_um",
-                  "thermal_drift": "thermal_drift_um"}
+                  "thermal_drift": "thermal_drift_um", "periodic": "periodic_um"}
 #: the data file(s) each kind cannot do without
 _REQUIRED = {
     "positioning": ("axis", "file"),
@@ -121,6 +130,9 @@ _REQUIRED = {
     "thermal_drift": ("file",),
     "sensor_calibration": ("file",),
     "sixdof_diagonal": ("file", "frames", "from", "to"),
+    "dynamics": ("file",),
+    "periodic": ("axis", "file"),
+    "on_the_fly": ("axis", "file", "plan"),
 }
 
 
@@ -418,7 +430,7 @@ def _merged_tolerances(
     C); the campaign's limits of the other kind do not apply to the axis.
     """
     out: dict[str, float] = {}
-    if kind == "positioning":
+    if kind in ("positioning", "on_the_fly"):
         unit = "_arcsec" if axis in ("A", "B", "C") else "_um"
         out.update({k: v for k, v in campaign.get("positioning", {}).items() if k.endswith(unit)})
         out.update(own.get("positioning", {}))
@@ -446,6 +458,9 @@ def _merged_tolerances(
     elif kind == "sensor_calibration":
         for source in (campaign, own):
             out.update({k: source[k] for k in ("calibration_um", "calibration_arcsec") if k in source})
+    elif kind == "dynamics":
+        for source in (campaign, own):
+            out.update({k: source[k] for k in ("settling_s", "overshoot_um") if k in source})
     return {k: float(v) for k, v in out.items()}
 
 

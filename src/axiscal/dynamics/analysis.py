@@ -25,6 +25,7 @@ from axiscal.dynamics.motion import (
     _derivatives,
     _stop_dynamics,
     _welch,
+    _welch_pieces,
 )
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_instance, check_number
@@ -88,7 +89,8 @@ class AxisDynamics:
     derivatives : Derivatives
         Smoothed position, velocity, acceleration and jerk.
     spectrum : Spectrum
-        Welch's amplitude spectral density of the reading.
+        Welch's amplitude spectral density of the reading at the stops (of the whole recording
+        when there is no stop).
     moves : tuple of MoveDynamics
     stops : tuple of StopDynamics
         One after each move that the axis rests after for at least ``final_window_s`` (a
@@ -133,7 +135,8 @@ class AxisDynamics:
             "differentiator": {"method": "Savitzky-Golay", "window_ms": d.window_s * 1e3, "polyorder": d.polyorder,
                                "bandwidth_hz": d.bandwidth_hz, "resampled": d.resampled,
                                "rate_hz": 1 / float(d.time_s[1] - d.time_s[0])},
-            "spectrum": {"method": "Welch (Hann, half overlap, linear detrend)", "segment_s": self.spectrum.segment_s,
+            "spectrum": {"method": f"Welch (Hann, half overlap, linear detrend) over the {self.spectrum.over}",
+                         "segment_s": self.spectrum.segment_s,
                          "resolution_hz": self.spectrum.resolution_hz, "peak_hz": self.spectrum.peak_hz},
             **self.summary(),
             "moves": [{"start_s": m.start_s, "end_s": m.end_s, "from_mm": m.from_m / MM, "to_mm": m.to_m / MM,
@@ -233,8 +236,6 @@ def axis_dynamics(
         d = _derivatives(recording.time_s, recording.reading_m, settings.window_s, settings.polyorder)
     except AxiscalError as exc:
         raise exc.located(path=recording.source) from None
-    spectrum = _welch(d.position_m if d.resampled else recording.reading_m, float(d.time_s[1] - d.time_s[0]),
-                      settings.segment_s)
     spans = _moves(d, settings)
     step = float(d.time_s[1] - d.time_s[0])
     pad = int(round(settings.window_s / step))
@@ -264,6 +265,10 @@ def axis_dynamics(
         group_start = i + 1
     if steps is not None:
         stops = _label(stops, steps, settings.tolerance_m)
+    # the spectrum where the axis rests (its moves would hide its vibration), else of the whole recording
+    pieces = [d.reading_m[a:b] for a, b in (np.searchsorted(d.time_s, [s.arrival_s, s.departure_s]) for s in stops) if b - a >= 8]
+    spectrum = (_welch_pieces(pieces, step, settings.segment_s, "stops") if pieces
+                else _welch(d.reading_m, step, settings.segment_s))
     return AxisDynamics(d, spectrum, tuple(moves), tuple(stops), settings, recording.source)
 
 

@@ -19,7 +19,9 @@ the axis moves and stops. From it:
   ``x = final + A exp(-t / tau) sin(2 pi f_d t + phi)``, and the damping ratio of the equivalent
   second-order system is ``zeta = sigma / sqrt(sigma^2 + (2 pi f_d)^2)`` with ``sigma = 1 / tau``.
 - **Spectrum**: Welch's averaged periodogram (Welch, IEEE Trans. Audio Electroacoustics 15, 1967)
-  of the reading with each segment's straight line removed, as an amplitude spectral density.
+  of the reading with each segment's straight line removed, as an amplitude spectral density;
+  over the stops, where the axis rests and its vibration is not hidden by its moves (over the
+  whole recording where there is no stop).
 
 Samples not evenly spaced (a live record's jitter) are first interpolated onto an even grid at the
 median interval; the result says so.
@@ -96,6 +98,9 @@ class Spectrum:
         Frequency step (1 / segment).
     peak_hz : float, hertz
         Frequency of the largest density above the lowest two bins (NaN when there are none).
+    over : str
+        ``"recording"`` (the whole reading) or ``"stops"`` (averaged over the stops, where the
+        axis rests and its vibration is not hidden by its moves).
     """
 
     frequency_hz: np.ndarray
@@ -103,6 +108,7 @@ class Spectrum:
     segment_s: float
     resolution_hz: float
     peak_hz: float
+    over: str = "recording"
 
 
 @dataclass(frozen=True)
@@ -310,13 +316,22 @@ def welch_spectrum(time_s: Any, reading_m: Any, *, segment_s: float = 1.0) -> Sp
 
 
 def _welch(x: np.ndarray, step: float, segment_s: float) -> Spectrum:
+    return _welch_pieces([x], step, segment_s, "recording")
+
+
+def _welch_pieces(pieces: list[np.ndarray], step: float, segment_s: float, over: str) -> Spectrum:
+    """Welch's density averaged over pieces of a reading (each piece's periodogram weighted by its length)."""
     from scipy.signal import welch
 
-    n = int(min(x.size, max(8, round(segment_s / step))))
-    f, p = welch(x, fs=1 / step, window="hann", nperseg=n, detrend="linear", scaling="density")
-    density = np.sqrt(p)
+    n = int(min(min(p.size for p in pieces), max(8, round(segment_s / step))))
+    total, weight = None, 0
+    for piece in pieces:
+        f, p = welch(piece, fs=1 / step, window="hann", nperseg=n, detrend="linear", scaling="density")
+        total = p * piece.size if total is None else total + p * piece.size
+        weight += piece.size
+    density = np.sqrt(total / weight)
     peak = float(f[2 + int(np.argmax(density[2:]))]) if f.size > 2 else math.nan
-    return Spectrum(f, density, n * step, float(f[1] - f[0]) if f.size > 1 else math.nan, peak)
+    return Spectrum(f, density, n * step, float(f[1] - f[0]) if f.size > 1 else math.nan, peak, over)
 
 
 def _damped_sine(t: np.ndarray, y: np.ndarray) -> tuple[float, float]:

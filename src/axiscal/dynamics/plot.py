@@ -42,25 +42,27 @@ def plot_dynamics(path: str | Path, result: AxisDynamics) -> Path:
     check_instance("result", result, AxisDynamics, what="an AxisDynamics (axis_dynamics)")
     path = check_path("path", path)
     d, s = result.derivatives, result.spectrum
+    every = max(1, d.time_s.size // 2000)  # at most some 2000 points a line: the figure shows the shape, not each sample
+    t = d.time_s[::every]
     plt = pyplot()
     fig, axes = plt.subplots(4, 1, figsize=(8, 9))
-    axes[0].plot(d.time_s, d.position_m / MM, lw=0.8)
+    fig.subplots_adjust(left=0.11, right=0.97, top=0.96, bottom=0.06, hspace=0.45)
+    axes[0].plot(t, d.position_m[::every] / MM, lw=0.8)
     for stop in result.stops:
         axes[0].axvspan(stop.arrival_s, stop.arrival_s + (stop.settling_s if np.isfinite(stop.settling_s) else 0.0),
                         color="tab:orange", alpha=0.4, lw=0)
     axes[0].set_ylabel("position / mm")
     axes[0].set_title(f"Savitzky-Golay {d.window_s * 1e3:.3g} ms, degree {d.polyorder}, bandwidth {d.bandwidth_hz:.3g} Hz;"
                       " settling shaded", fontsize=9)
-    axes[1].plot(d.time_s, d.velocity_m_s / MM, lw=0.8)
+    axes[1].plot(t, d.velocity_m_s[::every] / MM, lw=0.8)
     axes[1].set_ylabel("velocity / (mm/s)")
-    axes[2].plot(d.time_s, d.acceleration_m_s2, lw=0.8)
+    axes[2].plot(t, d.acceleration_m_s2[::every], lw=0.8)
     axes[2].set_ylabel("acceleration / (m/s^2)")
     axes[2].set_xlabel("time / s")
     axes[3].loglog(s.frequency_hz[1:], s.density_m_rthz[1:] / UM, lw=0.8)
     axes[3].set_xlabel("frequency / Hz")
     axes[3].set_ylabel("um/sqrt(Hz)")
     axes[3].set_title(f"Welch, segments {s.segment_s:.3g} s; peak {s.peak_hz:.3g} Hz", fontsize=9)
-    fig.tight_layout()
     return save_figure(fig, path)
 
 

@@ -40,6 +40,9 @@ _OWN_SECTIONS = {
     "flatness": ("flatness", "Flatness"),
     "thermal_etve": ("thermal", "Thermal tests (ISO 230-3)"),
     "thermal_drift": ("thermal", "Thermal tests (ISO 230-3)"),
+    "dynamics": ("dynamics", "Dynamics, periodic errors and on-the-fly positioning"),
+    "periodic": ("dynamics", "Dynamics, periodic errors and on-the-fly positioning"),
+    "on_the_fly": ("dynamics", "Dynamics, periodic errors and on-the-fly positioning"),
 }
 _SECTION_TITLES = {"sensor_calibration": "Sensor calibration", "sixdof_diagonal": "Diagonal with the 6-DOF sensors"}
 
