@@ -62,3 +62,20 @@ def test_a_target_the_axis_rests_at_is_refused(runs):
     rec = FlyRecording(t, r.reading_m, t, np.interp(t, t, r.reading_m), r.channels, "stops.csv")
     with pytest.raises(AxiscalError, match="comes to rest at the target"):
         on_the_fly(plan, rec, delay_s=0.0)
+
+
+from hypothesis import given, settings
+from hypothesis import strategies as hs
+
+
+@settings(max_examples=20, deadline=None)
+@given(delay=hs.floats(-0.2, 0.2), offset=hs.floats(-5e-6, 5e-6))
+def test_any_delay_of_a_trapezoidal_pass_is_found_whatever_the_offset(delay, offset):
+    # a forward and a backward pass (1 m/s^2, 20 mm/s) with the position stream shifted by the delay; an offset of the laser
+    # that changes sign with the direction (a reversal) does not move the estimate
+    t = np.arange(0, 6, 1e-3)
+    v = np.interp(t, [0.5, 0.52, 2.0, 2.02, 3.0, 3.02, 4.5, 4.52], [0, 0.02, 0.02, 0, 0, -0.02, -0.02, 0])
+    x = np.concatenate([[0], np.cumsum((v[1:] + v[:-1]) / 2) * 1e-3])
+    laser = x + offset * np.where(t < 2.5, 1.0, -1.0)
+    rec = FlyRecording(t, laser, t, np.interp(t - delay, t, x))
+    assert estimate_delay(rec) == pytest.approx(delay, abs=2e-6)

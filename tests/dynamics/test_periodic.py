@@ -67,3 +67,32 @@ def test_a_screw_error_on_the_virtual_machine_through_the_step_cycle():
     assert result.main.amplitude_m == pytest.approx(0.4e-6, abs=0.03e-6)
     assert result.main.period_m == pytest.approx(5e-3, rel=0.03)
     assert result.main.spectrum_period_m == pytest.approx(5e-3, rel=0.1)
+
+
+from hypothesis import given, settings
+from hypothesis import strategies as hs
+
+
+def plain_spectrum(p, y, periods):
+    """The reference: one least-squares fit of line, cosine and sine per trial period."""
+    out = []
+    for q in periods:
+        a = np.column_stack([np.ones_like(p), p, np.cos(2 * np.pi * p / q), np.sin(2 * np.pi * p / q)])
+        coef = np.linalg.lstsq(a, y, rcond=None)[0]
+        out.append(np.hypot(coef[2], coef[3]))
+    return np.array(out)
+
+
+@settings(max_examples=25, deadline=None)
+@given(amplitude=hs.floats(0.05, 5.0), period=hs.floats(2.0, 8.0), phase=hs.floats(-3.0, 3.0), slope=hs.floats(-5.0, 5.0),
+       seed=hs.integers(0, 1000))
+def test_any_sine_on_uneven_targets_is_found_and_the_spectrum_equals_the_plain_fits(amplitude, period, phase, slope, seed):
+    rng = np.random.default_rng(seed)
+    p = np.sort(rng.uniform(0.0, 20e-3, 40))
+    p = p[np.r_[True, np.diff(p) > 1e-6]]
+    x = (slope * p / 1e-3 * 1e-3 + amplitude * np.sin(2 * np.pi * p / (period * 1e-3) + phase)) * 1e-6
+    result = periodic_error(PositioningRun(p, x[:, None], None))
+    assert result.main.amplitude_m == pytest.approx(amplitude * 1e-6, rel=1e-5)
+    assert result.main.period_m == pytest.approx(period * 1e-3, rel=1e-5)
+    periods, amps = amplitude_spectrum(p, x)
+    assert amps == pytest.approx(plain_spectrum(p, x, periods), rel=1e-6, abs=1e-15)
