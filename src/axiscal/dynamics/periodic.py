@@ -128,13 +128,14 @@ def _design(p: np.ndarray, period: np.ndarray) -> np.ndarray:
 
 
 def _amplitudes(p: np.ndarray, y: np.ndarray, periods: np.ndarray) -> np.ndarray:
+    """Semi-amplitude of the sine fitted with the line at each trial period (normal equations, one per period)."""
     a = _design(p, periods)
-    coef = np.linalg.lstsq(a[0], y, rcond=None)[0] if periods.size == 1 else None
-    if coef is not None:
-        return np.array([math.hypot(coef[2], coef[3])])
     ata = np.einsum("kmi,kmj->kij", a, a)
     aty = np.einsum("kmi,m->ki", a, y)
-    sol = np.linalg.solve(ata + 1e-300 * np.eye(4), aty[..., None])[..., 0]
+    try:
+        sol = np.linalg.solve(ata, aty[..., None])[..., 0]
+    except np.linalg.LinAlgError:  # a trial period the targets cannot tell from the line: the least-squares solution
+        sol = np.einsum("kij,kj->ki", np.linalg.pinv(ata), aty)
     return np.hypot(sol[:, 2], sol[:, 3])
 
 
@@ -304,5 +305,6 @@ def periodic_from_file(path: str | Path, *, period_m: float | None = None, **rea
     """
     from axiscal.positioning.reader import read_positioning_run
 
-    check_number("period_m", period_m, positive=True) if period_m is not None else None
+    if period_m is not None:
+        check_number("period_m", period_m, positive=True)
     return periodic_error(read_positioning_run(path, **reader).run, period_m=period_m)
