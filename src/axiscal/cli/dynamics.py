@@ -38,19 +38,10 @@ def dynamics_command(recording, plan_csv, unit, channel, window_ms, polyorder, m
         from axiscal.dynamics.plot import plot_dynamics
 
         plot_dynamics(plot_path, result)
-    payload = result.payload()
     if as_json:
-        echo_json(payload)
-        return
-    d = payload["differentiator"]
-    click.echo(f"Savitzky-Golay {d['window_ms']:.3g} ms, degree {d['polyorder']}: bandwidth {d['bandwidth_hz']:.3g} Hz"
-               f" at {d['rate_hz']:.6g} Hz{' (resampled)' if d['resampled'] else ''}")
-    click.echo(f"{len(result.moves)} moves: largest velocity {payload['peak_velocity_mm_s']:.4g} mm/s, acceleration"
-               f" {payload['peak_acceleration_m_s2']:.4g} m/s^2, jerk {payload['peak_jerk_m_s3']:.4g} m/s^3")
-    click.echo(f"{len(result.stops)} stops: settling to +/-{band_um:g} um at most {payload['settling_s']:.4g} s, overshoot at"
-               f" most {payload['overshoot_um']:.4g} um, ringing {payload['ringing_hz']:.4g} Hz, damping ratio"
-               f" {payload['damping_ratio']:.3g} (medians)")
-    click.echo(f"spectrum: peak {payload['spectrum']['peak_hz']:.4g} Hz (resolution {payload['spectrum']['resolution_hz']:.3g} Hz)")
+        echo_json(result.payload())
+    else:
+        click.echo(result.report())
 
 
 @click.command("periodic")
@@ -68,14 +59,10 @@ def periodic_command(run_csv, period_mm, as_json, plot_path):
         from axiscal.dynamics.plot import plot_periodic
 
         plot_periodic(plot_path, result)
-    payload = result.payload()
     if as_json:
-        echo_json(payload)
-        return
-    for c in payload["components"]:
-        click.echo(f"{c['direction']:>4}: {c['peak_to_peak_um']:.4g} um peak to peak (amplitude {c['amplitude_um']:.4g} um),"
-                   f" period {c['period_mm']:.5g} mm{' (given)' if result.period_given else ''}; spectrum:"
-                   f" {c['spectrum_amplitude_um']:.4g} um at {c['spectrum_period_mm']:.5g} mm")
+        echo_json(result.payload())
+    else:
+        click.echo(result.report())
 
 
 @click.command("on-the-fly")

@@ -28,7 +28,8 @@ from axiscal.dynamics.motion import (
     _welch_pieces,
 )
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_count, check_instance, check_number
+from axiscal.io.arguments import check_count, check_instance, check_number, render_checked
+from axiscal.io.templates import render_template
 from axiscal.positioning.plan import PositioningTestPlan
 from axiscal.units import MM, UM
 
@@ -125,6 +126,10 @@ class AxisDynamics:
             "damping_ratio": float(np.nanmedian([s.damping_ratio for s in self.stops])) if any(
                 math.isfinite(s.damping_ratio) for s in self.stops) else math.nan,
         }
+
+    def report(self) -> str:
+        """The readable summary: the differentiator, the largest figures, a line per stop."""
+        return render_checked(render_template, "dynamics.txt.j2", **self.payload()).rstrip("\n")
 
     def payload(self) -> dict[str, Any]:
         """Everything as plain numbers in the units people use (mm, um, s, Hz), for ``--json`` and results.json."""

@@ -28,7 +28,8 @@ from typing import Any
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_instance, check_number, check_optional_number
+from axiscal.io.arguments import check_instance, check_number, check_optional_number, render_checked
+from axiscal.io.templates import render_template
 from axiscal.positioning.evaluation import PositioningRun
 from axiscal.units import MM, UM
 
@@ -99,6 +100,10 @@ class PeriodicError:
     def main(self) -> PeriodicComponent:
         """The bidirectional mean's component (the one direction's where only one was measured)."""
         return self.components[-1]
+
+    def report(self) -> str:
+        """The readable summary: a line per direction (fit and spectrum)."""
+        return render_checked(render_template, "periodic.txt.j2", **self.payload()).rstrip("\n")
 
     def payload(self) -> dict[str, Any]:
         """Figures in mm and um for ``--json`` and results.json; ``periodic_um`` is the main component's 2 A."""
