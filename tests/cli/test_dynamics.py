@@ -21,7 +21,7 @@ def test_dynamics_prints_json_and_draws(run_cli, examples, tmp_path):
 
 def test_dynamics_text_names_the_bandwidth(run_cli, examples):
     status, out, _ = run_cli("dynamics", examples / "capture" / "recording_x.csv")
-    assert status == 0 and "bandwidth" in out and "stops: settling" in out
+    assert status == 0 and "bandwidth" in out and "settling to +/-1 um" in out and "step   arrival_s" in out
 
 
 def test_periodic_of_the_step_cycle_example(run_cli, examples, tmp_path):
