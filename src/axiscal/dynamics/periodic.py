@@ -8,8 +8,8 @@ deviation of each direction at each target (a line removed, the axis's slope and
 
 - **by spectrum**: the least-squares (Lomb-Scargle) amplitude spectrum (Lomb, Astrophysics and
   Space Science 39, 1976; Scargle, Astrophysical Journal 263, 1982): at each trial period the
-  sine and cosine fitted by least squares together with the line; the period where the amplitude
-  is largest. For evenly spaced targets over whole periods it is the discrete Fourier transform's
+  sine and cosine fitted by least squares together with the line; the period whose sine explains
+  most of the deviations (the periodogram's peak), and the amplitude there. For evenly spaced targets over whole periods it is the discrete Fourier transform's
   amplitude; for uneven targets (an ordinary ISO 230-2 run) it still holds.
 - **by fit**: ``x(P) = a + b P + A sin(2 pi P / p + phi)`` fitted by least squares with the
   period ``p`` free (started at the spectrum's peak) or fixed where it is known (the pitch).
@@ -132,8 +132,8 @@ def _design(p: np.ndarray, period: np.ndarray) -> np.ndarray:
     return np.stack([ones, np.broadcast_to(p, angle.shape), np.cos(angle), np.sin(angle)], axis=-1)
 
 
-def _amplitudes(p: np.ndarray, y: np.ndarray, periods: np.ndarray) -> np.ndarray:
-    """Semi-amplitude of the sine fitted with the line at each trial period (normal equations, one per period)."""
+def _fits(p: np.ndarray, y: np.ndarray, periods: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Semi-amplitude of the sine fitted with the line at each trial period, and what each fit leaves (sum of squares)."""
     a = _design(p, periods)
     ata = np.einsum("kmi,kmj->kij", a, a)
     aty = np.einsum("kmi,m->ki", a, y)
@@ -141,10 +141,11 @@ def _amplitudes(p: np.ndarray, y: np.ndarray, periods: np.ndarray) -> np.ndarray
         sol = np.linalg.solve(ata, aty[..., None])[..., 0]
     except np.linalg.LinAlgError:  # a trial period the targets cannot tell from the line: the least-squares solution
         sol = np.einsum("kij,kj->ki", np.linalg.pinv(ata), aty)
-    return np.hypot(sol[:, 2], sol[:, 3])
+    left = np.maximum(float(y @ y) - np.einsum("ki,ki->k", sol, aty), 0.0)
+    return np.hypot(sol[:, 2], sol[:, 3]), left
 
 
-def amplitude_spectrum(positions_m: Any, values_m: Any, *, oversample: int = 8) -> tuple[np.ndarray, np.ndarray]:
+def amplitude_spectrum(positions_m: Any, values_m: Any, *, oversample: int = 32) -> tuple[np.ndarray, np.ndarray]:
     """The least-squares amplitude spectrum of values along an axis (a line fitted with each sine).
 
     Parameters
@@ -154,7 +155,7 @@ def amplitude_spectrum(positions_m: Any, values_m: Any, *, oversample: int = 8) 
     values_m : array_like, shape (m,), metres
         Values there.
     oversample : int, keyword-only
-        Trial frequencies per ``1 / span`` (default 8).
+        Trial frequencies per ``1 / record`` (default 32).
 
     Returns
     -------
@@ -172,7 +173,8 @@ def amplitude_spectrum(positions_m: Any, values_m: Any, *, oversample: int = 8) 
     --------
     >>> p = np.arange(16) * 0.5e-3
     >>> periods, amps = amplitude_spectrum(p, 1e-6 * np.sin(2 * np.pi * p / 4e-3))
-    >>> round(float(periods[np.argmax(amps)]) * 1e3, 3), round(float(amps.max()) * 1e6, 6)
+    >>> k = int(np.argmin(np.abs(periods - 4e-3)))
+    >>> round(float(periods[k]) * 1e3, 3), round(float(amps[k]) * 1e6, 6)
     (4.0, 1.0)
     """
     from axiscal.io.arguments import check_array, check_count
@@ -184,18 +186,19 @@ def amplitude_spectrum(positions_m: Any, values_m: Any, *, oversample: int = 8) 
     if np.any(np.diff(p) <= 0):
         raise AxiscalError("positions_m must increase")
     oversample = check_count("oversample", oversample, minimum=1, maximum=64)
-    return _spectrum(p, y, oversample)
+    return _spectrum(p, y, oversample)[:2]
 
 
-def _spectrum(p: np.ndarray, y: np.ndarray, oversample: int) -> tuple[np.ndarray, np.ndarray]:
+def _spectrum(p: np.ndarray, y: np.ndarray, oversample: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     span = p[-1] - p[0]
     spacing = span / (p.size - 1)
-    # frequencies on the DFT's grid of the record (span + one spacing), oversampled; up to the Nyquist frequency
+    # frequencies on the DFT's grid of the record (span + one spacing), oversampled; up to 0.4 / spacing
     # (a sine at the Nyquist frequency vanishes at evenly spaced points: periods stop at 2.5 spacings)
     record = span + spacing
     f = np.arange(oversample, int(math.floor(0.4 * record / spacing * oversample)) + 1) / (oversample * record)
     periods = 1 / f
-    return periods, _amplitudes(p, y, periods)
+    amplitudes, left = _fits(p, y, periods)
+    return periods, amplitudes, left
 
 
 def _fit(p: np.ndarray, y: np.ndarray, period: float, free: bool) -> tuple[float, np.ndarray]:
@@ -214,8 +217,8 @@ def _fit(p: np.ndarray, y: np.ndarray, period: float, free: bool) -> tuple[float
 
 
 def _component(direction: str, p: np.ndarray, y: np.ndarray, period_m: float | None, oversample: int) -> PeriodicComponent:
-    periods, amps = _spectrum(p, y, oversample)
-    k = int(np.argmax(amps))
+    periods, amps, left = _spectrum(p, y, oversample)
+    k = int(np.argmin(left))  # the periodogram's peak: the trial period whose sine explains most
     start = period_m if period_m is not None else float(periods[k])
     period, coef = _fit(p, y, start, period_m is None)
     offset, slope, c, s = coef
@@ -227,7 +230,7 @@ def _component(direction: str, p: np.ndarray, y: np.ndarray, period_m: float | N
                              float(math.sqrt(np.sum(residual**2) / dof)), float(periods[k]), float(amps[k]), periods, amps)
 
 
-def periodic_error(run: PositioningRun, *, period_m: float | None = None, oversample: int = 8) -> PeriodicError:
+def periodic_error(run: PositioningRun, *, period_m: float | None = None, oversample: int = 32) -> PeriodicError:
     """The periodic error of a positioning run: amplitude and period by fit and by spectrum.
 
     Parameters
@@ -239,7 +242,7 @@ def periodic_error(run: PositioningRun, *, period_m: float | None = None, oversa
         The period when it is known (the screw's pitch): the fit keeps it; the spectrum is
         computed all the same. Default: found.
     oversample : int, keyword-only
-        Trial periods per step of the record's own frequency grid (default 8).
+        Trial periods per step of the record's own frequency grid (default 32).
 
     Returns
     -------
