@@ -9,8 +9,9 @@ deviation of each direction at each target (a line removed, the axis's slope and
 - **by spectrum**: the least-squares (Lomb-Scargle) amplitude spectrum (Lomb, Astrophysics and
   Space Science 39, 1976; Scargle, Astrophysical Journal 263, 1982): at each trial period the
   sine and cosine fitted by least squares together with the line; the period whose sine explains
-  most of the deviations (the periodogram's peak), and the amplitude there. For evenly spaced targets over whole periods it is the discrete Fourier transform's
-  amplitude; for uneven targets (an ordinary ISO 230-2 run) it still holds.
+  most of the deviations (the periodogram's peak), and the amplitude there. For a sine over whole
+  periods of evenly spaced targets it gives the discrete Fourier transform's amplitude; unlike the
+  transform it holds for uneven targets too (an ordinary ISO 230-2 run).
 - **by fit**: ``x(P) = a + b P + A sin(2 pi P / p + phi)`` fitted by least squares with the
   period ``p`` free (started at the spectrum's peak) or fixed where it is known (the pitch).
 
