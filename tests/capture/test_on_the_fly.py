@@ -79,3 +79,26 @@ def test_any_delay_of_a_trapezoidal_pass_is_found_whatever_the_offset(delay, off
     laser = x + offset * np.where(t < 2.5, 1.0, -1.0)
     rec = FlyRecording(t, laser, t, np.interp(t - delay, t, x))
     assert estimate_delay(rec) == pytest.approx(delay, abs=2e-6)
+
+
+def test_a_file_with_the_positions_own_time_stamps(runs, tmp_path):
+    # the controller streams its position at 250 Hz with its own stamps (position_time_s; other rows hold none)
+    import pandas as pd
+
+    from axiscal.capture import on_the_fly_to_file, read_fly_recording
+
+    plan, stop_and_go, fly = runs
+    every = 4
+    frame = pd.DataFrame({"time_s": fly.time_s, "reading_mm": fly.reading_m * 1e3,
+                          "position_time_s": np.where(np.arange(fly.time_s.size) % every == 0, fly.position_time_s, np.nan),
+                          "position_mm": np.where(np.arange(fly.time_s.size) % every == 0, fly.position_m * 1e3, np.nan),
+                          **fly.channels})
+    path = tmp_path / "fly.csv"
+    frame.to_csv(path, index=False, float_format="%.9f", na_rep="")
+    rec = read_fly_recording(path)
+    assert rec.position_time_s.size == (fly.time_s.size + every - 1) // every and "air_temperature_c" in rec.channels
+    result, run_csv, sidecar = on_the_fly_to_file(plan, path, tmp_path / "run.csv")
+    assert result.delay_s == pytest.approx(0.008, abs=5e-6)
+    reference = capture_run(plan, stop_and_go.recording)
+    assert np.abs(result.run.deviations_up - reference.deviations_up).max() < 0.2e-6
+    assert run_csv.exists() and sidecar.exists()
