@@ -12,8 +12,9 @@ The two streams are seldom stamped by one clock: the position arrives late by th
 and the link's delay, and at the feed rate ``v`` a delay ``d`` moves every forward reading by
 ``+v d`` and every backward reading by ``-v d``, which looks exactly like a reversal error. The
 delay is therefore estimated from the velocities, not the positions: the shift of the position
-stream that best aligns its velocity with the laser's over the forward and backward passes
-(least squares; the accelerations into and out of each turnaround carry the timing). The axis's
+stream that best aligns its steps from sample to sample (a cubic spline through its samples,
+taken at the laser's sample times shifted) with the laser's, by least squares over the forward
+and backward passes (the accelerations into and out of each turnaround carry the timing). The axis's
 positioning errors are offsets in position, nearly constant in velocity, and do not move the
 estimate; its reversal error is taken up where the axis reverses, so the samples where it moves
 slower than a quarter of its top speed are left out. The delay found is removed before the
@@ -172,10 +173,6 @@ def read_fly_recording(path: str | Path, *, unit: str | None = None, channel: st
     return FlyRecording(time_s, reading, position_time, position, channels, str(path))
 
 
-def _velocity(t: np.ndarray, x: np.ndarray) -> np.ndarray:
-    return np.gradient(x, t)
-
-
 def estimate_delay(recording: FlyRecording, *, max_delay_s: float = 0.5) -> float:
     """The delay of the position stream behind the laser, from their velocities (see the module).
 
@@ -210,39 +207,53 @@ def estimate_delay(recording: FlyRecording, *, max_delay_s: float = 0.5) -> floa
 
 
 def _delay(rec: FlyRecording, max_delay_s: float) -> float:
+    """The delay minimising the squared differences between the laser's steps and the position stream's, shifted.
+
+    Steps (first differences) rather than positions, so that an offset does not count; the
+    position stream is a cubic spline through its samples, evaluated at the laser's sample times
+    shifted by the trial delay, so that both streams are differenced at the same instants.
+    """
+    from scipy.interpolate import make_interp_spline
     from scipy.optimize import minimize_scalar
 
-    t = rec.time_s
-    v_laser = _velocity(t, rec.reading_m)
-    v_pos = _velocity(rec.position_time_s, rec.position_m)
     if not np.ptp(rec.position_m) > 0:
         raise AxiscalError("the position stream never moves: no delay can be found", path=rec.source)
-    step = float(np.median(np.diff(t)))
+    t, dt = rec.time_s, np.diff(rec.time_s)
+    laser_steps = np.diff(rec.reading_m)
+    spline = make_interp_spline(rec.position_time_s, rec.position_m, k=3)
+    step = float(np.median(dt))
     lo, hi = rec.position_time_s[0], rec.position_time_s[-1]
-    fast = _REVERSING * float(np.max(np.abs(v_pos)))
+    speed = np.abs(np.diff(rec.position_m) / np.diff(rec.position_time_s))
+    fast = _REVERSING * float(np.max(speed))
 
-    def cost(d: float, keep: np.ndarray | None = None) -> float:
-        shifted = t + d
-        v = np.interp(shifted, rec.position_time_s, v_pos)
-        inside = (shifted >= lo) & (shifted <= hi) & (np.abs(v) > fast if keep is None else keep)
-        return float(np.mean((v_laser[inside] - v[inside]) ** 2)) if inside.any() else math.inf
+    def steps_at(d: float, smooth: bool = True) -> tuple[np.ndarray, np.ndarray]:
+        shifted = np.clip(t + d, lo, hi)
+        inside = (t[:-1] + d >= lo) & (t[1:] + d <= hi)
+        at = spline(shifted) if smooth else np.interp(shifted, rec.position_time_s, rec.position_m)
+        return np.diff(at), inside
 
-    # a coarse grid (about 200 lags) over the range, then every sample's lag about its best
+    def cost(d: float, keep: np.ndarray | None = None, smooth: bool = True) -> float:
+        moved, inside = steps_at(d, smooth)
+        use = inside & (np.abs(moved) > fast * dt if keep is None else keep)
+        return float(np.mean((laser_steps[use] - moved[use]) ** 2)) if use.any() else math.inf
+
+    # a coarse grid (about 200 lags) over the range, then every sample's lag about its best (the position
+    # stream interpolated linearly, which is quicker); the spline for the refinement
     lags = np.linspace(-max_delay_s, max_delay_s, 201)
-    k = int(np.argmin([cost(d) for d in lags]))
+    k = int(np.argmin([cost(d, smooth=False) for d in lags]))
     if k not in (0, lags.size - 1):
         near = lags[k] + step * np.arange(-int(np.ceil((lags[1] - lags[0]) / step)) - 1,
                                           int(np.ceil((lags[1] - lags[0]) / step)) + 2)
         lags = near[np.abs(near) <= max_delay_s]
-        k = int(np.argmin([cost(d) for d in lags]))
+        k = int(np.argmin([cost(d, smooth=False) for d in lags]))
     if lags[k] in (-max_delay_s, max_delay_s) or abs(lags[k]) >= max_delay_s - step:
         raise AxiscalError(f"the delay between the streams is {lags[k] * 1e3:g} ms, at the edge of the range looked"
                            f" at (+/-{max_delay_s * 1e3:g} ms): widen it or check that they are the same axis",
                            path=rec.source)
-    width = step
     # the samples kept (the axis above a quarter of its speed) are fixed for the refinement, so the cost is smooth
-    keep = np.abs(np.interp(t + lags[k], rec.position_time_s, v_pos)) > fast
-    found = minimize_scalar(lambda d: cost(d, keep), bounds=(lags[k] - 2 * width, lags[k] + 2 * width), method="bounded",
+    moved, inside = steps_at(float(lags[k]))
+    keep = inside & (np.abs(moved) > fast * dt)
+    found = minimize_scalar(lambda d: cost(d, keep), bounds=(lags[k] - 2 * step, lags[k] + 2 * step), method="bounded",
                             options={"xatol": 1e-8})
     return float(found.x)
 
