@@ -174,7 +174,7 @@ def read_fly_recording(path: str | Path, *, unit: str | None = None, channel: st
 
 
 def estimate_delay(recording: FlyRecording, *, max_delay_s: float = 0.5) -> float:
-    """The delay of the position stream behind the laser, from their velocities (see the module).
+    """The delay of the position stream behind the laser, from the two streams' motion (see the module).
 
     Parameters
     ----------
