@@ -60,7 +60,7 @@ def test_plan_step_cycle(run_cli, tmp_path):
     assert status == 0, err
     lines = out.splitlines()
     assert lines[1] == "1,1,-,,99.000," and lines[2] == "2,1,+,100.000,100.000," and lines[3] == "3,1,+,101.250,101.250,"
-    assert "step cycle, 9 targets" in err
+    assert "step cycle (Annexes B and C), 9 targets every 1.25 mm" in err and "seed" not in err
 
 
 def test_plan_step_cycle_options_are_checked(run_cli):

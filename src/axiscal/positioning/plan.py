@@ -100,7 +100,13 @@ class PositioningTestPlan:
 
     @property
     def description(self) -> str:
-        """The plan in one phrase: cycle, targets, runs, overrun (mm) and seed."""
+        """The plan in one phrase: cycle, targets, runs, overrun (mm) and seed (a step cycle: its even step, no seed)."""
+        if self.cycle == "step":
+            spacing = (self.targets[-1] - self.targets[0]) / max(self.targets.size - 1, 1)
+            return (
+                f"ISO 230-2 step cycle (Annexes B and C), {self.targets.size} targets every {spacing / MM:.4g} mm,"
+                f" {self.runs} runs each way, overrun {self.overrun / MM:g} mm"
+            )
         return (
             f"ISO 230-2 {self.cycle} cycle, {self.targets.size} targets, {self.runs} runs each way,"
             f" overrun {self.overrun / MM:g} mm, seed {self.seed}"
