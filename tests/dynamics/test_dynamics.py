@@ -39,6 +39,16 @@ def test_welch_finds_a_sine():
     assert spectrum.peak_hz == pytest.approx(37.0, abs=spectrum.resolution_hz)
 
 
+def test_welch_density_of_white_noise():
+    # hand-computed: white noise of standard deviation s sampled at f_s has the one-sided density s^2 / (f_s / 2),
+    # so 20 nm at 1 kHz is 20 nm * sqrt(2 / 1000 Hz) = 0.894 nm/sqrt(Hz) (Welch 1967: the averaged periodogram)
+    rng = np.random.default_rng(1)
+    t = np.arange(0, 60, 1e-3)
+    spectrum = welch_spectrum(t, rng.normal(0.0, 20e-9, t.size), segment_s=1.0)
+    assert 20e-9 * math.sqrt(2 / 1000) == pytest.approx(0.894e-9, rel=1e-3)
+    assert np.median(spectrum.density_m_rthz[1:-1]) == pytest.approx(0.894e-9, rel=0.05)
+
+
 def second_order_step(zeta: float, fn_hz: float, step_m: float, rate_hz: float = 5000.0):
     """Position of an under-damped second-order axis after a step command (Ogata, Modern Control Engineering, eq. 5-17)."""
     wn = 2 * np.pi * fn_hz
