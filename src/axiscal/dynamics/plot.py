@@ -92,9 +92,10 @@ def plot_periodic(path: str | Path, result: PeriodicError) -> Path:
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 6))
     for c in result.components:
         dense = np.linspace(c.targets_m[0], c.targets_m[-1], 400)
-        line = top.plot(c.targets_m / MM, c.mean_m / UM, "o", ms=3, label=f"mean {c.direction}")[0]
+        label = "bidirectional mean" if c.direction == "mean" else f"mean {c.direction}"
+        line = top.plot(c.targets_m / MM, c.mean_m / UM, "o", ms=3, label=label)[0]
         top.plot(dense / MM, c.fitted(dense) / UM, "-", color=line.get_color(), lw=0.8)
-        bottom.plot(c.periods_m / MM, c.amplitudes_m / UM, color=line.get_color(), lw=0.8, label=c.direction)
+        bottom.plot(c.periods_m / MM, c.amplitudes_m / UM, color=line.get_color(), lw=0.8, label=label)
     main = result.main
     top.set_title(f"periodic error {2 * main.amplitude_m / UM:.3g} um peak to peak, period {main.period_m / MM:.4g} mm"
                   f" (spectrum: {main.spectrum_period_m / MM:.4g} mm)", fontsize=9)
