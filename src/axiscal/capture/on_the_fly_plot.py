@@ -57,6 +57,8 @@ def plot_on_the_fly(path: str | Path, result: OnTheFly) -> Path:
                   f" reading fitted over {result.window_s * 1e3:.3g} ms", fontsize=9)
     top.legend(fontsize=8)
     bottom.set_ylabel("speed / (mm/min)")
+    bottom.set_ylim(0.0, 1.15 * float(np.max(np.abs(result.speed_m_s))) / MM * 60 if result.speed_m_s.size else 1.0)
+    bottom.ticklabel_format(axis="y", useOffset=False, style="plain")
     bottom.set_xlabel("target / mm")
     fig.tight_layout()
     return save_figure(fig, path)
