@@ -26,6 +26,7 @@ ROOMS = (
     "axiscal.measurement",
     "axiscal.live",
     "axiscal.capture",
+    "axiscal.dynamics",
     "axiscal.levels",
     "axiscal.flatness",
     "axiscal.thermal",

@@ -45,6 +45,7 @@ _PUBLIC: dict[str, str] = {
     "vdi3441": "axiscal.positioning.evaluation",
     "target_statistics": "axiscal.positioning.evaluation",
     "plan_test": "axiscal.positioning.plan",
+    "plan_step_cycle": "axiscal.positioning.step_cycle",
     "evaluate_positioning_file": "axiscal.positioning.report",
     # straightness and error separation (paper 001)
     "reference_line": "axiscal.straightness.reference",
@@ -85,6 +86,10 @@ _PUBLIC: dict[str, str] = {
     "MeasurementSystem": "axiscal.measurement.pipeline",
     "VirtualModule": "axiscal.measurement.virtual",
     "measure_file": "axiscal.measurement.offline",
+    # dynamics, periodic errors (ISO 230-2 Annexes B and C), on-the-fly capture
+    "axis_dynamics": "axiscal.dynamics.analysis",
+    "periodic_error": "axiscal.dynamics.periodic",
+    "on_the_fly_run": "axiscal.capture.on_the_fly",
     # campaigns and the report
     "load_campaign": "axiscal.campaign.config",
     "run_campaign": "axiscal.campaign.runner",

@@ -115,7 +115,28 @@ bad(C, "run_to_file", "controller", lambda: ca.run_to_file(PLAN, None, None, NEV
 bad(C, "sim_machine", "axis", lambda: ca.sim_machine(axis="Q"), lambda: ca.sim_machine(axis=None))
 bad(C, "sim_machine", "machine", lambda: ca.sim_machine(machine=5))
 
-EXEMPT = {C: {"Capture", "CaptureFiles", "CaptureProgress", "CapturedStop", "Stop", "StopReading", "SimulatedRecording",
+T4 = np.arange(6.0)
+FLY = ca.FlyRecording(T4, T4 * 1e-3, T4, T4 * 1e-3)
+bad(C, "FlyRecording", "reading_m", lambda: ca.FlyRecording(T4, np.zeros(3), T4, T4))
+bad(C, "FlyRecording", "position_m", lambda: ca.FlyRecording(T4, T4, T4, np.zeros(2)))
+bad(C, "FlyRecording", "increase", lambda: ca.FlyRecording(T4, T4, T4[::-1].copy(), T4))
+bad(C, "read_fly_recording", "position_mm", lambda: ca.read_fly_recording(RECORDING))
+bad(C, "read_fly_recording", "path", lambda: ca.read_fly_recording(None))
+bad(C, "read_fly_recording", "unknown unit", lambda: ca.read_fly_recording(RECORDING, unit="furlong"))
+bad(C, "estimate_delay", "recording", lambda: ca.estimate_delay(None), lambda: ca.estimate_delay(RECORDING))
+bad(C, "estimate_delay", "max_delay_s", lambda: ca.estimate_delay(FLY, max_delay_s=0.0), lambda: ca.estimate_delay(FLY, max_delay_s=NAN))
+bad(C, "on_the_fly", "recording", lambda: ca.on_the_fly(PLAN, None), lambda: ca.on_the_fly(PLAN, 5))
+bad(C, "on_the_fly", "plan", lambda: ca.on_the_fly(None, FLY))
+bad(C, "on_the_fly", "window_s", lambda: ca.on_the_fly(PLAN, FLY, window_s=0.0), lambda: ca.on_the_fly(PLAN, FLY, window_s=INF))
+bad(C, "on_the_fly", "delay_s", lambda: ca.on_the_fly(PLAN, FLY, delay_s=NAN), lambda: ca.on_the_fly(PLAN, FLY, delay_s="8"))
+bad(C, "on_the_fly", "offset_m", lambda: ca.on_the_fly(PLAN, FLY, delay_s=0.0, offset_m=INF))
+bad(C, "on_the_fly_run", "recording", lambda: ca.on_the_fly_run(PLAN, None))
+bad(C, "on_the_fly_to_file", "output", lambda: ca.on_the_fly_to_file(PLAN, FLY, None))
+bad(C, "plot_on_the_fly", "result", lambda: ca.plot_on_the_fly(NEVER.with_suffix(".png"), None))
+bad(C, "simulate_motions", "position_delay_s", lambda: ca.simulate_motions([], load_machine(MACHINE), axis="X", position_delay_s=NAN))
+bad(C, "simulate_motions", "continuous", lambda: ca.simulate_motions([], load_machine(MACHINE), axis="X", continuous="yes"))
+
+EXEMPT = {C: {"OnTheFly", "Capture", "CaptureFiles", "CaptureProgress", "CapturedStop", "Stop", "StopReading", "SimulatedRecording",
               "AxisMeasurement", "DryRun", "SimMachine"}}
 
 test_bad_arguments_raise_axiscal_error_naming_them, test_every_public_callable_has_a_bad_argument_case = TABLE.tests(EXEMPT)

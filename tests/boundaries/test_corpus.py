@@ -73,6 +73,10 @@ COMMANDS: dict[str, tuple[Path, tuple[str, ...]]] = {
                  ("diagonal", "--machine", str(XZ / "machine.toml"), "--from", "X=0,Z=0", "--to", "X=190,Z=190",
                   "--interferometer", "{input}", "-o", "{out}")),
     "volumetric": (None, ("volumetric", "--machine", str(XZ / "machine.toml"), "--points", "{input}", "-o", "{out}")),
+    "dynamics": (EXAMPLES / "capture" / "recording_x.csv", ("dynamics", "{input}", "--json")),
+    "periodic": (EXAMPLES / "dynamics" / "step_cycle_run.csv", ("periodic", "{input}", "--json")),
+    "on-the-fly": (EXAMPLES / "dynamics" / "fly_recording.csv",
+                   ("on-the-fly", str(EXAMPLES / "dynamics" / "fly_plan.csv"), "--from", "{input}", "-o", "{out}")),
     "error table": (XZ / "x_errors.csv",
                     ("volumetric", "--machine", "{folder}/machine.toml", "--grid", "X=0:190:10,Z=0:190:10", "-o", "{out}")),
 }

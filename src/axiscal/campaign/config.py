@@ -64,6 +64,9 @@ _TOLERANCE_KEYS = {
     "cmm_e0_a_um": float, "cmm_e0_k": float, "cmm_e0_b_um": float,
     "cmm_e150_a_um": float, "cmm_e150_k": float, "cmm_e150_b_um": float, "cmm_r0_um": float,
     "pform_um": float, "psize_um": float, "pform_ms_um": float, "psize_ms_um": float, "ploc_um": float,
+    "settling_s": float,
+    "overshoot_um": float,
+    "periodic_um": float,
 }
 
 # option types: "str", "float", "int", "bool", "file", "floats2", ("choice", values)
@@ -109,10 +112,16 @@ KINDS: dict[str, dict[str, Any]] = {
     "sixdof_diagonal": {"file": "file", "frames": "file", "machine": "file", "from": "str", "to": "str"},
     "cmm_acceptance": {"file": "file", "uncertainty_um": "float", "uncertainty_um_per_m": "float"},
     "cmm_probing": {"file": "file", "diameter_mm": "float", "uncertainty_um": "float"},
+    "dynamics": {"axis": "axis", "file": "file", "plan": "file", "channel": "str", "window_ms": "float", "band_um": "float"},
+    "periodic": {"axis": "axis", "file": "file", "period_mm": "float"},
+    "on_the_fly": {
+        "axis": "axis", "file": "file", "plan": "file", "channel": "str", "delay_ms": "float",
+        "standard": ("choice", ("iso230-2:2014", "iso230-2:2006", "iso230-2:1997", "iso230-2:1988", "jis-b6192")),
+    },
 }
 #: the kinds held against one tolerance of the campaign's (or their own)
 _OWN_TOLERANCE = {"levels": "straightness_um", "flatness": "flatness_um", "thermal_etve": "etve_um",
-                  "thermal_drift": "thermal_drift_um"}
+                  "thermal_drift": "thermal_drift_um", "periodic": "periodic_um"}
 #: the data file(s) each kind cannot do without
 _REQUIRED = {
     "positioning": ("axis", "file"),
@@ -130,6 +139,9 @@ _REQUIRED = {
     "sixdof_diagonal": ("file", "frames", "from", "to"),
     "cmm_acceptance": ("file",),
     "cmm_probing": ("file", "diameter_mm"),
+    "dynamics": ("file",),
+    "periodic": ("axis", "file"),
+    "on_the_fly": ("axis", "file", "plan"),
 }
 #: the tolerances of the CMM kinds (the MPE as the maker states it)
 _CMM_TOLERANCES = {
@@ -469,7 +481,7 @@ def _merged_tolerances(
     C); the campaign's limits of the other kind do not apply to the axis.
     """
     out: dict[str, float] = {}
-    if kind == "positioning":
+    if kind in ("positioning", "on_the_fly"):
         unit = "_arcsec" if axis in ("A", "B", "C") else "_um"
         out.update({k: v for k, v in campaign.get("positioning", {}).items() if k.endswith(unit)})
         out.update(own.get("positioning", {}))
@@ -500,6 +512,9 @@ def _merged_tolerances(
     elif kind in _CMM_TOLERANCES:
         for source in (campaign, own):
             out.update({k: source[k] for k in _CMM_TOLERANCES[kind] if k in source})
+    elif kind == "dynamics":
+        for source in (campaign, own):
+            out.update({k: source[k] for k in ("settling_s", "overshoot_um") if k in source})
     return {k: float(v) for k, v in out.items()}
 
 

@@ -24,6 +24,7 @@ from axiscal.campaign.results import (
 from axiscal.campaign.cmm_kinds import _cmm_acceptance, _cmm_probing
 from axiscal.campaign.sensor_kinds import _sensor_calibration, _sixdof, _sixdof_diagonal
 from axiscal.campaign.standard_kinds import _flatness, _levels, _thermal_drift, _thermal_etve
+from axiscal.campaign.dynamics_kinds import _dynamics, _on_the_fly, _periodic
 from axiscal.campaign.svg import relative_name, svg_of
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_mapping, check_path
@@ -368,6 +369,9 @@ KIND_RUNNERS: dict[str, Callable[[Campaign, TestSpec], TestResult]] = {
     "sixdof_diagonal": _sixdof_diagonal,
     "cmm_acceptance": _cmm_acceptance,
     "cmm_probing": _cmm_probing,
+    "dynamics": _dynamics,
+    "periodic": _periodic,
+    "on_the_fly": _on_the_fly,
 }
 
 #: kinds whose plot draws the compared campaign's test of the same id behind its own

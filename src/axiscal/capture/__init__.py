@@ -4,7 +4,9 @@
 through a recording or a live source and returns the positioning run; :func:`capture_to_file` is
 ``axiscal capture`` (a partial file as it goes, resume, the run written atomically);
 :func:`simulate_capture` runs a program on the virtual machine and records what a laser reads;
-:func:`measure_axis` does plan, program, run and capture for one axis of the virtual machine.
+:func:`measure_axis` does plan, program, run and capture for one axis of the virtual machine;
+:func:`on_the_fly_run` takes the readings as the axis passes the targets without stopping, from a
+recording that carries the machine's position stream beside the laser's reading.
 """
 
 from __future__ import annotations
@@ -59,6 +61,16 @@ from axiscal.capture.cycle import (
 from axiscal.capture.board import (
     CaptureBoard,
 )
+from axiscal.capture.on_the_fly import (
+    FlyRecording,
+    OnTheFly,
+    estimate_delay,
+    on_the_fly,
+    on_the_fly_run,
+    on_the_fly_to_file,
+    read_fly_recording,
+)
+from axiscal.capture.on_the_fly_plot import plot_on_the_fly
 
 from axiscal.capture.drive import DriveSettings, InstrumentReader, drive_plan, planned_moves
 from axiscal.capture.connected import DryRun, SimMachine, dry_run, open_run_devices, run_to_file, sim_machine
@@ -106,4 +118,12 @@ __all__ = [
     "AxisMeasurement",
     "measure_axis",
     "CaptureBoard",
+    "FlyRecording",
+    "OnTheFly",
+    "estimate_delay",
+    "on_the_fly",
+    "on_the_fly_run",
+    "on_the_fly_to_file",
+    "read_fly_recording",
+    "plot_on_the_fly",
 ]

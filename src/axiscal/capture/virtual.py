@@ -70,6 +70,9 @@ class VirtualAxis:
         Standard deviation of the laser's white noise (default 20 nm).
     air_drift_c : float
         Rise of the air temperature over the run (default 0.4 degC, from 20.2 degC).
+    periodic_m, pitch_m : float
+        A periodic error of the screw, ``periodic_m sin(2 pi m / pitch_m)`` at motor position
+        ``m`` (default none; pitch 5 mm).
     """
 
     acceleration_m_s2: float = 1.0
@@ -83,11 +86,13 @@ class VirtualAxis:
     creep_s: float = 0.25
     noise_m: float = 20e-9
     air_drift_c: float = 0.4
+    periodic_m: float = 0.0
+    pitch_m: float = 5e-3
 
     def __post_init__(self) -> None:
-        for name in ("acceleration_m_s2", "rapid_m_s", "settle_hz", "settle_s", "creep_s"):
+        for name in ("acceleration_m_s2", "rapid_m_s", "settle_hz", "settle_s", "creep_s", "pitch_m"):
             check_number(name, getattr(self, name), positive=True)
-        for name in ("reversal_m", "repeatability_m", "settle_m", "creep_m", "noise_m", "air_drift_c"):
+        for name in ("reversal_m", "repeatability_m", "settle_m", "creep_m", "noise_m", "air_drift_c", "periodic_m"):
             check_number(name, getattr(self, name), nonnegative=True)
 
 
@@ -107,6 +112,9 @@ class SimulatedRecording:
         The direction of the move that ended at each dwell.
     settings : dict
         What was simulated (axis, rate, seed, compensation ...), for the sidecar.
+    position_m : ndarray, shape (n,), metres, or None
+        The controller's position stream at each sample time, stamped late by the delay asked
+        for (None when none was recorded).
     """
 
     recording: Recording
@@ -114,6 +122,7 @@ class SimulatedRecording:
     dwells: np.ndarray
     directions: np.ndarray
     settings: Mapping[str, Any] = field(default_factory=dict)
+    position_m: np.ndarray | None = None
 
     def true_stop_means(self, window_s: float) -> np.ndarray:
         """Mean noise-free reading over the last ``window_s`` of each dwell, metres, shape (k,)."""
@@ -125,30 +134,49 @@ class SimulatedRecording:
         return out
 
 
-def _segments(motions: Sequence[Any], axis: str, spec: VirtualAxis, start_m: float):
-    """Moves and dwells on ``axis`` as arrays: start time, duration, from, to, top speed, kind (0 move, 1 dwell)."""
-    t, x = 0.0, start_m
-    rows = []
+def _segments(motions: Sequence[Any], axis: str, spec: VirtualAxis, start_m: float, continuous: bool = False):
+    """Moves and dwells on ``axis`` as arrays: start time, duration, from, to, top speed, kind (0 move, 1 dwell).
+
+    ``continuous``: consecutive moves in the same direction at the same feed, with no dwell
+    between, are one move (the controller blends them, as in path mode): the axis passes their
+    ends without stopping.
+    """
+    x = start_m
+    items: list[list[float]] = []  # [kind, from, to, speed, dwell]
     for motion in motions:
         kind = motion.kind
         if kind == "dwell":
             if motion.dwell_s > 0:
-                rows.append((t, float(motion.dwell_s), x, x, 0.0, 1))
-                t += float(motion.dwell_s)
+                items.append([1, x, x, 0.0, float(motion.dwell_s)])
             continue
         if kind not in ("rapid", "feed"):
             raise AxiscalError(f"line {motion.line}: the virtual machine runs straight moves and dwells, not {kind!r} motions")
         target = float(motion.end_m.get(axis, x))
-        distance = abs(target - x)
-        if distance == 0:
+        if target == x:
             continue
         speed = spec.rapid_m_s if kind == "rapid" or not motion.feed_m_per_s else float(motion.feed_m_per_s)
+        last = items[-1] if items else None
+        if (continuous and last is not None and last[0] == 0 and last[3] == speed
+                and np.sign(target - last[2]) == np.sign(last[2] - last[1])):
+            last[2] = target
+        else:
+            items.append([0, x, target, speed, 0.0])
+        x = target
+    if not items:
+        raise AxiscalError(f"the program never moves axis {axis}")
+    t = 0.0
+    rows = []
+    for kind, a, b, speed, dwell in items:
+        if kind == 1:
+            rows.append((t, dwell, a, b, 0.0, 1))
+            t += dwell
+            continue
+        distance = abs(b - a)
         top = min(speed, np.sqrt(distance * spec.acceleration_m_s2))
         ramp = top / spec.acceleration_m_s2
         duration = 2 * ramp + (distance - top * ramp) / top
-        rows.append((t, duration, x, target, top, 0))
+        rows.append((t, duration, a, b, top, 0))
         t += duration
-        x = target
     if not any(row[5] == 0 for row in rows):  # nothing but dwells (or nothing at all): no stop to read
         raise AxiscalError(f"the program never moves {axis}")
     return np.array(rows)
@@ -193,6 +221,8 @@ def simulate_motions(
     spec: VirtualAxis | None = None,
     lead_s: float = 1.0,
     wavelength_nm: float = HENE_WAVELENGTH_NM,
+    continuous: bool = False,
+    position_delay_s: float | None = None,
 ) -> SimulatedRecording:
     """Run a program's motions on one axis of the machine model and record what a laser reads.
 
@@ -217,6 +247,15 @@ def simulate_motions(
         Time the axis stands at its start before the program runs (default 1 s).
     wavelength_nm : float, keyword-only
         The laser's vacuum wavelength (default He-Ne, 632.991 nm).
+    continuous : bool, keyword-only
+        Blend consecutive moves in one direction at one feed into one move (path mode): the axis
+        passes the targets without stopping, as an on-the-fly capture needs (default False:
+        exact stop at the end of every move). The settling after a turnaround ends when the next
+        move begins.
+    position_delay_s : float, seconds, optional, keyword-only
+        Record the controller's position stream beside the reading (``position_m``): the
+        commanded position, each sample stamped this late (the controller's position at time
+        ``t - delay`` carries the stamp ``t``). None (default) records none.
 
     Returns
     -------
@@ -226,7 +265,7 @@ def simulate_motions(
     ------
     AxiscalError
         For an axis that is not a linear axis of the machine, an arc motion, a program that never
-        moves the axis, or a rate or seed out of range.
+        moves the axis, or a rate, seed or delay out of range.
     """
     check_instance("machine", machine, Machine)
     if not isinstance(axis, str) or axis not in machine.letters or axis in machine.rotary:
@@ -237,7 +276,10 @@ def simulate_motions(
     seed = check_count("seed", seed, minimum=0)
     spec = VirtualAxis() if spec is None else check_instance("spec", spec, VirtualAxis)
     lead_s = check_number("lead_s", lead_s, nonnegative=True, unit="s")
-    seg = _segments(motions, axis, spec, 0.0)
+    check_instance("continuous", continuous, bool)
+    if position_delay_s is not None:
+        position_delay_s = check_number("position_delay_s", position_delay_s, low=-1.0, high=1.0, unit="s")
+    seg = _segments(motions, axis, spec, 0.0, continuous)
     seg[:, 0] += lead_s
     total = float(seg[-1, 0] + seg[-1, 1]) + lead_s
     if total * rate_hz > 5e7:
@@ -266,6 +308,8 @@ def simulate_motions(
     rng = np.random.default_rng([seed, 20])
     scatter = rng.normal(0.0, spec.repeatability_m, len(seg))  # where each move ends, arrival to arrival
     position = motor + error - direction * spec.reversal_m / 2 + scatter[np.maximum(last_move, 0)][k]
+    if spec.periodic_m:
+        position += spec.periodic_m * np.sin(2 * np.pi * motor / spec.pitch_m)
     # settling and creep after each arrival (the end of every move), the last two arrivals summed
     arrive = seg[moves, 0] + seg[moves, 1]
     arrive_sign = move_sign[moves]
@@ -276,6 +320,10 @@ def simulate_motions(
         dt = np.where(ok, time_s - arrive[np.maximum(i, 0)], np.inf)
         sgn = arrive_sign[np.maximum(i, 0)]
         live = ok & (dt < 12 * max(spec.settle_s, spec.creep_s))
+        if continuous:  # the axis leaves a turnaround at once: its settling ends with the next move's start
+            nxt = np.searchsorted(seg[:, 0], arrive[np.maximum(i, 0)] - 1e-9)
+            leave = np.where(nxt < len(seg), seg[np.minimum(nxt, len(seg) - 1), 0], np.inf)
+            live &= ~((seg[np.minimum(nxt, len(seg) - 1), 5] == 0) & (time_s >= leave))
         ring = spec.settle_m * np.exp(-dt[live] / spec.settle_s) * np.sin(2 * np.pi * spec.settle_hz * dt[live])
         creep = -sgn[live] * spec.creep_m * np.exp(-dt[live] / spec.creep_s)
         position[live] += sgn[live] * ring + creep
@@ -298,15 +346,24 @@ def simulate_motions(
                                  "settle_hz": spec.settle_hz, "settle_s": spec.settle_s, "creep_um": spec.creep_m / UM,
                                  "creep_s": spec.creep_s, "noise_um": spec.noise_m / UM, "air_drift_c": spec.air_drift_c},
                 "wavelength_nm": wavelength_nm}
+    if spec.periodic_m:
+        settings["virtual_axis"].update(periodic_um=spec.periodic_m / UM, pitch_mm=spec.pitch_m / MM)
+    if continuous:
+        settings["continuous"] = True
+    position = None
+    if position_delay_s is not None:
+        position = _commanded(time_s - position_delay_s, seg, spec.acceleration_m_s2)[0]
+        settings["position_delay_ms"] = position_delay_s * 1e3
     recording = Recording(time_s, reading, sensors, "<virtual machine>", {})
-    return SimulatedRecording(recording, clean, dwells, dwell_dir, settings)
+    return SimulatedRecording(recording, clean, dwells, dwell_dir, settings, position)
 
 
 def write_recording(simulated: SimulatedRecording, path: str | Path, *, program: str | None = None) -> Path:
     """Write a simulated recording as the CSV ``capture --from`` reads, with its JSON sidecar (atomically).
 
     Columns ``time_s, reading_mm, air_temperature_c, pressure_pa, humidity_pct``; the reading is
-    raw (computed with the vacuum wavelength), to 1e-9 mm.
+    raw (computed with the vacuum wavelength), to 1e-9 mm. A recording with the controller's
+    position stream has ``position_mm`` after the reading (to 1e-7 mm).
 
     Parameters
     ----------
@@ -330,8 +387,11 @@ def write_recording(simulated: SimulatedRecording, path: str | Path, *, program:
 
     check_instance("simulated", simulated, SimulatedRecording)
     rec = simulated.recording
-    frame = pd.DataFrame({"time_s": rec.time_s, "reading_mm": rec.reading_m / MM, **rec.channels})
-    formats = {"time_s": "%.6f", "reading_mm": "%.9f", "air_temperature_c": "%.4f", "pressure_pa": "%.2f", "humidity_pct": "%.2f"}
+    position = {} if simulated.position_m is None else {"position_mm": simulated.position_m / MM}
+    frame = pd.DataFrame({"time_s": rec.time_s, "reading_mm": rec.reading_m / MM, **position, **rec.channels})
+    formats = {"time_s": "%.6f", "reading_mm": "%.9f", "position_mm": "%.7f", "air_temperature_c": "%.4f",
+               "pressure_pa": "%.2f", "humidity_pct": "%.2f"}
+    formats = {k: v for k, v in formats.items() if k in frame}
     for name, fmt in formats.items():
         frame[name] = frame[name].map(fmt.__mod__) if len(frame) < 2000 else np.char.mod(fmt, frame[name].to_numpy())
     atomic_write(path, lambda target: frame.to_csv(target, index=False, lineterminator="\n"))
@@ -339,8 +399,10 @@ def write_recording(simulated: SimulatedRecording, path: str | Path, *, program:
     for key in ("program", "compensation_file"):
         if settings.get(key):
             settings[key] = named_from(settings[key], path)
-    write_sidecar(path, kind="laser recording (virtual machine)", units={"reading_mm": "mm, raw reading computed with the"
-                  " vacuum wavelength"}, sources=[named_from(program, path)] if program else [], **settings)
+    units = {"reading_mm": "mm, raw reading computed with the vacuum wavelength"}
+    if position:
+        units["position_mm"] = "mm, the controller's position stream, stamped late by position_delay_ms"
+    write_sidecar(path, kind="laser recording (virtual machine)", units=units, sources=[named_from(program, path)] if program else [], **settings)
     return Path(path)
 
 
@@ -368,6 +430,8 @@ def simulate_capture(
     seed: int = 0,
     spec: VirtualAxis | None = None,
     wavelength_nm: float = HENE_WAVELENGTH_NM,
+    continuous: bool = False,
+    position_delay_s: float | None = None,
 ) -> SimulatedRecording:
     """Run a program file on the virtual machine, with a controller's compensation loaded, and record the laser.
 
@@ -391,7 +455,7 @@ def simulate_capture(
     comp_type, reference_position_m : keyword-only
         As :func:`axiscal.compensation.readback.read_compensation` takes them (LinuxCNC's file
         type; FANUC's reference position, metres).
-    rate_hz, seed, spec, wavelength_nm : keyword-only
+    rate_hz, seed, spec, wavelength_nm, continuous, position_delay_s : keyword-only
         As :func:`simulate_motions` takes them.
 
     Returns
@@ -432,10 +496,11 @@ def simulate_capture(
     if isinstance(axis, str) and axis in model.letters and not _moves(motions, axis):
         raise AxiscalError(f"the program never moves {axis}", path=program)
     simulated = simulate_motions(motions, model, axis=axis, compensation=loaded, rate_hz=rate_hz, seed=seed, spec=spec,
-                                 wavelength_nm=wavelength_nm)
+                                 wavelength_nm=wavelength_nm, continuous=continuous, position_delay_s=position_delay_s)
     simulated = SimulatedRecording(simulated.recording, simulated.clean_m, simulated.dwells, simulated.directions,
                                    {**simulated.settings, "program": str(program),
-                                    "compensation_file": None if compensation is None else str(compensation)})
+                                    "compensation_file": None if compensation is None else str(compensation)},
+                                   simulated.position_m)
     if output is not None:
         write_recording(simulated, output, program=str(program))
     return simulated

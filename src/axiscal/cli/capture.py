@@ -11,7 +11,7 @@ from axiscal.capture.run import CaptureSettings
 from axiscal.capture.recording import READING_UNITS
 from axiscal.capture.sources import open_capture_source
 from axiscal.capture.steps import plan_steps
-from axiscal.capture.virtual import simulate_capture
+from axiscal.capture.virtual import VirtualAxis, simulate_capture
 from axiscal.compensation.readback import CONTROLLERS
 from axiscal.io.gcode import DIALECT_NAMES
 from axiscal.cli.common import FINITE, echo_json, flags_named
@@ -184,18 +184,28 @@ def capture_command(plan_csv, recording, source_spec, output, unit, channel, sta
 @click.option("--reference-position-mm", type=FINITE, default=0.0, show_default=True, help="FANUC: machine position of the reference position.")
 @click.option("--rate-hz", type=FINITE, default=1000.0, show_default=True, help="Samples per second of the laser.")
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the laser's noise.")
+@click.option("--continuous", is_flag=True, help="Blend moves in one direction (path mode): the axis passes the targets without stopping.")
+@click.option("--position-delay-ms", type=FINITE, default=None, help="Also record the controller's position stream (position_mm), stamped this late.")
+@click.option("--periodic-um", type=FINITE, default=0.0, show_default=True, help="Amplitude of a periodic screw error of the axis.")
+@click.option("--pitch-mm", type=FINITE, default=5.0, show_default=True, help="Its period (the screw's pitch).")
 def simulate_capture_command(program, machine, axis, output, dialect, compensation, controller, comp_type, reference_position_mm,
-                             rate_hz, seed):
+                             rate_hz, seed, continuous, position_delay_ms, periodic_um, pitch_mm):
     """Run PROGRAM on the virtual machine and record what a laser on --axis reads over time.
 
     Moves are trapezoidal at the programmed feed, each stop rings and creeps, dwells are held; the axis
     carries the model's positioning error and a reversal; the reading is raw (vacuum wavelength) with
-    the air sensors recorded beside it. With --compensation the virtual controller applies that file.
+    the air sensors recorded beside it. With --compensation the virtual controller applies that file;
+    with --continuous it blends moves (the axis passes targets without stopping); with
+    --position-delay-ms it records its own position stream beside the reading, for axiscal on-the-fly.
     """
-    with flags_named({"reference_position_m": "--reference-position-mm", "rate_hz": "--rate-hz"}):
+    with flags_named({"reference_position_m": "--reference-position-mm", "rate_hz": "--rate-hz",
+                      "position_delay_s": "--position-delay-ms", "periodic_m": "--periodic-um", "pitch_m": "--pitch-mm"}):
+        spec = VirtualAxis(periodic_m=periodic_um * UM, pitch_m=pitch_mm * MM)
         simulated = simulate_capture(program, machine, output, axis=axis.upper(), dialect=dialect, compensation=compensation,
                                      controller=controller, comp_type=int(comp_type),
-                                     reference_position_m=reference_position_mm * MM, rate_hz=rate_hz, seed=seed)
+                                     reference_position_m=reference_position_mm * MM, rate_hz=rate_hz, seed=seed,
+                                     continuous=continuous, spec=spec,
+                                     position_delay_s=None if position_delay_ms is None else position_delay_ms * 1e-3)
     click.echo(f"axiscal: note: {simulated.recording.time_s.size} samples over {simulated.settings['duration_s']:.1f} s,"
                f" {len(simulated.dwells)} dwells, written to {output}", err=True)
 

@@ -5,8 +5,10 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import FINITE, flags_named
+from axiscal.errors import AxiscalError
 from axiscal.io.gcode import DIALECT_NAMES
 from axiscal.positioning.plan import CYCLES, cycle_csv, plan_test, write_plan
+from axiscal.positioning.step_cycle import plan_step_cycle
 from axiscal.units import MM
 
 __all__ = ["plan_command", "register"]
@@ -14,10 +16,14 @@ __all__ = ["plan_command", "register"]
 
 @click.command("plan")
 @click.option("--start-mm", type=FINITE, required=True, help="First target position.")
-@click.option("--end-mm", type=FINITE, required=True, help="Last target position.")
-@click.option("--targets", "count", type=int, required=True, help="Number of targets (ISO 230-2: >= 5 per metre, >= 5).")
-@click.option("--runs", type=int, default=5, show_default=True, help="Runs in each direction.")
-@click.option("--overrun-mm", type=FINITE, default=5.0, show_default=True, help="Travel beyond a target before approaching it.")
+@click.option("--end-mm", type=FINITE, default=None, help="Last target position (needed but with --step-cycle).")
+@click.option("--targets", "count", type=int, default=None, help="Number of targets (ISO 230-2: >= 5 per metre, >= 5; needed but with --step-cycle).")
+@click.option("--runs", type=int, default=None, help="Runs in each direction [5; 1 with --step-cycle].")
+@click.option("--overrun-mm", type=FINITE, default=None, help="Travel beyond a target before approaching it [5; 1 with --step-cycle].")
+@click.option("--step-cycle", is_flag=True, help="ISO 230-2 Annex B/C: even steps over whole periods from --start-mm, for the periodic error (axiscal periodic).")
+@click.option("--period-mm", type=FINITE, default=None, help="With --step-cycle: the period looked for (the screw's pitch).")
+@click.option("--periods", type=int, default=2, show_default=True, help="With --step-cycle: periods covered.")
+@click.option("--steps-per-period", type=int, default=12, show_default=True, help="With --step-cycle: targets per period.")
 @click.option("--seed", type=int, default=None, help="Seed of the random target offsets (same seed, same targets) [a fresh one, shown in the note and recorded in the sidecar and the G-code].")
 @click.option("--cycle", type=click.Choice(CYCLES), default="linear", show_default=True, help="Test cycle.")
 @click.option("--gcode", "gcode_path", type=click.Path(dir_okay=False), help="Also write the cycle as a G-code program.")
@@ -26,14 +32,33 @@ __all__ = ["plan_command", "register"]
 @click.option("--axis", default="X", show_default=True, help="Axis letter in the G-code program.")
 @click.option("--dwell-s", type=FINITE, default=2.0, show_default=True, help="Dwell at each target in the G-code, seconds (written in the dialect's own word and unit).")
 @click.option("--feed-mm-min", type=FINITE, default=2000.0, show_default=True, help="Feed of the G-code moves.")
+@click.option("--on-the-fly", is_flag=True, help="The G-code for an on-the-fly capture: no dwells, a last move past the last target (axiscal on-the-fly).")
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
               help="Write the cycle CSV (and its JSON sidecar) here instead of stdout.")
-def plan_command(start_mm, end_mm, count, runs, overrun_mm, seed, cycle, gcode_path, dialect, axis, dwell_s, feed_mm_min, output):
-    """Plan an ISO 230-2 positioning test: uneven targets and the test cycle (CSV to fill in; G-code with --gcode)."""
+def plan_command(start_mm, end_mm, count, runs, overrun_mm, step_cycle, period_mm, periods, steps_per_period, seed, cycle,
+                 gcode_path, dialect, axis, dwell_s, feed_mm_min, on_the_fly, output):
+    """Plan an ISO 230-2 positioning test: uneven targets and the test cycle (CSV to fill in; G-code with --gcode).
+
+    With --step-cycle: evenly spaced targets, --steps-per-period to a --period-mm, over --periods
+    periods from --start-mm, for the periodic error (ISO 230-2 Annexes B and C).
+    """
     with flags_named({"start_m": "--start-mm", "end_m": "--end-mm", "overrun_m": "--overrun-mm", "dwell_s": "--dwell-s",
-                      "feed_mm_per_min": "--feed-mm-min"}):
-        plan = plan_test(start_mm * MM, end_mm * MM, count, runs=runs, overrun_m=overrun_mm * MM, seed=seed, cycle=cycle)
-        write_plan(plan, output, gcode_path=gcode_path, dialect=dialect, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_min)
+                      "feed_mm_per_min": "--feed-mm-min", "period_m": "--period-mm", "periods": "--periods",
+                      "steps_per_period": "--steps-per-period", "runs": "--runs"}):
+        if step_cycle:
+            if period_mm is None or end_mm is not None or count is not None:
+                raise AxiscalError("--step-cycle plans from --start-mm and --period-mm (not --end-mm or --targets)")
+            plan = plan_step_cycle(start_mm * MM, period_mm * MM, periods=periods, steps_per_period=steps_per_period,
+                                   runs=1 if runs is None else runs, overrun_m=(1.0 if overrun_mm is None else overrun_mm) * MM)
+        else:
+            if end_mm is None or count is None:
+                raise AxiscalError("a plan needs --end-mm and --targets (or --step-cycle with --period-mm)")
+            if period_mm is not None:
+                raise AxiscalError("--period-mm goes with --step-cycle")
+            plan = plan_test(start_mm * MM, end_mm * MM, count, runs=5 if runs is None else runs,
+                             overrun_m=(5.0 if overrun_mm is None else overrun_mm) * MM, seed=seed, cycle=cycle)
+        write_plan(plan, output, gcode_path=gcode_path, dialect=dialect, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_min,
+                   on_the_fly=on_the_fly)
     if not output:
         click.echo(cycle_csv(plan), nl=False)
     click.echo(f"axiscal: note: {plan.description}", err=True)

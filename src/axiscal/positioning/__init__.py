@@ -38,6 +38,7 @@ from axiscal.positioning.plan import (
     plan_test,
     write_plan,
 )
+from axiscal.positioning.step_cycle import plan_step_cycle
 from axiscal.positioning.plot import plot_positioning
 from axiscal.positioning.reader import (
     ALLOWED_UNITS,
@@ -95,6 +96,7 @@ __all__ = [
     "cycle_csv",
     "gcode_program",
     "write_plan",
+    "plan_step_cycle",
     "plot_positioning",
     "DISPLAY_UNITS",
     "PositioningEvaluation",

@@ -100,7 +100,13 @@ class PositioningTestPlan:
 
     @property
     def description(self) -> str:
-        """The plan in one phrase: cycle, targets, runs, overrun (mm) and seed."""
+        """The plan in one phrase: cycle, targets, runs, overrun (mm) and seed (a step cycle: its even step, no seed)."""
+        if self.cycle == "step":
+            spacing = (self.targets[-1] - self.targets[0]) / max(self.targets.size - 1, 1)
+            return (
+                f"ISO 230-2 step cycle (Annexes B and C), {self.targets.size} targets every {spacing / MM:.4g} mm,"
+                f" {self.runs} runs each way, overrun {self.overrun / MM:g} mm"
+            )
         return (
             f"ISO 230-2 {self.cycle} cycle, {self.targets.size} targets, {self.runs} runs each way,"
             f" overrun {self.overrun / MM:g} mm, seed {self.seed}"
@@ -315,6 +321,7 @@ def gcode_program(
     dwell_s: float = 2.0,
     feed_mm_per_min: float = 2000.0,
     program_name: str = "AXISCAL",
+    on_the_fly: bool = False,
 ) -> str:
     """The test cycle as a G-code program in a control's dialect, with a dwell at each target.
 
@@ -341,6 +348,10 @@ def gcode_program(
         Feed of the moves, mm/min (> 0, default 2000).
     program_name : str, keyword-only
         The program's name where the dialect writes one (HEIDENHAIN's ``BEGIN PGM name MM``).
+    on_the_fly : bool, keyword-only
+        A program for an on-the-fly capture (:mod:`axiscal.capture.on_the_fly`): no dwell, and
+        a last move past the last target by the overrun, so that the axis passes every target
+        without stopping at it (run it in the control's path mode). Default False.
 
     Returns
     -------
@@ -375,14 +386,20 @@ def gcode_program(
         raise AxiscalError(f"the feed must be positive, got {feed_mm_per_min:g} mm/min")
     axis = axis.upper()
     feed = feed_mm_per_min * MM / 60.0
+    if not isinstance(on_the_fly, bool):
+        raise AxiscalError(f"on_the_fly must be True or False, not {on_the_fly!r}")
     writer = ProgramWriter(spec, name=program_name, comments=(
         f"axiscal plan: {plan.description}",
-        "a dwell follows every move that ends at a target: take the reading there",
+        "on the fly: the axis passes every target without stopping (path mode); the last move runs past the last target"
+        if on_the_fly else "a dwell follows every move that ends at a target: take the reading there",
     ))
     for k in range(plan.moves.size):
         writer.move({axis: float(plan.moves[k])}, feed_m_per_s=feed)
-        if not math.isnan(plan.move_target[k]):
+        if not math.isnan(plan.move_target[k]) and not on_the_fly:
             writer.dwell(dwell_s)
+    if on_the_fly:
+        last = 1.0 if plan.move_direction[-1] == "+" else -1.0
+        writer.move({axis: float(plan.moves[-1] + last * plan.overrun)}, feed_m_per_s=feed)
     return writer.text()
 
 
@@ -395,6 +412,7 @@ def write_plan(
     axis: str = "X",
     dwell_s: float = 2.0,
     feed_mm_per_min: float = 2000.0,
+    on_the_fly: bool = False,
 ) -> list[Path]:
     """Write the cycle CSV with its JSON sidecar, and the G-code program, each atomically.
 
@@ -407,9 +425,10 @@ def write_plan(
         targets in mm, runs, overrun in mm, seed). None writes no CSV.
     gcode_path : str or Path, optional, keyword-only
         The G-code program (:func:`gcode_program`). None writes none.
-    dialect, axis, dwell_s, feed_mm_per_min : keyword-only
+    dialect, axis, dwell_s, feed_mm_per_min, on_the_fly : keyword-only
         Passed to :func:`gcode_program` (the control's dialect, axis letter, dwell in seconds, feed
-        in mm/min); the program's name, where the dialect writes one, is the file's stem.
+        in mm/min, a program for an on-the-fly capture); the program's name, where the dialect
+        writes one, is the file's stem.
 
     Returns
     -------
@@ -435,7 +454,7 @@ def write_plan(
         check_path("gcode_path", gcode_path)
     program = None if gcode_path is None else gcode_program(
         plan, dialect=dialect, axis=axis, dwell_s=dwell_s, feed_mm_per_min=feed_mm_per_min,
-        program_name=Path(gcode_path).stem)
+        program_name=Path(gcode_path).stem, on_the_fly=on_the_fly)
     written: list[Path] = []
     if csv_path is not None:
         written.append(write_text(csv_path, cycle_csv(plan)))

@@ -42,6 +42,9 @@ _OWN_SECTIONS = {
     "thermal_drift": ("thermal", "Thermal tests (ISO 230-3)"),
     "cmm_acceptance": ("cmm", "CMM tests (ISO 10360)"),
     "cmm_probing": ("cmm", "CMM tests (ISO 10360)"),
+    "dynamics": ("dynamics", "Dynamics, periodic errors and on-the-fly positioning"),
+    "periodic": ("dynamics", "Dynamics, periodic errors and on-the-fly positioning"),
+    "on_the_fly": ("dynamics", "Dynamics, periodic errors and on-the-fly positioning"),
 }
 _SECTION_TITLES = {"sensor_calibration": "Sensor calibration", "sixdof_diagonal": "Diagonal with the 6-DOF sensors"}
 
