@@ -117,7 +117,7 @@ def trend_command(machine: str, figure: str, robust: bool, risk: float, plot: st
     click.echo(f"{trend.machine}: {trend.figure} over {len(trend.dates)} campaigns, tolerance {trend.tolerance:g} {trend.unit}")
     click.echo(f"drift {fit['slope_per_year']:+.4g} {trend.unit}/year, u = {fit['u_slope_per_year']:.2g} ({fit['method']})")
     low, high = p["crossing_interval"]
-    click.echo(f"reaches the tolerance {p['crossing_date'] or 'never (no drift)'}"
+    click.echo(f"reaches the tolerance {trend.crossing_text}"
                f" (k = {trend.k:g}: {low or 'unbounded'} .. {high or 'unbounded'})")
     click.echo(f"next calibration {nxt['recommended']} (fixed risk {trend.risk:.0%}: {nxt['fixed_risk'] or 'beyond the horizon'};"
                f" staircase: {nxt['staircase']})")
