@@ -14,6 +14,7 @@ import os
 import random
 import subprocess
 import sys
+import threading
 from pathlib import Path
 
 import pytest
@@ -70,6 +71,8 @@ def test_a_killed_identify_leaves_the_old_or_the_new_output_whole(tmp_path, exam
                PYTHONPATH=os.pathsep.join([str(Path(__file__).resolve().parents[2] / "src"), os.environ.get("PYTHONPATH", "")]))
     helper = subprocess.Popen([sys.executable, "-c", HELPER, str(examples / "identification"), str(out)],
                               stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env)
+    watchdog = threading.Timer(240.0, helper.kill)  # a hung helper fails the test instead of stalling the suite
+    watchdog.start()
     try:
         seconds = json.loads(helper.stdout.readline())["seconds"]
         versions = {which: _snapshot(tmp_path / f"reference_{which}") for which in "ab"}
@@ -91,6 +94,7 @@ def test_a_killed_identify_leaves_the_old_or_the_new_output_whole(tmp_path, exam
         helper.stdin.close()
         assert helper.wait(timeout=60) == 0
     finally:
+        watchdog.cancel()
         if helper.poll() is None:
             helper.kill()
             helper.wait()
