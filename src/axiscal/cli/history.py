@@ -1,4 +1,4 @@
-"""``axiscal history``: the calibration history database: add, list, show, export, remove, upgrade, trend."""
+"""``axiscal history``: the calibration history database: add, list, show, export, remove, upgrade, trend, check."""
 
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ import click
 from axiscal.cli.common import FINITE, echo_json
 from axiscal.history.analysis import figure_trend
 from axiscal.history.database import DB_ENVIRONMENT
+from axiscal.history.integrity import integrity_problems
 from axiscal.history.store import (
     add_results,
     export_history,
@@ -123,6 +124,23 @@ def trend_command(machine: str, figure: str, robust: bool, risk: float, plot: st
                f" staircase: {nxt['staircase']})")
     if plot:
         click.echo(f"plot {plot}")
+
+
+@history_group.command("check")
+@_db_option
+def check_command(db: str | None) -> None:
+    """Check the database whole (SQLite's integrity check) and every campaign complete; exit 1 on problems.
+
+    Only reads: a missing, empty or unreadable database is refused (exit 2), never made.
+    """
+    problems = integrity_problems(db)
+    if not problems:
+        click.echo("ok: the database and every campaign in it are whole")
+        return
+    for problem in problems:
+        click.echo(problem)
+    click.echo(f"{len(problems)} problem{'s' if len(problems) != 1 else ''}: restore the database from a backup")
+    click.get_current_context().exit(1)
 
 
 def register(group: click.Group) -> None:
