@@ -167,9 +167,10 @@ def database_errors(url: str) -> Iterator[None]:
     url : str
         The database, as :func:`resolve_url` gives it.
 
-    Yields
-    ------
-    None
+    Returns
+    -------
+    contextlib.AbstractContextManager
+        The block's guard (it yields nothing).
 
     Raises
     ------
