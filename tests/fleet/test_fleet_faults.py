@@ -3,8 +3,8 @@
 A helper process generates two plants with the same campaign folders but other readings (seeds 0
 and 1), writes each plant's fleet report as a reference, then for each trial forks a writer of one
 plant's report over the current OUT (Dask's threads) and kills it with SIGKILL after a delay spread
-over twice the time a whole run takes. After every kill the campaign folders and fleet.json in OUT
-must all belong to one plant (their results.json byte for byte, fleet.json's rows), with no
+over one and a half times a whole run (and one kill after twice it). After every kill the campaign
+folders and fleet.json in OUT must all belong to one plant (their results.json byte for byte, fleet.json's rows), with no
 campaign folder of the other; the next run removes the temporary folders killed runs left.
 """
 
@@ -92,10 +92,10 @@ def test_a_killed_fleet_report_leaves_the_old_or_the_new_output_whole(tmp_path):
         for state in versions.values():
             state["machines"] = [{k: v for k, v in m.items() if k != "report"} for m in state["machines"]]
         assert versions["a"]["folders"] == versions["b"]["folders"] and versions["a"]["results"] != versions["b"]["results"]
-        delays = [2.0 * seconds * (k + random.Random(9 + k).random()) / TRIALS for k in range(TRIALS - 1)]
+        delays = [1.5 * seconds * (k + random.Random(9 + k).random()) / (TRIALS - 1) for k in range(TRIALS - 1)]
         random.Random(9).shuffle(delays)
         current, seen = "a", set()
-        for trial, delay in enumerate(delays + [2.5 * seconds]):
+        for trial, delay in enumerate(delays + [2.0 * seconds]):
             target = "b" if current == "a" else "a"
             helper.stdin.write(f"{target} {delay:.4f}\n")
             helper.stdin.flush()
