@@ -142,3 +142,13 @@ def test_reading_commands_refuse_a_database_without_the_history(run_cli, tmp_pat
     assert status == 2 and "holds no axiscal history" in err and _digest(db) == before
     assert run_cli("history", "upgrade", "--db", db)[0] == 0  # a writer sets it up
     assert run_cli("history", "list", "--db", db)[0] == 0
+
+
+def test_a_new_database_is_refused_by_readers_and_checked_whole_once_written(db_url, results_files):
+    # an empty SQLite file name or an empty PostgreSQL database: readers refuse it, set nothing up
+    with pytest.raises(AxiscalError, match="no history database here|holds no axiscal history yet"):
+        list_campaigns(url=db_url)
+    with pytest.raises(AxiscalError, match="no history database here|holds no axiscal history"):
+        integrity_problems(db_url)
+    add_results(results_files, url=db_url)
+    assert integrity_problems(db_url) == [] and len(list_campaigns(url=db_url)) == 7
