@@ -162,3 +162,36 @@ def test_any_numbers_give_a_finite_fit_or_a_clean_refusal(data, robust, toleranc
     except AxiscalError:
         return
     assert (low is None) == (high is None)
+
+
+def test_a_figure_that_barely_changes_crosses_not_within_the_horizon(tmp_path, run_cli):
+    # hand-computed: values 5.0, 5.000001, 5.0 over two years fit the slope 0 up to rounding and a
+    # crossing of 20 um some 10^7 years on, after 9999-12-31: it is said, not dated
+    dates = [_dt.date(2022, 1, 3), _dt.date(2023, 1, 2), _dt.date(2024, 1, 1)]
+    trend = trend_of("m", "positioning.X.E", dates, [5.0, 5.000001, 5.0], [1.0] * 3, 20.0, [True] * 3, unit="um")
+    assert trend.crossing_date is None and trend.crossing_note == "not within 100 years"
+    assert trend.crossing_interval == (None, None) and trend.crossing_text == "not within 100 years"
+    assert trend.payload()["crossing_note"] == "not within 100 years"
+    # a line already beyond its tolerance that barely rises crossed it long before
+    past = trend_of("m", "f", dates, [25.0, 25.000002, 25.000004], [1.0] * 3, 20.0, [False] * 3)
+    assert past.crossing_date is None and past.crossing_note == "over 100 years before the last campaign"
+    # a slope that reaches it within the horizon still gives the date
+    near = trend_of("m", "f", dates, [5.0, 6.0, 7.0], [0.1] * 3, 20.0, [True] * 3)
+    assert near.crossing_date is not None and near.crossing_note == "" and near.crossing_text.startswith("2036")
+    # through the command line and the report's history section
+    db = tmp_path / "h.sqlite"
+    payloads = drifting_results({"positioning.X.E": Drift(5.0, 0.0, 1.0, 20.0)}, machine="M", campaigns=3)
+    for p, value in zip(payloads, [5.0, 5.001, 5.002]):  # about 1 nm a year: a crossing some 15 000 years on
+        p["tests"][0]["figures"]["E"] = value
+    add_results(write_results(tmp_path / "m", payloads), url=str(db))
+    status, out, err = run_cli("history", "trend", "M", "--figure", "positioning.X.E", "--db", db)
+    assert status == 0, err
+    assert "reaches the tolerance not within 100 years (k = 2: unbounded .. unbounded)" in out
+
+
+def test_date_of_refuses_a_date_beyond_the_calendar_in_one_line():
+    assert date_of(years(_dt.date(9999, 12, 31))) == _dt.date(9999, 12, 31)
+    assert date_of(years(_dt.date(1, 1, 1))) == _dt.date(1, 1, 1)
+    for t in (1e7, -1e7, float("inf"), float("nan")):
+        with pytest.raises(AxiscalError, match="is not a date between 0001-01-01 and 9999-12-31"):
+            date_of(t)

@@ -30,7 +30,11 @@ def fleet_group() -> None:
 @click.option("--db", help="With --history: the database URL or SQLite file [$AXISCAL_DB, else the user's data folder].")
 def fleet_report_command(campaigns_dir: str, out_dir: str, scheduler: str, workers: int, timeout_s: float,
                          history: bool, db: str | None) -> None:
-    """Report every campaign under CAMPAIGNS_DIR (folders with campaign.toml); exit 1 when any could not be."""
+    """Report every campaign under CAMPAIGNS_DIR (folders with campaign.toml); exit 1 when any could not be.
+
+    OUT is replaced as a whole once everything is written (an existing OUT must be empty or an
+    earlier fleet report).
+    """
     if db is not None and not history:
         raise AxiscalError("--db applies only with --history")
     fleet = fleet_report(campaigns_dir, out_dir, scheduler=scheduler, workers=workers, timeout_s=timeout_s,
@@ -41,9 +45,12 @@ def fleet_report_command(campaigns_dir: str, out_dir: str, scheduler: str, worke
     for outcome in run.outcomes:
         if outcome.error:
             click.echo(f"failed {outcome.folder}: {outcome.error}")
+    for row in fleet.machines:
+        if row.error:
+            click.echo(f"failed machine {row.machine}: {row.error}")
     click.echo(f"fleet {fleet.html}")
     click.echo(f"json {fleet.json}")
-    if fleet.failed:
+    if fleet.failed or fleet.failed_machines:
         click.get_current_context().exit(1)
 
 

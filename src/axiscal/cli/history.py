@@ -1,4 +1,4 @@
-"""``axiscal history``: the calibration history database: add, list, show, export, remove, upgrade, trend."""
+"""``axiscal history``: the calibration history database: add, list, show, export, remove, upgrade, trend, check."""
 
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ import click
 from axiscal.cli.common import FINITE, echo_json
 from axiscal.history.analysis import figure_trend
 from axiscal.history.database import DB_ENVIRONMENT
+from axiscal.history.integrity import integrity_problems
 from axiscal.history.store import (
     add_results,
     export_history,
@@ -117,12 +118,29 @@ def trend_command(machine: str, figure: str, robust: bool, risk: float, plot: st
     click.echo(f"{trend.machine}: {trend.figure} over {len(trend.dates)} campaigns, tolerance {trend.tolerance:g} {trend.unit}")
     click.echo(f"drift {fit['slope_per_year']:+.4g} {trend.unit}/year, u = {fit['u_slope_per_year']:.2g} ({fit['method']})")
     low, high = p["crossing_interval"]
-    click.echo(f"reaches the tolerance {p['crossing_date'] or 'never (no drift)'}"
+    click.echo(f"reaches the tolerance {trend.crossing_text}"
                f" (k = {trend.k:g}: {low or 'unbounded'} .. {high or 'unbounded'})")
     click.echo(f"next calibration {nxt['recommended']} (fixed risk {trend.risk:.0%}: {nxt['fixed_risk'] or 'beyond the horizon'};"
                f" staircase: {nxt['staircase']})")
     if plot:
         click.echo(f"plot {plot}")
+
+
+@history_group.command("check")
+@_db_option
+def check_command(db: str | None) -> None:
+    """Check the database whole (SQLite's integrity check) and every campaign complete; exit 1 on problems.
+
+    Only reads: a missing, empty or unreadable database is refused (exit 2), never made.
+    """
+    problems = integrity_problems(db)
+    if not problems:
+        click.echo("ok: the database and every campaign in it are whole")
+        return
+    for problem in problems:
+        click.echo(problem)
+    click.echo(f"{len(problems)} problem{'s' if len(problems) != 1 else ''}: restore the database from a backup")
+    click.get_current_context().exit(1)
 
 
 def register(group: click.Group) -> None:

@@ -51,6 +51,9 @@ class MachineRow:
     drift_per_year, u_drift_per_year : float or None
     next_due : datetime.date or None
         The earliest recommended next calibration over the machine's trends.
+    error : str
+        The one-line error when its drift and next due date could not be worked out ("" when
+        they were); the row then holds its latest campaign only.
     """
 
     machine: str
@@ -66,6 +69,7 @@ class MachineRow:
     drift_per_year: float | None
     u_drift_per_year: float | None
     next_due: _dt.date | None
+    error: str = ""
 
     @property
     def worst_ratio(self) -> float | None:
@@ -97,11 +101,13 @@ def machine_rows(run: FleetRun, *, history: bool = False, db: str | None = None)
     Returns
     -------
     list of MachineRow
+        A machine whose history or trends fail keeps its row with the one-line error (and no
+        drift or next due date); the others are worked out as usual.
 
     Raises
     ------
     AxiscalError
-        For a ``run`` that is not a FleetRun, or a database that cannot be opened.
+        For a ``run`` that is not a FleetRun.
     """
     check_instance("run", run, FleetRun)
     by_machine: dict[str, list[tuple[CampaignRecord, CampaignOutcome]]] = {}
@@ -115,21 +121,25 @@ def machine_rows(run: FleetRun, *, history: bool = False, db: str | None = None)
     for label, entries in by_machine.items():
         entries.sort(key=lambda e: e[0].date)
         latest, outcome = entries[-1]
-        past = machine_history(label, url=db) if history else _in_memory([r for r, _ in entries])
+        campaigns, trends, error = len(entries), {}, ""
         try:
+            past = machine_history(label, url=db) if history else _in_memory([r for r, _ in entries])
+            campaigns = len(past.campaigns)
             trends = {t.figure: t for t in machine_trends(past)}
-        except AxiscalError:
-            trends = {}
+        except AxiscalError as exc:
+            error = " ".join(str(exc).split())
+        except Exception as exc:  # one machine's failure must not stop the page: it is listed
+            error = f"{type(exc).__name__}: {' '.join(str(exc).split())}"[:500]
         toleranced = [f for f in latest.figures if f.tolerance and f.value is not None]
         worst = max(toleranced, key=lambda f: abs(f.value) / f.tolerance, default=None)
         drift = trends.get(worst.key) if worst is not None else None
         if drift is None and trends:
             drift = max(trends.values(), key=lambda t: abs(t.fit.b) / t.tolerance)
         rows.append(MachineRow(
-            label, len(past.campaigns), latest.date, latest.verdict, outcome.report,
+            label, campaigns, latest.date, latest.verdict, outcome.report,
             worst.key if worst else "", worst.unit if worst else "", worst.value if worst else None,
             worst.tolerance if worst else None, drift.figure if drift else "", drift.fit.b if drift else None,
-            drift.fit.u_b if drift else None, min((t.next_date for t in trends.values()), default=None),
+            drift.fit.u_b if drift else None, min((t.next_date for t in trends.values()), default=None), error,
         ))
     rows.sort(key=lambda r: (r.next_due or _dt.date.max, -(r.worst_ratio or 0.0), r.machine))
     return rows
@@ -169,6 +179,7 @@ def fleet_payload(run: FleetRun, rows: Sequence[MachineRow]) -> dict[str, Any]:
             "drift": {"figure": r.drift_figure, "per_year": r.drift_per_year, "u_per_year": r.u_drift_per_year}
             if r.drift_figure else None,
             "next_due": iso(r.next_due),
+            "error": r.error or None,
         } for r in rows],
         "errors": [{"folder": o.folder, "error": o.error} for o in run.outcomes if o.error],
     }
@@ -229,6 +240,7 @@ def render_fleet_html(run: FleetRun, rows: Sequence[MachineRow], *, out_dir: str
         generated=generated or _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         rows=table,
         errors=[o for o in run.outcomes if o.error],
+        machine_errors=[r for r in rows if r.error],
         count=len(run.outcomes),
         scheduler=run.scheduler,
         seconds=run.seconds,

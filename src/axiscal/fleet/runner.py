@@ -25,6 +25,9 @@ __all__ = ["SCHEDULER_TIMEOUT_S", "CampaignOutcome", "FleetRun", "find_campaigns
 
 #: seconds to wait for a scheduler given by address
 SCHEDULER_TIMEOUT_S = 10.0
+# seconds a LocalCluster's worker process is given to exit on its own once the fleet is done (Dask's
+# own 5 s is short on a loaded machine: the nanny then kills the worker and logs a warning)
+_WORKER_EXIT_S = 60.0
 # pyplot is not thread-safe: reports made by threads of one process take turns
 _PLOT_LOCK = threading.Lock()
 
@@ -248,4 +251,18 @@ def _on_cluster(tasks, scheduler, workers, processes, history, db, timeout_s, pr
     finally:
         client.close()
         if own is not None:
-            own.close()
+            _close_cluster(own)
+
+
+def _close_cluster(cluster: Any) -> None:
+    """Close a LocalCluster cleanly: every worker asked to stop and given time to exit on its own."""
+    import asyncio
+
+    async def close_workers() -> None:
+        await asyncio.gather(*(worker.close(timeout=_WORKER_EXIT_S) for worker in list(cluster.workers.values())),
+                             return_exceptions=True)
+
+    try:
+        cluster.sync(close_workers)
+    finally:
+        cluster.close(timeout=_WORKER_EXIT_S)

@@ -16,11 +16,13 @@ from axiscal.history.analysis import (
 from axiscal.history.database import (
     DB_ENVIRONMENT,
     MIGRATIONS,
+    database_errors,
     default_url,
     open_engine,
     resolve_url,
     schema_revision,
     shown_url,
+    sqlite_file,
 )
 from axiscal.history.integrity import integrity_problems
 from axiscal.history.models import (
@@ -57,6 +59,7 @@ from axiscal.history.synthetic import (
     write_results,
 )
 from axiscal.history.trend import (
+    CROSSING_HORIZON_YEARS,
     TREND_METHODS,
     DriftFit,
     Trend,
@@ -72,11 +75,13 @@ __all__ = [
     "machine_trends",
     "DB_ENVIRONMENT",
     "MIGRATIONS",
+    "database_errors",
     "default_url",
     "open_engine",
     "resolve_url",
     "schema_revision",
     "shown_url",
+    "sqlite_file",
     "integrity_problems",
     "Base",
     "CampaignRow",
@@ -103,6 +108,7 @@ __all__ = [
     "Drift",
     "drifting_results",
     "write_results",
+    "CROSSING_HORIZON_YEARS",
     "TREND_METHODS",
     "DriftFit",
     "Trend",

@@ -3,9 +3,10 @@
 No standard clause: ISO/IEC 17025 7.5 asks for the records of every calibration to be kept and
 retrievable; ILAC-G24 / OIML D 10 (2007) set calibration intervals from them
 (:mod:`axiscal.history.trend`). Each public function opens the database (:func:`open_engine`,
-which migrates it), does one job in one transaction and closes it: a campaign is stored whole or
+which checks it and migrates it; the functions that only read open it read-only, so they never
+make or change one), does one job in one transaction and closes it: a campaign is stored whole or
 not at all, once however often it is added, and a writer killed mid-add leaves the database as
-it was.
+it was. A database error met on the way (a damaged page) ends in one line.
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from axiscal.errors import AxiscalError
-from axiscal.history.database import open_engine, schema_revision, shown_url, resolve_url
+from axiscal.history.database import database_errors, open_engine, resolve_url, schema_revision, shown_url
 from axiscal.history.models import CampaignRow, FigureRow, MachineRow
 from axiscal.history.records import CampaignRecord, FigureRecord, read_results
 from axiscal.io.arguments import check_instance, check_integer, check_path
@@ -241,11 +242,13 @@ def add_records(
         raise AxiscalError(f"records must be a sequence of CampaignRecord, not {type(records).__name__}")
     for record in records:
         check_instance("records[...]", record, CampaignRecord)
+    url = resolve_url(url)
     engine = open_engine(url)
     try:
         out = []
         for record in records:
-            added = _store(engine, record)
+            with database_errors(url):
+                added = _store(engine, record)
             out.append(added)
             if progress is not None:
                 progress(added)
@@ -321,14 +324,16 @@ def list_campaigns(machine: str | None = None, *, url: str | None = None) -> lis
     Raises
     ------
     AxiscalError
-        For a machine the history does not hold, or a database that cannot be opened.
+        For a machine the history does not hold, or a database that cannot be opened, is damaged,
+        missing or empty (it only reads: it never makes or changes one).
     """
     from sqlalchemy import select
     from sqlalchemy.orm import selectinload
 
-    engine = open_engine(url)
+    url = resolve_url(url)
+    engine = open_engine(url, readonly=True)
     try:
-        with _session(engine) as session:
+        with database_errors(url), _session(engine) as session:
             query = select(CampaignRow).join(MachineRow).options(selectinload(CampaignRow.machine))
             if machine is not None:
                 query = query.where(CampaignRow.machine_id == _find_machine(session, machine).id)
@@ -377,14 +382,16 @@ def machine_history(machine: str, *, url: str | None = None) -> MachineHistory:
     ------
     AxiscalError
         For a machine the history does not hold, a name several machines share, or a database
-        that cannot be opened.
+        that cannot be opened, is damaged, missing or empty (it only reads: it never makes or
+        changes one).
     """
     from sqlalchemy import select
     from sqlalchemy.orm import selectinload
 
-    engine = open_engine(url)
+    url = resolve_url(url)
+    engine = open_engine(url, readonly=True)
     try:
-        with _session(engine) as session:
+        with database_errors(url), _session(engine) as session:
             row = _find_machine(session, machine)
             campaigns = session.execute(
                 select(CampaignRow).where(CampaignRow.machine_id == row.id)
@@ -507,9 +514,10 @@ def remove_campaign(campaign_id: int, *, url: str | None = None) -> StoredCampai
     from sqlalchemy import delete, func, select
 
     campaign_id = check_integer("campaign_id", campaign_id)
+    url = resolve_url(url)
     engine = open_engine(url)
     try:
-        with _session(engine) as session, session.begin():
+        with database_errors(url), _session(engine) as session, session.begin():
             row = session.get(CampaignRow, campaign_id)
             if row is None:
                 raise AxiscalError(f"the history holds no campaign {campaign_id}")
@@ -546,8 +554,10 @@ def upgrade_database(url: str | None = None) -> tuple[str, str]:
     AxiscalError
         For a database that cannot be opened or of a newer schema.
     """
+    url = resolve_url(url)
     engine = open_engine(url)
     try:
-        return shown_url(resolve_url(url)), str(schema_revision(engine))
+        with database_errors(url):
+            return shown_url(url), str(schema_revision(engine))
     finally:
         engine.dispose()

@@ -9,7 +9,9 @@ median absolute deviation) until the weights settle (Huber, *Robust Statistics*,
 
 The date the line crosses the tolerance ``L`` is ``t0 + (L - a) / b``; its interval is Fieller's
 (1954): the times where ``|a + b (t - t0) - L| <= k u_fit(t)``, bounded only when the slope is
-significant (``|b| > k u(b)``). The next calibration follows ILAC-G24 / OIML D 10 (2007):
+significant (``|b| > k u(b)``). A crossing further than :data:`CROSSING_HORIZON_YEARS` from the last
+campaign is not given as a date (it says "not within 100 years"), nor is an end of its interval
+that far (unbounded). The next calibration follows ILAC-G24 / OIML D 10 (2007):
 
 - **fixed risk** (from the drift fit): the first date where the one-sided probability of being out
   of tolerance reaches ``risk``: ``a + b (t - t0) + z u_fit(t) = L`` with ``z = Phi^-1(1 - risk)``;
@@ -32,10 +34,12 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_choice, check_number
 
-__all__ = ["TREND_METHODS", "DriftFit", "Trend", "fit_drift", "crossing", "staircase", "trend_of"]
+__all__ = ["TREND_METHODS", "CROSSING_HORIZON_YEARS", "DriftFit", "Trend", "fit_drift", "crossing", "staircase", "trend_of"]
 
 #: the ways a drift line is fitted
 TREND_METHODS = ("wls", "robust")
+#: a crossing date further than this from the last campaign, years, is not stated as a date
+CROSSING_HORIZON_YEARS = 100.0
 _YEAR_DAYS = 365.25
 _HUBER_C = 1.345
 # bounds that keep the normal equations far from overflow: dates within 100 000 years, figures and
@@ -43,6 +47,8 @@ _HUBER_C = 1.345
 _MAX_YEARS = 1e5
 _MAX_VALUE = 1e15
 _MIN_U = 1e-100
+# the longest interval a method may recommend, days (100 years)
+_MAX_INTERVAL_DAYS = 36525.0
 
 
 @dataclass(frozen=True)
@@ -115,8 +121,25 @@ def years(date: _dt.date) -> float:
 
 
 def date_of(t: float) -> _dt.date:
-    """The date at ``t`` years since 1970-01-01 (to the day)."""
-    return _dt.date(1970, 1, 1) + _dt.timedelta(days=int(math.floor(t * _YEAR_DAYS + 0.5)))
+    """The date at ``t`` years since 1970-01-01 (to the day).
+
+    Raises
+    ------
+    AxiscalError
+        For a ``t`` whose date is not between 0001-01-01 and 9999-12-31.
+    """
+    days = t * _YEAR_DAYS + 0.5 if math.isfinite(t) else math.inf
+    first, last = _dt.date.min - _dt.date(1970, 1, 1), _dt.date.max - _dt.date(1970, 1, 1)
+    if not first.days <= days < last.days + 1:
+        raise AxiscalError(f"{t:.6g} years after 1970 is not a date between {_dt.date.min} and {_dt.date.max}")
+    return _dt.date(1970, 1, 1) + _dt.timedelta(days=int(math.floor(days)))
+
+
+def _within(t: float | None, last: float) -> _dt.date | None:
+    """The date at ``t`` when it lies within the horizon of the last campaign ``last``, else None."""
+    if t is None or not abs(t - last) <= CROSSING_HORIZON_YEARS:
+        return None
+    return date_of(t)
 
 
 def _wls(t: np.ndarray, y: np.ndarray, w: np.ndarray) -> tuple[float, float, float, np.ndarray, float]:
@@ -331,9 +354,10 @@ class Trend:
     k : float
         Coverage factor of the intervals.
     crossing_date : datetime.date or None
-        When the line reaches the tolerance (None: it never does).
+        When the line reaches the tolerance (None: it never does, or not within
+        :data:`CROSSING_HORIZON_YEARS` of the last campaign; :attr:`crossing_note` says which).
     crossing_interval : (date or None, date or None)
-        Fieller's interval on that date; None at an unbounded end.
+        Fieller's interval on that date; None at an unbounded end (or one beyond the horizon).
     fixed_risk_date : datetime.date or None
         ILAC-G24 from the drift fit: out of tolerance with probability ``risk`` (None: never
         within ``max_days`` of the last campaign, or the fit cannot tell).
@@ -342,6 +366,9 @@ class Trend:
         ILAC-G24 method 1.
     next_date : datetime.date
         The recommended next calibration: the earlier of the two.
+    crossing_note : str
+        Why there is no crossing date: ``"never (no drift)"``, ``"not within 100 years"`` or
+        ``"over 100 years before the last campaign"``; ``""`` when there is one.
     """
 
     machine: str
@@ -359,6 +386,12 @@ class Trend:
     risk: float
     staircase_date: _dt.date
     next_date: _dt.date
+    crossing_note: str = ""
+
+    @property
+    def crossing_text(self) -> str:
+        """The crossing date (ISO), or why there is none, as messages and reports show it."""
+        return self.crossing_date.isoformat() if self.crossing_date is not None else self.crossing_note
 
     def payload(self) -> dict:
         """The trend as ``history trend --json`` prints it (dates ISO, slope per year).
@@ -381,6 +414,7 @@ class Trend:
                     "chi2": self.fit.chi2, "dof": self.fit.dof},
             "k": self.k,
             "crossing_date": iso(self.crossing_date),
+            "crossing_note": self.crossing_note or None,
             "crossing_interval": [iso(self.crossing_interval[0]), iso(self.crossing_interval[1])],
             "next_calibration": {"fixed_risk": iso(self.fixed_risk_date), "risk": self.risk,
                                  "staircase": iso(self.staircase_date), "recommended": iso(self.next_date)},
@@ -426,23 +460,25 @@ def trend_of(
     risk : float, keyword-only
         The accepted probability of being out of tolerance at the next calibration (0 < risk < 0.5).
     max_days : float, keyword-only
-        The longest interval either method recommends.
+        The longest interval either method recommends (at most 100 years).
 
     Returns
     -------
     Trend
+        A crossing further than :data:`CROSSING_HORIZON_YEARS` from the last campaign has no date
+        (its ``crossing_note`` says "not within 100 years").
 
     Raises
     ------
     AxiscalError
         For fewer than three campaigns, a tolerance that is not positive, arrays of different
-        lengths, or a risk outside (0, 0.5).
+        lengths, a risk outside (0, 0.5), or a next date after 9999-12-31.
     """
     from scipy.stats import norm
 
     tolerance = check_number("tolerance", tolerance, positive=True)
     risk = check_number("risk", risk, positive=True, high=0.4999)
-    max_days = check_number("max_days", max_days, positive=True)
+    max_days = check_number("max_days", max_days, positive=True, high=_MAX_INTERVAL_DAYS)
     if not (len(dates) == len(values) == len(U) == len(passed)):
         raise AxiscalError("dates, values, U and passed must have one entry per campaign")
     t = np.array([years(d) for d in dates])
@@ -462,9 +498,17 @@ def trend_of(
         fixed = min(candidates) if candidates and min(candidates) <= horizon else None
     stair = last + staircase(passed, max_days=max_days) / _YEAR_DAYS
     next_t = min(stair, fixed) if fixed is not None else stair
+    crossing_date = _within(t_cross, last)
+    if t_cross is None:
+        note = "never (no drift)"
+    elif crossing_date is not None:
+        note = ""
+    elif t_cross > last:
+        note = f"not within {CROSSING_HORIZON_YEARS:g} years"
+    else:
+        note = f"over {CROSSING_HORIZON_YEARS:g} years before the last campaign"
     return Trend(
-        machine, figure, unit, tuple(dates), y, u, tolerance, fit, k,
-        None if t_cross is None else date_of(t_cross),
-        (None if low is None else date_of(low), None if high is None else date_of(high)),
-        None if fixed is None else date_of(fixed), risk, date_of(stair), date_of(next_t),
+        machine, figure, unit, tuple(dates), y, u, tolerance, fit, k, crossing_date,
+        (_within(low, last), _within(high, last)),
+        None if fixed is None else date_of(fixed), risk, date_of(stair), date_of(next_t), note,
     )

@@ -1,7 +1,9 @@
 """The outputs of an identification: the machine folder, ``identify.json``, ``identify.html`` and its figures.
 
 The result objects call these (:meth:`axiscal.identification.Identification.write`, ``.report()``);
-they take the result and never import the solver.
+they take the result and never import the solver. The output folder is built beside its
+destination and swapped into place whole (:func:`axiscal.io.folders.atomic_folder`): a run killed
+at any moment leaves the earlier output as it was, never error tables of two runs side by side.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ import numpy as np
 from axiscal.conventions import AXIS_INDEX, ROTARY_LETTERS, component_names
 from axiscal.io.arguments import check_path
 from axiscal.io.atomic import write_text
+from axiscal.io.folders import atomic_folder
 from axiscal.io.jsonio import write_json, write_sidecar
 from axiscal.io.tabular import write_csv
 from axiscal.io.templates import render_template
@@ -111,24 +114,36 @@ def write_identification(result, folder: str | Path) -> dict:
     result : Identification
         What :func:`axiscal.identify` returned.
     folder : str or Path
-        The output folder (created).
+        The output folder: made beside and put in place whole once everything is written (an
+        existing folder must be empty or an earlier identification's, holding identify.json; it is
+        replaced as a whole).
 
     Returns
     -------
     dict of str to Path
         ``machine``, ``json``, ``html`` and each figure.
+
+    Raises
+    ------
+    AxiscalError
+        For a folder that holds something else or cannot be written; it is then as it was.
     """
     from axiscal.identification.plot import plot_motions, plot_residuals
 
     folder = check_path("folder", folder)
-    files = {"machine": write_machine_folder(result.machine, folder, comment=f"identified by axiscal identify ({result.model})")}
-    files["json"] = write_json(folder / "identify.json", result.summary())
-    for name in result.residuals:
-        files[f"residuals_{name}"] = plot_residuals(result, name, folder / f"residuals_{_slug(name)}.png")
-    for letter in result.spans:
-        files[f"motions_{letter}"] = plot_motions(result, letter, folder / f"motions_{letter.lower()}.png")
-    files["html"] = write_text(folder / "identify.html", report_html(result))
-    return files
+
+    def fill(staging: Path) -> dict:
+        files = {"machine": write_machine_folder(result.machine, staging,
+                                                 comment=f"identified by axiscal identify ({result.model})")}
+        files["json"] = write_json(staging / "identify.json", result.summary())
+        for name in result.residuals:
+            files[f"residuals_{name}"] = plot_residuals(result, name, staging / f"residuals_{_slug(name)}.png")
+        for letter in result.spans:
+            files[f"motions_{letter}"] = plot_motions(result, letter, staging / f"motions_{letter.lower()}.png")
+        files["html"] = write_text(staging / "identify.html", report_html(result))
+        return {key: folder / Path(path).relative_to(staging) for key, path in files.items()}
+
+    return atomic_folder(folder, fill, marker="identify.json")
 
 
 def _slug(name: str) -> str:

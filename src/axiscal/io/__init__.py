@@ -24,6 +24,7 @@ from axiscal.io.arguments import (
     unit_words,
 )
 from axiscal.io.atomic import atomic_write, write_text
+from axiscal.io.folders import atomic_folder, stale_temporaries
 from axiscal.io.jsonio import (
     dumps,
     read_json,
@@ -62,6 +63,8 @@ __all__ = [
     "type_name",
     "atomic_write",
     "write_text",
+    "atomic_folder",
+    "stale_temporaries",
     "dumps",
     "read_json",
     "json_line",

@@ -58,7 +58,7 @@ def history_section(results: CampaignResults, *, url: str | None = None, source:
         low, high = trend.crossing_interval
         trends.append({
             "figure": trend.figure, "unit": trend.unit, "slope": trend.fit.b, "u_slope": trend.fit.u_b,
-            "crossing": trend.crossing_date.isoformat() if trend.crossing_date else "never (no drift)",
+            "crossing": trend.crossing_text,
             "interval": f"{low.isoformat() if low else 'unbounded'} .. {high.isoformat() if high else 'unbounded'}",
             "next": trend.next_date.isoformat(),
             "svg": svg_of(lambda path, t=trend: plot_trend(t, path)),
