@@ -6,10 +6,9 @@ import click
 
 from axiscal.cli.common import FINITE
 from axiscal.errors import AxiscalError
-from axiscal.fleet.report import fleet_report
-from axiscal.fleet.runner import SCHEDULER_TIMEOUT_S
+from axiscal.cli.choices import FLEET_SCHEDULER_TIMEOUT_S as SCHEDULER_TIMEOUT_S
 
-__all__ = ["fleet_group", "fleet_report_command", "register"]
+__all__ = ["fleet_group", "fleet_report_command"]
 
 
 @click.group("fleet")
@@ -31,6 +30,8 @@ def fleet_group() -> None:
 def fleet_report_command(campaigns_dir: str, out_dir: str, scheduler: str, workers: int, timeout_s: float,
                          history: bool, db: str | None) -> None:
     """Report every campaign under CAMPAIGNS_DIR (folders with campaign.toml); exit 1 when any could not be."""
+    from axiscal.fleet.report import fleet_report
+
     if db is not None and not history:
         raise AxiscalError("--db applies only with --history")
     fleet = fleet_report(campaigns_dir, out_dir, scheduler=scheduler, workers=workers, timeout_s=timeout_s,
@@ -45,7 +46,3 @@ def fleet_report_command(campaigns_dir: str, out_dir: str, scheduler: str, worke
     click.echo(f"json {fleet.json}")
     if fleet.failed:
         click.get_current_context().exit(1)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(fleet_group)

@@ -5,11 +5,10 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import FINITE, flags_named
-from axiscal.io.gcode import DIALECT_NAMES
-from axiscal.positioning.plan import CYCLES, cycle_csv, plan_test, write_plan
+from axiscal.cli.choices import CYCLES, DIALECT_NAMES
 from axiscal.units import MM
 
-__all__ = ["plan_command", "register"]
+__all__ = ["plan_command"]
 
 
 @click.command("plan")
@@ -30,6 +29,8 @@ __all__ = ["plan_command", "register"]
               help="Write the cycle CSV (and its JSON sidecar) here instead of stdout.")
 def plan_command(start_mm, end_mm, count, runs, overrun_mm, seed, cycle, gcode_path, dialect, axis, dwell_s, feed_mm_min, output):
     """Plan an ISO 230-2 positioning test: uneven targets and the test cycle (CSV to fill in; G-code with --gcode)."""
+    from axiscal.positioning.plan import cycle_csv, plan_test, write_plan
+
     with flags_named({"start_m": "--start-mm", "end_m": "--end-mm", "overrun_m": "--overrun-mm", "dwell_s": "--dwell-s",
                       "feed_mm_per_min": "--feed-mm-min"}):
         plan = plan_test(start_mm * MM, end_mm * MM, count, runs=runs, overrun_m=overrun_mm * MM, seed=seed, cycle=cycle)
@@ -37,7 +38,3 @@ def plan_command(start_mm, end_mm, count, runs, overrun_mm, seed, cycle, gcode_p
     if not output:
         click.echo(cycle_csv(plan), nl=False)
     click.echo(f"axiscal: note: {plan.description}", err=True)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(plan_command)
