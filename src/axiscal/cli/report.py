@@ -65,5 +65,10 @@ def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, 
         click.echo(f"compensation {path}")
     if files.pdf is not None:
         click.echo(f"pdf {files.pdf}")
+    if files.history is not None:
+        stored = files.history
+        count = stored["campaigns"]
+        click.echo(f"history: campaign {stored['campaign_id']} of {stored['machine']} stored in {stored['database']}"
+                   f" ({count} campaign{'' if count == 1 else 's'} of this machine)")
     if exit_code and verdict in ("fail", "inconclusive"):
         click.get_current_context().exit(1)
