@@ -284,8 +284,10 @@ def _squareness(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] |
     return TestResult(
         id=spec.id, kind=spec.kind, axis=spec.axis, files=[relative_name(campaign, first), relative_name(campaign, second)],
         figures=figures, checks=checks, plots=[Plot(f"{result.plane} squareness: both runs and their lines", svg)],
-        table=[Figure(f"squareness {result.plane} ({result.convention})", figures["squareness_arcsec"], "arcsec"),
-               Figure(f"{result.iso_term} (ISO 230-1 sign)", figures["iso_value_arcsec"], "arcsec")],
+        # one figure, one sign (docs/conventions.md): the judged squareness under the name that says its
+        # convention, as the verdict table and the plot show it; the included angle itself has no sign to read
+        table=[Figure(result.name, figures["squareness_arcsec"], "arcsec"),
+               Figure(f"included angle of {result.plane[0]} and {result.plane[1]}", figures["included_angle_deg"], "deg")],
         method="Squareness: two straightness runs and a pentaprism (paper 002 eqs 1 and 21)", uncertainty=uncertainty,
     )
 

@@ -180,8 +180,7 @@ class LazyGroup(click.Group):
             return
         limit = formatter.width - 6 - max(len(name) for name, _, _ in rows)
         lines = [
-            (name, click.utils.make_default_short_help(summary, limit) if command is None
-             else command.get_short_help_str(limit))
+            (name, (command or click.Command(name, help=summary)).get_short_help_str(limit))
             for name, summary, command in rows
         ]
         with formatter.section("Commands"):
