@@ -42,7 +42,7 @@ def plot_positioning(
     path: str | Path,
     *,
     title: str = "",
-    compensated: bool = False,
+    compensated: bool | str = False,
     overlay: Mapping[str, Any] | None = None,
     figures_table: bool = True,
 ) -> Path:
@@ -65,9 +65,9 @@ def plot_positioning(
         The figure file; its suffix gives the format.
     title : str, keyword-only
         Title of the plot (default: file name, standard, k, targets and runs).
-    compensated : bool, keyword-only
-        Note on the plot that raw laser readings were compensated for the air and the material
-        temperature.
+    compensated : bool or str, keyword-only
+        Note on the plot what was applied to raw laser readings: a text says it as given
+        (:attr:`axiscal.positioning.RunFile.compensation`); True notes the air index only.
     overlay : mapping, keyword-only
         Another test of the same axis to draw behind this one (e.g. before compensation): the
         ``targets`` object of its ``axiscal positioning --json`` (``target_mm`` or ``target_deg``,
@@ -159,7 +159,8 @@ def plot_positioning(
     if not has_s:
         notes.append("one run per direction: s cannot be estimated, so no ±ks bands, R, A or S")
     if compensated:
-        notes.append("raw laser readings compensated for air index and material temperature")
+        # say what was applied: a run without a material temperature is not normalised to 20 degC
+        notes.append(compensated if isinstance(compensated, str) else "raw laser readings compensated for the air index")
     if notes:
         ax.text(0.01, 0.01, "\n".join(notes), transform=ax.transAxes, fontsize=8, va="bottom", color="0.25")
     if figures_table:
