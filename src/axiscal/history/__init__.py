@@ -56,11 +56,13 @@ from axiscal.history.synthetic import (
     write_results,
 )
 from axiscal.history.trend import (
+    ONE_SIDED_FIGURES,
     TREND_METHODS,
     DriftFit,
     Trend,
     crossing,
     fit_drift,
+    one_sided_figure,
     staircase,
     trend_of,
 )
@@ -102,6 +104,8 @@ __all__ = [
     "drifting_results",
     "write_results",
     "TREND_METHODS",
+    "ONE_SIDED_FIGURES",
+    "one_sided_figure",
     "DriftFit",
     "Trend",
     "crossing",
