@@ -367,7 +367,7 @@ def test_the_diagonal_check_compares_with_the_diagonal_before(compared):
 
     rows = verdict_rows(compared["xz"].results_data, previous_figures(compared["before"]["xz"]))
     (row,) = [r for r in rows if r["test_id"] == "diagonal-1"]
-    assert row["figure"] == "diagonal_error / um"
+    assert row["figure"] == "diagonal_error / µm"
     assert float(row["before"]) == pytest.approx(SCALE * float(row["value"]), abs=0.05)
 
 

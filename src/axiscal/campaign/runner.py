@@ -288,7 +288,7 @@ def _squareness(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] |
         # convention, as the verdict table and the plot show it; the included angle itself has no sign to read
         table=[Figure(result.name, figures["squareness_arcsec"], "arcsec"),
                Figure(f"included angle of {result.plane[0]} and {result.plane[1]}", figures["included_angle_deg"], "deg")],
-        method="Squareness: two straightness runs and a pentaprism (paper 002 eqs 1 and 21)", uncertainty=uncertainty,
+        method="Squareness: ISO 230-1, two straightness runs referred to each other by a pentaprism (optical square), its deviation removed", uncertainty=uncertainty,
     )
 
 

@@ -16,6 +16,7 @@ from axiscal.report.history import history_section
 from axiscal.report.html import (
     compare_label,
     decision_statement,
+    display_unit,
     format_number,
     previous_figures,
     previous_uncertainty,
@@ -41,6 +42,7 @@ __all__ = [
     "decision_statement",
     "template_environment",
     "render_html",
+    "display_unit",
     "format_number",
     "previous_figures",
     "previous_uncertainty",

@@ -26,6 +26,7 @@ __all__ = [
     "template_environment",
     "render_html",
     "format_number",
+    "display_unit",
     "decision_statement",
     "previous_figures",
     "previous_uncertainty",
@@ -62,6 +63,7 @@ def template_environment():
         lstrip_blocks=True,
     )
     env.globals["fmt"] = format_number
+    env.filters["unit"] = display_unit
     return env
 
 
@@ -271,7 +273,7 @@ def verdict_rows(
             change = "" if previous is None or not math.isfinite(check.value) else f"{abs(check.value) - abs(previous):+.3f}"
             rows.append({
                 "test_id": test.id, "axis": test.axis or "",
-                "figure": f"{name} / {check.unit}",
+                "figure": f"{name} / {display_unit(check.unit)}",
                 "value": format_number(check.value), "limit": format_number(check.limit),
                 "U": "" if check.U is None else format_number(check.U),
                 "before": "" if previous is None else format_number(previous),
@@ -279,6 +281,29 @@ def verdict_rows(
                 "change": change, "result": check.result, "css": check.result,
             })
     return rows
+
+
+#: units as a page shows them (files and flags spell them in ASCII)
+_DISPLAY_UNITS = {"um": "µm", "urad": "µrad", "um/m": "µm/m", "um/year": "µm/year", "degC": "°C"}
+
+
+def display_unit(unit: str) -> str:
+    """A unit as a page shows it: ``um`` -> ``µm``, ``urad`` -> ``µrad``; others unchanged.
+
+    Parameters
+    ----------
+    unit : str
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> display_unit("um"), display_unit("arcsec")
+    ('µm', 'arcsec')
+    """
+    return _DISPLAY_UNITS.get(unit, unit) if isinstance(unit, str) else unit
 
 
 def sections(tests: list[TestResult]) -> list[dict[str, Any]]:
