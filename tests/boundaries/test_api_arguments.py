@@ -289,6 +289,8 @@ bad(S, "plot_straightness", "line", lambda: st_.plot_straightness("/tmp/never.pn
 bad(S, "plot_straightness", "path", lambda: st_.plot_straightness(None, [0.0, 1.0], [0.0, 0.0], LINE))
 bad(S, "plot_separation", "result", lambda: st_.plot_separation("/tmp/never.png", None))
 bad(S, "plot_separation", "path", lambda: st_.plot_separation(None, st_.reversal([0.0, 1.0], [0.0, 0.0], [0.0, 0.0])))
+bad(S, "plot_separation", "reference", lambda: st_.plot_separation("/tmp/never.png", st_.reversal([0.0, 1.0], [0.0, 0.0], [0.0, 0.0]),
+                                                                 reference="best"))
 bad(S, "plot_straightness", "overlay", lambda: st_.plot_straightness("/tmp/never.png", [0.0, 1.0], [0.0, 0.0], LINE, overlay=5),
     lambda: st_.plot_straightness("/tmp/never.png", [0.0, 1.0], [0.0, 0.0], LINE, overlay={"position_mm": "0,1"}),
     lambda: st_.plot_straightness("/tmp/never.png", [0.0, 1.0], [0.0, 0.0], LINE, overlay={"position_mm": [0, 1], "deviation_um": [1.0]}))

@@ -227,7 +227,7 @@ def _separation(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] |
     )
     separation = run.separation
     overlay = _overlay(spec, compare, "columns")
-    svg = _drawn(spec, lambda p: plot_separation(p, separation, overlay=overlay), overlay)
+    svg = _drawn(spec, lambda p: plot_separation(p, separation, overlay=overlay, reference=reference), overlay)
     motion = np.isfinite(separation.motion_m)
     slide = reference_line(separation.position_m[motion], separation.motion_m[motion], reference=reference)
     workpiece = reference_line(separation.position_m, separation.profile_m, reference=reference)
