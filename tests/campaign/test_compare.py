@@ -55,8 +55,8 @@ interferometer = "diagonal_laser.csv"
 
 #: test id -> the legend entries its plot shows for the compared campaign
 LEGENDS = {
-    "positioning-X-1": ("before: mean x̄↑", "before: mean x̄↓"),
-    "positioning-Y-1": ("before: mean x̄↑", "before: mean x̄↓"),
+    "positioning-X-1": ("as found: mean x̄↑", "as found: mean x̄↓"),
+    "positioning-Y-1": ("as found: mean x̄↑", "as found: mean x̄↓"),
     "straightness-X-1": ("before: profile", "before: about its line"),
     "separation-X-1": ("before: profile R", "before: motion S", "before: yaw"),
     "squareness-XY-1": ("before: measured", "before: line"),

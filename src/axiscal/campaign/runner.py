@@ -103,6 +103,9 @@ def _positioning(campaign: Campaign, spec: TestSpec, campaign_compare: Mapping[s
     checks = check_figures(axis_figures, spec.tolerances, {}, uncertainty=uncertainty, rule=campaign.decision_rule)
     title = f"{spec.axis} axis positioning ({evaluation.result.standard})"
     overlay = _overlay(spec, campaign_compare, "targets")
+    if overlay is not None:
+        # a compared positioning test is the axis as found; this campaign's, the axis as left
+        overlay = {**overlay, "label": "as found", "current_label": "as left"}
     # the report shows the figures in its own table beside the plot
     svg = _drawn(spec, lambda p: evaluation.plot(p, title=title, overlay=overlay, figures_table=False), overlay)
     compensation = []
