@@ -310,6 +310,8 @@ PTS = np.zeros((2, 3))
 FIT = sq.squareness(XS, YS, XS, YS)
 
 bad(Q, "iso_term", "unknown plane", lambda: sq.iso_term("XW"), lambda: sq.iso_term(None), lambda: sq.iso_term(5))
+bad(Q, "squareness_name", "unknown plane", lambda: sq.squareness_name("XW", "iso"), lambda: sq.squareness_name(None, "iso"))
+bad(Q, "squareness_name", "convention", lambda: sq.squareness_name("XY", "included"), lambda: sq.squareness_name("XY", None))
 bad(Q, "iso_from_included_angle", "squareness_rad", lambda: sq.iso_from_included_angle(NAN, plane="XY"), lambda: sq.iso_from_included_angle("1", plane="XY"))
 bad(Q, "iso_from_included_angle", "unknown plane", lambda: sq.iso_from_included_angle(0.0, plane="AB"))
 bad(Q, "included_angle_from_iso", "iso_value_rad", lambda: sq.included_angle_from_iso(INF, plane="XY"), lambda: sq.included_angle_from_iso(None, plane="XY"))

@@ -63,7 +63,7 @@ def template_environment():
         lstrip_blocks=True,
     )
     env.globals["fmt"] = format_number
-    env.filters["unit"] = display_unit
+    env.filters["unit"] = lambda unit: display_unit(unit) if isinstance(unit, str) else unit
     return env
 
 
@@ -298,12 +298,18 @@ def display_unit(unit: str) -> str:
     -------
     str
 
+    Raises
+    ------
+    AxiscalError
+        For a unit that is not a text.
+
     Examples
     --------
     >>> display_unit("um"), display_unit("arcsec")
     ('µm', 'arcsec')
     """
-    return _DISPLAY_UNITS.get(unit, unit) if isinstance(unit, str) else unit
+    check_instance("unit", unit, str)
+    return _DISPLAY_UNITS.get(unit, unit)
 
 
 def sections(tests: list[TestResult]) -> list[dict[str, Any]]:
