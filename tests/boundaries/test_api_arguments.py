@@ -289,6 +289,8 @@ bad(S, "plot_straightness", "line", lambda: st_.plot_straightness("/tmp/never.pn
 bad(S, "plot_straightness", "path", lambda: st_.plot_straightness(None, [0.0, 1.0], [0.0, 0.0], LINE))
 bad(S, "plot_separation", "result", lambda: st_.plot_separation("/tmp/never.png", None))
 bad(S, "plot_separation", "path", lambda: st_.plot_separation(None, st_.reversal([0.0, 1.0], [0.0, 0.0], [0.0, 0.0])))
+bad(S, "plot_separation", "reference", lambda: st_.plot_separation("/tmp/never.png", st_.reversal([0.0, 1.0], [0.0, 0.0], [0.0, 0.0]),
+                                                                 reference="best"))
 bad(S, "plot_straightness", "overlay", lambda: st_.plot_straightness("/tmp/never.png", [0.0, 1.0], [0.0, 0.0], LINE, overlay=5),
     lambda: st_.plot_straightness("/tmp/never.png", [0.0, 1.0], [0.0, 0.0], LINE, overlay={"position_mm": "0,1"}),
     lambda: st_.plot_straightness("/tmp/never.png", [0.0, 1.0], [0.0, 0.0], LINE, overlay={"position_mm": [0, 1], "deviation_um": [1.0]}))
@@ -308,6 +310,8 @@ PTS = np.zeros((2, 3))
 FIT = sq.squareness(XS, YS, XS, YS)
 
 bad(Q, "iso_term", "unknown plane", lambda: sq.iso_term("XW"), lambda: sq.iso_term(None), lambda: sq.iso_term(5))
+bad(Q, "squareness_name", "unknown plane", lambda: sq.squareness_name("XW", "iso"), lambda: sq.squareness_name(None, "iso"))
+bad(Q, "squareness_name", "convention", lambda: sq.squareness_name("XY", "included"), lambda: sq.squareness_name("XY", None))
 bad(Q, "iso_from_included_angle", "squareness_rad", lambda: sq.iso_from_included_angle(NAN, plane="XY"), lambda: sq.iso_from_included_angle("1", plane="XY"))
 bad(Q, "iso_from_included_angle", "unknown plane", lambda: sq.iso_from_included_angle(0.0, plane="AB"))
 bad(Q, "included_angle_from_iso", "iso_value_rad", lambda: sq.included_angle_from_iso(INF, plane="XY"), lambda: sq.included_angle_from_iso(None, plane="XY"))

@@ -439,6 +439,7 @@ bad(R, "render_html", "compare", lambda: rp.render_html(RESULTS, compare=5), lam
 bad(R, "render_html", "volumetric", lambda: rp.render_html(RESULTS, volumetric=["plot"]))
 bad(R, "render_html", "generated", lambda: rp.render_html(RESULTS, generated=5))
 bad(R, "format_number", "value", lambda: rp.format_number([1.0]), lambda: rp.format_number(object()))
+bad(R, "display_unit", "unit", lambda: rp.display_unit(None), lambda: rp.display_unit(5))
 bad(R, "format_number", "digits", lambda: rp.format_number(1.0, -1), lambda: rp.format_number(1.0, NAN), lambda: rp.format_number(1.0, "3"))
 bad(R, "previous_figures", "compare", lambda: rp.previous_figures(NAN), lambda: rp.previous_figures("results.json"))
 bad(R, "compare_label", "compare", lambda: rp.compare_label(NAN), lambda: rp.compare_label([]))

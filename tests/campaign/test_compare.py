@@ -55,8 +55,8 @@ interferometer = "diagonal_laser.csv"
 
 #: test id -> the legend entries its plot shows for the compared campaign
 LEGENDS = {
-    "positioning-X-1": ("before: mean x̄↑", "before: mean x̄↓"),
-    "positioning-Y-1": ("before: mean x̄↑", "before: mean x̄↓"),
+    "positioning-X-1": ("as found: mean x̄↑", "as found: mean x̄↓"),
+    "positioning-Y-1": ("as found: mean x̄↑", "as found: mean x̄↓"),
     "straightness-X-1": ("before: profile", "before: about its line"),
     "separation-X-1": ("before: profile R", "before: motion S", "before: yaw"),
     "squareness-XY-1": ("before: measured", "before: line"),
@@ -209,7 +209,7 @@ def test_an_earlier_results_json_still_compares(compared, tmp_path, name):
     old.write_text(json.dumps(_earlier_release(compared["before"][name])))
     files = report_campaign(compared["root"] / name, tmp_path / "report", compare=old)
     for test in files.results_data.tests:
-        overlaid = "before:" in test.plots[0].svg
+        overlaid = "before:" in test.plots[0].svg or "as found:" in test.plots[0].svg  # positioning names it "as found"
         assert overlaid == (test.kind == "positioning"), test.id  # positioning's targets were there already
     assert len(files.results_data.model.get("plots", [])) == (1 if name == "xz" else 0)
     assert "Change" in files.html.read_text()  # the verdict table still compares the figures
@@ -367,7 +367,7 @@ def test_the_diagonal_check_compares_with_the_diagonal_before(compared):
 
     rows = verdict_rows(compared["xz"].results_data, previous_figures(compared["before"]["xz"]))
     (row,) = [r for r in rows if r["test_id"] == "diagonal-1"]
-    assert row["figure"] == "diagonal_error / um"
+    assert row["figure"] == "diagonal_error / µm"
     assert float(row["before"]) == pytest.approx(SCALE * float(row["value"]), abs=0.05)
 
 

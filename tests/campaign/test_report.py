@@ -98,7 +98,7 @@ def test_compare_shows_the_change(run_cli, campaign, tmp_path):
     assert status == 0, err
     html = (campaign / "report" / "report.html").read_text()
     assert "Compared with" in html and "+0.000" in html
-    assert "before: mean x̄↑" in html  # the positioning plots draw the other campaign's means behind
+    assert "as found: mean x̄↑" in html  # the positioning plots draw the other campaign's means behind, as found
 
 
 def test_compare_refuses_a_file_that_is_not_results(run_cli, campaign, tmp_path):

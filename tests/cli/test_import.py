@@ -16,6 +16,7 @@ def test_import_map_runs_per_column(run_cli, examples, tmp_path):
     out = tmp_path / "run.csv"
     status, _, err = run_cli("import", "map", folder / "runs_per_column.toml", folder / "runs_per_column.csv", "-o", out)
     assert status == 0, err
+    assert err == f"axiscal: note: 110 readings of 5 runs written to {out}\n"  # success says what it wrote
     frame = pd.read_csv(out)
     assert list(frame.columns) == ["target_mm", "run", "direction", "deviation_um"]
     assert len(frame) == 11 * 2 * 5

@@ -23,7 +23,7 @@ def test_csv_on_standard_output_reads_with_plain_pandas(run_cli, machine):
     assert status == 0 and err == ""
     frame = pd.read_csv(io.StringIO(out))
     assert len(frame) == 18
-    assert list(frame.columns) == ["X_mm", "Y_mm", "Z_mm"] + [
+    assert list(frame.columns) == ["x_mm", "y_mm", "z_mm"] + [
         f"{e}_{s}um" for e in ("ex", "ey", "ez", "e") for s in ("", "u_", "low_", "high_")]
     assert (frame["e_low_um"] <= frame["e_high_um"]).all()
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -155,7 +156,17 @@ def test_the_command_line_writes_a_machine_folder_that_volumetric_reads(tmp_path
     assert set(summary["residuals"]) == {"plate_xy", "plate_xz", "plate_xz_probe_y", "plate_yz"}
     assert len(summary["covariance_si"]["matrix"]) == len(summary["covariance_si"]["names"])
     assert summary["residual_std_um"] < 0.3  # the plates were measured with 0.2 um of noise
-    assert "Identification from artefacts" in (tmp_path / "out" / "identify.html").read_text()
+    html = (tmp_path / "out" / "identify.html").read_text()
+    assert "Identification from artefacts: moving-bridge CMM" in html
+    # self-contained: the plots inline (residuals of 4 plates, motions of 3 axes), nothing linked
+    assert html.count("<svg") == 7 and "<img" not in html and 'src="' not in html
+    text = re.sub(r"<svg.*?</svg>", "", html, flags=re.S)
+    axes = re.findall(r"<figcaption>Axis ([A-Z]):", text)
+    assert axes == ["X", "Y", "Z"]
+    assert not re.search(r"\de[+-]\d", text)                         # no 4.5e+05
+    assert re.search(r"<tr><td>plate_xz:ty</td><td class=\"num\">450\.0\d{3}</td>.*?<td>mm</td>", text)
+    assert text.count("k = 2") == 1 and "k = 2 band" not in text     # the coverage factor stated once
+    assert re.search(r"<th>Date</th><td>\d{4}-\d\d-\d\d</td>", text)
     status, out, err = run_cli("volumetric", "--machine", str(tmp_path / "out" / "machine.toml"), "--grid", "X=0:500:250,Y=0:500:250,Z=100")
     assert status == 0 and len(out.splitlines()) == 10
 

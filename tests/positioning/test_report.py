@@ -47,7 +47,8 @@ def test_report_is_the_table_and_the_figures(examples):
     evaluation = evaluate_positioning_file(examples / "laser_raw_run.csv")
     lines = evaluation.report().splitlines()
     assert lines[0].endswith(": iso230-2:2014, 17 targets, 5 runs each way")
-    assert lines[1] == "raw laser readings compensated for air index and material temperature"
+    assert lines[1] == ("raw laser readings compensated for the air index (ciddor) and normalised to 20 degC"
+                        " (material temperature, 1 sensor)")
     assert lines[2] == "" and lines[3].split() == list(evaluation.per_target_um())
     assert len(lines) == 4 + 17 + 2 + len(ISO_SYMBOLS)
     figure_lines = lines[-len(ISO_SYMBOLS):]

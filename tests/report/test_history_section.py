@@ -20,8 +20,10 @@ def test_report_history_stores_the_campaign_and_shows_the_trends(run_cli, tmp_pa
     campaign = tmp_path / "campaign"
     shutil.copytree(VMC850, campaign)
     db = f"sqlite:///{tmp_path / 'h.sqlite'}"
-    status, _, err = run_cli("report", campaign, "--history", "--db", db)
+    status, out, err = run_cli("report", campaign, "--history", "--db", db)
     assert status == 0, err
+    # it says where it stored the campaign
+    assert f"history: campaign 1 of VMC 850 (SN-0042) stored in {db} (1 campaign of this machine)" in out
     assert 'id="history"' not in (campaign / "report" / "report.html").read_text()
     assert len(list_campaigns(url=db)) == 1
     # two earlier campaigns of the same machine

@@ -41,3 +41,17 @@ def test_an_overlay_is_drawn_behind_with_its_legend(tmp_path):
     separated = {"position_mm": list(x / MM), "profile_um": list(2 * y / UM), "motion_um": [None] * x.size}
     text = plot_separation(tmp_path / "sep.svg", result, overlay=separated).read_text()
     assert "before: profile R" in text and "before: motion S" in text
+
+
+@pytest.mark.parametrize("reference", ["least-squares", "minimum-zone"])
+def test_the_separation_legend_gives_the_straightness_the_table_gives(tmp_path, reference):
+    # R and S drawn about R's line keep S's tilt; the legend states each one's straightness about its own line
+    x = np.linspace(0, 300, 31) * MM
+    profile = np.sin(x / (60 * MM)) * UM
+    motion = (2.0 * np.cos(x / (90 * MM)) + 4.0 * x / (300 * MM)) * UM          # bowed and tilted
+    result = reversal(x, profile + motion, -profile + motion)
+    expected = reference_line(result.position_m, result.motion_m, reference=reference).straightness_m / UM
+    text = plot_separation(tmp_path / "sep.svg", result, reference=reference).read_text()
+    assert f"motion S (straightness {expected:.3f} µm)" in text
+    assert f"about each curve's own {reference} line" in text
+    assert "P-V" not in text

@@ -161,10 +161,10 @@ def test_written_map_reads_with_plain_pandas(machine, tmp_path):
     result = volumetric_monte_carlo(machine, u, q, 200, seed=1)
     path = write_volumetric_uncertainty(tmp_path / "map.csv", q, result)
     frame = pd.read_csv(path)
-    expected = ["X_mm", "Y_mm", "Z_mm"] + [f"{e}_{s}um" for e in ("ex", "ey", "ez", "e") for s in ("", "u_", "low_", "high_")]
+    expected = ["x_mm", "y_mm", "z_mm"] + [f"{e}_{s}um" for e in ("ex", "ey", "ez", "e") for s in ("", "u_", "low_", "high_")]
     assert list(frame.columns) == expected and len(frame) == 7
     np.testing.assert_allclose(frame["ex_high_um"], result.high[:, 0] * 1e6, atol=1e-6)
-    np.testing.assert_allclose(frame["X_mm"], q["X"] * 1e3, atol=1e-6)
+    np.testing.assert_allclose(frame["x_mm"], q["X"] * 1e3, atol=1e-6)
     np.testing.assert_allclose(frame["e_um"], np.linalg.norm(result.error, axis=1) * 1e6, atol=1e-6)
     assert np.all(frame["e_low_um"] <= frame["e_high_um"])
     side = json.loads((tmp_path / "map.json").read_text())

@@ -67,7 +67,7 @@ def test_files_csv_sidecar_and_summary(machine_path, tmp_path):
     out, figure = tmp_path / "map.csv", tmp_path / "map.svg"
     result = volumetric_uncertainty_map(machine_path, grid=GRID, draws=200, output=out, plot_path=figure)
     frame = pd.read_csv(out)
-    assert list(frame.columns[:4]) == ["X_mm", "Y_mm", "Z_mm", "ex_um"]
+    assert list(frame.columns[:4]) == ["x_mm", "y_mm", "z_mm", "ex_um"]
     assert list(frame.columns[-4:]) == ["e_um", "e_u_um", "e_low_um", "e_high_um"] and len(frame) == 9
     assert out.read_text() == result.csv()
     side = json.loads(out.with_suffix(".json").read_text())
@@ -76,7 +76,7 @@ def test_files_csv_sidecar_and_summary(machine_path, tmp_path):
     summary = result.summary()
     worst = int(frame["e_um"].idxmax())
     assert summary["max_e_um"] == pytest.approx(frame["e_um"][worst], abs=1e-6)
-    assert summary["max_e_at_mm"] == {k: frame[f"{k}_mm"][worst] for k in "XYZ"}
+    assert summary["max_e_at_mm"] == {k: frame[f"{k.lower()}_mm"][worst] for k in "XYZ"}
     assert summary["max_e_interval_um"] == pytest.approx([frame["e_low_um"][worst], frame["e_high_um"][worst]], abs=1e-6)
     assert summary["max_e_high_um"] == pytest.approx(frame["e_high_um"].max(), abs=1e-6)
     assert summary["points"] == 9 and summary["probability"] == 0.95

@@ -105,6 +105,9 @@ def _positioning(campaign: Campaign, spec: TestSpec, campaign_compare: Mapping[s
     checks = check_figures(axis_figures, spec.tolerances, {}, uncertainty=uncertainty, rule=campaign.decision_rule)
     title = f"{spec.axis} axis positioning ({evaluation.result.standard})"
     overlay = _overlay(spec, campaign_compare, "targets")
+    if overlay is not None:
+        # a compared positioning test is the axis as found; this campaign's, the axis as left
+        overlay = {**overlay, "label": "as found", "current_label": "as left"}
     # the report shows the figures in its own table beside the plot
     svg = _drawn(spec, lambda p: evaluation.plot(p, title=title, overlay=overlay, figures_table=False), overlay)
     compensation = []
@@ -229,7 +232,7 @@ def _separation(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] |
     )
     separation = run.separation
     overlay = _overlay(spec, compare, "columns")
-    svg = _drawn(spec, lambda p: plot_separation(p, separation, overlay=overlay), overlay)
+    svg = _drawn(spec, lambda p: plot_separation(p, separation, overlay=overlay, reference=reference), overlay)
     motion = np.isfinite(separation.motion_m)
     slide = reference_line(separation.position_m[motion], separation.motion_m[motion], reference=reference)
     workpiece = reference_line(separation.position_m, separation.profile_m, reference=reference)
@@ -286,9 +289,11 @@ def _squareness(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] |
     return TestResult(
         id=spec.id, kind=spec.kind, axis=spec.axis, files=[relative_name(campaign, first), relative_name(campaign, second)],
         figures=figures, checks=checks, plots=[Plot(f"{result.plane} squareness: both runs and their lines", svg)],
-        table=[Figure(f"squareness {result.plane} ({result.convention})", figures["squareness_arcsec"], "arcsec"),
-               Figure(f"{result.iso_term} (ISO 230-1 sign)", figures["iso_value_arcsec"], "arcsec")],
-        method="Squareness: two straightness runs and a pentaprism (paper 002 eqs 1 and 21)", uncertainty=uncertainty,
+        # one figure, one sign (docs/conventions.md): the judged squareness under the name that says its
+        # convention, as the verdict table and the plot show it; the included angle itself has no sign to read
+        table=[Figure(result.name, figures["squareness_arcsec"], "arcsec"),
+               Figure(f"included angle of {result.plane[0]} and {result.plane[1]}", figures["included_angle_deg"], "deg")],
+        method="Squareness: ISO 230-1, two straightness runs referred to each other by a pentaprism (optical square), its deviation removed", uncertainty=uncertainty,
     )
 
 

@@ -29,7 +29,7 @@ def _sixdof(campaign: Campaign, spec: TestSpec) -> TestResult:
         table=[Figure("frames", figures["frames"], ""), Figure("faulty frames", figures["faulty_frames"], ""),
                Figure("largest spatial error |e|", figures["max_e_um"], "um"),
                Figure("mean spatial error |e|", figures["mean_e_um"], "um")],
-        method="6-DOF measurement from raw sensor frames (paper 000)",
+        method="6-DOF measurement from raw sensor frames: the six error motions of each axis (ISO 230-1) in a homogeneous transformation model",
     )
 
 
@@ -55,7 +55,7 @@ def _sensor_calibration(campaign: Campaign, spec: TestSpec) -> TestResult:
     files = [relative_name(campaign, path)] + ([relative_name(campaign, machine)] if machine is not None else [])
     return TestResult(
         id=spec.id, kind=spec.kind, axis=None, files=files, figures=figures, checks=checks, plots=[], table=table,
-        method="Sensor calibration against reference instruments, least-squares gain and offset (paper 000 section 4.1)",
+        method="Sensor calibration against reference instruments: least-squares gain and offset of each channel",
     )
 
 
@@ -68,7 +68,7 @@ def _sixdof_diagonal(campaign: Campaign, spec: TestSpec) -> TestResult:
     result = sensor_diagonal(readings, frames, start=parse_point(options["from"], "from"), end=parse_point(options["to"], "to"),
                              machine=machine)
     figures = result.figures()
-    title = f"Diagonal {options['from']} to {options['to']} with the 6-DOF sensors (paper 000 eq 13)"
+    title = f"Diagonal {options['from']} to {options['to']} with the 6-DOF sensors (ISO 230-6 diagonal displacement)"
     svg = svg_of(lambda p: _plot_sensor_diagonal(result, p))
     files = [relative_name(campaign, readings), relative_name(campaign, frames)] + ([relative_name(campaign, machine)] if machine else [])
     return TestResult(
@@ -77,7 +77,7 @@ def _sixdof_diagonal(campaign: Campaign, spec: TestSpec) -> TestResult:
                Figure("largest error left with the measured spatial error (E_AD)", figures["E_AD_max_um"], "um"),
                Figure("largest error left with the scales alone", figures["scales_only_max_um"], "um"),
                Figure("stops", figures["stops"], ""), Figure("frames per stop", figures["samples_per_stop"], "")],
-        method="Diagonal against a laser interferometer with the live 6-DOF measurement (paper 000 section 5, eq 13)",
+        method="Diagonal displacement test (ISO 230-6) against a laser interferometer, with the live 6-DOF measurement",
     )
 
 

@@ -1,7 +1,8 @@
 """The ``axiscal`` command line: a thin layer over the SI API.
 
-Each module in this package that defines ``register(group)`` adds its commands to the main group;
-:mod:`axiscal.cli.main` finds them, so a new command needs no edit elsewhere.
+The commands are listed in one table, :data:`axiscal.cli.main.COMMANDS` (a new command is one line
+there); each command's module is imported only when that command runs or shows its help, and
+imports the library inside its functions.
 """
 
 __all__: list[str] = []

@@ -9,15 +9,11 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import FINITE, echo_json
-from axiscal.instruments.air import METHODS, air_report, air_text
-from axiscal.instruments.interferometer import (
-    HENE_WAVELENGTH_NM,
-    fringe_report,
-    fringe_text,
-)
+from axiscal.cli.choices import AIR_METHODS as METHODS
+from axiscal.cli.choices import HENE_WAVELENGTH_NM
 from axiscal.materials import STEEL_EXPANSION_PER_K
 
-__all__ = ["air_command", "fringes_command", "register"]
+__all__ = ["air_command", "fringes_command"]
 
 _AIR_OPTIONS = [
     click.option("--temperature-c", type=FINITE, required=True, help="Air temperature, degC."),
@@ -47,6 +43,8 @@ def air_command(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm
 
     Prints the index, (n - 1) in ppm and the wavelength in air.
     """
+    from axiscal.instruments.air import air_report, air_text
+
     report = air_report(temperature_c, pressure_pa, humidity_pct, wavelength_nm, co2_ppm=co2_ppm, method=method)
     if as_json:
         echo_json(report)
@@ -77,6 +75,8 @@ def fringes_command(
     as_json,
 ):
     """Length from a fringe count (paper 003 eq 1), compensated for the air and normalised to 20 degC."""
+    from axiscal.instruments.interferometer import fringe_report, fringe_text
+
     report = fringe_report(
         counts,
         optical_fold=optical_fold,
@@ -94,8 +94,3 @@ def fringes_command(
         echo_json(report)
     else:
         click.echo(fringe_text(report), nl=False)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(air_command)
-    group.add_command(fringes_command)

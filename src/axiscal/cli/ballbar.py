@@ -6,20 +6,16 @@ import math
 
 import click
 
-from axiscal.circular.evaluation import DIRECTIONS, MM_PER_MIN, PLANES
-from axiscal.circular.report import (
-    MS,
-    PPM,
-    ballbar_payload,
-    evaluate_ballbar_file,
-    render_report,
-)
+from axiscal.cli.choices import DIRECTIONS, PLANES
 from axiscal.cli.common import FINITE, echo_json, finite
 from axiscal.units import ANGLE_UNITS, MM, UM
 
-__all__ = ["ballbar_command", "simulate_ballbar_command", "register"]
+__all__ = ["ballbar_command", "simulate_ballbar_command"]
 
 _URAD = ANGLE_UNITS["urad"]
+MM_PER_MIN = MM / 60.0
+MS = 1e-3
+PPM = 1e-6
 
 
 @click.command("ballbar")
@@ -33,6 +29,8 @@ _URAD = ANGLE_UNITS["urad"]
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write the polar plot to this file (.png, .svg, .pdf).")
 def ballbar_command(run_csv, radius_mm, plane, feed_mm_min, as_json, plot_path):
     """Evaluate a ballbar test (RUN.csv: angle_deg, direction ccw/cw, radius_deviation_um) to ISO 230-4, with diagnostics."""
+    from axiscal.circular.report import ballbar_payload, evaluate_ballbar_file, render_report
+
     feed = None if feed_mm_min is None else feed_mm_min * MM_PER_MIN
     result = evaluate_ballbar_file(run_csv, radius=radius_mm * MM, plane=plane, feed=feed)
     for warning in result.diagnostics.warnings:
@@ -127,7 +125,3 @@ def simulate_ballbar_command(radius_mm, plane, feed_mm_min, squareness_urad, sca
             "seed": seed,
         },
     )
-
-
-def register(group: click.Group) -> None:
-    group.add_command(ballbar_command)

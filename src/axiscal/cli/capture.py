@@ -6,19 +6,12 @@ import math
 
 import click
 
-from axiscal.capture.files import capture_to_file
-from axiscal.capture.run import CaptureSettings
-from axiscal.capture.recording import READING_UNITS
-from axiscal.capture.sources import open_capture_source
-from axiscal.capture.steps import plan_steps
-from axiscal.capture.virtual import VirtualAxis, simulate_capture
-from axiscal.compensation.readback import CONTROLLERS
-from axiscal.io.gcode import DIALECT_NAMES
+from axiscal.cli.choices import CONTROLLERS, DIALECT_NAMES, READING_UNITS
 from axiscal.cli.common import FINITE, echo_json, flags_named
 from axiscal.errors import AxiscalError
 from axiscal.units import MM, UM
 
-__all__ = ["capture_command", "register"]
+__all__ = ["capture_command", "simulate_capture_command"]
 
 _FLAGS = {"stability_m": "--stability-um", "window_s": "--window-s", "tolerance_m": "--tolerance-mm", "offset_m": "--offset-mm",
           "unit": "--unit", "channel": "--channel", "resume=True": "--resume"}
@@ -77,7 +70,7 @@ def _dashboard(steps, source, port: int):
 @click.option("--from", "recording", type=click.Path(dir_okay=False), help="A recording: an .rtx capture or a CSV with time_s and the reading.")
 @click.option("--source", "source_spec", help="A live source: sim | tcp:HOST:PORT | serial:DEVICE[:BAUD] | an instrument: umd:PORT | sylvac:PORT | mahr:PORT | touchdro:PORT | attocube:HOST | sim:KIND (docs/devices.md).")
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="The positioning run CSV to write.")
-@click.option("--unit", type=click.Choice(tuple(READING_UNITS)), default=None, help="Unit of the readings (a column name ending in _mm ... says it; an .rtx file needs it).")
+@click.option("--unit", type=click.Choice(READING_UNITS), default=None, help="Unit of the readings (a column name ending in _mm ... says it; an .rtx file needs it).")
 @click.option("--channel", default=None, help="The column or channel holding the laser reading [the only length column; reading_mm for a source].")
 @click.option("--stability-um", type=FINITE, default=None, help="Peak to peak of the reading over the window for a stop [1.0; a gauge: two counts of its resolution].")
 @click.option("--window-s", type=FINITE, default=0.5, show_default=True, help="How long the reading must hold still; the value is the mean over the stop's last window.")
@@ -106,6 +99,11 @@ def capture_command(plan_csv, recording, source_spec, output, unit, channel, sta
     holds within --stability-um for --window-s; its value is the mean of the stop's last window. The run
     (target_mm, run, direction, deviation_um and the air sensors) is what `axiscal positioning` reads.
     """
+    from axiscal.capture.files import capture_to_file, partial_path
+    from axiscal.capture.run import CaptureSettings
+    from axiscal.capture.sources import open_capture_source
+    from axiscal.capture.steps import plan_steps
+
     if (recording is None) == (source_spec is None):
         raise AxiscalError("give one of --from RECORDING or --source SPEC")
     if dashboard and source_spec is None:
@@ -148,6 +146,12 @@ def capture_command(plan_csv, recording, source_spec, output, unit, channel, sta
         with flags_named(_FLAGS):
             files = capture_to_file(plan_csv, source, output, resume=resume, settings=settings, unit=unit, channel=channel,
                                     **options)
+    except (KeyboardInterrupt, click.exceptions.Abort):
+        partial = partial_path(output)
+        if partial.exists():
+            raise click.ClickException(f"capture interrupted: the stops taken so far are in {partial}; run the same "
+                                       "command with --resume to continue it") from None
+        raise click.ClickException("capture interrupted before its first stop: nothing was written") from None
     finally:
         if live is not None and live.is_started:
             live.stop()
@@ -198,6 +202,8 @@ def simulate_capture_command(program, machine, axis, output, dialect, compensati
     with --continuous it blends moves (the axis passes targets without stopping); with
     --position-delay-ms it records its own position stream beside the reading, for axiscal on-the-fly.
     """
+    from axiscal.capture.virtual import VirtualAxis, simulate_capture
+
     with flags_named({"reference_position_m": "--reference-position-mm", "rate_hz": "--rate-hz",
                       "position_delay_s": "--position-delay-ms", "periodic_m": "--periodic-um", "pitch_m": "--pitch-mm"}):
         spec = VirtualAxis(periodic_m=periodic_um * UM, pitch_m=pitch_mm * MM)
@@ -208,11 +214,3 @@ def simulate_capture_command(program, machine, axis, output, dialect, compensati
                                      position_delay_s=None if position_delay_ms is None else position_delay_ms * 1e-3)
     click.echo(f"axiscal: note: {simulated.recording.time_s.size} samples over {simulated.settings['duration_s']:.1f} s,"
                f" {len(simulated.dwells)} dwells, written to {output}", err=True)
-
-
-def register(group: click.Group) -> None:
-    # `axiscal simulate capture` joins the "simulate" group of axiscal.cli.measure
-    from axiscal.cli.measure import simulate_group
-
-    group.add_command(capture_command)
-    simulate_group.add_command(simulate_capture_command)

@@ -5,15 +5,11 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import FINITE, echo_json, flags_named
-from axiscal.cmm.acceptance import evaluate_acceptance
-from axiscal.cmm.mpe import Mpe
-from axiscal.cmm.plot import plot_acceptance, plot_probing
-from axiscal.cmm.probing import evaluate_probing
+from axiscal.cli.choices import DECISION_RULES
 from axiscal.errors import AxiscalError
-from axiscal.uncertainty.decision import DECISION_RULES
 from axiscal.units import MM, UM
 
-__all__ = ["cmm_group", "acceptance_command", "probing_command", "register"]
+__all__ = ["cmm_group", "acceptance_command", "probing_command"]
 
 _RULE_HELP = ("guard-band (ISO 14253-1): a value proves conformance within MPE - U, non-conformance beyond MPE + U, "
               "no decision between; simple: against the MPE itself.")
@@ -33,7 +29,9 @@ def _positive(values: dict[str, float | None], *, zero: bool = False) -> None:
             raise AxiscalError(f"{flag} must be a {'non-negative' if zero else 'positive'} number{unit}, not {value:g}")
 
 
-def _mpe(prefix: str, a_um: float | None, k: float | None, b_um: float | None) -> Mpe | None:
+def _mpe(prefix: str, a_um: float | None, k: float | None, b_um: float | None):
+    from axiscal.cmm.mpe import Mpe
+
     _positive({f"--{prefix}-a-um": a_um, f"--{prefix}-k": k, f"--{prefix}-b-um": b_um})
     if a_um is None:
         for flag, value in ((f"--{prefix}-k", k), (f"--{prefix}-b-um", b_um)):
@@ -72,11 +70,15 @@ def acceptance_command(measurements, mpe_a_um, mpe_k, mpe_b_um, e150_mpe_a_um, e
     mpe_150 = _mpe("e150-mpe", e150_mpe_a_um, e150_mpe_k, e150_mpe_b_um)
     flags = {"r0_mpl_m": "--r0-mpl-um", "uncertainty_m": "--uncertainty-um", "uncertainty_per_m": "--uncertainty-um-per-m"}
     with flags_named(flags):
+        from axiscal.cmm.acceptance import evaluate_acceptance
+
         result = evaluate_acceptance(measurements, mpe=mpe, mpe_150=mpe_150,
                                      r0_mpl_m=None if r0_mpl_um is None else r0_mpl_um * UM,
                                      uncertainty_m=uncertainty_um * UM, uncertainty_per_m=uncertainty_um_per_m * UM,
                                      rule=decision_rule)
     if plot_path:
+        from axiscal.cmm.plot import plot_acceptance
+
         plot_acceptance(plot_path, result)
     if as_json:
         echo_json(result.payload())
@@ -115,17 +117,17 @@ def probing_command(points, diameter_mm, pform_mpe_um, psize_mpe_um, pform_ms_mp
     flags = {"calibrated_diameter_m": "--diameter-mm", "uncertainty_m": "--uncertainty-um",
              **{f"mpe_m['{k}']": flag for k, flag in _PROBING_MPE.items()}}
     with flags_named(flags):
+        from axiscal.cmm.probing import evaluate_probing
+
         result = evaluate_probing(points, calibrated_diameter_m=diameter_mm * MM, mpe_m=mpe_m,
                                   uncertainty_m=uncertainty_um * UM, rule=decision_rule)
     if plot_path:
+        from axiscal.cmm.plot import plot_probing
+
         plot_probing(plot_path, result)
     if as_json:
         echo_json(result.payload())
     else:
         click.echo(result.report())
-
-
-def register(group: click.Group) -> None:
-    import axiscal.cli.squareness  # noqa: F401  (adds the group's compensate and gauge-blocks)
 
     group.add_command(cmm_group)

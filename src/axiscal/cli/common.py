@@ -12,14 +12,14 @@ from typing import Any
 import click
 
 from axiscal.errors import AxiscalError
-from axiscal.io.atomic import atomic_write
-from axiscal.io.jsonio import dumps
 
 __all__ = ["FINITE", "FiniteFloat", "FiniteRange", "finite", "flags_named", "echo_json", "given_options", "hidden_alias", "write_output"]
 
 
 def echo_json(payload: dict[str, Any]) -> None:
     """Print one JSON object; NaN and infinities become null (JSON has no NaN)."""
+    from axiscal.io.jsonio import dumps
+
     click.echo(dumps(payload), nl=False)
 
 
@@ -57,6 +57,8 @@ def flags_named(flags: Mapping[str, str]):
 
 def write_output(path: str | Path, write: Callable[[Path], Any]) -> Path:
     """Produce ``path`` atomically with ``write``; a failure is an AxiscalError naming the file."""
+    from axiscal.io.atomic import atomic_write
+
     return atomic_write(path, write)
 
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import FINITE, flags_named, given_options, write_output
-from axiscal.compensation.formats import FORMATS, compensation_table
+from axiscal.cli.choices import FORMATS
 from axiscal.units import DEG, MM, UM
 
-__all__ = ["compensate_command", "register"]
+__all__ = ["compensate_command"]
 
 
 def _si(value: float | None, factor: float) -> float | None:
@@ -41,6 +41,8 @@ def compensate_command(run_csv, fmt, output, comp_type, interval_mm, interval_de
                        reference_position_mm, detection_unit_deg, reference_position_deg, reference_point, bidirectional,
                        axis, axis_number, no_backlash):
     """Write a compensation table for the controller from the mean deviations of RUN_CSV (a linear or rotary axis)."""
+    from axiscal.compensation.formats import compensation_table
+
     options = given_options(
         comp_type=comp_type, interval_mm=_si(interval_mm, MM), interval_deg=_si(interval_deg, DEG),
         magnification=magnification, detection_unit_um=_si(detection_unit_um, UM),
@@ -61,7 +63,3 @@ def compensate_command(run_csv, fmt, output, comp_type, interval_mm, interval_de
     else:
         click.echo(result.text, nl=False)
     click.echo(f"axiscal: note: {result.note}", err=True)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(compensate_command)

@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import click
 
-from axiscal.report.demo import run_demo
 
-__all__ = ["demo_command", "register"]
+__all__ = ["demo_command"]
 
 
 @click.command("demo")
@@ -20,8 +19,6 @@ def demo_command(output):
     unloaded and with 2 kg. Writes OUTPUT/campaign/ (campaign.toml and its data),
     OUTPUT/report/ (report.html, results.json, compensation files) and OUTPUT/summary.json.
     """
+    from axiscal.report.demo import run_demo
+
     click.echo(run_demo(output).text(), nl=False)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(demo_command)

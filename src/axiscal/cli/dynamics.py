@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import click
 
-from axiscal.capture.recording import READING_UNITS
+from axiscal.cli.choices import READING_UNITS
 from axiscal.cli.common import FINITE, echo_json, flags_named
 from axiscal.units import MM, UM
 
-__all__ = ["dynamics_command", "periodic_command", "on_the_fly_command", "register"]
+__all__ = ["dynamics_command", "periodic_command", "on_the_fly_command"]
 
 
 @click.command("dynamics")
@@ -100,9 +100,3 @@ def on_the_fly_command(plan_csv, recording, output, unit, channel, delay_ms, max
     click.echo(f"axiscal: note: {payload['readings']} readings taken on the fly at {payload['speed_mm_min']:.5g} mm/min,"
                f" delay {payload['delay_ms']:.4f} ms {'estimated' if payload['delay_estimated'] else 'given'}, into {run_csv}",
                err=True)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(dynamics_command)
-    group.add_command(periodic_command)
-    group.add_command(on_the_fly_command)

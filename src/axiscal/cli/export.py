@@ -5,26 +5,19 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import FINITE, echo_json
-from axiscal.compensation.backlash import (
+from axiscal.cli.choices import (
     BACKLASH_CONTROLLERS,
     BACKLASH_METHODS,
-    backlash_from_run,
-    backlash_setting,
-)
-from axiscal.compensation.sag import SAG_CONTROLLERS, SAG_REFERENCES, sag_table_file
-from axiscal.compensation.screwmaps import SCREWMAP_CONTROLLERS, screwmap_file
-from axiscal.compensation.skew import (
     FIRMWARES,
+    SAG_CONTROLLERS,
+    SAG_REFERENCES,
+    SCREWMAP_CONTROLLERS,
     SKEW_CONVENTIONS,
-    skew_correction,
-    squareness_from_results,
 )
 from axiscal.errors import AxiscalError
-from axiscal.io.atomic import write_text
-from axiscal.precompensation.grid import export_correction_grid
 from axiscal.units import ARCSEC, MM, UM
 
-__all__ = ["export_group", "export_skew_command", "export_backlash_command", "export_screwmap_command", "export_sag_command", "export_grid_command", "register"]
+__all__ = ["export_group", "export_skew_command", "export_backlash_command", "export_screwmap_command", "export_sag_command", "export_grid_command"]
 
 
 @click.group("export")
@@ -47,6 +40,8 @@ def export_group() -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object (lines, notes, factors).")
 def export_skew_command(firmware, xy_arcsec, xz_arcsec, yz_arcsec, square_mm, convention, results, as_json):
     """Skew correction line(s) of a firmware for measured squareness, on standard output."""
+    from axiscal.compensation.skew import skew_correction, squareness_from_results
+
     given = {"xy_rad": xy_arcsec, "xz_rad": xz_arcsec, "yz_rad": yz_arcsec}
     if results:
         if any(v is not None for v in given.values()):
@@ -73,7 +68,7 @@ def export_skew_command(firmware, xy_arcsec, xz_arcsec, yz_arcsec, square_mm, co
 
 @export_group.command("backlash")
 @click.argument("run_csv", required=False, type=click.Path(dir_okay=False))
-@click.option("--controller", type=click.Choice(tuple(BACKLASH_CONTROLLERS)), required=True,
+@click.option("--controller", type=click.Choice(BACKLASH_CONTROLLERS), required=True,
               help="The controller whose backlash parameter to write.")
 @click.option("--axis", default="X", show_default=True, help="Axis letter.")
 @click.option("--axis-number", type=int, default=None, help="1-based axis number (LinuxCNC joint + 1, SINUMERIK AXn) [X=1, Y=2, ...].")
@@ -84,6 +79,8 @@ def export_skew_command(firmware, xy_arcsec, xz_arcsec, yz_arcsec, square_mm, co
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def export_backlash_command(run_csv, controller, axis, axis_number, method, target_mm, backlash_um, as_json):
     """A controller's backlash parameter from a positioning test (RUN_CSV) or a value."""
+    from axiscal.compensation.backlash import backlash_from_run, backlash_setting
+
     if (run_csv is None) == (backlash_um is None):
         raise AxiscalError("give either a positioning run CSV or --backlash-um")
     if backlash_um is not None:
@@ -124,6 +121,8 @@ def export_backlash_command(run_csv, controller, axis, axis_number, method, targ
 def export_screwmap_command(run_csv, controller, axis, axis_number, interval_mm, points, unit, unilateral, max_points,
                             output):
     """A lead-screw error table from a positioning test (RUN_CSV) in a controller's own format."""
+    from axiscal.compensation.screwmaps import screwmap_file
+
     table = screwmap_file(
         run_csv,
         controller=controller,
@@ -161,6 +160,8 @@ def export_screwmap_command(run_csv, controller, axis, axis_number, interval_mm,
 def export_sag_command(run_csv, controller, base_axis, compensation_axis, step_mm, table_index, reference, direction,
                        max_points, name, output):
     """A cross-axis (sag) table from a straightness run (position_mm, deviation_um) of the base axis."""
+    from axiscal.compensation.sag import sag_table_file
+
     table = sag_table_file(
         run_csv,
         controller=controller,
@@ -177,6 +178,8 @@ def export_sag_command(run_csv, controller, base_axis, compensation_axis, step_m
 
 
 def _write_table(table, output) -> None:
+    from axiscal.io.atomic import write_text
+
     if output:
         write_text(output, table.text())
     else:
@@ -191,10 +194,8 @@ def _write_table(table, output) -> None:
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="The grid CSV (its sidecar NAME.json beside it).")
 def export_grid_command(machine, grid, output):
     """The pre-compensation correction on a regular 3D grid (command = programmed + correction), as a plain CSV."""
+    from axiscal.precompensation.grid import export_correction_grid
+
     result = export_correction_grid(machine, grid, output)
     largest = float(abs(result.correction_m).max()) / UM
     click.echo(f"axiscal: {output}: {len(result.programmed_m)} grid points, largest correction {largest:.3f} um", err=True)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(export_group)

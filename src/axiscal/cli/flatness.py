@@ -5,10 +5,9 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import echo_json
-from axiscal.flatness.files import evaluate_flatness
-from axiscal.flatness.surface import EVALUATIONS
+from axiscal.cli.choices import EVALUATIONS
 
-__all__ = ["flatness_command", "register"]
+__all__ = ["flatness_command"]
 
 
 @click.command("flatness")
@@ -22,12 +21,10 @@ __all__ = ["flatness_command", "register"]
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write a contour map and a 3-D view of the surface.")
 def flatness_command(lines: str, evaluation: str, as_json: bool, output: str | None, plot_path: str | None) -> None:
     """Flatness of the surface measured along the lines of LINES (TOML: [[lines]] with ends and readings or profiles)."""
+    from axiscal.flatness.files import evaluate_flatness
+
     result = evaluate_flatness(lines, evaluation=evaluation, output=output, plot_path=plot_path)
     if as_json:
         echo_json(result.payload())
     else:
         click.echo(result.report())
-
-
-def register(group: click.Group) -> None:
-    group.add_command(flatness_command)

@@ -6,10 +6,9 @@ import click
 
 from axiscal.cli.common import FINITE
 from axiscal.errors import AxiscalError
-from axiscal.fleet.report import fleet_report
-from axiscal.fleet.runner import SCHEDULER_TIMEOUT_S
+from axiscal.cli.choices import FLEET_SCHEDULER_TIMEOUT_S as SCHEDULER_TIMEOUT_S
 
-__all__ = ["fleet_group", "fleet_report_command", "register"]
+__all__ = ["fleet_group", "fleet_report_command"]
 
 
 @click.group("fleet")
@@ -35,6 +34,8 @@ def fleet_report_command(campaigns_dir: str, out_dir: str, scheduler: str, worke
     OUT is replaced as a whole once everything is written (an existing OUT must be empty or an
     earlier fleet report).
     """
+    from axiscal.fleet.report import fleet_report
+
     if db is not None and not history:
         raise AxiscalError("--db applies only with --history")
     fleet = fleet_report(campaigns_dir, out_dir, scheduler=scheduler, workers=workers, timeout_s=timeout_s,
@@ -52,7 +53,3 @@ def fleet_report_command(campaigns_dir: str, out_dir: str, scheduler: str, worke
     click.echo(f"json {fleet.json}")
     if fleet.failed or fleet.failed_machines:
         click.get_current_context().exit(1)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(fleet_group)

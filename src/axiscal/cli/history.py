@@ -5,19 +5,9 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import FINITE, echo_json
-from axiscal.history.analysis import figure_trend
-from axiscal.history.database import DB_ENVIRONMENT
-from axiscal.history.integrity import integrity_problems
-from axiscal.history.store import (
-    add_results,
-    export_history,
-    list_campaigns,
-    machine_history,
-    remove_campaign,
-    upgrade_database,
-)
+from axiscal.cli.choices import DB_ENVIRONMENT
 
-__all__ = ["history_group", "register"]
+__all__ = ["history_group"]
 
 _DB_HELP = (f"Database URL (sqlite:///FILE, postgresql+psycopg://USER@HOST/DB) or an SQLite file name "
             f"[${DB_ENVIRONMENT}, else history.sqlite in the user's data folder].")
@@ -37,6 +27,8 @@ def history_group() -> None:
 @_db_option
 def add_command(results: tuple[str, ...], db: str | None) -> None:
     """Store campaigns from their results.json files (a file already stored is stored once)."""
+    from axiscal.history.store import add_results
+
     def progress(added) -> None:
         state = "stored" if added.new else "already stored"
         click.echo(f"{state} campaign {added.campaign_id}: {added.machine}, {added.date.isoformat()} ({added.source})")
@@ -49,6 +41,8 @@ def add_command(results: tuple[str, ...], db: str | None) -> None:
 @_db_option
 def list_command(machine: str | None, db: str | None) -> None:
     """List the stored campaigns: id, date, machine, verdict, title."""
+    from axiscal.history.store import list_campaigns
+
     for c in list_campaigns(machine, url=db):
         serial = f" ({c.serial})" if c.serial else ""
         click.echo(f"{c.id:>6}  {c.date.isoformat()}  {c.machine}{serial}  {c.verdict}  {c.title}")
@@ -59,6 +53,8 @@ def list_command(machine: str | None, db: str | None) -> None:
 @_db_option
 def show_command(machine: str, db: str | None) -> None:
     """Show every campaign of MACHINE with its toleranced figures."""
+    from axiscal.history.store import machine_history
+
     history = machine_history(machine, url=db)
     click.echo(f"{history.label}: {len(history.campaigns)} campaigns")
     for c in history.campaigns:
@@ -77,6 +73,8 @@ def show_command(machine: str, db: str | None) -> None:
 @_db_option
 def export_command(machine: str, output: str, db: str | None) -> None:
     """Write MACHINE's history as a plain CSV, one row per campaign and figure."""
+    from axiscal.history.store import export_history
+
     click.echo(f"wrote {export_history(machine, output, url=db)}")
 
 
@@ -85,6 +83,8 @@ def export_command(machine: str, output: str, db: str | None) -> None:
 @_db_option
 def remove_command(campaign_id: int, db: str | None) -> None:
     """Remove the campaign CAMPAIGN_ID (as `history list` shows it) and its figures."""
+    from axiscal.history.store import remove_campaign
+
     c = remove_campaign(campaign_id, url=db)
     click.echo(f"removed campaign {c.id}: {c.machine}, {c.date.isoformat()}")
 
@@ -93,6 +93,8 @@ def remove_command(campaign_id: int, db: str | None) -> None:
 @_db_option
 def upgrade_command(db: str | None) -> None:
     """Bring the database's schema to this axiscal's (opening it does the same)."""
+    from axiscal.history.store import upgrade_database
+
     where, revision = upgrade_database(db)
     click.echo(f"{where}: schema revision {revision}")
 
@@ -109,6 +111,8 @@ def upgrade_command(db: str | None) -> None:
 def trend_command(machine: str, figure: str, robust: bool, risk: float, plot: str | None, as_json: bool,
                   db: str | None) -> None:
     """A figure of MACHINE over time: drift, the date it leaves its tolerance, the next calibration date."""
+    from axiscal.history.analysis import figure_trend
+
     trend = figure_trend(machine, figure, url=db, method="robust" if robust else "wls", risk=risk, plot=plot)
     if as_json:
         echo_json(trend.payload())
@@ -133,6 +137,8 @@ def check_command(db: str | None) -> None:
 
     Only reads: a missing, empty or unreadable database is refused (exit 2), never made.
     """
+    from axiscal.history.integrity import integrity_problems
+
     problems = integrity_problems(db)
     if not problems:
         click.echo("ok: the database and every campaign in it are whole")
@@ -141,7 +147,3 @@ def check_command(db: str | None) -> None:
         click.echo(problem)
     click.echo(f"{len(problems)} problem{'s' if len(problems) != 1 else ''}: restore the database from a backup")
     click.get_current_context().exit(1)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(history_group)

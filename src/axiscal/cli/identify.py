@@ -5,10 +5,9 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import echo_json, flags_named
-from axiscal.identification.basis import MODEL_KINDS
-from axiscal.identification.solve import identify_files
+from axiscal.cli.choices import MODEL_KINDS
 
-__all__ = ["identify_command", "register"]
+__all__ = ["identify_command"]
 
 
 @click.command("identify")
@@ -27,13 +26,11 @@ def identify_command(machine_path, artefacts, model, fix, output, as_json):
     campaign as they are), identify.json (every term with its standard uncertainty, the covariance,
     the residuals, the combinations the data cannot separate) and identify.html.
     """
+    from axiscal.identification.solve import identify_files
+
     with flags_named({"fix": "--fix"}):
         result, text = identify_files(machine_path, artefacts, output, model=model, fix=fix)
     if as_json:
         echo_json(result.summary())
     else:
         click.echo(text, nl=False)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(identify_command)

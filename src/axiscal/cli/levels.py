@@ -8,11 +8,10 @@ import click
 
 from axiscal.cli.common import FINITE, echo_json
 from axiscal.errors import AxiscalError
-from axiscal.levels.files import evaluate_levels
-from axiscal.straightness.reference import REFERENCES
+from axiscal.cli.choices import REFERENCES
 from axiscal.units import MM
 
-__all__ = ["levels_command", "register"]
+__all__ = ["levels_command"]
 
 
 @click.command("levels")
@@ -27,6 +26,8 @@ __all__ = ["levels_command", "register"]
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write a plot of the profile and the readings.")
 def levels_command(run: str, foot_mm: float, reference: str, as_json: bool, output: str | None, plot_path: str | None) -> None:
     """Straightness and pitch (or roll) of RUN (CSV: position_mm and angle_arcsec, angle_urad or angle_um_per_m)."""
+    from axiscal.levels.files import evaluate_levels
+
     if not (math.isfinite(foot_mm) and foot_mm > 0):
         raise AxiscalError(f"--foot-mm must be a positive number, got {foot_mm:g}")
     result = evaluate_levels(run, foot_m=foot_mm * MM, reference=reference, output=output)
@@ -38,7 +39,3 @@ def levels_command(run: str, foot_mm: float, reference: str, as_json: bool, outp
         echo_json(result.payload())
     else:
         click.echo(result.report())
-
-
-def register(group: click.Group) -> None:
-    group.add_command(levels_command)

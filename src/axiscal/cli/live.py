@@ -14,11 +14,9 @@ import click
 
 from axiscal.cli.common import FINITE, flags_named
 from axiscal.errors import AxiscalError
-from axiscal.live.pipeline import RunSummary
-from axiscal.live.session import LiveSession
-from axiscal.measurement.virtual import PATHS
+from axiscal.cli.choices import PATHS
 
-__all__ = ["live", "register"]
+__all__ = ["live"]
 
 
 class _OneLineCommand(click.Command):
@@ -69,6 +67,8 @@ def live(
     Opens a dashboard on http://127.0.0.1:PORT/ unless --no-server. Ends after --duration, when a
     replay is finished (with --no-server), or on Ctrl-C.
     """
+    from axiscal.live.session import LiveSession
+
     with flags_named(_FLAGS):
         session = LiveSession(
             machine=machine,
@@ -96,7 +96,7 @@ def live(
             signal.signal(signal.SIGTERM, lambda *_: stop.set())
         on_terminal = sys.stderr.isatty()
 
-        def progress(summary: RunSummary) -> None:
+        def progress(summary) -> None:
             text = summary.progress_text(session.state.measure_rate())
             click.echo(("\r" + text) if on_terminal else text, err=True, nl=not on_terminal)
 
@@ -117,7 +117,3 @@ _FLAGS = {
     "seed": "--seed", "record": "--record", "force=True": "--force", "overwrite=True": "--force",
     "choose another port or host": "choose another --port or --bind", "a source replay:FILE": "--source replay:FILE",
 }
-
-
-def register(group: click.Group) -> None:
-    group.add_command(live)

@@ -16,8 +16,7 @@ import click
 
 from axiscal.cli.common import FINITE, echo_json, finite, flags_named
 from axiscal.errors import AxiscalError
-from axiscal.measurement import offline
-from axiscal.measurement.virtual import PATHS
+from axiscal.cli.choices import PATHS
 from axiscal.units import ARCSEC, MM
 
 __all__ = [
@@ -25,16 +24,16 @@ __all__ = [
     "calibrate_group",
     "sensitivity_command",
     "mirror_command",
-    "simulate_group",
     "simulate_frames_command",
     "simulate_laser_command",
     "experiment_group",
     "diagonal_command",
-    "register",
 ]
 
 
 def _echo_report(report: dict[str, Any], as_json: bool) -> None:
+    from axiscal.measurement import offline
+
     if as_json:
         echo_json(report)
         return
@@ -55,6 +54,8 @@ def measure_command(frames_path, machine, output, as_json):
     range, 4 position outside the model), the axis positions, the six errors per axis, ex_um,
     ey_um, ez_um, e_um and px_mm, py_mm, pz_mm. Faulty frames are kept, with empty results (nan).
     """
+    from axiscal.measurement import offline
+
     result = offline.measure_file(frames_path, machine=machine, output=output)
     if as_json:
         summary = result.summary()
@@ -101,6 +102,8 @@ def sensitivity_command(run_path, channel, machine, reference_offset_mm, output,
     translation is first moved to the sensor's point (paper 000 section 4.2) with the angle
     columns E<A,B,C><axis>_urad or _arcsec of the run.
     """
+    from axiscal.measurement import offline
+
     offset = _vector_mm(reference_offset_mm, "--reference-offset-mm")
     with flags_named({"reference_offset_m": "--reference-offset-mm"}):
         report = offline.calibrate_sensitivity(run_path, channel, machine=machine, reference_offset_m=offset, output=output)
@@ -122,16 +125,13 @@ def mirror_command(run_path, letter, machine, max_order, output, as_json):
     file, then from --output if it exists) is applied first; the form error module - level is
     fitted by a Legendre polynomial whose order leave-one-out cross-validation picks.
     """
+    from axiscal.measurement import offline
+
     report = offline.calibrate_mirror(run_path, letter, machine=machine, max_order=max_order, output=output)
     _echo_report(report, as_json)
 
 
-@click.group("simulate")
-def simulate_group():
-    """Simulated data: frames and laser readings of paper 000's XZ module, ballbar traces, probe readings."""
-
-
-@simulate_group.command("frames")
+@click.command("frames")
 @click.option("--path", "motion", type=click.Choice(PATHS), default="diagonal", show_default=True, help="Motion of the module.")
 @click.option("--rate", "rate_hz", type=finite(min=0, min_open=True), default=1000.0, show_default=True, help="Frames per second (Hz).")
 @click.option("--duration", "duration_s", type=finite(min=0, min_open=True), default=1.0, show_default=True, help="Length of the run (s).")
@@ -141,6 +141,8 @@ def simulate_group():
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV (and its .json sidecar) here (default: standard output).")
 def simulate_frames_command(motion, rate_hz, duration_s, load_kg, seed, truth, output):
     """Raw frames of the virtual module: t_s and every channel, ready for `axiscal measure`."""
+    from axiscal.measurement import offline
+
     with flags_named({"rate_hz": "--rate", "duration_s": "--duration"}):
         made = offline.simulate_frames(path=motion, rate_hz=rate_hz, duration_s=duration_s, load_kg=load_kg, seed=seed,
                                        truth=truth, output=output)
@@ -150,7 +152,7 @@ def simulate_frames_command(motion, rate_hz, duration_s, load_kg, seed, truth, o
         click.echo(f"{made.rows} frames -> {output}")
 
 
-@simulate_group.command("laser")
+@click.command("laser")
 @click.option("--steps", type=click.IntRange(min=1), default=19, show_default=True, help="Steps from the start (0, 0).")
 @click.option("--step-mm", type=finite(min=0, min_open=True), default=10.0, show_default=True, help="Move of each axis per step (mm).")
 @click.option("--load-kg", type=finite(min=0), default=0.0, show_default=True, help="Mass on the Z slide (kg).")
@@ -162,6 +164,8 @@ def simulate_laser_command(steps, step_mm, load_kg, seed, output):
     Columns nominal_mm, measured_mm (the format `axiscal diagonal --interferometer` reads): the
     nominal displacement along the diagonal and the reading, zeroed at the start.
     """
+    from axiscal.measurement import offline
+
     made = offline.simulate_laser(steps=steps, step_m=step_mm * MM, load_kg=load_kg, seed=seed, output=output)
     if output is None:
         click.echo(made.text, nl=False)
@@ -189,6 +193,8 @@ def diagonal_command(load_kg, seed, samples, squareness_error_arcsec, plot, as_j
     68 -> 13 um (no load) and 56 -> 14 um (2 kg); docs/measurement.md says why the simulation
     leaves less.
     """
+    from axiscal.measurement import offline
+
     report = offline.run_diagonal_experiment(
         load_kg=load_kg, seed=seed, samples=samples, squareness_error_rad=squareness_error_arcsec * ARCSEC, plot=plot
     )
@@ -198,15 +204,3 @@ def diagonal_command(load_kg, seed, samples, squareness_error_arcsec, plot, as_j
     click.echo(report.text(), nl=False)
     if plot:
         click.echo(f"figure -> {plot}")
-
-
-def register(group: click.Group) -> None:
-    from axiscal.cli.ballbar import simulate_ballbar_command
-    from axiscal.cli.separation import simulate_probes_command
-
-    simulate_group.add_command(simulate_ballbar_command)
-    simulate_group.add_command(simulate_probes_command)
-    group.add_command(measure_command)
-    group.add_command(calibrate_group)
-    group.add_command(simulate_group)
-    group.add_command(experiment_group)

@@ -5,13 +5,11 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import FINITE, flags_named
+from axiscal.cli.choices import CYCLES, DIALECT_NAMES
 from axiscal.errors import AxiscalError
-from axiscal.io.gcode import DIALECT_NAMES
-from axiscal.positioning.plan import CYCLES, cycle_csv, plan_test, write_plan
-from axiscal.positioning.step_cycle import plan_step_cycle
 from axiscal.units import MM
 
-__all__ = ["plan_command", "register"]
+__all__ = ["plan_command"]
 
 
 @click.command("plan")
@@ -42,6 +40,9 @@ def plan_command(start_mm, end_mm, count, runs, overrun_mm, step_cycle, period_m
     With --step-cycle: evenly spaced targets, --steps-per-period to a --period-mm, over --periods
     periods from --start-mm, for the periodic error (ISO 230-2 Annexes B and C).
     """
+    from axiscal.positioning.plan import cycle_csv, plan_test, write_plan
+    from axiscal.positioning.step_cycle import plan_step_cycle
+
     with flags_named({"start_m": "--start-mm", "end_m": "--end-mm", "overrun_m": "--overrun-mm", "dwell_s": "--dwell-s",
                       "feed_mm_per_min": "--feed-mm-min", "period_m": "--period-mm", "periods": "--periods",
                       "steps_per_period": "--steps-per-period", "runs": "--runs"}):
@@ -62,7 +63,3 @@ def plan_command(start_mm, end_mm, count, runs, overrun_mm, step_cycle, period_m
     if not output:
         click.echo(cycle_csv(plan), nl=False)
     click.echo(f"axiscal: note: {plan.description}", err=True)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(plan_command)

@@ -7,11 +7,9 @@ import click
 from axiscal.cli.common import FINITE, echo_json, flags_named, given_options
 from axiscal.errors import AxiscalError
 from axiscal.materials import STEEL_EXPANSION_PER_K
-from axiscal.positioning.evaluation import STANDARDS
-from axiscal.positioning.report import evaluate_positioning_file
-from axiscal.uncertainty.positioning import evaluate_positioning_with_uncertainty
+from axiscal.cli.choices import STANDARDS
 
-__all__ = ["positioning_command", "register"]
+__all__ = ["positioning_command"]
 
 
 @click.command("positioning")
@@ -30,6 +28,9 @@ __all__ = ["positioning_command", "register"]
 def positioning_command(run_csv, standard, as_json, plot_path, wavelength_nm, expansion_per_k, budget_path, monte_carlo):
     """Evaluate a positioning test (RUN_CSV: target_mm, run, direction, deviation_um or actual_mm; target_deg and
     deviation_arcsec for a rotary axis; one direction or both)."""
+    from axiscal.positioning.report import evaluate_positioning_file
+    from axiscal.uncertainty.positioning import evaluate_positioning_with_uncertainty
+
     raw_options = given_options(wavelength_nm=wavelength_nm, expansion_per_k=expansion_per_k)
     if monte_carlo and not budget_path:
         raise AxiscalError("--monte-carlo propagates a budget: give it with --uncertainty BUDGET.toml")
@@ -48,7 +49,3 @@ def positioning_command(run_csv, standard, as_json, plot_path, wavelength_nm, ex
         echo_json(evaluation.to_dict())
     else:
         click.echo(evaluation.report())
-
-
-def register(group: click.Group) -> None:
-    group.add_command(positioning_command)

@@ -8,11 +8,10 @@ import click
 
 from axiscal.cli.common import FINITE, echo_json, flags_named
 from axiscal.errors import AxiscalError
-from axiscal.io.gcode import DIALECT_NAMES
-from axiscal.precompensation.program import precompensate_file
+from axiscal.cli.choices import DIALECT_NAMES
 from axiscal.units import MM, UM
 
-__all__ = ["precompensate_command", "register"]
+__all__ = ["precompensate_command"]
 
 _WORD_DIALECTS = tuple(name for name in DIALECT_NAMES if name != "heidenhain")
 
@@ -46,6 +45,8 @@ def _vector_mm(flag: str):
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as one JSON object on stdout.")
 def precompensate_command(program, machine, dialect, output, max_segment_mm, tolerance_um, tool_mm, work_offset_mm, as_json):
     """Rewrite a part program through the machine model: every point commanded where the tool lands on it."""
+    from axiscal.precompensation.program import precompensate_file
+
     offset = None if work_offset_mm is None else dict(zip("XYZ", work_offset_mm))
     with flags_named({"tolerance_m": "--tolerance-um", "max_segment_m": "--max-segment-mm", "tool_m": "--tool-mm"}):
         result = precompensate_file(program, machine, output, dialect=dialect, max_segment_m=max_segment_mm * MM,
@@ -64,7 +65,3 @@ def precompensate_command(program, machine, dialect, output, max_segment_mm, tol
         f" residual along the path {summary['largest_residual_um']:.3f} um; written to {output}",
         err=True,
     )
-
-
-def register(group: click.Group) -> None:
-    group.add_command(precompensate_command)

@@ -9,9 +9,7 @@ import click
 
 from axiscal.errors import AxiscalError
 
-from axiscal.report.writer import report_campaign
-
-__all__ = ["report_command", "register"]
+__all__ = ["report_command"]
 
 
 @contextmanager
@@ -53,6 +51,8 @@ def _progress(enabled: bool):
 def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, pdf: bool, exit_code: bool,
                    history: bool, db: str | None) -> None:
     """Run every test of CAMPAIGN_DIR (campaign.toml) and write report.html, results.json and the compensation files."""
+    from axiscal.report.writer import report_campaign
+
     if db is not None and not history:
         raise AxiscalError("--db applies only with --history")
     with _progress(sys.stderr.isatty()) as progress:
@@ -65,9 +65,10 @@ def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, 
         click.echo(f"compensation {path}")
     if files.pdf is not None:
         click.echo(f"pdf {files.pdf}")
+    if files.history is not None:
+        stored = files.history
+        count = stored["campaigns"]
+        click.echo(f"history: campaign {stored['campaign_id']} of {stored['machine']} stored in {stored['database']}"
+                   f" ({count} campaign{'' if count == 1 else 's'} of this machine)")
     if exit_code and verdict in ("fail", "inconclusive"):
         click.get_current_context().exit(1)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(report_command)

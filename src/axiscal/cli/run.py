@@ -10,7 +10,7 @@ from axiscal.cli.common import FINITE, echo_json, flags_named
 from axiscal.errors import AxiscalError
 from axiscal.units import MM, UM
 
-__all__ = ["run_command", "cycle_command", "register", "instrument_options"]
+__all__ = ["run_command", "cycle_command", "instrument_options"]
 
 _FLAGS = {"stability_m": "--stability-um", "window_s": "--window-s", "offset_m": "--offset-mm", "dwell_s": "--dwell-s",
           "feed_m_per_s": "--feed-mm-min", "axis": "--axis", "wavelength_m": "--wavelength-nm", "rate_hz": "--rate-hz",
@@ -242,8 +242,3 @@ def cycle_command(plan_csv, controller_spec, source_spec, fmt, output_dir, resta
         echo_json(result.summary)
     click.echo(f"axiscal: note: as found E {result.summary['as_found']['E_um']:.2f} um -> as left"
                f" {result.summary['as_left']['E_um']:.2f} um; reports in {result.folder}", err=True)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(run_command)
-    group.add_command(cycle_command)

@@ -8,14 +8,10 @@ import click
 
 from axiscal.cli.common import FINITE, hidden_alias
 from axiscal.errors import AxiscalError
-from axiscal.straightness.files import (
-    SEPARATION_METHODS,
-    separate_file,
-    simulate_probe_readings,
-)
+from axiscal.cli.choices import SEPARATION_METHODS
 from axiscal.units import MM, UM
 
-__all__ = ["separate_command", "simulate_probes_command", "simulate_probes_alias", "register"]
+__all__ = ["separate_command", "simulate_probes_command", "simulate_probes_alias"]
 
 
 def _positive(**flags: float | None) -> None:
@@ -72,6 +68,8 @@ def separate_command(
     Writes position_mm, profile_um, motion_um[, yaw_urad] for every position the method
     resolves; profile and motion share an undetermined straight line.
     """
+    from axiscal.straightness.files import separate_file
+
     if method == "reversal":
         if reversed_run is None:
             raise AxiscalError("the reversal method needs --reversed RUN.csv: the run with the workpiece turned over")
@@ -149,6 +147,8 @@ def simulate_probes_command(
     Probe A runs from the profile's first position in steps of --step-mm as far as the last
     probe stays on the profile.
     """
+    from axiscal.straightness.files import simulate_probe_readings
+
     _positive(spacing_mm=spacing_mm, spacing_bc_mm=spacing_bc_mm, step_mm=step_mm)
     if not (math.isfinite(noise_um) and noise_um >= 0):
         raise AxiscalError(f"--noise-um must be a number >= 0, got {noise_um:g}")
@@ -171,9 +171,3 @@ def simulate_probes_command(
 
 
 simulate_probes_alias = hidden_alias(simulate_probes_command, "simulate-probes", "simulate probes")
-
-
-def register(group: click.Group) -> None:
-    """``separate`` and the old name ``simulate-probes``; ``simulate probes`` joins the ``simulate`` group."""
-    group.add_command(separate_command)
-    group.add_command(simulate_probes_alias)

@@ -15,15 +15,7 @@ import click
 from axiscal.cli.cmm import cmm_group
 from axiscal.cli.common import FINITE, echo_json
 from axiscal.errors import AxiscalError
-from axiscal.instruments.optics import BK7_INDEX
-from axiscal.squareness.cmm import (
-    PAPER_004_SQUARENESS_ARCMIN,
-    CmmSquareness,
-    compensate_file,
-    gauge_block_study,
-)
-from axiscal.squareness.evaluation import SQUARENESS_REFERENCES, squareness_from_files
-from axiscal.squareness.pentaprism import pentaprism_study
+from axiscal.cli.choices import BK7_INDEX, PAPER_004_SQUARENESS_ARCMIN, SQUARENESS_REFERENCES
 from axiscal.units import ARCMIN, ARCSEC, MM
 
 __all__ = [
@@ -33,7 +25,6 @@ __all__ = [
     "cmm_group",
     "compensate_command",
     "gauge_blocks_command",
-    "register",
 ]
 
 
@@ -55,6 +46,8 @@ __all__ = [
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write both runs and their lines to this image.")
 def squareness_command(first_csv, second_csv, plane, prism_deviation_arcsec, reference, convention, as_json, plot_path):
     """Squareness of two axes from two straightness runs (paper 002 eqs 1 and 21)."""
+    from axiscal.squareness.evaluation import squareness_from_files
+
     if reference not in SQUARENESS_REFERENCES:
         raise AxiscalError(f"--reference must be least-squares or end-points, not '{reference}'")
     if not math.isfinite(prism_deviation_arcsec):
@@ -92,6 +85,8 @@ def optics_group() -> None:
               help="Write Fig. 5 (rotation about X, Y, Z; translation) to this image.")
 def pentaprism_command(index, range_arcmin, steps, as_json, plot_path):
     """Deviation of the pentaprism against its rotation about X, Y, Z and its translation (Fig. 5)."""
+    from axiscal.squareness.pentaprism import pentaprism_study
+
     if not (math.isfinite(range_arcmin) and 0 < range_arcmin <= 600):
         raise AxiscalError(f"--range-arcmin must be in (0, 600], got {range_arcmin}")
     if not 2 <= steps <= 2001:
@@ -103,8 +98,10 @@ def pentaprism_command(index, range_arcmin, steps, as_json, plot_path):
         click.echo(study.report())
 
 
-def _squareness_arcmin(ctx: click.Context, param: click.Parameter, text: str) -> CmmSquareness:
+def _squareness_arcmin(ctx: click.Context, param: click.Parameter, text: str):
     """``"8.05,27.1,-16.6"`` (a_xy, a_xz, a_yz in arc minutes) -> CmmSquareness, naming the flag when refused."""
+    from axiscal.squareness.cmm import CmmSquareness
+
     try:
         values = [float(p) for p in text.split(",")]
     except ValueError:
@@ -131,6 +128,8 @@ _SQUARENESS_HELP = (
 @click.option("--inverse", is_flag=True, help="Go the other way: from true coordinates to the readings the CMM shows.")
 def compensate_command(points_csv, values, output, inverse):
     """Correct CMM readings by eq (6): x' = x - y a_xy - z a_xz, y' = y - z a_yz (POINTS_CSV: x_mm, y_mm, z_mm)."""
+    from axiscal.squareness.cmm import compensate_file
+
     result = compensate_file(points_csv, values, inverse=inverse, output=output)
     if output is None:
         click.echo(result.csv_text, nl=False)
@@ -144,6 +143,8 @@ def compensate_command(points_csv, values, output, inverse):
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object.")
 def gauge_blocks_command(values, end_offset_mm, as_json):
     """Simulate paper 004's gauge block check (0.992 mm along X, 1.000 mm along Y) before and after eq (6)."""
+    from axiscal.squareness.cmm import gauge_block_study
+
     if not (math.isfinite(end_offset_mm) and abs(end_offset_mm) <= 100):
         raise AxiscalError(f"--end-offset-mm must be within +-100, got {end_offset_mm}")
     study = gauge_block_study(values, end_offset_m=end_offset_mm * MM)
@@ -151,9 +152,3 @@ def gauge_blocks_command(values, end_offset_mm, as_json):
         echo_json(study.payload())
     else:
         click.echo(study.report())
-
-
-def register(group: click.Group) -> None:
-    group.add_command(squareness_command)
-    group.add_command(optics_group)
-    group.add_command(cmm_group)

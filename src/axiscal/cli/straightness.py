@@ -5,10 +5,9 @@ from __future__ import annotations
 import click
 
 from axiscal.cli.common import echo_json
-from axiscal.straightness.files import evaluate_straightness_file
-from axiscal.straightness.reference import REFERENCES
+from axiscal.cli.choices import REFERENCES
 
-__all__ = ["straightness_command", "register"]
+__all__ = ["straightness_command"]
 
 
 @click.command("straightness")
@@ -24,12 +23,10 @@ __all__ = ["straightness_command", "register"]
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write a plot of the profile and its zone.")
 def straightness_command(profile: str, reference: str, as_json: bool, plot_path: str | None) -> None:
     """Straightness of PROFILE (CSV with position_mm, deviation_um): the zone's width about a reference line."""
+    from axiscal.straightness.files import evaluate_straightness_file
+
     result = evaluate_straightness_file(profile, reference=reference, plot_path=plot_path)
     if as_json:
         echo_json(result.payload())
     else:
         click.echo(result.report())
-
-
-def register(group: click.Group) -> None:
-    group.add_command(straightness_command)

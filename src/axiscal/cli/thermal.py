@@ -8,9 +8,8 @@ import click
 
 from axiscal.cli.common import FINITE, echo_json
 from axiscal.errors import AxiscalError
-from axiscal.thermal.files import evaluate_drift, evaluate_etve
 
-__all__ = ["thermal_group", "thermal_etve_command", "thermal_drift_command", "register"]
+__all__ = ["thermal_group", "thermal_etve_command", "thermal_drift_command"]
 
 
 @click.group("thermal")
@@ -25,6 +24,8 @@ def thermal_group() -> None:
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write the drift plot with the temperatures.")
 def thermal_etve_command(run: str, max_lag_h: float | None, as_json: bool, plot_path: str | None) -> None:
     """ETVE of RUN (CSV: time_s or time_h, x_um/y_um/z_um[, a_urad, b_urad], temperature_<place>_c)."""
+    from axiscal.thermal.files import evaluate_etve
+
     if max_lag_h is not None and not (math.isfinite(max_lag_h) and max_lag_h >= 0):
         raise AxiscalError(f"--max-lag-h must be a number of hours, zero or more, got {max_lag_h:g}")
     result = evaluate_etve(run, max_lag_s=None if max_lag_h is None else max_lag_h * 3600.0)
@@ -45,6 +46,8 @@ def thermal_etve_command(run: str, max_lag_h: float | None, as_json: bool, plot_
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Write the drift plot with the temperatures.")
 def thermal_drift_command(run: str, as_json: bool, plot_path: str | None) -> None:
     """Thermal drift of RUN (CSV as for etve, with running = 1 while heating, 0 while cooling)."""
+    from axiscal.thermal.files import evaluate_drift
+
     result = evaluate_drift(run)
     if plot_path:
         from axiscal.thermal.plot import plot_drift
@@ -54,7 +57,3 @@ def thermal_drift_command(run: str, as_json: bool, plot_path: str | None) -> Non
         echo_json(result.payload())
     else:
         click.echo(result.report())
-
-
-def register(group: click.Group) -> None:
-    group.add_command(thermal_group)

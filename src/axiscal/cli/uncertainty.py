@@ -9,10 +9,9 @@ import click
 
 from axiscal.cli.common import FINITE, echo_json
 from axiscal.errors import AxiscalError
-from axiscal.uncertainty.volumetric import SCHEDULER_TIMEOUT_S
-from axiscal.uncertainty.volumetric_map import volumetric_uncertainty_map
+from axiscal.cli.choices import UNCERTAINTY_SCHEDULER_TIMEOUT_S as SCHEDULER_TIMEOUT_S
 
-__all__ = ["uncertainty_group", "volumetric_uncertainty_command", "register"]
+__all__ = ["uncertainty_group", "volumetric_uncertainty_command"]
 
 
 @contextmanager
@@ -61,6 +60,8 @@ def volumetric_uncertainty_command(machine_path, points_path, grid, draws, seed,
     the model's error (ex_um), the standard deviation of the draws (ex_u_um) and the interval
     (ex_low_um, ex_high_um).
     """
+    from axiscal.uncertainty.volumetric_map import volumetric_uncertainty_map
+
     if (points_path is None) == (grid is None):
         raise AxiscalError("give exactly one of --points FILE or --grid SPEC")
     with _draws_progress(sys.stderr.isatty()) as progress:
@@ -71,7 +72,3 @@ def volumetric_uncertainty_command(machine_path, points_path, grid, draws, seed,
         echo_json(result.summary())
     elif not output:
         click.echo(result.csv(), nl=False)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(uncertainty_group)

@@ -6,12 +6,9 @@ import click
 
 from axiscal.cli.common import echo_json
 from axiscal.errors import AxiscalError
-from axiscal.model.diagonal import MEASURES, diagonal_test
-from axiscal.model.inputs import parse_point
-from axiscal.model.inverse import inverse_commands
-from axiscal.model.volumetric import volumetric_map
+from axiscal.cli.choices import MEASURES
 
-__all__ = ["volumetric_command", "diagonal_command", "inverse_command", "register"]
+__all__ = ["volumetric_command", "diagonal_command", "inverse_command"]
 
 
 @click.command("volumetric")
@@ -27,6 +24,8 @@ def volumetric_command(machine_path, points_path, grid, output, plot):
     point relative to the workpiece, actual minus nominal, in the workpiece frame) and e_um = |e|;
     with rotary axes also ei_urad, ej_urad (orientation error of the tool axis).
     """
+    from axiscal.model.volumetric import volumetric_map
+
     if (points_path is None) == (grid is None):
         raise AxiscalError("give exactly one of --points FILE or --grid SPEC")
     result = volumetric_map(machine_path, points=points_path, grid=grid)
@@ -57,6 +56,9 @@ def diagonal_command(machine_path, start, end, steps, interferometer, measure, o
     E_BD = measured - nominal, E_AD = measured - predicted (paper 000 writes E_BD and E_AD with the
     opposite sign).
     """
+    from axiscal.model.diagonal import diagonal_test
+    from axiscal.model.inputs import parse_point
+
     result = diagonal_test(
         machine_path, parse_point(start, "--from"), parse_point(end, "--to"), steps=steps, readings=interferometer, measure=measure
     )
@@ -79,14 +81,10 @@ def diagonal_command(machine_path, start, end, steps, interferometer, measure, o
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV here (and its JSON sidecar) instead of standard output.")
 def inverse_command(machine_path, points_path, output):
     """Axis commands that put the tool point on wanted points (compensated commands, to < 1 nm)."""
+    from axiscal.model.inverse import inverse_commands
+
     result = inverse_commands(machine_path, points_path)
     if output:
         result.write_csv(output)
     else:
         click.echo(result.csv(), nl=False)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(volumetric_command)
-    group.add_command(diagonal_command)
-    group.add_command(inverse_command)

@@ -12,9 +12,8 @@ import threading
 import click
 
 from axiscal.cli.common import flags_named
-from axiscal.workbench import serve_workbench
 
-__all__ = ["workbench", "register"]
+__all__ = ["workbench"]
 
 
 @click.command("workbench")
@@ -26,6 +25,8 @@ __all__ = ["workbench", "register"]
 def workbench(db: str | None, data: str, port: int, host: str) -> None:
     """Open the workbench: machines and their history, a new visit, plan, connect, run, results, compensate, finish."""
     with flags_named({"port": "--port", "host": "--host", "data": "--data", "db": "--db", "choose another port or host": "choose another --port or --host"}):
+        from axiscal.workbench import serve_workbench
+
         server = serve_workbench(data, db=db, port=port, host=host)
     stop = threading.Event()
     main_thread = threading.current_thread() is threading.main_thread()
@@ -43,7 +44,3 @@ def workbench(db: str | None, data: str, port: int, host: str) -> None:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
         server.stop()
-
-
-def register(group: click.Group) -> None:
-    group.add_command(workbench)

@@ -10,6 +10,7 @@ from axiscal.fleet.generate import generated_fleet
 from axiscal.fleet.page import (
     FLEET_SCHEMA,
     MachineRow,
+    figure_title,
     fleet_payload,
     machine_rows,
     render_fleet_html,
@@ -28,6 +29,7 @@ __all__ = [
     "generated_fleet",
     "FLEET_SCHEMA",
     "MachineRow",
+    "figure_title",
     "fleet_payload",
     "machine_rows",
     "render_fleet_html",

@@ -24,7 +24,7 @@ from axiscal.io.arguments import check_instance
 from axiscal.io.jsonio import dumps
 from axiscal.version import __version__
 
-__all__ = ["FLEET_SCHEMA", "MachineRow", "machine_rows", "fleet_payload", "render_fleet_html"]
+__all__ = ["FLEET_SCHEMA", "MachineRow", "figure_title", "machine_rows", "fleet_payload", "render_fleet_html"]
 
 FLEET_SCHEMA = "axiscal-fleet/1"
 
@@ -54,6 +54,8 @@ class MachineRow:
     error : str
         The one-line error when its drift and next due date could not be worked out ("" when
         they were); the row then holds its latest campaign only.
+    trend_note : str
+        Why there is no drift or next due date ("2 visits; 3 needed"), "" when there is.
     """
 
     machine: str
@@ -70,6 +72,7 @@ class MachineRow:
     u_drift_per_year: float | None
     next_due: _dt.date | None
     error: str = ""
+    trend_note: str = ""
 
     @property
     def worst_ratio(self) -> float | None:
@@ -77,6 +80,50 @@ class MachineRow:
         if self.worst_value is None or not self.worst_tolerance:
             return None
         return abs(self.worst_value) / self.worst_tolerance
+
+
+#: unit suffixes of the figures' keys, as the page names them
+_UNITS = {"um": "µm", "nm": "nm", "mm": "mm", "arcsec": "arcsec", "urad": "µrad", "deg": "deg", "pct": "%"}
+
+
+def figure_title(key: str) -> str:
+    """A figure's key as a person reads it: ``diagonal.diagonal-0kg.diagonal_error_um`` -> ``diagonal-0kg: diagonal error``.
+
+    Parameters
+    ----------
+    key : str
+        ``KIND.TEST.FIGURE`` as the history names figures.
+
+    Returns
+    -------
+    str
+        The test (axis, plane or id) and the figure's name in words, without the unit.
+
+    Examples
+    --------
+    >>> figure_title("positioning.X.E"), figure_title("straightness.X.straightness_um")
+    ('X: positioning E', 'X: straightness')
+    """
+    check_instance("key", key, str)
+    parts = key.split(".", 2)
+    if len(parts) != 3:
+        return key
+    kind, test, name = parts
+    stem, _, unit = name.rpartition("_")
+    if stem and unit in _UNITS:
+        name = stem
+    words = name.replace("_", " ")
+    if not words.startswith(kind):
+        words = f"{kind} {words}"
+    return f"{test}: {words}"
+
+
+def _trend_note(campaigns: int, trends: dict) -> str:
+    if campaigns < 3:
+        return f"{campaigns} visit{'' if campaigns == 1 else 's'}; 3 needed"
+    if not trends:
+        return "no figure with a tolerance in 3 visits"
+    return ""
 
 
 def _in_memory(records: list[CampaignRecord]) -> MachineHistory:
@@ -140,6 +187,7 @@ def machine_rows(run: FleetRun, *, history: bool = False, db: str | None = None)
             worst.key if worst else "", worst.unit if worst else "", worst.value if worst else None,
             worst.tolerance if worst else None, drift.figure if drift else "", drift.fit.b if drift else None,
             drift.fit.u_b if drift else None, min((t.next_date for t in trends.values()), default=None), error,
+            _trend_note(len(past.campaigns), trends),
         ))
     rows.sort(key=lambda r: (r.next_due or _dt.date.max, -(r.worst_ratio or 0.0), r.machine))
     return rows
@@ -185,6 +233,15 @@ def fleet_payload(run: FleetRun, rows: Sequence[MachineRow]) -> dict[str, Any]:
     }
 
 
+def _drift_text(row: MachineRow) -> str:
+    """The drift cell: the slope with its u, "no drift" when it is within 2 u of none."""
+    unit = _UNITS.get(row.unit, row.unit)
+    name = figure_title(row.drift_figure) if row.drift_figure else ""
+    if row.u_drift_per_year is not None and abs(row.drift_per_year) <= 2 * row.u_drift_per_year:
+        return f"no drift ({row.drift_per_year:+.3g} ± {row.u_drift_per_year:.2g} {unit}/year, {name})"
+    return f"{row.drift_per_year:+.3g} ± {row.u_drift_per_year:.2g} {unit}/year ({name})"
+
+
 def render_fleet_html(run: FleetRun, rows: Sequence[MachineRow], *, out_dir: str | Path | None = None,
                       generated: str | None = None) -> str:
     """The fleet page.
@@ -225,15 +282,15 @@ def render_fleet_html(run: FleetRun, rows: Sequence[MachineRow], *, out_dir: str
 
     table = [{
         "machine": r.machine, "link": link(r.report), "date": r.last_date.isoformat(), "verdict": r.last_verdict,
-        "campaigns": r.campaigns, "worst": r.worst_figure,
+        "campaigns": r.campaigns, "worst": figure_title(r.worst_figure) if r.worst_figure else "",
         "worst_text": "" if r.worst_value is None else
         f"{format_number(abs(r.worst_value))} / {format_number(r.worst_tolerance)} {r.unit}",
         "ratio": "" if r.worst_ratio is None else f"{100 * r.worst_ratio:.0f}",
         "ratio_sort": "" if r.worst_ratio is None else f"{r.worst_ratio:.9g}",
-        "drift": "" if r.drift_per_year is None else
-        f"{r.drift_per_year:+.3g} ± {r.u_drift_per_year:.2g} {r.unit}/year ({r.drift_figure})",
+        "drift": r.trend_note if r.drift_per_year is None else _drift_text(r),
         "drift_sort": "" if r.drift_per_year is None else f"{r.drift_per_year:.6g}",
         "next": "" if r.next_due is None else r.next_due.isoformat(),
+        "next_note": r.trend_note or "not predicted",
     } for r in rows]
     return template_environment().get_template("fleet/fleet.html.j2").render(
         version=__version__,

@@ -60,11 +60,13 @@ from axiscal.history.synthetic import (
 )
 from axiscal.history.trend import (
     CROSSING_HORIZON_YEARS,
+    ONE_SIDED_FIGURES,
     TREND_METHODS,
     DriftFit,
     Trend,
     crossing,
     fit_drift,
+    one_sided_figure,
     staircase,
     trend_of,
 )
@@ -110,6 +112,8 @@ __all__ = [
     "write_results",
     "CROSSING_HORIZON_YEARS",
     "TREND_METHODS",
+    "ONE_SIDED_FIGURES",
+    "one_sided_figure",
     "DriftFit",
     "Trend",
     "crossing",

@@ -50,9 +50,12 @@ def plot_trend(trend: Trend, path: str | Path) -> Path:
     ax.errorbar(list(trend.dates), trend.values, yerr=U, fmt="o", color="k", capsize=3, label="campaigns (U, k=2)")
     ax.plot(dates, line, color="tab:blue", label=f"drift {trend.fit.b:+.3g} {trend.unit}/year")
     ax.fill_between(dates, line - band, line + band, color="tab:blue", alpha=0.15, label=f"line ± {trend.k:g} u")
-    for limit in (trend.tolerance, -trend.tolerance):
-        if np.min(line - band) <= limit <= np.max(line + band) or limit == trend.tolerance * np.sign(trend.fit.b or 1):
-            ax.axhline(limit, color="tab:red", linestyle="--", linewidth=1)
+    # the limits the trend holds against: +tolerance only for a figure that cannot be negative
+    for limit in trend.limits:
+        if np.min(line - band) <= limit <= np.max(line + band) or limit == trend.tolerance * np.sign(trend.fit.b or 1) \
+                or trend.one_sided:
+            ax.axhline(limit, color="tab:red", linestyle="--", linewidth=1,
+                       label=f"tolerance {limit:+g} {trend.unit}".rstrip())
     if trend.crossing_date is not None and trend.crossing_date <= dates[-1]:
         ax.axvline(trend.crossing_date, color="tab:red", linewidth=1, label=f"crossing {trend.crossing_date}")
     ax.axvline(trend.next_date, color="tab:green", linewidth=1, label=f"next calibration {trend.next_date}")

@@ -20,6 +20,11 @@ that far (unbounded). The next calibration follows ILAC-G24 / OIML D 10 (2007):
   ``initial_days``; the next date is the last campaign's plus the interval.
 
 The recommended date is the earlier of the two.
+
+A figure that cannot be negative (ISO 230-2's A, E, R, B, M; a straightness, a flatness: see
+:func:`one_sided_figure`) has a one-sided limit: only ``+L`` is held against it, so a falling line of
+such a figure never crosses (it does not predict the crossing of ``-L``). A signed figure (a
+squareness) is held against ``+L`` and ``-L``.
 """
 
 from __future__ import annotations
@@ -32,9 +37,41 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_choice, check_number
+from axiscal.io.arguments import check_choice, check_instance, check_number
 
-__all__ = ["TREND_METHODS", "CROSSING_HORIZON_YEARS", "DriftFit", "Trend", "fit_drift", "crossing", "staircase", "trend_of"]
+__all__ = ["TREND_METHODS", "CROSSING_HORIZON_YEARS", "ONE_SIDED_FIGURES", "DriftFit", "Trend", "fit_drift", "crossing", "staircase", "trend_of",
+           "one_sided_figure"]
+
+#: figure names (the last part of KIND.AXIS.FIGURE, unit suffix removed) that are magnitudes, >= 0
+ONE_SIDED_FIGURES = frozenset({"A", "E", "R", "B", "M", "A_up", "A_down", "E_up", "E_down", "R_up", "R_down",
+                               "B_mean", "M_up", "M_down", "straightness", "flatness"})
+
+
+def one_sided_figure(figure: str) -> bool:
+    """Whether a figure cannot be negative, so that its limit is one-sided (``+L`` only).
+
+    Parameters
+    ----------
+    figure : str
+        ``KIND.AXIS.FIGURE`` (``positioning.X.E``) or the figure's name alone.
+
+    Returns
+    -------
+    bool
+        True for ISO 230-2's A, E, R, B, M (each way too) and for straightness and flatness
+        figures; False for a signed figure (a squareness, a slope).
+
+    Examples
+    --------
+    >>> one_sided_figure("positioning.X.E"), one_sided_figure("squareness.XZ.squareness_arcsec")
+    (True, False)
+    """
+    check_instance("figure", figure, str)
+    name = figure.rsplit(".", 1)[-1]
+    stem, _, unit = name.rpartition("_")
+    if stem and unit in ("um", "nm", "mm", "m", "arcsec", "urad", "deg", "rad"):
+        name = stem
+    return name in ONE_SIDED_FIGURES or name.endswith(("straightness", "flatness"))
 
 #: the ways a drift line is fitted
 TREND_METHODS = ("wls", "robust")
@@ -255,7 +292,8 @@ def _roots(fit: DriftFit, limit: float, k: float) -> tuple[float | None, float |
     return roots[0], roots[1]
 
 
-def crossing(fit: DriftFit, tolerance: float, *, k: float = 2.0) -> tuple[float | None, float | None, float | None]:
+def crossing(fit: DriftFit, tolerance: float, *, k: float = 2.0,
+             one_sided: bool = False) -> tuple[float | None, float | None, float | None]:
     """When the drift line reaches the tolerance, with Fieller's interval on that time.
 
     Parameters
@@ -266,12 +304,16 @@ def crossing(fit: DriftFit, tolerance: float, *, k: float = 2.0) -> tuple[float 
         ``+tolerance`` when it rises and ``-tolerance`` when it falls.
     k : float, keyword-only
         Coverage factor of the interval (2: about 95 %).
+    one_sided : bool, keyword-only
+        The figure cannot be negative (:func:`one_sided_figure`): only ``+tolerance`` is a limit, and a
+        falling line never crosses.
 
     Returns
     -------
     (float or None, float or None, float or None)
         The crossing time and the interval's ends, years since 1970; None where the line never
-        reaches the limit (no slope) or the interval is unbounded (slope not significant at k).
+        reaches the limit (no slope, or falling with a one-sided limit) or the interval is
+        unbounded (slope not significant at k).
 
     Raises
     ------
@@ -280,7 +322,8 @@ def crossing(fit: DriftFit, tolerance: float, *, k: float = 2.0) -> tuple[float 
     """
     tolerance = check_number("tolerance", tolerance, positive=True)
     k = check_number("k", k, positive=True)
-    if fit.b == 0:
+    check_instance("one_sided", one_sided, bool)
+    if fit.b == 0 or (one_sided and fit.b < 0):
         return None, None, None
     limit = tolerance if fit.b > 0 else -tolerance
     t_cross = fit.t0 + (limit - fit.a) / fit.b
@@ -369,6 +412,8 @@ class Trend:
     crossing_note : str
         Why there is no crossing date: ``"never (no drift)"``, ``"not within 100 years"`` or
         ``"over 100 years before the last campaign"``; ``""`` when there is one.
+    one_sided : bool
+        Whether the figure cannot be negative, so that only ``+tolerance`` is its limit.
     """
 
     machine: str
@@ -392,6 +437,12 @@ class Trend:
     def crossing_text(self) -> str:
         """The crossing date (ISO), or why there is none, as messages and reports show it."""
         return self.crossing_date.isoformat() if self.crossing_date is not None else self.crossing_note
+    one_sided: bool = False
+
+    @property
+    def limits(self) -> tuple[float, ...]:
+        """The limits held against the figure, in its unit: ``(+tolerance,)`` or ``(+tolerance, -tolerance)``."""
+        return (self.tolerance,) if self.one_sided else (self.tolerance, -self.tolerance)
 
     def payload(self) -> dict:
         """The trend as ``history trend --json`` prints it (dates ISO, slope per year).
@@ -407,6 +458,7 @@ class Trend:
         iso = lambda d: None if d is None else d.isoformat()  # noqa: E731
         return {
             "machine": self.machine, "figure": self.figure, "unit": self.unit, "tolerance": self.tolerance,
+            "limits": list(self.limits),
             "campaigns": [{"date": d.isoformat(), "value": float(v), "U": None if math.isnan(u) else float(u)}
                           for d, v, u in zip(self.dates, self.values, self.U)],
             "fit": {"method": self.fit.method, "slope_per_year": self.fit.b, "u_slope_per_year": self.fit.u_b,
@@ -435,6 +487,7 @@ def trend_of(
     k: float = 2.0,
     risk: float = 0.05,
     max_days: float = 1095.0,
+    one_sided: bool | None = None,
 ) -> Trend:
     """The trend of one figure from its campaigns.
 
@@ -461,6 +514,9 @@ def trend_of(
         The accepted probability of being out of tolerance at the next calibration (0 < risk < 0.5).
     max_days : float, keyword-only
         The longest interval either method recommends (at most 100 years).
+    one_sided : bool, keyword-only
+        The figure cannot be negative: only ``+tolerance`` is its limit (default: :func:`one_sided_figure`
+        of ``figure``).
 
     Returns
     -------
@@ -486,15 +542,18 @@ def trend_of(
     u = np.array([np.nan if x is None else float(x) for x in U])
     weighted = bool(np.all(np.isfinite(u) & (u > 0)))
     fit = fit_drift(t, y, u if weighted else None, method=method)
-    t_cross, low, high = crossing(fit, tolerance, k=k)
+    one_sided = one_sided_figure(figure) if one_sided is None else check_instance("one_sided", one_sided, bool)
+    limits = (tolerance,) if one_sided else (tolerance, -tolerance)
+    t_cross, low, high = crossing(fit, tolerance, k=k, one_sided=one_sided)
     last = t[-1]
     z = float(norm.ppf(1.0 - risk))
     horizon = last + max_days / _YEAR_DAYS
-    if abs(float(fit.at(last))) + z * float(fit.u_at(last)) >= tolerance:
+    at_last = float(fit.at(last)) if one_sided else abs(float(fit.at(last)))
+    if at_last + z * float(fit.u_at(last)) >= tolerance:
         fixed = last
     else:
-        # the band's edge reaches +tolerance or -tolerance, whichever comes first
-        candidates = [r for limit in (tolerance, -tolerance) for r in _band_roots(fit, limit, z)[1] if r >= last]
+        # the band's edge reaches a limit (+tolerance, or -tolerance for a signed figure), whichever comes first
+        candidates = [r for limit in limits for r in _band_roots(fit, limit, z)[1] if r >= last]
         fixed = min(candidates) if candidates and min(candidates) <= horizon else None
     stair = last + staircase(passed, max_days=max_days) / _YEAR_DAYS
     next_t = min(stair, fixed) if fixed is not None else stair
@@ -510,5 +569,5 @@ def trend_of(
     return Trend(
         machine, figure, unit, tuple(dates), y, u, tolerance, fit, k, crossing_date,
         (_within(low, last), _within(high, last)),
-        None if fixed is None else date_of(fixed), risk, date_of(stair), date_of(next_t), note,
+        None if fixed is None else date_of(fixed), risk, date_of(stair), date_of(next_t), note, one_sided,
     )

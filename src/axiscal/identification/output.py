@@ -84,25 +84,61 @@ def write_machine_folder(machine: Machine, folder: str | Path, *, comment: str =
     return write_text(folder / "machine.toml", "\n".join(lines) + "\n")
 
 
-def report_html(result) -> str:
-    """``identify.html`` of an identification, rendered from its Jinja2 template.
+#: order of the axes on the page
+_AXIS_ORDER = "XYZABC"
+
+
+def _inline_svg(draw) -> str:
+    """The ``<svg>`` element of a plot drawn to a temporary ``.svg`` file, for placing in the page."""
+    import re
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="axiscal-identify-") as folder:
+        path = Path(folder) / "plot.svg"
+        draw(path)
+        text = path.read_text(encoding="utf-8")
+    text = text[text.find("<svg"):]
+    return re.sub(r"\s*<metadata>.*?</metadata>", "", text, count=1, flags=re.S)
+
+
+def _display(parameter: dict) -> dict:
+    """A parameter as the page shows it: an artefact's position (``plate:x``) in mm, lengths in µm, angles in µrad."""
+    name, unit, value, u = parameter["name"], parameter["unit"], parameter["value"], parameter["u"]
+    if unit == "um" and name.rpartition(":")[2] in ("x", "y", "z", "tx", "ty", "tz") and not parameter["machine"]:
+        return {**parameter, "value": value / 1000.0, "u": None if u is None else u / 1000.0, "unit": "mm", "digits": 4}
+    return {**parameter, "unit": {"um": "µm", "urad": "µrad"}.get(unit, unit), "digits": 3}
+
+
+def report_html(result, *, generated: str | None = None) -> str:
+    """``identify.html`` of an identification, rendered from its Jinja2 template: one self-contained page.
 
     Parameters
     ----------
     result : Identification
         What :func:`axiscal.identify` returned.
+    generated : str, keyword-only
+        When the page was made (default: today, UTC).
 
     Returns
     -------
     str
-        The HTML page; its figures are referred to by the file names :func:`write_identification` writes.
+        The HTML page, its plots inline as SVG (no file beside it is needed), the machine's name and
+        the date, the axes in X, Y, Z order, positions in mm, the coverage factor stated once.
     """
+    import datetime as _dt
+
+    from axiscal.identification.plot import plot_motions, plot_residuals
+
     summary = result.summary()
+    letters = sorted(result.spans, key=lambda a: (_AXIS_ORDER.find(a) % 99, a))
     return render_template(
         "identification/identify.html.j2",
         summary=summary,
-        artefacts=[(name, f"residuals_{_slug(name)}.png") for name in result.residuals],
-        axes=[(letter, f"motions_{letter.lower()}.png") for letter in result.spans],
+        machine=result.machine.name or "machine",
+        generated=generated or _dt.datetime.now(_dt.timezone.utc).date().isoformat(),
+        parameters=[_display(p) for p in summary["parameters"]],
+        artefacts=[(name, _inline_svg(lambda path, n=name: plot_residuals(result, n, path))) for name in result.residuals],
+        axes=[(letter, _inline_svg(lambda path, a=letter: plot_motions(result, a, path))) for letter in letters],
     )
 
 
@@ -130,6 +166,7 @@ def write_identification(result, folder: str | Path) -> dict:
     """
     from axiscal.identification.plot import plot_motions, plot_residuals
 
+    # identify.html is self-contained (its plots inline); the PNGs stay for other documents
     folder = check_path("folder", folder)
 
     def fill(staging: Path) -> dict:

@@ -41,7 +41,7 @@ def plot_residuals(result, name: str, path: str | Path) -> Path:
     ax.plot(np.arange(1, r.size + 1), r, ".", ms=3)
     ax.axhline(0.0, color="0.5", lw=0.8)
     ax.set_xlabel("reading")
-    ax.set_ylabel("residual (um)")
+    ax.set_ylabel("residual / µm")
     ax.set_title(f"{name} ({result.kinds[name]})")
     fig.tight_layout()
     return save_figure(fig, path)
@@ -76,10 +76,10 @@ def plot_motions(result, letter: str, path: str | Path) -> Path:
         line, = ax.plot(x, value / factor, label=name)
         if np.all(np.isfinite(band)):
             ax.fill_between(x, (value - 2 * band) / factor, (value + 2 * band) / factor, color=line.get_color(), alpha=0.2)
-    for ax, unit in zip(axes, ("um", "urad")):
-        ax.set_xlabel(f"{letter} ({'deg' if rotary else 'mm'})")
-        ax.set_ylabel(f"error ({unit})")
+    for ax, unit in zip(axes, ("µm", "µrad")):
+        ax.set_xlabel(f"{letter} / {'deg' if rotary else 'mm'}")
+        ax.set_ylabel(f"error / {unit}")
         ax.legend(fontsize=8)
-    fig.suptitle(f"Axis {letter}: identified error motions (k = 2 bands)")
+    fig.suptitle(f"Axis {letter}: identified error motions (bands ± 2u, k = 2)")
     fig.tight_layout()
     return save_figure(fig, path)

@@ -80,9 +80,11 @@ def plot_volumetric(
 ) -> None:
     """Map of the volumetric error and, for a chain with rotary axes, of the tool axis orientation error.
 
-    On a 2-axis grid a colour map of |e| (with arrows of the in-plane components when both axes
-    are linear) and, given ``orientation_rad``, a second map of its length; otherwise the
-    components against point number.
+    Drawn against the axis positions: on a 2-axis grid a colour map of |e| (with arrows of the
+    in-plane components when both axes are linear) and, given ``orientation_rad``, a second map of
+    its length; on a 3-axis grid colour maps of |e| over the first two axes in slices of the
+    third (one colour scale); along one axis the components and |e| against its position; other
+    point sets as points over the first two moving axes coloured by |e|.
 
     Parameters
     ----------
@@ -121,10 +123,13 @@ def plot_volumetric(
     check_path("path", path)
     plt = pyplot()
     error_um = np.asarray(error_m) / UM
-    panels = [("|e| / um", error_um, ("ex", "ey", "ez"))]
+    panels = [("|e| / µm", error_um, ("ex", "ey", "ez"))]
     if orientation_rad is not None:
-        panels.append(("|(ei, ej)| / urad", np.asarray(orientation_rad) / _URAD, ("ei", "ej")))
+        panels.append(("|(ei, ej)| / µrad", np.asarray(orientation_rad) / _URAD, ("ei", "ej")))
     moving = [k for k, q in positions_m.items() if np.ptp(q) > 0]
+    if len(moving) == 3 and orientation_rad is None and _is_grid([positions_m[k] for k in moving]):
+        _slices(plt, positions_m, moving, np.linalg.norm(error_um, axis=1), path, title)
+        return
     fig, axes = plt.subplots(1, len(panels), figsize=(8 * len(panels), 6.5), squeeze=False)
     for ax, (label, values, names) in zip(axes[0], panels):
         magnitude = np.linalg.norm(values, axis=1)
@@ -152,16 +157,61 @@ def plot_volumetric(
                 ax.set_title("tool point position error" if len(names) == 3 else "tool axis orientation error")
             ax.set_xlabel(f"{a} / {unit_a}")
             ax.set_ylabel(f"{b} / {unit_b}")
-        else:
+        elif len(moving) == 1:
+            (a,) = moving
+            fa, unit_a = AXIS_UNITS[a]
+            qa = positions_m[a] / fa
+            order = np.argsort(qa, kind="stable")
             for i, name in enumerate(names):
-                ax.plot(values[:, i], label=name)
-            ax.plot(magnitude, "k", label=label.split(" /")[0])
-            ax.set_xlabel("point")
+                ax.plot(qa[order], values[order, i], label=name)
+            ax.plot(qa[order], magnitude[order], "k", label=label.split(" /")[0])
+            ax.set_xlabel(f"{a} / {unit_a}")
             ax.set_ylabel(label.replace("|e|", "error").replace("|(ei, ej)|", "orientation error"))
             ax.legend()
             ax.grid(True, alpha=0.3)
+        else:
+            # points that are no grid (or one point): where they are, coloured by |e|
+            keys = moving + [k for k in positions_m if k not in moving]
+            a, b = (keys * 2)[:2]
+            (fa, unit_a), (fb, unit_b) = AXIS_UNITS[a], AXIS_UNITS[b]
+            sc = ax.scatter(positions_m[a] / fa, positions_m[b] / fb, c=magnitude, cmap="viridis")
+            fig.colorbar(sc, ax=ax, label=label)
+            ax.set_xlabel(f"{a} / {unit_a}")
+            ax.set_ylabel(f"{b} / {unit_b}")
+            ax.grid(True, alpha=0.3)
     fig.suptitle(title or "Volumetric error")
     fig.tight_layout()
+    save_figure(fig, path, dpi=120)
+
+
+def _is_grid(columns: list[np.ndarray]) -> bool:
+    """Whether the points are every combination of each axis' distinct positions (a full grid)."""
+    sizes = [np.unique(q).size for q in columns]
+    return int(np.prod(sizes)) == columns[0].size and all(s > 1 for s in sizes)
+
+
+def _slices(plt: Any, positions_m: dict[str, np.ndarray], moving: list[str], magnitude_um: np.ndarray, path: str | Path,
+            title: str) -> None:
+    """|e| of a 3-axis grid as colour maps over the first two axes, in up to four slices of the third."""
+    a, b, c = moving
+    (fa, unit_a), (fb, unit_b), (fc, unit_c) = AXIS_UNITS[a], AXIS_UNITS[b], AXIS_UNITS[c]
+    qa, qb, qc = positions_m[a] / fa, positions_m[b] / fb, positions_m[c] / fc
+    ua, ub, uc = np.unique(qa), np.unique(qb), np.unique(qc)
+    levels = uc[np.unique(np.linspace(0, uc.size - 1, min(4, uc.size)).round().astype(int))]
+    fig, axes = plt.subplots(1, levels.size, figsize=(4.6 * levels.size + 1.2, 4.6), squeeze=False, sharey=True)
+    low, high = float(magnitude_um.min()), float(magnitude_um.max())
+    mesh = None
+    for ax, level in zip(axes[0], levels):
+        at = qc == level
+        order = np.lexsort((qb[at], qa[at]))
+        grid = magnitude_um[at][order].reshape(ua.size, ub.size)
+        mesh = ax.pcolormesh(ua, ub, grid.T, shading="auto", cmap="viridis", vmin=low, vmax=high)
+        ax.set_title(f"{c} = {level:g} {unit_c}")
+        ax.set_xlabel(f"{a} / {unit_a}")
+        ax.set_aspect("equal")
+    axes[0][0].set_ylabel(f"{b} / {unit_b}")
+    fig.colorbar(mesh, ax=list(axes[0]), label="|e| / µm")
+    fig.suptitle(title or "Volumetric error")
     save_figure(fig, path, dpi=120)
 
 

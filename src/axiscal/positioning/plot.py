@@ -17,7 +17,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_instance, check_mapping, check_path
-from axiscal.io.figures import OVERLAY_STYLE, overlay_label, pyplot, save_figure
+from axiscal.io.figures import overlay_label, pyplot, save_figure
 from axiscal.positioning.evaluation import Iso230Result, PositioningRun, Vdi3441Result
 from axiscal.units import ARCSEC, DEG, MM, UM
 
@@ -42,7 +42,7 @@ def plot_positioning(
     path: str | Path,
     *,
     title: str = "",
-    compensated: bool = False,
+    compensated: bool | str = False,
     overlay: Mapping[str, Any] | None = None,
     figures_table: bool = True,
 ) -> Path:
@@ -65,14 +65,17 @@ def plot_positioning(
         The figure file; its suffix gives the format.
     title : str, keyword-only
         Title of the plot (default: file name, standard, k, targets and runs).
-    compensated : bool, keyword-only
-        Note on the plot that raw laser readings were compensated for the air and the material
-        temperature.
+    compensated : bool or str, keyword-only
+        Note on the plot what was applied to raw laser readings: a text says it as given
+        (:attr:`axiscal.positioning.RunFile.compensation`); True notes the air index only.
     overlay : mapping, keyword-only
         Another test of the same axis to draw behind this one (e.g. before compensation): the
         ``targets`` object of its ``axiscal positioning --json`` (``target_mm`` or ``target_deg``,
-        ``mean_up_um``/``mean_down_um`` or the ``_arcsec`` forms) and an optional ``label`` for
-        the legend (default "before").
+        ``mean_up_um``/``mean_down_um`` or the ``_arcsec`` forms), an optional ``label`` for
+        the legend (default "before") and an optional ``current_label`` naming this run's curves
+        (e.g. "as found" and "as left"). Each direction keeps its own colour, lighter and dashed
+        for the overlay; when the overlay spans more than five times this run's range, it is drawn
+        in an inset at its own scale so that the main plot stays readable for this run.
     figures_table : bool, keyword-only
         Draw the axis figures in a table beside the plot (default True).
 
@@ -123,9 +126,11 @@ def plot_positioning(
         fig, (ax, tab) = plt.subplots(1, 2, figsize=(11.5, 5.4), gridspec_kw={"width_ratios": [3.2, 1]})
     else:
         fig, ax = plt.subplots(figsize=(9.5, 5.0))
+    current = overlay.get("current_label") if overlay and isinstance(overlay.get("current_label"), str) else ""
+    named = f"{current}: " if current else ""
     for devs, mean, s, color, arrow in lines:
         ax.plot(np.repeat(x, devs.shape[1]), devs.ravel() / factor, ".", color=color, alpha=0.3, markersize=4)
-        ax.plot(x, mean / factor, "-o", color=color, markersize=3, label=f"mean x̄{arrow}")
+        ax.plot(x, mean / factor, "-o", color=color, markersize=3, label=f"{named}mean x̄{arrow}")
         if has_s:
             ax.fill_between(x, (mean - k * s) / factor, (mean + k * s) / factor, color=color, alpha=0.12,
                             label=f"x̄{arrow[0]} ± {k}s")
@@ -134,7 +139,8 @@ def plot_positioning(
     if overlay:
         key_unit = "arcsec" if run.rotary else "um"
         targets = overlay.get("target_deg" if run.rotary else "target_mm")
-        for key, style in ((f"mean_up_{key_unit}", (0, (4, 2))), (f"mean_down_{key_unit}", (0, (1, 1.5)))):
+        drawn = []
+        for key, color in ((f"mean_up_{key_unit}", _OVERLAY_COLOURS["up"]), (f"mean_down_{key_unit}", _OVERLAY_COLOURS["down"])):
             values = overlay.get(key)
             if targets is not None and values is not None:
                 arrow = "↑" if "up" in key else "↓"
@@ -142,15 +148,15 @@ def plot_positioning(
                 y_over = check_array(f"overlay {key}", [np.nan if v is None else v for v in values], ndim=1, finite=False, unit="")
                 if x_over.size != y_over.size:
                     raise AxiscalError(f"overlay {key} must have one value per target, not {y_over.size} for {x_over.size}")
-                ax.plot(x_over, y_over,
-                        linestyle=style, color=OVERLAY_STYLE["color"], linewidth=OVERLAY_STYLE["linewidth"],
-                        label=f"{overlay_label(overlay)}: mean x̄{arrow}")
+                drawn.append((x_over, y_over, color, f"{overlay_label(overlay)}: mean x̄{arrow}"))
+        _draw_overlay(ax, drawn, [d.ravel() / factor for d, _, _, _, _ in lines], unit)
     ax.plot([], [], ".", color="0.5", label="single runs")
     ax.axhline(0.0, color="0.6", linewidth=0.6)
     ax.set_xlabel(f"target position / {'degree' if run.rotary else 'mm'}")
     ax.set_ylabel(f"positional deviation (actual − target) / {'arcsec' if run.rotary else 'µm'}")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, loc="best", framealpha=0.85)
+    # the legend stays clear of the footnote (lower left) and of an overlay's inset (upper right)
+    ax.legend(fontsize=8, loc="upper left", framealpha=0.85)
     way = "each way" if run.bidirectional else f"{run.directions[0]} only"
     runs = f"{run.runs} run{'s' if run.runs != 1 else ''} {way}"
     coverage = f", k = {k}" if isinstance(result, Iso230Result) else ""
@@ -159,13 +165,43 @@ def plot_positioning(
     if not has_s:
         notes.append("one run per direction: s cannot be estimated, so no ±ks bands, R, A or S")
     if compensated:
-        notes.append("raw laser readings compensated for air index and material temperature")
+        # say what was applied: a run without a material temperature is not normalised to 20 degC
+        notes.append(compensated if isinstance(compensated, str) else "raw laser readings compensated for the air index")
     if notes:
         ax.text(0.01, 0.01, "\n".join(notes), transform=ax.transAxes, fontsize=8, va="bottom", color="0.25")
     if figures_table:
         _figures_table(tab, result, unit, factor)
     fig.tight_layout()
     return save_figure(fig, path, dpi=120)
+
+
+#: the overlay's colour for each direction: the direction's own, lighter (dashed)
+_OVERLAY_COLOURS = {"up": "#f4a582", "down": "#92c5de"}
+#: an overlay spanning more than this many times the run's range goes into an inset at its own scale
+_INSET_RATIO = 5.0
+
+
+def _draw_overlay(ax, drawn: list, current: list, unit: str) -> None:
+    """Draw the overlay's mean curves on the plot, or in an inset when they would flatten this run's."""
+    if not drawn:
+        return
+    values = np.concatenate([v[np.isfinite(v)] for v in current]) if current else np.array([0.0])
+    over = np.concatenate([y[np.isfinite(y)] for _, y, _, _ in drawn])
+    span = max(float(np.ptp(values)) if values.size else 0.0, 1e-12)
+    if over.size and float(np.max(np.abs(over - np.median(values)))) > _INSET_RATIO * span:
+        low, high = float(values.min()), float(values.max())
+        margin = 0.15 * (high - low or 1.0)
+        ax.set_ylim(low - margin, high + margin * 3)
+        inset = ax.inset_axes([0.60, 0.58, 0.38, 0.38])
+        for x_over, y_over, color, label in drawn:
+            ax.plot([], [], linestyle=(0, (4, 2)), color=color, linewidth=1.4, label=f"{label} (inset)")
+            inset.plot(x_over, y_over, linestyle=(0, (4, 2)), color=color, linewidth=1.4)
+        inset.set_title(f"{drawn[0][3].split(':')[0]}, own scale / {unit}", fontsize=7)
+        inset.tick_params(labelsize=6)
+        inset.grid(True, alpha=0.3)
+        return
+    for x_over, y_over, color, label in drawn:
+        ax.plot(x_over, y_over, linestyle=(0, (4, 2)), color=color, linewidth=1.4, label=label)
 
 
 def _figures_table(tab, result: Iso230Result | Vdi3441Result, unit: str, factor: float) -> None:

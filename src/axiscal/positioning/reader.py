@@ -77,6 +77,9 @@ class RunFile:
     warnings : tuple of str
         What the reader should know about the file (a rotary test that does not cover the
         circle, readings at 360 deg taken as those at 0 deg).
+    compensation : str
+        What was applied to raw laser readings, in words ("" when nothing was): the air index
+        always, the normalisation to 20 degC only when the file gave a material temperature.
 
     Examples
     --------
@@ -89,6 +92,35 @@ class RunFile:
     compensated: bool
     run_labels: tuple[str, ...]
     warnings: tuple[str, ...] = ()
+    compensation: str = ""
+
+
+def _compensation_text(material_sensors: int, *, method: str = "ciddor") -> str:
+    """What the compensation of raw laser readings applied, as reports and plots say it.
+
+    Parameters
+    ----------
+    material_sensors : int
+        How many material temperature columns the file gave (0: none).
+    method : str, keyword-only
+        The refractive-index equation (:func:`axiscal.instruments.air.refractive_index`).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> _compensation_text(0)
+    'raw laser readings compensated for the air index (ciddor); no material temperature: not normalised to 20 degC'
+    >>> _compensation_text(2)
+    'raw laser readings compensated for the air index (ciddor) and normalised to 20 degC (material temperature, 2 sensors)'
+    """
+    air = f"raw laser readings compensated for the air index ({method})"
+    if material_sensors <= 0:
+        return f"{air}; no material temperature: not normalised to 20 degC"
+    sensors = "1 sensor" if material_sensors == 1 else f"{material_sensors} sensors"
+    return f"{air} and normalised to 20 degC (material temperature, {sensors})"
 
 
 def _unit_column(table: CsvTable, stem: str) -> list[tuple[str, float]]:
@@ -362,7 +394,9 @@ def read_positioning_run(
     if rotary:
         notes.extend(_coverage_warnings(np.array(targets) / DEG))
     run = PositioningRun(np.array(targets), arrays.get("+"), arrays.get("-"), source=str(path), rotary=rotary)
-    return RunFile(run=run, compensated=compensate, run_labels=tuple(run_labels), warnings=tuple(notes))
+    applied = _compensation_text(len(material_columns), method=method) if compensate else ""
+    return RunFile(run=run, compensated=compensate, run_labels=tuple(run_labels), warnings=tuple(notes),
+                   compensation=applied)
 
 
 def _run_number(text: str, table: CsvTable, k: int) -> str:

@@ -111,6 +111,8 @@ class PositioningEvaluation:
         The ``run`` identifiers of the file, in the column order of the deviation arrays.
     file_warnings : tuple of str
         What the reader said about the file (e.g. a rotary test that does not cover the circle).
+    compensation : str
+        What the compensation applied, in words (:attr:`RunFile.compensation`; "" when none).
     """
 
     run: PositioningRun
@@ -118,6 +120,7 @@ class PositioningEvaluation:
     compensated: bool
     run_labels: tuple[str, ...]
     file_warnings: tuple[str, ...] = ()
+    compensation: str = ""
 
     @property
     def standard(self) -> str:
@@ -206,6 +209,7 @@ class PositioningEvaluation:
             runs=self.run.runs,
             target_count=int(self.run.targets.size),
             compensated=self.compensated,
+            compensation=self.compensation,
             warnings=list(self.warnings),
             targets=self.per_target(),
         )
@@ -234,6 +238,7 @@ class PositioningEvaluation:
             runs=self.run.runs,
             directions="each way" if self.run.bidirectional else f"in the {self.run.directions[0]} direction only",
             compensated=self.compensated,
+            compensation=self.compensation,
             columns=names,
             rows=rows,
             figures=[(name, value / factor) for name, value in self.result.figures().items()],
@@ -269,7 +274,7 @@ class PositioningEvaluation:
         """
         from axiscal.positioning.plot import plot_positioning
 
-        return plot_positioning(self.run, self.result, path, title=title, compensated=self.compensated, overlay=overlay,
+        return plot_positioning(self.run, self.result, path, title=title, compensated=self.compensation or self.compensated, overlay=overlay,
                                 figures_table=figures_table)
 
 
@@ -336,5 +341,6 @@ def evaluate_positioning_file(
                 )
     result = vdi3441(data.run) if edition is None else iso230_2(data.run, edition=edition)
     return PositioningEvaluation(
-        run=data.run, result=result, compensated=data.compensated, run_labels=data.run_labels, file_warnings=data.warnings
+        run=data.run, result=result, compensated=data.compensated, run_labels=data.run_labels, file_warnings=data.warnings,
+        compensation=data.compensation
     )

@@ -17,6 +17,7 @@ from axiscal.report.history import history_section
 from axiscal.report.html import (
     compare_label,
     decision_statement,
+    display_unit,
     format_number,
     previous_figures,
     previous_uncertainty,
@@ -45,6 +46,7 @@ __all__ = [
     "decision_statement",
     "template_environment",
     "render_html",
+    "display_unit",
     "format_number",
     "previous_figures",
     "previous_uncertainty",

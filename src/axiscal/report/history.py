@@ -36,7 +36,8 @@ def history_section(results: CampaignResults, *, url: str | None = None, source:
     Returns
     -------
     dict
-        ``campaign_id``, ``campaigns`` (how many the machine has), ``trends`` (one dict per
+        ``campaign_id``, ``database`` (where it was stored, password hidden), ``machine``,
+        ``campaigns`` (how many the machine has), ``trends`` (one dict per
         figure with three campaigns and a tolerance: ``figure``, ``unit``, ``slope``, ``u_slope``,
         ``crossing``, ``interval``, ``next``, ``svg``) and ``method``.
 
@@ -63,8 +64,12 @@ def history_section(results: CampaignResults, *, url: str | None = None, source:
             "next": trend.next_date.isoformat(),
             "svg": svg_of(lambda path, t=trend: plot_trend(t, path)),
         })
+    from axiscal.history.database import resolve_url, shown_url
+
     return {
         "campaign_id": added.campaign_id,
+        "database": shown_url(resolve_url(url)),
+        "machine": machine_label(record.machine, record.serial),
         "campaigns": len(history.campaigns),
         "trends": trends,
         "method": ("Drift: straight line by weighted least squares (weights 1/u^2, u = U/2); crossing date where "

@@ -17,6 +17,7 @@ import numpy as np
 from axiscal.campaign.config import TABLE_KEYS
 from axiscal.campaign.results import CampaignResults, TestResult, results_payload
 from axiscal.errors import AxiscalError
+from axiscal.squareness.evaluation import squareness_name
 from axiscal.io.arguments import check_choice, check_count, check_mapping, is_real
 from axiscal.io.arguments import check_instance, type_name
 from axiscal.version import __version__
@@ -25,6 +26,7 @@ __all__ = [
     "template_environment",
     "render_html",
     "format_number",
+    "display_unit",
     "decision_statement",
     "previous_figures",
     "previous_uncertainty",
@@ -66,6 +68,7 @@ def template_environment():
         lstrip_blocks=True,
     )
     env.globals["fmt"] = format_number
+    env.filters["unit"] = lambda unit: display_unit(unit) if isinstance(unit, str) else unit
     return env
 
 
@@ -265,20 +268,53 @@ def verdict_rows(
                          "css": "na"})
             continue
         for check in test.checks:
+            name = check.figure.removesuffix('_' + check.unit)
+            if test.kind == "squareness" and check.figure == "squareness_arcsec" and "convention" in test.figures:
+                # the signed figure under the name that says its sign, as its section and plot show it
+                name = squareness_name(test.figures["plane"], test.figures["convention"])
             previous = old.get(check.figure) if isinstance(old, Mapping) else None
             previous = float(previous) if is_real(previous) and math.isfinite(previous) else None
             previous_u = old_u.get(check.figure) if isinstance(old_u, Mapping) else None
             change = "" if previous is None or not math.isfinite(check.value) else f"{abs(check.value) - abs(previous):+.3f}"
             rows.append({
                 "test_id": test.id, "axis": test.axis or "",
-                "figure": f"{check.figure.removesuffix('_' + check.unit)} / {check.unit}",
-                "value": format_number(abs(check.value)), "limit": format_number(check.limit),
+                "figure": f"{name} / {display_unit(check.unit)}",
+                "value": format_number(check.value), "limit": format_number(check.limit),
                 "U": "" if check.U is None else format_number(check.U),
-                "before": "" if previous is None else format_number(abs(previous)),
+                "before": "" if previous is None else format_number(previous),
                 "before_U": format_number(previous_u) if is_real(previous_u) else "",
                 "change": change, "result": check.result, "css": check.result,
             })
     return rows
+
+
+#: units as a page shows them (files and flags spell them in ASCII)
+_DISPLAY_UNITS = {"um": "µm", "urad": "µrad", "um/m": "µm/m", "um/year": "µm/year", "degC": "°C"}
+
+
+def display_unit(unit: str) -> str:
+    """A unit as a page shows it: ``um`` -> ``µm``, ``urad`` -> ``µrad``; others unchanged.
+
+    Parameters
+    ----------
+    unit : str
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    AxiscalError
+        For a unit that is not a text.
+
+    Examples
+    --------
+    >>> display_unit("um"), display_unit("arcsec")
+    ('µm', 'arcsec')
+    """
+    check_instance("unit", unit, str)
+    return _DISPLAY_UNITS.get(unit, unit)
 
 
 def sections(tests: list[TestResult]) -> list[dict[str, Any]]:

@@ -43,6 +43,9 @@ class ReportFiles:
         The compensation files.
     results_data : CampaignResults
         The results the files were made from.
+    history : dict or None
+        With ``history=True``: the history section, with ``campaign_id``, ``database`` (where the
+        campaign was stored), ``machine`` and ``campaigns``.
     """
 
     folder: Path
@@ -51,6 +54,7 @@ class ReportFiles:
     pdf: Path | None
     compensation: tuple[Path, ...]
     results_data: CampaignResults
+    history: Mapping[str, Any] | None = None
 
 
 def _fsync_tree(folder: Path) -> None:
@@ -145,7 +149,8 @@ def write_report(
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise
-    return ReportFiles(out_dir, out_dir / "report.html", out_dir / "results.json", pdf_path, tuple(written), results)
+    return ReportFiles(out_dir, out_dir / "report.html", out_dir / "results.json", pdf_path, tuple(written), results,
+                       history=None if history is None else dict(history))
 
 
 def _umask() -> int:

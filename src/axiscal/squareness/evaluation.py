@@ -54,6 +54,7 @@ __all__ = [
     "PLANES",
     "CONVENTIONS",
     "iso_term",
+    "squareness_name",
     "iso_from_included_angle",
     "included_angle_from_iso",
     "SquarenessResult",
@@ -106,6 +107,41 @@ def iso_term(plane: str) -> str:
     'EB0Z'
     """
     return _plane(plane)[2]
+
+
+def squareness_name(plane: str, convention: str) -> str:
+    """The name a squareness figure is shown under, saying its sign convention (docs/conventions.md).
+
+    One figure, one sign: the verdict table, the report's section, the plot and the text name the
+    judged squareness alike, so that its sign is read one way everywhere.
+
+    Parameters
+    ----------
+    plane : {"XY", "XZ", "YZ"}
+        The plane (any case).
+    convention : {"included-angle", "iso"}
+        ``"iso"``: the ISO 230-1 term (right-hand rule); ``"included-angle"``: the included angle
+        of the positive axis directions minus 90 degrees.
+
+    Returns
+    -------
+    str
+        ``"EB0Z (ISO 230-1)"`` or ``"XZ included angle - 90 deg"``.
+
+    Raises
+    ------
+    AxiscalError
+        An unknown plane or convention.
+
+    Examples
+    --------
+    >>> squareness_name("xz", "iso"), squareness_name("XY", "included-angle")
+    ('EB0Z (ISO 230-1)', 'XY included angle - 90 deg')
+    """
+    first, second, term, _ = _plane(plane)
+    if convention not in CONVENTIONS:
+        raise AxiscalError(f"convention must be one of {', '.join(CONVENTIONS)}, not {convention!r}")
+    return f"{term} (ISO 230-1)" if convention == "iso" else f"{first}{second} included angle - 90 deg"
 
 
 def iso_from_included_angle(squareness_rad: float, *, plane: str) -> float:
@@ -205,6 +241,11 @@ class SquarenessResult:
     slope_second: float
     first_line: ReferenceLine | None = None
     second_line: ReferenceLine | None = None
+
+    @property
+    def name(self) -> str:
+        """What :attr:`squareness_rad` is shown as: :func:`squareness_name` of its plane and convention."""
+        return squareness_name(self.plane, self.convention)
 
 
 def squareness_from_slopes(

@@ -113,9 +113,10 @@ def plot_squareness(
         ax.set_title(f"{moving} run: slope {line.slope:+.3e} ({math.atan(line.slope) / ARCSEC:+.2f} arcsec)")
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
+    # the judged figure under the name and sign the report's tables give it (docs/conventions.md)
     fig.suptitle(
-        f"{a}{b}: included angle - 90 deg - D = {(result.included_angle_rad - math.pi / 2) / ARCSEC:+.2f} arcsec"
-        f"  ({result.iso_term} {result.iso_value_rad / ARCSEC:+.2f} arcsec)"
+        f"{a}{b} squareness: {result.name} = {result.squareness_rad / ARCSEC:+.2f} arcsec"
+        f"  (included angle {math.degrees(result.included_angle_rad):.6f} deg)"
     )
     return save_figure(fig, path, dpi=110)
 

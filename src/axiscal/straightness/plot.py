@@ -12,9 +12,9 @@ from typing import Any
 
 import numpy as np
 
-from axiscal.io.arguments import check_array, check_instance, check_mapping, check_path
+from axiscal.io.arguments import check_array, check_choice, check_instance, check_mapping, check_path
 from axiscal.io.figures import OVERLAY_STYLE, overlay_label, overlay_series, pyplot, save_figure
-from axiscal.straightness.reference import ReferenceLine, reference_line
+from axiscal.straightness.reference import REFERENCES, ReferenceLine, reference_line
 from axiscal.straightness.separation import Separation
 from axiscal.units import ANGLE_UNITS, MM, UM
 
@@ -119,7 +119,8 @@ def _separation_overlay(overlay: Mapping[str, Any]) -> dict[str, Any] | None:
             "label": overlay_label(overlay)}
 
 
-def plot_separation(path: str | Path, result: Separation, *, overlay: Mapping[str, Any] | None = None) -> Path:
+def plot_separation(path: str | Path, result: Separation, *, overlay: Mapping[str, Any] | None = None,
+                    reference: str = "least-squares") -> Path:
     """Plot a separation: profile R and motion S about R's least-squares line, and the yaw when resolved.
 
     R and S share an undetermined straight line, so the same line (the profile's least-squares
@@ -137,6 +138,10 @@ def plot_separation(path: str | Path, result: Separation, *, overlay: Mapping[st
         The other separation as ``axiscal separate`` writes its columns: ``position_mm``,
         ``profile_um``, ``motion_um`` and optionally ``yaw_urad``, each shape (m,), null where not
         resolved, and an optional ``label`` for the legend (default "before").
+    reference : {"least-squares", "end-points", "minimum-zone"}, keyword-only
+        The ISO 230-1 reference line of the straightness each legend entry gives: the figure a
+        report's table states for R and for S (each about its own line), not the spread of the
+        curve drawn (which keeps S's tilt relative to R).
 
     Returns
     -------
@@ -162,15 +167,21 @@ def plot_separation(path: str | Path, result: Separation, *, overlay: Mapping[st
     fig, axes = plt.subplots(2 if has_yaw else 1, 1, figsize=(8, 6 if has_yaw else 4), sharex=True, squeeze=False)
     ax = axes[0, 0]
     finite = np.isfinite(motion)
-    motion_zone = np.ptp(motion[finite]) if finite.any() else np.nan
+    reference = check_choice("reference", reference, REFERENCES)
+    # the legend gives the straightness the report's table gives: each curve about its own reference line
+    motion_straightness = (reference_line(x[finite], result.motion_m[finite], reference=reference).straightness_m
+                           if finite.sum() >= 2 else np.nan)
+    profile_straightness = reference_line(x, result.profile_m, reference=reference).straightness_m
     if before is not None:
         ax.plot(before["x"], before["profile"], **OVERLAY_STYLE, label=f"{before['label']}: profile R")
         if before["motion"] is not None:
             ax.plot(before["x"], before["motion"], **{**OVERLAY_STYLE, "linestyle": (0, (1, 1.5))},
                     label=f"{before['label']}: motion S")
-    ax.plot(x / MM, profile / UM, marker, ms=3, label=f"profile R (P-V {np.ptp(profile) / UM:.3f} um)")
-    ax.plot(x / MM, motion / UM, marker, ms=3, label=f"motion S (P-V {motion_zone / UM:.3f} um)")
-    ax.set_ylabel("deviation / um")
+    ax.plot(x / MM, profile / UM, marker, ms=3, label=f"profile R (straightness {profile_straightness / UM:.3f} µm)")
+    ax.plot(x / MM, motion / UM, marker, ms=3, label=f"motion S (straightness {motion_straightness / UM:.3f} µm)")
+    ax.set_ylabel("deviation / µm")
+    ax.text(0.01, 0.01, f"straightness: width of the zone about each curve's own {reference} line (ISO 230-1)",
+            transform=ax.transAxes, fontsize=7, va="bottom", color="0.3")
     ax.set_title(f"error separation: {result.method} (R and S less R's least-squares line)")
     ax.legend(fontsize=8)
     if has_yaw:

@@ -541,7 +541,7 @@ def volumetric_uncertainty_columns(positions: Mapping[str, np.ndarray], result: 
         q = np.atleast_1d(check_array(f"positions['{letter}'] (metres)", q, unit=""))
         if q.shape != (n,):
             raise AxiscalError(f"positions of axis {letter}: {q.size} values for {n} points")
-        columns[f"{letter}_mm"] = q / MM
+        columns[f"{letter.lower()}_mm"] = q / MM  # spelled as `axiscal volumetric` writes it
     for i, name in enumerate(("ex", "ey", "ez")):
         columns[f"{name}_um"] = result.error[:, i] / UM
         columns[f"{name}_u_um"] = result.std[:, i] / UM
