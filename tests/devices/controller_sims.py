@@ -14,7 +14,6 @@ import json
 import os
 import re
 import select
-import socket
 import socketserver
 import threading
 import time

@@ -191,3 +191,30 @@ def test_unknown_and_malformed_controller_specs_are_one_line():
                           ("moonraker:ftp://x", "http")):
         with pytest.raises(AxiscalError, match=pattern):
             open_controller(spec)
+
+
+def test_run_on_the_fly_on_the_virtual_controller_agrees_with_stop_and_go(tmp_path):
+    """The streams are joined through the computer's clock: their residual delay times the speed is left."""
+    from axiscal.capture.connected import open_run_devices
+    from axiscal.capture.fly_drive import fly_plan, pass_moves
+    from axiscal.capture.steps import plan_steps
+
+    plan = write_plan(plan_test(0.005, 0.185, 5, runs=1, seed=1), tmp_path / "plan.csv")
+    moves = pass_moves(plan_steps(plan))
+    assert [round(x * 1e3, 3) for _, x in moves] == [0.0, 190.0, 0.0]  # one move a pass, past the last target
+    controller, source = open_run_devices("sim", "sim:umd")
+    try:
+        flown = fly_plan(plan, controller, source, tmp_path / "fly.csv", drive=DriveSettings(feed_m_per_s=1000 / 60e3))
+    finally:
+        source.close()
+        controller.close()
+    controller, source = open_run_devices("sim", "sim:umd")
+    try:
+        still = run_to_file(plan, controller, source, tmp_path / "stop.csv", drive=DRIVE, settings=CaptureSettings(window_s=0.1))
+    finally:
+        source.close()
+        controller.close()
+    fly = read_csv(flown.run_csv).numeric("deviation_um")
+    stop = read_csv(still.run_csv).numeric("deviation_um")
+    assert np.max(np.abs(fly - stop)) < 2.0
+    assert (tmp_path / "fly.recording.csv").is_file()

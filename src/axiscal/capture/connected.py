@@ -63,14 +63,13 @@ class SimMachine:
         """A fresh virtual controller of this machine."""
         from axiscal.devices.sim import SimController
 
-        correction = None
-        if self.compensation is not None:
-            comp = self.compensation
+        comp = self.compensation
 
-            def correction(commanded: float, direction: str) -> float:
-                return float(np.asarray(comp.correction(np.array([commanded]), direction))[0])
+        def correction(commanded: float, direction: str) -> float:
+            return float(np.asarray(comp.correction(np.array([commanded]), direction))[0])
 
-        return SimController(carriage=self.carriage, travel_m=self.travel_m, correction=correction, axis=self.axis)
+        return SimController(carriage=self.carriage, travel_m=self.travel_m, correction=None if comp is None else correction,
+                             axis=self.axis)
 
 
 def sim_machine(*, compensation: Any = None, machine: str | Path | None = None, axis: str = "X") -> SimMachine:
@@ -104,6 +103,25 @@ def sim_machine(*, compensation: Any = None, machine: str | Path | None = None, 
     positions[axis] = grid
     error = np.asarray(model.volumetric_error(positions))[:, "XYZ".index(axis)]
     return SimMachine(axis, (float(start), float(end)), grid, error, compensation=compensation)
+
+
+class _Follower:
+    """The virtual controller's carriage at a simulated instrument's sample times (seconds from its start).
+
+    The first sample anchors the instrument's time to the monotonic clock; each later one is read at its
+    own moment, so a sample written late (in a burst) still reads where the carriage was when it was due.
+    """
+
+    def __init__(self, controller):
+        self.controller = controller
+        self.began: float | None = None
+
+    def __call__(self, t: float) -> float:
+        import time
+
+        if self.began is None:
+            self.began = time.monotonic() - t
+        return self.controller.carriage_at(self.began + t)
 
 
 def open_run_devices(controller: str, source: str, *, options: InstrumentOptions | None = None, ini: str | Path | None = None,
@@ -143,8 +161,7 @@ def open_run_devices(controller: str, source: str, *, options: InstrumentOptions
                            " attocube:HOST[:PORT] or sim:KIND")
     sim = machine if machine is not None else None
     made = open_controller(controller, ini=ini, sim=lambda: (sim or sim_machine()).controller())
-    carriage = getattr(made, "carriage_now", None)
-    position = None if carriage is None else (lambda t: carriage())
+    position = _Follower(made) if hasattr(made, "carriage_at") else None
     if source.lower().startswith("sim:") and position is None:
         made.close()
         raise AxiscalError(f"the simulated instrument '{source}' reads the virtual controller's axis: its controller must be 'sim'")

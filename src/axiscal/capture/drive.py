@@ -101,6 +101,8 @@ class InstrumentReader:
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._run, name="instrument-reader", daemon=True)
         self.last_m = math.nan
+        #: the computer's monotonic clock less the instrument's time, smallest seen (the batch that arrived soonest)
+        self.clock_offset_s = math.inf
 
     def start(self) -> "InstrumentReader":
         self._thread.start()
@@ -111,6 +113,7 @@ class InstrumentReader:
             while not self._stop.is_set():
                 batch = self.source.read(0.05)
                 if len(batch):
+                    self.clock_offset_s = min(self.clock_offset_s, time.monotonic() - float(batch.t_s[-1]))
                     x = batch.values[:, self.channel] * MM
                     env = batch.values[:, self._env_index] if self._env_index else np.empty((len(batch), 0))
                     with self._arrived:

@@ -129,5 +129,3 @@ def probing_command(points, diameter_mm, pform_mpe_um, psize_mpe_um, pform_ms_mp
         echo_json(result.payload())
     else:
         click.echo(result.report())
-
-    group.add_command(cmm_group)

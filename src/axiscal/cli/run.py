@@ -108,11 +108,14 @@ def _progress_line(console):
 @click.option("--ini", type=click.Path(dir_okay=False), default=None, help="LinuxCNC: the machine's INI file (its soft limits).")
 @click.option("--resume", is_flag=True, help="Continue OUTPUT.partial: drive to where the first missing step's approach begins, go on.")
 @click.option("--dry-run", is_flag=True, help="Print the moves and check them against the soft limits; move nothing.")
+@click.option("--on-the-fly", "on_the_fly", is_flag=True,
+              help="Drive each pass through the targets without stopping; record the reading and the controller's position;"
+                   " each target's reading where the axis passes it (OUTPUT.recording.csv holds both streams).")
 @click.option("--seed", type=int, default=0, show_default=True, help="Noise seed of a simulated instrument.")
 @click.option("--json", "as_json", is_flag=True, help="Print the steps taken as JSON.")
 @instrument_options
 def run_command(plan_csv, controller_spec, source_spec, output, axis, feed_mm_min, dwell_s, window_s, stability_um, offset_mm, ini,
-                resume, dry_run, seed, as_json, **instrument):
+                resume, dry_run, on_the_fly, seed, as_json, **instrument):
     """Drive PLAN_CSV's steps on a controller and read the instrument at every target: the run `capture` writes.
 
     Each step is an absolute move of --axis; once the controller reports it done the reading is taken
@@ -159,8 +162,28 @@ def run_command(plan_csv, controller_spec, source_spec, output, axis, feed_mm_mi
         return
     from rich.console import Console
 
+    if on_the_fly and resume:
+        raise AxiscalError("--on-the-fly drives whole passes: it has nothing to --resume (run it again)")
     with flags_named(_FLAGS):
         controller, source = open_run_devices(controller_spec, source_spec, options=options, ini=ini, seed=seed)
+    if on_the_fly:
+        from axiscal.capture.fly_drive import fly_plan
+        from axiscal.capture.recording import environment_columns
+
+        try:
+            with flags_named(_FLAGS):
+                flown = fly_plan(plan_csv, controller, source, output, drive=drive, offset_m=offset_mm * MM,
+                                 environment=environment_columns(tuple(source.channels)),
+                                 progress=lambda done, total: click.echo(f"axiscal: pass {done} of {total} driven", err=True))
+        finally:
+            source.close()
+            controller.close()
+        if as_json:
+            echo_json({"run_csv": str(flown.run_csv), "sidecar": str(flown.sidecar), "recording_csv": str(flown.recording_csv),
+                       **flown.result.payload()})
+        click.echo(f"axiscal: note: {len(flown.result.capture.readings)} targets read on the fly (the streams' delay"
+                   f" {flown.result.delay_s * 1e3:.3f} ms, estimated), written to {flown.run_csv}", err=True)
+        return
     live = None
     try:
         with flags_named(_FLAGS):

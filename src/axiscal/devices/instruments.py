@@ -16,7 +16,6 @@ spec                   instrument
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Callable
 from dataclasses import dataclass
 

@@ -70,7 +70,7 @@ class SimController(Controller):
 
     def _commanded_at(self, now: float) -> tuple[float, float, float]:
         t0, start, end, speed, duration, direction = self._move
-        t = now - t0
+        t = max(now - t0, 0.0)
         if t >= duration or duration == 0:
             return end, direction, t - duration
         a = self.acceleration
@@ -96,8 +96,22 @@ class SimController(Controller):
 
     def carriage_now(self) -> float:
         """Where the carriage is now, metres (what an instrument on it reads)."""
+        return self.carriage_at(time.monotonic())
+
+    def carriage_at(self, when: float) -> float:
+        """Where the carriage is at a moment of the monotonic clock (of the move under way), metres.
+
+        Parameters
+        ----------
+        when : float, seconds
+            ``time.monotonic()`` of the moment.
+
+        Returns
+        -------
+        float
+        """
         with self._lock:
-            commanded, direction, since = self._commanded_at(time.monotonic())
+            commanded, direction, since = self._commanded_at(when)
         motor = commanded
         if self.correction is not None:
             motor += float(self.correction(commanded, "+" if direction > 0 else "-"))

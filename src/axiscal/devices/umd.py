@@ -48,8 +48,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 from axiscal.devices.base import AIR_CHANNELS, READING_CHANNEL, InstrumentSource, Samples
 from axiscal.errors import AxiscalError
 

@@ -29,7 +29,7 @@ from axiscal.io.atomic import write_text
 from axiscal.io.templates import render_template
 from axiscal.units import MM, UM
 from axiscal.io.arguments import check_number
-from axiscal.workbench.forms import ConnectForm, PlanForm, VisitForm, checked
+from axiscal.workbench.forms import PlanForm, VisitForm, checked
 from axiscal.workbench.runner import PlanRun, connect
 
 __all__ = ["PHASES", "Workbench"]

@@ -1,0 +1,202 @@
+"""``axiscal run --on-the-fly``: the axis driven through the targets without stopping, both streams recorded.
+
+Each pass of the plan (every run, each way) is one move from the overrun before its first target to past
+its last, at the feed asked; meanwhile the instrument's reading (on its own clock) and the controller's
+position (asked as fast as it answers, on the computer's clock) are recorded. The instrument's clock is
+put on the computer's by the batch that arrived soonest after its last sample (its time of arrival less
+its last sample's time, the smallest over the run); what delay is left between the streams is estimated
+from the forward and backward passes and removed by :func:`axiscal.capture.on_the_fly.on_the_fly`, which
+takes each target's reading where the position stream crosses it.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+import numpy as np
+
+from axiscal.capture.drive import DriveSettings, InstrumentReader, _check_device, _check_limits
+from axiscal.capture.on_the_fly import FlyRecording, OnTheFly, on_the_fly_to_file
+from axiscal.capture.steps import PlanSteps, plan_steps
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_instance, check_number, check_path
+from axiscal.io.tabular import write_csv
+from axiscal.units import MM
+
+__all__ = ["pass_moves", "fly_plan", "FlyFiles"]
+
+
+def pass_moves(steps: PlanSteps) -> list[tuple[int, float]]:
+    """The moves of an on-the-fly run: where each pass turns, and past the last target at the end.
+
+    Parameters
+    ----------
+    steps : PlanSteps
+
+    Returns
+    -------
+    list of (step index, position in metres)
+        The first move goes to the plan's first position; each later one to where the travel turns
+        (or the plan ends), so the axis passes every target between without stopping. The last move
+        goes past the last target by the plan's overrun.
+    """
+    check_instance("steps", steps, PlanSteps)
+    x = steps.move_to_m
+    moves = [(0, float(x[0]))]
+    for k in range(1, x.size - 1):  # the plan's last position is passed, not stopped at (below)
+        if np.sign(x[k + 1] - x[k]) != np.sign(x[k] - x[k - 1]):
+            moves.append((k, float(x[k])))
+    finite = np.isfinite(steps.target_m)
+    overrun = abs(float(x[0] - steps.target_m[finite][0])) if not finite[0] else 0.0
+    sign = np.sign(x[-1] - x[-2]) if x.size > 1 else 1.0
+    moves.append((x.size - 1, float(x[-1]) + sign * max(overrun, 0.002)))
+    return moves
+
+
+class FlyFiles:
+    """What an on-the-fly run wrote.
+
+    Attributes
+    ----------
+    result : OnTheFly
+    run_csv, sidecar, recording_csv : Path
+        The run, its sidecar, and the recording of both streams (``time_s, reading_mm,
+        position_time_s, position_mm``: what ``axiscal on-the-fly --from`` reads again).
+    """
+
+    def __init__(self, result: OnTheFly, run_csv: Path, sidecar: Path, recording_csv: Path):
+        self.result, self.run_csv, self.sidecar, self.recording_csv = result, run_csv, sidecar, recording_csv
+
+
+class _PositionRecorder:
+    """Asks the controller its position as fast as it answers, on a thread, with the computer's time."""
+
+    def __init__(self, controller, axis: str, t0: float):
+        self.controller, self.axis, self.t0 = controller, axis, t0
+        self.t: list[float] = []
+        self.x: list[float] = []
+        self.error: Exception | None = None
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, name="position-recorder", daemon=True)
+
+    def _run(self) -> None:
+        while not self._stop.is_set():
+            try:
+                before = time.monotonic()
+                x = float(self.controller.position(self.axis))
+                after = time.monotonic()
+            except Exception as exc:  # handed to the driving thread
+                self.error = exc
+                return
+            self.t.append((before + after) / 2 - self.t0)
+            self.x.append(x)
+            time.sleep(0.001)
+
+    def __enter__(self) -> "_PositionRecorder":
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._stop.set()
+        self._thread.join(timeout=3)
+
+
+def fly_plan(
+    plan: str | Path | PlanSteps,
+    controller,
+    source,
+    output: str | Path,
+    *,
+    drive: DriveSettings | None = None,
+    environment: Sequence[str] = (),
+    window_s: float = 0.01,
+    offset_m: float = 0.0,
+    progress: Callable[[int, int], None] | None = None,
+) -> FlyFiles:
+    """Drive the plan's passes without stopping, record both streams, and capture each target where it is passed.
+
+    Parameters
+    ----------
+    plan : str, Path or PlanSteps
+        The plan (``axiscal plan``; the same plan as a stop-and-go run).
+    controller, source :
+        An open controller and instrument (:func:`axiscal.capture.connected.open_run_devices`).
+    output : str or Path
+        The run CSV; the recording of both streams goes beside it (``RUN.recording.csv``).
+    drive : DriveSettings, keyword-only
+        Axis and feed (the dwell is not used).
+    environment : sequence of str, keyword-only
+        The source's air and material channels.
+    window_s : float, seconds, keyword-only
+        The reading's line is fitted over this window about each crossing.
+    offset_m : float, metres, keyword-only
+        The reading at the datum.
+    progress : callable, keyword-only
+        Called with (passes done, passes) as the run goes.
+
+    Returns
+    -------
+    FlyFiles
+
+    Raises
+    ------
+    AxiscalError
+        For a move beyond the soft limits (before anything moves), a controller that is not ready,
+        refuses a move or stops answering, an instrument that goes silent, and what
+        :func:`~axiscal.capture.on_the_fly.on_the_fly` refuses.
+    """
+    steps = plan if isinstance(plan, PlanSteps) else plan_steps(plan)
+    _check_device("controller", controller, ("check_ready", "limits", "move_to", "position", "stop"), "a controller")
+    _check_device("source", source, ("read", "close"), "an instrument or live source")
+    drive = DriveSettings() if drive is None else check_instance("drive", drive, DriveSettings)
+    output = check_path("output", output)
+    window_s = check_number("window_s", window_s, positive=True, high=10.0, unit="s")
+    offset_m = check_number("offset_m", offset_m, unit="m")
+    axis = drive.axis.strip().upper()
+    moves = pass_moves(steps)
+    _check_limits(steps, [(k, x, False) for k, x in moves], controller.limits(axis), controller.description)
+    controller.check_ready(axis)
+    t0 = time.monotonic()
+    reader = InstrumentReader(source, environment=environment).start()
+    try:
+        controller.move_to(axis, moves[0][1], drive.feed_m_per_s)
+        with _PositionRecorder(controller, axis, t0) as positions:
+            time.sleep(0.2)
+            for n, (_, x) in enumerate(moves[1:], start=1):
+                controller.move_to(axis, x, drive.feed_m_per_s)
+                if positions.error is not None:
+                    raise AxiscalError(f"{controller.description} stopped answering its position: {positions.error}")
+                if progress is not None:
+                    progress(n, len(moves) - 1)
+            time.sleep(0.2)
+        if reader.error is not None:
+            raise reader.error
+    except KeyboardInterrupt:
+        controller.stop()
+        raise
+    finally:
+        reader.close()
+    t, x, env, bad = reader.since(0)
+    keep = ~bad & np.isfinite(x)
+    if keep.sum() < 4 or len(positions.t) < 4 or not math.isfinite(reader.clock_offset_s):
+        raise AxiscalError(f"too few readings from {source.status.description if hasattr(source, 'status') else 'the instrument'}"
+                           f" ({int(keep.sum())}) or positions ({len(positions.t)}) to capture on the fly")
+    time_s = t[keep] + reader.clock_offset_s - t0  # the instrument's samples on the computer's clock
+    recording = FlyRecording(time_s, x[keep], np.array(positions.t), np.array(positions.x),
+                             {n: env[keep, j] for j, n in enumerate(environment) if np.isfinite(env[keep, j]).all()},
+                             source=str(getattr(getattr(source, "status", None), "description", "the instrument")))
+    recording_csv = output.with_name(output.stem + ".recording.csv")
+    write_csv(recording_csv, _recording_columns(recording), fmt={"time_s": "{:.6f}", "reading_mm": "{:.7f}"})
+    result, run_csv, sidecar = on_the_fly_to_file(steps, recording, output, window_s=window_s, offset_m=offset_m)
+    return FlyFiles(result, run_csv, sidecar, recording_csv)
+
+
+def _recording_columns(recording: FlyRecording) -> dict[str, np.ndarray]:
+    """The laser's samples with the position stream interpolated onto them (one time line, as a file holds it)."""
+    position = np.interp(recording.time_s, recording.position_time_s, recording.position_m)
+    return {"time_s": recording.time_s, "reading_mm": recording.reading_m / MM, "position_mm": position / MM,
+            **{n: v for n, v in recording.channels.items()}}
