@@ -174,3 +174,26 @@ def test_not_homed_after_a_restart_is_one_line(machine, plan_csv, tmp_path):
     finally:
         del machine.home
         machine.restart(None)
+
+
+def test_a_whole_visit_in_the_workbench_on_linuxcnc(machine, tmp_path):
+    """The workbench's steps (the calls its page makes) on the real LinuxCNC: as found, table, restart, as left, report."""
+    from axiscal.workbench import Workbench
+
+    bench = Workbench(tmp_path / "data", db=str(tmp_path / "h.sqlite"))
+    bench.new_visit({"title": "Visit on LinuxCNC", "date": "2026-11-26", "operator": "J. Doe", "machine": "LinuxCNC sim",
+                     "instrument": "µMD laser", "controller": "linuxcnc", "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6,
+                     "axes": ["X"]})
+    bench.make_plan({"start_mm": 10, "end_mm": 190, "targets": 5, "runs": 1, "overrun_mm": 5, "dwell_s": 0.5})
+    lights = bench.connect({"instrument": f"umd:{machine.pty}", "controller": CONTROLLER})
+    assert lights["lights"] == {"instrument": "ok", "controller": "ok"}
+    bench.start_run("as-found")
+    assert bench.run.wait(120) == "done", bench.run.message
+    table = bench.compensate()
+    machine.restart(bench.data / table["file"])  # the operator loads the table: COMP_FILE, restart, home
+    bench.start_run("as-left")
+    assert bench.run.wait(120) == "done", bench.run.message
+    changes = {c["figure"]: c for c in bench.before_after()["changes"]}
+    assert changes["E"]["after"] <= 0.2 * changes["E"]["before"]
+    finished = bench.finish()
+    assert finished

@@ -230,6 +230,7 @@ def run_to_file(
     progress: Callable | None = None,
     on_stop: Callable | None = None,
     on_fault: Callable[[str], None] | None = None,
+    before_move: Callable[[], None] | None = None,
 ) -> CaptureFiles:
     """Drive the plan on the controller, read the instrument, and write the run as ``axiscal capture`` does.
 
@@ -247,7 +248,7 @@ def run_to_file(
         Stability, window and offset of the readings.
     resume : bool, keyword-only
         Continue the partial run: the axis is first driven to where the first missing step's approach begins.
-    progress, on_stop, on_fault : callable, keyword-only
+    progress, on_stop, on_fault, before_move : callable, keyword-only
         As :func:`axiscal.capture.drive.drive_plan` takes them.
 
     Returns
@@ -268,7 +269,7 @@ def run_to_file(
 
     def engine(steps_, source_, *, resumed, on_stop):
         return drive_plan(steps_, controller, source_, drive=drive, settings=settings, environment=environment, resumed=resumed,
-                          on_stop=on_stop, progress=progress, on_fault=on_fault)
+                          on_stop=on_stop, progress=progress, on_fault=on_fault, before_move=before_move)
 
     try:
         return capture_to_file(steps, source, output, resume=resume, engine=engine, on_stop=on_stop)

@@ -212,6 +212,7 @@ def drive_plan(
     on_stop: Callable[[StopReading], None] | None = None,
     progress: Callable[[CaptureProgress], None] | None = None,
     on_fault: Callable[[str], None] | None = None,
+    before_move: Callable[[], None] | None = None,
 ) -> Capture:
     """Drive the controller through the plan and take the instrument's reading at every target.
 
@@ -234,6 +235,8 @@ def drive_plan(
         Called with a :class:`~axiscal.capture.run.CaptureProgress` as the run goes.
     on_fault : callable, keyword-only
         Called with each fault of the instrument outside every window (reported, the run goes on).
+    before_move : callable, keyword-only
+        Called before each move: it may wait (a pause between steps) or raise AxiscalError (an abort).
 
     Returns
     -------
@@ -318,6 +321,8 @@ def drive_plan(
     try:
         for k, position, reading in moves:
             report(k if reading else None, False)
+            if before_move is not None:
+                before_move()
             controller.move_to(axis, position, drive.feed_m_per_s)
             if not reading:
                 continue

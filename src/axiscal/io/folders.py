@@ -16,7 +16,7 @@ import shutil
 import tempfile
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import TypeVar
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_path

@@ -18,6 +18,7 @@ from axiscal.workbench.runner import (
     INSTRUMENTS,
     SIM_RATE_HZ,
     Connection,
+    DevicePlanRun,
     PlanRun,
     connect,
 )
@@ -45,6 +46,7 @@ __all__ = [
     "INSTRUMENTS",
     "SIM_RATE_HZ",
     "Connection",
+    "DevicePlanRun",
     "PlanRun",
     "connect",
     "PHASES",

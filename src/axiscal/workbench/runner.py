@@ -12,8 +12,13 @@ taken, so a connection that breaks leaves every stop before it and :meth:`PlanRu
 ``resume=True`` goes on from the next.
 
 Instrument and controller specs are those of the controller-driven run (``sim``, ``umd:PORT``,
-``sylvac:PORT``; ``sim``, ``linuxcnc:HOST``, ``grbl:PORT`` ...): only ``sim`` is driven here, other
-specs are refused in one line saying so.
+``sylvac:PORT``; ``sim``, ``linuxcnc:HOST``, ``grbl:PORT`` ...). With both ``sim`` the virtual
+machine above runs (faster than real time when asked); any other pair is driven for real by
+:func:`axiscal.capture.connected.run_to_file` (the devices of ``axiscal run``): the controller moves the
+axis to each step and the instrument is read over the dwell, the page's pause holding the machine
+between two steps and its abort stopping the controller. A compensation the page wrote is loaded by
+the virtual controller itself; a real controller loads it as ``axiscal cycle`` says (LinuxCNC: its
+``COMP_FILE``, then a restart and homing).
 
 What the rest of the workbench uses, and all that another implementation has to give:
 :func:`connect` (a :class:`Connection`: the two lights, the reading, the position) and
@@ -49,11 +54,11 @@ from axiscal.live.protocol import FrameBatch
 from axiscal.live.sources import SourceStatus
 from axiscal.units import MM, UM
 
-__all__ = ["INSTRUMENTS", "CONTROLLERS", "SIM_RATE_HZ", "Connection", "connect", "PlanRun"]
+__all__ = ["INSTRUMENTS", "CONTROLLERS", "SIM_RATE_HZ", "Connection", "connect", "PlanRun", "DevicePlanRun"]
 
-#: the instrument and controller specs this adapter drives
-INSTRUMENTS = ("sim",)
-CONTROLLERS = ("sim",)
+#: the instrument and controller kinds this adapter drives (``sim``: the virtual machine; the others: ``axiscal run``'s)
+INSTRUMENTS = ("sim", "umd", "sylvac", "mahr", "touchdro", "attocube")
+CONTROLLERS = ("sim", "linuxcnc", "grbl", "marlin", "klipper", "moonraker")
 #: samples per second of the virtual laser
 SIM_RATE_HZ = 1000.0
 _CHANNELS = ("reading_mm",) + ENVIRONMENT_COLUMNS[:3]
@@ -63,11 +68,15 @@ def _check_spec(name: str, spec: str, known: tuple[str, ...]) -> str:
     if not isinstance(spec, str) or not spec.strip():
         raise AxiscalError(f"{name} must be a spec such as 'sim', not {spec!r}")
     spec = spec.strip()
-    kind = spec.split(":", 1)[0]
+    kind = spec.split(":", 1)[0].lower()
     if kind not in known:
-        raise AxiscalError(f"{name} '{spec}': this workbench drives {', '.join(known)} only (the devices of"
-                           " `axiscal run` are not connected to it)")
+        raise AxiscalError(f"{name} '{spec}': use one of {', '.join(known)} (as `axiscal run` takes them, docs/devices.md)")
     return spec
+
+
+def _virtual(instrument: str, controller: str) -> bool:
+    """Whether the pair is the virtual machine the workbench runs itself (both ``sim``)."""
+    return instrument.strip().lower() == "sim" and controller.strip().lower() == "sim"
 
 
 @dataclass(frozen=True)
@@ -119,9 +128,38 @@ def connect(instrument: str = "sim", controller: str = "sim", *, seed: int = 0) 
     instrument = _check_spec("instrument", instrument, INSTRUMENTS)
     controller = _check_spec("controller", controller, CONTROLLERS)
     seed = check_count("seed", seed, minimum=0)
+    if not _virtual(instrument, controller):
+        return _connect_devices(instrument, controller, seed)
     noise = float(np.random.default_rng([seed, 30]).normal(0.0, 20e-9))
     return Connection(instrument, controller, "ok", "ok",
                       f"virtual laser ({SIM_RATE_HZ:g} Hz) on the virtual XZ module's X axis", noise, 0.0)
+
+
+def _connect_devices(instrument: str, controller: str, seed: int) -> Connection:
+    """Open the devices of ``axiscal run``, read the instrument for half a second and the controller once, close."""
+    from axiscal.capture.connected import open_run_devices
+
+    made, source = open_run_devices(controller, instrument, seed=seed)
+    try:
+        end = time.monotonic() + 0.5
+        reading = math.nan
+        while time.monotonic() < end:
+            batch = source.read(0.05)
+            good = np.asarray(batch.values[:, 0])[~np.asarray(batch.malformed)] if len(batch) else np.empty(0)
+            good = good[np.isfinite(good)]
+            if good.size:
+                reading = float(good[-1]) * MM
+        try:
+            position = float(made.position("X"))
+            controller_state = "ok"
+        except (AxiscalError, OSError):
+            position, controller_state = math.nan, "lost"
+        instrument_state = "ok" if math.isfinite(reading) else "lost"
+        return Connection(instrument, controller, instrument_state, controller_state,
+                          f"{source.status.description}; {made.description}", reading, position)
+    finally:
+        source.close()
+        made.close()
 
 
 class _SimLaser:
@@ -218,6 +256,12 @@ class PlanRun:
         For a spec not driven, a bad number, a plan that cannot be read, a compensation the
         controller refuses, a partial file left without ``resume`` (or none with it).
     """
+
+    def __new__(cls, *args: Any, **kwargs: Any) -> "PlanRun":
+        instrument, controller = kwargs.get("instrument", "sim"), kwargs.get("controller", "sim")
+        if cls is PlanRun and isinstance(instrument, str) and isinstance(controller, str) and not _virtual(instrument, controller):
+            return super().__new__(DevicePlanRun)
+        return super().__new__(cls)
 
     def __init__(self, plan_csv: str | Path, output: str | Path, *, instrument: str = "sim", controller: str = "sim",
                  compensation: str | None = None, controller_kind: str = "linuxcnc", resume: bool = False,
@@ -395,5 +439,154 @@ class PlanRun:
             "step": None if p is None else p.step, "still": bool(p.still) if p is not None else False,
             "position_mm": position, "stops": self.stops,
             "lights": {"instrument": "lost" if lost else "ok", "controller": "ok"},
+            "run_csv": str(self.output) if self.state == "done" else None,
+        }
+
+
+class DevicePlanRun(PlanRun):
+    """A plan driven on real devices (``axiscal run``'s), with the interface of :class:`PlanRun`.
+
+    Made by :class:`PlanRun` for any pair of specs but ``sim``/``sim``. The controller moves the axis
+    to each step; the reading is the mean over the last window of the dwell; pause holds the machine
+    before its next move, abort stops the controller (the partial file keeps every step taken) and
+    ``resume=True`` goes on from it. ``speed`` does not apply (a machine runs at its own pace).
+
+    Parameters
+    ----------
+    plan_csv, output, instrument, controller, compensation, controller_kind, resume, speed, dwell_s, seed, settings :
+        As :class:`PlanRun` takes them.
+    """
+
+    def __init__(self, plan_csv: str | Path, output: str | Path, *, instrument: str = "sim", controller: str = "sim",
+                 compensation: str | None = None, controller_kind: str = "linuxcnc", resume: bool = False,
+                 speed: float = 1.0, dwell_s: float = 1.0, seed: int = 0, settings: CaptureSettings | None = None):
+        from axiscal.capture.connected import open_run_devices
+
+        self.instrument = _check_spec("instrument", instrument, INSTRUMENTS)
+        self.controller = _check_spec("controller", controller, CONTROLLERS)
+        self.plan_csv = check_path("plan_csv", plan_csv)
+        self.output = check_path("output", output)
+        check_instance("resume", resume, bool)
+        check_number("speed", speed, positive=True, high=1000.0)
+        self.dwell_s = check_number("dwell_s", dwell_s, positive=True, high=600.0, unit="s")
+        seed = check_count("seed", seed, minimum=0)
+        self.settings = CaptureSettings() if settings is None else check_instance("settings", settings, CaptureSettings)
+        self.steps = plan_steps(self.plan_csv)
+        partial = partial_path(self.output)
+        if resume and not partial.is_file():
+            raise AxiscalError("nothing to resume: no partial capture here", path=partial)
+        if not resume and partial.exists():
+            raise AxiscalError("a broken run left its stops here: resume it (or delete the file)", path=partial)
+        self.compensation_note = "" if compensation is None else (
+            "the controller must have loaded the compensation written (axiscal cycle says how)")
+        self.total = self.steps.readings
+        self.stops = []
+        if resume:
+            from axiscal.io.tabular import read_csv
+
+            table = read_csv(partial, min_rows=1)
+            for row in range(len(table)):
+                self.stops.append({name: float(table.numeric(name)[row]) for name in ("step", "target_mm", "deviation_um", "start_s")}
+                                  | {"run": int(table.numeric("run")[row]), "direction": table.text("direction")[row]})
+        self._resume = resume
+        self._lock = threading.Lock()
+        self._trace_t: list[np.ndarray] = []
+        self._trace_x: list[np.ndarray] = []
+        self._trace_n = 0
+        self._device, self._instrument = open_run_devices(self.controller, self.instrument, seed=seed)
+        original = self._instrument.read
+
+        def tapped(timeout_s: float):
+            batch = original(timeout_s)
+            if len(batch):
+                self._tap(np.asarray(batch.t_s), np.asarray(batch.values[:, 0]))
+            return batch
+
+        self._instrument.read = tapped
+        self._held = threading.Event()
+        self._held.set()
+        self._aborted = False
+        self.state = "ready"
+        self.message = self.compensation_note
+        self.result = None
+        self.progress = None
+        self._started = math.nan
+        self._thread = threading.Thread(target=self._run, name="axiscal-workbench-device-run", daemon=True)
+
+    def _before_move(self) -> None:
+        while not self._held.wait(0.1):
+            if self._aborted:
+                break
+        if self._aborted:
+            raise AxiscalError("aborted: the stops taken are kept; resume to go on")
+
+    def pause(self) -> None:
+        """Hold the machine before its next move."""
+        if self.state == "running":
+            self._held.clear()
+            self.state = "paused"
+
+    def resume(self) -> None:
+        """Go on after :meth:`pause`."""
+        if self.state == "paused":
+            self._held.set()
+            self.state = "running"
+
+    def abort(self) -> None:
+        """Stop the controller; the stops taken stay in the partial file."""
+        if self.state in ("running", "paused", "ready"):
+            self._aborted = True
+            self.state = "aborted"
+            self.message = "aborted: the stops taken are kept; resume to go on"
+            self._held.set()
+            self._device.stop()
+
+    def cut_connection(self) -> None:
+        """Break the instrument's connection now (what a pulled cable does)."""
+        self._instrument.close()
+
+    def _run(self) -> None:
+        from axiscal.capture.connected import run_to_file
+        from axiscal.capture.drive import DriveSettings
+
+        try:
+            self.result = run_to_file(self.plan_csv, self._device, self._instrument, self.output,
+                                      drive=DriveSettings(dwell_s=float(self.dwell_s)), settings=self.settings,
+                                      resume=self._resume, progress=self._on_progress, on_stop=self._on_stop,
+                                      before_move=self._before_move)
+            self.state = "done"
+        except AxiscalError as exc:
+            if self.state != "aborted":
+                self.state = "broken" if getattr(self._instrument, "finished", False) else "failed"
+                self.message = str(exc)
+        except Exception as exc:  # the thread must report, never die silently
+            self.state = "failed"
+            self.message = f"the run stopped: {exc}"
+        finally:
+            self._instrument.close()
+            self._device.close()
+
+    def snapshot(self) -> dict[str, Any]:
+        """The run as the page shows it (as :meth:`PlanRun.snapshot`).
+
+        Returns
+        -------
+        dict
+        """
+        p = self.progress
+        taken = len(self.stops)
+        elapsed = time.monotonic() - self._started if math.isfinite(self._started) else 0.0
+        remaining = elapsed / taken * (self.total - taken) if taken and self.state in ("running", "paused") else 0.0
+        position = getattr(getattr(self._device, "status", None), "position_m", math.nan)
+        lost = self.state == "broken"
+        return {
+            "state": self.state, "message": self.message, "taken": taken, "total": self.total,
+            "remaining_s": remaining, "sim_time_s": elapsed,
+            "reading_mm": None if p is None or math.isnan(p.reading_m) else p.reading_m / MM,
+            "target_mm": None if p is None or math.isnan(p.target_m) else p.target_m / MM,
+            "step": None if p is None else p.step, "still": bool(p.still) if p is not None else False,
+            "position_mm": None if not math.isfinite(position) else position / MM, "stops": self.stops,
+            "lights": {"instrument": "lost" if lost else "ok",
+                       "controller": "lost" if getattr(self._device.status, "state", "") == "lost" else "ok"},
             "run_csv": str(self.output) if self.state == "done" else None,
         }
