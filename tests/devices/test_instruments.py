@@ -274,3 +274,57 @@ def test_a_pty_closed_by_the_device_ends_the_source():
         source.close()
     assert not os.path.exists(path) or True
     assert HENE_VACUUM_WAVELENGTH_M == pytest.approx(632.991372e-9)
+
+
+class _NoLink:
+    """A link that is never read: the decoders are fed directly."""
+
+    def read(self, timeout_s):
+        return b""
+
+    def write(self, data):
+        pass
+
+    def close(self):
+        pass
+
+
+def _gauges():
+    from axiscal.devices.attocube import AttocubeSource
+    from axiscal.devices.mahr import MahrSource
+    from axiscal.devices.sylvac import SylvacSource
+    from axiscal.devices.touchdro import TouchDroSource
+
+    return {
+        "sylvac": (lambda: SylvacSource(_NoLink(), "mm", "s"), b"+12.345\r", 12.345),
+        "mahr": (lambda: MahrSource(_NoLink(), "m"), b"+0012.3450mm\r\n", 12.345),
+        "touchdro": (lambda: TouchDroSource(_NoLink(), "X", 1000.0, "t"), b"X12345;", 12.345),
+        "attocube": (lambda: AttocubeSource(_NoLink(), 1, "a"),
+                     b'{"jsonrpc": "2.0", "id": 1, "result": [0, 12345000000, 0, 0]}\r\n', 12.345),
+    }
+
+
+@pytest.mark.parametrize("kind", ["sylvac", "mahr", "touchdro", "attocube"])
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
+@given(data=st.data())
+def test_mutated_gauge_replies_give_a_fault_or_a_correct_reading(kind, data):
+    make, good, value = _gauges()[kind]
+    raw = bytearray(good)
+    for _ in range(data.draw(st.integers(1, 3))):
+        i = data.draw(st.integers(0, max(0, len(raw) - 1)))
+        op = data.draw(st.sampled_from(["flip", "drop", "insert"]))
+        if op == "flip" and raw:
+            raw[i] = data.draw(st.integers(0, 255))
+        elif op == "drop" and raw:
+            del raw[i]
+        else:
+            raw.insert(i, data.draw(st.integers(0, 255)))
+    source = make()
+    out = source._decode(bytes(raw) + good + good)  # a damaged reply (it may swallow the next), then good ones
+    assert len(out) >= 1
+    for x, bad in zip(out.values[:, 0], out.malformed):
+        if bad:
+            assert math.isnan(x)
+        else:
+            assert math.isfinite(x)
+    assert not out.malformed[-1] and out.values[-1, 0] == pytest.approx(value, abs=1e-9)
