@@ -114,6 +114,11 @@ bad(C, "run_to_file", "output", lambda: ca.run_to_file(PLAN, SIM_CONTROLLER, Non
 bad(C, "run_to_file", "controller", lambda: ca.run_to_file(PLAN, None, None, NEVER))
 bad(C, "sim_machine", "axis", lambda: ca.sim_machine(axis="Q"), lambda: ca.sim_machine(axis=None))
 bad(C, "sim_machine", "machine", lambda: ca.sim_machine(machine=5))
+bad(C, "pass_moves", "steps", lambda: ca.pass_moves(None), lambda: ca.pass_moves(PLAN))
+bad(C, "fly_plan", "controller", lambda: ca.fly_plan(PLAN, None, _Source(), NEVER))
+bad(C, "fly_plan", "source", lambda: ca.fly_plan(PLAN, SIM_CONTROLLER, None, NEVER))
+bad(C, "fly_plan", "window_s", lambda: ca.fly_plan(PLAN, SIM_CONTROLLER, _Source(), NEVER, window_s=0.0))
+bad(C, "fly_plan", "drive", lambda: ca.fly_plan(PLAN, SIM_CONTROLLER, _Source(), NEVER, drive="fast"))
 
 T4 = np.arange(6.0)
 FLY = ca.FlyRecording(T4, T4 * 1e-3, T4, T4 * 1e-3)
@@ -137,6 +142,6 @@ bad(C, "simulate_motions", "position_delay_s", lambda: ca.simulate_motions([], l
 bad(C, "simulate_motions", "continuous", lambda: ca.simulate_motions([], load_machine(MACHINE), axis="X", continuous="yes"))
 
 EXEMPT = {C: {"OnTheFly", "Capture", "CaptureFiles", "CaptureProgress", "CapturedStop", "Stop", "StopReading", "SimulatedRecording",
-              "AxisMeasurement", "DryRun", "SimMachine"}}
+              "AxisMeasurement", "DryRun", "SimMachine", "FlyFiles"}}
 
 test_bad_arguments_raise_axiscal_error_naming_them, test_every_public_callable_has_a_bad_argument_case = TABLE.tests(EXEMPT)

@@ -73,9 +73,13 @@ from axiscal.capture.on_the_fly import (
 from axiscal.capture.on_the_fly_plot import plot_on_the_fly
 
 from axiscal.capture.drive import DriveSettings, InstrumentReader, drive_plan, planned_moves
+from axiscal.capture.fly_drive import FlyFiles, fly_plan, pass_moves
 from axiscal.capture.connected import DryRun, SimMachine, dry_run, open_run_devices, run_to_file, sim_machine
 
 __all__ = [
+    "FlyFiles",
+    "fly_plan",
+    "pass_moves",
     "DriveSettings",
     "InstrumentReader",
     "drive_plan",

@@ -23,6 +23,7 @@ import time
 import urllib.parse
 
 from axiscal.devices.controller import SILENCE_S, Controller, Heartbeat
+from axiscal.devices.links import recv_before
 from axiscal.errors import AxiscalError
 
 __all__ = ["KlipperController", "MoonrakerController", "KlipperSocket"]
@@ -65,17 +66,7 @@ class KlipperSocket:
                     continue
                 if isinstance(message, dict) and message.get("id") == ident:
                     return message
-            remaining = 3600.0 if deadline is None else deadline - time.monotonic()
-            if remaining <= 0:
-                raise OSError(errno.ETIMEDOUT, f"Klipper did not answer {method} within {timeout_s:g} s")
-            self.sock.settimeout(remaining)
-            try:
-                data = self.sock.recv(65536)
-            except socket.timeout:
-                raise OSError(errno.ETIMEDOUT, f"Klipper did not answer {method} within {timeout_s:g} s") from None
-            if not data:
-                raise OSError(errno.ECONNRESET, "Klipper closed its API socket")
-            self._buffer += data
+            self._buffer += recv_before(self.sock, deadline, f"Klipper's API socket ({method})")
 
     def close(self) -> None:
         """Close the connection; a reply awaited on another thread ends at once (shutdown wakes it)."""

@@ -19,7 +19,41 @@ from dataclasses import dataclass
 
 from axiscal.errors import AxiscalError
 
-__all__ = ["LinkClosed", "SerialFraming", "SerialLink", "TcpLink", "parse_port"]
+__all__ = ["LinkClosed", "SerialFraming", "SerialLink", "TcpLink", "parse_port", "recv_before"]
+
+
+def recv_before(sock: socket.socket, deadline: float | None, where: str) -> bytes:
+    """What a blocking socket receives before a moment of the monotonic clock (None: an hour at most).
+
+    Parameters
+    ----------
+    sock : socket.socket
+    deadline : float or None
+        ``time.monotonic()`` by which something must have come.
+    where : str
+        The device, named in errors.
+
+    Returns
+    -------
+    bytes
+        Never empty.
+
+    Raises
+    ------
+    OSError
+        ``ETIMEDOUT`` when nothing came in time, ``ECONNRESET`` when the device closed the connection.
+    """
+    remaining = 3600.0 if deadline is None else deadline - time.monotonic()
+    if remaining <= 0:
+        raise OSError(errno.ETIMEDOUT, f"{where} did not answer in time")
+    sock.settimeout(remaining)
+    try:
+        data = sock.recv(65536)
+    except socket.timeout:
+        raise OSError(errno.ETIMEDOUT, f"{where} did not answer in time") from None
+    if not data:
+        raise OSError(errno.ECONNRESET, f"{where} closed the connection")
+    return data
 
 
 class LinkClosed(OSError):

@@ -25,6 +25,7 @@ import time
 from pathlib import Path
 
 from axiscal.devices.controller import SILENCE_S, Controller, Heartbeat
+from axiscal.devices.links import recv_before
 from axiscal.errors import AxiscalError
 
 __all__ = ["LINUXCNCRSH_PORT", "LinuxcncController", "RshConnection", "ini_limits"]
@@ -98,17 +99,7 @@ class RshConnection:
                 if text:
                     return text
                 continue  # the \r of a \n\r ending
-            remaining = 3600.0 if deadline is None else deadline - time.monotonic()
-            if remaining <= 0:
-                raise OSError(errno.ETIMEDOUT, f"{self.where} did not answer within {timeout_s:g} s")
-            self.sock.settimeout(remaining)
-            try:
-                data = self.sock.recv(4096)
-            except socket.timeout:
-                raise OSError(errno.ETIMEDOUT, f"{self.where} did not answer within {timeout_s:g} s") from None
-            if not data:
-                raise OSError(errno.ECONNRESET, f"{self.where} closed the connection")
-            self._buffer += data
+            self._buffer += recv_before(self.sock, deadline, self.where)
 
     def ask(self, command: str, *, timeout_s: float | None = -1.0) -> str:
         """Send a command and return its reply line (``timeout_s=None``: wait as long as it takes)."""

@@ -74,6 +74,25 @@ def _check_spec(name: str, spec: str, known: tuple[str, ...]) -> str:
     return spec
 
 
+def _checked_partial(output: Path, resume: bool) -> Path:
+    """The partial file of a run to ``output``: there to resume, or not there for a new run."""
+    partial = partial_path(output)
+    if resume and not partial.is_file():
+        raise AxiscalError("nothing to resume: no partial capture here", path=partial)
+    if not resume and partial.exists():
+        raise AxiscalError("a broken run left its stops here: resume it (or delete the file)", path=partial)
+    return partial
+
+
+def _partial_stops(partial: Path) -> list[dict[str, Any]]:
+    """The stops a broken run's partial file holds, as the page lists them."""
+    from axiscal.io.tabular import read_csv
+
+    table = read_csv(partial, min_rows=1)
+    return [{name: float(table.numeric(name)[row]) for name in ("step", "target_mm", "deviation_um", "start_s")}
+            | {"run": int(table.numeric("run")[row]), "direction": table.text("direction")[row]} for row in range(len(table))]
+
+
 def _virtual(instrument: str, controller: str) -> bool:
     """Whether the pair is the virtual machine the workbench runs itself (both ``sim``)."""
     return instrument.strip().lower() == "sim" and controller.strip().lower() == "sim"
@@ -279,11 +298,7 @@ class PlanRun:
         seed = check_count("seed", seed, minimum=0)
         self.settings = CaptureSettings() if settings is None else check_instance("settings", settings, CaptureSettings)
         self.steps = plan_steps(self.plan_csv)
-        partial = partial_path(self.output)
-        if resume and not partial.is_file():
-            raise AxiscalError("nothing to resume: no partial capture here", path=partial)
-        if not resume and partial.exists():
-            raise AxiscalError("a broken run left its stops here: resume it (or delete the file)", path=partial)
+        partial = _checked_partial(self.output, resume)
         loaded = None
         if compensation is not None:
             check_instance("compensation", compensation, str, what="the compensation file's text")
@@ -299,12 +314,7 @@ class PlanRun:
         self.total = self.steps.readings
         self.stops: list[dict[str, Any]] = []
         if resume:
-            from axiscal.io.tabular import read_csv
-
-            table = read_csv(partial, min_rows=1)
-            for row in range(len(table)):
-                self.stops.append({name: float(table.numeric(name)[row]) for name in ("step", "target_mm", "deviation_um", "start_s")}
-                                  | {"run": int(table.numeric("run")[row]), "direction": table.text("direction")[row]})
+            self.stops = _partial_stops(partial)
         taken = len(self.stops)
         start_s = float(self._dwells[taken - 1, 1]) if taken else 0.0
         self._lock = threading.Lock()
@@ -361,15 +371,15 @@ class PlanRun:
         return self
 
     def pause(self) -> None:
-        """Hold the machine (feed hold): the stream stops until :meth:`resume`."""
+        """Hold the machine (feed hold) until :meth:`resume`."""
         if self.state == "running":
-            self.source.pause()
+            self._hold()
             self.state = "paused"
 
     def resume(self) -> None:
         """Go on after :meth:`pause`."""
         if self.state == "paused":
-            self.source.resume()
+            self._release()
             self.state = "running"
 
     def abort(self) -> None:
@@ -377,7 +387,17 @@ class PlanRun:
         if self.state in ("running", "paused", "ready"):
             self.state = "aborted"
             self.message = "aborted: the stops taken are kept; resume to go on"
-            self.source.cut = True
+            self._stop_machine()
+
+    # how the virtual machine holds, goes on and stops (the devices' run has its own)
+    def _hold(self) -> None:
+        self.source.pause()
+
+    def _release(self) -> None:
+        self.source.resume()
+
+    def _stop_machine(self) -> None:
+        self.source.cut = True
 
     def cut_connection(self) -> None:
         """Break the instrument's connection now (what a pulled cable does)."""
@@ -472,22 +492,13 @@ class DevicePlanRun(PlanRun):
         seed = check_count("seed", seed, minimum=0)
         self.settings = CaptureSettings() if settings is None else check_instance("settings", settings, CaptureSettings)
         self.steps = plan_steps(self.plan_csv)
-        partial = partial_path(self.output)
-        if resume and not partial.is_file():
-            raise AxiscalError("nothing to resume: no partial capture here", path=partial)
-        if not resume and partial.exists():
-            raise AxiscalError("a broken run left its stops here: resume it (or delete the file)", path=partial)
+        partial = _checked_partial(self.output, resume)
         self.compensation_note = "" if compensation is None else (
             "the controller must have loaded the compensation written (axiscal cycle says how)")
         self.total = self.steps.readings
         self.stops = []
         if resume:
-            from axiscal.io.tabular import read_csv
-
-            table = read_csv(partial, min_rows=1)
-            for row in range(len(table)):
-                self.stops.append({name: float(table.numeric(name)[row]) for name in ("step", "target_mm", "deviation_um", "start_s")}
-                                  | {"run": int(table.numeric("run")[row]), "direction": table.text("direction")[row]})
+            self.stops = _partial_stops(partial)
         self._resume = resume
         self._lock = threading.Lock()
         self._trace_t: list[np.ndarray] = []
@@ -520,26 +531,16 @@ class DevicePlanRun(PlanRun):
         if self._aborted:
             raise AxiscalError("aborted: the stops taken are kept; resume to go on")
 
-    def pause(self) -> None:
-        """Hold the machine before its next move."""
-        if self.state == "running":
-            self._held.clear()
-            self.state = "paused"
+    def _hold(self) -> None:  # the machine holds before its next move
+        self._held.clear()
 
-    def resume(self) -> None:
-        """Go on after :meth:`pause`."""
-        if self.state == "paused":
-            self._held.set()
-            self.state = "running"
+    def _release(self) -> None:
+        self._held.set()
 
-    def abort(self) -> None:
-        """Stop the controller; the stops taken stay in the partial file."""
-        if self.state in ("running", "paused", "ready"):
-            self._aborted = True
-            self.state = "aborted"
-            self.message = "aborted: the stops taken are kept; resume to go on"
-            self._held.set()
-            self._device.stop()
+    def _stop_machine(self) -> None:
+        self._aborted = True
+        self._held.set()
+        self._device.stop()
 
     def cut_connection(self) -> None:
         """Break the instrument's connection now (what a pulled cable does)."""
