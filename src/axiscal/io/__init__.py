@@ -23,7 +23,7 @@ from axiscal.io.arguments import (
     render_checked,
     unit_words,
 )
-from axiscal.io.atomic import atomic_write, write_text
+from axiscal.io.atomic import atomic_write, remove_stale_temporaries, write_text
 from axiscal.io.jsonio import (
     dumps,
     read_json,
@@ -61,6 +61,7 @@ __all__ = [
     "unit_words",
     "type_name",
     "atomic_write",
+    "remove_stale_temporaries",
     "write_text",
     "dumps",
     "read_json",
