@@ -3,6 +3,7 @@
 Run from the repository root::
 
     .venv/bin/python benchmarks/precompensate.py [--lines 100000 1000000] [--runs 5] [--baseline REV]
+    .venv/bin/python benchmarks/precompensate.py --stages [--lines 100000] [--runs 5]
 
 Makes seeded LinuxCNC programs like a CAM system's finishing pass (short feed moves of 0.2 to 2 mm
 wandering over the XFYZ example's travel, an arc in every 200 blocks, a few comments) and times
@@ -11,7 +12,8 @@ checks, writing) ``--runs`` times for each size, printing the median, for this t
 run and alternating with it, for the source of ``--baseline`` (default: the revision before the
 inverse ran compiled) unpacked from git into a temporary folder. The two outputs are compared: the
 same program must come out. The baseline needs git and this repository's history; ``--baseline
-none`` times this tree alone.
+none`` times this tree alone. ``--stages`` times, in one process, the reading of the program and the
+model's inverse of its points compiled and in NumPy (the path before).
 """
 
 from __future__ import annotations
@@ -81,12 +83,48 @@ def run(source: Path, program: Path, output: Path) -> float:
     return time.perf_counter() - start
 
 
+def stages(lines: int, runs: int) -> None:
+    """In-process: the reading of the program, and the model's inverse of as many points compiled and in NumPy."""
+    from axiscal.io.gcode import read_program
+    from axiscal.model import kinematics
+    from axiscal.model.machine import load_machine
+
+    text = part_program(lines)
+    machine = load_machine(MACHINE)
+    times = []
+    for _ in range(runs):
+        start = time.perf_counter()
+        program = read_program(text, dialect="linuxcnc")
+        times.append(time.perf_counter() - start)
+    print(f"  {lines:>9,} lines, reading the program (io.gcode.read_program): {statistics.median(times):6.2f} s")
+    moves = [m for m in program.motions if m.kind != "dwell"]
+    points = np.array([[m.end_m["X"], m.end_m["Y"], m.end_m["Z"]] for m in moves])
+    target = machine.nominal_point({k: points[:, j] for j, k in enumerate("XYZ")})
+    kinematics._COMPILED_FROM = 0
+    machine.command_for(target[:1000])  # the compiled functions loaded from numba's cache (or compiled)
+    for label, start_at in (("compiled", 0), ("NumPy", 1 << 62)):
+        kinematics._COMPILED_FROM = start_at
+        times = []
+        for _ in range(runs):
+            start = time.perf_counter()
+            machine.command_for(target)
+            times.append(time.perf_counter() - start)
+        print(f"  {lines:>9,} lines, the inverse of {len(target):,} points, {label:<8}: {statistics.median(times):6.2f} s")
+    kinematics._COMPILED_FROM = 65536
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--lines", type=int, nargs="+", default=[100_000, 1_000_000])
     parser.add_argument("--runs", type=int, default=5)
     parser.add_argument("--baseline", default=BASELINE, help="git revision timed alongside ('none': this tree alone)")
+    parser.add_argument("--stages", action="store_true", help="time the reading and the inverse in this process instead")
     args = parser.parse_args()
+    if args.stages:
+        print(f"stages of axiscal precompensate in this process, median of {args.runs}; load average {os.getloadavg()[0]:.1f}")
+        for lines in args.lines:
+            stages(lines, args.runs)
+        return
     with tempfile.TemporaryDirectory() as name:
         folder = Path(name)
         paths = {"this tree": ROOT / "src"}
