@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import os
 import re
-import sys
 import tempfile
 import time
 from collections.abc import Callable
@@ -178,8 +177,10 @@ def _running(pid: int) -> bool:
         os.kill(pid, 0)
     except ProcessLookupError:
         return False
-    except (OSError, OverflowError, ValueError):  # not ours to signal, or a number no process has
-        return not isinstance(sys.exc_info()[1], (OverflowError, ValueError))
+    except (OverflowError, ValueError):  # a number no process has
+        return False
+    except OSError:  # not ours to signal: running
+        return True
     return True
 
 
