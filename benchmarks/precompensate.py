@@ -1,32 +1,42 @@
-"""Pre-compensation of a 10^5-line part program on the example machine tool (goal: <= 5 s).
+"""Whole-process time of ``axiscal precompensate`` on 10^5 and 10^6-line part programs, against an older revision.
 
 Run from the repository root::
 
-    .venv/bin/python benchmarks/precompensate.py [--lines 100000] [--runs 3]
+    .venv/bin/python benchmarks/precompensate.py [--lines 100000 1000000] [--runs 5] [--baseline REV]
+    .venv/bin/python benchmarks/precompensate.py --stages [--lines 100000] [--runs 5]
 
-Makes a seeded LinuxCNC program like a CAM system's finishing pass: short feed moves (0.2 to 2 mm)
-wandering over the XFYZ example's travel, an arc in every 200 blocks, a few comments, and prints the
-median wall-clock time of ``precompensate_program`` and of ``axiscal precompensate`` as a
-subprocess (start-up, reading, writing), with the lines in and out.
+Makes seeded LinuxCNC programs like a CAM system's finishing pass (short feed moves of 0.2 to 2 mm
+wandering over the XFYZ example's travel, an arc in every 200 blocks, a few comments) and times
+``axiscal precompensate`` as a whole process (start-up, reading, the model's inverse, the path
+checks, writing) ``--runs`` times for each size, printing the median, for this tree and, in the same
+run and alternating with it, for the source of ``--baseline`` (default: the revision before the
+inverse ran compiled) unpacked from git into a temporary folder. The two outputs are compared: the
+same program must come out. The baseline needs git and this repository's history; ``--baseline
+none`` times this tree alone. ``--stages`` times, in one process, the reading of the program and the
+model's inverse of its points compiled and in NumPy (the path before).
 """
 
 from __future__ import annotations
 
 import argparse
+import filecmp
 import math
+import os
 import statistics
 import subprocess
 import sys
+import tarfile
 import tempfile
 import time
+from io import BytesIO
 from pathlib import Path
 
 import numpy as np
 
-from axiscal.model.machine import load_machine
-from axiscal.precompensation import rewrite_program
-
-MACHINE = Path(__file__).resolve().parents[1] / "examples" / "xfyz_machine" / "machine.toml"
+ROOT = Path(__file__).resolve().parents[1]
+MACHINE = ROOT / "examples" / "xfyz_machine" / "machine.toml"
+#: the last revision whose ``command_for`` iterated in NumPy only (the inverse not compiled)
+BASELINE = "06e00d3"
 
 
 def part_program(lines: int, seed: int = 1) -> str:
@@ -55,32 +65,87 @@ def part_program(lines: int, seed: int = 1) -> str:
     return "\n".join(out) + "\n"
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--lines", type=int, default=100_000)
-    parser.add_argument("--runs", type=int, default=3)
-    args = parser.parse_args()
-    text = part_program(args.lines)
+def unpack(revision: str, folder: Path) -> Path:
+    """The ``src`` folder of ``revision`` written under ``folder``."""
+    archive = subprocess.run(["git", "-C", str(ROOT), "archive", "--format=tar", revision, "src"],
+                             check=True, capture_output=True).stdout
+    with tarfile.open(fileobj=BytesIO(archive)) as tar:
+        tar.extractall(folder, filter="data")
+    return folder / "src"
+
+
+def run(source: Path, program: Path, output: Path) -> float:
+    """Seconds of one whole ``axiscal precompensate`` process run on ``source``."""
+    env = dict(os.environ, PYTHONPATH=str(source))
+    start = time.perf_counter()
+    subprocess.run([sys.executable, "-m", "axiscal.cli.main", "precompensate", str(program), "--machine", str(MACHINE),
+                    "--dialect", "linuxcnc", "-o", str(output)], check=True, capture_output=True, env=env)
+    return time.perf_counter() - start
+
+
+def stages(lines: int, runs: int) -> None:
+    """In-process: the reading of the program, and the model's inverse of as many points compiled and in NumPy."""
+    from axiscal.io.gcode import read_program
+    from axiscal.model import kinematics
+    from axiscal.model.machine import load_machine
+
+    text = part_program(lines)
     machine = load_machine(MACHINE)
     times = []
-    for _ in range(args.runs):
+    for _ in range(runs):
         start = time.perf_counter()
-        result = rewrite_program(text, machine, dialect="linuxcnc")
+        program = read_program(text, dialect="linuxcnc")
         times.append(time.perf_counter() - start)
-    print(f"precompensate_program, {result.lines_in} lines in, {result.lines_out} out, {result.rewritten} of"
-          f" {result.moves} moves rewritten: {statistics.median(times):.2f} s (median of {args.runs}; goal <= 5 s)")
-    print(f"  largest correction {result.largest_correction_m * 1e6:.2f} um, largest predicted residual"
-          f" {result.largest_residual_m * 1e6:.3f} um")
-    with tempfile.TemporaryDirectory() as folder:
-        program = Path(folder) / "part.ngc"
-        program.write_text(text)
+    print(f"  {lines:>9,} lines, reading the program (io.gcode.read_program): {statistics.median(times):6.2f} s")
+    moves = [m for m in program.motions if m.kind != "dwell"]
+    points = np.array([[m.end_m["X"], m.end_m["Y"], m.end_m["Z"]] for m in moves])
+    target = machine.nominal_point({k: points[:, j] for j, k in enumerate("XYZ")})
+    kinematics._COMPILED_FROM = 0
+    machine.command_for(target[:1000])  # the compiled functions loaded from numba's cache (or compiled)
+    for label, start_at in (("compiled", 0), ("NumPy", 1 << 62)):
+        kinematics._COMPILED_FROM = start_at
         times = []
-        for _ in range(args.runs):
+        for _ in range(runs):
             start = time.perf_counter()
-            subprocess.run([str(Path(sys.executable).parent / "axiscal"), "precompensate", str(program), "--machine", str(MACHINE),
-                            "--dialect", "linuxcnc", "-o", str(Path(folder) / "out.ngc")], check=True, capture_output=True)
+            machine.command_for(target)
             times.append(time.perf_counter() - start)
-    print(f"axiscal precompensate (subprocess, start-up included): {statistics.median(times):.2f} s")
+        print(f"  {lines:>9,} lines, the inverse of {len(target):,} points, {label:<8}: {statistics.median(times):6.2f} s")
+    kinematics._COMPILED_FROM = 65536
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--lines", type=int, nargs="+", default=[100_000, 1_000_000])
+    parser.add_argument("--runs", type=int, default=5)
+    parser.add_argument("--baseline", default=BASELINE, help="git revision timed alongside ('none': this tree alone)")
+    parser.add_argument("--stages", action="store_true", help="time the reading and the inverse in this process instead")
+    args = parser.parse_args()
+    if args.stages:
+        print(f"stages of axiscal precompensate in this process, median of {args.runs}; load average {os.getloadavg()[0]:.1f}")
+        for lines in args.lines:
+            stages(lines, args.runs)
+        return
+    with tempfile.TemporaryDirectory() as name:
+        folder = Path(name)
+        paths = {"this tree": ROOT / "src"}
+        if args.baseline != "none":
+            paths[f"baseline {args.baseline}"] = unpack(args.baseline, folder / "baseline")
+        print(f"axiscal precompensate, whole process (start-up, read, solve, check, write), median of {args.runs};"
+              f" {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at the start")
+        for lines in args.lines:
+            program = folder / f"part_{lines}.ngc"
+            program.write_text(part_program(lines))
+            for label, source in paths.items():  # a first run of each: numba's cache written, files read once
+                run(source, program, folder / f"{label.split()[0]}.ngc")
+            times: dict[str, list[float]] = {label: [] for label in paths}
+            for _ in range(args.runs):
+                for label, source in paths.items():
+                    times[label].append(run(source, program, folder / f"{label.split()[0]}.ngc"))
+            same = len(paths) == 1 or filecmp.cmp(folder / "this.ngc", folder / "baseline.ngc", shallow=False)
+            for label, values in times.items():
+                print(f"  {lines:>9,} lines, {label:<18}: {statistics.median(values):6.2f} s"
+                      f" (runs {', '.join(f'{v:.2f}' for v in values)})")
+            print(f"  {lines:>9,} lines: outputs {'identical' if same else 'DIFFER'}")
 
 
 if __name__ == "__main__":

@@ -271,6 +271,32 @@ bad(C, "screwmap_file", "controller", lambda: co.screwmap_file(EXAMPLES / "posit
     lambda: co.screwmap_file(EXAMPLES / "positioning_run.csv", controller=None), lambda: co.screwmap_file(EXAMPLES / "positioning_run.csv", controller=np.array([])))
 bad(C, "screwmap_file", "path", lambda: co.screwmap_file(None, controller="mach4"), lambda: co.screwmap_file(5, controller="twincat"))
 bad(C, "screwmap_file", "axis_number", lambda: co.screwmap_file(EXAMPLES / "positioning_run.csv", controller="twincat", axis_number="1"))
+ISG_TEXT = "X EXX\n0 0.001\n10 0.002\n"
+bad(C, "parse_isg_csv", "text", lambda: co.parse_isg_csv(None), lambda: co.parse_isg_csv(b"X EXX"))
+bad(C, "parse_isg_csv", "not an ISG argument", lambda: co.parse_isg_csv("Q EXX\n0 1\n"), lambda: co.parse_isg_csv("X EQX\n0 1\n"))
+bad(C, "parse_isg_csv", "2 columns", lambda: co.parse_isg_csv("X EXX\n0 1 2\n"))
+bad(C, "parse_isg_csv", "finite", lambda: co.parse_isg_csv("X EXX\n0 nan\n"), lambda: co.parse_isg_csv("X EXX\n0 1e400\n"))
+bad(C, "parse_isg_csv", "holds no record", lambda: co.parse_isg_csv("X EXX\n#\nY EYY\n0 1\n"))
+bad(C, "parse_isg_csv", "no ISG CSV block", lambda: co.parse_isg_csv("// nothing\n"))
+bad(C, "read_isg_csv", "path", lambda: co.read_isg_csv(None), lambda: co.read_isg_csv(5))
+bad(C, "IsgTable", "not an ISO 230-1 error parameter", lambda: co.IsgTable(("X",), ("EQX",), np.zeros((1, 1)), np.zeros((1, 1))))
+bad(C, "IsgTable", "finite", lambda: co.IsgTable(("X",), ("EXX",), np.zeros((1, 1)), np.full((1, 1), NAN)))
+bad(C, "IsgTable", "one row per record", lambda: co.IsgTable(("X",), ("EXX",), np.zeros((2, 1)), np.zeros((1, 1))))
+bad(C, "IsgTable", "not an ISG argument", lambda: co.IsgTable(("Q",), ("EXX",), np.zeros((1, 1)), np.zeros((1, 1))))
+bad(C, "volcomp_list_text", "files", lambda: co.volcomp_list_text([]), lambda: co.volcomp_list_text(None),
+    lambda: co.volcomp_list_text(["a b.csv"]))
+bad(C, "volcomp_list_text", "axis_numbers", lambda: co.volcomp_list_text(["v.csv"], axis_numbers={"Q": 1}),
+    lambda: co.volcomp_list_text(["v.csv"], axis_numbers={"X": 1.5}))
+bad(C, "volcomp_list_text", "axis numbers start at 1", lambda: co.volcomp_list_text(["v.csv"], axis_numbers={"X": 0}))
+bad(C, "volcomp_list_text", "workpiece_axes", lambda: co.volcomp_list_text(["v.csv"], workpiece_axes=-1),
+    lambda: co.volcomp_list_text(["v.csv"], workpiece_axes=None))
+bad(C, "volcomp_list_text", "interpolation", lambda: co.volcomp_list_text(["v.csv"], interpolation="LINEAR"))
+bad(C, "grid_values", "table", lambda: co.grid_values(None))
+bad(C, "grid_values", "nodes of a grid", lambda: co.grid_values(co.parse_isg_csv("X Y EXX\n0 0 1\n1 0 1\n0 1 1\n")[0]))
+bad(C, "parse_twincat_table", "text", lambda: co.parse_twincat_table(None))
+bad(C, "parse_twincat_table", "the list has no", lambda: co.parse_twincat_table("kopf.achs_nr 1\n"))
+bad(C, "parse_twincat_table", "cannot read", lambda: co.parse_twincat_table("kopf.achs_nr 1\nspeed 5\n"))
+bad(C, "parse_twincat_table", "whole number", lambda: co.parse_twincat_table("kw.ssfk.interval 0.5\n"))
 bad(C, "screwmap_file", "twincat settings", lambda: co.screwmap_file(EXAMPLES / "positioning_run.csv", controller="mach4", interval_m=1e-3))
 bad(C, "sinumerik_sag_table", "position_m", lambda: co.sinumerik_sag_table("x", SAG_E, input_axis="X", output_axis="Z", step_m=0.1),
     lambda: co.sinumerik_sag_table(None, SAG_E, input_axis="X", output_axis="Z", step_m=0.1))

@@ -55,7 +55,23 @@ bad(R, "export_correction_grid", "path", lambda: pc.export_correction_grid(MACHI
 bad(R, "export_correction_grid", "grid", lambda: pc.export_correction_grid(MACHINE, "", NEVER / "g.csv"))
 bad(R, "write_correction_grid", "result must be a CorrectionGrid", lambda: pc.write_correction_grid(None, NEVER / "g.csv"))
 
+bad(R, "isg_volumetric_table", "grid", lambda: pc.isg_volumetric_table(MACHINE, None), lambda: pc.isg_volumetric_table(MACHINE, "X=100,Y=100"),
+    lambda: pc.isg_volumetric_table(MACHINE, "X=100,Y=100,Z=100,A=0"))
+bad(R, "isg_volumetric_table", "machine", lambda: pc.isg_volumetric_table(3.0, "X=100,Y=100,Z=100"))
+bad(R, "isg_volumetric_table", "outside the error table", lambda: pc.isg_volumetric_table(MACHINE, "X=-100,Y=100,Z=100"))
+bad(R, "isg_axis_tables", "one position", lambda: pc.isg_axis_tables(MACHINE, "X=100,Y=100:200:50,Z=100:200:50"))
+bad(R, "isg_axis_tables", "axis_numbers", lambda: pc.isg_axis_tables(MACHINE, "X=100:200:50,Y=100:200:50,Z=100:200:50", axis_numbers={"X": 1}))
+bad(R, "isg_axis_tables", "grid", lambda: pc.isg_axis_tables(MACHINE, 5))
+bad(R, "parse_axis_numbers", "axis_numbers", lambda: pc.parse_axis_numbers("X=0"), lambda: pc.parse_axis_numbers("X1"),
+    lambda: pc.parse_axis_numbers(5), lambda: pc.parse_axis_numbers("Q=1"))
+bad(R, "export_isg", "path", lambda: pc.export_isg(MACHINE, "X=100,Y=100,Z=100", None))
+bad(R, "export_isg", "kind", lambda: pc.export_isg(MACHINE, "X=100,Y=100,Z=100", NEVER / "v.csv", kind="grid"))
+bad(R, "export_isg", "another suffix than .lis", lambda: pc.export_isg(MACHINE, "X=100,Y=100,Z=100", NEVER / "v.lis"))
+bad(R, "export_isg", "tool_m applies", lambda: pc.export_isg(MACHINE, "X=100:200:50,Y=100:200:50,Z=100:200:50", NEVER / "v",
+                                                            kind="axis", tool_m=(0.0, 0.0, 0.0)))
+bad(R, "export_isg", "axis_numbers", lambda: pc.export_isg(MACHINE, "X=100,Y=100,Z=100", NEVER / "v.csv", axis_numbers={"X": 1}))
+
 #: result containers, made by the functions above rather than by users
-EXEMPT = {R: {"CorrectionGrid", "PrecompensatedPoints", "Precompensation"}}
+EXEMPT = {R: {"CorrectionGrid", "PrecompensatedPoints", "Precompensation", "IsgExport"}}
 
 test_bad_arguments_raise_axiscal_error_naming_them, test_every_public_callable_has_a_bad_argument_case = TABLE.tests(EXEMPT)

@@ -47,6 +47,7 @@ bad(O, "render_checked", "template", lambda: io.render_checked(render_template, 
 bad(O, "atomic_write", "path", lambda: io.atomic_write(None, lambda p: None), lambda: io.atomic_write(5, lambda p: None))
 bad(O, "atomic_write", "write", lambda: io.atomic_write(NEVER, None), lambda: io.atomic_write(NEVER, "text"))
 bad(O, "atomic_write", "make_parents", lambda: io.atomic_write(NEVER, lambda p: None, make_parents="no"))
+bad(O, "remove_stale_temporaries", "path", lambda: io.remove_stale_temporaries(None), lambda: io.remove_stale_temporaries(5))
 bad(O, "write_text", "path", lambda: io.write_text(None, "a"))
 bad(O, "write_text", "text", lambda: io.write_text(NEVER, None), lambda: io.write_text(NEVER, b"a"))
 bad(O, "atomic_folder", "path", lambda: io.atomic_folder(None, lambda p: None), lambda: io.atomic_folder(5, lambda p: None))

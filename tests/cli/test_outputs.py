@@ -60,6 +60,7 @@ WRITES = [
     (("identify",), "--output", ["identify", "{ex}/identification/start/machine.toml", "{ex}/identification/plate_xy.toml", "--model", "poly:1", "-o", "{out}/id"]),
     (("precompensate",), "--output", ["precompensate", "{ex}/precompensation/part.ngc", "--machine", "{ex}/xfyz_machine/machine.toml", "--dialect", "linuxcnc", "-o", "{out}/x.ngc"]),
     (("export", "grid"), "--output", ["export", "grid", "--machine", "{ex}/xfyz_machine/machine.toml", "--grid", "X=50:750:350,Y=50:450:400,Z=50:350:300", "-o", "{out}/g.csv"]),
+    (("export", "grid"), "--output", ["export", "grid", "--machine", "{ex}/xfyz_machine/machine.toml", "--grid", "X=50:750:350,Y=50:450:400,Z=50:350:300", "--format", "isg", "-o", "{out}/volcomp.csv"]),
     (("history", "export"), "--output", ["history", "export", "M", "--db", "{tmp}/h.db", "-o", "{out}/h.csv"]),
     (("history", "trend"), "--plot", ["history", "trend", "M", "--figure", "positioning.X.E", "--db", "{tmp}/h.db", "--plot", "{out}/t.png"]),
     (("fleet", "report"), "--output", ["fleet", "report", "{tmp}/fleet", "--scheduler", "threads", "-o", "{out}/fleet"]),

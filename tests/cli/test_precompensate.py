@@ -56,3 +56,24 @@ def test_export_grid_writes_the_csv_and_its_sidecar(run_cli, tmp_path, examples)
     status, _, err = run_cli("export", "grid", "--machine", examples / "xfyz_machine" / "machine.toml",
                              "--grid", "X=0:800:100,Y=0:500:100,Z=0:300:100", "-o", out)
     assert status == 2 and err.count("\n") == 1 and "keep the grid inside the error tables" in err
+
+
+def test_hidden_cases_of_issue_28_are_one_line_with_exit_2(run_cli, tmp_path, examples):
+    machine = examples / "xfyz_machine" / "machine.toml"
+    huge = tmp_path / "huge.ngc"
+    huge.write_text("G21 G90\nG0 X400 Y250 Z200\nG1 X1" + "0" * 400 + " F100\nM2\n")
+    plain = tmp_path / "plain.ngc"
+    plain.write_text("G21 G90\nG0 X400 Y250 Z200\nG1 X410 F100\nM2\n")
+    no_end = tmp_path / "no_end.nc"
+    no_end.write_text("%\nO1000\nG21 G90\nG0 X400. Y250. Z200.\nG1 X401. F100.\n%\n")
+    cases = [
+        ((huge, "--dialect", "linuxcnc"), f"{huge}:3: X is not a finite number"),
+        ((plain, "--dialect", "linuxcnc", "--max-segment-mm", "1e-12"),
+         "--max-segment-mm must be at least 0.001 mm (pieces shorter than 1 um are not cut again), not 1e-12 mm"),
+        ((no_end, "--dialect", "fanuc"), f"{no_end}:6: the program has no end (M2, M30)"),
+    ]
+    for argv, message in cases:
+        status, stdout, err = run_cli("precompensate", *argv, "--machine", machine, "-o", tmp_path / "out.ngc")
+        assert status == 2 and stdout == "" and err.count("\n") == 1, err
+        assert err.startswith(f"axiscal: error: {message}"), err
+    assert not (tmp_path / "out.ngc").exists()

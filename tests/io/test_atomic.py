@@ -99,3 +99,35 @@ def test_a_link_is_followed(tmp_path):
     link.symlink_to(real)
     write_text(link, "new\n")
     assert link.is_symlink() and real.read_text() == "new\n"
+
+
+def _dead_pid() -> int:
+    """The id of a process that has ended (a child that exited and was reaped)."""
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    child.wait()
+    return child.pid
+
+
+def test_stale_temporaries_of_a_killed_write_are_removed_and_live_ones_kept(tmp_path):
+    from axiscal.io.atomic import LEGACY_STALE_S, remove_stale_temporaries
+
+    target = tmp_path / "part.ngc"
+    target.write_text("old\n")
+    dead = tmp_path / f".part.ngc.{_dead_pid()}-abcd1234.ngc"
+    live = tmp_path / f".part.ngc.{os.getpid()}-abcd1234.ngc"
+    legacy_old = tmp_path / ".part.ngc.k2j4h5g6.ngc"
+    legacy_new = tmp_path / ".part.ngc.q8w7e6r5.ngc"
+    other = tmp_path / f".other.ngc.{_dead_pid()}-abcd1234.ngc"
+    for path in (dead, live, legacy_old, legacy_new, other):
+        path.write_text("half a program")
+    os.utime(legacy_old, (0, os.stat(legacy_old).st_mtime - LEGACY_STALE_S - 5))
+    assert sorted(remove_stale_temporaries(target)) == sorted([dead, legacy_old])
+    assert not dead.exists() and not legacy_old.exists()
+    assert live.exists() and legacy_new.exists() and other.exists() and target.read_text() == "old\n"
+
+
+def test_the_temporary_is_named_with_the_writing_process(tmp_path):
+    seen = []
+    write_text_to = tmp_path / "t.csv"
+    atomic_write(write_text_to, lambda path: seen.append(path.name) or path.write_text("x\n"))
+    assert seen[0].startswith(f".t.csv.{os.getpid()}-") and seen[0].endswith(".csv")

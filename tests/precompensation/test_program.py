@@ -227,3 +227,57 @@ def test_a_mutated_program_is_rewritten_or_refused_in_one_line(dialect, data):
         assert str(error).startswith("m.nc:") and "\n" not in str(error)
     else:
         assert result.largest_residual_m <= TOLERANCE and result.text.count("\n") >= mutated.count("\n")
+
+
+# numbers no float holds (issue 28, item 8): a word such as X1 followed by 400 zeros, a 200 000-digit number
+HUGE = ("1" + "0" * 400, "9" * 200_000)
+
+
+@pytest.mark.parametrize("number", HUGE, ids=["1e400", "200000 digits"])
+@pytest.mark.parametrize(("template", "message"), [
+    ("G1 X{} F100", "X is not a finite number"),
+    ("G1 Z-{} F100", "Z is not a finite number"),
+    ("G2 X402 Y250 R{} F100", "the arc's centre or radius is not a finite number"),
+    ("G2 X402 Y250 I{} J0 F100", "the arc's centre or radius is not a finite number"),
+    ("G1 X410 F100 M{}", "characters) is not a LinuxCNC M code"),
+    ("G{} X410 F100", "characters) is not a LinuxCNC G code"),
+])
+def test_numbers_too_large_for_a_float_are_refused_naming_the_line(number, template, message):
+    text = f"G21 G90\nG0 X400 Y250 Z200\n{template.format(number)}\nM2\n"
+    with pytest.raises(AxiscalError) as caught:
+        rewrite_program(text, MACHINES["xfyz"], dialect="linuxcnc", source="big.ngc")
+    said = str(caught.value)
+    assert said.startswith("big.ngc:3: ") and message in said and "\n" not in said and len(said) < 200
+
+
+def test_an_arc_of_a_huge_radius_is_one_chord_or_refused_in_one_line_not_a_division_by_zero():
+    # R 1 km: the sagitta of the whole 2 mm arc is far below the tolerance, one chord (the angle of a
+    # chord once rounded to nothing for such a radius)
+    text = "G21 G90\nG0 X400 Y250 Z200\nG2 X402 Y250 R{} F100\nM2\n"
+    result = rewrite_program(text.format("1000000"), MACHINES["xfyz"], dialect="linuxcnc")
+    assert result.lines_out == 5 and result.largest_residual_m <= TOLERANCE
+    # R 1e30 mm: the reader's circle through both ends is a full turn; refused, the work bounded
+    with pytest.raises(AxiscalError, match=r"^r\.ngc:3: the arc \(radius 1e\+30 mm, 360 degrees\) would be cut into 3\.14e\+30 chords"):
+        rewrite_program(text.format("1" + "0" * 30), MACHINES["xfyz"], dialect="linuxcnc", source="r.ngc")
+
+
+def test_a_max_segment_that_would_take_unbounded_work_is_refused_up_front():
+    text = "G21 G90\nG0 X400 Y250 Z200\nG1 X410 F100\nM2\n"
+    with pytest.raises(AxiscalError, match=r"^max_segment_m must be at least 0\.001 mm .*not 1e-09 mm$"):
+        rewrite_program(text, MACHINES["xfyz"], dialect="linuxcnc", max_segment_m=1e-12)
+    # 40 moves of 600 mm checked every 0.5 um: 4.8e7 points, past the bound; refused before any is made
+    moves = "\n".join(f"G1 X{700 if i % 2 == 0 else 100}" for i in range(40))
+    long_moves = f"G21 G90\nG0 X100 Y100 Z200\nG1 X100 F100\n{moves}\nM2\n"
+    with pytest.raises(AxiscalError) as caught:
+        rewrite_program(long_moves, MACHINES["xfyz"], dialect="linuxcnc", max_segment_m=1e-6, source="long.ngc")
+    assert str(caught.value).startswith("long.ngc:4: the path would be checked at 4.8e+07 points (at most 2e+07)")
+    assert "take a longer max segment (at least 0.0024 mm for this program)" in str(caught.value)
+
+
+def test_a_fanuc_program_without_m30_is_refused_even_with_a_closing_percent():
+    body = "%\nO1000\nG21 G90\nG0 X400. Y250. Z200.\nG1 X401. F100.\n"
+    with pytest.raises(AxiscalError, match=r"^o\.nc:6: the program has no end \(M2, M30\)$"):
+        rewrite_program(body + "%\n", MACHINES["xfyz"], dialect="fanuc", source="o.nc")
+    assert rewrite_program(body + "M30\n%\n", MACHINES["xfyz"], dialect="fanuc").moves == 2
+    # LinuxCNC's closing % ends its program
+    assert rewrite_program("%\nG21 G90\nG0 X400 Y250 Z200\nG1 X401 F100\n%\n", MACHINES["xfyz"], dialect="linuxcnc").moves == 2

@@ -1,10 +1,10 @@
-"""``axiscal export``: corrections for firmware and controllers (skew lines, backlash, screw maps, sag tables)."""
+"""``axiscal export``: corrections for firmware and controllers (skew lines, backlash, screw maps, sag tables, grids)."""
 
 from __future__ import annotations
 
 import click
 
-from axiscal.cli.common import FINITE, echo_json
+from axiscal.cli.common import FINITE, echo_json, flags_named
 from axiscal.cli.choices import (
     BACKLASH_CONTROLLERS,
     BACKLASH_METHODS,
@@ -16,6 +16,9 @@ from axiscal.cli.choices import (
 )
 from axiscal.errors import AxiscalError
 from axiscal.units import ARCSEC, MM, UM
+
+#: what ``axiscal export grid`` writes
+GRID_FORMATS = ("csv", "isg", "isg-axis")
 
 __all__ = ["export_group", "export_skew_command", "export_backlash_command", "export_screwmap_command", "export_sag_command", "export_grid_command"]
 
@@ -191,11 +194,32 @@ def _write_table(table, output) -> None:
 @export_group.command("grid")
 @click.option("--machine", required=True, type=click.Path(dir_okay=False), help="The machine model (TOML).")
 @click.option("--grid", required=True, help='Programmed points: "X=0:800:50,Y=0:500:50,Z=0:300:50" (mm; start:end:step or one value; rotary axes one angle in deg).')
-@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="The grid CSV (its sidecar NAME.json beside it).")
-def export_grid_command(machine, grid, output):
-    """The pre-compensation correction on a regular 3D grid (command = programmed + correction), as a plain CSV."""
-    from axiscal.precompensation.grid import export_correction_grid
+@click.option("--format", "file_format", type=click.Choice(GRID_FORMATS), default="csv", show_default=True,
+              help="csv: the pre-compensation correction as a plain CSV; isg: the model's volumetric error for a TwinCAT CNC /"
+              " ISG kernel (ISG CSV parameter file, its NAME.lis list); isg-axis: each linear axis's positioning error"
+              " as a TwinCAT CNC leadscrew list (STEM_X.lis, ...).")
+@click.option("--axis-numbers", default=None, help="isg, isg-axis: logical axis numbers, e.g. X=1,Y=2,Z=3 [X=1,Y=2,Z=3].")
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False),
+              help="The grid CSV (its sidecar NAME.json beside it), or the ISG parameter file (isg) or the stem of the lists (isg-axis).")
+def export_grid_command(machine, grid, file_format, axis_numbers, output):
+    """The model on a regular grid: the pre-compensation correction (CSV) or a TwinCAT CNC / ISG compensation."""
+    if file_format == "csv":
+        if axis_numbers is not None:
+            raise AxiscalError("--axis-numbers applies to --format isg and isg-axis")
+        from axiscal.precompensation.grid import export_correction_grid
 
-    result = export_correction_grid(machine, grid, output)
-    largest = float(abs(result.correction_m).max()) / UM
-    click.echo(f"axiscal: {output}: {len(result.programmed_m)} grid points, largest correction {largest:.3f} um", err=True)
+        result = export_correction_grid(machine, grid, output)
+        largest = float(abs(result.correction_m).max()) / UM
+        click.echo(f"axiscal: {output}: {len(result.programmed_m)} grid points, largest correction {largest:.3f} um", err=True)
+        return
+    from axiscal.precompensation.isg import export_isg, parse_axis_numbers
+
+    with flags_named({"axis_numbers": "--axis-numbers", "grid": "--grid"}):
+        numbers = parse_axis_numbers(axis_numbers)
+        written = export_isg(machine, grid, output, kind="axis" if file_format == "isg-axis" else "volumetric",
+                             axis_numbers=numbers)
+    if written.volumetric is not None:
+        what = f"{written.volumetric.parameter_si.shape[0]} grid nodes, largest error {written.largest_m / UM:.3f} um"
+    else:
+        what = f"{len(written.axes)} axis lists, largest positioning error {written.largest_m / UM:.1f} um"
+    click.echo(f"axiscal: {', '.join(str(f) for f in written.files)}: {what}", err=True)

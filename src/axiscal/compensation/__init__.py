@@ -17,6 +17,14 @@ from axiscal.compensation.heidenhain import (
     HeidenhainTable,
     heidenhain_table,
 )
+from axiscal.compensation.isg import (
+    ISG_ARGUMENTS,
+    IsgTable,
+    grid_values,
+    parse_isg_csv,
+    read_isg_csv,
+    volcomp_list_text,
+)
 from axiscal.compensation.linuxcnc import (
     LINUXCNC_MAX_ENTRIES,
     LinuxcncTable,
@@ -30,6 +38,12 @@ __all__ = [
     "ErrorCurve",
     "error_curve",
     "residuals",
+    "ISG_ARGUMENTS",
+    "IsgTable",
+    "grid_values",
+    "parse_isg_csv",
+    "read_isg_csv",
+    "volcomp_list_text",
     "LINUXCNC_MAX_ENTRIES",
     "LinuxcncTable",
     "linuxcnc_table",
@@ -99,12 +113,13 @@ from axiscal.compensation.screwmaps import (  # noqa: E402
     Mach4ScrewMap,
     TwincatTable,
     mach4_screw_map,
+    parse_twincat_table,
     screwmap_file,
     twincat_table,
 )
 
 __all__ += ["SCREWMAP_CONTROLLERS", "TWINCAT_UNIT", "Mach4ScrewMap", "TwincatTable", "mach4_screw_map", "screwmap_file",
-            "twincat_table"]
+            "twincat_table", "parse_twincat_table"]
 
 # cross-axis (sag) tables (axiscal.compensation.sag)
 from axiscal.compensation.sag import (  # noqa: E402

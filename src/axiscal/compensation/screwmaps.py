@@ -22,6 +22,7 @@ enter.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,7 +35,7 @@ from axiscal.io.arguments import check_array, check_instance, check_integer, che
 from axiscal.units import INCH, MM, UM
 
 __all__ = ["SCREWMAP_CONTROLLERS", "TWINCAT_UNIT", "Mach4ScrewMap", "TwincatTable", "mach4_screw_map", "screwmap_file",
-           "twincat_table"]
+           "twincat_table", "parse_twincat_table"]
 
 #: controllers whose lead-screw table ``axiscal export screwmap`` writes
 SCREWMAP_CONTROLLERS = ("twincat", "mach4")
@@ -196,6 +197,94 @@ def twincat_table(
         bilateral=bilateral,
         resampled=interval != 0 and (nodes.size != positions.size or not np.allclose(nodes, positions, rtol=0, atol=1e-9)),
     )
+
+
+_LIST_ENTRY = re.compile(r"(kopf\.\w+|kw\.ssfk\.\w+|kw\.ssfk\.table\[(\d+)\]\.(setpoint|pos|neg))\s+(\S.*?)\s*")
+
+
+def parse_twincat_table(text: str, *, source: str | None = None) -> TwincatTable:
+    """A TwinCAT CNC leadscrew error compensation list read back from its text, as the control reads it.
+
+    Lines ``key value``; ``#`` starts a comment line, blank lines are skipped. Equidistant points
+    (``kw.ssfk.interval`` > 0) are laid out from ``kw.ssfk.kw_startpos``; otherwise every
+    ``kw.ssfk.table[i].setpoint`` is listed. ``neg`` is read for a bilateral list and is ``pos``
+    otherwise.
+
+    Parameters
+    ----------
+    text : str
+        The list.
+    source : str, optional, keyword-only
+        The file, named in errors.
+
+    Returns
+    -------
+    TwincatTable
+
+    Raises
+    ------
+    AxiscalError
+        Naming the line: a line that is not a ``kopf.*`` or ``kw.ssfk.*`` entry, a value that is not a whole number, a
+        table index at or past ``kw_nr_max``; a missing entry, a list in encoder increments
+        (``kw.ssfk.unit`` 0), or points that do not increase.
+    """
+    check_instance("text", text, str)
+    header: dict[str, str] = {}
+    table: dict[str, dict[int, int]] = {"setpoint": {}, "pos": {}, "neg": {}}
+
+    def fail(message: str, line: int | None = None) -> AxiscalError:
+        return AxiscalError(message, path=source, line=line)
+
+    for number, raw in enumerate(text.splitlines(), start=1):
+        line = raw.strip()
+        if not line or line.startswith("#"):
+            continue
+        found = _LIST_ENTRY.fullmatch(line)
+        if found is None:
+            raise fail(f"cannot read {line[:40]!r}: not a kopf.* or kw.ssfk.* entry", number)
+        key, index, field, value = found.groups()
+        if key.startswith("kopf."):
+            header[key] = value
+            continue
+        try:
+            whole = int(value)
+        except ValueError:
+            raise fail(f"{key} must be a whole number, not {value[:20]!r}", number) from None
+        if index is None:
+            header[key] = str(whole)
+        else:
+            table[field][int(index)] = whole
+    for key in ("kopf.achs_nr", "kopf.log_achs_name", "kw.ssfk.interval", "kw.ssfk.kw_nr_max", "kw.ssfk.unit"):
+        if key not in header:
+            raise fail(f"the list has no {key}")
+    if header["kw.ssfk.unit"] != "1":
+        raise fail("the list is in encoder increments (kw.ssfk.unit 0): only metric lists (0.1 um) are read")
+    count = int(header["kw.ssfk.kw_nr_max"])
+    bilateral = header.get("kw.ssfk.bilateral", "0") == "1"
+    interval = int(header["kw.ssfk.interval"])
+
+    def column(field: str) -> np.ndarray:
+        values = table[field]
+        missing = [i for i in range(count) if i not in values]
+        extra = [i for i in values if i >= count]
+        if extra:
+            raise fail(f"kw.ssfk.table[{extra[0]}].{field} is past kw.ssfk.kw_nr_max ({count})")
+        if missing:
+            raise fail(f"the list has no kw.ssfk.table[{missing[0]}].{field}")
+        return np.array([values[i] for i in range(count)], dtype=np.int64)
+
+    if interval > 0:
+        if "kw.ssfk.kw_startpos" not in header:
+            raise fail("the list has no kw.ssfk.kw_startpos")
+        setpoints = int(header["kw.ssfk.kw_startpos"]) + interval * np.arange(count, dtype=np.int64)
+    else:
+        setpoints = column("setpoint")
+        if np.any(np.diff(setpoints) <= 0):
+            raise fail("the points kw.ssfk.table[i].setpoint do not increase")
+    pos = column("pos")
+    neg = column("neg") if bilateral else pos.copy()
+    return TwincatTable(axis=header["kopf.log_achs_name"], axis_number=int(header["kopf.achs_nr"]), setpoints=setpoints,
+                        pos=pos, neg=neg, interval=max(interval, 0), bilateral=bilateral)
 
 
 @dataclass(frozen=True)

@@ -23,7 +23,7 @@ from axiscal.io.arguments import (
     render_checked,
     unit_words,
 )
-from axiscal.io.atomic import atomic_write, write_text
+from axiscal.io.atomic import atomic_write, remove_stale_temporaries, write_text
 from axiscal.io.folders import atomic_folder, stale_temporaries
 from axiscal.io.jsonio import (
     dumps,
@@ -62,6 +62,7 @@ __all__ = [
     "unit_words",
     "type_name",
     "atomic_write",
+    "remove_stale_temporaries",
     "write_text",
     "atomic_folder",
     "stale_temporaries",

@@ -7,7 +7,9 @@ half-written file and never destroys the file that was there before.
 from __future__ import annotations
 
 import os
+import re
 import tempfile
+import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -15,7 +17,10 @@ from typing import Any
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_path
 
-__all__ = ["atomic_write", "write_text"]
+__all__ = ["atomic_write", "write_text", "remove_stale_temporaries"]
+
+#: a temporary file left by an earlier release (no process id in its name) is stale after this long, s
+LEGACY_STALE_S = 3600.0
 
 
 def atomic_write(path: str | Path, write: Callable[[Path], Any], *, make_parents: bool = True) -> Path:
@@ -63,7 +68,7 @@ def atomic_write(path: str | Path, write: Callable[[Path], Any], *, make_parents
             return path
         if make_parents:
             path.parent.mkdir(parents=True, exist_ok=True)
-        fd, name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix or ".tmp", dir=path.parent)
+        fd, name = tempfile.mkstemp(prefix=f".{path.name}.{os.getpid()}-", suffix=path.suffix or ".tmp", dir=path.parent)
         os.close(fd)
         tmp = Path(name)
         write(tmp)
@@ -107,6 +112,76 @@ def write_text(path: str | Path, text: str) -> Path:
     """
     check_instance("text", text, str, what="a str")
     return atomic_write(path, lambda target: target.write_bytes(text.encode("utf-8")))
+
+
+def remove_stale_temporaries(path: str | Path) -> list[Path]:
+    """Remove the temporary files that writes of ``path`` killed before their end left beside it.
+
+    :func:`atomic_write` names its temporary ``.<name>.<process id>-<random><suffix>`` in the
+    target's folder; a run killed (SIGKILL, power loss) before the rename leaves it there. Such a file
+    is removed when its process is no longer running; a temporary of a process still running (a
+    write of the same file under way) is left alone. A temporary of an earlier release (no process
+    id in its name) is removed once it is older than :data:`LEGACY_STALE_S`.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file whose stale temporaries are removed (it need not exist).
+
+    Returns
+    -------
+    list of Path
+        The files removed.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``path`` that is not a file name.
+    """
+    path = check_path("path", path)
+    if path.is_symlink():
+        path = path.resolve()
+    folder = path.parent
+    suffix = re.escape(path.suffix or ".tmp")
+    ours = re.compile(rf"\.{re.escape(path.name)}\.(?:(\d+)-)?[a-z0-9_]{{8}}{suffix}")
+    removed: list[Path] = []
+    try:
+        names = [entry for entry in os.scandir(folder) if entry.name.startswith(f".{path.name}.")]
+    except OSError:
+        return removed
+    now = time.time()
+    for entry in names:
+        found = ours.fullmatch(entry.name)
+        if found is None:
+            continue
+        try:
+            if not entry.is_file(follow_symlinks=False):
+                continue
+            if found.group(1) is not None:
+                if _running(int(found.group(1))):
+                    continue
+            elif now - entry.stat(follow_symlinks=False).st_mtime < LEGACY_STALE_S:
+                continue
+            os.unlink(entry.path)
+            removed.append(Path(entry.path))
+        except OSError:
+            continue
+    return removed
+
+
+def _running(pid: int) -> bool:
+    """Whether a process ``pid`` is running here (another user's process counts)."""
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (OverflowError, ValueError):  # a number no process has
+        return False
+    except OSError:  # not ours to signal: running
+        return True
+    return True
 
 
 def _umask() -> int:

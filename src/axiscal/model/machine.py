@@ -595,6 +595,8 @@ class Machine:
         if not np.all(finite):
             return {}, int(np.argmin(finite)), "target is not a finite point"
         sign = {link.letter: 1.0 for link in self._tool_links} | {link.letter: -1.0 for link in self._workpiece_links}
+        if self._invert_compiled(len(target)):
+            return self._solve_compiled(target, sign, tolerance_m, max_iterations)
         zero = {letter: np.zeros(len(target)) for letter in self.letters}
         offset = self.nominal_point(zero)
         command = {k: sign[k] * (target[:, AXIS_INDEX[k]] - offset[:, AXIS_INDEX[k]]) for k in self.letters}
@@ -614,6 +616,21 @@ class Machine:
             command = {k: command[k] - sign[k] * miss[:, AXIS_INDEX[k]] for k in self.letters}
         worst = int(np.argmax(axis_miss))
         return command, worst, f"inverse kinematics did not converge (miss {axis_miss[worst] / LENGTH_UNITS['nm']:.3g} nm)"
+
+    def _invert_compiled(self, n: int) -> bool:
+        """Whether the inverse of ``n`` points runs compiled: as many points as the forward chain
+        runs compiled from, every table interpolated linearly (a linear chain)."""
+        return _compiled({"n": range(n)}) and all(self.table(k).interpolation == "linear" for k in self.letters)
+
+    def _solve_compiled(self, target: np.ndarray, sign: dict[str, float], tolerance_m: float, max_iterations: int):
+        """:meth:`_solve` of checked finite targets, compiled (:func:`axiscal.model.inverse_kernel.solve`)."""
+        from axiscal.model import inverse_kernel
+
+        if self._packed is None:
+            object.__setattr__(self, "_packed", _chain_kernel().pack_chain(self._tool_links, self._workpiece_links))
+        zero = self.nominal_point({letter: np.zeros(1) for letter in self.letters})[0]
+        return inverse_kernel.solve(self._packed, target, sign, self.tool_m, self.workpiece_m, zero, tolerance_m,
+                                    max_iterations, order=self.letters)
 
 
 _MACHINE_SCHEMA = {

@@ -6,9 +6,10 @@ machine model's inverse): command ``q + correction`` and the tool lands on the n
 The file is a plain CSV, one row per grid point, the first axis named in the grid varying slowest
 and the last fastest (C order), with the grid's layout in its JSON sidecar.
 
-No controller's 3D volumetric table format is public: Siemens VCS and HEIDENHAIN KinematicsComp
-take their tables from the maker's own tools, and the printer firmware (Marlin, Klipper,
-RepRapFirmware) take 2D bed meshes of Z only. So only the plain grid is written.
+Siemens VCS and HEIDENHAIN KinematicsComp take their volumetric tables from the maker's own tools,
+and the printer firmware (Marlin, Klipper, RepRapFirmware) take 2D bed meshes of Z only; the one
+public volumetric format, the ISG kernel's (TwinCAT CNC), is written by
+:mod:`axiscal.precompensation.isg`.
 """
 
 from __future__ import annotations

@@ -30,7 +30,7 @@ import numpy as np
 from axiscal.conventions import AXIS_INDEX
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_number, check_path
-from axiscal.io.atomic import write_text
+from axiscal.io.atomic import remove_stale_temporaries, write_text
 from axiscal.io.gcode import PLANE_AXES, Program, dialect as find_dialect, read_program, split_lines
 from axiscal.io.tabular import read_text
 from axiscal.model.machine import Machine
@@ -43,6 +43,11 @@ __all__ = ["Precompensation", "precompensate_program", "rewrite_program", "preco
 
 _MM = 1e-3
 _MAX_ROUNDS = 40
+#: shortest ``max_segment_m``: pieces shorter than 1 um are never cut again (positions are written to 0.1 um)
+MIN_SEGMENT_M = 1e-6
+#: most points the path may be sampled at in one pass (pieces, chords and the samples along them):
+#: about 2 GB of working arrays; a program and ``max_segment_m`` asking for more are refused up front
+MAX_SAMPLES = 20_000_000
 
 
 @dataclass(frozen=True)
@@ -134,6 +139,9 @@ def rewrite_program(
     max_segment_m = check_number("max_segment_m", max_segment_m, positive=True)
     if tolerance_m < 0.2 * UM:
         raise AxiscalError(f"tolerance_m must be at least 0.2 um (positions are written to 0.1 um), not {tolerance_m / UM:g} um")
+    if max_segment_m < MIN_SEGMENT_M:
+        raise AxiscalError(f"max_segment_m must be at least {MIN_SEGMENT_M / _MM:g} mm (pieces shorter than 1 um are"
+                           f" not cut again), not {max_segment_m / _MM:g} mm")
     model = machine_with_tool(machine, tool_m)
     rotary = list(model.rotary)
     linear = [k for k in model.letters if k not in model.rotary]
@@ -141,7 +149,7 @@ def rewrite_program(
         raise AxiscalError(f"a machine with rotary axes is pre-compensated with three linear axes, not chain '{model.chain}'")
     program = read_program(text, dialect=spec, source=source, work_offset_m=work_offset_m)
     moves = _Moves(program, model, linear, rotary, source)
-    pieces = _build_pieces(moves, linear, rotary, tolerance_m, max_segment_m)
+    pieces = _build_pieces(moves, linear, rotary, tolerance_m, max_segment_m, source)
     reach = [AXIS_INDEX[k] for k in linear] if not rotary else [0, 1, 2]
     _solve(model, pieces, np.ones(pieces.p1.shape[0], dtype=bool), program, moves, linear, rotary, source)
     verbatim, residual = _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, max_segment_m, source)
@@ -209,12 +217,16 @@ class _Moves:
         return len(self.index)
 
 
-def _build_pieces(moves: _Moves, linear, rotary, tolerance_m, max_segment_m) -> _Pieces:
+def _build_pieces(moves: _Moves, linear, rotary, tolerance_m, max_segment_m, source) -> _Pieces:
     """One piece per straight move, chords for each arc; rapid moves and the first move: their end only."""
     motions = moves.motions
     m = len(motions)
     end = _columns(motions, linear)
     rot = _columns(motions, rotary)
+    _check_finite(moves, end, linear, source)
+    _check_finite(moves, rot, rotary, source)
+    if any("E" in mo.end_m for mo in motions):
+        _check_finite(moves, np.array([[mo.end_m.get("E", 0.0), mo.start_m.get("E", 0.0)] for mo in motions]), "EE", source)
     kinds = [mo.kind for mo in motions]
     path = np.array([k != "rapid" for k in kinds], dtype=bool)
     if m:
@@ -223,6 +235,7 @@ def _build_pieces(moves: _Moves, linear, rotary, tolerance_m, max_segment_m) -> 
     counts = np.ones(m, dtype=np.int64)
     chords: dict[int, np.ndarray] = {}
     chord_sagitta = tolerance_m / 4.0
+    pieces_total = m
     for number, kind in enumerate(kinds):
         if kind != "arc" or not path[number]:
             continue
@@ -231,8 +244,22 @@ def _build_pieces(moves: _Moves, linear, rotary, tolerance_m, max_segment_m) -> 
         ca, cb = motion.centre_m[a], motion.centre_m[b]
         radius = math.hypot(motion.start_m[a] - ca, motion.start_m[b] - cb)
         sweep = motion.sweep_rad
-        step = min(2.0 * math.acos(max(1.0 - chord_sagitta / radius, -1.0)), max_segment_m / radius)
-        count = max(1, math.ceil(abs(sweep) / step - 1e-9))
+        if not (math.isfinite(radius) and math.isfinite(sweep) and radius > 0.0):
+            raise _fail("the arc's centre or radius is not a finite number (a number too large for the control?)",
+                        source, moves.line[number])
+        # the angle of a chord of sagitta s: 1 - cos(step / 2) = s / r, written so that it does not
+        # round to nothing for a radius much larger than s
+        step = min(4.0 * math.asin(math.sqrt(min(chord_sagitta / (2.0 * radius), 1.0))), max_segment_m / radius)
+        chords_wanted = abs(sweep) / step if step > 0.0 else math.inf
+        if chords_wanted > MAX_SAMPLES:
+            raise _fail(f"the arc (radius {radius / _MM:.6g} mm, {math.degrees(abs(sweep)):.6g} degrees) would be cut"
+                        f" into {chords_wanted:.3g} chords (at most {MAX_SAMPLES:.3g}): take a longer max segment"
+                        " or a larger tolerance", source, moves.line[number])
+        count = max(1, math.ceil(chords_wanted - 1e-9))
+        pieces_total += count - 1
+        if pieces_total > MAX_SAMPLES:
+            raise _fail(f"the program's arcs would be cut into more than {MAX_SAMPLES:.3g} chords:"
+                        " take a longer max segment or a larger tolerance", source, moves.line[number])
         f = np.arange(1, count + 1) / count
         points = np.repeat(start[number][None, :], count, axis=0)
         theta = math.atan2(motion.start_m[b] - cb, motion.start_m[a] - ca) + sweep * f
@@ -259,6 +286,15 @@ def _build_pieces(moves: _Moves, linear, rotary, tolerance_m, max_segment_m) -> 
     p0 = np.where((within == 0)[:, None], start[owner], np.vstack([p1[:1], p1[:-1]]))
     t0 = np.where(within == 0, 0.0, np.r_[0.0, t1[:-1]])
     return _Pieces(owner, p0, p1, rot[owner], t0, t1, limit, path[owner])
+
+
+def _check_finite(moves: _Moves, end: np.ndarray, letters, source) -> None:
+    """Refuse, naming the line, a move whose end (one row of ``end`` per move) is not a finite number."""
+    finite = np.isfinite(end).all(axis=1)
+    if not finite.all():
+        number = int(np.argmin(finite))
+        letter = letters[int(np.argmin(np.isfinite(end[number])))]
+        raise _fail(f"{letter} is not a finite number here (a number too large for the control?)", source, moves.line[number])
 
 
 def _columns(motions, letters) -> np.ndarray:
@@ -311,7 +347,10 @@ def _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, m
         if check.any():
             idx = np.flatnonzero(check)
             length = np.linalg.norm(pieces.p1[idx] - pieces.p0[idx], axis=1)
-            counts = np.maximum(2, np.ceil(length / (max_segment_m / 2.0))).astype(np.int64)
+            wanted = np.maximum(2.0, np.ceil(length / (max_segment_m / 2.0)))
+            if wanted.sum() > MAX_SAMPLES:
+                raise _too_many(wanted.sum(), length, max_segment_m, source, moves.line[pieces.move[idx[np.argmax(length)]]])
+            counts = wanted.astype(np.int64)
             owner = np.repeat(idx, counts)
             t = (np.arange(owner.size) - np.repeat(np.cumsum(counts) - counts, counts) + 1) / counts[np.repeat(np.arange(idx.size), counts)]
             c_t = start[owner] + t[:, None] * (out[owner] - start[owner])
@@ -340,7 +379,11 @@ def _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, m
         if cut.any():
             # the departure from the chord grows with the square of the piece's length
             need = np.ceil(1.25 * np.sqrt(np.maximum(excess, 1.0)))
-            counts = np.where(cut, np.maximum(need, 2), 1).astype(np.int64)
+            wanted = np.where(cut, np.maximum(need, 2), 1)
+            if wanted.sum() > MAX_SAMPLES:
+                length = np.linalg.norm(pieces.p1 - pieces.p0, axis=1)
+                raise _too_many(wanted.sum(), length, max_segment_m, source, moves.line[pieces.move[np.argmax(wanted)]])
+            counts = wanted.astype(np.int64)
             inner = pieces.split(counts)
             _solve(model, pieces, inner, program, moves, linear, rotary, source)
             offset, per_unit = _units(moves, pieces)
@@ -352,6 +395,15 @@ def _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, m
         changed = changed_piece | np.any(new_out != old_out, axis=1)
         dirty = changed | np.concatenate([[False], changed[:-1]])
     raise _fail("the path could not be held within the tolerance", source, moves.line[0])
+
+
+def _too_many(count: float, length: np.ndarray, max_segment_m: float, source, line: int) -> AxiscalError:
+    """The one-line refusal of a path that would take more than :data:`MAX_SAMPLES` points, with what would do."""
+    room = MAX_SAMPLES - 3.0 * length.size
+    advice = (f"take a longer max segment (at least {2.0 * float(length.sum()) / room / _MM:.3g} mm for this program)"
+              if room > 0 else "cut the program into parts")
+    return _fail(f"the path would be checked at {count:.3g} points (at most {MAX_SAMPLES:.3g}) with segments up to"
+                 f" {max_segment_m / _MM:g} mm: {advice}", source, line)
 
 
 def _deviation(model, command, programmed, rot, linear, rotary, reach) -> np.ndarray:
@@ -467,6 +519,9 @@ def precompensate_file(
 ) -> Precompensation:
     """Pre-compensate the program in ``program_path`` and write it atomically to ``output_path``.
 
+    The output is the old file or the new one, whole, whatever stops the run; the temporary files
+    that earlier runs of the same output left when they were killed are removed.
+
     Parameters
     ----------
     program_path, output_path : str or Path
@@ -494,5 +549,6 @@ def precompensate_file(
     text = read_text(program_path)
     result = rewrite_program(text, machine, dialect=dialect, max_segment_m=max_segment_m, tolerance_m=tolerance_m,
                              tool_m=tool_m, work_offset_m=work_offset_m, source=str(program_path))
+    remove_stale_temporaries(output_path)  # what runs of this output killed before their end left beside it
     write_text(output_path, result.text)
     return result

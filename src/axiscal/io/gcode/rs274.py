@@ -67,6 +67,8 @@ def _code(letter: str, raw: str) -> str:
     code = _CODES.get((letter, raw))
     if code is None:
         value = float(raw)
+        if not math.isfinite(value):  # a number too large for a float: named short, refused as an unknown code
+            return f"{letter}{raw[:8]}... ({len(raw)} characters)"
         code = f"{letter}{int(value)}" if value == int(value) else f"{letter}{value:g}"
         if len(_CODES) < 4096:
             _CODES[(letter, raw)] = code
@@ -111,8 +113,8 @@ def run_block(text: str, state: ControlState) -> None:
     if stripped == "%":
         if not spec.percent:
             raise state.fail(f"'%' is not a {spec.controller} block")
-        if state.motions or state.position:
-            state.ended = True
+        if (state.motions or state.position) and spec.name == "linuxcnc":
+            state.ended = True  # a closing % ends a LinuxCNC program; on a FANUC tape it only marks the tape's end
         state.record(text, None, (), "", "", None)
         return
     if stripped.startswith("/"):
