@@ -340,9 +340,9 @@ def test_run_numbers_are_ascii_whole_numbers(tmp_path, examples, cell):
 
 
 @pytest.mark.parametrize("edit, words", [
-    (('kind = "positioning"', "kind = []"), "unknown kind []"),
-    (("[machine]", "[uncertainty]\nserial = 3\n[machine]"), "unknown budget section [serial]"),
-    (("[campaign]", "kind = 1\n[campaign]"), "unknown table or key 'kind'"),
+    (('kind = "positioning"', "kind = []"), "unknown kind '[]'"),
+    (("[machine]", "[uncertainty]\nserial = 3\n[machine]"), "unknown key 'serial' in [uncertainty]"),
+    (("[campaign]", "kind = 1\n[campaign]"), "unknown key 'kind' (known: campaign"),
 ])
 def test_campaign_refusals_found_by_mutation(tmp_path, examples, edit, words):
     folder = tmp_path / "campaign"

@@ -10,9 +10,11 @@ from axiscal.uncertainty.budget import (
     Budget,
     air_sensitivities,
     budget_from_dict,
+    budget_from_tables,
     length_components,
     length_model,
     read_budget,
+    read_checked_budget,
 )
 from axiscal.uncertainty.decision import DECISION_RULES, Decision, decide
 from axiscal.uncertainty.figures import (
@@ -63,7 +65,9 @@ __all__ = [
     "HE_NE_WAVELENGTH_NM",
     "Budget",
     "budget_from_dict",
+    "budget_from_tables",
     "read_budget",
+    "read_checked_budget",
     "air_sensitivities",
     "length_model",
     "length_components",
