@@ -322,17 +322,17 @@ def _test(entry, index, folder, campaign_tolerances, model, counters, fail) -> T
 def _uncertainty(value: Any, folder: Path, path: Path, locate, fail, fail_top) -> tuple[Any, str]:
     """The budget and the decision rule: ``uncertainty = "budget.toml"`` or an ``[uncertainty]`` table
     holding the budget's tables and, optionally, ``decision_rule`` and ``budget = "file.toml"``."""
-    from axiscal.uncertainty.budget import budget_from_tables, read_checked_budget
+    from axiscal.uncertainty.budget import budget_from_tables, read_budget
 
     if value is None:
         return None, "simple"
     if isinstance(value, str):
-        return read_checked_budget(_inside(folder, value, fail_top)), "simple"
+        return read_budget(_inside(folder, value, fail_top)), "simple"
     rule = value.decision_rule
     if value.budget is not None:
         if set(value.given()) - {"budget", "decision_rule"}:
             raise fail("give the budget as budget = \"file.toml\" or as tables here, not both", "budget")
-        return read_checked_budget(_inside(folder, value.budget, lambda m: fail(m, "budget"))), rule
+        return read_budget(_inside(folder, value.budget, lambda m: fail(m, "budget"))), rule
     return budget_from_tables(value, source=str(path), locate=locate), rule
 
 

@@ -14,7 +14,6 @@ from axiscal.uncertainty.budget import (
     length_components,
     length_model,
     read_budget,
-    read_checked_budget,
 )
 from axiscal.uncertainty.decision import DECISION_RULES, Decision, decide
 from axiscal.uncertainty.figures import (
@@ -67,7 +66,6 @@ __all__ = [
     "budget_from_dict",
     "budget_from_tables",
     "read_budget",
-    "read_checked_budget",
     "air_sensitivities",
     "length_model",
     "length_components",

@@ -46,7 +46,6 @@ __all__ = [
     "budget_from_dict",
     "budget_from_tables",
     "read_budget",
-    "read_checked_budget",
     "air_sensitivities",
     "length_model",
     "length_components",
@@ -248,6 +247,8 @@ def budget_from_tables(
     AxiscalError
         An unknown refractive-index method; air conditions outside the range of the refractive-index equation.
     """
+    check_instance("tables", tables, BudgetTables, what="validated budget tables (axiscal.io.formats.BudgetTables)")
+
     def line(section: str, key: str | None = None) -> int | None:
         return None if locate is None else locate(section, key)
 
@@ -290,27 +291,7 @@ def read_budget(path: str | Path) -> Budget:
     AxiscalError
         A missing or malformed file, or a bad key, naming the file and line.
     """
-    return read_checked_budget(check_path("path", path))
-
-
-def read_checked_budget(path: Path) -> Budget:
-    """Read a budget file whose path a public entry has already checked (campaign.toml's budget).
-
-    Parameters
-    ----------
-    path : Path
-        The budget file.
-
-    Returns
-    -------
-    Budget
-
-    Raises
-    ------
-    AxiscalError
-        As :func:`read_budget`.
-    """
-    tables, lines = read_format(BudgetFile, path)
+    tables, lines = read_format(BudgetFile, check_path("path", path))
     return budget_from_tables(tables, source=str(path),
                               locate=lambda section, key=None: lines.of(section, key=key) or lines.of("", key=section))
 

@@ -293,6 +293,8 @@ def _message(model: type[BaseModel], error: dict[str, Any]) -> str:
         parent = key_path(loc[:-1])
         inside = f" in [{parent}]" if parent else ""
         return f"unknown key '{name}'{inside}{hint} (known: {', '.join(valid)})"
+    if kind == "invalid_key":
+        return f"unknown key {_show(error['input'])}: keys are texts"
     if kind == "missing":
         parent = key_path(loc[:-1])
         return f"[{parent}] needs '{loc[-1]}'" if parent else f"needs [{loc[-1]}]" if parent_model is not None and _is_table(
@@ -326,6 +328,8 @@ def _field_words(model: type[BaseModel] | None, loc: tuple[Any, ...]) -> str | N
     if field is None:
         return None
     text = repr(field.annotation) + repr(field.metadata) + repr(field.json_schema_extra)
+    if "Discriminator" in text and field.description:  # a file name or a table: say both
+        return field.description
     if "'format': 'path'" in text:
         return "a file name in quotes"
     if "'format': 'date'" in text:
@@ -386,8 +390,8 @@ def read_format(model: type[M], path: str | Path) -> tuple[M, TomlLines]:
     ----------
     model : type of FormatModel
         The format of the file.
-    path : str or Path
-        The file (checked by the caller's public entry).
+    path : Path
+        The file (its path checked once, by the caller's public entry).
 
     Returns
     -------
@@ -401,9 +405,9 @@ def read_format(model: type[M], path: str | Path) -> tuple[M, TomlLines]:
         A missing, unreadable or malformed file, an unknown key, a value of the wrong kind,
         naming the file and the line.
     """
-    from axiscal.io.tabular import parse_toml, read_text
+    from axiscal.io.tabular import parse_toml, read_checked_text
 
-    text = read_text(path)
+    text = read_checked_text(Path(path))
     data = parse_toml(text, path=path)
     lines = TomlLines(text)
     return validate_data(model, data, path=path, lines=lines), lines

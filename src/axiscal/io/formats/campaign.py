@@ -286,5 +286,5 @@ class CampaignFile(FormatModel):
     uncertainty: Annotated[
         Union[Annotated[FileName, Tag("=file")], Annotated[UncertaintyTable, Tag("=table")]],
         Discriminator(_file_or_table),
-    ] | None = Field(None, description="a budget file name, or an [uncertainty] table")
+    ] | None = Field(None, description="a budget file name or an [uncertainty] table")
     tests: Annotated[list[TestEntry], Field(min_length=1)] = Field(description="the tests, [[tests]]")
