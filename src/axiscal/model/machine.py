@@ -18,8 +18,10 @@ import numpy as np
 from axiscal.conventions import ROTARY_LETTERS, SQUARENESS_TERMS, location_names
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_choice, check_count, check_instance, check_path
+from axiscal.io.formats.base import read_format, validate_data
+from axiscal.io.formats.machine import MAX_MACHINE_SIZE_MM, MachineFile
+from axiscal.io.formats.machine import SQUARENESS_PLACEMENTS as _FORMAT_PLACEMENTS
 from axiscal.io.schema import TomlLines, finite_number
-from axiscal.io.tabular import read_text, read_toml
 from axiscal.model.kinematics import (
     AXIS_INDEX,
     ChainLink,
@@ -66,7 +68,7 @@ __all__ = [
 #: squareness term -> (axis whose guideway it turns, reference axis, index of the rotation vector component)
 _SQUARENESS_PLACE = {"EC0Y": ("Y", "X", 2), "EB0Z": ("Z", "X", 1), "EA0Z": ("Z", "Y", 0)}
 #: where a squareness term sits in the chain; the first is the default (docs/conventions.md)
-SQUARENESS_PLACEMENTS = ("relative", "guideway")
+SQUARENESS_PLACEMENTS = _FORMAT_PLACEMENTS
 
 
 @dataclass(frozen=True)
@@ -616,77 +618,26 @@ class Machine:
         return command, worst, f"inverse kinematics did not converge (miss {axis_miss[worst] / LENGTH_UNITS['nm']:.3g} nm)"
 
 
-_MACHINE_SCHEMA = {
-    "name": "text",
-    "chain": "text",
-    "tool_mm": "vector",
-    "workpiece_mm": "vector",
-    "axes": "table",
-    "squareness": "table",
-    "squareness_placement": "text",
-    "interpolation": "text",
-    "hold_ends": "bool",
-    "location": "table",
-}
-#: schema of each ``[axes.<letter>]`` section
-_AXIS_SCHEMA = {
-    "errors": "text", "origin_mm": "vector", "interpolation": "text", "hold_ends": "bool", "periodic": "bool", "sensors": "table"
-}
-_KIND_TEXT = {
-    "text": "a string in quotes",
-    "bool": "true or false",
-    "number": "a finite number",
-    "vector": "a list of 3 finite numbers in mm, e.g. [0.0, -40.0, 0.0]",
-    "table": "a table",
-}
 #: factor to SI and display unit of each axis' positions in files and on the command line
 AXIS_UNITS = {letter: (MM, "mm") for letter in AXIS_INDEX} | {letter: (ANGLE_UNITS["deg"], "deg") for letter in ROTARY_LETTERS}
 #: most points a grid may name (about 1 GB of positions and errors)
 MAX_GRID_POINTS = 20_000_000
-#: largest length accepted in a machine file (tool, workpiece, origins), mm
-MAX_MACHINE_SIZE_MM = 1.0e5
-
-
-def _check_kind(value: object, kind: str) -> bool:
-    if kind == "text":
-        return isinstance(value, str)
-    if kind == "bool":
-        return isinstance(value, bool)
-    if kind == "number":
-        return finite_number(value)
-    if kind == "vector":
-        return (
-            isinstance(value, list)
-            and len(value) == 3
-            and all(finite_number(v) and abs(v) <= MAX_MACHINE_SIZE_MM for v in value)
-        )
-    return isinstance(value, Mapping)
 
 
 class _Where:
-    """Locates keys of the machine file for error messages."""
+    """Locates keys of the machine file for the errors only its meaning can find."""
 
-    def __init__(self, source: str, text: str | None):
+    def __init__(self, source: str, lines: TomlLines | None):
         self.source = source
-        self.lines = TomlLines(text) if text is not None else None
+        self.lines = lines
 
     def error(self, message: str, section: str = "", key: str | None = None) -> AxiscalError:
         line = self.lines.of(section, key=key) if self.lines is not None else None
         return AxiscalError(message, path=self.source, line=line)
 
-    def check(self, data: Mapping, schema: Mapping[str, str], section: str = "") -> None:
-        label = f"[{section}] " if section else ""
-        for key, value in data.items():
-            if key not in schema:
-                raise self.error(f"{label}unknown key {key}; known keys: {', '.join(sorted(schema))}", section, key)
-            if not _check_kind(value, schema[key]):
-                raise self.error(f"{label}{key} must be {_KIND_TEXT[schema[key]]}, not {value!r}", section, key)
 
-
-def _vector_mm(value: object, what: str) -> tuple[float, float, float]:
-    if not _check_kind(value, "vector"):
-        raise AxiscalError(f"{what} must be {_KIND_TEXT['vector']}")
-    return tuple(float(v) * MM for v in value)  # type: ignore[return-value, union-attr]
+def _vector_m(value: list[float] | None) -> tuple[float, float, float]:
+    return (0.0, 0.0, 0.0) if value is None else tuple(float(v) * MM for v in value)  # type: ignore[return-value]
 
 
 def _confined(base_dir: Path, name: str, tables_dir: Path | None) -> Path | None:
@@ -710,8 +661,8 @@ def machine_from_dict(
 ) -> Machine:
     """Build a :class:`Machine` from the parsed TOML description (docs/formats.md).
 
-    Every key is checked against the declared schema of the file (its kind: text, true/false,
-    a list of 3 numbers, a table); the error names the key and, given ``text``, its line.
+    Every key is validated against the declared format (:class:`axiscal.io.formats.MachineFile`);
+    the error names the key and, given ``text``, its line.
 
     Parameters
     ----------
@@ -749,23 +700,24 @@ def machine_from_dict(
     if text is not None:
         check_instance("text", text, str)
     if tables_dir is not None:
-        check_path("tables_dir", tables_dir)
-    where = _Where(source, text)
+        tables_dir = check_path("tables_dir", tables_dir)
+    lines = TomlLines(text) if text is not None else None
     if not isinstance(data, Mapping):
-        raise where.error("a machine description must be a table of keys")
-    where.check(data, _MACHINE_SCHEMA)
-    if "chain" not in data:
-        raise where.error("missing 'chain' (e.g. chain = \"FXZ\")")
-    chain = data["chain"]
+        raise AxiscalError("a machine description must be a table of keys", path=source)
+    checked = validate_data(MachineFile, dict(data), path=source, lines=lines)
+    return _machine(checked, base_dir=base_dir, where=_Where(source, lines), tables_dir=tables_dir)
+
+
+def _machine(checked: MachineFile, *, base_dir: Path, where: _Where, tables_dir: Path | None) -> Machine:
+    """The machine of a validated description: what only the file's meaning can refuse is refused here."""
+    chain = checked.chain
     try:
         workpiece_side, tool_side = parse_chain(chain)
     except AxiscalError as exc:
         raise where.error(exc.message, "", "chain") from None
-    interpolation = data.get("interpolation", "linear")
-    if interpolation not in INTERPOLATIONS:
-        raise where.error(f"unknown interpolation '{interpolation}'; use one of {', '.join(INTERPOLATIONS)}", "", "interpolation")
-    hold_ends = data.get("hold_ends", False)
-    axes_data = data.get("axes", {})
+    interpolation = checked.interpolation or INTERPOLATIONS[0]
+    hold_ends = bool(checked.hold_ends)
+    axes_data = checked.axes or {}
     for letter in workpiece_side + tool_side:
         if letter not in axes_data:
             raise where.error(f"axis {letter} is in chain '{chain}' but has no [axes.{letter}] section", "", "chain")
@@ -774,43 +726,30 @@ def machine_from_dict(
         label = f"axes.{letter}"
         if letter not in workpiece_side + tool_side:
             raise where.error(f"[{label}] is not an axis of chain '{chain}'", label)
-        if not isinstance(section, Mapping):
-            raise where.error(f"[{label}] must be a table", "axes", letter)
-        where.check(section, _AXIS_SCHEMA, label)
-        if "errors" not in section:
-            raise where.error(f"[{label}] has no 'errors' table file", label)
-        axis_interpolation = section.get("interpolation", interpolation)
-        if axis_interpolation not in INTERPOLATIONS:
-            raise where.error(
-                f"[{label}] unknown interpolation '{axis_interpolation}'; use one of {', '.join(INTERPOLATIONS)}", label, "interpolation"
-            )
-        table_path = _confined(base_dir, section["errors"], None if tables_dir is None else Path(tables_dir))
+        table_path = _confined(base_dir, section.errors, tables_dir)
         if table_path is None:
             raise where.error(
                 f"[{label}] errors: the error table must be inside the machine file's folder", label, "errors"
             )
         if not table_path.is_file():
-            raise where.error(f"[{label}] errors: no file '{section['errors']}' in the machine file's folder", label, "errors")
-        if "periodic" in section and letter not in ROTARY_LETTERS:
+            raise where.error(f"[{label}] errors: no file '{section.errors}' in the machine file's folder", label, "errors")
+        if section.periodic is not None and letter not in ROTARY_LETTERS:
             raise where.error(f"[{label}] periodic: only a rotary axis (A, B, C) is periodic", label, "periodic")
         table = read_error_table(
             table_path,
             letter,
-            interpolation=axis_interpolation,
-            hold_ends=section.get("hold_ends", hold_ends),
-            periodic=section.get("periodic"),
+            interpolation=section.interpolation or interpolation,
+            hold_ends=hold_ends if section.hold_ends is None else section.hold_ends,
+            periodic=section.periodic,
         )
-        origin = _vector_mm(section.get("origin_mm", [0.0, 0.0, 0.0]), f"[{label}] origin_mm")
-        axes[letter] = Axis(letter, table, origin)
+        axes[letter] = Axis(letter, table, _vector_m(section.origin_mm))
     squareness: dict[str, float] = {}
-    for key, value in data.get("squareness", {}).items():
+    for key, value in (checked.squareness or {}).items():
         stem, unit = split_unit(key) if "_" in key else (key, "")
         if stem not in SQUARENESS_TERMS:
             raise where.error(
                 f"[squareness] unknown term '{key}'; use EC0Y, EB0Z, EA0Z with a unit, e.g. EB0Z_arcsec", "squareness", key
             )
-        if not finite_number(value):
-            raise where.error(f"[squareness] {key} must be {_KIND_TEXT['number']}, not {value!r}", "squareness", key)
         try:
             squareness[stem] = float(value) * angle_factor(unit, what=key)
         except AxiscalError as exc:
@@ -821,7 +760,7 @@ def machine_from_dict(
         if letter not in workpiece_side + tool_side or reference not in workpiece_side + tool_side:
             raise where.error(f"[squareness] {key}: chain '{chain}' has no axes {reference} and {letter} to be square", "squareness", key)
     location: dict[str, float] = {}
-    for key, value in data.get("location", {}).items():
+    for key, value in (checked.location or {}).items():
         stem, unit = split_unit(key) if "_" in key else (key, "")
         letter = stem[-1:]
         if letter not in ROTARY_LETTERS or stem not in location_names(letter):
@@ -833,8 +772,6 @@ def machine_from_dict(
             )
         if letter not in workpiece_side + tool_side:
             raise where.error(f"[location] {key}: chain '{chain}' has no axis {letter}", "location", key)
-        if not finite_number(value):
-            raise where.error(f"[location] {key} must be {_KIND_TEXT['number']}, not {value!r}", "location", key)
         try:
             if stem[1] in AXIS_INDEX:
                 factor, limit = length_factor(unit, what=key), MAX_TRANSLATION_ERROR_M
@@ -845,24 +782,19 @@ def machine_from_dict(
         if abs(value * factor) > limit:
             raise where.error(f"[location] {key} = {value} has no physical meaning (limits: 10 mm, 0.01 rad)", "location", key)
         location[stem] = float(value) * factor
-    placement = data.get("squareness_placement", SQUARENESS_PLACEMENTS[0])
-    if placement not in SQUARENESS_PLACEMENTS:
-        raise where.error(
-            f"unknown squareness placement '{placement}'; use {' or '.join(SQUARENESS_PLACEMENTS)}", "", "squareness_placement"
-        )
     try:
         return Machine(
             chain=chain,
             axes=axes,
             squareness_rad=squareness,
-            tool_m=_vector_mm(data.get("tool_mm", [0.0, 0.0, 0.0]), "tool_mm"),
-            workpiece_m=_vector_mm(data.get("workpiece_mm", [0.0, 0.0, 0.0]), "workpiece_mm"),
-            name=data.get("name", ""),
-            squareness_placement=placement,
+            tool_m=_vector_m(checked.tool_mm),
+            workpiece_m=_vector_m(checked.workpiece_mm),
+            name=checked.name or "",
+            squareness_placement=checked.squareness_placement or SQUARENESS_PLACEMENTS[0],
             location=location,
         )
     except AxiscalError as exc:
-        raise exc.located(path=source) from None
+        raise exc.located(path=where.source) from None
 
 
 def load_machine(path: str | Path, *, tables_dir: str | Path | None = None) -> Machine:
@@ -893,9 +825,9 @@ def load_machine(path: str | Path, *, tables_dir: str | Path | None = None) -> M
     """
     path = check_path("path", path)
     if tables_dir is not None:
-        check_path("tables_dir", tables_dir)
-    data = read_toml(path)
-    return machine_from_dict(data, base_dir=path.parent, source=str(path), text=read_text(path), tables_dir=tables_dir)
+        tables_dir = check_path("tables_dir", tables_dir)
+    checked, lines = read_format(MachineFile, path)  # the file read once: parsed, validated, its lines kept
+    return _machine(checked, base_dir=path.parent, where=_Where(str(path), lines), tables_dir=tables_dir)
 
 
 def as_machine(machine: Machine | str | Path) -> Machine:

@@ -209,11 +209,16 @@ def _walk(model: type[BaseModel], loc: tuple[Any, ...]) -> tuple[tuple[Any, ...]
     current: type[BaseModel] | None = model
     candidates: list[type[BaseModel]] = []
     parent: type[BaseModel] | None = model
+    dict_key = False
     for part in loc:
         if isinstance(part, int):
             clean.append(part)
             continue
         if part.startswith("="):  # the tag of a union told apart by a function: "=file", "=table"
+            continue
+        if dict_key:  # a key of a table of tables ([axes.X]): the model stays the values' model
+            clean.append(part)
+            dict_key = False
             continue
         if candidates:
             tagged = {_tag_of(m): m for m in candidates}
@@ -229,6 +234,7 @@ def _walk(model: type[BaseModel], loc: tuple[Any, ...]) -> tuple[tuple[Any, ...]
             current = None
             continue
         candidates = _models_in(field.annotation)
+        dict_key = "dict[" in repr(field.annotation) and bool(candidates)
         current = candidates[0] if len(candidates) == 1 else None
         if len(candidates) == 1:
             candidates = []
@@ -248,7 +254,7 @@ def _expected(error: dict[str, Any]) -> str:
     kind, ctx = error["type"], error.get("ctx", {})
     words = {
         "float_type": "a finite number", "int_type": "a whole number", "bool_type": "true or false",
-        "string_type": "a text in quotes", "list_type": "a list [...]", "dict_type": "a table",
+        "string_type": "a string in quotes", "list_type": "a list [...]", "dict_type": "a table",
         "model_type": "a table", "date_type": "a date (2026-11-20)", "dict_type_": "a table", "finite_number": "a finite number",
         "model_attributes_type": "a table",
     }
@@ -282,9 +288,53 @@ def _label(loc: tuple[Any, ...]) -> str:
     return f"[{table}] {key}" if table else key
 
 
-def _message(model: type[BaseModel], error: dict[str, Any]) -> str:
+def _value_at(data: Any, loc: tuple[Any, ...]) -> Any:
+    for part in loc:
+        try:
+            data = data[part]
+        except (KeyError, IndexError, TypeError):
+            return None
+    return data
+
+
+def _list_words(model: type[BaseModel] | None, key: Any) -> str | None:
+    """``3 finite numbers`` for a key whose value is a list of numbers of a fixed length (with their bounds)."""
+    field = model.model_fields.get(key) if model is not None and isinstance(key, str) else None
+    if field is None or "list[" not in repr(field.annotation):
+        return None
+    text = repr(field.annotation) + repr(field.metadata)
+    size = next((m for m in (*field.metadata, *_annotated_meta(field.annotation)) if type(m).__name__ == "Len"), None)
+    count = f"{size.min_length}" if size is not None and size.min_length == size.max_length else "a list of"
+    words = f"{count} finite numbers"
+    if "Le(le=" in text:
+        high = float(text.split("Le(le=")[1].split(")")[0])
+        words += f", each within +-{high:g}"
+    return words
+
+
+def _annotated_meta(annotation: Any) -> list[Any]:
+    import typing
+
+    out, pending = [], [annotation]
+    while pending:
+        kind = pending.pop()
+        if typing.get_origin(kind) is typing.Annotated:
+            out.extend(typing.get_args(kind)[1:])
+            pending.append(typing.get_args(kind)[0])
+        else:
+            pending.extend(a for a in typing.get_args(kind) if a is not type(None) and typing.get_origin(a) is not list)
+    return out
+
+
+def _message(model: type[BaseModel], error: dict[str, Any], data: Any = None) -> str:
     loc, parent_model = _walk(model, tuple(error["loc"]))
     kind, ctx = error["type"], error.get("ctx", {})
+    raw = tuple(error["loc"])
+    item = raw[:-1] if raw and isinstance(raw[-1], int) else raw
+    item_loc, owner = _walk(model, item)
+    words = _list_words(owner, item_loc[-1] if item_loc else None)
+    if words is not None and kind != "missing":
+        return f"{_label(item_loc)} must be {words}, not {_show(_value_at(data, item_loc))}"
     if kind == "extra_forbidden":
         name = str(loc[-1])
         valid = [f.alias or n for n, f in parent_model.model_fields.items()] if parent_model is not None else []
@@ -297,6 +347,9 @@ def _message(model: type[BaseModel], error: dict[str, Any]) -> str:
         return f"unknown key {_show(error['input'])}: keys are texts"
     if kind == "missing":
         parent = key_path(loc[:-1])
+        tag = _tag_of(parent_model) if parent_model is not None else None
+        if tag is not None and parent:
+            return f"[{parent}]: a {tag} test needs '{loc[-1]}'"
         return f"[{parent}] needs '{loc[-1]}'" if parent else f"needs [{loc[-1]}]" if parent_model is not None and _is_table(
             parent_model, str(loc[-1])) else f"needs '{loc[-1]}'"
     if kind == "union_tag_not_found":
@@ -331,7 +384,7 @@ def _field_words(model: type[BaseModel] | None, loc: tuple[Any, ...]) -> str | N
     if "Discriminator" in text and field.description:  # a file name or a table: say both
         return field.description
     if "'format': 'path'" in text:
-        return "a file name in quotes"
+        return "a file name (a string in quotes)"
     if "'format': 'date'" in text:
         return "a date (2026-11-20)"
     if "XYZABCxyzabc" in text:
@@ -380,7 +433,7 @@ def validate_data(model: type[M], data: Any, *, path: str | Path | None = None, 
         if error["type"] in ("union_tag_invalid", "union_tag_not_found"):
             loc = (*loc, error["ctx"]["discriminator"].strip("'"))
         line = line_of(lines, loc)
-        raise AxiscalError(_message(model, error), path=path, line=line) from None
+        raise AxiscalError(_message(model, error, data), path=path, line=line) from None
 
 
 def read_format(model: type[M], path: str | Path) -> tuple[M, TomlLines]:
