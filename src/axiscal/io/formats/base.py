@@ -270,7 +270,8 @@ def _expected(error: dict[str, Any]) -> str:
         return f"{ctx.get('min_length')} to {ctx.get('max_length')} values" if ctx.get("min_length") != ctx.get(
             "max_length") else f"exactly {ctx.get('min_length')} values"
     if kind == "literal_error":
-        return f"one of {ctx.get('expected')}"
+        expected = str(ctx.get("expected"))
+        return expected if expected.count(" or ") == 1 and "," not in expected else f"one of {expected}"
     if kind == "string_pattern_mismatch":
         return "a text that is not empty"
     if kind == "union_tag_invalid":

@@ -231,6 +231,27 @@ class ImportedReadings:
         return len(self.runs)
 
 
+class _Located:
+    """A ``locate(dotted key)`` function seen as the key lines the format validation asks for."""
+
+    def __init__(self, locate: Callable[[str], int | None]):
+        self.locate = locate
+        self.keys = _Keys(locate)
+
+    def of(self, table: str, index: int = 0, key: str | None = None) -> int | None:
+        return self.locate(".".join(p for p in (table, key) if p))
+
+
+class _Keys(dict):
+    def __init__(self, locate: Callable[[str], int | None]):
+        super().__init__()
+        self.locate = locate
+
+    def get(self, item, default=None):  # type: ignore[override]
+        table, _, key = item
+        return self.locate(".".join(p for p in (table, key) if p)) or default
+
+
 def column_map(
     settings: Mapping[str, Any], *, source: str | None = None, locate: Callable[[str], int | None] | None = None
 ) -> ColumnMap:
@@ -263,28 +284,16 @@ def column_map(
     >>> m.direction is None
     True
     """
-    def at(key: str) -> dict[str, Any]:
-        return {"path": source, "line": None if locate is None else locate(key)}
+    from axiscal.io.formats.base import validate_data
+    from axiscal.io.formats.importmap import ImportMapFile
 
-    for section, known in _KNOWN.items():
-        table = settings if section == "top" else settings.get(section, {})
-        if not isinstance(table, Mapping):
-            raise AxiscalError(f"'{section}' must be a table ([{section}])", **at(section))
-        unknown = sorted(set(table) - known)
-        if unknown:
-            prefix = "" if section == "top" else f"{section}."
-            raise AxiscalError(
-                f"unknown key '{prefix}{unknown[0]}' (known: {', '.join(sorted(known))})", **at(prefix + unknown[0])
-            )
-    columns = settings.get("columns", {})
+    if locate is not None and not callable(locate):
+        raise AxiscalError(f"locate must be a function of a dotted key, not {locate!r}")
+    lines = _Located(locate) if locate is not None else None
+    settings = validate_data(ImportMapFile, settings, path=source, lines=lines).model_dump(exclude_none=True)
+    columns = settings["columns"]
     units = settings.get("units", {})
-    if "target" not in columns:
-        raise AxiscalError("columns.target is missing (the target position column)", **at("columns"))
     delimiter_text = settings.get("delimiter", ",")
-    if not isinstance(delimiter_text, str) or delimiter_text not in _DELIMITERS:
-        raise AxiscalError(
-            f"delimiter must be one of ',', ';', 'tab', 'whitespace', not {delimiter_text!r}", **at("delimiter")
-        )
     direction = columns.get("direction")
     if direction == "infer":
         direction = None
@@ -337,11 +346,11 @@ def read_column_map(path: str | Path) -> ColumnMap:
     text = read_text(path)
     lines = TomlLines(text)
 
-    def locate(key: str) -> int:
+    def locate(key: str) -> int | None:
         table, _, name = key.rpartition(".")
-        return lines.of(table, 0, name) or lines.of(key) or lines.of(table) or 1
+        return lines.of(table, 0, name) or lines.of(key) or lines.of(table)
 
-    return column_map(parse_toml(text, path=path), source=str(path), locate=locate)
+    return column_map(parse_toml(text, path=path), source=str(path), locate=lambda key: locate(key) or 1)
 
 
 def _split_lines(text: str, cmap: ColumnMap) -> list[tuple[int, list[str]]]:
