@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import difflib
+import re
 from pathlib import Path
 from typing import Annotated, Any, TypeVar
 
@@ -301,7 +302,7 @@ def _value_at(data: Any, loc: tuple[Any, ...]) -> Any:
 def _list_words(model: type[BaseModel] | None, key: Any) -> str | None:
     """``3 finite numbers`` for a key whose value is a list of numbers of a fixed length (with their bounds)."""
     field = model.model_fields.get(key) if model is not None and isinstance(key, str) else None
-    if field is None or "list[" not in repr(field.annotation):
+    if field is None or not re.search(r"list\[(typing\.)?Annotated\[float", repr(field.annotation)):
         return None
     text = repr(field.annotation) + repr(field.metadata)
     size = next((m for m in (*field.metadata, *_annotated_meta(field.annotation)) if type(m).__name__ == "Len"), None)
@@ -371,7 +372,9 @@ def _message(model: type[BaseModel], error: dict[str, Any], data: Any = None) ->
         high = next((m.le for m in getattr(field, "metadata", ()) if hasattr(m, "le")), None)
         if low is not None and high is not None:
             return f"{_label(loc)} must be {low:g} to {high:g}, not {error['input']:g}"
-    return f"{_label(loc)} must be {_field_words(parent_model, loc) or _expected(error)}, not {_show(error['input'])}"
+    container = kind in ("dict_type", "list_type", "model_type", "model_attributes_type")
+    words = None if container else _field_words(parent_model, loc)
+    return f"{_label(loc)} must be {words or _expected(error)}, not {_show(error['input'])}"
 
 
 def _field_words(model: type[BaseModel] | None, loc: tuple[Any, ...]) -> str | None:
@@ -429,7 +432,9 @@ def validate_data(model: type[M], data: Any, *, path: str | Path | None = None, 
     try:
         return model.model_validate(data)
     except ValidationError as exc:
-        error = exc.errors(include_url=False)[0]
+        errors = exc.errors(include_url=False)
+        # a misspelt key is both unknown and missing: the unknown one, with its nearest name, says more
+        error = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
         loc, _ = _walk(model, tuple(error["loc"]))
         if error["type"] in ("union_tag_invalid", "union_tag_not_found"):
             loc = (*loc, error["ctx"]["discriminator"].strip("'"))

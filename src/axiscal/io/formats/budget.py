@@ -20,7 +20,7 @@ BUDGET_WORDS: dict[str, dict[str, str]] = {
         "length_U_ppm": "laser certificate: expanded uncertainty of a length reading, relative",
         "straightness_U_um": "straightness optics: expanded uncertainty of one reading",
         "wavelength_nm": "vacuum wavelength of the laser (default He-Ne, 632.991 nm)",
-        "method": "refractive-index equation: ciddor (default) or edlen",
+        "method": "refractive-index equation: ciddor (default), edlen, edlen1966 or shopfloor",
     },
     "air": {
         "temperature_u_K": "standard uncertainty of the air temperature sensor",
