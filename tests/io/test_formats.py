@@ -192,3 +192,16 @@ def test_a_schema_comment_line_reads_the_same(tmp_path, examples):
     (tmp_path / "b.toml").write_text("#:schema ./budget.schema.json\n" + text)
     assert read_budget(tmp_path / "b.toml") == read_budget(examples / "uncertainty_budget.toml").__class__(
         **{**read_budget(examples / "uncertainty_budget.toml").__dict__, "source": str(tmp_path / "b.toml")})
+
+
+def test_a_test_key_spelled_as_the_option_reads_the_same(tmp_path, examples):
+    import shutil
+
+    from axiscal.campaign import load_campaign
+
+    folder = tmp_path / "campaign"
+    shutil.copytree(examples / "campaign", folder)
+    before = load_campaign(folder)
+    path = folder / "campaign.toml"
+    path.write_text(path.read_text().replace("spacing_mm = ", "spacing-mm = "))
+    assert load_campaign(folder).tests == before.tests

@@ -106,7 +106,12 @@ class FormatModel(BaseModel):
             Key as written (the field's alias, if any) -> validated value (sub-tables stay models).
         """
         by_key = {(f.alias or name): name for name, f in type(self).model_fields.items()}
-        return {key: getattr(self, by_key[key]) for key in self._order if key in by_key}
+        out = {}
+        for key in self._order:  # as written; a key spelled with "-" for "_" (an option's spelling) too
+            name = by_key.get(key) or by_key.get(key.replace("-", "_"))
+            if name is not None:
+                out[key] = getattr(self, name)
+        return out
 
 
 def key_path(loc: tuple[Any, ...]) -> str:

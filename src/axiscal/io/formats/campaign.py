@@ -10,7 +10,7 @@ from __future__ import annotations
 import datetime as _dt
 from typing import Annotated, Any, Literal, Union
 
-from pydantic import Discriminator, Field, Strict, StringConstraints, Tag, create_model
+from pydantic import Discriminator, Field, Strict, StringConstraints, Tag, create_model, model_validator
 
 from axiscal.io.formats.base import Bool, Count, FileName, FormatModel, Name, Number, Pair, Positive, Text
 from axiscal.io.formats.budget import BudgetTables
@@ -29,6 +29,7 @@ __all__ = [
     "PositioningTolerances",
     "Tolerances",
     "UncertaintyTable",
+    "TestEntryBase",
     "TEST_MODELS",
     "CampaignFile",
 ]
@@ -224,6 +225,25 @@ _WORDS = {"str": "text", "float": "number", "int": "whole number", "bool": "true
           "floats2": "[START, END]", "axis": "axis letter", "plane": "plane XY, XZ or YZ"}
 
 
+class TestEntryBase(FormatModel):
+    """A ``[[tests]]`` entry: its keys may be spelled as the command's options (``two-probe``) or
+    with underscores (``two_probe``).
+
+    Attributes
+    ----------
+    kind : str
+    """
+
+    __test__ = False  # not a pytest test class
+
+    @model_validator(mode="before")
+    @classmethod
+    def _underscores(cls, data: Any) -> Any:
+        if isinstance(data, dict):
+            return {(k.replace("-", "_") if isinstance(k, str) else k): v for k, v in data.items()}
+        return data
+
+
 def _test_model(kind: str) -> type[FormatModel]:
     fields: dict[str, Any] = {
         "kind": (Literal[kind], Field(description="the kind of test")),  # type: ignore[valid-type]
@@ -237,7 +257,7 @@ def _test_model(kind: str) -> type[FormatModel]:
         fields[key] = (_option_type(spec) if required else _option_type(spec) | None,
                        Field(... if required else None, description=words))
     name = "".join(part.title() for part in kind.split("_")) + "Test"
-    return create_model(name, __base__=FormatModel, __doc__=f"A ``[[tests]]`` entry of kind ``{kind}``.", **fields)
+    return create_model(name, __base__=TestEntryBase, __doc__=f"A ``[[tests]]`` entry of kind ``{kind}``.", **fields)
 
 
 #: kind -> the model of a ``[[tests]]`` entry of that kind
