@@ -545,7 +545,7 @@ def test_column_map_errors_name_the_key_line(tmp_path, examples):
     from axiscal.io.importers.columnmap import read_column_map
 
     text = (examples / "imports" / "reading_per_row.toml").read_text()
-    for old, new, words in [('target = "in"', 'target = "furlong"', "units.target"), ("sign = -1", "sign = 2", "sign"),
+    for old, new, words in [('target = "in"', 'target = "furlong"', "[units] target must be one of"), ("sign = -1", "sign = 2", "sign"),
                             ('layout = "rows"', 'layout = "rows"\nspeed = 3', "unknown key 'speed'")]:
         path = tmp_path / "map.toml"
         changed = text.replace(old, new, 1)

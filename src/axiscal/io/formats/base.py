@@ -350,6 +350,9 @@ def _message(model: type[BaseModel], error: dict[str, Any], data: Any = None) ->
         parent = key_path(loc[:-1])
         inside = f" in [{parent}]" if parent else ""
         return f"unknown key '{name}'{inside}{hint} (known: {', '.join(valid)})"
+    if "[key]" in loc:  # a key of a table that is not of the kind the table's keys are
+        parent = key_path(loc[: loc.index("[key]") - 1])
+        return f"[{parent}] key {_show(loc[loc.index('[key]') - 1])} must be {_expected(error)}"
     if kind == "invalid_key":
         return f"unknown key {_show(error['input'])}: keys are texts"
     if kind == "missing":

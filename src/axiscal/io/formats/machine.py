@@ -74,8 +74,9 @@ class MachineFile(FormatModel):
     hold_ends: Bool | None = Field(None, description="hold end values outside the tables (default false)")
     squareness_placement: Literal[SQUARENESS_PLACEMENTS] | None = Field(  # type: ignore[valid-type]
         None, description="relative keeps the measured included angles; guideway (docs/conventions.md)")
-    axes: dict[Annotated[str, Strict(), StringConstraints(pattern=r"^[XYZABC]$")], MachineAxis] | None = Field(
-        None, description="one [axes.<L>] per axis of the chain")
+    axes: dict[str, MachineAxis] | None = Field(
+        None, description="one [axes.<L>] per axis of the chain",
+        json_schema_extra={"propertyNames": {"pattern": "^[XYZABC]$"}})
     squareness: dict[str, Number] | None = Field(
         None, description="EC0Y, EB0Z, EA0Z with a unit _urad, _mrad or _arcsec; at most 0.01 rad",
         json_schema_extra={"propertyNames": {"pattern": _SQUARENESS_KEY}})
