@@ -1,27 +1,23 @@
 """A machine with 1 to 3 linear and up to 3 rotary axes: its kinematic chain, error tables, squareness and location errors (paper 000 §3; ISO 230-1, ISO 230-7).
 
-:class:`Machine` is the model (:mod:`axiscal.model.kinematics` has the contract); :func:`load_machine`
-reads the TOML description of docs/formats.md. Chain notation as ISO 10791 / ISO 230-1 use it:
+:class:`Machine` is the model (:mod:`axiscal.model.kinematics` has the contract);
+:func:`~axiscal.model.machine_file.load_machine` reads the TOML description of docs/formats.md. Chain notation as ISO 10791 / ISO 230-1 use it:
 workpiece-side axes, ``F`` (the frame), tool-side axes; ``"XFYZ"``: the table moves X, the column
 carries Y and Z. The volumetric error is the tool point relative to the workpiece.
 """
 
 from __future__ import annotations
 
-import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
 from axiscal.conventions import ROTARY_LETTERS, SQUARENESS_TERMS, location_names
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_choice, check_count, check_instance, check_path
-from axiscal.io.formats.base import read_format, validate_data
-from axiscal.io.formats.machine import MAX_MACHINE_SIZE_MM, MachineFile
+from axiscal.io.arguments import check_choice, check_count, check_instance
 from axiscal.io.formats.machine import SQUARENESS_PLACEMENTS as _FORMAT_PLACEMENTS
-from axiscal.io.schema import TomlLines, finite_number
+from axiscal.io.schema import finite_number
 from axiscal.model.kinematics import (
     AXIS_INDEX,
     ChainLink,
@@ -33,36 +29,14 @@ from axiscal.model.kinematics import (
     _volumetric_error,
     reference_volumetric_error,
 )
-from axiscal.model.tables import (
-    INTERPOLATIONS,
-    MAX_ANGLE_ERROR_RAD,
-    MAX_TRANSLATION_ERROR_M,
-    ErrorTable,
-    _floats,
-    read_error_table,
-)
-from axiscal.units import (
-    ANGLE_UNITS,
-    LENGTH_UNITS,
-    MM,
-    angle_factor,
-    length_factor,
-    split_unit,
-)
+from axiscal.model.tables import ErrorTable, _floats
+from axiscal.units import LENGTH_UNITS, MM
 
 __all__ = [
     "SQUARENESS_PLACEMENTS",
-    "AXIS_UNITS",
-    "MAX_GRID_POINTS",
-    "MAX_MACHINE_SIZE_MM",
     "Axis",
     "parse_chain",
     "Machine",
-    "machine_from_dict",
-    "load_machine",
-    "as_machine",
-    "axis_positions_from_grid",
-    "positions_from_points",
 ]
 
 #: squareness term -> (axis whose guideway it turns, reference axis, index of the rotation vector component)
@@ -618,333 +592,13 @@ class Machine:
         return command, worst, f"inverse kinematics did not converge (miss {axis_miss[worst] / LENGTH_UNITS['nm']:.3g} nm)"
 
 
-#: factor to SI and display unit of each axis' positions in files and on the command line
-AXIS_UNITS = {letter: (MM, "mm") for letter in AXIS_INDEX} | {letter: (ANGLE_UNITS["deg"], "deg") for letter in ROTARY_LETTERS}
-#: most points a grid may name (about 1 GB of positions and errors)
-MAX_GRID_POINTS = 20_000_000
-
-
-class _Where:
-    """Locates keys of the machine file for the errors only its meaning can find."""
-
-    def __init__(self, source: str, lines: TomlLines | None):
-        self.source = source
-        self.lines = lines
-
-    def error(self, message: str, section: str = "", key: str | None = None) -> AxiscalError:
-        line = self.lines.of(section, key=key) if self.lines is not None else None
-        return AxiscalError(message, path=self.source, line=line)
-
-
-def _vector_m(value: list[float] | None) -> tuple[float, float, float]:
-    return (0.0, 0.0, 0.0) if value is None else tuple(float(v) * MM for v in value)  # type: ignore[return-value]
-
-
-def _confined(base_dir: Path, name: str, tables_dir: Path | None) -> Path | None:
-    """``name`` resolved inside ``base_dir`` (or else ``tables_dir``), or None if it points elsewhere."""
-    found = []
-    for folder in (base_dir,) if tables_dir is None else (base_dir, tables_dir):
-        root = folder.resolve()
-        candidate = (root / name).resolve()
-        if candidate.is_relative_to(root):
-            found.append(candidate)
-    return next((c for c in found if c.is_file()), found[0] if found else None)
-
-
-def machine_from_dict(
-    data: Mapping,
-    *,
-    base_dir: Path = Path("."),
-    source: str = "<machine>",
-    text: str | None = None,
-    tables_dir: str | Path | None = None,
-) -> Machine:
-    """Build a :class:`Machine` from the parsed TOML description (docs/formats.md).
-
-    Every key is validated against the declared format (:class:`axiscal.io.formats.MachineFile`);
-    the error names the key and, given ``text``, its line.
-
-    Parameters
-    ----------
-    data : mapping
-        The parsed TOML (lengths in mm, angles with their unit in the key).
-    base_dir : Path
-        Folder the error table paths are relative to; they must stay inside it.
-    source : str
-        Name of the description in error messages (its file).
-    text : str, optional
-        The TOML text ``data`` was parsed from, to name the line of a bad key.
-    tables_dir : str or Path, optional
-        A second folder error table paths may point into.
-
-    Returns
-    -------
-    Machine
-
-    Raises
-    ------
-    AxiscalError
-        Unknown keys, a value of the wrong kind, a missing chain or axis section, an error table
-        path outside ``base_dir`` (and ``tables_dir``), a bad error table or squareness entry;
-        the message names ``source`` (or the table file) and the line.
-
-    Examples
-    --------
-    >>> machine_from_dict({"chain": "FX", "hold_ends": "false"})
-    Traceback (most recent call last):
-    ...
-    axiscal.errors.AxiscalError: <machine>: hold_ends must be true or false, not 'false'
-    """
-    check_instance("source", source, str)
-    base_dir = check_path("base_dir", base_dir)
-    if text is not None:
-        check_instance("text", text, str)
-    if tables_dir is not None:
-        tables_dir = check_path("tables_dir", tables_dir)
-    lines = TomlLines(text) if text is not None else None
-    if not isinstance(data, Mapping):
-        raise AxiscalError("a machine description must be a table of keys", path=source)
-    checked = validate_data(MachineFile, dict(data), path=source, lines=lines)
-    return _machine(checked, base_dir=base_dir, where=_Where(source, lines), tables_dir=tables_dir)
-
-
-def _machine(checked: MachineFile, *, base_dir: Path, where: _Where, tables_dir: Path | None) -> Machine:
-    """The machine of a validated description: what only the file's meaning can refuse is refused here."""
-    chain = checked.chain
-    try:
-        workpiece_side, tool_side = parse_chain(chain)
-    except AxiscalError as exc:
-        raise where.error(exc.message, "", "chain") from None
-    interpolation = checked.interpolation or INTERPOLATIONS[0]
-    hold_ends = bool(checked.hold_ends)
-    axes_data = checked.axes or {}
-    for letter in workpiece_side + tool_side:
-        if letter not in axes_data:
-            raise where.error(f"axis {letter} is in chain '{chain}' but has no [axes.{letter}] section", "", "chain")
-    axes: dict[str, Axis] = {}
-    for letter, section in axes_data.items():
-        label = f"axes.{letter}"
-        if letter not in workpiece_side + tool_side:
-            raise where.error(f"[{label}] is not an axis of chain '{chain}'", label)
-        table_path = _confined(base_dir, section.errors, tables_dir)
-        if table_path is None:
-            raise where.error(
-                f"[{label}] errors: the error table must be inside the machine file's folder", label, "errors"
-            )
-        if not table_path.is_file():
-            raise where.error(f"[{label}] errors: no file '{section.errors}' in the machine file's folder", label, "errors")
-        if section.periodic is not None and letter not in ROTARY_LETTERS:
-            raise where.error(f"[{label}] periodic: only a rotary axis (A, B, C) is periodic", label, "periodic")
-        table = read_error_table(
-            table_path,
-            letter,
-            interpolation=section.interpolation or interpolation,
-            hold_ends=hold_ends if section.hold_ends is None else section.hold_ends,
-            periodic=section.periodic,
-        )
-        axes[letter] = Axis(letter, table, _vector_m(section.origin_mm))
-    squareness: dict[str, float] = {}
-    for key, value in (checked.squareness or {}).items():
-        stem, unit = split_unit(key) if "_" in key else (key, "")
-        if stem not in SQUARENESS_TERMS:
-            raise where.error(
-                f"[squareness] unknown term '{key}'; use EC0Y, EB0Z, EA0Z with a unit, e.g. EB0Z_arcsec", "squareness", key
-            )
-        try:
-            squareness[stem] = float(value) * angle_factor(unit, what=key)
-        except AxiscalError as exc:
-            raise where.error(exc.message, "squareness", key) from None
-        if abs(squareness[stem]) > MAX_ANGLE_ERROR_RAD:
-            raise where.error(f"[squareness] {key} = {value} is not a squareness error (over {MAX_ANGLE_ERROR_RAD} rad)", "squareness", key)
-        letter, reference, _ = _SQUARENESS_PLACE[stem]
-        if letter not in workpiece_side + tool_side or reference not in workpiece_side + tool_side:
-            raise where.error(f"[squareness] {key}: chain '{chain}' has no axes {reference} and {letter} to be square", "squareness", key)
-    location: dict[str, float] = {}
-    for key, value in (checked.location or {}).items():
-        stem, unit = split_unit(key) if "_" in key else (key, "")
-        letter = stem[-1:]
-        if letter not in ROTARY_LETTERS or stem not in location_names(letter):
-            raise where.error(
-                f"[location] unknown term '{key}'; e.g. {', '.join(n + '_um' for n in location_names('C')[:2])}, "
-                f"{', '.join(n + '_urad' for n in location_names('C')[2:])}",
-                "location",
-                key,
-            )
-        if letter not in workpiece_side + tool_side:
-            raise where.error(f"[location] {key}: chain '{chain}' has no axis {letter}", "location", key)
-        try:
-            if stem[1] in AXIS_INDEX:
-                factor, limit = length_factor(unit, what=key), MAX_TRANSLATION_ERROR_M
-            else:
-                factor, limit = angle_factor(unit, what=key), MAX_ANGLE_ERROR_RAD
-        except AxiscalError as exc:
-            raise where.error(exc.message, "location", key) from None
-        if abs(value * factor) > limit:
-            raise where.error(f"[location] {key} = {value} has no physical meaning (limits: 10 mm, 0.01 rad)", "location", key)
-        location[stem] = float(value) * factor
-    try:
-        return Machine(
-            chain=chain,
-            axes=axes,
-            squareness_rad=squareness,
-            tool_m=_vector_m(checked.tool_mm),
-            workpiece_m=_vector_m(checked.workpiece_mm),
-            name=checked.name or "",
-            squareness_placement=checked.squareness_placement or SQUARENESS_PLACEMENTS[0],
-            location=location,
-        )
-    except AxiscalError as exc:
-        raise exc.located(path=where.source) from None
-
-
-def load_machine(path: str | Path, *, tables_dir: str | Path | None = None) -> Machine:
-    """Read a machine description (TOML, docs/formats.md) and its error tables.
-
-    Parameters
-    ----------
-    path : str or Path
-        The TOML file; the error table paths in it are relative to its folder and must stay inside it.
-    tables_dir : str or Path, optional
-        A second folder the error table paths may point into.
-
-    Returns
-    -------
-    Machine
-        SI units throughout; the squareness placement is ``"relative"`` unless the file says otherwise.
-
-    Raises
-    ------
-    AxiscalError
-        A missing or malformed file, naming the file and, where known, the line.
-
-    Examples
-    --------
-    >>> machine = load_machine("examples/xz_module/machine.toml")  # doctest: +SKIP
-    >>> machine.chain  # doctest: +SKIP
-    'FXZ'
-    """
-    path = check_path("path", path)
-    if tables_dir is not None:
-        tables_dir = check_path("tables_dir", tables_dir)
-    checked, lines = read_format(MachineFile, path)  # the file read once: parsed, validated, its lines kept
-    return _machine(checked, base_dir=path.parent, where=_Where(str(path), lines), tables_dir=tables_dir)
-
-
-def as_machine(machine: Machine | str | Path) -> Machine:
-    """``machine`` itself, or the machine its description file describes.
-
-    Parameters
-    ----------
-    machine : Machine, str or Path
-        A machine, or the path of its TOML description.
-
-    Returns
-    -------
-    Machine
-
-    Raises
-    ------
-    AxiscalError
-        Neither a Machine nor a path, or a missing or malformed file (see :func:`load_machine`).
-    """
-    if isinstance(machine, Machine):
-        return machine
-    if not isinstance(machine, (str, Path)):
-        raise AxiscalError(f"a machine is a Machine or the path of its TOML file, not {machine!r:.40}")
-    return load_machine(machine)
-
-
-def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
-    """Every combination of axis positions a grid specification names.
-
-    Parameters
-    ----------
-    spec : str
-        ``"X=0:190:10,Z=0:190:10"``: per axis ``start:end:step`` in mm, or degrees for a rotary
-        axis (``"C=0:360:15"``), ends inclusive, or a single value ``"Y=50"``.
-
-    Returns
-    -------
-    dict of str to ndarray, shape (N,)
-        Position of each named axis (metres; radians for rotary axes), N the product of the
-        axes' counts.
-
-    Raises
-    ------
-    AxiscalError
-        A part that is not of that form, a number that is not finite, an axis named twice,
-        ``end < start``, ``step <= 0``, or more than :data:`MAX_GRID_POINTS` points.
-
-    Examples
-    --------
-    >>> {k: v.tolist() for k, v in axis_positions_from_grid("X=0:20:10,Z=5").items()}
-    {'X': [0.0, 0.01, 0.02], 'Z': [0.005, 0.005, 0.005]}
-    """
-    if not isinstance(spec, str):
-        raise AxiscalError(f"a grid is a string such as 'X=0:190:10,Z=5', not {spec!r}")
-    ranges: dict[str, np.ndarray] = {}
-    total = 1
-    for part in spec.split(","):
-        letter, sep, rng = part.partition("=")
-        letter = letter.strip().upper()
-        bits = [b.strip() for b in rng.split(":")]
-        if not sep or letter not in AXIS_UNITS or len(bits) not in (1, 3):
-            raise AxiscalError(
-                f"grid '{spec}': expected parts like 'X=0:190:10' (start:end:step in mm, deg for A, B, C) or 'Y=50'"
-            )
-        try:
-            numbers = [float(b) for b in bits]
-        except ValueError:
-            raise AxiscalError(f"grid '{spec}': '{rng}' is not numbers") from None
-        if not all(math.isfinite(v) and abs(v) <= MAX_MACHINE_SIZE_MM for v in numbers):
-            raise AxiscalError(f"grid '{spec}': axis {letter} needs finite numbers within ±{MAX_MACHINE_SIZE_MM:g} mm")
-        if letter in ranges:
-            raise AxiscalError(f"grid '{spec}' names axis {letter} twice")
-        if len(numbers) == 1:
-            ranges[letter] = np.array(numbers)
-            continue
-        start, end, step = numbers
-        if step <= 0 or end < start:
-            raise AxiscalError(f"grid '{spec}': need start <= end and step > 0 for axis {letter}")
-        count = math.floor((end - start) / step + 1e-9) + 1
-        total *= count
-        if total > MAX_GRID_POINTS:
-            raise AxiscalError(f"grid '{spec}' has more than {MAX_GRID_POINTS} points; use a coarser step")
-        # the grid's resolution is that of its numbers as written: 0.1 * 3 is 0.3, not 0.30000000000000004
-        decimals = max(len(b.lower().split("e")[0].partition(".")[2]) for b in bits) + 3
-        ranges[letter] = np.round(start + step * np.arange(count), decimals)
-    mesh = np.meshgrid(*ranges.values(), indexing="ij")
-    return {letter: grid.ravel() * AXIS_UNITS[letter][0] for letter, grid in zip(ranges, mesh)}
-
-
-def positions_from_points(sequence: Sequence[Mapping[str, float]]) -> dict[str, np.ndarray]:
-    """Turn a list of points into arrays per axis.
-
-    Parameters
-    ----------
-    sequence : sequence of mapping of str to float
-        Points such as ``{"X": 0.1, "Z": 0.05}`` (metres), all naming the same axes.
-
-    Returns
-    -------
-    dict of str to ndarray, shape (N,)
-        Metres.
-
-    Raises
-    ------
-    AxiscalError
-        Points that are not mappings, name different axes, or hold values that are not numbers.
-    """
-    if not isinstance(sequence, Sequence) or not sequence or not all(isinstance(p, Mapping) for p in sequence):
-        raise AxiscalError("points must be a list of at least one mapping such as {'X': 0.1, 'Z': 0.05}")
-    letters = list(sequence[0]) if sequence else []
-    for k, point in enumerate(sequence):
-        if set(point) != set(letters):
-            raise AxiscalError(f"point {k + 1} names axes {sorted(point)}, the first point {sorted(letters)}")
-    out = {k: _floats([p[k] for p in sequence], f"point positions of axis {k}") for k in letters}
-    for k, q in out.items():
-        if q.ndim != 1:
-            raise AxiscalError(f"point positions of axis {k} must be one number per point")
-        if not np.all(np.isfinite(q)):
-            raise AxiscalError(f"point {int(np.argmax(~np.isfinite(q))) + 1}: the position of axis {k} must be a finite number")
-    return out
+# the machine file and positions of the axes live in their own modules; these names stay importable
+# from here, where they were declared before the split
+from axiscal.model.machine_file import as_machine, load_machine, machine_from_dict  # noqa: E402,F401
+from axiscal.model.positions import (  # noqa: E402,F401
+    AXIS_UNITS,
+    MAX_GRID_POINTS,
+    MAX_MACHINE_SIZE_MM,
+    axis_positions_from_grid,
+    positions_from_points,
+)

@@ -24,7 +24,6 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import math
-import re
 from dataclasses import dataclass, fields
 from pathlib import Path
 

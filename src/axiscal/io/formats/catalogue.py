@@ -3,12 +3,9 @@
 from __future__ import annotations
 
 import json
-import typing
 from typing import Any
 
 from pydantic import BaseModel
-
-from axiscal.io.formats.base import FormatModel
 
 __all__ = ["FORMATS", "FORMAT_FILES", "format_model", "json_schema", "json_schema_text", "key_table", "key_tables"]
 

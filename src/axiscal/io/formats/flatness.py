@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pydantic import Field
 
-from axiscal.io.formats.base import Bool, FormatModel, Name, Number, Numbers, Pair, Text
+from axiscal.io.formats.base import Bool, FormatModel, Name, Number, Numbers, Pair
 
 __all__ = ["ANGLE_KEYS", "FlatnessLineEntry", "FlatnessFile"]
 
