@@ -72,7 +72,7 @@ _PUBLIC: dict[str, str] = {
     "skew_correction": "axiscal.compensation.skew",
     "backlash_setting": "axiscal.compensation.backlash",
     # data in from instruments
-    "import_readings": "axiscal.io.importers.columnmap",
+    "import_readings": "axiscal.io.importers.readings",
     "read_rtx": "axiscal.io.importers.rtx",
     # uncertainty (ISO 230-2 Annex A, GUM, GUM Supplement 1)
     "read_budget": "axiscal.uncertainty.budget",

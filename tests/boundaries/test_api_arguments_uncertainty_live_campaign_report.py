@@ -128,7 +128,8 @@ LINE_X, LINE_Y = np.linspace(0.0, 0.1, 5), np.array([0.0, 1e-6, 0.0, -1e-6, 0.0]
 bad(U, "Budget", "length_U_rel", lambda: un.Budget(length_U_rel=NAN), lambda: un.Budget(length_U_rel="1"), lambda: un.Budget(length_U_rel=-1.0))
 bad(U, "Budget", "method", lambda: un.Budget(method="magic"))
 bad(U, "budget_from_dict", "data", lambda: un.budget_from_dict(None), lambda: un.budget_from_dict([("air", {})]))
-bad(U, "budget_from_dict", "budget section", lambda: un.budget_from_dict({"weather": {}}), lambda: un.budget_from_dict({5: {}}))
+bad(U, "budget_from_dict", "unknown key", lambda: un.budget_from_dict({"weather": {}}), lambda: un.budget_from_dict({5: {}}))
+bad(U, "budget_from_tables", "tables", lambda: un.budget_from_tables(None), lambda: un.budget_from_tables({"setup": {}}))
 bad(U, "budget_from_dict", "eve_um", lambda: un.budget_from_dict({"setup": {"eve_um": NAN}}), lambda: un.budget_from_dict({"setup": {"eve_um": -1.0}}))
 bad(U, "budget_from_dict", "locate", lambda: un.budget_from_dict({}, locate=5))
 bad(U, "budget_from_dict", "text", lambda: un.budget_from_dict({}, text=5))
@@ -351,34 +352,9 @@ SPEC = CAMPAIGN.tests[0]
 RESULTS = ca.CampaignResults({"title": "t"}, {}, {}, [ca.TestResult("t1", "positioning", "X", ["x.csv"], {"E": 5.0})])
 
 
-def _spec(**changes):
-    from dataclasses import replace
-
-    return lambda: replace(SPEC, **changes)
+bad(C, "read_campaign", "no such campaign folder", lambda: ca.read_campaign(Path("no/such/campaign")))
 
 
-def _campaign(**changes):
-    from dataclasses import replace
-
-    return lambda: replace(CAMPAIGN, **changes)
-
-
-bad(C, "TestSpec", "test kind", _spec(kind="magic"), _spec(kind=None))
-bad(C, "TestSpec", "id", _spec(id=None), _spec(id=""))
-bad(C, "TestSpec", "axis", _spec(axis=5))
-bad(C, "TestSpec", "options", _spec(options=None))
-bad(C, "TestSpec", "tolerances", _spec(tolerances=[("E_um", 5.0)]))
-bad(C, "TestSpec", "line", _spec(line=-1), _spec(line=NAN))
-bad(C, "Campaign", "folder", _campaign(folder=None), _campaign(folder="examples/campaign"))
-bad(C, "Campaign", "tests", _campaign(tests=None), _campaign(tests=({"kind": "positioning"},)))
-bad(C, "Campaign", "machine", _campaign(machine=None))
-bad(C, "Campaign", "controller", _campaign(controller="magic"))
-bad(C, "Campaign", "budget", _campaign(budget="budget.toml"))
-bad(C, "Campaign", "decision rule", _campaign(decision_rule="strict"), _campaign(decision_rule=None))
-bad(C, "Campaign", "model", _campaign(model="machine.toml"))
-bad(C, "Campaign", "compensation must be a mapping", _campaign(compensation="X.comp"), _campaign(compensation=["X.comp"]))
-bad(C, "Campaign", "compensation['X'] must be a Path", _campaign(compensation={"X": "X.comp"}))
-bad(C, "Campaign", "compensation files need the controller", _campaign(compensation={"X": Path("X.comp")}, controller=None))
 bad(C, "load_campaign", "folder", lambda: ca.load_campaign(None), lambda: ca.load_campaign(NAN))
 bad(C, "check_figures", "figures", lambda: ca.check_figures(None, {}, {}), lambda: ca.check_figures({"E": "big"}, {"E_um": 5.0}, {}))
 bad(C, "check_figures", "tolerance", lambda: ca.check_figures({"E": 1.0}, None, {}), lambda: ca.check_figures({"E": 1.0}, {"E_um": NAN}, {}),
@@ -488,7 +464,10 @@ EXEMPT: dict[str, set[str]] = {
     "uncertainty": {"Decision", "CoverageInterval", "PositioningUncertainty", "PositioningWithUncertainty", "LineUncertainty",
                     "VolumetricUncertainty"},
     "live": {"RunSummary", "FrameBatch", "Record", "SourceStatus", "ClientStats"},
-    "campaign": {"Check", "Figure", "Plot", "TestResult", "CampaignResults"},
+    "campaign": {"Check", "Figure", "Plot", "TestResult", "CampaignResults",
+                 # made by load_campaign from the validated campaign.toml (axiscal.io.formats.CampaignFile),
+                 # where every value was checked once; a user reads them and does not build them
+                 "Campaign", "TestSpec"},
     "report": {"ReportFiles", "DemoResult", "CycleResult",
                # functions of no arguments
                "template_environment", "builtin_example",

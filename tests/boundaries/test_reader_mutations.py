@@ -340,9 +340,9 @@ def test_run_numbers_are_ascii_whole_numbers(tmp_path, examples, cell):
 
 
 @pytest.mark.parametrize("edit, words", [
-    (('kind = "positioning"', "kind = []"), "unknown kind []"),
-    (("[machine]", "[uncertainty]\nserial = 3\n[machine]"), "unknown budget section [serial]"),
-    (("[campaign]", "kind = 1\n[campaign]"), "unknown table or key 'kind'"),
+    (('kind = "positioning"', "kind = []"), "unknown kind '[]'"),
+    (("[machine]", "[uncertainty]\nserial = 3\n[machine]"), "unknown key 'serial' in [uncertainty]"),
+    (("[campaign]", "kind = 1\n[campaign]"), "unknown key 'kind' (known: campaign"),
 ])
 def test_campaign_refusals_found_by_mutation(tmp_path, examples, edit, words):
     folder = tmp_path / "campaign"
@@ -545,7 +545,7 @@ def test_column_map_errors_name_the_key_line(tmp_path, examples):
     from axiscal.io.importers.columnmap import read_column_map
 
     text = (examples / "imports" / "reading_per_row.toml").read_text()
-    for old, new, words in [('target = "in"', 'target = "furlong"', "units.target"), ("sign = -1", "sign = 2", "sign"),
+    for old, new, words in [('target = "in"', 'target = "furlong"', "[units] target must be one of"), ("sign = -1", "sign = 2", "sign"),
                             ('layout = "rows"', 'layout = "rows"\nspeed = 3', "unknown key 'speed'")]:
         path = tmp_path / "map.toml"
         changed = text.replace(old, new, 1)

@@ -79,7 +79,7 @@ def _error(folder: Path, old: str, new: str) -> AxiscalError:
         ('controller = "linuxcnc"', 'controller = "abacus"', 8, "controller"),
         ("A_um = 12.0, E_um", "A_um = -1.0, E_um", 11, "positive number"),
         ("A_um = 12.0, E_um", 'A_um = "12", E_um', 11, "positive number"),
-        ("straightness_um = 5.0", "roundness_um = 5.0", 12, "unknown tolerance"),
+        ("straightness_um = 5.0", "roundness_um = 5.0", 12, "unknown key 'roundness_um' in [tolerances]"),
         ('title = "Acceptance"', 'title = "Acceptance', 2, "malformed TOML"),
         ('kind = "straightness"\naxis = "X"', 'kind = "straightness"\naxis = "Q"', 22, "axis letter"),
     ],

@@ -81,7 +81,7 @@ def test_decision_rules(value, U, limit, rule, expected):
 @pytest.mark.parametrize(
     ("block", "words"),
     [
-        ('[uncertainty]\nbudget = "budget.toml"\ndecision_rule = "lenient"', "decision_rule must be one of"),
+        ('[uncertainty]\nbudget = "budget.toml"\ndecision_rule = "lenient"', "decision_rule must be 'simple' or 'guard-band'"),
         ('uncertainty = "../budget.toml"', "leaves the campaign folder"),
         ('uncertainty = "nope.toml"', "not found"),
         ("uncertainty = 3", "budget file name or an [uncertainty] table"),

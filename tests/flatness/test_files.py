@@ -42,7 +42,7 @@ def test_the_three_kinds_of_line_are_read(tmp_path):
 @pytest.mark.parametrize(("text", "line_no", "words"), [
     (HEADER + "colour = 1\n" + line(), 2, "unknown key 'colour'"),
     (HEADER + line(body="angle_urad = [10, -10]\nspeed = 3"), 7, "unknown key 'speed'"),
-    (HEADER + line(start="[0]"), 4, "from_mm must be two numbers"),
+    (HEADER + line(start="[0]"), 4, "from_mm must be 2 finite numbers, not [0]"),
     (HEADER + line(body="angle_urad = [1, \"x\"]"), 6, "angle_urad must be a list of finite numbers"),
     (HEADER + line(body=""), 2, "has no readings"),
     (HEADER + line(body="angle_urad = [1, 2]\ndeviation_um = [1, 2]"), 2, "more than one kind"),
@@ -56,7 +56,7 @@ def test_the_three_kinds_of_line_are_read(tmp_path):
     (HEADER, None, "no [[lines]]"),
     ("foot_mm = -1\n" + line(), 1, "foot_mm must be positive"),
     (HEADER + line(body="foot_mm = 0\nangle_urad = [1, 2]"), 6, "foot_mm must be positive"),
-    ("title = 3\n" + line(), 1, "title must be a text"),
+    ("title = 3\n" + line(), 1, "title must be a string in quotes, not 3"),
 ])
 def test_mistakes_are_refused_naming_the_line(tmp_path, text, line_no, words):
     path = write(tmp_path, text)

@@ -114,7 +114,7 @@ def test_an_unknown_key_or_kind_names_its_line(tmp_path):
     path = _plate(tmp_path)
     text = path.read_text()
     path.write_text("colour = 3\n" + text)
-    with pytest.raises(AxiscalError, match=r":1: unknown key colour"):
+    with pytest.raises(AxiscalError, match=r":1: unknown key .colour."):
         read_artefact(path)
     path.write_text('kind = "laser"\n')
     with pytest.raises(AxiscalError, match=r":1: kind must be one of"):

@@ -149,8 +149,8 @@ def test_bad_files_one_line_error(tmp_path, settings_, text, message, line):
 @pytest.mark.parametrize(
     "settings_, message",
     [
-        ({"columns": {"reading": "E"}}, "columns.target"),
-        ({"columns": {"target": "T", "reading": "E"}, "units": {"target": "ft"}}, "unknown length unit 'ft'"),
+        ({"columns": {"reading": "E"}}, r"\[columns\] needs 'target'"),
+        ({"columns": {"target": "T", "reading": "E"}, "units": {"target": "ft"}}, r"\[units\] target must be one of 'nm', 'um', 'mm', 'm' or 'in', not 'ft'"),
         ({"columns": {"target": "T", "reading": "E"}, "colums": {}}, "unknown key 'colums'"),
         ({"layout": "runs", "columns": {"target": "T"}}, "columns.readings"),
         ({"columns": {"target": "T", "reading": "E"}, "sign": 2}, "sign must be 1 or -1"),

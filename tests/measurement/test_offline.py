@@ -104,7 +104,7 @@ def test_fit_uncertainties_are_the_least_squares_standard_errors():
     """Reference: scipy.stats.linregress's standard errors of slope and intercept."""
     from scipy.stats import linregress
 
-    from axiscal.measurement.offline import _line_fit_uncertainty
+    from axiscal.measurement.calibrate import _line_fit_uncertainty
 
     rng = np.random.default_rng(3)
     x = np.linspace(-80.0, 90.0, 17)

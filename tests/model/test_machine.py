@@ -324,5 +324,5 @@ def test_machine_file_placement_defaults_to_relative(tmp_path):
     assert included_angles(machine)["XY"] - np.pi / 2 == pytest.approx(20 * ARCSEC, rel=1e-6)
     guideway = machine_from_dict(data | {"squareness_placement": "guideway"}, base_dir=tmp_path)
     assert included_angles(guideway)["XY"] == pytest.approx(np.pi / 2, abs=1e-12)
-    with pytest.raises(AxiscalError, match="machine.toml: unknown squareness placement .sideways."):
+    with pytest.raises(AxiscalError, match="machine.toml: squareness_placement must be 'relative' or 'guideway', not 'sideways'"):
         machine_from_dict(data | {"squareness_placement": "sideways"}, base_dir=tmp_path, source="machine.toml")

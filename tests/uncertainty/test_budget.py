@@ -229,4 +229,4 @@ def test_cli_names_the_budget_line(run_cli, examples, tmp_path):
     (tmp_path / "b.toml").write_text(text)
     line = next(n for n, row in enumerate(text.splitlines(), start=1) if row.startswith("eve_um"))
     status, out, err = run_cli("positioning", examples / "positioning_run.csv", "--uncertainty", tmp_path / "b.toml")
-    assert status == 2 and out == "" and err == f"axiscal: error: {tmp_path / 'b.toml'}:{line}: [setup] eve_um must be 0 to 10000, got 1e+300\n"
+    assert status == 2 and out == "" and err == f"axiscal: error: {tmp_path / 'b.toml'}:{line}: [setup] eve_um must be 0 to 10000, not 1e+300\n"

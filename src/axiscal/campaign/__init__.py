@@ -11,6 +11,7 @@ from axiscal.campaign.config import (
     Campaign,
     TestSpec,
     load_campaign,
+    read_campaign,
 )
 from axiscal.campaign.results import (
     SCHEMA,
@@ -50,6 +51,7 @@ __all__ = [
     "TestSpec",
     "Campaign",
     "load_campaign",
+    "read_campaign",
     "TABLE_KEYS",
     "SCHEMA",
     "VERDICTS",

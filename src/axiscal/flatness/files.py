@@ -20,8 +20,10 @@ from axiscal.flatness.moody import moody_union_jack
 from axiscal.flatness.surface import EVALUATIONS, FlatnessLine, FlatnessSurface, line_from_angles, surface_from_lines
 from axiscal.io.arguments import check_instance, check_path, render_checked
 from axiscal.io.jsonio import write_sidecar
-from axiscal.io.schema import TomlLines, confined_path, finite_number
-from axiscal.io.tabular import parse_toml, read_text, write_csv
+from axiscal.io.formats.base import read_format
+from axiscal.io.formats.flatness import FlatnessFile
+from axiscal.io.schema import confined_path
+from axiscal.io.tabular import write_csv
 from axiscal.io.templates import render_template
 from axiscal.levels.files import ANGLE_COLUMNS
 from axiscal.straightness.files import read_profile
@@ -29,9 +31,6 @@ from axiscal.units import MM, UM
 
 __all__ = ["FlatnessLines", "read_flatness_lines", "FlatnessEvaluation", "evaluate_flatness"]
 
-_TOP = {"title": "text", "foot_mm": "number", "gravity": "bool", "lines": "lines"}
-_LINE = {"name": "text", "from_mm": "pair", "to_mm": "pair", "foot_mm": "number", "gravity": "bool", "profile": "text",
-         "position_mm": "numbers", "deviation_um": "numbers", **{k: "numbers" for k in ANGLE_COLUMNS}}
 #: a line's foot spacing times its readings may differ from its length by this fraction before a warning
 _FOOT_SLACK = 0.01
 
@@ -68,24 +67,6 @@ def _show(value: Any) -> str:
     return text if len(text) <= 40 else text[:37] + "..."
 
 
-def _checked(kind: str, value: Any) -> bool:
-    if kind == "text":
-        return isinstance(value, str) and bool(value.strip())
-    if kind == "number":
-        return finite_number(value)
-    if kind == "bool":
-        return isinstance(value, bool)
-    if kind == "pair":
-        return isinstance(value, list) and len(value) == 2 and all(finite_number(v) for v in value)
-    if kind == "numbers":
-        return isinstance(value, list) and bool(value) and all(finite_number(v) for v in value)
-    return isinstance(value, list) and all(isinstance(v, dict) for v in value)
-
-
-_WORDS = {"text": "a text", "number": "a finite number", "bool": "true or false", "pair": "two numbers [x, y]",
-          "numbers": "a list of finite numbers", "lines": "an array of tables [[lines]]"}
-
-
 def read_flatness_lines(path: str | Path) -> FlatnessLines:
     """Read a flatness lines file (TOML): ``[[lines]]`` with their ends and readings or profiles.
 
@@ -115,35 +96,18 @@ def read_flatness_lines(path: str | Path) -> FlatnessLines:
     [0.0, 1.0, 0.0]
     """
     path = check_path("path", path)
-    text = read_text(path)
-    data = parse_toml(text, path=path)
-    where = TomlLines(text)
-    for key, value in data.items():
-        if key not in _TOP:
-            raise AxiscalError(f"unknown key '{key}' (known: {', '.join(_TOP)})", path=path,
-                               line=where.of("", 0, key) or where.of(key))
-        if not _checked(_TOP[key], value):
-            raise AxiscalError(f"{key} must be {_WORDS[_TOP[key]]}, not {_show(value)}", path=path,
-                               line=where.of("", 0, key) or where.of(key))
-    raw_lines = data.get("lines", [])
-    if not raw_lines:
+    checked, where = read_format(FlatnessFile, path)  # read once, validated against the declared format
+    if not checked.lines:
         raise AxiscalError("the file has no [[lines]]", path=path)
-    default_foot = data.get("foot_mm")
-    default_gravity = data.get("gravity", False)
+    default_foot = checked.foot_mm
+    default_gravity = bool(checked.gravity)
     lines: list[FlatnessLine] = []
     warnings: list[str] = []
-    for index, raw in enumerate(raw_lines):
+    for index, entry in enumerate(checked.lines):
         def fail(message: str, key: str | None = None, index: int = index) -> AxiscalError:
             return AxiscalError(message, path=path, line=where.of("lines", index, key))
 
-        for key, value in raw.items():
-            if key not in _LINE:
-                raise fail(f"unknown key '{key}' in [[lines]] (known: {', '.join(_LINE)})", key)
-            if not _checked(_LINE[key], value):
-                raise fail(f"{key} must be {_WORDS[_LINE[key]]}, not {_show(value)}", key)
-        for key in ("name", "from_mm", "to_mm"):
-            if key not in raw:
-                raise fail(f"[[lines]] number {index + 1} needs '{key}'")
+        raw = {k: v for k, v in entry.given().items()}
         name = raw["name"]
         if any(line.name == name for line in lines):
             raise fail(f"two lines are named {name!r}", "name")
@@ -187,7 +151,7 @@ def read_flatness_lines(path: str | Path) -> FlatnessLines:
         if "position_mm" in raw and kind != "deviation_um":
             raise fail(f"position_mm belongs with deviation_um, not with {kind}", "position_mm")
         lines.append(line)
-    return FlatnessLines(tuple(lines), data.get("title", ""), str(path), tuple(warnings))
+    return FlatnessLines(tuple(lines), checked.title or "", str(path), tuple(warnings))
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,6 @@ unchanged, plus ``identify.json`` and ``identify.html``.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
@@ -26,22 +25,18 @@ from axiscal.identification.artefacts import (
 )
 from axiscal.io.arguments import check_path
 from axiscal.io.atomic import write_text
-from axiscal.io.schema import TomlLines, confined_path, finite_number
-from axiscal.io.tabular import CsvTable, read_csv, read_text, read_toml, write_csv
+from axiscal.io.formats.artefact import ARTEFACT_MODELS
+from axiscal.io.formats.base import validate_data
+from axiscal.io.schema import TomlLines, confined_path
+from axiscal.io.tabular import CsvTable, parse_toml, read_csv, read_checked_text, write_csv
 from axiscal.units import ANGLE_UNITS, MM, UM
 
 __all__ = ["read_artefact", "write_artefact", "ARTEFACT_KEYS"]
 
 _URAD = ANGLE_UNITS["urad"]
 _DEG = ANGLE_UNITS["deg"]
-#: the keys of each kind of artefact file
-ARTEFACT_KEYS = {
-    "ball_plate": {"kind", "name", "tool_mm", "measured", "balls", "pose"},
-    "step_gauge": {"kind", "name", "tool_mm", "measured", "faces", "line"},
-    "ballbar_network": {"kind", "name", "tool_mm", "measured", "length_mm", "length_U_um"},
-    "multilateration": {"kind", "name", "tool_mm", "measured", "stations"},
-    "r_test": {"kind", "name", "tool_mm", "measured", "sensors", "ball_on_table_mm"},
-}
+#: the keys of each kind of artefact file (from the declared formats, axiscal.io.formats.artefact)
+ARTEFACT_KEYS = {kind: {*model.model_fields} for kind, model in ARTEFACT_MODELS.items()}
 
 
 class _File:
@@ -49,15 +44,19 @@ class _File:
 
     def __init__(self, path: Path):
         self.path = path
-        self.data = read_toml(path)
-        self.lines = TomlLines(read_text(path))
+        text = read_checked_text(path)  # read once: parsed, validated, its lines kept
+        raw = parse_toml(text, path=path)
+        self.lines = TomlLines(text)
+        kind = raw.get("kind")
+        if kind not in ARTEFACT_KINDS:
+            raise self.error(f"kind must be one of {', '.join(ARTEFACT_KINDS)}, not {kind!r}", "", "kind")
+        checked = validate_data(ARTEFACT_MODELS[kind], raw, path=str(path), lines=self.lines)
+        self.data = checked.model_dump(exclude_unset=True)
 
     def error(self, message: str, section: str = "", key: str | None = None) -> AxiscalError:
         return AxiscalError(message, path=str(self.path), line=self.lines.of(section, key=key))
 
     def vector(self, value, what: str, section: str = "", key: str | None = None, *, unit: float = MM) -> np.ndarray:
-        if not isinstance(value, list) or len(value) != 3 or not all(finite_number(v) for v in value):
-            raise self.error(f"{what} must be a list of 3 finite numbers", section, key or what)
         return np.array(value, dtype=float) * unit
 
     def direction(self, value, what: str, section: str = "", key: str | None = None) -> np.ndarray:
@@ -68,9 +67,7 @@ class _File:
         return v / norm
 
     def csv(self, key: str) -> CsvTable:
-        name = self.data.get(key)
-        if not isinstance(name, str):
-            raise self.error(f"'{key}' must name a CSV file beside the artefact file", "", key)
+        name = self.data[key]
         try:
             path = confined_path(self.path.parent, name)
         except AxiscalError as exc:
@@ -127,8 +124,6 @@ def _ball_plate(f: _File, name: str, tool: np.ndarray) -> BallPlate:
     pose = f.data.get("pose", "fit")
     rotation = origin = None
     if pose != "fit":
-        if not isinstance(pose, Mapping) or set(pose) - {"origin_mm", "x_direction", "y_direction"} or len(pose) != 3:
-            raise f.error("pose must be \"fit\" or a table of origin_mm, x_direction and y_direction", "pose")
         origin = f.vector(pose["origin_mm"], "origin_mm", "pose")
         x = f.direction(pose["x_direction"], "x_direction", "pose")
         y = f.direction(pose["y_direction"], "y_direction", "pose")
@@ -148,9 +143,7 @@ def _step_gauge(f: _File, name: str, tool: np.ndarray) -> StepGauge:
     labels, u = _certificate(certificate, "face")
     certificate.require("position_mm")
     measured = f.csv("measured")
-    line = f.data.get("line")
-    if not isinstance(line, Mapping) or set(line) != {"start_mm", "direction"}:
-        raise f.error("a step gauge needs [line] with start_mm and direction", "line")
+    line = f.data["line"]
     return StepGauge(
         name, tool, start_m=f.vector(line["start_mm"], "start_mm", "line"), direction=f.direction(line["direction"], "direction", "line"),
         faces_m=certificate.numeric("position_mm") * MM, face_u_m=u, face=_index(measured, "face", labels, "face"),
@@ -166,12 +159,8 @@ def _groups(table: CsvTable, column: str) -> tuple[list[str], np.ndarray]:
 
 
 def _ballbar(f: _File, name: str, tool: np.ndarray) -> BallbarNetwork:
-    length = f.data.get("length_mm")
-    if not finite_number(length) or length <= 0:
-        raise f.error("length_mm must be the bar's calibrated length, a positive number of mm", "", "length_mm")
-    u = f.data.get("length_U_um", 0.0)
-    if not finite_number(u) or u < 0:
-        raise f.error("length_U_um must be a number of um, not negative", "", "length_U_um")
+    length = f.data["length_mm"]
+    u = f.data.get("length_U_um") or 0.0
     measured = f.csv("measured")
     setups, setup = _groups(measured, "setup")
     centres = _points(measured, "centre_")
@@ -198,7 +187,7 @@ def _multilateration(f: _File, name: str, tool: np.ndarray) -> Multilateration:
     given = f.data.get("stations")
     positions = None
     if given is not None:
-        if not isinstance(given, Mapping) or set(given) != set(stations):
+        if set(given) != set(stations):
             raise f.error(f"[stations] must give the approximate position_mm of every station ({', '.join(stations)})", "stations")
         positions = np.array([f.vector(given[s], s, "stations", s) for s in stations])
     return Multilateration(
@@ -208,9 +197,7 @@ def _multilateration(f: _File, name: str, tool: np.ndarray) -> Multilateration:
 
 
 def _r_test(f: _File, name: str, tool: np.ndarray) -> RTest:
-    sensors = f.data.get("sensors")
-    if not isinstance(sensors, list) or not sensors:
-        raise f.error("sensors must be a list of unit sensing directions, e.g. [[1, 0, 0], [0, 1, 0], [0, 0, 1]]", "", "sensors")
+    sensors = f.data["sensors"]
     directions = np.array([f.direction(v, "sensors", "", "sensors") for v in sensors])
     measured = f.csv("measured")
     columns = [f"sensor_{k + 1}_um" for k in range(len(directions))]
@@ -253,15 +240,8 @@ def read_artefact(path: str | Path) -> Artefact:
     """
     path = check_path("path", path)
     f = _File(path)
-    kind = f.data.get("kind")
-    if kind not in ARTEFACT_KINDS:
-        raise f.error(f"kind must be one of {', '.join(ARTEFACT_KINDS)}, not {kind!r}", "", "kind")
-    unknown = sorted(set(f.data) - ARTEFACT_KEYS[kind])
-    if unknown:
-        raise f.error(f"unknown key {unknown[0]} for a {kind}; known keys: {', '.join(sorted(ARTEFACT_KEYS[kind]))}", "", unknown[0])
-    name = f.data.get("name", path.stem)
-    if not isinstance(name, str) or not name.strip():
-        raise f.error("name must be a text", "", "name")
+    kind = f.data["kind"]
+    name = f.data.get("name") or path.stem
     tool = f.vector(f.data.get("tool_mm", [0.0, 0.0, 0.0]), "tool_mm")
     return _READERS[kind](f, name.strip(), tool)
 

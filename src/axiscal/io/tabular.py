@@ -607,7 +607,20 @@ def read_text(path: str | Path) -> str:
         If the file is missing or unreadable, naming it; if it is not UTF-8, naming the line of the
         first byte that is not.
     """
-    path = check_path("path", path)
+    return read_checked_text(check_path("path", path))
+
+
+def read_checked_text(path: Path) -> str:
+    """:func:`read_text` of a path a public entry has already checked (a file a checked file names).
+
+    Parameters
+    ----------
+    path : Path
+
+    Returns
+    -------
+    str
+    """
     try:
         data = path.read_bytes()
     except FileNotFoundError:

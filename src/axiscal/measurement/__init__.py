@@ -36,9 +36,6 @@ from axiscal.measurement.offline import (
     CsvOutput,
     DiagonalReport,
     MeasureResult,
-    calibrate_mirror,
-    calibrate_sensitivity,
-    calibration_text,
     columns_csv,
     drop_cut_line,
     is_live_record,
@@ -52,6 +49,7 @@ from axiscal.measurement.offline import (
     simulate_laser,
     write_data_csv,
 )
+from axiscal.measurement.calibrate import calibrate_mirror, calibrate_sensitivity, calibration_text  # after offline: it uses it
 from axiscal.measurement.pipeline import (
     MeasurementSystem,
     diagonal_errors,

@@ -30,18 +30,13 @@ from axiscal.model.kinematics import (
     translation_matrix,
     volumetric_error,
 )
-from axiscal.model.machine import (
+from axiscal.model.machine import SQUARENESS_PLACEMENTS, Axis, Machine, parse_chain
+from axiscal.model.machine_file import as_machine, load_machine, machine_from_dict
+from axiscal.model.positions import (
     AXIS_UNITS,
     MAX_GRID_POINTS,
     MAX_MACHINE_SIZE_MM,
-    SQUARENESS_PLACEMENTS,
-    Axis,
-    Machine,
-    as_machine,
     axis_positions_from_grid,
-    load_machine,
-    machine_from_dict,
-    parse_chain,
     positions_from_points,
 )
 from axiscal.model.output import (

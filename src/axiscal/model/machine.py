@@ -1,25 +1,23 @@
 """A machine with 1 to 3 linear and up to 3 rotary axes: its kinematic chain, error tables, squareness and location errors (paper 000 §3; ISO 230-1, ISO 230-7).
 
-:class:`Machine` is the model (:mod:`axiscal.model.kinematics` has the contract); :func:`load_machine`
-reads the TOML description of docs/formats.md. Chain notation as ISO 10791 / ISO 230-1 use it:
+:class:`Machine` is the model (:mod:`axiscal.model.kinematics` has the contract);
+:func:`~axiscal.model.machine_file.load_machine` reads the TOML description of docs/formats.md. Chain notation as ISO 10791 / ISO 230-1 use it:
 workpiece-side axes, ``F`` (the frame), tool-side axes; ``"XFYZ"``: the table moves X, the column
 carries Y and Z. The volumetric error is the tool point relative to the workpiece.
 """
 
 from __future__ import annotations
 
-import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
 from axiscal.conventions import ROTARY_LETTERS, SQUARENESS_TERMS, location_names
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_choice, check_count, check_instance, check_path
-from axiscal.io.schema import TomlLines, finite_number
-from axiscal.io.tabular import read_text, read_toml
+from axiscal.io.arguments import check_choice, check_count, check_instance
+from axiscal.io.formats.machine import SQUARENESS_PLACEMENTS as _FORMAT_PLACEMENTS
+from axiscal.io.schema import finite_number
 from axiscal.model.kinematics import (
     AXIS_INDEX,
     ChainLink,
@@ -31,42 +29,20 @@ from axiscal.model.kinematics import (
     _volumetric_error,
     reference_volumetric_error,
 )
-from axiscal.model.tables import (
-    INTERPOLATIONS,
-    MAX_ANGLE_ERROR_RAD,
-    MAX_TRANSLATION_ERROR_M,
-    ErrorTable,
-    _floats,
-    read_error_table,
-)
-from axiscal.units import (
-    ANGLE_UNITS,
-    LENGTH_UNITS,
-    MM,
-    angle_factor,
-    length_factor,
-    split_unit,
-)
+from axiscal.model.tables import ErrorTable, _floats
+from axiscal.units import LENGTH_UNITS, MM
 
 __all__ = [
     "SQUARENESS_PLACEMENTS",
-    "AXIS_UNITS",
-    "MAX_GRID_POINTS",
-    "MAX_MACHINE_SIZE_MM",
     "Axis",
     "parse_chain",
     "Machine",
-    "machine_from_dict",
-    "load_machine",
-    "as_machine",
-    "axis_positions_from_grid",
-    "positions_from_points",
 ]
 
 #: squareness term -> (axis whose guideway it turns, reference axis, index of the rotation vector component)
 _SQUARENESS_PLACE = {"EC0Y": ("Y", "X", 2), "EB0Z": ("Z", "X", 1), "EA0Z": ("Z", "Y", 0)}
 #: where a squareness term sits in the chain; the first is the default (docs/conventions.md)
-SQUARENESS_PLACEMENTS = ("relative", "guideway")
+SQUARENESS_PLACEMENTS = _FORMAT_PLACEMENTS
 
 
 @dataclass(frozen=True)
@@ -633,403 +609,13 @@ class Machine:
                                     max_iterations, order=self.letters)
 
 
-_MACHINE_SCHEMA = {
-    "name": "text",
-    "chain": "text",
-    "tool_mm": "vector",
-    "workpiece_mm": "vector",
-    "axes": "table",
-    "squareness": "table",
-    "squareness_placement": "text",
-    "interpolation": "text",
-    "hold_ends": "bool",
-    "location": "table",
-}
-#: schema of each ``[axes.<letter>]`` section
-_AXIS_SCHEMA = {
-    "errors": "text", "origin_mm": "vector", "interpolation": "text", "hold_ends": "bool", "periodic": "bool", "sensors": "table"
-}
-_KIND_TEXT = {
-    "text": "a string in quotes",
-    "bool": "true or false",
-    "number": "a finite number",
-    "vector": "a list of 3 finite numbers in mm, e.g. [0.0, -40.0, 0.0]",
-    "table": "a table",
-}
-#: factor to SI and display unit of each axis' positions in files and on the command line
-AXIS_UNITS = {letter: (MM, "mm") for letter in AXIS_INDEX} | {letter: (ANGLE_UNITS["deg"], "deg") for letter in ROTARY_LETTERS}
-#: most points a grid may name (about 1 GB of positions and errors)
-MAX_GRID_POINTS = 20_000_000
-#: largest length accepted in a machine file (tool, workpiece, origins), mm
-MAX_MACHINE_SIZE_MM = 1.0e5
-
-
-def _check_kind(value: object, kind: str) -> bool:
-    if kind == "text":
-        return isinstance(value, str)
-    if kind == "bool":
-        return isinstance(value, bool)
-    if kind == "number":
-        return finite_number(value)
-    if kind == "vector":
-        return (
-            isinstance(value, list)
-            and len(value) == 3
-            and all(finite_number(v) and abs(v) <= MAX_MACHINE_SIZE_MM for v in value)
-        )
-    return isinstance(value, Mapping)
-
-
-class _Where:
-    """Locates keys of the machine file for error messages."""
-
-    def __init__(self, source: str, text: str | None):
-        self.source = source
-        self.lines = TomlLines(text) if text is not None else None
-
-    def error(self, message: str, section: str = "", key: str | None = None) -> AxiscalError:
-        line = self.lines.of(section, key=key) if self.lines is not None else None
-        return AxiscalError(message, path=self.source, line=line)
-
-    def check(self, data: Mapping, schema: Mapping[str, str], section: str = "") -> None:
-        label = f"[{section}] " if section else ""
-        for key, value in data.items():
-            if key not in schema:
-                raise self.error(f"{label}unknown key {key}; known keys: {', '.join(sorted(schema))}", section, key)
-            if not _check_kind(value, schema[key]):
-                raise self.error(f"{label}{key} must be {_KIND_TEXT[schema[key]]}, not {value!r}", section, key)
-
-
-def _vector_mm(value: object, what: str) -> tuple[float, float, float]:
-    if not _check_kind(value, "vector"):
-        raise AxiscalError(f"{what} must be {_KIND_TEXT['vector']}")
-    return tuple(float(v) * MM for v in value)  # type: ignore[return-value, union-attr]
-
-
-def _confined(base_dir: Path, name: str, tables_dir: Path | None) -> Path | None:
-    """``name`` resolved inside ``base_dir`` (or else ``tables_dir``), or None if it points elsewhere."""
-    found = []
-    for folder in (base_dir,) if tables_dir is None else (base_dir, tables_dir):
-        root = folder.resolve()
-        candidate = (root / name).resolve()
-        if candidate.is_relative_to(root):
-            found.append(candidate)
-    return next((c for c in found if c.is_file()), found[0] if found else None)
-
-
-def machine_from_dict(
-    data: Mapping,
-    *,
-    base_dir: Path = Path("."),
-    source: str = "<machine>",
-    text: str | None = None,
-    tables_dir: str | Path | None = None,
-) -> Machine:
-    """Build a :class:`Machine` from the parsed TOML description (docs/formats.md).
-
-    Every key is checked against the declared schema of the file (its kind: text, true/false,
-    a list of 3 numbers, a table); the error names the key and, given ``text``, its line.
-
-    Parameters
-    ----------
-    data : mapping
-        The parsed TOML (lengths in mm, angles with their unit in the key).
-    base_dir : Path
-        Folder the error table paths are relative to; they must stay inside it.
-    source : str
-        Name of the description in error messages (its file).
-    text : str, optional
-        The TOML text ``data`` was parsed from, to name the line of a bad key.
-    tables_dir : str or Path, optional
-        A second folder error table paths may point into.
-
-    Returns
-    -------
-    Machine
-
-    Raises
-    ------
-    AxiscalError
-        Unknown keys, a value of the wrong kind, a missing chain or axis section, an error table
-        path outside ``base_dir`` (and ``tables_dir``), a bad error table or squareness entry;
-        the message names ``source`` (or the table file) and the line.
-
-    Examples
-    --------
-    >>> machine_from_dict({"chain": "FX", "hold_ends": "false"})
-    Traceback (most recent call last):
-    ...
-    axiscal.errors.AxiscalError: <machine>: hold_ends must be true or false, not 'false'
-    """
-    check_instance("source", source, str)
-    base_dir = check_path("base_dir", base_dir)
-    if text is not None:
-        check_instance("text", text, str)
-    if tables_dir is not None:
-        check_path("tables_dir", tables_dir)
-    where = _Where(source, text)
-    if not isinstance(data, Mapping):
-        raise where.error("a machine description must be a table of keys")
-    where.check(data, _MACHINE_SCHEMA)
-    if "chain" not in data:
-        raise where.error("missing 'chain' (e.g. chain = \"FXZ\")")
-    chain = data["chain"]
-    try:
-        workpiece_side, tool_side = parse_chain(chain)
-    except AxiscalError as exc:
-        raise where.error(exc.message, "", "chain") from None
-    interpolation = data.get("interpolation", "linear")
-    if interpolation not in INTERPOLATIONS:
-        raise where.error(f"unknown interpolation '{interpolation}'; use one of {', '.join(INTERPOLATIONS)}", "", "interpolation")
-    hold_ends = data.get("hold_ends", False)
-    axes_data = data.get("axes", {})
-    for letter in workpiece_side + tool_side:
-        if letter not in axes_data:
-            raise where.error(f"axis {letter} is in chain '{chain}' but has no [axes.{letter}] section", "", "chain")
-    axes: dict[str, Axis] = {}
-    for letter, section in axes_data.items():
-        label = f"axes.{letter}"
-        if letter not in workpiece_side + tool_side:
-            raise where.error(f"[{label}] is not an axis of chain '{chain}'", label)
-        if not isinstance(section, Mapping):
-            raise where.error(f"[{label}] must be a table", "axes", letter)
-        where.check(section, _AXIS_SCHEMA, label)
-        if "errors" not in section:
-            raise where.error(f"[{label}] has no 'errors' table file", label)
-        axis_interpolation = section.get("interpolation", interpolation)
-        if axis_interpolation not in INTERPOLATIONS:
-            raise where.error(
-                f"[{label}] unknown interpolation '{axis_interpolation}'; use one of {', '.join(INTERPOLATIONS)}", label, "interpolation"
-            )
-        table_path = _confined(base_dir, section["errors"], None if tables_dir is None else Path(tables_dir))
-        if table_path is None:
-            raise where.error(
-                f"[{label}] errors: the error table must be inside the machine file's folder", label, "errors"
-            )
-        if not table_path.is_file():
-            raise where.error(f"[{label}] errors: no file '{section['errors']}' in the machine file's folder", label, "errors")
-        if "periodic" in section and letter not in ROTARY_LETTERS:
-            raise where.error(f"[{label}] periodic: only a rotary axis (A, B, C) is periodic", label, "periodic")
-        table = read_error_table(
-            table_path,
-            letter,
-            interpolation=axis_interpolation,
-            hold_ends=section.get("hold_ends", hold_ends),
-            periodic=section.get("periodic"),
-        )
-        origin = _vector_mm(section.get("origin_mm", [0.0, 0.0, 0.0]), f"[{label}] origin_mm")
-        axes[letter] = Axis(letter, table, origin)
-    squareness: dict[str, float] = {}
-    for key, value in data.get("squareness", {}).items():
-        stem, unit = split_unit(key) if "_" in key else (key, "")
-        if stem not in SQUARENESS_TERMS:
-            raise where.error(
-                f"[squareness] unknown term '{key}'; use EC0Y, EB0Z, EA0Z with a unit, e.g. EB0Z_arcsec", "squareness", key
-            )
-        if not finite_number(value):
-            raise where.error(f"[squareness] {key} must be {_KIND_TEXT['number']}, not {value!r}", "squareness", key)
-        try:
-            squareness[stem] = float(value) * angle_factor(unit, what=key)
-        except AxiscalError as exc:
-            raise where.error(exc.message, "squareness", key) from None
-        if abs(squareness[stem]) > MAX_ANGLE_ERROR_RAD:
-            raise where.error(f"[squareness] {key} = {value} is not a squareness error (over {MAX_ANGLE_ERROR_RAD} rad)", "squareness", key)
-        letter, reference, _ = _SQUARENESS_PLACE[stem]
-        if letter not in workpiece_side + tool_side or reference not in workpiece_side + tool_side:
-            raise where.error(f"[squareness] {key}: chain '{chain}' has no axes {reference} and {letter} to be square", "squareness", key)
-    location: dict[str, float] = {}
-    for key, value in data.get("location", {}).items():
-        stem, unit = split_unit(key) if "_" in key else (key, "")
-        letter = stem[-1:]
-        if letter not in ROTARY_LETTERS or stem not in location_names(letter):
-            raise where.error(
-                f"[location] unknown term '{key}'; e.g. {', '.join(n + '_um' for n in location_names('C')[:2])}, "
-                f"{', '.join(n + '_urad' for n in location_names('C')[2:])}",
-                "location",
-                key,
-            )
-        if letter not in workpiece_side + tool_side:
-            raise where.error(f"[location] {key}: chain '{chain}' has no axis {letter}", "location", key)
-        if not finite_number(value):
-            raise where.error(f"[location] {key} must be {_KIND_TEXT['number']}, not {value!r}", "location", key)
-        try:
-            if stem[1] in AXIS_INDEX:
-                factor, limit = length_factor(unit, what=key), MAX_TRANSLATION_ERROR_M
-            else:
-                factor, limit = angle_factor(unit, what=key), MAX_ANGLE_ERROR_RAD
-        except AxiscalError as exc:
-            raise where.error(exc.message, "location", key) from None
-        if abs(value * factor) > limit:
-            raise where.error(f"[location] {key} = {value} has no physical meaning (limits: 10 mm, 0.01 rad)", "location", key)
-        location[stem] = float(value) * factor
-    placement = data.get("squareness_placement", SQUARENESS_PLACEMENTS[0])
-    if placement not in SQUARENESS_PLACEMENTS:
-        raise where.error(
-            f"unknown squareness placement '{placement}'; use {' or '.join(SQUARENESS_PLACEMENTS)}", "", "squareness_placement"
-        )
-    try:
-        return Machine(
-            chain=chain,
-            axes=axes,
-            squareness_rad=squareness,
-            tool_m=_vector_mm(data.get("tool_mm", [0.0, 0.0, 0.0]), "tool_mm"),
-            workpiece_m=_vector_mm(data.get("workpiece_mm", [0.0, 0.0, 0.0]), "workpiece_mm"),
-            name=data.get("name", ""),
-            squareness_placement=placement,
-            location=location,
-        )
-    except AxiscalError as exc:
-        raise exc.located(path=source) from None
-
-
-def load_machine(path: str | Path, *, tables_dir: str | Path | None = None) -> Machine:
-    """Read a machine description (TOML, docs/formats.md) and its error tables.
-
-    Parameters
-    ----------
-    path : str or Path
-        The TOML file; the error table paths in it are relative to its folder and must stay inside it.
-    tables_dir : str or Path, optional
-        A second folder the error table paths may point into.
-
-    Returns
-    -------
-    Machine
-        SI units throughout; the squareness placement is ``"relative"`` unless the file says otherwise.
-
-    Raises
-    ------
-    AxiscalError
-        A missing or malformed file, naming the file and, where known, the line.
-
-    Examples
-    --------
-    >>> machine = load_machine("examples/xz_module/machine.toml")  # doctest: +SKIP
-    >>> machine.chain  # doctest: +SKIP
-    'FXZ'
-    """
-    path = check_path("path", path)
-    if tables_dir is not None:
-        check_path("tables_dir", tables_dir)
-    data = read_toml(path)
-    return machine_from_dict(data, base_dir=path.parent, source=str(path), text=read_text(path), tables_dir=tables_dir)
-
-
-def as_machine(machine: Machine | str | Path) -> Machine:
-    """``machine`` itself, or the machine its description file describes.
-
-    Parameters
-    ----------
-    machine : Machine, str or Path
-        A machine, or the path of its TOML description.
-
-    Returns
-    -------
-    Machine
-
-    Raises
-    ------
-    AxiscalError
-        Neither a Machine nor a path, or a missing or malformed file (see :func:`load_machine`).
-    """
-    if isinstance(machine, Machine):
-        return machine
-    if not isinstance(machine, (str, Path)):
-        raise AxiscalError(f"a machine is a Machine or the path of its TOML file, not {machine!r:.40}")
-    return load_machine(machine)
-
-
-def axis_positions_from_grid(spec: str) -> dict[str, np.ndarray]:
-    """Every combination of axis positions a grid specification names.
-
-    Parameters
-    ----------
-    spec : str
-        ``"X=0:190:10,Z=0:190:10"``: per axis ``start:end:step`` in mm, or degrees for a rotary
-        axis (``"C=0:360:15"``), ends inclusive, or a single value ``"Y=50"``.
-
-    Returns
-    -------
-    dict of str to ndarray, shape (N,)
-        Position of each named axis (metres; radians for rotary axes), N the product of the
-        axes' counts.
-
-    Raises
-    ------
-    AxiscalError
-        A part that is not of that form, a number that is not finite, an axis named twice,
-        ``end < start``, ``step <= 0``, or more than :data:`MAX_GRID_POINTS` points.
-
-    Examples
-    --------
-    >>> {k: v.tolist() for k, v in axis_positions_from_grid("X=0:20:10,Z=5").items()}
-    {'X': [0.0, 0.01, 0.02], 'Z': [0.005, 0.005, 0.005]}
-    """
-    if not isinstance(spec, str):
-        raise AxiscalError(f"a grid is a string such as 'X=0:190:10,Z=5', not {spec!r}")
-    ranges: dict[str, np.ndarray] = {}
-    total = 1
-    for part in spec.split(","):
-        letter, sep, rng = part.partition("=")
-        letter = letter.strip().upper()
-        bits = [b.strip() for b in rng.split(":")]
-        if not sep or letter not in AXIS_UNITS or len(bits) not in (1, 3):
-            raise AxiscalError(
-                f"grid '{spec}': expected parts like 'X=0:190:10' (start:end:step in mm, deg for A, B, C) or 'Y=50'"
-            )
-        try:
-            numbers = [float(b) for b in bits]
-        except ValueError:
-            raise AxiscalError(f"grid '{spec}': '{rng}' is not numbers") from None
-        if not all(math.isfinite(v) and abs(v) <= MAX_MACHINE_SIZE_MM for v in numbers):
-            raise AxiscalError(f"grid '{spec}': axis {letter} needs finite numbers within ±{MAX_MACHINE_SIZE_MM:g} mm")
-        if letter in ranges:
-            raise AxiscalError(f"grid '{spec}' names axis {letter} twice")
-        if len(numbers) == 1:
-            ranges[letter] = np.array(numbers)
-            continue
-        start, end, step = numbers
-        if step <= 0 or end < start:
-            raise AxiscalError(f"grid '{spec}': need start <= end and step > 0 for axis {letter}")
-        count = math.floor((end - start) / step + 1e-9) + 1
-        total *= count
-        if total > MAX_GRID_POINTS:
-            raise AxiscalError(f"grid '{spec}' has more than {MAX_GRID_POINTS} points; use a coarser step")
-        # the grid's resolution is that of its numbers as written: 0.1 * 3 is 0.3, not 0.30000000000000004
-        decimals = max(len(b.lower().split("e")[0].partition(".")[2]) for b in bits) + 3
-        ranges[letter] = np.round(start + step * np.arange(count), decimals)
-    mesh = np.meshgrid(*ranges.values(), indexing="ij")
-    return {letter: grid.ravel() * AXIS_UNITS[letter][0] for letter, grid in zip(ranges, mesh)}
-
-
-def positions_from_points(sequence: Sequence[Mapping[str, float]]) -> dict[str, np.ndarray]:
-    """Turn a list of points into arrays per axis.
-
-    Parameters
-    ----------
-    sequence : sequence of mapping of str to float
-        Points such as ``{"X": 0.1, "Z": 0.05}`` (metres), all naming the same axes.
-
-    Returns
-    -------
-    dict of str to ndarray, shape (N,)
-        Metres.
-
-    Raises
-    ------
-    AxiscalError
-        Points that are not mappings, name different axes, or hold values that are not numbers.
-    """
-    if not isinstance(sequence, Sequence) or not sequence or not all(isinstance(p, Mapping) for p in sequence):
-        raise AxiscalError("points must be a list of at least one mapping such as {'X': 0.1, 'Z': 0.05}")
-    letters = list(sequence[0]) if sequence else []
-    for k, point in enumerate(sequence):
-        if set(point) != set(letters):
-            raise AxiscalError(f"point {k + 1} names axes {sorted(point)}, the first point {sorted(letters)}")
-    out = {k: _floats([p[k] for p in sequence], f"point positions of axis {k}") for k in letters}
-    for k, q in out.items():
-        if q.ndim != 1:
-            raise AxiscalError(f"point positions of axis {k} must be one number per point")
-        if not np.all(np.isfinite(q)):
-            raise AxiscalError(f"point {int(np.argmax(~np.isfinite(q))) + 1}: the position of axis {k} must be a finite number")
-    return out
+# the machine file and positions of the axes live in their own modules; these names stay importable
+# from here, where they were declared before the split
+from axiscal.model.machine_file import as_machine, load_machine, machine_from_dict  # noqa: E402,F401
+from axiscal.model.positions import (  # noqa: E402,F401
+    AXIS_UNITS,
+    MAX_GRID_POINTS,
+    MAX_MACHINE_SIZE_MM,
+    axis_positions_from_grid,
+    positions_from_points,
+)

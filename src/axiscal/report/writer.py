@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from axiscal.campaign.config import Campaign, TestSpec, load_campaign
+from axiscal.campaign.config import Campaign, TestSpec, read_campaign
 from axiscal.campaign.results import CampaignResults, results_payload
 from axiscal.campaign.runner import run_campaign
 from axiscal.errors import AxiscalError
@@ -203,7 +203,7 @@ def report_campaign(
     >>> files.results_data.verdict  # doctest: +SKIP
     'fail'
     """
-    check_path("campaign_dir", campaign_dir)
+    campaign_dir = check_path("campaign_dir", campaign_dir)  # the one check of the folder's path
     if out_dir is not None:
         check_path("out_dir", out_dir)
     if compare is not None:
@@ -212,7 +212,7 @@ def report_campaign(
     check_instance("history", history, bool)
     if db is not None and not history:
         raise AxiscalError("db applies only with history=True")
-    campaign: Campaign = load_campaign(campaign_dir)
+    campaign: Campaign = read_campaign(campaign_dir)
     other = None
     if compare is not None:
         other = read_json(compare)

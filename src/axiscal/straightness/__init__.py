@@ -3,11 +3,9 @@
 from __future__ import annotations
 
 from axiscal.straightness.files import (
-    MAX_READINGS,
     SEPARATION_METHODS,
     Profile,
     SeparationRun,
-    SimulatedReadings,
     StraightnessEvaluation,
     evaluate_straightness_file,
     read_probe_readings,
@@ -15,8 +13,8 @@ from axiscal.straightness.files import (
     read_reversal_runs,
     separate_file,
     separation_columns,
-    simulate_probe_readings,
 )
+from axiscal.straightness.simulated import MAX_READINGS, SimulatedReadings, simulate_probe_readings
 from axiscal.straightness.plot import plot_separation, plot_straightness
 from axiscal.straightness.reference import REFERENCES, ReferenceLine, reference_line
 from axiscal.straightness.report import render_report

@@ -24,7 +24,6 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import math
-import re
 from dataclasses import dataclass, fields
 from pathlib import Path
 
@@ -32,7 +31,9 @@ from axiscal.errors import AxiscalError
 from axiscal.instruments.air import METHODS, refractive_index
 from axiscal.io.arguments import check_mapping, check_number
 from axiscal.io.arguments import check_instance, type_name
-from axiscal.io.tabular import parse_toml, read_text
+from axiscal.io.arguments import check_path
+from axiscal.io.formats.base import read_format, validate_data
+from axiscal.io.formats.budget import BUDGET_KEYS, BUDGET_RANGES, BudgetFile, BudgetTables
 from axiscal.units import ARCSEC, UM
 
 __all__ = [
@@ -42,6 +43,7 @@ __all__ = [
     "HE_NE_WAVELENGTH_NM",
     "Budget",
     "budget_from_dict",
+    "budget_from_tables",
     "read_budget",
     "air_sensitivities",
     "length_model",
@@ -50,14 +52,6 @@ __all__ = [
 
 #: names of the contributions, in the order of the budget table
 COMPONENTS = ("device", "air", "machine_expansion", "machine_temperature", "misalignment", "eve")
-
-#: the keys a budget file may hold, per section (docs/uncertainty.md)
-BUDGET_KEYS: dict[str, tuple[str, ...]] = {
-    "instrument": ("length_U_ppm", "straightness_U_um", "wavelength_nm", "method"),
-    "air": ("temperature_u_K", "pressure_u_Pa", "humidity_u_percent", "temperature_C", "pressure_Pa", "humidity_percent"),
-    "machine": ("temperature_C", "temperature_u_K", "expansion_per_K", "expansion_u_per_K"),
-    "setup": ("misalignment_urad", "eve_um", "prism_deviation_u_arcsec"),
-}
 
 #: vacuum wavelength of a He-Ne laser, nm
 HE_NE_WAVELENGTH_NM = 632.991
@@ -172,48 +166,8 @@ _FIELDS: dict[tuple[str, str], tuple[str, float]] = {
 }
 
 
-#: the physical range of each number of a budget file, in the file's units (both ends allowed); a value
-#: beyond it is a typing or unit mistake (a budget of 1e300 um), refused before any sum is formed.
-#: The air conditions and the wavelength are bounded by the refractive-index equation itself.
-BUDGET_RANGES: dict[tuple[str, str], tuple[float, float]] = {
-    ("instrument", "length_U_ppm"): (0.0, 1000.0),
-    ("instrument", "straightness_U_um"): (0.0, 1000.0),
-    ("air", "temperature_u_K"): (0.0, 50.0),
-    ("air", "pressure_u_Pa"): (0.0, 10000.0),
-    ("air", "humidity_u_percent"): (0.0, 100.0),
-    ("machine", "temperature_C"): (-50.0, 150.0),
-    ("machine", "temperature_u_K"): (0.0, 50.0),
-    ("machine", "expansion_per_K"): (-1e-3, 1e-3),
-    ("machine", "expansion_u_per_K"): (0.0, 1e-3),
-    ("setup", "misalignment_urad"): (0.0, 1e5),
-    ("setup", "eve_um"): (0.0, 10000.0),
-    ("setup", "prism_deviation_u_arcsec"): (0.0, 3600.0),
-}
-
 # Budget field -> its range in SI
 _SI_RANGES = {_FIELDS[key][0]: (low * _FIELDS[key][1], high * _FIELDS[key][1]) for key, (low, high) in BUDGET_RANGES.items()}
-
-
-def _line_of(text: str, section: str, key: str | None = None) -> int | None:
-    """1-based line of ``[section]`` (or of ``key`` inside it) in a TOML text; None when not found.
-
-    A section written as a plain key (``setup = 1``) or an array of tables (``[[setup]]``) is
-    found too.
-    """
-    inside, top = False, True
-    for number, line in enumerate(text.splitlines(), start=1):
-        stripped = line.strip()
-        header = re.match(r"^\[\[?\s*([^\]]+?)\s*\]", stripped)
-        if header:
-            inside, top = header.group(1) == section, False
-            if inside and key is None:
-                return number
-            continue
-        if inside and key is not None and re.match(rf"^{re.escape(key)}\s*=", stripped):
-            return number
-        if top and key is None and re.match(rf"^{re.escape(section)}\s*=", stripped):
-            return number
-    return None
 
 
 def budget_from_dict(
@@ -233,8 +187,8 @@ def budget_from_dict(
     text : str, optional, keyword-only
         The TOML text, to name the line of a bad key.
     locate : callable, optional, keyword-only
-        ``locate(section, key)`` -> line, for a budget held inside another file (the
-        ``[uncertainty]`` table of campaign.toml); takes precedence over ``text``.
+        ``locate(section, key)`` -> line, for a budget held inside another file; takes
+        precedence over ``text``.
 
     Returns
     -------
@@ -252,6 +206,8 @@ def budget_from_dict(
     >>> budget_from_dict({"setup": {"eve_um": 1.0}}).eve_m
     1e-06
     """
+    from axiscal.io.schema import TomlLines
+
     check_mapping("data", data, what="the tables of a budget (a dict)")
     if not isinstance(source, (str, Path)):
         raise AxiscalError(f"source must be the file name for messages (a str), not {type_name(source)}")
@@ -259,41 +215,52 @@ def budget_from_dict(
         raise AxiscalError(f"locate must be a function of (section, key), not {type_name(locate)}")
     if text is not None and not isinstance(text, str):
         raise AxiscalError(f"text must be the TOML text (a str), not {type_name(text)}")
+    lines = TomlLines(text) if text is not None and locate is None else None
+    tables = validate_data(BudgetFile, data, path=source, lines=lines)
+    if locate is None:
+        def locate(section: str, key: str | None = None) -> int | None:
+            return None if lines is None else lines.of(section, key=key) or lines.of("", key=section)
+    return budget_from_tables(tables, source=source, locate=locate)
+
+
+def budget_from_tables(
+    tables: BudgetTables, *, source: str = "<budget>", locate: Callable[[str, str | None], int | None] | None = None,
+) -> Budget:
+    """Build a :class:`Budget` from validated budget tables (a budget file or campaign.toml's ``[uncertainty]``).
+
+    Parameters
+    ----------
+    tables : axiscal.io.formats.BudgetTables
+        The validated tables (values in the file's units).
+    source : str, keyword-only
+        File name for messages.
+    locate : callable, optional, keyword-only
+        ``locate(section, key)`` -> line, to name the line of the method or the air conditions.
+
+    Returns
+    -------
+    Budget
+
+    Raises
+    ------
+    AxiscalError
+        An unknown refractive-index method; air conditions outside the range of the refractive-index equation.
+    """
+    check_instance("tables", tables, BudgetTables, what="validated budget tables (axiscal.io.formats.BudgetTables)")
 
     def line(section: str, key: str | None = None) -> int | None:
-        if locate is not None:
-            return locate(section, key)
-        return None if text is None else _line_of(text, section, key)
+        return None if locate is None else locate(section, key)
 
     values: dict[str, object] = {}
-    for section, table in data.items():
-        if not isinstance(section, str) or section not in BUDGET_KEYS:
-            raise AxiscalError(
-                f"unknown budget section [{section}]; use {', '.join('[' + s + ']' for s in BUDGET_KEYS)}",
-                path=source, line=line(section),
-            )
-        if not isinstance(table, dict):
-            raise AxiscalError(f"[{section}] must be a table of keys", path=source, line=line(section))
-        for key, value in table.items():
-            if not isinstance(key, str) or key not in BUDGET_KEYS[section]:
-                raise AxiscalError(
-                    f"[{section}] unknown key '{key}'; known keys: {', '.join(BUDGET_KEYS[section])}",
-                    path=source, line=line(section, key),
-                )
+    for section in BUDGET_KEYS:
+        table = getattr(tables, section)
+        if table is None:
+            continue
+        for key, value in table.given().items():
             if key == "method":
-                if not isinstance(value, str):
-                    raise AxiscalError(f"[{section}] method must be a name in quotes, got {value!r}", path=source, line=line(section, key))
                 values["method"] = value
                 continue
-            if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value):
-                raise AxiscalError(f"[{section}] {key} must be a finite number, got {value!r}", path=source, line=line(section, key))
             name, factor = _FIELDS[(section, key)]
-            if name in _UNCERTAINTIES and value < 0:
-                raise AxiscalError(f"[{section}] {key} must not be negative, got {value:g}", path=source, line=line(section, key))
-            low, high = BUDGET_RANGES.get((section, key), (-math.inf, math.inf))
-            if not low <= value <= high:
-                raise AxiscalError(f"[{section}] {key} must be {low:g} to {high:g}, got {value:g}", path=source,
-                                   line=line(section, key))
             values[name] = float(value) * factor
     try:
         budget = Budget(**values, source=source)
@@ -323,8 +290,9 @@ def read_budget(path: str | Path) -> Budget:
     AxiscalError
         A missing or malformed file, or a bad key, naming the file and line.
     """
-    text = read_text(path)  # read once: parsed, and kept to name the line of a bad key
-    return budget_from_dict(parse_toml(text, path=path), source=str(path), text=text)
+    tables, lines = read_format(BudgetFile, check_path("path", path))
+    return budget_from_tables(tables, source=str(path),
+                              locate=lambda section, key=None: lines.of(section, key=key) or lines.of("", key=section))
 
 
 def air_sensitivities(budget: Budget) -> dict[str, float]:

@@ -36,7 +36,7 @@ from axiscal.io.jsonio import write_sidecar
 from axiscal.io.schema import confined_path
 from axiscal.io.tabular import read_csv, read_text, read_toml, write_csv
 from axiscal.model.machine import Machine, machine_from_dict
-from axiscal.uncertainty.budget import _line_of
+from axiscal.io.schema import TomlLines
 from axiscal.uncertainty.montecarlo import _probability, _whole_draws, coverage_interval
 from axiscal.units import MM, UM, angle_factor, length_factor
 
@@ -194,7 +194,7 @@ def load_machine_uncertainty(path: str | Path) -> tuple[Machine, MachineUncertai
         for key in [k for k in squareness if k.endswith(_SUFFIX)]:
             value_key = key[: -len(_SUFFIX)]
             stem, _, unit = value_key.rpartition("_")
-            where = {"path": path, "line": _line_of(read_text(path), "squareness", key)}
+            where = {"path": path, "line": TomlLines(read_text(path)).of("squareness", key=key)}
             if value_key not in squareness or stem not in SQUARENESS_TERMS:
                 raise AxiscalError(f"[squareness] '{key}' has no squareness term '{value_key}' beside it", **where)
             u = squareness.pop(key)

@@ -7,11 +7,13 @@ from axiscal.io.importers.columnmap import (
     INCH,
     POSITIONING_COLUMNS,
     ColumnMap,
-    ImportedReadings,
     column_map,
+    read_column_map,
+)
+from axiscal.io.importers.readings import (
+    ImportedReadings,
     import_readings,
     positioning_csv,
-    read_column_map,
     write_positioning_csv,
 )
 from axiscal.io.importers.rtx import (
