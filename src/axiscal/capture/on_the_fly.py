@@ -410,7 +410,7 @@ def on_the_fly(
         k = readings[int(stopping[0])].index
         raise AxiscalError(f"{steps.describe(k)}: the axis comes to rest at the target ({passing[stopping[0]] / MM * 60:.4g}"
                            f" mm/min, not {np.median(passing) / MM * 60:.4g}): an on-the-fly program runs past every target"
-                           " without stopping (axiscal plan --on-the-fly writes one)", path=recording.source)
+                           " without stopping (an on-the-fly plan's program does)", path=recording.source)
     settings = CaptureSettings(window_s=window_s, offset_m=offset_m)
     carried = tuple(n for n in names if all(n in r.channels for r in readings))
     capture = Capture(steps, tuple(readings), settings, recording.source, carried, {})

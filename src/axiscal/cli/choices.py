@@ -13,10 +13,11 @@ __all__ = [
     "MEASURES", "MODEL_KINDS", "PAPER_004_SQUARENESS_ARCMIN", "PATHS", "PLANES", "READING_UNITS", "REFERENCES",
     "SAG_CONTROLLERS", "SAG_REFERENCES", "SCREWMAP_CONTROLLERS", "SEPARATION_METHODS", "SKEW_CONVENTIONS",
     "SQUARENESS_REFERENCES", "STANDARDS", "UNCERTAINTY_SCHEDULER_TIMEOUT_S", "AIR_METHODS", "MIRRORED",
-    "DECISION_RULES",
+    "DECISION_RULES", "SCHEMA_FORMATS",
 ]
 
 AIR_METHODS = ("ciddor", "edlen", "edlen1966", "shopfloor")
+SCHEMA_FORMATS = ('campaign', 'machine', 'budget', 'artefact', 'flatness', 'import-map')
 DECISION_RULES = ('simple', 'guard-band')
 BACKLASH_CONTROLLERS = ("linuxcnc", "fanuc", "siemens", "heidenhain", "twincat", "grblhal", "marlin", "rrf")
 BACKLASH_METHODS = ("mean", "max", "target")
@@ -51,6 +52,7 @@ UNCERTAINTY_SCHEDULER_TIMEOUT_S = 10.0
 #: name here -> the library constant it mirrors ("module:NAME"); keys of a mapping are compared as a tuple
 MIRRORED: dict[str, str] = {
     "DECISION_RULES": "axiscal.uncertainty.decision:DECISION_RULES",
+    "SCHEMA_FORMATS": "axiscal.io.formats.catalogue:FORMAT_FILES",
     "AIR_METHODS": "axiscal.instruments.air:METHODS",
     "BACKLASH_CONTROLLERS": "axiscal.compensation.backlash:BACKLASH_CONTROLLERS",
     "BACKLASH_METHODS": "axiscal.compensation.backlash:BACKLASH_METHODS",

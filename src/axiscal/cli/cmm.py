@@ -129,3 +129,7 @@ def probing_command(points, diameter_mm, pform_mpe_um, psize_mpe_um, pform_ms_mp
         echo_json(result.payload())
     else:
         click.echo(result.report())
+
+
+# the group's compensate and gauge-blocks live beside the squareness commands
+import axiscal.cli.squareness  # noqa: E402,F401

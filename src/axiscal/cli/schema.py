@@ -7,13 +7,13 @@ from __future__ import annotations
 
 import click
 
-from axiscal.io.formats.catalogue import FORMAT_FILES, json_schema_text
+from axiscal.cli.choices import SCHEMA_FORMATS
 
-__all__ = ["schema_command", "register"]
+__all__ = ["schema_command"]
 
 
 @click.command("schema")
-@click.argument("name", type=click.Choice(tuple(FORMAT_FILES)), metavar="NAME")
+@click.argument("name", type=click.Choice(SCHEMA_FORMATS), metavar="NAME")
 def schema_command(name):
     """Print the JSON Schema of a TOML format (draft 7).
 
@@ -22,8 +22,6 @@ def schema_command(name):
     such as VS Code with Even Better TOML (Taplo) use it to complete and check keys as you type:
     see docs/formats.md.
     """
+    from axiscal.io.formats.catalogue import json_schema_text
+
     click.echo(json_schema_text(name), nl=False)
-
-
-def register(group: click.Group) -> None:
-    group.add_command(schema_command)

@@ -117,6 +117,8 @@ class UmdState:
         1 or 2, and the firmware number (code 10).
     counts_per_cycle, homodyne_axes : int
         Code 20.
+    counts_told : bool
+        Whether code 20 has come.
     phase_8bit : bool
         Code 112's flag.
     air_temperature_c, material_temperature_c, pressure_pa, humidity_pct : float
@@ -127,6 +129,7 @@ class UmdState:
     version: int | None = None
     firmware: int | None = None
     counts_per_cycle: int = 1
+    counts_told: bool = False
     homodyne_axes: int = 0
     phase_8bit: bool = False
     air_temperature_c: float = math.nan
@@ -196,13 +199,16 @@ class UmdDecoder:
                 s.version = 2 if s.firmware >= 100 else 1
         elif code == 20 and data > 0:
             s.counts_per_cycle = max(1, data >> 8)
+            s.counts_told = True
             s.homodyne_axes = data & 0xFF
         elif code == 112:
             s.phase_8bit = bool(data & 0x2)
 
     def _ready(self) -> bool:
         s = self.state
-        return (s.rate_hz is not None or self.settings.rate_hz is not None) and s.version is not None
+        # a µMD2 says how many edges it counts a cycle (code 20) right after its rate: wait for it too
+        return ((s.rate_hz is not None or self.settings.rate_hz is not None) and s.version is not None
+                and (s.version == 1 or s.counts_told or self.settings.version is not None))
 
     def _settle(self) -> None:
         """After too many held lines: use the settings given, or refuse."""
@@ -211,6 +217,9 @@ class UmdDecoder:
             raise AxiscalError(f"the µMD stream has not said its sample rate (code 8) in {_HOLD_LINES} samples: give rate_hz")
         if s.version is None:
             raise AxiscalError(f"the µMD stream has not said its firmware (code 10) in {_HOLD_LINES} samples: give umd_version 1 or 2")
+        if s.version == 2 and not s.counts_told:
+            s.counts_per_cycle = 2  # the µMD2 firmware's own default (both edges counted)
+            s.counts_told = True
 
     def _length_m(self, f: list[int]) -> tuple[float, str | None]:
         """The length of one sample, metres, or NaN and why it is not a reading."""
@@ -228,7 +237,7 @@ class UmdDecoder:
         else:
             scale = 256.0 if st.phase_8bit else 65536.0
             counts = -(d - p / scale)
-            per_cycle = st.counts_per_cycle
+            per_cycle = st.counts_per_cycle if st.counts_told else 2  # the µMD2 firmware counts both edges by default
         return counts / per_cycle * se.wavelength_m / 2.0 / se.optics_multiplier, None
 
     def _sample(self, f: list[int], out_t: list, out_rows: list, out_bad: list) -> None:
