@@ -23,7 +23,7 @@ import time
 import urllib.parse
 
 from axiscal.devices.controller import SILENCE_S, Controller, Heartbeat
-from axiscal.devices.links import recv_before
+from axiscal.devices.links import close_now, recv_before
 from axiscal.errors import AxiscalError
 
 __all__ = ["KlipperController", "MoonrakerController", "KlipperSocket"]
@@ -70,14 +70,7 @@ class KlipperSocket:
 
     def close(self) -> None:
         """Close the connection; a reply awaited on another thread ends at once (shutdown wakes it)."""
-        try:
-            self.sock.shutdown(socket.SHUT_RDWR)
-        except OSError:
-            pass
-        try:
-            self.sock.close()
-        except OSError:
-            pass
+        close_now(self.sock)
 
 
 class _ToolheadController(Controller):

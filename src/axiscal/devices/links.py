@@ -19,7 +19,25 @@ from dataclasses import dataclass
 
 from axiscal.errors import AxiscalError
 
-__all__ = ["LinkClosed", "SerialFraming", "SerialLink", "TcpLink", "parse_port", "recv_before"]
+__all__ = ["LinkClosed", "SerialFraming", "SerialLink", "TcpLink", "parse_port", "recv_before", "close_now"]
+
+
+def close_now(sock: socket.socket) -> None:
+    """Close a socket so that a reply awaited on another thread ends at once (shutdown wakes it; close alone does not).
+
+    Parameters
+    ----------
+    sock : socket.socket
+
+    Returns
+    -------
+    None
+    """
+    for step in (lambda: sock.shutdown(socket.SHUT_RDWR), sock.close):
+        try:
+            step()
+        except OSError:
+            pass
 
 
 def recv_before(sock: socket.socket, deadline: float | None, where: str) -> bytes:

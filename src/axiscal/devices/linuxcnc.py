@@ -25,7 +25,7 @@ import time
 from pathlib import Path
 
 from axiscal.devices.controller import SILENCE_S, Controller, Heartbeat
-from axiscal.devices.links import recv_before
+from axiscal.devices.links import close_now, recv_before
 from axiscal.errors import AxiscalError
 
 __all__ = ["LINUXCNCRSH_PORT", "LinuxcncController", "RshConnection", "ini_limits"]
@@ -109,14 +109,7 @@ class RshConnection:
 
     def close(self) -> None:
         """Close the session; a reply awaited on another thread ends at once (shutdown wakes it)."""
-        try:
-            self.sock.shutdown(socket.SHUT_RDWR)
-        except OSError:
-            pass
-        try:
-            self.sock.close()
-        except OSError:
-            pass
+        close_now(self.sock)
 
 
 def ini_limits(ini: str | Path, axis: str) -> tuple[float, float] | None:
