@@ -219,8 +219,9 @@ def test_write_csv_is_atomic_and_plain(tmp_path):
 
 
 # ---- a plain, slow reference reader of the contract in docs/formats.md
-REF_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
-REF_NUMBER_COMMA = re.compile(r"[+-]?(?:[0-9]+[.,]?[0-9]*|[.,][0-9]+)(?:[eE][+-]?[0-9]+)?")
+# one way to split every number (a digit run, then a point and its digits): no backtracking over a long run
+REF_NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+REF_NUMBER_COMMA = re.compile(r"[+-]?(?:[0-9]+(?:[.,][0-9]*)?|[.,][0-9]+)(?:[eE][+-]?[0-9]+)?")
 
 
 class Refused(Exception):
