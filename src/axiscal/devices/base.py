@@ -8,6 +8,8 @@ instrument's time, so a capture can refuse a stop whose window holds one and rep
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
+
 import math
 import threading
 import time
@@ -99,7 +101,7 @@ class InstrumentStatus:
     attempt_times: list[float] = field(default_factory=list)
 
 
-class InstrumentSource:
+class InstrumentSource(ABC):
     """Base of the instrument sources: a link, a decoder of its bytes, the faults seen.
 
     Subclasses set ``channels``, ``status`` and implement ``_decode(data) -> Samples`` and, for polled
@@ -155,8 +157,9 @@ class InstrumentSource:
     def _poll(self) -> None:
         """Ask a polled instrument for its next reading (streaming instruments do nothing)."""
 
-    def _decode(self, data: bytes) -> Samples:  # pragma: no cover - every subclass has its own
-        raise NotImplementedError
+    @abstractmethod
+    def _decode(self, data: bytes) -> Samples:
+        """The samples these bytes hold."""
 
     def read(self, timeout_s: float) -> Samples:
         """The samples that arrived within ``timeout_s`` seconds (possibly none).
@@ -236,8 +239,9 @@ class PolledSource(InstrumentSource):
     def _next_request(self) -> bytes:
         return self.request
 
-    def _parse(self, reply: bytes) -> tuple[float | None, str | None]:  # pragma: no cover - every subclass has its own
-        raise NotImplementedError
+    @abstractmethod
+    def _parse(self, reply: bytes) -> tuple[float | None, str | None]:
+        """A reply as (metres or None, the problem or None)."""
 
     def _decode(self, data: bytes) -> Samples:
         parts = (self._tail + data).split(self.terminator)

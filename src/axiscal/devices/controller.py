@@ -17,6 +17,8 @@ Positions are metres in the API; each driver speaks its controller's unit (mm) o
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
+
 import threading
 import time
 from dataclasses import dataclass
@@ -49,7 +51,7 @@ class ControllerStatus:
     message: str = ""
 
 
-class Controller:
+class Controller(ABC):
     """Base of the controller drivers (see the module's text for the interface).
 
     Attributes
@@ -64,17 +66,20 @@ class Controller:
     def __init__(self) -> None:
         self.status = ControllerStatus(self.description)
 
-    def check_ready(self, axis: str) -> None:  # pragma: no cover - every driver has its own
-        raise NotImplementedError
+    @abstractmethod
+    def check_ready(self, axis: str) -> None:
+        """Refuse, in one line, a machine that is not homed, in e-stop, alarm or error."""
 
     def limits(self, axis: str) -> tuple[float, float] | None:
         return None
 
-    def move_to(self, axis: str, position_m: float, feed_m_per_s: float) -> None:  # pragma: no cover
-        raise NotImplementedError
+    @abstractmethod
+    def move_to(self, axis: str, position_m: float, feed_m_per_s: float) -> None:
+        """An absolute move of ``axis`` alone, returning once the controller reports it done."""
 
-    def position(self, axis: str) -> float:  # pragma: no cover
-        raise NotImplementedError
+    @abstractmethod
+    def position(self, axis: str) -> float:
+        """Where the controller says ``axis`` is, metres."""
 
     def stop(self) -> None:
         """Feed hold and abort what runs (Ctrl-C)."""

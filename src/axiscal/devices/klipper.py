@@ -15,6 +15,8 @@ the run).
 
 from __future__ import annotations
 
+from abc import abstractmethod
+
 import errno
 import http.client
 import json
@@ -76,11 +78,13 @@ class KlipperSocket:
 class _ToolheadController(Controller):
     """What Klipper and Moonraker share: a script call, a query of the toolhead, an emergency stop."""
 
-    def _script(self, script: str, *, timeout_s: float | None, main: bool) -> dict:  # pragma: no cover
-        raise NotImplementedError
+    @abstractmethod
+    def _script(self, script: str, *, timeout_s: float | None, main: bool) -> dict:
+        """Run a G-code script; the reply object."""
 
-    def _query(self, *, timeout_s: float) -> dict:  # pragma: no cover
-        raise NotImplementedError
+    @abstractmethod
+    def _query(self, *, timeout_s: float) -> dict:
+        """The toolhead's status object."""
 
     def _toolhead(self) -> dict:
         try:
@@ -126,8 +130,9 @@ class _ToolheadController(Controller):
         self.status.state = "idle"
         self.status.position_m = position_m
 
-    def _abandon(self) -> None:  # pragma: no cover - each has its own
-        raise NotImplementedError
+    @abstractmethod
+    def _abandon(self) -> None:
+        """Unblock a script call awaited on another thread."""
 
 
 class KlipperController(_ToolheadController):

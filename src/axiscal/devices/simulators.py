@@ -9,6 +9,8 @@ device that goes silent) are injected by the tests to check what the readers ref
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
+
 import json
 import math
 import os
@@ -65,7 +67,7 @@ def close_pty_pair(master: int) -> None:
                 pass
 
 
-class _Simulator:
+class _Simulator(ABC):
     """A device's side running on a thread until ``stop()``."""
 
     def __init__(self):
@@ -83,8 +85,9 @@ class _Simulator:
         if self._thread is not None:
             self._thread.join(timeout=5)
 
-    def _run(self) -> None:  # pragma: no cover - every simulator has its own
-        raise NotImplementedError
+    @abstractmethod
+    def _run(self) -> None:
+        """The device's side, until stopped."""
 
 
 def _write_all(fd: int, data: bytes, stop: threading.Event) -> bool:
@@ -237,8 +240,9 @@ class _AnsweringSimulator(_Simulator):
         self.error: str | None = None  # an error reply to give instead of readings
         self.requests = 0
 
-    def reply(self, value_m: float) -> bytes:  # pragma: no cover - every simulator has its own
-        raise NotImplementedError
+    @abstractmethod
+    def reply(self, value_m: float) -> bytes:
+        """The reply to one request for a reading at ``value_m``."""
 
     def _run(self) -> None:
         began = time.monotonic()
