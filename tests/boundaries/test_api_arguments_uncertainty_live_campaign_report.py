@@ -453,6 +453,7 @@ bad(R, "history_section", "results", lambda: rp.history_section(None), lambda: r
 bad(R, "CycleSettings", "fmt", lambda: rp.CycleSettings(fmt="fanuc"))
 bad(R, "CycleSettings", "restart_command", lambda: rp.CycleSettings(restart_command=["linuxcnc", "-r"]))
 bad(R, "CycleSettings", "restart", lambda: rp.CycleSettings(restart="restart.sh"))
+bad(R, "CycleSettings", "tolerance_e_um", lambda: rp.CycleSettings(tolerance_e_um=-1.0), lambda: rp.CycleSettings(tolerance_e_um="20"))
 bad(R, "closed_cycle", "controller", lambda: rp.closed_cycle(CAMPAIGN, None, "sim", CAMPAIGN))
 bad(R, "closed_cycle", "source", lambda: rp.closed_cycle(CAMPAIGN, "sim", 5, CAMPAIGN))
 bad(R, "closed_cycle", "cycle", lambda: rp.closed_cycle(CAMPAIGN, "sim", "sim", CAMPAIGN, {"fmt": "linuxcnc"}))

@@ -15,7 +15,7 @@ __all__ = ["run_command", "cycle_command", "instrument_options"]
 _FLAGS = {"stability_m": "--stability-um", "window_s": "--window-s", "offset_m": "--offset-mm", "dwell_s": "--dwell-s",
           "feed_m_per_s": "--feed-mm-min", "axis": "--axis", "wavelength_m": "--wavelength-nm", "rate_hz": "--rate-hz",
           "channel": "--channel", "optics_multiplier": "--optics-multiplier", "counts_per_mm": "--counts-per-mm",
-          "unit": "--unit", "umd_version": "--umd-version", "resume=True": "--resume"}
+          "unit": "--unit", "umd_version": "--umd-version", "resume=True": "--resume", "tolerance_e_um": "--tolerance-e-um"}
 
 
 def instrument_options(function):
@@ -230,11 +230,12 @@ def run_command(plan_csv, controller_spec, source_spec, output, axis, feed_mm_mi
 @click.option("--stability-um", type=FINITE, default=None)
 @click.option("--offset-mm", type=FINITE, default=0.0, show_default=True)
 @click.option("--ini", type=click.Path(dir_okay=False), default=None, help="LinuxCNC: the machine's INI file.")
+@click.option("--tolerance-e-um", type=FINITE, default=None, help="ISO 230-2's E tolerance both reports hold the runs against [none: not assessed].")
 @click.option("--seed", type=int, default=0, show_default=True)
 @click.option("--json", "as_json", is_flag=True, help="Print both verdicts and E, as found and as left, as JSON.")
 @instrument_options
 def cycle_command(plan_csv, controller_spec, source_spec, fmt, output_dir, restart_command, axis, feed_mm_min, dwell_s, window_s,
-                  stability_um, offset_mm, ini, seed, as_json, **instrument):
+                  stability_um, offset_mm, ini, tolerance_e_um, seed, as_json, **instrument):
     """The closed cycle on a controller: as found -> compensation -> (restart with it) -> as left -> compared report.
 
     OUTPUT/as-found/{campaign,report}, OUTPUT/as-left/{campaign,report} (compared with the as-found
@@ -258,7 +259,7 @@ def cycle_command(plan_csv, controller_spec, source_spec, fmt, output_dir, resta
     with flags_named(_FLAGS):
         result = closed_cycle(plan_csv, controller_spec, source_spec, output_dir,
                               CycleSettings(fmt=fmt, restart_command=restart_command, ini=ini, seed=seed,
-                                            stability_given=stability_um is not None),
+                                            stability_given=stability_um is not None, tolerance_e_um=tolerance_e_um),
                               drive=drive, settings=settings, options=options, ask=wait_for_user,
                               note=lambda text: click.echo(f"axiscal: note: {text}", err=True))
     if as_json:

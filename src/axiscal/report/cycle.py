@@ -52,6 +52,8 @@ class CycleSettings:
         Noise seed of a simulated instrument.
     stability_given : bool
         Whether the stability was given (else a gauge's follows its resolution).
+    tolerance_e_um : float or None, um
+        The tolerance of ISO 230-2's E held against both runs (none: figures reported, not assessed).
     """
 
     fmt: str = "linuxcnc"
@@ -60,8 +62,11 @@ class CycleSettings:
     ini: str | None = None
     seed: int = 0
     stability_given: bool = True
+    tolerance_e_um: float | None = None
 
     def __post_init__(self) -> None:
+        if self.tolerance_e_um is not None and not (isinstance(self.tolerance_e_um, float) and 0 < self.tolerance_e_um < 1e6):
+            raise AxiscalError(f"tolerance_e_um must be a positive number of um, not {self.tolerance_e_um!r}")
         check_choice("fmt", self.fmt, ("linuxcnc",))
         if self.restart_command is not None:
             check_instance("restart_command", self.restart_command, str)
@@ -87,11 +92,14 @@ class CycleResult:
     summary: dict[str, Any]
 
 
-def _campaign(folder: Path, title: str, axis: str, fmt: str) -> None:
+def _campaign(folder: Path, title: str, axis: str, fmt: str, *, machine: str, instrument: str, wavelength_nm: float,
+              tolerance_e_um: float | None) -> None:
     import datetime
 
-    write_text(folder / "campaign.toml", render_template("cycle_campaign.toml.j2", title=title, axis=axis, controller=fmt,
-                                                         date=datetime.date.today().isoformat()))
+    write_text(folder / "campaign.toml", render_template(
+        "cycle_campaign.toml.j2", title=title, axis=axis, controller=fmt, date=datetime.date.today().isoformat(),
+        machine=f"the machine on {machine}", instrument=instrument, wavelength_nm=repr(wavelength_nm),
+        tolerance_e_um=None if tolerance_e_um is None else repr(tolerance_e_um)))
 
 
 def _figures(report: Path, run_csv: Path) -> dict[str, Any]:
@@ -152,6 +160,8 @@ def closed_cycle(
     axis = drive.axis.strip().upper()
     machine = sim_machine(axis=axis) if controller.strip().lower() == "sim" else None
 
+    wavelength_nm = (InstrumentOptions() if options is None else options).wavelength_m * 1e9
+
     def one_run(stage: str, machine_now) -> tuple[Path, Path]:
         campaign = folder / stage / "campaign"
         campaign.mkdir(parents=True, exist_ok=True)
@@ -161,13 +171,15 @@ def closed_cycle(
         try:
             used = settings if cycle.stability_given else CaptureSettings(
                 stability_m=default_stability_m(instrument, None), window_s=settings.window_s, offset_m=settings.offset_m)
-            say(f"{stage}: driving the plan on {made.description}, reading {instrument.status.description}")
+            description = f"{instrument.status.description}"
+            say(f"{stage}: driving the plan on {made.description}, reading {description}")
             run_to_file(plan, made, instrument, run_csv, drive=drive, settings=used, resume=(campaign / "run.csv.partial").is_file())
         finally:
             instrument.close()
             made.close()
         title = "as found" if stage == "as-found" else "as left"
-        _campaign(campaign, f"{axis} axis {title} ({controller})", axis, cycle.fmt)
+        _campaign(campaign, f"{axis} axis {title} ({controller})", axis, cycle.fmt, machine=controller,
+                  instrument=description, wavelength_nm=wavelength_nm, tolerance_e_um=cycle.tolerance_e_um)
         return campaign, run_csv
 
     found_campaign, found_csv = one_run("as-found", machine)
