@@ -115,7 +115,7 @@ def plain_rows(data: bytes) -> tuple[list[str], list[list[str]]]:
     """Header and data rows of a comma CSV as a spreadsheet would see them (comment and blank lines skipped)."""
     text = data.decode("utf-8-sig")
     rows = [r for r in csv.reader(io.StringIO(text, newline="")) if r and "".join(r).strip() and not r[0].lstrip().startswith("#")]
-    return [h.strip().lstrip("\ufeff") for h in rows[0]], rows[1:]
+    return [h.strip(" \t\v\f").lstrip("\ufeff") for h in rows[0]], rows[1:]
 
 
 def run(reader, path):

@@ -81,7 +81,7 @@ def test_form_feed_and_line_separator_do_not_end_a_line(tmp_path):
     path.write_bytes("a,b\n1,2\x0c\n3,4\u2028x\n5,6\n".encode())
     table = read_csv(path)
     assert table.lines == (2, 3, 4) and table.text("b") == ["2", "4\u2028x", "6"]
-    with pytest.raises(AxiscalError, match="'4\u2028x' is not a number") as info:
+    with pytest.raises(AxiscalError, match=r"'4\\u2028x' is not a number") as info:
         table.numeric("b")
     assert info.value.line == 3
 
@@ -238,6 +238,10 @@ def physical_lines(data: bytes) -> list[bytes]:
     return parts
 
 
+#: what the reader strips a cell of (ASCII blanks within a line; not \x1c-\x1f, which str.strip also takes)
+BLANKS = " \t\v\f"
+
+
 def reference_read(data: bytes, min_rows: int = 1):
     """(header, rows, line numbers, delimiter) or Refused(line)."""
     if data.startswith(b"\xef\xbb\xbf"):
@@ -260,9 +264,9 @@ def reference_read(data: bytes, min_rows: int = 1):
 
     def split(number: int, line: str) -> list[str]:
         if '"' not in line:
-            return [c.strip() for c in line.split(delimiter)]
+            return [c.strip(BLANKS) for c in line.split(delimiter)]
         try:
-            return [c.strip() for c in next(csv.reader([line], delimiter=delimiter, strict=True), [""])]
+            return [c.strip(BLANKS) for c in next(csv.reader([line], delimiter=delimiter, strict=True), [""])]
         except csv.Error:
             raise Refused(number) from None
 
@@ -410,3 +414,21 @@ def test_a_file_rewritten_while_read_is_parsed_from_the_bytes_read_first(tmp_pat
     monkeypatch.setattr(type(path), "read_bytes", read_then_rewrite)
     table = read_csv(path)
     np.testing.assert_array_equal(table.numeric("a"), [1.0, 3.0])
+
+
+def test_a_control_character_is_not_stripped_from_a_number(tmp_path):
+    # str.strip() takes \x1c-\x1f as white space: "\x1d.890" (a damaged "-2.890") must not read as 0.890
+    path = tmp_path / "f.csv"
+    path.write_bytes(b"position_mm,EXX_um\n0,\x1d.890\n1,2\n")
+    with pytest.raises(AxiscalError, match=r"'\\x1d\.890' is not a number") as info:
+        read_csv(path).numeric("EXX_um")
+    assert info.value.line == 2
+
+
+@pytest.mark.parametrize("rows", [b"1,2,\n3,4\n", b"1,2\n3,4,\n", b"1,2\n3,4,,\n"])
+def test_a_row_with_an_extra_empty_cell_is_refused_on_every_path(tmp_path, rows):
+    # pandas drops trailing empty cells past the header's width; the plain-number path must not
+    path = tmp_path / "f.csv"
+    path.write_bytes(b"position_mm,EXX_um\n" + rows)
+    with pytest.raises(AxiscalError, match="3 cells where the header has 2|4 cells where the header has 2"):
+        read_csv(path).numeric("EXX_um")

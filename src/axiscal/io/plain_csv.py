@@ -121,7 +121,7 @@ def read_plain(head: bytes, file: Path, file_stamp: tuple, max_magnitude: float)
     except UnicodeDecodeError:
         return None
     delimiter = next((d for d in (",", ";", "\t") if d in header_text), ",")
-    header = [cell.strip() for cell in header_text.split(delimiter)]
+    header = [cell.strip(" \t\v\f") for cell in header_text.split(delimiter)]
     import pandas as pd
 
     options = pandas_options(len(header), delimiter, delimiter != ",")
@@ -133,6 +133,14 @@ def read_plain(head: bytes, file: Path, file_stamp: tuple, max_magnitude: float)
     except (pd.errors.ParserError, pd.errors.ParserWarning, ValueError, OSError, UnicodeDecodeError):
         return None
     if len(frame) == 0 or stamp(file) != file_stamp:
+        return None
+    # pandas drops a row's trailing empty cells past the header's width ("1,2,"): the body holds one
+    # delimiter fewer than cells in every row, or a row has more cells than the header
+    try:
+        body = read_body(file, file_stamp, body_start)
+    except AxiscalError:
+        return None
+    if body.count(delimiter.encode()) != len(frame) * (len(header) - 1):
         return None
     for i in range(len(header)):
         column = frame[i]

@@ -3,7 +3,7 @@
 RFC 4180 CSV with the relaxations of docs/formats.md ("What a reader accepts"): UTF-8 with or
 without a byte-order mark; LF, CRLF or CR line ends; blank lines and lines whose first non-blank
 character is ``#`` skipped; ``,`` or, when the header says so, ``;`` or tab between cells (with a
-decimal comma allowed); cells stripped of white space. Readers validate once, at the boundary: every
+decimal comma allowed); cells stripped of blanks (space, tab, vertical tab, form feed). Readers validate once, at the boundary: every
 value a caller gets back is a finite float (or a stripped string for text columns), and every error
 names the file and the physical line as an editor numbers it (the header is line 1 when it is the
 first line).
@@ -54,6 +54,10 @@ _NUMBER_COMMA = re.compile(r"[+-]?(?:[0-9]+(?:[.,][0-9]*)?|[.,][0-9]+)(?:[eE][+-
 _NOT_FINITE = re.compile(r"[+-]?(?:nan|inf|infinity)", re.IGNORECASE)
 _MICRO = ("\u00b5", "\u03bc")  # micro sign and Greek mu, as in "µm"
 _SHOWN = 40  # characters of a cell quoted in an error message
+#: what a cell is stripped of: ASCII white space within a line (space, tab, vertical tab, form
+#: feed), not the other control characters and separators ``str.strip`` also removes (a cell
+#: "\x1d.5" is not the number 0.5)
+BLANKS = " \t\v\f"
 
 
 class _Lazy:
@@ -328,7 +332,9 @@ def _beyond(value: float) -> str:
 
 
 def _shown(cell: str) -> str:
-    return cell if len(cell) <= _SHOWN else cell[: _SHOWN - 3] + "..."
+    """The cell as an error message quotes it: shortened, control characters escaped (``\\x1d``)."""
+    cell = cell if len(cell) <= _SHOWN else cell[: _SHOWN - 3] + "..."
+    return cell if cell.isprintable() else cell.encode("unicode_escape").decode("ascii")
 
 
 def read_csv(path: str | Path, *, min_rows: int = 1) -> CsvTable:
@@ -407,7 +413,7 @@ def _read_plain(head: bytes, path: str, min_rows: int, file: Path, stamp: tuple)
 
         body = read_body(file, stamp, plain.body_start)
         column = pd.read_csv(io.BytesIO(body), usecols=[i], dtype=str, **options)[i]
-        return column.str.strip().to_numpy(dtype=object)
+        return column.str.strip(BLANKS).to_numpy(dtype=object)
 
     table._set(_frame=plain.frame, _reread=reread, _checked=frozenset(range(len(header))))
     return table
@@ -468,7 +474,7 @@ def _parse(data: bytes, path: str, min_rows: int, *, file: Path | None = None, s
     if quoted:
         header = _split_quoted(lines, kept[:1], delimiter, path)[0]
     else:
-        header = [cell.strip() for cell in header_text.split(delimiter)]
+        header = [cell.strip(BLANKS) for cell in header_text.split(delimiter)]
     table = CsvTable._parsed(path, _checked_header(header, path, header_line), kept[1:] + 1, header_line, comma=delimiter != ",")
     if len(kept) > 1:
         cells = _split_quoted(lines, kept[1:], delimiter, path, width=len(header)) if quoted else _read_frame(table, lines, kept, delimiter, file, stamp)
@@ -535,7 +541,7 @@ def _read_frame(
 
     def reread(i: int) -> np.ndarray:
         column = pd.read_csv(io.BytesIO(lines.join(rows)), usecols=[i], dtype=str, **options)[i]
-        return column.str.strip().to_numpy(dtype=object)
+        return column.str.strip(BLANKS).to_numpy(dtype=object)
 
     table._set(_frame=frame, _reread=reread)
     return None
@@ -566,7 +572,7 @@ def _split_quoted(lines: Lines, indices: np.ndarray, delimiter: str, path: str, 
             raise AxiscalError(f"cannot split into cells ({exc})", path=path, line=int(index) + 1) from None
         if width is not None and len(cells) != width:
             raise AxiscalError(f"{len(cells)} cells where the header has {width}", path=path, line=int(index) + 1)
-        out.append([cell.strip() for cell in cells])
+        out.append([cell.strip(BLANKS) for cell in cells])
     return out
 
 
@@ -591,7 +597,7 @@ def parse_number(text: str) -> float | None:
     >>> parse_number(" 1.5e3 "), parse_number("1_000"), parse_number("inf")
     (1500.0, None, None)
     """
-    cell = text.strip()
+    cell = text.strip(BLANKS)
     if not _NUMBER.fullmatch(cell):
         return None
     value = float(cell)
