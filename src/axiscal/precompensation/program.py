@@ -158,77 +158,98 @@ def rewrite_program(
     lines, rewritten = program_text(program, moves, pieces, verbatim, linear, rotary, text, header)
     corrections = np.linalg.norm(pieces.exact - pieces.p1, axis=1) if pieces.p1.size else np.zeros(1)
     return Precompensation(
-        text=lines, lines_in=len(program.blocks), lines_out=len(split_lines(lines)), moves=len(moves.index), rewritten=rewritten,
+        text=lines, lines_in=len(program.lines), lines_out=_count_lines(lines), moves=len(moves.index), rewritten=rewritten,
         largest_correction_m=float(corrections.max(initial=0.0)), largest_residual_m=float(residual),
         tolerance_m=tolerance_m, max_segment_m=max_segment_m, machine=model.name or model.chain, dialect=spec.name,
     )
 
 
 def _fail(message: str, source: str | None, line: int) -> AxiscalError:
-    return AxiscalError(message, path=source, line=line)
+    return AxiscalError(message, path=source, line=int(line))
 
 
 class _Moves:
-    """The program's moves (block indices) with what each block says about its frame, per move."""
+    """The program's moves (line indices) with what each line says about its frame, per move, as columns."""
 
     def __init__(self, program: Program, model: Machine, linear, rotary, source):
-        self.index: list[int] = []
-        letters = set(model.letters)
-        allowed = letters | {"E"}
-        seen = -1
-        for index, block in enumerate(program.blocks):
-            motion = block.motion
-            if motion is None or motion.kind == "dwell":
-                continue
-            end = motion.end_m
-            if len(end) != seen:
-                seen = len(end)
-                foreign = [k for k in end if k not in allowed]
-                if foreign:
-                    raise _fail(f"{foreign[0]} is not an axis of the machine model (chain '{model.chain}')", source, block.line)
-                missing = [k for k in model.letters if k not in end]
-                if missing:
-                    raise _fail(f"a move before the program has set {', '.join(missing)}, an axis of the machine model:"
-                                " program every axis in the first move", source, block.line)
-            if rotary and motion.kind != "rapid":
-                turned = [k for k in rotary if motion.start_m.get(k) != end[k]]
-                if turned:
-                    raise _fail(f"a move that turns {', '.join(turned)} while it cuts is not pre-compensated"
-                                " (rotary axes stand still in the moves pre-compensated)", source, block.line)
-            self.index.append(index)
-        blocks = [program.blocks[i] for i in self.index]
-        self.motions = [b.motion for b in blocks]
-        rows: dict[int, list[float]] = {}
-        offsets = []
-        for b in blocks:
-            row = rows.get(id(b.offset_m))
-            if row is None:
-                row = rows[id(b.offset_m)] = [b.offset_m.get(k, 0.0) for k in linear]
-            offsets.append(row)
-        self.offset = np.array(offsets, dtype=float).reshape(len(blocks), len(linear))
-        self.per_unit = np.array([b.metres_per_unit for b in blocks], dtype=float)
-        self.line = [b.line for b in blocks]
-        moving = {index: number for number, index in enumerate(self.index)}
-        #: the blocks that set or use the motion mode, with their move number (None: a mode word alone)
-        self.events = [(index, moving.get(index)) for index, block in enumerate(program.blocks)
-                       if index in moving or block.motion_word is not None]
+        columns = program.columns
+        self.columns = columns
+        kind = columns.kind
+        index = np.flatnonzero((kind >= 1) & (kind <= 3))
+        self.index = index
+        self.line = index + 1
+        axes = columns.axes
+        allowed = set(model.letters) | {"E"}
+        known = columns.known[index]
+        problems: list[tuple[int, int, str]] = []  # (move, order, message) of the first of each kind of problem
+        foreign = [j for j, k in enumerate(axes) if k not in allowed]
+        if foreign:
+            bad = known[:, foreign]
+            rows = np.flatnonzero(bad.any(axis=1))
+            if rows.size:
+                letter = axes[foreign[int(np.argmax(bad[rows[0]]))]]
+                problems.append((int(rows[0]), 0, f"{letter} is not an axis of the machine model (chain '{model.chain}')"))
+        have = np.column_stack([known[:, axes.index(k)] if k in axes else np.zeros(index.size, dtype=bool)
+                                for k in model.letters]) if index.size else np.ones((0, len(model.letters)), dtype=bool)
+        rows = np.flatnonzero(~have.all(axis=1))
+        if rows.size:
+            missing = [k for k, h in zip(model.letters, have[rows[0]]) if not h]
+            problems.append((int(rows[0]), 1, f"a move before the program has set {', '.join(missing)}, an axis of the"
+                             " machine model: program every axis in the first move"))
+        if rotary and index.size:
+            cols = [axes.index(k) for k in rotary]
+            end = columns.end_m[index][:, cols]
+            before = index - 1
+            start = np.where(before[:, None] >= 0, columns.end_m[np.maximum(before, 0)][:, cols], np.nan)
+            start_known = np.where(before[:, None] >= 0, columns.known[np.maximum(before, 0)][:, cols], False)
+            turned = (~start_known | (start != end)) & (kind[index] != 1)[:, None]
+            rows = np.flatnonzero(turned.any(axis=1))
+            if rows.size:
+                which = [k for k, t in zip(rotary, turned[rows[0]]) if t]
+                problems.append((int(rows[0]), 2, f"a move that turns {', '.join(which)} while it cuts is not"
+                                 " pre-compensated (rotary axes stand still in the moves pre-compensated)"))
+        if problems:
+            move, _, message = min(problems)
+            raise _fail(message, source, int(self.line[move]))
+        self.kind = kind[index]
+        self.absolute = columns.absolute[index]
+        self.offset = _axis_columns(columns.offset_m[index], axes, linear)
+        self.per_unit = columns.metres_per_unit[index]
+        self.end = _axis_columns(columns.end_m[index], axes, linear)
+        self.rot = _axis_columns(columns.end_m[index], axes, rotary)
 
     def __len__(self) -> int:
         return len(self.index)
 
+    def motion(self, number: int):
+        """The Motion of move ``number`` (a line read block by block: arcs, and moves with other words)."""
+        return self.columns.general[int(self.index[number])].motion
+
+
+def _axis_columns(values: np.ndarray, axes: tuple[str, ...], letters) -> np.ndarray:
+    """The columns of ``letters`` of ``values`` (one column per axis of ``axes``); zeros for a letter not there."""
+    out = np.zeros((values.shape[0], len(letters)))
+    for j, k in enumerate(letters):
+        if k in axes:
+            out[:, j] = values[:, axes.index(k)]
+    return out
+
 
 def _build_pieces(moves: _Moves, linear, rotary, tolerance_m, max_segment_m, source) -> _Pieces:
     """One piece per straight move, chords for each arc; rapid moves and the first move: their end only."""
-    motions = moves.motions
-    m = len(motions)
-    end = _columns(motions, linear)
-    rot = _columns(motions, rotary)
+    m = len(moves)
+    end = moves.end
+    rot = moves.rot
     _check_finite(moves, end, linear, source)
     _check_finite(moves, rot, rotary, source)
-    if any("E" in mo.end_m for mo in motions):
-        _check_finite(moves, np.array([[mo.end_m.get("E", 0.0), mo.start_m.get("E", 0.0)] for mo in motions]), "EE", source)
-    kinds = [mo.kind for mo in motions]
-    path = np.array([k != "rapid" for k in kinds], dtype=bool)
+    columns = moves.columns
+    if "E" in columns.axes:
+        e = columns.axes.index("E")
+        before = np.maximum(moves.index - 1, 0)
+        e_end = np.where(columns.known[moves.index, e], columns.end_m[moves.index, e], 0.0)
+        e_start = np.where((moves.index > 0) & columns.known[before, e], columns.end_m[before, e], 0.0)
+        _check_finite(moves, np.column_stack([e_end, e_start]), "EE", source)
+    path = moves.kind != 1
     if m:
         path[0] = False
     start = np.where(path[:, None], np.vstack([end[:1], end[:-1]]), end)
@@ -236,10 +257,8 @@ def _build_pieces(moves: _Moves, linear, rotary, tolerance_m, max_segment_m, sou
     chords: dict[int, np.ndarray] = {}
     chord_sagitta = tolerance_m / 4.0
     pieces_total = m
-    for number, kind in enumerate(kinds):
-        if kind != "arc" or not path[number]:
-            continue
-        motion = motions[number]
+    for number in np.flatnonzero((moves.kind == 3) & path).tolist():
+        motion = moves.motion(number)
         a, b, normal = PLANE_AXES[motion.plane]
         ca, cb = motion.centre_m[a], motion.centre_m[b]
         radius = math.hypot(motion.start_m[a] - ca, motion.start_m[b] - cb)
@@ -295,15 +314,6 @@ def _check_finite(moves: _Moves, end: np.ndarray, letters, source) -> None:
         number = int(np.argmin(finite))
         letter = letters[int(np.argmin(np.isfinite(end[number])))]
         raise _fail(f"{letter} is not a finite number here (a number too large for the control?)", source, moves.line[number])
-
-
-def _columns(motions, letters) -> np.ndarray:
-    """The end positions of ``letters`` of every motion, shape (len(motions), len(letters))."""
-    if not letters:
-        return np.zeros((len(motions), 0))
-    get = operator.itemgetter(*letters)
-    rows = [get(mo.end_m) for mo in motions]
-    return np.array(rows, dtype=float).reshape(len(motions), len(letters))
 
 
 def _units(moves: _Moves, pieces: _Pieces):
@@ -415,7 +425,13 @@ def _deviation(model, command, programmed, rot, linear, rotary, reach) -> np.nda
 
 
 def _keep(program: Program, moves: _Moves, pieces: _Pieces, per_unit, forced: np.ndarray | None = None) -> np.ndarray:
-    """Which moves are written as they were: corrections below half the written resolution, modes consistent."""
+    """Which moves are written as they were: corrections below half the written resolution, modes consistent.
+
+    A move kept as written that relies on the modal motion word needs the output's modal word to be
+    the program's there: the move before it (or the mode word before it) was kept, or was written
+    anew with the word it had. An incremental move kept as written needs the output to stand where
+    the program stands before it.
+    """
     half = 0.5 * np.where(per_unit == _MM, 10.0 ** -PLACES["mm"], 10.0 ** -PLACES["inch"]) * per_unit
     small = np.all(np.abs(pieces.command - pieces.p1) < half[:, None], axis=1)
     first = np.r_[0, np.flatnonzero(np.diff(pieces.move)) + 1]
@@ -424,25 +440,52 @@ def _keep(program: Program, moves: _Moves, pieces: _Pieces, per_unit, forced: np
     if not keep.any():
         return keep
     last = np.r_[first[1:] - 1, small.size - 1]
-    modal_program = modal_out = None
-    out_here = None
-    for index, number in moves.events:
-        block = program.blocks[index]
-        word = block.motion_word
-        if number is None:
-            modal_program = modal_out = word
-            continue
-        written = word if word is not None else modal_program
-        if keep[number]:
-            consistent = word is not None or modal_out == modal_program
-            if not block.absolute and out_here is not None:
-                start = pieces.p0[first[number]]
-                consistent = consistent and bool(np.all(np.abs(out_here - start) < half[first[number]]))
-            keep[number] = consistent
-        modal_program = written
-        modal_out = written if keep[number] else ("G0" if block.motion.kind == "rapid" else "G1")
-        out_here = pieces.p1[last[number]] if keep[number] else pieces.command[last[number]]
+    columns = moves.columns
+    word = columns.motion_word
+    n = word.size
+    lines = np.arange(n)
+    written_at = np.maximum.accumulate(np.where(word >= 0, lines, -1))
+    in_force = np.where(written_at >= 0, word[np.maximum(written_at, 0)], -1)  # the program's modal word after each line
+    move_of_line = np.full(n, -1, dtype=np.int64)
+    move_of_line[moves.index] = np.arange(len(moves))
+    events = np.flatnonzero((word >= 0) | (move_of_line >= 0))
+    at = np.searchsorted(events, moves.index)
+    before = np.where(at > 0, events[np.maximum(at - 1, 0)], -1)  # the event line before each move, -1: none
+    previous = np.where(before >= 0, move_of_line[np.maximum(before, 0)], -1)  # ... when it is a move
+    derived = np.where(moves.kind == 1, 0, 1)  # the word a move written anew gets: G0 at rapid, else G1
+    own = word[moves.index] >= 0
+    mode_fixed = own | (previous < 0) | (derived[np.maximum(previous, 0)] == in_force[np.maximum(before, 0)])
+    absolute = moves.absolute
+    candidates = keep.copy()
+    # moves whose decision waits for the one before's: in order, one by one
+    waits = candidates & ((~mode_fixed & candidates[np.maximum(previous, 0)] & (previous >= 0))
+                          | (~absolute & np.r_[False, candidates[:-1]]))
+    settled = candidates & ~waits
+    keep = settled & mode_fixed
+    if (keep & ~absolute).any():
+        keep &= _stands(keep & ~absolute, keep, moves, pieces, first, last, half) | absolute
+    for number in np.flatnonzero(waits).tolist():
+        ok = True
+        if not mode_fixed[number]:
+            p = previous[number]
+            ok = p >= 0 and bool(keep[p])
+        if ok and not absolute[number] and number > 0:
+            q = number - 1
+            here = pieces.p1[last[q]] if keep[q] else pieces.command[last[q]]
+            ok = bool(np.all(np.abs(here - pieces.p0[first[number]]) < half[first[number]]))
+        keep[number] = ok
     return keep
+
+
+def _stands(which: np.ndarray, keep: np.ndarray, moves: _Moves, pieces: _Pieces, first, last, half) -> np.ndarray:
+    """For the incremental moves ``which`` (the move before each one decided in ``keep``): whether the
+    output stands where the program does before it."""
+    out = np.ones(which.size, dtype=bool)
+    numbers = np.flatnonzero(which & (np.arange(which.size) > 0))
+    q = numbers - 1
+    here = np.where(keep[q][:, None], pieces.p1[last[q]], pieces.command[last[q]])
+    out[numbers] = np.all(np.abs(here - pieces.p0[first[numbers]]) < half[first[numbers]][:, None], axis=1)
+    return out
 
 
 def precompensate_program(
@@ -552,3 +595,9 @@ def precompensate_file(
     remove_stale_temporaries(output_path)  # what runs of this output killed before their end left beside it
     write_text(output_path, result.text)
     return result
+
+
+def _count_lines(text: str) -> int:
+    """Lines of ``text`` as :func:`~axiscal.io.gcode.split_lines` counts them (LF, CRLF or CR ends one)."""
+    count = text.count("\n") + text.count("\r") - text.count("\r\n")
+    return count + (1 if text and not text.endswith(("\n", "\r")) else 0)

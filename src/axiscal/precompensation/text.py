@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from axiscal.io.gcode import Program, decimal, split_lines
+from axiscal.io.gcode import Program, decimal
 
 __all__ = ["PLACES", "program_text"]
 
@@ -25,16 +25,6 @@ def _sanitize_comment(text: str, style: str) -> str:
     return f"({text.replace('(', '[').replace(')', ']')})" if style == "paren" else f"; {text}"
 
 
-def _formatted(values: np.ndarray, places: np.ndarray) -> list[str]:
-    """Numbers with ``places`` decimals each (4 or 6), never ``-0``."""
-    values = values + 0.0
-    out = np.empty(values.shape, dtype=object)
-    for count in np.unique(places):
-        rows = places == count
-        out[rows] = np.char.mod(f"%.{int(count)}f", np.round(values[rows], int(count)) + 0.0)
-    return out.tolist()
-
-
 def program_text(program: Program, moves, pieces, verbatim, linear, rotary, text: str, header: str) -> tuple[str, int]:
     """The output program's text and the number of moves written anew.
 
@@ -42,41 +32,32 @@ def program_text(program: Program, moves, pieces, verbatim, linear, rotary, text
     ``verbatim`` says per move whether it is written as it was.
     """
     spec = program.dialect
-    lines = split_lines(text)
+    columns = moves.columns
+    end = program.line_end
     n = pieces.move.size
     first = np.r_[0, np.flatnonzero(np.diff(pieces.move)) + 1] if n else np.zeros(0, dtype=np.int64)
     stop = np.r_[first[1:], n] if n else np.zeros(0, dtype=np.int64)
-    offset, per_unit = moves.offset[pieces.move], moves.per_unit[pieces.move]
-    places = np.where(per_unit == _MM, PLACES["mm"], PLACES["inch"])
-    scale = (10.0 ** places / per_unit)[:, None]
     out_at = np.where(verbatim[pieces.move][:, None], pieces.p1, pieces.command)
-    before = np.vstack([pieces.p0[:1], out_at[:-1]]) if n else out_at
-    now = np.rint((out_at - offset) * scale)
-    absolute = np.array([program.blocks[i].absolute for i in moves.index], dtype=bool)[pieces.move] if n else np.zeros(0, bool)
-    value = np.where(absolute[:, None], now, now - np.rint((before - offset) * scale)) / 10.0 ** places[:, None]
-    columns = [[letter + v for v in _formatted(value[:, j], places)] for j, letter in enumerate(linear)] if n else []
-    body = list(map(" ".join, zip(*columns)))
-    extruder = _extruder_text(program, moves, pieces, places) if n else None
-    with_e = body if extruder is None else [f"{b} E{e}" for b, e in zip(body, extruder)]
-    move_of_block = {index: number for number, index in enumerate(moves.index)}
-    out: list[str] = []
-    rewritten = 0
-    here = program_here = None
-    for index, block in enumerate(program.blocks):
-        number = move_of_block.get(index)
-        if number is None:
-            if here is not None and _sets_position(block, spec):
-                out.append(_shifted(block, spec, here - program_here, linear, lines[index]))
-            else:
-                out.append(lines[index])
-            continue
-        last = stop[number] - 1
-        here, program_here = out_at[last], pieces.p1[last]
-        if verbatim[number]:
-            out.append(lines[index])
-            continue
-        rewritten += 1
-        word = spec.rapid_word if block.motion.kind == "rapid" and not spec.rapid_at_feed else spec.feed_word
+    rewritten = np.flatnonzero(~verbatim)
+    rows = np.flatnonzero(~verbatim[pieces.move])  # the pieces written anew (the others' text is the program's)
+    at_row = np.full(n, -1, dtype=np.int64)
+    at_row[rows] = np.arange(rows.size)
+    rapid = (moves.kind == 1) & (not spec.rapid_at_feed)
+    bulk_row = columns.bulk_row[moves.index]
+    scan = program.bulk().bulk.scan if program.bulk() is not None else None
+    has_e = np.zeros(len(moves), dtype=bool)
+    if "E" in columns.axes:
+        has_e[bulk_row >= 0] = scan.has_e[moves.index[bulk_row >= 0]] if scan is not None else False
+        for number in np.flatnonzero(bulk_row < 0).tolist():
+            has_e[number] = any(letter == "E" for letter, _ in columns.general[int(moves.index[number])].words)
+    piece_text = _piece_rows(moves, pieces, rows, out_at, linear, rapid, spec, has_e) if rows.size else []
+    out = list(program.lines)
+    bulk = rewritten[bulk_row[rewritten] >= 0]
+    if bulk.size:
+        _bulk_text(out, scan, moves, bulk, first, stop, at_row, piece_text, rotary, end)
+    for number in rewritten[bulk_row[rewritten] < 0].tolist():
+        index = int(moves.index[number])
+        block = columns.general[index]
         head, tail, rotary_words = [], [], []
         for letter, raw in block.words:
             if letter in spec.axes:
@@ -87,35 +68,167 @@ def program_text(program: Program, moves, pieces, verbatim, linear, rotary, text
                     head.append(f"G{raw}")
             elif letter not in _ARC_WORDS:
                 tail.append(f"{letter}{raw}")
-        words = with_e if extruder is not None and any(letter == "E" for letter, _ in block.words) else body
         k = first[number]
-        parts = ([block.number] if block.number else []) + head + [word, words[k]] + rotary_words + tail
-        out.append(" ".join(parts + ([block.comment] if block.comment else [])))
-        if stop[number] > k + 1:
-            out.extend([f"{word} {words[j]}" for j in range(k + 1, stop[number])])
+        parts = ([block.number] if block.number else []) + head + [piece_text[at_row[k]]] + rotary_words + tail
+        texts = [" ".join(parts + ([block.comment] if block.comment else []))]
+        texts += [piece_text[at_row[j]] for j in range(k + 1, stop[number])]
+        out[index] = end.join(texts)
+    # a G92 met where the control stands at a corrected point
+    if spec.set_position:
+        for index, block in columns.general.items():
+            if block.motion is None and _sets_position(block, spec):
+                k = int(np.searchsorted(moves.index, index)) - 1
+                if k >= 0:
+                    last = stop[k] - 1
+                    out[index] = _shifted(block, spec, out_at[last] - pieces.p1[last], linear, out[index])
     at = 0
     while at < len(out) and (out[at].strip() == "%" or (spec.name == "fanuc" and out[at].strip()[:1] in "Oo" and out[at].strip())):
         at += 1
     out.insert(at, _sanitize_comment(header, spec.comment_style))
-    end = program.line_end
-    return end.join(out) + (end if text.endswith(("\n", "\r")) else ""), rewritten
+    return end.join(out) + (end if text.endswith(("\n", "\r")) else ""), int(rewritten.size)
 
 
-def _extruder_text(program: Program, moves, pieces, places) -> list[str] | None:
-    """The E word of every piece (absolute or relative as the block is), shared out along the move."""
-    motions = moves.motions
-    if not any("E" in m.end_m for m in motions):
-        return None
-    e_end = np.array([m.end_m.get("E", 0.0) for m in motions])[pieces.move]
-    e_start = np.array([m.start_m.get("E", 0.0) for m in motions])[pieces.move]
-    blocks = [program.blocks[i] for i in moves.index]
-    shift = np.array([b.offset_m.get("E", 0.0) for b in blocks])[pieces.move]
-    relative = np.array([b.extruder_relative for b in blocks], dtype=bool)[pieces.move]
-    per_unit = np.array([b.metres_per_unit for b in blocks])[pieces.move]
-    at_end = e_start + pieces.t1 * (e_end - e_start)
-    at_start = e_start + pieces.t0 * (e_end - e_start)
+def _piece_rows(moves, pieces, rows, out_at, linear, rapid, spec, has_e) -> list[str]:
+    """The text of each piece ``rows``: its motion word and its positions (and E), in the block's units
+    and distance mode, 0.1 um resolution."""
+    move = pieces.move[rows]
+    offset, per_unit = moves.offset[move], moves.per_unit[move]
+    places = np.where(per_unit == _MM, PLACES["mm"], PLACES["inch"])
+    scale = (10.0 ** places / per_unit)[:, None]
+    before = np.vstack([pieces.p0[:1], out_at[:-1]])[rows]
+    now = np.rint((out_at[rows] - offset) * scale)
+    absolute = moves.absolute[move]
+    counts = np.where(absolute[:, None], now, now - np.rint((before - offset) * scale))
+    if not np.all(np.abs(counts) < 1e15):  # beyond the digits a double holds exactly: Python's formatting
+        return _piece_rows_slow(moves, pieces, rows, counts, places, linear, rapid, spec, has_e)
+    fields = [_choice(rapid[move].astype(np.int64), [spec.feed_word, spec.rapid_word])]
+    for j, letter in enumerate(linear):
+        fields.append(_literal(f" {letter}", rows.size))
+        fields.append(_fixed(counts[:, j], places))
+    if has_e.any():
+        e = _extruder_counts(moves, pieces, rows)
+        show = has_e[move]
+        fields.append(_literal(" E", rows.size, show))
+        fields.append(_fixed(e, np.full(rows.size, 5), show))
+    return _rows(fields)
+
+
+def _piece_rows_slow(moves, pieces, rows, counts, places, linear, rapid, spec, has_e) -> list[str]:
+    """:func:`_piece_rows` one number at a time (for positions beyond 10^15 counts)."""
+    move = pieces.move[rows]
+    e = _extruder_counts(moves, pieces, rows) if has_e.any() else None
+    out = []
+    for i in range(rows.size):
+        p = int(places[i])
+        words = [spec.rapid_word if rapid[move[i]] else spec.feed_word]
+        words += [f"{letter}{counts[i, j] / 10.0 ** p + 0.0:.{p}f}" for j, letter in enumerate(linear)]
+        if e is not None and has_e[move[i]]:
+            words.append(f"E{e[i] / 1e5 + 0.0:.5f}")
+        out.append(" ".join(words))
+    return out
+
+
+_POW = 10 ** np.arange(19, dtype=np.int64)
+
+
+def _literal(text: str, count: int, show: np.ndarray | None = None):
+    chars = np.frombuffer(text.encode("ascii"), dtype=np.uint8)
+    valid = np.ones((count, chars.size), dtype=bool) if show is None else np.repeat(show[:, None], chars.size, axis=1)
+    return np.broadcast_to(chars, (count, chars.size)), valid
+
+
+def _choice(codes: np.ndarray, options: list[str]):
+    width = max(len(o) for o in options)
+    table = np.zeros((len(options), width), dtype=np.uint8)
+    valid = np.zeros((len(options), width), dtype=bool)
+    for k, option in enumerate(options):
+        table[k, :len(option)] = np.frombuffer(option.encode("ascii"), dtype=np.uint8)
+        valid[k, :len(option)] = True
+    return table[codes], valid[codes]
+
+
+def _fixed(counts: np.ndarray, places: np.ndarray, show: np.ndarray | None = None):
+    """``counts / 10**places`` written with ``places`` decimals (the digits of ``counts``), never ``-0``."""
+    ints = counts.astype(np.int64)
+    negative = ints < 0
+    magnitude = np.abs(ints)
+    p = places.astype(np.int64)
+    whole, fraction = magnitude // _POW[p], magnitude % _POW[p]
+    top = int(whole.max(initial=0))
+    width = len(str(top))
+    columns = [(np.full(ints.size, ord("-"), dtype=np.uint8), negative)]
+    for c in range(width - 1, -1, -1):
+        columns.append((((whole // _POW[c]) % 10 + 48).astype(np.uint8), (whole >= _POW[c]) | (c == 0)))
+    columns.append((np.full(ints.size, ord("."), dtype=np.uint8), p > 0))
+    for k in range(int(p.max(initial=0))):
+        inside = k < p
+        digit = (fraction // _POW[np.maximum(p - 1 - k, 0)]) % 10
+        columns.append(((digit + 48).astype(np.uint8), inside))
+    chars = np.column_stack([c for c, _ in columns])
+    valid = np.column_stack([v for _, v in columns])
+    if show is not None:
+        valid &= show[:, None]
+    return chars, valid
+
+
+def _rows(fields) -> list[str]:
+    """One line of text per row of the fields (each a pair of chars and valid masks), joined in order."""
+    count = fields[0][0].shape[0]
+    fields = list(fields) + [(np.full((count, 1), 10, dtype=np.uint8), np.ones((count, 1), dtype=bool))]
+    chars = np.concatenate([np.asarray(c) for c, _ in fields], axis=1)
+    valid = np.concatenate([v for _, v in fields], axis=1)
+    return chars[valid].tobytes().decode("ascii").split("\n")[:-1]
+
+
+def _bulk_text(out, scan, moves, numbers, first, stop, at_row, piece_text, rotary, end) -> None:
+    """Write the moves ``numbers`` read in bulk (G0/G1, axis words, F): the pieces' text, the rotary
+    words and F as written on the first."""
+    columns = moves.columns
+    lines = moves.index[numbers]
+    head = np.asarray(at_row[first[numbers]])
+    single = stop[numbers] - first[numbers] == 1
+    extra: dict[int, list[str]] = {}
+    for letter in rotary:
+        if letter in scan.axes:
+            for j, raw in enumerate(scan.raw(lines, letter)):
+                if raw is not None:
+                    extra.setdefault(j, []).append(f"{letter}{raw}")
+    feeds = columns.feed_word
+    for j, line in enumerate(lines.tolist()):
+        raw = feeds[line]
+        if raw is not None:
+            extra.setdefault(j, []).append(f"F{raw}")
+    plain = single.copy()
+    if extra:
+        plain[list(extra)] = False
+    for line, row in zip(lines[plain].tolist(), head[plain].tolist()):
+        out[line] = piece_text[row]
+    for j in np.flatnonzero(~plain).tolist():
+        number = numbers[j]
+        k = first[number]
+        text = " ".join([piece_text[at_row[k]]] + extra.get(j, []))
+        if stop[number] > k + 1:
+            text = end.join([text] + [piece_text[at_row[i]] for i in range(k + 1, stop[number])])
+        out[lines[j]] = text
+
+
+def _extruder_counts(moves, pieces, rows) -> np.ndarray:
+    """The E word of every piece ``rows`` (absolute or relative as the block is), shared out along the
+    move, in hundred-thousandths of the program unit."""
+    columns = moves.columns
+    e = columns.axes.index("E")
+    index = moves.index
+    before = np.maximum(index - 1, 0)
+    move = pieces.move[rows]
+    e_end = np.where(columns.known[index, e], columns.end_m[index, e], 0.0)[move]
+    e_start = np.where((index > 0) & columns.known[before, e], columns.end_m[before, e], 0.0)[move]
+    shift = columns.offset_m[index, e][move]
+    relative = columns.extruder_relative[index][move]
+    per_unit = columns.metres_per_unit[index][move]
+    at_end = e_start + pieces.t1[rows] * (e_end - e_start)
+    at_start = e_start + pieces.t0[rows] * (e_end - e_start)
     value = np.where(relative, at_end - at_start, at_end - shift) / per_unit
-    return _formatted(value, np.full(value.size, 5))
+    return np.rint(value * 1e5) + 0.0
 
 
 def _sets_position(block, spec) -> bool:

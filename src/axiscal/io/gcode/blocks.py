@@ -160,6 +160,8 @@ class ControlState:
         self.work_offset = dict(work_offset_m)
         self.shift: dict[str, float] = {}
         self.ended = False
+        #: whether lines read in bulk (:mod:`axiscal.io.gcode.fast`) have moved the machine
+        self.moved = False
         self.motions: list[Motion] = []
         self.blocks: list[Block] = []
         self._view: Mapping[str, float] = _EMPTY

@@ -12,15 +12,19 @@ line, never skipped.
 
 from __future__ import annotations
 
+import heapq
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
+from functools import cached_property
+from operator import attrgetter
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_mapping, check_number
 from axiscal.io.gcode.blocks import Block, ControlState, Motion
 from axiscal.io.gcode.conversational import run_conversational_block
 from axiscal.io.gcode.dialects import Dialect, dialect as find_dialect
+from axiscal.io.gcode.columns import ProgramColumns, program_columns
+from axiscal.io.gcode.fast import Bulk, BulkScan, walk
 from axiscal.io.gcode.rs274 import run_block
 
 __all__ = ["Motion", "Block", "Program", "program_motions", "read_program", "split_lines"]
@@ -45,13 +49,12 @@ def split_lines(text: str) -> list[str]:
     >>> split_lines("G1 X1\\r\\nG4 P1\\n")
     ['G1 X1', 'G4 P1']
     """
-    lines = _LINE_END.split(text)
+    lines = text.split("\n") if "\r" not in text else _LINE_END.split(text)
     if lines and lines[-1] == "":
         lines.pop()
     return lines
 
 
-@dataclass(frozen=True)
 class Program:
     """A program as a dialect's control runs it.
 
@@ -60,17 +63,47 @@ class Program:
     dialect : Dialect
         The dialect it was read in.
     blocks : tuple of Block
-        One per line of the text, in order.
+        One per line of the text, in order (made on first use).
     motions : tuple of Motion
-        Every move and dwell, in order.
+        Every move and dwell, in order (made on first use).
     line_end : str
         The line end the text uses ("\\n", "\\r\\n" or "\\r").
+    lines : list of str
+        The lines of the text, without their ends.
     """
 
-    dialect: Dialect
-    blocks: tuple[Block, ...]
-    motions: tuple[Motion, ...]
-    line_end: str
+    def __init__(self, dialect: Dialect, lines: list[str], general: list[Block], taken: Bulk | None, line_end: str):
+        self.dialect = dialect
+        self.lines = lines
+        self.line_end = line_end
+        self._general = general
+        self._taken = taken if taken is not None and taken.runs else None
+        self._bulk = None
+
+    def bulk(self):
+        """The lines read in bulk, as columns (None when there are none)."""
+        if self._taken is not None and self._bulk is None:
+            self._bulk = self._taken.columns()
+        return self._bulk
+
+    @cached_property
+    def blocks(self) -> tuple[Block, ...]:
+        if self._taken is None:
+            return tuple(self._general)
+        return tuple(heapq.merge(self._general, self.bulk().blocks(self.lines), key=attrgetter("line")))
+
+    @cached_property
+    def motions(self) -> tuple[Motion, ...]:
+        return tuple(block.motion for block in self.blocks if block.motion is not None)
+
+    @cached_property
+    def columns(self) -> ProgramColumns:
+        """The program's lines as columns (:class:`~axiscal.io.gcode.columns.ProgramColumns`)."""
+        return program_columns(self)
+
+    def general_blocks(self) -> list[Block]:
+        """The blocks of the lines read one by one (every line but those read in bulk), in order."""
+        return self._general
 
 
 def read_program(
@@ -113,20 +146,29 @@ def read_program(
                 raise AxiscalError(f"work_offset_m names {letter!r}, not an axis of {spec.controller} ({', '.join(spec.axes)})")
             offsets[letter] = check_number(f"work_offset_m[{letter!r}]", value)
     state = ControlState(spec, source, offsets)
-    frame: dict = {}
     lines = split_lines(text)
-    for number, line in enumerate(lines, start=1):
-        state.line = number
-        if spec.syntax == "conversational":
+    taken = None
+    if spec.syntax == "conversational":
+        frame: dict = {}
+        for number, line in enumerate(lines, start=1):
+            state.line = number
             run_conversational_block(line, state, frame)
-        else:
+    elif spec.decimal_point_needed or not _BULK:
+        for number, line in enumerate(lines, start=1):
+            state.line = number
             run_block(line, state)
+    else:
+        taken = walk(lines, state, BulkScan(text, len(lines), spec.axes), run_block)
     state.line = max(len(lines), 1)
     if spec.end_required and not state.ended:
         ends = ", ".join(spec.end_words) + (" or a closing %" if spec.percent and spec.name == "linuxcnc" else "")
         raise state.fail(f"the program has no end ({ends})")
     ending = _LINE_END.search(text)
-    return Program(spec, tuple(state.blocks), tuple(state.motions), ending.group(0) if ending else "\n")
+    return Program(spec, lines, state.blocks, taken, ending.group(0) if ending else "\n")
+
+
+#: whether plain straight moves are read in bulk (False: every line block by block, as a reference)
+_BULK = True
 
 
 def program_motions(

@@ -113,7 +113,7 @@ def run_block(text: str, state: ControlState) -> None:
     if stripped == "%":
         if not spec.percent:
             raise state.fail(f"'%' is not a {spec.controller} block")
-        if (state.motions or state.position) and spec.name == "linuxcnc":
+        if (state.motions or state.position or state.moved) and spec.name == "linuxcnc":
             state.ended = True  # a closing % ends a LinuxCNC program; on a FANUC tape it only marks the tape's end
         state.record(text, None, (), "", "", None)
         return
