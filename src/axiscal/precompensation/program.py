@@ -175,48 +175,59 @@ class _Moves:
         columns = program.columns
         self.columns = columns
         kind = columns.kind
-        index = np.flatnonzero((kind >= 1) & (kind <= 3))
+        moving = (kind[columns.motion_line] >= 1) & (kind[columns.motion_line] <= 3)
+        rows = np.flatnonzero(moving)  # the moves among the motions (dwells left out)
+        index = columns.motion_line[rows]
         self.index = index
+        self.rows = rows
         self.line = index + 1
         axes = columns.axes
         allowed = set(model.letters) | {"E"}
-        known = columns.known[index]
+        known = columns.known[rows]
         problems: list[tuple[int, int, str]] = []  # (move, order, message) of the first of each kind of problem
         foreign = [j for j, k in enumerate(axes) if k not in allowed]
         if foreign:
             bad = known[:, foreign]
-            rows = np.flatnonzero(bad.any(axis=1))
-            if rows.size:
-                letter = axes[foreign[int(np.argmax(bad[rows[0]]))]]
-                problems.append((int(rows[0]), 0, f"{letter} is not an axis of the machine model (chain '{model.chain}')"))
-        have = np.column_stack([known[:, axes.index(k)] if k in axes else np.zeros(index.size, dtype=bool)
-                                for k in model.letters]) if index.size else np.ones((0, len(model.letters)), dtype=bool)
-        rows = np.flatnonzero(~have.all(axis=1))
-        if rows.size:
-            missing = [k for k, h in zip(model.letters, have[rows[0]]) if not h]
-            problems.append((int(rows[0]), 1, f"a move before the program has set {', '.join(missing)}, an axis of the"
+            found = np.flatnonzero(bad.any(axis=1))
+            if found.size:
+                letter = axes[foreign[int(np.argmax(bad[found[0]]))]]
+                problems.append((int(found[0]), 0, f"{letter} is not an axis of the machine model (chain '{model.chain}')"))
+        have = np.column_stack([known[:, axes.index(k)] if k in axes else np.zeros(rows.size, dtype=bool)
+                                for k in model.letters]) if rows.size else np.ones((0, len(model.letters)), dtype=bool)
+        found = np.flatnonzero(~have.all(axis=1))
+        if found.size:
+            missing = [k for k, h in zip(model.letters, have[found[0]]) if not h]
+            problems.append((int(found[0]), 1, f"a move before the program has set {', '.join(missing)}, an axis of the"
                              " machine model: program every axis in the first move"))
-        if rotary and index.size:
+        if rotary and rows.size:
             cols = [axes.index(k) for k in rotary]
-            end = columns.end_m[index][:, cols]
-            before = index - 1
-            start = np.where(before[:, None] >= 0, columns.end_m[np.maximum(before, 0)][:, cols], np.nan)
-            start_known = np.where(before[:, None] >= 0, columns.known[np.maximum(before, 0)][:, cols], False)
-            turned = (~start_known | (start != end)) & (kind[index] != 1)[:, None]
-            rows = np.flatnonzero(turned.any(axis=1))
-            if rows.size:
-                which = [k for k, t in zip(rotary, turned[rows[0]]) if t]
-                problems.append((int(rows[0]), 2, f"a move that turns {', '.join(which)} while it cuts is not"
+            end = columns.end_m[rows][:, cols]
+            start = columns.start_m[rows][:, cols]
+            turned = (~columns.start_known[rows][:, cols] | (start != end)) & (kind[index] != 1)[:, None]
+            found = np.flatnonzero(turned.any(axis=1))
+            if found.size:
+                which = [k for k, t in zip(rotary, turned[found[0]]) if t]
+                problems.append((int(found[0]), 2, f"a move that turns {', '.join(which)} while it cuts is not"
                                  " pre-compensated (rotary axes stand still in the moves pre-compensated)"))
         if problems:
             move, _, message = min(problems)
             raise _fail(message, source, int(self.line[move]))
         self.kind = kind[index]
         self.absolute = columns.absolute[index]
-        self.offset = _axis_columns(columns.offset_m[index], axes, linear)
+        self.offset = _axis_columns(columns.offset_m[rows], axes, linear)
         self.per_unit = columns.metres_per_unit[index]
-        self.end = _axis_columns(columns.end_m[index], axes, linear)
-        self.rot = _axis_columns(columns.end_m[index], axes, rotary)
+        self.end = _axis_columns(columns.end_m[rows], axes, linear)
+        self.rot = _axis_columns(columns.end_m[rows], axes, rotary)
+
+    def extruder(self) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+        """E after and before each move (0 where not known) and E's offset, metres; None without E."""
+        columns = self.columns
+        if "E" not in columns.axes:
+            return None
+        e = columns.axes.index("E")
+        rows = self.rows
+        return (np.where(columns.known[rows, e], columns.end_m[rows, e], 0.0),
+                np.where(columns.start_known[rows, e], columns.start_m[rows, e], 0.0), columns.offset_m[rows, e])
 
     def __len__(self) -> int:
         return len(self.index)
@@ -242,13 +253,9 @@ def _build_pieces(moves: _Moves, linear, rotary, tolerance_m, max_segment_m, sou
     rot = moves.rot
     _check_finite(moves, end, linear, source)
     _check_finite(moves, rot, rotary, source)
-    columns = moves.columns
-    if "E" in columns.axes:
-        e = columns.axes.index("E")
-        before = np.maximum(moves.index - 1, 0)
-        e_end = np.where(columns.known[moves.index, e], columns.end_m[moves.index, e], 0.0)
-        e_start = np.where((moves.index > 0) & columns.known[before, e], columns.end_m[before, e], 0.0)
-        _check_finite(moves, np.column_stack([e_end, e_start]), "EE", source)
+    extruder = moves.extruder()
+    if extruder is not None:
+        _check_finite(moves, np.column_stack(extruder[:2]), "EE", source)
     path = moves.kind != 1
     if m:
         path[0] = False

@@ -216,15 +216,10 @@ def _extruder_counts(moves, pieces, rows) -> np.ndarray:
     """The E word of every piece ``rows`` (absolute or relative as the block is), shared out along the
     move, in hundred-thousandths of the program unit."""
     columns = moves.columns
-    e = columns.axes.index("E")
-    index = moves.index
-    before = np.maximum(index - 1, 0)
     move = pieces.move[rows]
-    e_end = np.where(columns.known[index, e], columns.end_m[index, e], 0.0)[move]
-    e_start = np.where((index > 0) & columns.known[before, e], columns.end_m[before, e], 0.0)[move]
-    shift = columns.offset_m[index, e][move]
-    relative = columns.extruder_relative[index][move]
-    per_unit = columns.metres_per_unit[index][move]
+    e_end, e_start, shift = (values[move] for values in moves.extruder())
+    relative = columns.extruder_relative[moves.index][move]
+    per_unit = columns.metres_per_unit[moves.index][move]
     at_end = e_start + pieces.t1[rows] * (e_end - e_start)
     at_start = e_start + pieces.t0[rows] * (e_end - e_start)
     value = np.where(relative, at_end - at_start, at_end - shift) / per_unit

@@ -153,12 +153,12 @@ def read_program(
         for number, line in enumerate(lines, start=1):
             state.line = number
             run_conversational_block(line, state, frame)
-    elif spec.decimal_point_needed or not _BULK:
+    elif spec.decimal_point_needed or not _BULK or len(lines) < _BULK_FROM:
         for number, line in enumerate(lines, start=1):
             state.line = number
             run_block(line, state)
     else:
-        taken = walk(lines, state, BulkScan(text, len(lines), spec.axes), run_block)
+        taken = walk(lines, state, BulkScan(text, lines, spec.axes), run_block)
     state.line = max(len(lines), 1)
     if spec.end_required and not state.ended:
         ends = ", ".join(spec.end_words) + (" or a closing %" if spec.percent and spec.name == "linuxcnc" else "")
@@ -169,6 +169,8 @@ def read_program(
 
 #: whether plain straight moves are read in bulk (False: every line block by block, as a reference)
 _BULK = True
+#: programs of fewer lines are read block by block (the compiled scan's start-up would cost more)
+_BULK_FROM = 20_000
 
 
 def program_motions(
