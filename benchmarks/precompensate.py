@@ -9,11 +9,12 @@ Makes seeded LinuxCNC programs like a CAM system's finishing pass (short feed mo
 wandering over the XFYZ example's travel, an arc in every 200 blocks, a few comments) and times
 ``axiscal precompensate`` as a whole process (start-up, reading, the model's inverse, the path
 checks, writing) ``--runs`` times for each size, printing the median, for this tree and, in the same
-run and alternating with it, for the source of ``--baseline`` (default: the revision before the
-inverse ran compiled) unpacked from git into a temporary folder. The two outputs are compared: the
-same program must come out. The baseline needs git and this repository's history; ``--baseline
-none`` times this tree alone. ``--stages`` times, in one process, the reading of the program and the
-model's inverse of its points compiled and in NumPy (the path before).
+run and alternating with it, for the source of ``--baseline`` (default: the last revision that read
+every line block by block and kept a Block object per line) unpacked from git into a temporary
+folder. The two outputs are compared: the same program must come out, to the byte. The baseline
+needs git and this repository's history; ``--baseline none`` times this tree alone. ``--stages``
+times, in one process, the reading of the program in bulk and block by block, and the model's
+inverse of its points compiled and in NumPy.
 """
 
 from __future__ import annotations
@@ -35,8 +36,9 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 MACHINE = ROOT / "examples" / "xfyz_machine" / "machine.toml"
-#: the last revision whose ``command_for`` iterated in NumPy only (the inverse not compiled)
-BASELINE = "06e00d3"
+#: the last revision that read every line of a program block by block (Block objects for every line,
+#: the text written one number at a time); its inverse already ran compiled
+BASELINE = "487f78a"
 
 
 def part_program(lines: int, seed: int = 1) -> str:
@@ -91,12 +93,19 @@ def stages(lines: int, runs: int) -> None:
 
     text = part_program(lines)
     machine = load_machine(MACHINE)
-    times = []
-    for _ in range(runs):
-        start = time.perf_counter()
-        program = read_program(text, dialect="linuxcnc")
-        times.append(time.perf_counter() - start)
-    print(f"  {lines:>9,} lines, reading the program (io.gcode.read_program): {statistics.median(times):6.2f} s")
+    from axiscal.io.gcode import reader
+
+    read_program(text, dialect="linuxcnc")  # the compiled scan loaded from numba's cache (or compiled)
+    for label, bulk in (("in bulk", True), ("block by block", False)):
+        reader._BULK = bulk
+        times = []
+        for _ in range(runs):
+            start = time.perf_counter()
+            program = read_program(text, dialect="linuxcnc")
+            program.columns if bulk else program.blocks  # what each way hands on to the rewriting
+            times.append(time.perf_counter() - start)
+        print(f"  {lines:>9,} lines, reading the program {label:<15}: {statistics.median(times):6.2f} s")
+    reader._BULK = True
     moves = [m for m in program.motions if m.kind != "dwell"]
     points = np.array([[m.end_m["X"], m.end_m["Y"], m.end_m["Z"]] for m in moves])
     target = machine.nominal_point({k: points[:, j] for j, k in enumerate("XYZ")})

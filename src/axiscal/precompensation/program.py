@@ -368,8 +368,9 @@ def _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, m
             if wanted.sum() > MAX_SAMPLES:
                 raise _too_many(wanted.sum(), length, max_segment_m, source, moves.line[pieces.move[idx[np.argmax(length)]]])
             counts = wanted.astype(np.int64)
-            owner = np.repeat(idx, counts)
-            t = (np.arange(owner.size) - np.repeat(np.cumsum(counts) - counts, counts) + 1) / counts[np.repeat(np.arange(idx.size), counts)]
+            rep = np.repeat(np.arange(idx.size), counts)
+            owner = idx[rep]
+            t = (np.arange(owner.size) - (np.cumsum(counts) - counts)[rep] + 1) / counts[rep]
             c_t = start[owner] + t[:, None] * (out[owner] - start[owner])
             p_t = pieces.p0[owner] + t[:, None] * (pieces.p1[owner] - pieces.p0[owner])
             miss = _deviation(model, c_t, p_t, pieces.rot[owner], linear, rotary, reach)
@@ -428,7 +429,10 @@ def _deviation(model, command, programmed, rot, linear, rotary, reach) -> np.nda
     at = {k: command[:, j] for j, k in enumerate(linear)} | {k: rot[:, j] for j, k in enumerate(rotary)}
     want = {k: programmed[:, j] for j, k in enumerate(linear)} | {k: rot[:, j] for j, k in enumerate(rotary)}
     miss = model.actual_point(at) - model.nominal_point(want)
-    return np.linalg.norm(miss[:, reach], axis=1)
+    squares = miss[:, reach[0]] ** 2
+    for j in reach[1:]:
+        squares += miss[:, j] ** 2
+    return np.sqrt(squares)
 
 
 def _keep(program: Program, moves: _Moves, pieces: _Pieces, per_unit, forced: np.ndarray | None = None) -> np.ndarray:

@@ -213,10 +213,13 @@ class Bulk:
 def _filled(value: np.ndarray, valid: np.ndarray):
     """``value`` with each invalid entry taken from the last valid one above it (per column), and
     the mask of entries that have one."""
-    rows = np.arange(value.shape[0])[:, None]
-    index = np.maximum.accumulate(np.where(valid, rows, 0), axis=0)
-    columns = np.arange(value.shape[1])[None, :]
-    return value[index, columns], valid[index, columns]
+    rows = np.arange(value.shape[0])
+    out, known = np.empty_like(value), np.empty_like(valid)
+    for j in range(value.shape[1]):
+        index = np.maximum.accumulate(np.where(valid[:, j], rows, 0))
+        out[:, j] = value[index, j]
+        known[:, j] = valid[index, j]
+    return out, known
 
 
 class _Taken:
