@@ -91,3 +91,9 @@ def test_the_report_shown_in_the_docs_is_what_the_command_prints(run_cli, exampl
     status, out, _ = run_cli(*argv)
     assert status == 0
     assert out.rstrip("\n").replace(argv[1], "examples/ballbar/ballbar_run.csv") == shown.group(2)
+
+
+@pytest.mark.parametrize("radius", ["1e300", "10001", "0", "-5", "inf"])
+def test_a_radius_no_ballbar_has_is_one_line(run_cli, examples, radius):
+    status, out, err = run_cli("ballbar", examples / "ballbar" / "ballbar_run.csv", "--radius-mm", radius, "--plane", "XY")
+    assert status == 2 and "Traceback" not in err and len(err.strip().splitlines()) == 1, err

@@ -44,6 +44,9 @@ DIRECTIONS = ("ccw", "cw")
 PLANES = ("XY", "YX", "XZ", "ZX", "YZ", "ZY")
 #: fewest points per direction
 MIN_POINTS = 36
+#: largest nominal radius, metres (a ballbar reaches about 1.5 m; beyond it the diagnostics' search
+#: for cyclic errors down to 1 mm pitch would grow without bound)
+MAX_RADIUS_M = 10.0
 #: the largest angular gap (deg) left in a direction's trace; a test covers the full circle
 MAX_GAP_DEG = 10.0
 #: metres per second in one millimetre per minute (feeds are given in mm/min)
@@ -159,8 +162,9 @@ class BallbarTrace:
         if not (np.all(np.isfinite(angles)) and np.all(np.isfinite(deviations))):
             raise AxiscalError(f"{self.source}: angles and deviations must be finite numbers")
         if not (isinstance(self.radius, (int, float, np.floating, np.integer)) and not isinstance(self.radius, bool)
-                and math.isfinite(self.radius) and self.radius > 0):
-            raise AxiscalError(f"{self.source}: the nominal radius must be a positive length, got {self.radius!r} m")
+                and math.isfinite(self.radius) and 0 < self.radius <= MAX_RADIUS_M):
+            raise AxiscalError(f"{self.source}: the nominal radius must be a positive length of at most {MAX_RADIUS_M:g} m"
+                               f" (a ballbar reaches about 1.5 m), got {self.radius!r} m")
         plane = "".join(plane_axes(self.plane))
         unknown = sorted(set(directions) - set(DIRECTIONS))
         if unknown:
