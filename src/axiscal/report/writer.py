@@ -1,15 +1,12 @@
 """Writing a campaign's report folder in one step: report.html, results.json, compensation files, PDF.
 
-The folder is built next to its destination and renamed into place at the end, so a failed run
-never leaves a half-written report, and an earlier report stays as it was until the new one is
-complete.
+The folder is built next to its destination and swapped into place whole at the end
+(:func:`~axiscal.io.folders.atomic_folder`), so a failed or killed run never leaves a half-written
+report, and an earlier report stays as it was until the new one is complete.
 """
 
 from __future__ import annotations
 
-import os
-import shutil
-import tempfile
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,8 +16,8 @@ from axiscal.campaign.config import Campaign, TestSpec, read_campaign
 from axiscal.campaign.results import CampaignResults, results_payload
 from axiscal.campaign.runner import run_campaign
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_mapping, check_path
-from axiscal.io.arguments import check_instance
+from axiscal.io.arguments import check_instance, check_mapping, check_path
+from axiscal.io.folders import atomic_folder
 from axiscal.io.jsonio import dumps, read_json
 from axiscal.report.html import check_compare, render_html
 
@@ -55,13 +52,6 @@ class ReportFiles:
     compensation: tuple[Path, ...]
     results_data: CampaignResults
     history: Mapping[str, Any] | None = None
-
-
-def _fsync_tree(folder: Path) -> None:
-    for path in folder.rglob("*"):
-        if path.is_file():
-            with open(path, "rb") as handle:
-                os.fsync(handle.fileno())
 
 
 def write_report(
@@ -111,12 +101,7 @@ def write_report(
                 raise AxiscalError(f"extra_files: {name!r} must be a file name relative to the report folder")
             if not isinstance(text, str):
                 raise AxiscalError(f"extra_files['{name}'] must be the file's text (a str), not {type(text).__name__}")
-    try:
-        out_dir.parent.mkdir(parents=True, exist_ok=True)
-        staging = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
-    except OSError as exc:
-        raise AxiscalError(f"cannot make the report folder: {exc.strerror or exc}", path=out_dir) from None
-    try:
+    def fill(staging: Path) -> tuple[list[Path], Path | None]:
         html = render_html(results, compare=compare, history=history)
         (staging / "report.html").write_text(html, encoding="utf-8")
         (staging / "results.json").write_text(dumps(results_payload(results)), encoding="utf-8")
@@ -132,31 +117,11 @@ def write_report(
 
             write_pdf(results, staging / "report.pdf", compare=compare)
             pdf_path = out_dir / "report.pdf"
-        _fsync_tree(staging)
-        os.chmod(staging, 0o777 & ~_umask())
-        old = None
-        if out_dir.exists():
-            if not out_dir.is_dir():
-                raise AxiscalError("exists and is not a folder", path=out_dir)
-            old = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.old.", dir=out_dir.parent))
-            os.replace(out_dir, old / "previous")
-        os.replace(staging, out_dir)
-        if old is not None:
-            shutil.rmtree(old, ignore_errors=True)
-    except OSError as exc:
-        shutil.rmtree(staging, ignore_errors=True)
-        raise AxiscalError(f"cannot write the report: {exc.strerror or exc}", path=out_dir) from None
-    except BaseException:
-        shutil.rmtree(staging, ignore_errors=True)
-        raise
+        return written, pdf_path
+
+    written, pdf_path = atomic_folder(out_dir, fill)
     return ReportFiles(out_dir, out_dir / "report.html", out_dir / "results.json", pdf_path, tuple(written), results,
                        history=None if history is None else dict(history))
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
 
 
 def report_campaign(
