@@ -57,6 +57,13 @@ def test_history_stores_every_campaign_and_trends_use_the_stored_ones(plant, tmp
     fleet = fleet_report(plant, tmp_path / "out", scheduler="threads", history=True, db=db)
     assert len(list_campaigns(url=db)) == 6
     assert all(row.campaigns == 3 for row in fleet.machines)
+    # each stored campaign names its report where the fleet left it, not the folder it was built in
+    import sqlalchemy
+
+    with sqlalchemy.create_engine(db).connect() as connection:
+        sources = [row[0] for row in connection.execute(sqlalchemy.text("SELECT source FROM campaigns"))]
+    out = tmp_path / "out"
+    assert sorted(sources) == sorted(str(out / f"m00{m}-c0{k}" / "results.json") for m in range(2) for k in range(3))
     assert 'id="history"' in (tmp_path / "out" / "m000-c02" / "report.html").read_text() or \
         'id="history"' in (tmp_path / "out" / "m000-c01" / "report.html").read_text()
 

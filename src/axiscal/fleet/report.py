@@ -119,7 +119,7 @@ def fleet_report(
 
     def fill(staging: Path) -> tuple[FleetRun, list[MachineRow]]:
         run = run_fleet(campaigns, staging, scheduler=scheduler, workers=workers, processes=processes,
-                        history=history, db=db, timeout_s=timeout_s, progress=progress)
+                        history=history, db=db, timeout_s=timeout_s, progress=progress, recorded_dir=out_dir)
         run = _moved(run, staging, out_dir)
         rows = machine_rows(run, history=history, db=db)
         write_text(staging / "fleet.html", render_fleet_html(run, rows, out_dir=out_dir))

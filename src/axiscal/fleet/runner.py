@@ -109,7 +109,8 @@ def find_campaigns(folder: str | Path, *, exclude: str | Path | None = None) -> 
     return found
 
 
-def report_one(campaign: str, out_dir: str, history: bool, db: str | None, lock: bool = False) -> CampaignOutcome:
+def report_one(campaign: str, out_dir: str, history: bool, db: str | None, lock: bool = False,
+               recorded_as: str | None = None) -> CampaignOutcome:
     """Report one campaign; any failure becomes the outcome's one-line error.
 
     Parameters
@@ -122,6 +123,8 @@ def report_one(campaign: str, out_dir: str, history: bool, db: str | None, lock:
         The history database.
     lock : bool
         Take turns with other threads of this process (pyplot is not thread-safe).
+    recorded_as : str, optional
+        The report folder the history records (default ``out_dir``): where it will be once moved.
 
     Returns
     -------
@@ -134,9 +137,11 @@ def report_one(campaign: str, out_dir: str, history: bool, db: str | None, lock:
     try:
         if lock:
             with _PLOT_LOCK:
-                files = report_campaign(campaign, out_dir, history=history, db=db)
+                files = report_campaign(campaign, out_dir, history=history, db=db,
+                                        recorded_as=recorded_as if history else None)
         else:
-            files = report_campaign(campaign, out_dir, history=history, db=db)
+            files = report_campaign(campaign, out_dir, history=history, db=db,
+                                        recorded_as=recorded_as if history else None)
     except AxiscalError as exc:
         return CampaignOutcome(campaign, "", " ".join(str(exc).split()), {}, time.perf_counter() - start)
     except Exception as exc:  # a campaign's failure must not stop the fleet: it is listed
@@ -157,6 +162,7 @@ def run_fleet(
     db: str | None = None,
     timeout_s: float = SCHEDULER_TIMEOUT_S,
     progress: Callable[[int, int], None] | None = None,
+    recorded_dir: str | Path | None = None,
 ) -> FleetRun:
     """Report every campaign on Dask, each into ``out_dir/<campaign folder name>``.
 
@@ -181,6 +187,9 @@ def run_fleet(
         Seconds to wait for a scheduler given by address.
     progress : callable, keyword-only
         Called with (done, total) as campaigns finish.
+    recorded_dir : str or Path, keyword-only
+        Where the reports will be once ``out_dir`` is moved into place (the history records the
+        campaigns' report folders there); default ``out_dir``.
 
     Returns
     -------
@@ -193,6 +202,7 @@ def run_fleet(
         share a name.
     """
     out_dir = check_path("out_dir", out_dir)
+    recorded_dir = out_dir if recorded_dir is None else check_path("recorded_dir", recorded_dir)
     check_instance("scheduler", scheduler, str, what='"local", "threads" or a scheduler address')
     check_instance("processes", processes, bool)
     check_instance("history", history, bool)
@@ -206,12 +216,12 @@ def run_fleet(
 
         db = resolve_url(db)
         open_engine(db).dispose()  # made (and migrated) once, before the workers write to it
-    tasks = [(str(c), str(out_dir / Path(c).name)) for c in campaigns]
+    tasks = [(str(c), str(out_dir / Path(c).name), str(recorded_dir / Path(c).name)) for c in campaigns]
     start = time.perf_counter()
     if scheduler == "threads":
         import dask
 
-        delayed = [dask.delayed(report_one)(c, o, history, db, True) for c, o in tasks]
+        delayed = [dask.delayed(report_one)(c, o, history, db, True, r) for c, o, r in tasks]
         outcomes = list(dask.compute(*delayed, scheduler="threads", num_workers=workers))
         if progress is not None:
             progress(len(tasks), len(tasks))
@@ -240,7 +250,7 @@ def _on_cluster(tasks, scheduler, workers, processes, history, db, timeout_s, pr
                                f" {' '.join(str(exc).split())[:200]}".rstrip()) from None
     try:
         lock = own is not None and not processes
-        futures = [client.submit(report_one, c, o, history, db, lock, pure=False) for c, o in tasks]
+        futures = [client.submit(report_one, c, o, history, db, lock, r, pure=False) for c, o, r in tasks]
         order = {future.key: i for i, future in enumerate(futures)}
         outcomes: list = [None] * len(futures)
         for done, future in enumerate(as_completed(futures), start=1):

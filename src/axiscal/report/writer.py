@@ -133,6 +133,7 @@ def report_campaign(
     progress: Callable[[int, int, TestSpec], None] | None = None,
     history: bool = False,
     db: str | None = None,
+    recorded_as: str | Path | None = None,
 ) -> ReportFiles:
     """Run a campaign and write its report: what ``axiscal report`` does.
 
@@ -152,6 +153,10 @@ def report_campaign(
         Also store the campaign in the calibration history and add its history section.
     db : str, keyword-only
         The history database (default ``$AXISCAL_DB``, else the user's SQLite file).
+    recorded_as : str or Path, keyword-only
+        The report folder the history records as the campaign's source (default: the folder
+        written), for a report built in one place and moved to another (a fleet's reports are
+        built beside their destination).
 
     Returns
     -------
@@ -177,6 +182,10 @@ def report_campaign(
     check_instance("history", history, bool)
     if db is not None and not history:
         raise AxiscalError("db applies only with history=True")
+    if recorded_as is not None:
+        recorded_as = check_path("recorded_as", recorded_as)
+        if not history:
+            raise AxiscalError("recorded_as applies only with history=True")
     campaign: Campaign = read_campaign(campaign_dir)
     other = None
     if compare is not None:
@@ -195,5 +204,5 @@ def report_campaign(
     if history:
         from axiscal.report.history import history_section
 
-        section = history_section(results, url=db, source=str(target / "results.json"))
+        section = history_section(results, url=db, source=str((recorded_as or target) / "results.json"))
     return write_report(results, target, compare=other, pdf=pdf, extra_files=files, history=section)
