@@ -132,7 +132,7 @@ def test_the_page_shows_the_overlays_and_the_volumetric_change(compared):
     xz = compared["xz"]
     change = xz.results_data.model["plots"][1]
     assert change.title.startswith("Change of the volumetric error")
-    assert "|e| now − |e| before / um" in change.svg  # the colour scale's label
+    assert "|e| now − |e| before / µm" in change.svg  # the colour scale's label
     assert change.title in xz.html.read_text()
     assert xz.results_data.warnings == []
 

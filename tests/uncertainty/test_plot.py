@@ -30,7 +30,7 @@ def test_one_panel_per_moving_axis_labelled_with_its_position(tmp_path, moving, 
         assert f"{k} position / mm" in text
     assert text.count("position / mm") == panels
     assert "point" not in text.replace("points", "")  # never against a point index
-    assert "|e| / um" in text and "95% interval" in text
+    assert "|e| / µm" in text and "95% interval" in text
 
 
 def test_a_bad_suffix_is_refused_before_drawing(tmp_path):

@@ -91,7 +91,7 @@ def _plot_sensor_diagonal(result, path: Path) -> None:
     ax.plot(along, result.scales_only_m / UM, "s--", label="scales alone")
     ax.plot(along, result.after_m / UM, "k^-", label="E_AD: with the measured spatial error")
     ax.set_xlabel("nominal displacement along the diagonal / mm")
-    ax.set_ylabel("error / um")
+    ax.set_ylabel("error / µm")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
@@ -113,7 +113,7 @@ def _plot_recording(result, path: Path) -> None:
     if bad.any():
         ax.plot(r["t_s"][bad], np.zeros(int(bad.sum())), "rx", label="faulty frame")
     ax.set_xlabel("time / s")
-    ax.set_ylabel("error / um")
+    ax.set_ylabel("error / µm")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8, ncol=5)
     fig.tight_layout()

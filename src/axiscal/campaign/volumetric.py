@@ -185,7 +185,7 @@ def plot_volume(machine: Machine, path: str | Path, *, count: int = GRID_POINTS)
             ax.plot(x, error[:, i] / UM, label=name)
         ax.plot(x, magnitude, "k", label="|e|")
         ax.set_xlabel(f"{a} / mm")
-        ax.set_ylabel("error / um")
+        ax.set_ylabel("error / µm")
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
     else:
@@ -212,7 +212,7 @@ def plot_volume(machine: Machine, path: str | Path, *, count: int = GRID_POINTS)
             ax.set_aspect("equal")
             if label:
                 ax.set_title(label, fontsize=10)
-        fig.colorbar(mesh_plot, ax=grid_axes[0].tolist(), label="|e| / um")
+        fig.colorbar(mesh_plot, ax=grid_axes[0].tolist(), label="|e| / µm")
     fig.suptitle(f"Volumetric error: {machine.name or machine.chain}", fontsize=11)
     save_figure(fig, path)
     return {
@@ -338,7 +338,7 @@ def plot_volume_change(now: Mapping[str, Any], before: Mapping[str, Any], path: 
         ax.plot(grid[a], change, "k", label=f"|e| now − |e| {label}")
         ax.axhline(0.0, color="0.6", linewidth=0.6)
         ax.set_xlabel(f"{a} / mm")
-        ax.set_ylabel("change / um")
+        ax.set_ylabel("change / µm")
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
     else:
@@ -361,7 +361,7 @@ def plot_volume_change(now: Mapping[str, Any], before: Mapping[str, Any], path: 
             ax.set_aspect("equal")
             if caption:
                 ax.set_title(caption, fontsize=10)
-        fig.colorbar(mesh_plot, ax=grid_axes[0].tolist(), label=f"|e| now − |e| {label} / um")
+        fig.colorbar(mesh_plot, ax=grid_axes[0].tolist(), label=f"|e| now − |e| {label} / µm")
     fig.suptitle(title, fontsize=11)
     return save_figure(fig, path)
 

@@ -52,7 +52,7 @@ def plot_on_the_fly(path: str | Path, result: OnTheFly) -> Path:
         if sel.any():
             top.plot(target[sel], deviation[sel], marker, ms=4, ls="none", label=f"{d} direction")
             bottom.plot(target[sel], np.abs(result.speed_m_s[sel]) / MM * 60, marker, ms=4, ls="none")
-    top.set_ylabel("deviation (raw reading) / um")
+    top.set_ylabel("deviation (raw reading) / µm")
     top.set_title(f"On the fly: delay {result.delay_s * 1e3:.3f} ms {'estimated' if result.delay_estimated else 'given'},"
                   f" reading fitted over {result.window_s * 1e3:.3g} ms", fontsize=9)
     top.legend(fontsize=8)

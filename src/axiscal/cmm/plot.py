@@ -72,7 +72,7 @@ def plot_acceptance(path: str | Path, result: AcceptanceResult) -> Path:
                 ax.plot(length, -(mpe + U), "k:", lw=0.8)
         ax.axhline(0.0, color="gray", lw=0.5)
         ax.set_xlabel("calibrated length / mm")
-        ax.set_ylabel(f"{test} (measured - calibrated) / um")
+        ax.set_ylabel(f"{test} (measured - calibrated) / µm")
         ax.set_title(f"{test}: {result.verdict_of(test)}")
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7, ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.16))
@@ -111,10 +111,10 @@ def plot_probing(path: str | Path, result: ProbingResult) -> Path:
     for j, (stylus, fit) in enumerate(result.fits.items()):
         index = np.arange(start, start + fit.residual_m.size)
         top.plot(index, fit.residual_m / UM, _MARKERS[j % len(_MARKERS)] + "-", ms=4, lw=0.6,
-                 label=f"stylus {stylus}: form {fit.form_m / UM:.3f} um")
+                 label=f"stylus {stylus}: form {fit.form_m / UM:.3f} µm")
         start += fit.residual_m.size
     top.axhline(0.0, color="gray", lw=0.5)
-    top.set_ylabel("radial deviation / um")
+    top.set_ylabel("radial deviation / µm")
     top.set_title("each stylus's least-squares sphere")
     top.grid(True, alpha=0.3)
     top.legend(fontsize=7)
@@ -126,8 +126,8 @@ def plot_probing(path: str | Path, result: ProbingResult) -> Path:
             bottom.plot(np.arange(sel.size) + sum(f.residual_m.size for f in list(result.fits.values())[:j]),
                         residual[sel], _MARKERS[j % len(_MARKERS)], ms=4, label=f"stylus {stylus}")
         bottom.axhline(0.0, color="gray", lw=0.5)
-        bottom.set_title(f"the styli's common sphere: form {result.composite.form_m / UM:.3f} um")
-        bottom.set_ylabel("radial deviation / um")
+        bottom.set_title(f"the styli's common sphere: form {result.composite.form_m / UM:.3f} µm")
+        bottom.set_ylabel("radial deviation / µm")
         bottom.grid(True, alpha=0.3)
         bottom.legend(fontsize=7, ncol=5)
     axes[-1][0].set_xlabel("point")

@@ -61,7 +61,7 @@ def plot_dynamics(path: str | Path, result: AxisDynamics) -> Path:
     axes[2].set_xlabel("time / s")
     axes[3].loglog(s.frequency_hz[1:], s.density_m_rthz[1:] / UM, lw=0.8)
     axes[3].set_xlabel("frequency / Hz")
-    axes[3].set_ylabel("um/sqrt(Hz)")
+    axes[3].set_ylabel("µm/√Hz")
     axes[3].set_title(f"Welch, segments {s.segment_s:.3g} s; peak {s.peak_hz:.3g} Hz", fontsize=9)
     return save_figure(fig, path)
 
@@ -97,13 +97,13 @@ def plot_periodic(path: str | Path, result: PeriodicError) -> Path:
         top.plot(dense / MM, c.fitted(dense) / UM, "-", color=line.get_color(), lw=0.8)
         bottom.plot(c.periods_m / MM, c.amplitudes_m / UM, color=line.get_color(), lw=0.8, label=label)
     main = result.main
-    top.set_title(f"periodic error {2 * main.amplitude_m / UM:.3g} um peak to peak, period {main.period_m / MM:.4g} mm"
+    top.set_title(f"periodic error {2 * main.amplitude_m / UM:.3g} µm peak to peak, period {main.period_m / MM:.4g} mm"
                   f" (spectrum: {main.spectrum_period_m / MM:.4g} mm)", fontsize=9)
     top.set_xlabel("target / mm")
-    top.set_ylabel("deviation / um")
+    top.set_ylabel("deviation / µm")
     top.legend(fontsize=8)
     bottom.set_xlabel("period / mm")
-    bottom.set_ylabel("amplitude / um")
+    bottom.set_ylabel("amplitude / µm")
     bottom.legend(fontsize=8)
     fig.tight_layout()
     return save_figure(fig, path)

@@ -54,7 +54,7 @@ def plot_flatness(path: str | Path, surface: FlatnessSurface, *, title: str = ""
     flat = np.ptp(z) == 0.0
     if not flat:
         filled = left.tricontourf(x, y, z, levels=14, cmap="viridis")
-        fig.colorbar(filled, ax=left, label="height / um")
+        fig.colorbar(filled, ax=left, label="height / µm")
         right.plot_trisurf(x, y, z, cmap="viridis", linewidth=0.2, antialiased=True)
     for line in surface.lines:
         ends = np.array([line.start_m, line.end_m]) / MM
@@ -70,11 +70,11 @@ def plot_flatness(path: str | Path, surface: FlatnessSurface, *, title: str = ""
     left.set_aspect("equal")
     left.set_xlabel("x / mm")
     left.set_ylabel("y / mm")
-    left.set_title("heights about the least-squares plane (red: closure / um)", fontsize=8)
+    left.set_title("heights about the least-squares plane (red: closure / µm)", fontsize=8)
     right.scatter(x, y, z, s=3, color="k")
     right.set_xlabel("x / mm")
     right.set_ylabel("y / mm")
-    right.set_zlabel("height / um")
+    right.set_zlabel("height / µm")
     zone = surface.zone
     fig.suptitle(f"{title + ': ' if title else ''}flatness {zone.minimum_zone_m / UM:.3f} um (minimum zone), "
                  f"{zone.least_squares_m / UM:.3f} um (least squares), {surface.evaluation}", fontsize=10)

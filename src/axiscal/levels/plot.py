@@ -50,8 +50,8 @@ def plot_levels(path: str | Path, evaluation: LevelEvaluation) -> Path:
     top.plot(x / MM, fit / UM, "-", label=f"{line.reference} line")
     for bound in (residual.min(), residual.max()):
         top.plot(x / MM, (fit + bound) / UM, "--", color="gray", lw=0.8)
-    top.set_ylabel("deviation / um")
-    top.set_title(f"straightness {line.straightness_m / UM:.3f} um, angular error {profile.angular_error_rad / URAD:.2f} urad")
+    top.set_ylabel("deviation / µm")
+    top.set_title(f"straightness {line.straightness_m / UM:.3f} µm, angular error {profile.angular_error_rad / URAD:.2f} µrad")
     top.legend(fontsize=8)
     middle = profile.reading_position_m + 0.5 * profile.foot_m
     bottom.step(middle / MM, profile.angle_rad / URAD, where="mid")

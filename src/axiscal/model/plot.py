@@ -59,7 +59,7 @@ def plot_error_tables(machine: Machine, path: str | Path) -> None:
             target = axes[row, 0] if k < 3 else axes[row, 1]
             scale = 1.0 / UM if k < 3 else 1.0 / _URAD
             target.plot(q_mm, table.values[k] * scale, marker=".", label=f"{name}")
-        axes[row, 0].set_ylabel("translation error / um")
+        axes[row, 0].set_ylabel("translation error / µm")
         axes[row, 1].set_ylabel("rotation error / urad")
         for ax in axes[row]:
             ax.set_xlabel(f"{letter} position / {unit}")
@@ -274,11 +274,11 @@ def plot_diagonal(
     nominal_mm = result.nominal_m / MM
     ax.plot(nominal_mm, result.model_error_m / UM, "k--", label="model prediction (predicted - nominal)")
     if result.error_before_m is not None and result.error_after_m is not None:
-        ax.plot(nominal_mm, result.error_before_m / UM, "o-", label=f"E_BD = measured - nominal (P-V {result.range_before_m / UM:.1f} um)")
-        ax.plot(nominal_mm, result.error_after_m / UM, "s-", label=f"E_AD = measured - predicted (P-V {result.range_after_m / UM:.1f} um)")
+        ax.plot(nominal_mm, result.error_before_m / UM, "o-", label=f"E_BD = measured - nominal (P-V {result.range_before_m / UM:.1f} µm)")
+        ax.plot(nominal_mm, result.error_after_m / UM, "s-", label=f"E_AD = measured - predicted (P-V {result.range_after_m / UM:.1f} µm)")
     ax.axhline(0.0, color="grey", lw=0.8)
     ax.set_xlabel("nominal displacement along the diagonal / mm")
-    ax.set_ylabel("error, actual - nominal / um")
+    ax.set_ylabel("error, actual - nominal / µm")
     ax.set_title(title)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=9)
@@ -317,12 +317,12 @@ def plot_diagonal_experiment(result, path: str | Path) -> None:
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(7.0, 4.2))
     diagonal_mm = np.hypot(result.x_m, result.z_m) / MM
-    ax.plot(diagonal_mm, -result.before_m / UM, "o-", label=f"before the model, E_BD (max {result.before_max_m / UM:.1f} um)")
-    ax.plot(diagonal_mm, -result.scales_only_m / UM, "^--", label=f"scales only (max {result.scales_only_max_m / UM:.1f} um)")
-    ax.plot(diagonal_mm, -result.after_m / UM, "s-", label=f"after the model, E_AD (max {result.after_max_m / UM:.2f} um)")
+    ax.plot(diagonal_mm, -result.before_m / UM, "o-", label=f"before the model, E_BD (max {result.before_max_m / UM:.1f} µm)")
+    ax.plot(diagonal_mm, -result.scales_only_m / UM, "^--", label=f"scales only (max {result.scales_only_max_m / UM:.1f} µm)")
+    ax.plot(diagonal_mm, -result.after_m / UM, "s-", label=f"after the model, E_AD (max {result.after_max_m / UM:.2f} µm)")
     ax.axhline(0.0, color="0.6", lw=0.8)
     ax.set_xlabel("position along the XZ diagonal (mm)")
-    ax.set_ylabel("diagonal error, actual - nominal (um)")
+    ax.set_ylabel("diagonal error, actual - nominal (µm)")
     ax.set_title(f"Virtual XZ module, {result.load_kg:g} kg on Z: diagonal vs laser (paper 000 eq 13)")
     ax.legend(loc="best", fontsize=8)
     ax.grid(True, alpha=0.3)

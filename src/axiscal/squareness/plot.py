@@ -109,7 +109,7 @@ def plot_squareness(
         ends = np.array([position.min(), position.max()])
         ax.plot(ends / MM, (line.slope * ends + line.intercept_m) / UM, "-", label=f"{line.reference} line")
         ax.set_xlabel(f"{moving} position / mm")
-        ax.set_ylabel(f"deviation along {across} / um")
+        ax.set_ylabel(f"deviation along {across} / µm")
         ax.set_title(f"{moving} run: slope {line.slope:+.3e} ({math.atan(line.slope) / ARCSEC:+.2f} arcsec)")
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)

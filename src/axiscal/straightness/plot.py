@@ -87,15 +87,15 @@ def plot_straightness(
     top.plot(x / MM, fit / UM, "-", label=f"{line.reference} line")
     for bound in (residual.min(), residual.max()):
         top.plot(x / MM, (fit + bound) / UM, "--", color="gray", lw=0.8)
-    top.set_ylabel("deviation / um")
-    top.set_title(f"straightness {line.straightness_m / UM:.4f} um ({line.reference})")
+    top.set_ylabel("deviation / µm")
+    top.set_title(f"straightness {line.straightness_m / UM:.4f} µm ({line.reference})")
     top.legend(fontsize=8)
     bottom.plot(x / MM, residual[order] / UM, "o-", ms=3, label="about the line")
     if before is not None:
         bottom.legend(fontsize=8)
     for bound in (residual.min(), residual.max()):
         bottom.axhline(bound / UM, ls="--", color="gray", lw=0.8)
-    bottom.set_ylabel("about the line / um")
+    bottom.set_ylabel("about the line / µm")
     bottom.set_xlabel("position / mm")
     fig.tight_layout()
     return save_figure(fig, path, dpi=120)

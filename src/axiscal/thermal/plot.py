@@ -54,7 +54,7 @@ def plot_thermal(path: str | Path, run: ThermalRun, *, title: str = "") -> Path:
     for name, d in run.displacements.items():
         if name in "XYZ":
             top.plot(hours, d / UM, label=name)
-    top.set_ylabel("displacement / um")
+    top.set_ylabel("displacement / µm")
     tilts = {k: v for k, v in run.displacements.items() if k in "AB"}
     if tilts:
         right = top.twinx()

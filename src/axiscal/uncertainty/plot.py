@@ -83,7 +83,7 @@ def plot_volumetric_uncertainty(
                         elinewidth=0.8, capsize=2, alpha=0.6, color="tab:blue", ecolor="tab:gray", label=f"|e| and its {label}")
         ax.set_xlabel(f"{letter} position / mm")
         ax.grid(True, alpha=0.3)
-    axes[0, 0].set_ylabel("|e| / um")
+    axes[0, 0].set_ylabel("|e| / µm")
     axes[0, 0].legend(fontsize=8, loc="best")
     fig.suptitle(title or "Volumetric error with its coverage interval", fontsize=11)
     fig.tight_layout()
