@@ -20,6 +20,7 @@ from typing import TypeVar
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_path
+from axiscal.io.atomic import _running, _sync_folder, _umask
 
 __all__ = ["atomic_folder", "stale_temporaries"]
 
@@ -29,16 +30,6 @@ _TAG = "axiscal"
 
 def _prefix(path: Path) -> str:
     return f".{path.name}.{_TAG}-"
-
-
-def _alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except (PermissionError, OverflowError, ValueError):
-        return True
-    return True
 
 
 def stale_temporaries(path: str | Path) -> list[Path]:
@@ -71,7 +62,7 @@ def stale_temporaries(path: str | Path) -> list[Path]:
         if not entry.name.startswith(prefix):
             continue
         pid = entry.name[len(prefix):].split("-", 1)[0]
-        if pid.isdigit() and int(pid) != os.getpid() and not _alive(int(pid)):
+        if pid.isdigit() and int(pid) != os.getpid() and not _running(int(pid)):
             found.append(entry)
     return sorted(found)
 
@@ -118,12 +109,6 @@ def _sync_tree(folder: Path) -> None:
             pass
         finally:
             os.close(fd)
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
 
 
 def atomic_folder(path: str | Path, fill: Callable[[Path], T], *, marker: str | None = None) -> T:
@@ -198,16 +183,3 @@ def atomic_folder(path: str | Path, fill: Callable[[Path], T], *, marker: str | 
         _remove(staging)
         raise
     return result
-
-
-def _sync_folder(folder: Path) -> None:
-    try:
-        fd = os.open(folder, os.O_RDONLY)
-    except OSError:
-        return
-    try:
-        os.fsync(fd)
-    except OSError:
-        pass
-    finally:
-        os.close(fd)
