@@ -371,8 +371,9 @@ def _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, m
             rep = np.repeat(np.arange(idx.size), counts)
             owner = idx[rep]
             t = (np.arange(owner.size) - (np.cumsum(counts) - counts)[rep] + 1) / counts[rep]
-            c_t = start[owner] + t[:, None] * (out[owner] - start[owner])
-            p_t = pieces.p0[owner] + t[:, None] * (pieces.p1[owner] - pieces.p0[owner])
+            c_0, p_0 = np.take(start, owner, axis=0), np.take(pieces.p0, owner, axis=0)
+            c_t = c_0 + t[:, None] * (np.take(out, owner, axis=0) - c_0)
+            p_t = p_0 + t[:, None] * (np.take(pieces.p1, owner, axis=0) - p_0)
             miss = _deviation(model, c_t, p_t, pieces.rot[owner], linear, rotary, reach)
             largest = np.maximum.reduceat(miss, np.cumsum(counts) - counts)
             bad = largest > pieces.limit[idx]
