@@ -34,6 +34,8 @@ from axiscal.report.cycle import CycleSettings, closed_cycle
 sys.path.insert(0, str(Path(__file__).parent))
 from linuxcnc_harness import LinuxcncSim, mechanical_error_mm  # noqa: E402
 
+# One LinuxCNC runs on a machine: under pytest-xdist this module's tests run on one worker, one after
+# another, with the module's one simulator (tests/conftest.py, ONE_AT_A_TIME).
 CONTROLLER = "linuxcnc:127.0.0.1"
 DRIVE = DriveSettings(axis="X", feed_m_per_s=0.1, dwell_s=0.4)
 SETTINGS = CaptureSettings(stability_m=0.2e-6, window_s=0.2)
