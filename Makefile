@@ -64,7 +64,7 @@ linuxcnc:
 	  useradd --system --create-home --shell /usr/sbin/nologin $(LINUXCNC_USER); fi
 
 test: lint docs chromium postgresql linuxcnc
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n 2
 
 clean:
 	rm -rf $(VENV) axiscal-demo build site src/*.egg-info

@@ -97,7 +97,7 @@ def test_a_command_makes_the_folders_of_its_output(run_cli, examples, tmp_path, 
     if path[0] in ("run", "cycle"):  # a short plan for the virtual controller
         from axiscal.positioning.plan import plan_test, write_plan
 
-        write_plan(plan_test(0.010, 0.180, 5, runs=1, seed=3), tmp_path / "plan.csv")
+        write_plan(plan_test(0.010, 0.030, 5, runs=1, seed=3), tmp_path / "plan.csv")  # short moves: what is checked is the folder
     if path[0] == "fleet":  # a folder of one campaign
         from axiscal.fleet.generate import generated_fleet
 

@@ -94,3 +94,26 @@ def test_the_stream_sends_the_run_state(client):
     with client.websocket_connect("ws://127.0.0.1:8770/ws") as socket:
         message = socket.receive_json()
     assert message["run"] == {"state": "idle", "phase": "as-found"} and message["trace"]["t_s"] == []
+
+
+def test_two_first_readings_of_a_new_history_at_once_both_list_its_machines(tmp_path):
+    """The server's warm-up and the page's first request read a history that is not made yet, together."""
+    import threading
+
+    for k in range(6):
+        bench = Workbench(tmp_path / f"data{k}", db=str(tmp_path / f"history{k}.sqlite"))
+        answers, start = [], threading.Barrier(2)
+
+        def read(bench=bench, start=start, answers=answers):
+            start.wait()
+            try:
+                answers.append(bench.machines())
+            except Exception as exc:  # noqa: BLE001 - the test names what went wrong
+                answers.append(str(exc))
+
+        threads = [threading.Thread(target=read) for _ in range(2)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join(60)
+        assert answers == [[], []]

@@ -83,6 +83,9 @@ class Workbench:
         self.phase = "as-found"
         self.compensation: dict[str, Any] | None = None
         self._lock = threading.Lock()
+        # the server's warm-up and the page's first request both read the history: the first reading
+        # of a new SQLite file makes it, and two at once would find it half made ("database is locked")
+        self._history_lock = threading.Lock()
 
     # -- 1. machines -------------------------------------------------------------------------------
     def machines(self) -> list[dict[str, Any]]:
@@ -90,7 +93,9 @@ class Workbench:
         from axiscal.history import machine_histories, machine_trends
 
         out = []
-        for history in machine_histories(url=self.db):
+        with self._history_lock:
+            histories = machine_histories(url=self.db)
+        for history in histories:
             trends = machine_trends(history)
             due = min((t.next_date for t in trends), default=None)
             first = trends[0] if trends else None
