@@ -81,7 +81,7 @@ class BallPlateFile(ArtefactCommon):
     balls: FileName = Field(description="certificate (CSV): ball, x_mm, y_mm[, z_mm][, U_um]")
     pose: Annotated[
         Union[Annotated[Literal["fit"], Tag("=fit")], Annotated[PlatePose, Tag("=table")]],
-        Discriminator(lambda v: "=table" if isinstance(v, dict) else "=fit"),
+        Discriminator(lambda v: "=table" if isinstance(v, (dict, PlatePose)) else "=fit"),  # a model, once validated
     ] = Field("fit", description='"fit" (default) or a [pose] table')
 
 
