@@ -148,7 +148,14 @@ def test_ctrl_c_stops_keeps_the_partial_and_resume_finishes(machine, plan_csv, t
                f"umd:{machine.pty}", "--ini", str(machine.ini), "-o", str(out), "--feed-mm-min", "6000", "--dwell-s", "0.4",
                "--window-s", "0.2", "--stability-um", "0.2"]
     env = {**os.environ, "PYTHONPATH": str(Path(__file__).parents[2] / "src")}
-    process = subprocess.Popen(command, stderr=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env)
+    # Ctrl-C as a terminal delivers it, however the tests were started: a background job of a non-interactive
+    # shell (`make test &` in a script) starts with SIGINT ignored, every child inherits that, and the run
+    # would never see the signal. A handler set here is the default again in the child (exec resets it).
+    ignored = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        process = subprocess.Popen(command, stderr=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env)
+    finally:
+        signal.signal(signal.SIGINT, ignored)
     partial = tmp_path / "run.csv.partial"
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline and (not partial.is_file() or len(partial.read_text().splitlines()) < 4):
