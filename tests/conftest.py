@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -15,6 +16,13 @@ from hypothesis import settings
 settings.register_profile("ci", derandomize=True, deadline=None)
 settings.register_profile("dev", deadline=None)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.get("CI") else "dev"))
+
+# The suite starts a few hundred Python interpreters (the docs' command lines, the CLI in subprocesses,
+# killed writers): where the environment asks for no bytecode files (PYTHONDONTWRITEBYTECODE), each one
+# compiled axiscal's modules again, about a quarter of a second apiece. The caches go to __pycache__
+# folders, which git ignores.
+os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
+sys.dont_write_bytecode = False
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
