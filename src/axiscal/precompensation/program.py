@@ -20,7 +20,6 @@ apart from the header comment.
 from __future__ import annotations
 
 import math
-import operator
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -31,9 +30,10 @@ from axiscal.conventions import AXIS_INDEX
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_number, check_path
 from axiscal.io.atomic import remove_stale_temporaries, write_text
-from axiscal.io.gcode import PLANE_AXES, Program, dialect as find_dialect, read_program, split_lines
+from axiscal.io.gcode import PLANE_AXES, Program, dialect as find_dialect, read_program
 from axiscal.io.tabular import read_text
 from axiscal.model.machine import Machine
+from axiscal.precompensation.kept import kept_as_written as _keep
 from axiscal.precompensation.points import CommandError, machine_with_tool, solve_commands
 from axiscal.precompensation.text import PLACES, program_text
 from axiscal.units import UM
@@ -434,70 +434,6 @@ def _deviation(model, command, programmed, rot, linear, rotary, reach) -> np.nda
     for j in reach[1:]:
         squares += miss[:, j] ** 2
     return np.sqrt(squares)
-
-
-def _keep(program: Program, moves: _Moves, pieces: _Pieces, per_unit, forced: np.ndarray | None = None) -> np.ndarray:
-    """Which moves are written as they were: corrections below half the written resolution, modes consistent.
-
-    A move kept as written that relies on the modal motion word needs the output's modal word to be
-    the program's there: the move before it (or the mode word before it) was kept, or was written
-    anew with the word it had. An incremental move kept as written needs the output to stand where
-    the program stands before it.
-    """
-    half = 0.5 * np.where(per_unit == _MM, 10.0 ** -PLACES["mm"], 10.0 ** -PLACES["inch"]) * per_unit
-    small = np.all(np.abs(pieces.command - pieces.p1) < half[:, None], axis=1)
-    first = np.r_[0, np.flatnonzero(np.diff(pieces.move)) + 1]
-    move_small = np.logical_and.reduceat(small, first) if small.size else np.zeros(0, dtype=bool)
-    keep = move_small if forced is None else move_small & forced
-    if not keep.any():
-        return keep
-    last = np.r_[first[1:] - 1, small.size - 1]
-    columns = moves.columns
-    word = columns.motion_word
-    n = word.size
-    lines = np.arange(n)
-    written_at = np.maximum.accumulate(np.where(word >= 0, lines, -1))
-    in_force = np.where(written_at >= 0, word[np.maximum(written_at, 0)], -1)  # the program's modal word after each line
-    move_of_line = np.full(n, -1, dtype=np.int64)
-    move_of_line[moves.index] = np.arange(len(moves))
-    events = np.flatnonzero((word >= 0) | (move_of_line >= 0))
-    at = np.searchsorted(events, moves.index)
-    before = np.where(at > 0, events[np.maximum(at - 1, 0)], -1)  # the event line before each move, -1: none
-    previous = np.where(before >= 0, move_of_line[np.maximum(before, 0)], -1)  # ... when it is a move
-    derived = np.where(moves.kind == 1, 0, 1)  # the word a move written anew gets: G0 at rapid, else G1
-    own = word[moves.index] >= 0
-    mode_fixed = own | (previous < 0) | (derived[np.maximum(previous, 0)] == in_force[np.maximum(before, 0)])
-    absolute = moves.absolute
-    candidates = keep.copy()
-    # moves whose decision waits for the one before's: in order, one by one
-    waits = candidates & ((~mode_fixed & candidates[np.maximum(previous, 0)] & (previous >= 0))
-                          | (~absolute & np.r_[False, candidates[:-1]]))
-    settled = candidates & ~waits
-    keep = settled & mode_fixed
-    if (keep & ~absolute).any():
-        keep &= _stands(keep & ~absolute, keep, moves, pieces, first, last, half) | absolute
-    for number in np.flatnonzero(waits).tolist():
-        ok = True
-        if not mode_fixed[number]:
-            p = previous[number]
-            ok = p >= 0 and bool(keep[p])
-        if ok and not absolute[number] and number > 0:
-            q = number - 1
-            here = pieces.p1[last[q]] if keep[q] else pieces.command[last[q]]
-            ok = bool(np.all(np.abs(here - pieces.p0[first[number]]) < half[first[number]]))
-        keep[number] = ok
-    return keep
-
-
-def _stands(which: np.ndarray, keep: np.ndarray, moves: _Moves, pieces: _Pieces, first, last, half) -> np.ndarray:
-    """For the incremental moves ``which`` (the move before each one decided in ``keep``): whether the
-    output stands where the program does before it."""
-    out = np.ones(which.size, dtype=bool)
-    numbers = np.flatnonzero(which & (np.arange(which.size) > 0))
-    q = numbers - 1
-    here = np.where(keep[q][:, None], pieces.p1[last[q]], pieces.command[last[q]])
-    out[numbers] = np.all(np.abs(here - pieces.p0[first[numbers]]) < half[first[numbers]][:, None], axis=1)
-    return out
 
 
 def precompensate_program(
