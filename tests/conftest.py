@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import math
 import os
+import re
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -55,6 +57,47 @@ def pytest_xdist_make_scheduler(config, log):
 @pytest.fixture
 def examples() -> Path:
     return EXAMPLES
+
+
+# A number as files print it: sign, digits with or without a point, an exponent.
+_NUMBER = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
+
+
+def _printed_unit(token: str) -> float:
+    """One unit in the last digit printed: 0.01 for ``1.23``, 1e-7 for ``1.5e-6``; 0 for a whole number."""
+    mantissa, _, exponent = token.lower().partition("e")
+    if "." not in mantissa and not exponent:
+        return 0.0  # counts, indices, line numbers, dates: exact
+    decimals = len(mantissa.partition(".")[2])
+    return 10.0 ** (int(exponent or 0) - decimals)
+
+
+def assert_same_text_to_precision(expected: str, actual: str, *, rel: float = 1e-9, name: str = "") -> None:
+    """Assert two texts agree but for their numbers, which agree to `rel` or to one unit of the last digit printed.
+
+    Regenerated files are compared with this, never byte for byte: another CPU (another BLAS kernel, another
+    order of a sum) changes the 16th significant digit of a float, and the rounding of a printed figure may
+    then flip its last digit. Whole numbers (counts, indices, dates) must be equal.
+    """
+    lines_a, lines_b = expected.splitlines(), actual.splitlines()
+    assert len(lines_a) == len(lines_b), f"{name}: {len(lines_a)} lines expected, {len(lines_b)} written"
+    for number, (line_a, line_b) in enumerate(zip(lines_a, lines_b), start=1):
+        if line_a == line_b:
+            continue
+        text_a, text_b = _NUMBER.split(line_a), _NUMBER.split(line_b)
+        values_a, values_b = _NUMBER.findall(line_a), _NUMBER.findall(line_b)
+        where = f"{name} line {number}:\n  expected {line_a[:300]}\n  written  {line_b[:300]}"
+        assert text_a == text_b and len(values_a) == len(values_b), where
+        for a, b in zip(values_a, values_b):
+            x, y = float(a), float(b)
+            bound = max(rel * max(abs(x), abs(y)), _printed_unit(a), _printed_unit(b))
+            assert math.isclose(x, y, rel_tol=0.0, abs_tol=bound * (1 + 1e-9)), f"{where}\n  {a} != {b}"
+
+
+@pytest.fixture
+def same_text_to_precision():
+    """:func:`assert_same_text_to_precision`, for tests that compare regenerated files with shipped ones."""
+    return assert_same_text_to_precision
 
 
 @pytest.fixture
