@@ -1,4 +1,4 @@
-"""``axiscal cmm``: the group, with ``acceptance`` (the ISO 10360-2 length test) and ``probing`` (the ISO 10360-5 probing test); ``compensate`` and ``gauge-blocks`` are in :mod:`axiscal.cli.squareness`."""
+"""``axiscal cmm``: the group, with ``acceptance`` (the ISO 10360-2 length test) and ``probing`` (the ISO 10360-5 probing test); it takes ``compensate`` and ``gauge-blocks`` from :mod:`axiscal.cli.squareness`, which knows nothing of the group."""
 
 from __future__ import annotations
 
@@ -6,6 +6,7 @@ import click
 
 from axiscal.cli.common import FINITE, echo_json, flags_named
 from axiscal.cli.choices import DECISION_RULES
+from axiscal.cli.squareness import compensate_command, gauge_blocks_command
 from axiscal.errors import AxiscalError
 from axiscal.units import MM, UM
 
@@ -131,5 +132,5 @@ def probing_command(points, diameter_mm, pform_mpe_um, psize_mpe_um, pform_ms_mp
         click.echo(result.report())
 
 
-# the group's compensate and gauge-blocks live beside the squareness commands
-import axiscal.cli.squareness  # noqa: E402,F401
+cmm_group.add_command(compensate_command)
+cmm_group.add_command(gauge_blocks_command)

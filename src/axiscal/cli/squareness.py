@@ -1,4 +1,4 @@
-"""``axiscal squareness``, ``axiscal optics pentaprism``, ``axiscal cmm compensate|gauge-blocks``.
+"""``axiscal squareness``, ``axiscal optics pentaprism``, and the commands ``axiscal cmm`` takes as ``compensate`` and ``gauge-blocks``.
 
 Squareness from two straightness runs (paper 002), the pentaprism's sensitivity to its set-up
 (paper 002 Fig. 5) and the squareness compensation of a CMM (paper 004 eq 6). Values are typed in
@@ -12,7 +12,6 @@ import math
 
 import click
 
-from axiscal.cli.cmm import cmm_group
 from axiscal.cli.common import FINITE, echo_json
 from axiscal.errors import AxiscalError
 from axiscal.cli.choices import BK7_INDEX, PAPER_004_SQUARENESS_ARCMIN, SQUARENESS_REFERENCES
@@ -22,7 +21,6 @@ __all__ = [
     "squareness_command",
     "optics_group",
     "pentaprism_command",
-    "cmm_group",
     "compensate_command",
     "gauge_blocks_command",
 ]
@@ -120,7 +118,7 @@ _SQUARENESS_HELP = (
 )
 
 
-@cmm_group.command("compensate")
+@click.command("compensate")
 @click.argument("points_csv", type=click.Path(dir_okay=False))
 @click.option("--squareness-arcmin", "values", required=True, callback=_squareness_arcmin, help=_SQUARENESS_HELP)
 @click.option("-o", "--output", "output", type=click.Path(dir_okay=False),
@@ -135,7 +133,7 @@ def compensate_command(points_csv, values, output, inverse):
         click.echo(result.csv_text, nl=False)
 
 
-@cmm_group.command("gauge-blocks")
+@click.command("gauge-blocks")
 @click.option("--squareness-arcmin", "values", default=",".join(f"{v:g}" for v in PAPER_004_SQUARENESS_ARCMIN),
               show_default=True, callback=_squareness_arcmin, help=_SQUARENESS_HELP)
 @click.option("--end-offset-mm", type=FINITE, default=1.0, show_default=True,
