@@ -463,7 +463,7 @@ def test_mutated_rtx_captures(tmp_path, examples, data):
 @pytest.mark.parametrize("which", ["map", "data"])
 @given(data=st.data())
 def test_mutated_column_maps_and_exports(tmp_path, examples, which, data):
-    from axiscal.io.importers.columnmap import import_readings
+    from axiscal.io.importers.readings import import_readings
 
     folder = examples / "imports"
     map_text = (folder / "reading_per_row.toml").read_text(encoding="utf-8")

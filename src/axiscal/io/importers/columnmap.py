@@ -307,11 +307,3 @@ def read_column_map(path: str | Path) -> ColumnMap:
 
     return column_map(parse_toml(text, path=path), source=str(path), locate=lambda key: locate(key) or 1)
 
-
-# reading an export through a map lives in readings.py; these names stay importable from here
-from axiscal.io.importers.readings import (  # noqa: E402,F401
-    ImportedReadings,
-    import_readings,
-    positioning_csv,
-    write_positioning_csv,
-)
