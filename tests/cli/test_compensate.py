@@ -61,3 +61,21 @@ def test_a_table_that_would_be_zeros_or_nan_is_refused(run_cli, examples, tmp_pa
     status, out, err = run_cli("compensate", examples / "positioning_run.csv", "--format", "fanuc", *option, "-o", target)
     assert status == 2 and words in err and err.count("\n") == 1
     assert target.read_text() == "old table\n"
+
+
+def test_a_correction_beyond_the_bound_is_one_line_naming_the_flag_that_raises_it(run_cli, tmp_path):
+    """A run read with --offset-mm 100 by mistake: every deviation -100 mm; the table would move the axis by 100 mm."""
+    run = tmp_path / "run.csv"
+    rows = [f"{t},{r},{d},{-100000 + r}" for t in (0, 50, 100) for r in (1, 2) for d in "+-"]
+    run.write_text("target_mm,run,direction,deviation_um\n" + "\n".join(rows) + "\n")
+    target = tmp_path / "table.txt"
+    target.write_text("old table\n")
+    status, out, err = run_cli("compensate", run, "--format", "linuxcnc", "-o", target)
+    assert status == 2 and out == "" and err.count("\n") == 1
+    assert err.startswith(f"axiscal: error: {run}: the mean deviation at 0 mm (+) is -99.9985 mm") and "--max-correction-mm" in err
+    assert target.read_text() == "old table\n"
+    status, _, err = run_cli("compensate", run, "--format", "linuxcnc", "-o", target, "--max-correction-mm", "101")
+    assert status == 0 and target.read_text() != "old table\n"
+    for bad in ("0", "-1", "1e300", "nan"):
+        status, _, err = run_cli("compensate", run, "--format", "linuxcnc", "--max-correction-mm", bad)
+        assert status == 2 and "--max-correction-mm" in err and err.count("\n") == 1, err

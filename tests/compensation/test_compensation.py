@@ -526,3 +526,32 @@ def test_one_curve_tables_hold_the_direction_tested(run, one_way, fmt, options):
     # the same table as from a run whose two directions are both the + direction
     twin = PositioningRun(run.targets, run.deviations_up, run.deviations_up)
     assert result.text == compensation_table(twin, fmt, **options).text
+
+
+@pytest.mark.parametrize("fmt", ["linuxcnc", "fanuc", "siemens", "heidenhain"])
+def test_a_correction_no_real_axis_has_is_refused_unless_the_bound_is_raised(fmt):
+    """A reading 100 mm off (the wrong offset, unit or scale) must not become a table that moves the axis by 100 mm."""
+    targets = np.array([0.0, 0.05, 0.1])
+    off = np.full((3, 2), -0.1)  # every reading 100 mm short
+    off[1] += 2e-6
+    run = PositioningRun(targets, off, off.copy(), source="<run>")
+    with pytest.raises(AxiscalError, match=r"mean deviation at 0 mm \(\+\) is -100 mm, beyond the largest correction written"
+                                           r" \(1 mm\).*raise max_correction_m"):
+        compensation_table(run, fmt)
+    assert compensation_table(run, fmt, max_correction_m=0.2).text
+    # the bound itself is checked: a positive length of at most 1 m
+    for bad in (0.0, -1e-3, math.nan, 1e300):
+        with pytest.raises(AxiscalError, match="max_correction_m"):
+            compensation_table(run, fmt, max_correction_m=bad)
+
+
+def test_a_deviation_just_under_the_bound_is_written_and_a_rotary_axis_has_its_own_bound():
+    targets = np.array([0.0, 0.05, 0.1])
+    near = np.full((3, 2), -0.99e-3)
+    assert compensation_table(PositioningRun(targets, near, near.copy()), "heidenhain").text
+    angles = np.radians([0.0, 90.0, 180.0, 270.0])
+    twist = np.full((4, 2), 2 * DEG)
+    rotary = PositioningRun(angles, twist, twist.copy(), rotary=True)
+    with pytest.raises(AxiscalError, match=r"\+2 deg, beyond the largest correction written \(1 deg\).*max_correction_rad"):
+        compensation_table(rotary, "heidenhain")
+    assert compensation_table(rotary, "heidenhain", max_correction_rad=3 * DEG).text

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from axiscal.cli.common import FINITE, flags_named, given_options, write_output
+from axiscal.cli.common import FINITE, finite, flags_named, given_options, write_output
 from axiscal.cli.choices import FORMATS
 from axiscal.units import DEG, MM, UM
 
@@ -37,9 +37,14 @@ def _si(value: float | None, factor: float) -> float | None:
 @click.option("--axis", default=None, help="Axis name: siemens machine axis [X1], heidenhain axis [X].")
 @click.option("--axis-number", type=int, default=1, show_default=True, help="fanuc: axis number on the parameter tape.")
 @click.option("--no-backlash", is_flag=True, help="heidenhain: one mean column, no BACKLASH column.")
+@click.option("--max-correction-mm", type=finite(0.0, 1000.0, min_open=True), default=1.0, show_default=True,
+              help="The largest mean deviation a table corrects: one beyond it is refused (a reading in the wrong unit or from"
+                   " the wrong datum); raise it only for an axis truly out by more.")
+@click.option("--max-correction-deg", type=finite(0.0, 360.0, min_open=True), default=1.0, show_default=True,
+              help="The same for a rotary axis.")
 def compensate_command(run_csv, fmt, output, comp_type, interval_mm, interval_deg, magnification, detection_unit_um,
                        reference_position_mm, detection_unit_deg, reference_position_deg, reference_point, bidirectional,
-                       axis, axis_number, no_backlash):
+                       axis, axis_number, no_backlash, max_correction_mm, max_correction_deg):
     """Write a compensation table for the controller from the mean deviations of RUN_CSV (a linear or rotary axis)."""
     from axiscal.compensation.formats import compensation_table
 
@@ -56,8 +61,11 @@ def compensate_command(run_csv, fmt, output, comp_type, interval_mm, interval_de
                 "no_backlash": "backlash"}
     options = {keywords.get(name, name): value for name, value in options.items()}
     with flags_named({keyword: "--" + name.replace("_", "-") for name, keyword in
-                      {**{n: n for n in options}, **keywords}.items()} | {"backlash": "--no-backlash"}):
-        result = compensation_table(run_csv, fmt, **options)
+                      {**{n: n for n in options}, **keywords}.items()}
+                     | {"backlash": "--no-backlash", "max_correction_m": "--max-correction-mm",
+                        "max_correction_rad": "--max-correction-deg"}):
+        result = compensation_table(run_csv, fmt, max_correction_m=max_correction_mm * MM,
+                                    max_correction_rad=max_correction_deg * DEG, **options)
     if output:
         write_output(output, lambda target: target.write_text(result.text, encoding="utf-8"))
     else:

@@ -28,7 +28,7 @@ from axiscal.compensation.heidenhain import heidenhain_table
 from axiscal.compensation.linuxcnc import linuxcnc_table
 from axiscal.compensation.siemens import siemens_table
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_instance, check_integer, check_optional_number
+from axiscal.io.arguments import check_instance, check_integer, check_number, check_optional_number
 from axiscal.positioning.evaluation import (
     TURN,
     PositioningRun,
@@ -39,7 +39,14 @@ from axiscal.positioning.evaluation import (
 from axiscal.positioning.reader import read_positioning_run
 from axiscal.units import ARCSEC, DEG, MM, UM
 
-__all__ = ["FORMATS", "FORMAT_OPTIONS", "ROTARY_OPTIONS", "FANUC_ROTARY_INCREMENT", "CompensationResult", "compensation_table"]
+__all__ = ["FORMATS", "FORMAT_OPTIONS", "ROTARY_OPTIONS", "FANUC_ROTARY_INCREMENT", "MAX_CORRECTION_M", "MAX_CORRECTION_RAD",
+           "CompensationResult", "compensation_table"]
+
+#: the largest correction a table is written with unless the user raises the bound: a mean deviation
+#: beyond it is a reading that is not the axis's (a unit, a scale or an offset gone wrong), not an error
+#: any real axis has; 1 mm for a linear axis, 1 degree for a rotary one
+MAX_CORRECTION_M = 1e-3
+MAX_CORRECTION_RAD = DEG
 
 #: the options of a linear axis (metres) and their counterparts for a rotary axis (radians)
 ROTARY_OPTIONS = {"interval_m": "interval_rad", "detection_unit_m": "detection_unit_rad",
@@ -157,6 +164,19 @@ def _needs_both_directions(fmt: str, bidirectional: bool | None, backlash: bool 
     return None
 
 
+def _check_correction(run: PositioningRun, curve: ErrorCurve, bound: float, name: str, unit: float, unit_name: str) -> None:
+    """Refuse a mean deviation beyond ``bound``: no real axis is out by that much, a reading gone wrong is."""
+    for direction, values in (("+", curve.up), ("-", curve.down)):
+        beyond = np.flatnonzero(np.abs(values) > bound)
+        if beyond.size:
+            k = int(beyond[np.argmax(np.abs(values[beyond]))])
+            raise AxiscalError(
+                f"the mean deviation at {curve.positions[k] / unit:.4g} {unit_name} ({direction}) is {values[k] / unit:+.6g}"
+                f" {unit_name}, beyond the largest correction written ({bound / unit:g} {unit_name}): a reading in the wrong"
+                f" unit or from the wrong datum, not an error of the axis; raise {name} only if the axis truly is out"
+                " by that much", path=None if run.source.startswith("<") else run.source)
+
+
 def compensation_table(
     run: PositioningRun | str | Path,
     fmt: str,
@@ -174,6 +194,8 @@ def compensation_table(
     interval_rad: float | None = None,
     detection_unit_rad: float | None = None,
     reference_position_rad: float | None = None,
+    max_correction_m: float = MAX_CORRECTION_M,
+    max_correction_rad: float = MAX_CORRECTION_RAD,
 ) -> CompensationResult:
     """The compensation table of controller ``fmt`` from the mean deviations of a positioning run.
 
@@ -219,6 +241,11 @@ def compensation_table(
     reference_position_rad : float, optional, keyword-only
         fanuc, rotary axis: position of the reference, radians (default the first target);
         siemens: the table is shifted to be zero here.
+    max_correction_m : float, metres, keyword-only
+        The largest mean deviation of a linear axis a table corrects (default
+        :data:`MAX_CORRECTION_M`, 1 mm): one beyond it is refused, naming the target.
+    max_correction_rad : float, radians, keyword-only
+        The same for a rotary axis (default :data:`MAX_CORRECTION_RAD`, 1 degree).
 
     Returns
     -------
@@ -232,8 +259,9 @@ def compensation_table(
         For an unknown format, an option of another format or of the other kind of axis, an
         option that is NaN or infinite, a run file the reader refuses (naming its line), a
         one-direction test for a table that needs both directions, a FANUC rotary table from a
-        test that does not go round the circle, or a value the controller's table cannot hold
-        (see the controller modules).
+        test that does not go round the circle, a mean deviation beyond ``max_correction_m``
+        (``max_correction_rad``), or a value the controller's table cannot hold (see the
+        controller modules).
 
     Examples
     --------
@@ -263,6 +291,8 @@ def compensation_table(
             check_integer(name, given[name])
     if axis is not None:
         check_instance("axis", axis, str, what="an axis name")
+    max_correction_m = check_number("max_correction_m", max_correction_m, positive=True, high=1.0)
+    max_correction_rad = check_number("max_correction_rad", max_correction_rad, positive=True, high=TURN)
     if not isinstance(run, PositioningRun):
         run = read_positioning_run(run).run
     si = _axis_options(run, given)
@@ -277,6 +307,8 @@ def compensation_table(
     round_the_circle = rotary and covers_circle(targets)
     curve: ErrorCurve = error_curve(target_statistics(run), period=TURN if round_the_circle else None)
     unit, unit_name = (DEG, "deg") if rotary else (MM, "mm")
+    _check_correction(run, curve, max_correction_rad if rotary else max_correction_m, "max_correction_rad" if rotary
+                      else "max_correction_m", unit, unit_name)
     interval = _default_interval(targets, unit) if si["interval"] is None else si["interval"]
     reference_position = si["reference_position"]
     detection_unit = si["detection_unit"]
