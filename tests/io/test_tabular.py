@@ -432,3 +432,20 @@ def test_a_row_with_an_extra_empty_cell_is_refused_on_every_path(tmp_path, rows)
     path.write_bytes(b"position_mm,EXX_um\n" + rows)
     with pytest.raises(AxiscalError, match="3 cells where the header has 2|4 cells where the header has 2"):
         read_csv(path).numeric("EXX_um")
+
+
+@pytest.mark.parametrize("ended", ["every row", "the first half"])
+def test_an_extra_empty_cell_is_refused_in_a_file_pandas_reads_in_threads(tmp_path, ended):
+    # over 5 MB of rows, pandas parses the file in pieces, each dropping its own rows' trailing
+    # empty cells; the delimiters counted over the whole body still refuse the first such row
+    rows = 400_000
+    last = rows if ended == "every row" else rows // 2
+    text = "position_mm,EXX_um\n" + "".join(
+        f"{k * 0.0025:.6f},{k * 1e-6:.6f}{',' if k < last else ''}\n" for k in range(rows)
+    )
+    path = tmp_path / "large.csv"
+    path.write_text(text)
+    assert path.stat().st_size > 5 * 1024 * 1024
+    with pytest.raises(AxiscalError, match="3 cells where the header has 2") as info:
+        read_csv(path)
+    assert info.value.line == 2

@@ -18,10 +18,13 @@ the file and names the line of what is wrong.
 from __future__ import annotations
 
 import csv
+import mmap
 import os
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
+
+import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.lines import Lines
@@ -31,6 +34,8 @@ __all__: list[str] = []
 
 #: bytes of the file's start searched for the header (a header further down takes the strict reader)
 HEAD = 1 << 16
+#: bytes counted at a time by :func:`count_byte`
+_BLOCK = 1 << 16
 
 
 @dataclass(frozen=True)
@@ -132,15 +137,15 @@ def read_plain(head: bytes, file: Path, file_stamp: tuple, max_magnitude: float)
             frame = pd.read_csv(file, skiprows=first + 1, **options)
     except (pd.errors.ParserError, pd.errors.ParserWarning, ValueError, OSError, UnicodeDecodeError):
         return None
-    if len(frame) == 0 or stamp(file) != file_stamp:
+    if len(frame) == 0:
         return None
     # pandas drops a row's trailing empty cells past the header's width ("1,2,"): the body holds one
     # delimiter fewer than cells in every row, or a row has more cells than the header
     try:
-        body = read_body(file, file_stamp, body_start)
-    except AxiscalError:
+        delimiters = count_byte(file, body_start, delimiter)
+    except (OSError, ValueError):
         return None
-    if body.count(delimiter.encode()) != len(frame) * (len(header) - 1):
+    if delimiters != len(frame) * (len(header) - 1) or stamp(file) != file_stamp:
         return None
     for i in range(len(header)):
         column = frame[i]
@@ -151,6 +156,30 @@ def read_plain(head: bytes, file: Path, file_stamp: tuple, max_magnitude: float)
         if not (-max_magnitude <= values.min() and values.max() <= max_magnitude):
             return None
     return PlainCsv(header, first + 1, delimiter, frame, body_start)
+
+
+def count_byte(file: Path, start: int, byte: str) -> int:
+    """How often the ASCII character ``byte`` occurs in ``file`` from offset ``start`` on.
+
+    The file is mapped, not read (pandas has just mapped the same pages), and counted in blocks that
+    stay in the processor's cache: a few milliseconds for 20 MB, against the tens that reading the
+    bytes again and counting them took.
+    """
+    code = ord(byte)
+    with open(file, "rb") as handle:
+        size = os.fstat(handle.fileno()).st_size
+        if size <= start:
+            return 0
+        with mmap.mmap(handle.fileno(), 0, access=mmap.ACCESS_READ) as mapped:
+            data = np.frombuffer(mapped, dtype=np.uint8)
+            hit = np.empty(_BLOCK, dtype=bool)
+            found = 0
+            for at in range(start, size, _BLOCK):
+                piece = data[at : at + _BLOCK]
+                np.equal(piece, code, out=hit[: len(piece)])
+                found += int(np.count_nonzero(hit[: len(piece)]))
+            del data, piece  # the map closes only when no array holds it
+    return found
 
 
 def read_body(file: Path, file_stamp: tuple, body_start: int) -> bytes:

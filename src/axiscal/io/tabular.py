@@ -171,7 +171,7 @@ class CsvTable:
         return tuple(zip(*columns)) if columns and self._n else ()
 
     def _build_lines(self) -> tuple[int, ...]:
-        return tuple(int(line) for line in self._row_lines) if isinstance(self._row_lines, range) else tuple(self._row_lines.tolist())
+        return tuple(self._row_lines) if isinstance(self._row_lines, range) else tuple(self._row_lines.tolist())
 
     @property
     def header_line(self) -> int:
