@@ -7,7 +7,8 @@ import pytest
 
 from axiscal.errors import AxiscalError
 from axiscal.measurement.sensor_diagonal import sensor_diagonal
-from axiscal.measurement.virtual import VirtualModule, diagonal_experiment
+from axiscal.measurement.experiment import diagonal_experiment
+from axiscal.measurement.virtual import VirtualModule
 from axiscal.units import MM, UM
 
 ENDS = {"start": {"X": 0.0, "Z": 0.0}, "end": {"X": 0.19, "Z": 0.19}}

@@ -69,7 +69,7 @@ def test_diagonal_experiment_before_values_are_the_papers():
     # paper 000 section 5: 68 um before the model (no load), 56 um with 2 kg on the Z slide.
     # The virtual module's amplitudes were chosen for these sizes (docs/measurement.md); the test
     # keeps them there. After the model only reading noise is left (the paper: 13 and 14 um).
-    from axiscal.measurement.virtual import diagonal_experiment
+    from axiscal.measurement.experiment import diagonal_experiment
 
     free = diagonal_experiment(VirtualModule())
     loaded = diagonal_experiment(VirtualModule(load_kg=2.0))
@@ -95,7 +95,7 @@ def test_laser_readings_agree_with_the_offline_diagonal_check():
 
 def test_squareness_error_in_the_model_shows_on_the_diagonal():
     # an uncorrected 8.18 arcsec reference square (paper 000 section 5) leaves about 5 um
-    from axiscal.measurement.virtual import diagonal_experiment
+    from axiscal.measurement.experiment import diagonal_experiment
     from axiscal.units import ARCSEC
 
     result = diagonal_experiment(VirtualModule(noise=False), squareness_error_rad=8.18 * ARCSEC)

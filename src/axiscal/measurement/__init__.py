@@ -30,26 +30,22 @@ from axiscal.measurement.faults import (
     fault_text,
     mark_malformed,
 )
-from axiscal.measurement.offline import (
-    MAX_SIMULATED_FRAMES,
+from axiscal.measurement.frames import (
     RECORD_KIND,
     CsvOutput,
-    DiagonalReport,
-    MeasureResult,
     columns_csv,
     drop_cut_line,
     is_live_record,
-    load_system,
-    measure_file,
     numeric_columns,
     read_frames,
     read_frames_table,
-    run_diagonal_experiment,
-    simulate_frames,
-    simulate_laser,
     write_data_csv,
 )
-from axiscal.measurement.calibrate import calibrate_mirror, calibrate_sensitivity, calibration_text  # after offline: it uses it
+from axiscal.measurement.system import load_system
+from axiscal.measurement.offline import MeasureResult, measure_file
+from axiscal.measurement.calibrate import calibrate_mirror, calibrate_sensitivity, calibration_text
+from axiscal.measurement.simulate import MAX_SIMULATED_FRAMES, simulate_frames, simulate_laser
+from axiscal.measurement.experiment import DiagonalExperiment, DiagonalReport, diagonal_experiment, run_diagonal_experiment
 from axiscal.measurement.pipeline import (
     MeasurementSystem,
     diagonal_errors,
@@ -66,10 +62,8 @@ from axiscal.measurement.virtual import (
     STROKE_M,
     TOOL_M,
     Z_ORIGIN_M,
-    DiagonalExperiment,
     Truth,
     VirtualModule,
-    diagonal_experiment,
 )
 
 from axiscal.measurement.sensor_diagonal import STOP_TOLERANCE_M, SensorDiagonal, sensor_diagonal

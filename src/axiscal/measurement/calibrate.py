@@ -25,7 +25,7 @@ from axiscal.instruments.reports import render_report
 from axiscal.instruments.sensors import roll_from_autocollimation
 from axiscal.io.arguments import check_array, check_count, check_mapping, check_path
 from axiscal.io.tabular import CsvTable, read_csv
-from axiscal.measurement.offline import load_system
+from axiscal.measurement.system import load_system
 from axiscal.measurement.pipeline import MeasurementSystem
 from axiscal.units import ARCSEC, MM, UM, angle_factor, length_factor, split_unit
 

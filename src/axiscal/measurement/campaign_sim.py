@@ -31,7 +31,7 @@ from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.templates import render_template
 from axiscal.materials import STEEL_EXPANSION_PER_K
-from axiscal.measurement.offline import write_data_csv
+from axiscal.measurement.frames import write_data_csv
 from axiscal.measurement.virtual import (
     INTERFEROMETER_BEAM_M,
     REFERENCE_NOISE,

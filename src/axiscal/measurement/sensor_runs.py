@@ -111,7 +111,7 @@ def calibrate_sensor_runs(path: str | Path, *, machine: str | Path | None = None
     >>> runs.figures()["calibration_arcsec"] < 1.0  # doctest: +SKIP
     True
     """
-    from axiscal.measurement.offline import load_system
+    from axiscal.measurement.system import load_system
 
     path = check_path("path", path)
     system: MeasurementSystem = load_system(machine)

@@ -294,7 +294,7 @@ def plot_diagonal_experiment(result, path: str | Path) -> None:
 
     Parameters
     ----------
-    result : axiscal.measurement.virtual.DiagonalExperiment
+    result : axiscal.measurement.experiment.DiagonalExperiment
         The simulated experiment (``x_m``, ``z_m``, ``before_m``, ``after_m``, ``scales_only_m``, SI).
     path : str or Path
         Figure file; the format follows the suffix.
