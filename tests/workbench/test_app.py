@@ -117,3 +117,11 @@ def test_two_first_readings_of_a_new_history_at_once_both_list_its_machines(tmp_
         for thread in threads:
             thread.join(60)
         assert answers == [[], []]
+
+
+def test_the_page_names_its_icon_and_both_addresses_serve_it(client):
+    assert '<link rel="icon" href="/favicon.svg"' in client.get("/").text
+    for address in ("/favicon.svg", "/favicon.ico"):  # a browser asks for /favicon.ico whatever the page names
+        icon = client.get(address)
+        assert icon.status_code == 200 and icon.headers["content-type"].startswith("image/svg+xml")
+        assert icon.text.startswith("<svg") and "http" not in icon.text.replace("http://www.w3.org", "")

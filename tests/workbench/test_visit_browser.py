@@ -31,6 +31,22 @@ def count(page, selector: str) -> int:
     return page.locator(selector).count()
 
 
+def test_a_page_load_logs_no_console_error(browser_page, workbench):
+    page = browser_page.page
+    logged = []
+    page.on("console", lambda message: logged.append(f"{message.type}: {message.text}"))
+    failed = []
+    page.on("response", lambda response: failed.append(f"{response.status} {response.url}") if response.status >= 400 else None)
+    page.goto(workbench.url)
+    page.wait_for_selector("#machines tbody tr")
+    page.wait_for_load_state("networkidle")  # the icon is asked for after the page has loaded
+    page.reload()
+    page.wait_for_selector("#machines tbody tr")
+    page.wait_for_load_state("networkidle")
+    assert [m for m in logged if m.startswith("error")] == [] and failed == [], (logged, failed)
+    assert not browser_page.errors, browser_page.errors
+
+
 def test_a_whole_visit_on_the_virtual_machine(browser_page, workbench):
     page = browser_page.page
     bench = workbench.bench

@@ -186,6 +186,10 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
             response.set_cookie(TOKEN_COOKIE, token, httponly=True, samesite="strict")
         return response
 
+    async def icon(request: Request) -> Response:
+        # browsers ask for /favicon.ico whatever the page names: both answer with the page's own icon
+        return FileResponse(WEB / "favicon.svg", media_type="image/svg+xml")
+
     async def machines(request: Request) -> Response:
         return await _answer(bench.machines)
 
@@ -268,6 +272,8 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
     app = Starlette(
         routes=[
             Route("/", page),
+            Route("/favicon.svg", icon),
+            Route("/favicon.ico", icon),
             Route("/api/machines", machines),
             Route("/api/machine", machine),
             Route("/api/trend", trend),
