@@ -83,13 +83,17 @@ def serve_workbench(
     Raises
     ------
     AxiscalError
-        For a data folder that cannot be made, a port in use, a bad host.
+        For a data folder that cannot be made, a port in use, a bad host; for a history database
+        that cannot be used (as the ``axiscal history`` commands refuse it: not a database, cut short,
+        damaged, of a newer schema, another application's, a folder, an unknown URL or driver, a
+        server that does not answer).
     """
     if not isinstance(host, str) or not host.strip():
         raise AxiscalError(f"host must be an address to listen on, not {host!r}")
     port = check_count("port", port, minimum=0, maximum=65535)
     update_hz = check_number("update_hz", update_hz, low=1.0, high=60.0, unit="Hz")
     bench = Workbench(data, db=db, speed=speed)
+    bench.check_history()  # a history that cannot be used is refused now, in one line, not on the page later
     loopback = host.strip().lower() in _LOOPBACK_ADDRESSES or host.startswith("127.")
     token = None if loopback else new_token()
     if loopback:
@@ -98,8 +102,8 @@ def serve_workbench(
         allowed = None if host in ("0.0.0.0", "::") else LOOPBACK_HOSTS + (host.lower(),)
     app = create_workbench_app(bench, update_hz=update_hz, allowed_hosts=allowed, token=token)
     server = LiveServer(app, port=port, host=host).start()
-    # the history's first reading imports SQLAlchemy, its migrations and SciPy's statistics (seconds on a
-    # cold machine): done now, beside the server, so that the page's list of machines does not wait for it
+    # the history's first reading imports SciPy's statistics for its trends (seconds on a cold machine):
+    # done now, beside the server, so that the page's list of machines does not wait for it
     threading.Thread(target=_warm_up, args=(bench,), name="axiscal-workbench-warm-up", daemon=True).start()
     return WorkbenchServer(server, bench, token)
 

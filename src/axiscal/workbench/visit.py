@@ -87,6 +87,24 @@ class Workbench:
         # of a new SQLite file makes it, and two at once would find it half made ("database is locked")
         self._history_lock = threading.Lock()
 
+    def check_history(self) -> None:
+        """Open the history database as the page's first reading will: one line if it cannot be used.
+
+        A database that does not exist yet is made (an SQLite file: the history's own tables), one of an
+        older schema brought up to date, as :func:`axiscal.history.machine_histories` does.
+
+        Raises
+        ------
+        AxiscalError
+            As the ``axiscal history`` commands: for a file that is not a database, one cut short or
+            damaged, of a newer schema, another application's tables, a folder, a URL SQLAlchemy does
+            not read or whose driver is missing, a server that cannot be reached.
+        """
+        from axiscal.history import open_engine
+
+        with self._history_lock:
+            open_engine(self.db).dispose()
+
     # -- 1. machines -------------------------------------------------------------------------------
     def machines(self) -> list[dict[str, Any]]:
         """The machines of the history: last visit, verdict, next due date, trend of the first figure."""
