@@ -71,9 +71,14 @@ class FrameBatch:
         return cls(t, values, ~np.isfinite(t))
 
     @classmethod
+    def empty(cls, width: int) -> "FrameBatch":
+        """No frames, ``width`` channels (what a source returns when nothing arrived)."""
+        return cls(np.empty(0), np.empty((0, width)), np.zeros(0, dtype=bool))
+
+    @classmethod
     def concatenate(cls, batches: Sequence["FrameBatch"], width: int) -> "FrameBatch":
         if not batches:
-            return cls(np.empty(0), np.empty((0, width)), np.zeros(0, dtype=bool))
+            return cls.empty(width)
         return cls(
             np.concatenate([b.t_s for b in batches]),
             np.concatenate([b.values for b in batches]),
