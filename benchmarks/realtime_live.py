@@ -1,8 +1,12 @@
 """Live latency: delay from a frame's time stamp to its result being in the record, at a 10 kHz source.
 
-    .venv/bin/python benchmarks/realtime_live.py [--rate 10000] [--seconds 5]
+    .venv/bin/python benchmarks/realtime_live.py [--rate 10000] [--seconds 5] [--runs 1] [--busy 0] [--only tcp,dashboard,sim]
 
-Three runs, each printing frames sent and recorded, whether any frame was lost (the record's t_s
+``--busy N`` starts N processes that each keep a core busy (``yes > /dev/null``) for every run, as a
+shop-floor laptop running other work does (the machine's core count: both cores busy on two). The
+load average is printed with every run: on a shared machine a figure means little without it.
+
+Three kinds of run, each printing frames sent and recorded, whether any frame was lost (the record's t_s
 must be exactly k / rate, k = 0, 1, 2, ...) and the delay percentiles:
 
 1. ``tcp``: a separate sender process plays the virtual module's frames over the TCP line protocol
@@ -19,6 +23,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import socket
 import subprocess
 import sys
@@ -148,10 +153,21 @@ def run(kind: str, rate: float, seconds: float, *, dashboard: bool = False) -> d
     }
 
 
+def busy_processes(count: int) -> list[subprocess.Popen]:
+    """``count`` processes that each keep a core busy (``yes > /dev/null``), started at normal priority."""
+    return [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(count)]
+
+
+KINDS = {"tcp": ("tcp", False), "dashboard": ("tcp", True), "sim": ("sim", False)}
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--rate", type=float, default=10000.0)
     parser.add_argument("--seconds", type=float, default=5.0)
+    parser.add_argument("--runs", type=int, default=1, help="runs of each kind (the summary gives the worst)")
+    parser.add_argument("--busy", type=int, default=0, help="processes keeping a core busy each during the runs")
+    parser.add_argument("--only", default="tcp,dashboard,sim", help="kinds of run, comma-separated: tcp, dashboard, sim")
     parser.add_argument("--sender", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--reader", type=int, help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -161,15 +177,43 @@ def main() -> None:
     if args.reader:
         reader(args.reader, args.seconds)
         return
-    print(f"live latency at {args.rate:.0f} Hz for {args.seconds:g} s per run (delay: time stamp -> written to the record)")
-    print(f"{'run':<18} {'sent':>7} {'recorded':>8} {'lost':>5} {'t_s exact':>9} {'batches':>7} {'p50 ms':>7} {'p99 ms':>7} {'p99.9 ms':>8} {'max ms':>7}")
-    for kind, dashboard in (("tcp", False), ("tcp", True), ("sim", False)):
-        r = run(kind, args.rate, args.seconds, dashboard=dashboard)
-        print(
-            f"{r['run']:<18} {r['sent']:>7} {r['recorded']:>8} {r['lost']:>5} {str(r['exact']):>9} {r['batches']:>7} "
-            f"{r['p50']:>7.2f} {r['p99']:>7.2f} {r['p999']:>8.2f} {r['max']:>7.2f}"
-            + (f"   (dashboard client got {r['dashboard_states']} states)" if dashboard else "")
-        )
+    kinds = [name.strip() for name in args.only.split(",") if name.strip()]
+    unknown = [name for name in kinds if name not in KINDS]
+    if unknown:
+        parser.error(f"unknown kind(s) {', '.join(unknown)}; use tcp, dashboard, sim")
+    print(
+        f"live latency at {args.rate:.0f} Hz for {args.seconds:g} s per run, {args.runs} run(s) of each kind, "
+        f"{args.busy} busy process(es) (delay: time stamp -> written to the record)"
+    )
+    print(
+        f"{'run':<18} {'sent':>7} {'recorded':>8} {'lost':>5} {'t_s exact':>9} {'batches':>7} {'p50 ms':>7} {'p99 ms':>7} "
+        f"{'p99.9 ms':>8} {'max ms':>7}  load average"
+    )
+    worst: dict[str, list[dict]] = {}
+    for _ in range(args.runs):
+        for name in kinds:
+            kind, dashboard = KINDS[name]
+            hogs = busy_processes(args.busy)
+            try:
+                time.sleep(0.2 if hogs else 0.0)
+                r = run(kind, args.rate, args.seconds, dashboard=dashboard)
+            finally:
+                for hog in hogs:
+                    hog.kill()
+                    hog.wait()
+            load = " ".join(f"{value:.2f}" for value in os.getloadavg())
+            worst.setdefault(r["run"], []).append(r)
+            print(
+                f"{r['run']:<18} {r['sent']:>7} {r['recorded']:>8} {r['lost']:>5} {str(r['exact']):>9} {r['batches']:>7} "
+                f"{r['p50']:>7.2f} {r['p99']:>7.2f} {r['p999']:>8.2f} {r['max']:>7.2f}  {load}"
+                + (f"   (dashboard client got {r['dashboard_states']} states)" if dashboard else ""),
+                flush=True,
+            )
+    if args.runs > 1:
+        print("over all runs: p99 ms (lowest-highest), frames lost in all")
+        for label, results in worst.items():
+            p99 = [r["p99"] for r in results]
+            print(f"{label:<18} p99 {min(p99):.2f}-{max(p99):.2f}  lost {sum(r['lost'] for r in results)}  exact {all(r['exact'] for r in results)}")
 
 
 if __name__ == "__main__":
