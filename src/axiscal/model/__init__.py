@@ -30,7 +30,8 @@ from axiscal.model.kinematics import (
     translation_matrix,
     volumetric_error,
 )
-from axiscal.model.machine import SQUARENESS_PLACEMENTS, Axis, Machine, parse_chain
+from axiscal.model.axes import SQUARENESS_PLACEMENTS, Axis, parse_chain
+from axiscal.model.chain import Machine
 from axiscal.model.machine_file import as_machine, load_machine, machine_from_dict
 from axiscal.model.positions import (
     AXIS_UNITS,

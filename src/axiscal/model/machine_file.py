@@ -1,4 +1,4 @@
-"""The machine description (TOML, docs/formats.md) read into a :class:`~axiscal.model.machine.Machine`:
+"""The machine description (TOML, docs/formats.md) read into a :class:`~axiscal.model.chain.Machine`:
 validated once against the declared format (:class:`axiscal.io.formats.MachineFile`), then what
 only the file's meaning can refuse (an axis not in the chain, an error table outside the folder, a
 squareness term without its axes) is refused naming the key's line."""
@@ -15,7 +15,8 @@ from axiscal.io.formats.base import read_format, validate_data
 from axiscal.io.formats.machine import MachineFile
 from axiscal.io.schema import TomlLines
 from axiscal.model.kinematics import AXIS_INDEX
-from axiscal.model.machine import _SQUARENESS_PLACE, SQUARENESS_PLACEMENTS, Axis, Machine, parse_chain
+from axiscal.model.axes import _SQUARENESS_PLACE, SQUARENESS_PLACEMENTS, Axis, parse_chain
+from axiscal.model.chain import Machine
 from axiscal.model.tables import INTERPOLATIONS, MAX_ANGLE_ERROR_RAD, MAX_TRANSLATION_ERROR_M, read_error_table
 from axiscal.units import MM, angle_factor, length_factor, split_unit
 
