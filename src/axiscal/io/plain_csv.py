@@ -1,18 +1,20 @@
 """The CSV reader's fast path: a file of plain numbers handed whole to pandas' parser, then checked column by column.
 
 Most files axiscal reads are a header and rows of numbers. For those, the strict reading of
-:mod:`axiscal.io.tabular` (every physical line located, every cell matched against the number
+:mod:`axiscal.io.strict_csv` (every physical line located, every cell matched against the number
 grammar) gives the same table as pandas' C parser reading the file by its path, which splits a
 large file across threads. Only the file's head is read here: the lines above the data must hold
 no NUL byte, no quote and no line ended by a lone CR, and the header must be UTF-8. The grammar
 is then checked on the parsed columns instead of the text: every column must come out numeric,
-finite and within :data:`~axiscal.io.tabular.MAX_MAGNITUDE`. With no quote, no escape, no comment
+finite and within :data:`~axiscal.io.cells.MAX_MAGNITUDE`. With no quote, no escape, no comment
 character and blank lines kept, pandas makes exactly one row of each physical line of the data
 (ended by LF, CRLF or a lone CR, as an editor counts them), so row k is line
 ``header_line + 1 + k``; a blank, comment, short or long line, a cell holding text, a NUL, a
 quote or a byte that is not ASCII, or an odd number, leaves a column that is not all plain
 numbers (or fails the parse), and :func:`read_plain` then answers None: the strict reader reads
-the file and names the line of what is wrong.
+the file and names the line of what is wrong. A row with a trailing empty cell, which pandas drops
+silently, shows in the count of delimiters (:func:`count_byte`), taken over the same mapped pages
+the parse has just read.
 """
 
 from __future__ import annotations
