@@ -4,16 +4,13 @@ from __future__ import annotations
 
 from axiscal.straightness.files import (
     SEPARATION_METHODS,
-    Profile,
     SeparationRun,
     StraightnessEvaluation,
     evaluate_straightness_file,
-    read_probe_readings,
-    read_profile,
-    read_reversal_runs,
     separate_file,
     separation_columns,
 )
+from axiscal.straightness.readers import Profile, read_probe_readings, read_profile, read_reversal_runs
 from axiscal.straightness.simulated import MAX_READINGS, SimulatedReadings, simulate_probe_readings
 from axiscal.straightness.plot import plot_separation, plot_straightness
 from axiscal.straightness.reference import REFERENCES, ReferenceLine, reference_line

@@ -1,5 +1,5 @@
 """Probe readings simulated from a profile file and a slide-motion file (``axiscal simulate probes``):
-paper 001's multi-probe set-up, written as the readings file :func:`~axiscal.straightness.files.read_probe_readings`
+paper 001's multi-probe set-up, written as the readings file :func:`~axiscal.straightness.readers.read_probe_readings`
 reads, with its JSON sidecar."""
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_instance, check_number, check_path
 from axiscal.io.tabular import write_csv
-from axiscal.straightness.files import Profile, _text_and_metadata, _write_data, read_profile
+from axiscal.straightness.readers import Profile, _text_and_metadata, _write_data, read_profile
 from axiscal.straightness.separation import ProbeReadings, simulate_readings
 from axiscal.units import MM, UM
 
