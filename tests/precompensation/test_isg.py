@@ -1,7 +1,7 @@
 """The machine model written for the ISG kernel (TwinCAT CNC), read back from the files alone.
 
 The volumetric file's component errors EXX, EYY, EZZ at every grid node are the model's volumetric
-error there (to the file's 0.1 nm); interpolated linearly between the nodes, as the kernel's GRID
+error there, with the sign of each axis's side (to the file's 0.1 nm); interpolated linearly between the nodes, as the kernel's GRID
 interpolation does, they follow the model within what a 50 mm grid allows. The axis lists hold each
 axis's own positioning error from its table, to their 0.1 um.
 """
@@ -40,9 +40,13 @@ def test_the_volumetric_file_holds_the_models_error_at_every_node(machine, tmp_p
     (table,) = read_isg_csv(tmp_path / "volcomp.csv")
     assert table.arguments == ("X", "Y", "Z") and table.parameters == ("EXX", "EYY", "EZZ")
     q = {k: table.argument_si[:, j] for j, k in enumerate("XYZ")}
-    np.testing.assert_allclose(table.parameter_si, machine.volumetric_error(q), rtol=0, atol=0.051e-9)
+    # the table X moves the workpiece: its column holds the error with the opposite sign, and the
+    # list declares X the chain's one workpiece axis (tests/precompensation/test_isg_chains.py)
+    side = np.array([-1.0, 1.0, 1.0])
+    np.testing.assert_allclose(table.parameter_si, machine.volumetric_error(q) * side, rtol=0, atol=0.051e-9)
     listing = (tmp_path / "volcomp.lis").read_text().split()
-    assert listing[listing.index("file[0]") + 1] == "volcomp.csv" and listing[listing.index("workpiece_axes") + 1] == "0"
+    assert listing[listing.index("file[0]") + 1] == "volcomp.csv" and listing[listing.index("workpiece_axes") + 1] == "1"
+    assert listing[listing.index("chain") + 1] == "XYZ"
     assert json.loads((tmp_path / "volcomp.json").read_text())["compensation_list"] == "volcomp.lis"
     # the kernel interpolates linearly between the nodes: off the nodes the model is followed to a
     # small part of the error itself (the example's tables have a point every 8 mm; the grid one
@@ -51,7 +55,7 @@ def test_the_volumetric_file_holds_the_models_error_at_every_node(machine, tmp_p
     rng = np.random.default_rng(26)
     inside = {k: rng.uniform(nodes[k][0], nodes[k][-1], 500) for k in "XYZ"}
     between = RegularGridInterpolator(tuple(nodes[k] for k in "XYZ"), values)(np.column_stack([inside[k] for k in "XYZ"]))
-    left = np.abs(between - machine.volumetric_error(inside)).max()
+    left = np.abs(between - machine.volumetric_error(inside) * side).max()
     assert left < np.abs(values).max() / 10
 
 

@@ -219,7 +219,8 @@ def export_grid_command(machine, grid, file_format, axis_numbers, output):
         written = export_isg(machine, grid, output, kind="axis" if file_format == "isg-axis" else "volumetric",
                              axis_numbers=numbers)
     if written.volumetric is not None:
-        what = f"{written.volumetric.parameter_si.shape[0]} grid nodes, largest error {written.largest_m / UM:.3f} um"
+        what = (f"{written.volumetric.parameter_si.shape[0]} grid nodes, largest error {written.largest_m / UM:.3f} um;"
+                f" list: chain {written.chain}, workpiece_axes {written.workpiece_axes}")
     else:
         what = f"{len(written.axes)} axis lists, largest positioning error {written.largest_m / UM:.1f} um"
     click.echo(f"axiscal: {', '.join(str(f) for f in written.files)}: {what}", err=True)

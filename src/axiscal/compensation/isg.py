@@ -14,8 +14,15 @@ parameters, named as in ISO 230-1 (component errors ``EXX, EYX, ... ECC``; posit
 
 :class:`IsgTable` is one block in SI units; :meth:`IsgTable.text` writes it and
 :func:`read_isg_csv` reads every block of a file back. :func:`volcomp_list_text` writes the
-compensation list that names the file (``X 1``, ``Y 2``, ``Z 3``, ``workpiece_axes``,
+compensation list that names the file (``chain``, ``workpiece_axes``, ``X 1``, ``Y 2``, ``Z 3``,
 ``interpolation``, ``file[0]``, ``file_format[0] ISG_CSV``), as in the manual's example.
+
+The list's ``chain`` (P-VOLC-00007) orders the axes from the workpiece to the tool, as ISO 230-1
+writes a chain (the manual's machine with its B and C axes in the workpiece is ``CBYXZ``), and
+``workpiece_axes`` (P-VOLC-00008, default 0: every axis in the tool) says how many of them, from the
+start of the chain, lie on the workpiece side. The manual's rule: treat an axis as the measurement
+treated it. An error parameter is the error motion of its own axis: a workpiece-side axis moves the
+workpiece, so its errors move the tool relative to the workpiece the opposite way.
 """
 
 from __future__ import annotations
@@ -32,7 +39,8 @@ from axiscal.io.arguments import check_instance, check_integer, check_path
 from axiscal.io.tabular import read_text
 from axiscal.units import MM
 
-__all__ = ["ISG_ARGUMENTS", "IsgTable", "read_isg_csv", "parse_isg_csv", "volcomp_list_text", "grid_values"]
+__all__ = ["ISG_ARGUMENTS", "IsgTable", "read_isg_csv", "parse_isg_csv", "volcomp_list_text", "grid_values",
+           "check_distinct_axis_numbers"]
 
 #: the arguments a parameter may depend on: the axis values (mm; degrees for A, B, C)
 ISG_ARGUMENTS = ("X", "Y", "Z", "A", "B", "C")
@@ -227,7 +235,7 @@ def read_isg_csv(path: str | Path) -> tuple[IsgTable, ...]:
 
 
 def volcomp_list_text(files: list[str], *, axis_numbers: dict[str, int] | None = None, workpiece_axes: int = 0,
-                      interpolation: str = "GRID") -> str:
+                      interpolation: str = "GRID", chain: str | None = None) -> str:
     """The compensation list (``*.lis``) that names the parameter files for the ISG kernel.
 
     Parameters
@@ -237,9 +245,13 @@ def volcomp_list_text(files: list[str], *, axis_numbers: dict[str, int] | None =
     axis_numbers : dict of str to int, optional, keyword-only
         Logical axis number of each participating axis (default X 1, Y 2, Z 3).
     workpiece_axes : int, keyword-only
-        The number of workpiece axes (``workpiece_axes``; default 0).
+        How many axes of the kinematic chain, counted from its start, lie on the workpiece side
+        (``workpiece_axes``, P-VOLC-00008; default 0: every axis carries the tool).
     interpolation : {"GRID", "SCATTER", "AUTO"}, keyword-only
         How the kernel interpolates the parameters (P-VOLC-00014; default GRID).
+    chain : str, optional, keyword-only
+        The kinematic chain (``chain``, P-VOLC-00007): the numbered axes in their order from the
+        workpiece to the tool, e.g. ``"XYZ"`` (the kernel's default when the line is left out).
 
     Returns
     -------
@@ -249,7 +261,8 @@ def volcomp_list_text(files: list[str], *, axis_numbers: dict[str, int] | None =
     Raises
     ------
     AxiscalError
-        For no file, an axis not X, Y, Z, A, B, C, a number below 1, a bad count or interpolation.
+        For no file, an axis not X, Y, Z, A, B, C, a number below 1, two axes given one number, a
+        chain that does not name each numbered axis once, a bad count or interpolation.
     """
     check_instance("files", files, (list, tuple))
     if not files or not all(isinstance(f, str) and f and not any(c.isspace() for c in f) for f in files):
@@ -260,16 +273,42 @@ def volcomp_list_text(files: list[str], *, axis_numbers: dict[str, int] | None =
             raise AxiscalError(f"axis_numbers names {letter!r}, not one of {', '.join(ISG_ARGUMENTS)}")
         if check_integer(f"axis_numbers[{letter!r}]", number) < 1:
             raise AxiscalError(f"logical axis numbers start at 1, not {number}")
+    check_distinct_axis_numbers(numbers)
+    if chain is not None:
+        check_instance("chain", chain, str)
+        if sorted(chain) != sorted(numbers):
+            raise AxiscalError(f"chain must name each numbered axis ({', '.join(numbers)}) once, not {chain[:20]!r}")
     if check_integer("workpiece_axes", workpiece_axes) < 0 or workpiece_axes > len(numbers):
         raise AxiscalError(f"workpiece_axes must be 0 to {len(numbers)}, not {workpiece_axes}")
     if interpolation not in ("GRID", "SCATTER", "AUTO"):
         raise AxiscalError(f"interpolation must be GRID, SCATTER or AUTO, not {interpolation!r}")
-    rows = [("workpiece_axes", str(workpiece_axes))] + [(k, str(v)) for k, v in numbers.items()]
+    rows = [] if chain is None else [("chain", chain)]
+    rows += [("workpiece_axes", str(workpiece_axes))] + [(k, str(v)) for k, v in numbers.items()]
     rows += [("interpolation", interpolation)]
     for j, name in enumerate(files):
         rows += [(f"file[{j}]", name), (f"file_format[{j}]", "ISG_CSV")]
     width = max(len(k) for k, _ in rows) + 2
     return "\n".join(f"{k:<{width}}{v}" for k, v in rows) + "\n"
+
+
+def check_distinct_axis_numbers(numbers: dict[str, int]) -> None:
+    """Refuse two axes given the same logical axis number (the control would drive one axis for both).
+
+    Parameters
+    ----------
+    numbers : dict of str to int
+        Logical axis number of each axis letter.
+
+    Raises
+    ------
+    AxiscalError
+        Naming the two axes and their number.
+    """
+    seen: dict[int, str] = {}
+    for letter, number in numbers.items():
+        if number in seen:
+            raise AxiscalError(f"axes {seen[number]} and {letter} are both given logical axis number {number}")
+        seen[number] = letter
 
 
 def grid_values(table: IsgTable) -> tuple[dict[str, np.ndarray], np.ndarray]:
