@@ -79,3 +79,21 @@ def test_plan_refuses_an_unknown_dialect(run_cli, tmp_path):
     status, _, err = run_cli("plan", "--start-mm", 0, "--end-mm", 400, "--targets", 5, "--gcode", tmp_path / "p.nc",
                              "--dialect", "haas")
     assert status == 2 and "haas" in err
+
+
+@pytest.mark.parametrize("args", [
+    ("--step-cycle", "--start-mm", "1e300", "--period-mm", "5"),
+    ("--step-cycle", "--start-mm", "0", "--period-mm", "1e300"),
+    ("--start-mm", "0", "--end-mm", "100", "--targets", "5", "--overrun-mm", "1e300"),
+    ("--start-mm", "0", "--end-mm", "100", "--targets", "5", "--feed-mm-min", "1000000"),
+    ("--start-mm", "0", "--end-mm", "100", "--targets", "5", "--dwell-s", "1e300"),
+    ("--start-mm", "0", "--end-mm", "100", "--targets", "5", "--steps-per-period", "6"),
+    ("--start-mm", "0", "--end-mm", "100", "--targets", "5", "--periods", "3"),
+    ("--start-mm", "99990", "--end-mm", "99999", "--targets", "5"),
+])
+def test_every_number_that_reaches_the_program_is_bounded_and_a_step_cycle_flag_needs_the_step_cycle(run_cli, tmp_path, args):
+    status, out, err = run_cli("plan", *args, "-o", tmp_path / "plan.csv", "--gcode", tmp_path / "plan.ngc")
+    assert status == 2 and out == "" and err.count("\n") == 1 and err.startswith("axiscal: error: "), err
+    assert not (tmp_path / "plan.ngc").exists() and not (tmp_path / "plan.csv").exists()
+    flag = next((a for a in args if a.startswith("--") and a in err), None)
+    assert flag is not None or "position word" in err, err

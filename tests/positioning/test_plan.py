@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 
 import numpy as np
 import pandas as pd
@@ -224,3 +225,32 @@ def test_a_plan_too_large_or_a_negative_seed_is_refused_before_allocating():
     with pytest.raises(AxiscalError, match="runs"):
         plan_test(0.0, 0.1, 10, runs=MAX_RUNS + 1, seed=1)
     assert plan_test(0.0, 10.0, MAX_TARGETS, runs=1, seed=1).targets.size == MAX_TARGETS
+
+
+def test_a_plan_stays_within_what_a_controls_position_word_holds():
+    """A start of 1e300 m wrote 300-digit X words; an overrun of 1e300 passed."""
+    from axiscal.positioning.plan import MAX_OVERRUN_M, MAX_POSITION_M
+    from axiscal.positioning.step_cycle import plan_step_cycle
+
+    with pytest.raises(AxiscalError, match="start_m must be within"):
+        plan_test(1e300, 2e300, 5, seed=1)
+    with pytest.raises(AxiscalError, match="the plan.s moves reach 100004.999 mm"):
+        plan_test(MAX_POSITION_M - 0.01, MAX_POSITION_M, 5, seed=1)  # the overrun of 5 mm goes beyond
+    with pytest.raises(AxiscalError, match="overrun_m must be at most"):
+        plan_test(0.0, 0.4, 5, seed=1, overrun_m=1e300)
+    assert plan_test(0.0, 0.4, 5, seed=1, overrun_m=MAX_OVERRUN_M).overrun == MAX_OVERRUN_M
+    with pytest.raises(AxiscalError, match="the plan's moves reach"):
+        plan_step_cycle(1e300, 5e-3)
+    for name, kwargs in (("period_m", {"period_m": 1e300}), ("overrun_m", {"period_m": 5e-3, "overrun_m": 1e300})):
+        with pytest.raises(AxiscalError, match=f"{name} must be"):
+            plan_step_cycle(0.0, **kwargs)
+    program = gcode_program(plan_test(MAX_POSITION_M - 0.5, MAX_POSITION_M - 0.01, 5, seed=1))
+    assert re.search(r"\d[eE][+-]?\d", program) is None and "X99989.999" in program
+
+
+@pytest.mark.parametrize(("kwargs", "words"), [({"feed_mm_per_min": 1e6}, "feed_mm_per_min must be above 0 and at most 100000"),
+                                               ({"feed_mm_per_min": 1e300}, "feed_mm_per_min"),
+                                               ({"dwell_s": 1e300}, "dwell_s must be from 0 to 3600 s")])
+def test_the_programs_feed_and_dwell_are_bounded(kwargs, words):
+    with pytest.raises(AxiscalError, match=words):
+        gcode_program(plan_test(0.0, 0.4, 5, seed=1), **kwargs)

@@ -26,6 +26,7 @@ from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_integer, check_number, check_path, is_real
 from axiscal.io.atomic import write_text
 from axiscal.io.gcode import ProgramWriter, dialect as gcode_dialect
+from axiscal.io.gcode.writer import MAX_DWELL_S, MAX_FEED_MM_MIN, MAX_POSITION_MM
 from axiscal.io.jsonio import write_sidecar
 from axiscal.positioning.evaluation import require_finite
 from axiscal.units import MM, UM
@@ -33,10 +34,17 @@ from axiscal.units import MM, UM
 #: largest plan accepted (checked before anything is allocated)
 MAX_TARGETS = 10_000
 MAX_RUNS = 100
+#: every position of a plan, overruns included, is within this of zero, metres: what a control's
+#: position word holds (five whole digits of millimetres, :data:`axiscal.io.gcode.writer.MAX_POSITION_MM`)
+MAX_POSITION_M = MAX_POSITION_MM * MM
+#: the longest overrun (and a step cycle's longest period), metres
+MAX_OVERRUN_M = 1.0
 
 __all__ = [
     "MAX_TARGETS",
     "MAX_RUNS",
+    "MAX_POSITION_M",
+    "MAX_OVERRUN_M",
     "CYCLES",
     "TARGETS_PER_METRE",
     "PositioningTestPlan",
@@ -92,6 +100,13 @@ class PositioningTestPlan:
     runs: int
     overrun: float
     seed: int
+
+    def __post_init__(self) -> None:
+        overrun = check_number("overrun", self.overrun, positive=True, high=MAX_OVERRUN_M, unit="metres")
+        reach = float(np.max(np.abs(self.moves))) if np.size(self.moves) else 0.0
+        if not reach <= MAX_POSITION_M:
+            raise AxiscalError(f"the plan's moves reach {reach / MM:.10g} mm (the overrun of {overrun / MM:g} mm included): a plan"
+                               f" stays within +/-{MAX_POSITION_MM:.3f} mm, the range of a control's position word")
 
     @property
     def readings(self) -> int:
@@ -154,7 +169,8 @@ def plan_targets(start_m: float, end_m: float, count: int, *, seed: int | None =
     Raises
     ------
     AxiscalError
-        If the end is not beyond the start or ``count`` is below :func:`minimum_targets`.
+        If the end is not beyond the start, either is beyond :data:`MAX_POSITION_M`, or ``count``
+        is below :func:`minimum_targets`.
 
     Examples
     --------
@@ -168,6 +184,9 @@ def plan_targets(start_m: float, end_m: float, count: int, *, seed: int | None =
     count = check_integer("count", count)
     if seed is not None:
         seed = check_integer("seed", seed)
+    for name, value in (("start_m", start_m), ("end_m", end_m)):
+        if abs(value) > MAX_POSITION_M:
+            raise AxiscalError(f"{name} must be within +/-{MAX_POSITION_M:g} metres (a control's position word), not {value:.10g}")
     if end_m <= start_m:
         raise AxiscalError(f"the end ({end_m / MM:g} mm) must be beyond the start ({start_m / MM:g} mm)")
     need = minimum_targets(end_m - start_m)
@@ -227,7 +246,8 @@ def plan_test(
     Raises
     ------
     AxiscalError
-        For an unknown cycle, fewer than 1 run, an overrun that is not positive, or targets
+        For an unknown cycle, fewer than 1 run, an overrun that is not positive or beyond
+        :data:`MAX_OVERRUN_M`, a move beyond :data:`MAX_POSITION_M`, or targets
         :func:`plan_targets` refuses.
 
     Examples
@@ -248,6 +268,8 @@ def plan_test(
     require_finite(overrun_m=overrun_m)
     if overrun_m <= 0:
         raise AxiscalError(f"the overrun must be positive, got {overrun_m / MM:g} mm")
+    if overrun_m > MAX_OVERRUN_M:
+        raise AxiscalError(f"overrun_m must be at most {MAX_OVERRUN_M:g} metres, not {overrun_m:.10g}")
     if seed is None:
         seed = int(np.random.SeedSequence().generate_state(1)[0])
     targets = plan_targets(start_m, end_m, count, seed=seed)
@@ -361,8 +383,8 @@ def gcode_program(
     Raises
     ------
     AxiscalError
-        For an unknown dialect, an axis that is not one of the dialect's letters, a negative dwell
-        or a feed that is not positive.
+        For an unknown dialect, an axis that is not one of the dialect's letters, a dwell outside
+        0 to 3600 s or a feed outside 0 to 100 000 mm/min (the bounds of the program's words).
 
     Examples
     --------
@@ -380,10 +402,10 @@ def gcode_program(
     require_finite(dwell_s=dwell_s, feed_mm_per_min=feed_mm_per_min)
     dwell_s = check_number("dwell_s", dwell_s)
     feed_mm_per_min = check_number("feed_mm_per_min", feed_mm_per_min, unit="mm/min")
-    if dwell_s < 0:
-        raise AxiscalError(f"the dwell must be zero or positive, got {dwell_s:g} s")
-    if feed_mm_per_min <= 0:
-        raise AxiscalError(f"the feed must be positive, got {feed_mm_per_min:g} mm/min")
+    if not 0 <= dwell_s <= MAX_DWELL_S:
+        raise AxiscalError(f"dwell_s must be from 0 to {MAX_DWELL_S:g} s, not {dwell_s:.10g}")
+    if not 0 < feed_mm_per_min <= MAX_FEED_MM_MIN:
+        raise AxiscalError(f"feed_mm_per_min must be above 0 and at most {MAX_FEED_MM_MIN:g} mm/min, not {feed_mm_per_min:.10g}")
     axis = axis.upper()
     feed = feed_mm_per_min * MM / 60.0
     if not isinstance(on_the_fly, bool):

@@ -18,7 +18,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_number
-from axiscal.positioning.plan import MAX_RUNS, MAX_TARGETS, PositioningTestPlan
+from axiscal.positioning.plan import MAX_OVERRUN_M, MAX_RUNS, MAX_TARGETS, PositioningTestPlan
 from axiscal.units import UM
 
 __all__ = ["plan_step_cycle"]
@@ -40,7 +40,7 @@ def plan_step_cycle(
     start_m : float, metres
         First target.
     period_m : float, metres
-        The period looked for (a screw's pitch).
+        The period looked for (a screw's pitch; at most 1 m).
     periods : int, keyword-only
         Periods covered (default 2).
     steps_per_period : int, keyword-only
@@ -48,7 +48,7 @@ def plan_step_cycle(
     runs : int, keyword-only
         Runs in each direction (default 1).
     overrun_m : float, metres, keyword-only
-        Travel beyond the end targets before approaching them (default 1 mm).
+        Travel beyond the end targets before approaching them (default 1 mm; at most 1 m).
 
     Returns
     -------
@@ -60,7 +60,8 @@ def plan_step_cycle(
     Raises
     ------
     AxiscalError
-        For a period or overrun that is not positive, counts out of range, or a step below 1 um.
+        For a period or overrun that is not positive or beyond 1 m, counts out of range, a step
+        below 1 um, or a move beyond the range of a control's position word.
 
     Examples
     --------
@@ -71,11 +72,11 @@ def plan_step_cycle(
     (18, 20)
     """
     start_m = check_number("start_m", start_m)
-    period_m = check_number("period_m", period_m, positive=True)
+    period_m = check_number("period_m", period_m, positive=True, high=MAX_OVERRUN_M)
     periods = check_count("periods", periods, minimum=1, maximum=1000)
     steps_per_period = check_count("steps_per_period", steps_per_period, minimum=4, maximum=1000)
     runs = check_count("runs", runs, minimum=1, maximum=MAX_RUNS)
-    overrun_m = check_number("overrun_m", overrun_m, positive=True)
+    overrun_m = check_number("overrun_m", overrun_m, positive=True, high=MAX_OVERRUN_M)
     count = periods * steps_per_period + 1
     if count > MAX_TARGETS:
         raise AxiscalError(f"{count} targets: a plan holds at most {MAX_TARGETS}")

@@ -6,6 +6,11 @@ LinuxCNC and Grbl, ``G04 X<s>`` on FANUC, ``G4 F<s>`` in a block of its own on S
 DWELL <s>`` in a numbered conversational program. Positions are written in millimetres with three
 decimals (1 um), feeds in mm/min; what the writer writes, :func:`axiscal.io.gcode.program_motions`
 reads back.
+
+Every number a program carries is bounded before it is written, so that every control reads it: a
+position within +/-99999.999 mm (degrees), five whole digits and three decimals, the range of an
+address word common to LinuxCNC, FANUC, SINUMERIK and HEIDENHAIN; a feed above 0 and at most
+100 000 mm/min (100 m/min); a dwell of at most an hour. No word is ever written with an exponent.
 """
 
 from __future__ import annotations
@@ -18,10 +23,87 @@ from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_mapping, check_number
 from axiscal.io.gcode.dialects import Dialect, dialect as find_dialect
 
-__all__ = ["ProgramWriter", "decimal"]
+__all__ = ["ProgramWriter", "decimal", "MAX_POSITION_MM", "MAX_FEED_MM_MIN", "MAX_DWELL_S", "position_word", "feed_word"]
 
 _MM = 1e-3
 _DEG = math.pi / 180.0
+
+#: the largest position (mm, or degrees for A, B, C) a program carries: five whole digits, three decimals
+MAX_POSITION_MM = 99_999.999
+#: the largest feed a program carries, mm/min (100 m/min, beyond any calibration move)
+MAX_FEED_MM_MIN = 100_000.0
+#: the longest dwell a program carries, seconds
+MAX_DWELL_S = 3600.0
+
+
+def position_word(name: str, value_mm: float, places: int = 3, *, sign: bool = False) -> str:
+    """A position (mm or degrees) as a control reads it: fixed decimals, bounded, never an exponent.
+
+    Parameters
+    ----------
+    name : str
+        What the value is, for the message (``position_m['X']``).
+    value_mm : float
+        The position, millimetres (degrees for a rotary axis).
+    places : int
+        Decimals written.
+    sign : bool, keyword-only
+        Always write the sign (HEIDENHAIN's ``X+10.000``).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    AxiscalError
+        For a value that is not finite or beyond :data:`MAX_POSITION_MM`.
+
+    Examples
+    --------
+    >>> position_word("X", 12.34567), position_word("X", -0.0001), position_word("X", 5.0, sign=True)
+    ('12.346', '0.000', '+5.000')
+    """
+    value = check_number(name, value_mm, unit="mm")
+    if abs(value) > MAX_POSITION_MM:
+        raise AxiscalError(f"{name} must be within +/-{MAX_POSITION_MM:.3f} (five whole digits, as every control reads"
+                           f" a word), not {value:.10g}")
+    value = round(value, places) + 0.0
+    return f"{value:+.{places}f}" if sign else f"{value:.{places}f}"
+
+
+def feed_word(feed_mm_min: float, places: int = 3, *, point: bool = False) -> str:
+    """A feed (mm/min) as a control reads it: above 0, at most :data:`MAX_FEED_MM_MIN`, never an exponent.
+
+    Parameters
+    ----------
+    feed_mm_min : float
+    places : int
+        Decimals kept (trailing zeros dropped).
+    point : bool, keyword-only
+        Always write a decimal point (FANUC).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    AxiscalError
+        For a feed that is not finite, rounds to 0, or is beyond :data:`MAX_FEED_MM_MIN`.
+
+    Examples
+    --------
+    >>> feed_word(1000.0), feed_word(1234.5678, 1), feed_word(600.0, point=True)
+    ('1000', '1234.6', '600.')
+    """
+    value = check_number("feed_mm_min", feed_mm_min, positive=True, unit="mm/min")
+    if round(value, places) <= 0:
+        raise AxiscalError(f"feed_mm_min must be at least {10.0 ** -places:g} mm/min (it is written to {places} decimals),"
+                           f" not {value:.10g}")
+    if value > MAX_FEED_MM_MIN:
+        raise AxiscalError(f"feed_mm_min must be at most {MAX_FEED_MM_MIN:.0f} mm/min (100 m/min), not {value:.10g}")
+    return decimal(value, places, point=point)
 
 
 def decimal(value: float, places: int, *, point: bool = False) -> str:
@@ -111,16 +193,13 @@ class ProgramWriter:
                 raise AxiscalError(f"{letter!r} is not an axis of {spec.controller} ({', '.join(spec.axes)})")
             value = check_number(f"position_m[{letter!r}]", value)
             amount = value / _DEG if letter in "ABC" else value / _MM
-            if spec.syntax == "conversational":
-                text = f"{round(amount, 3) + 0.0:+.3f}"
-            else:
-                text = f"{round(amount, 3) + 0.0:.3f}"
-            words.append(f"{letter}{text}")
+            name = f"the {letter} position in {'degrees' if letter in 'ABC' else 'mm'}"
+            words.append(f"{letter}{position_word(name, amount, sign=spec.syntax == 'conversational')}")
         if feed_m_per_s is None:
             feed = None
         else:
             per_minute = check_number("feed_m_per_s", feed_m_per_s, positive=True) * 60.0 / _MM
-            feed = "F" + decimal(per_minute, 3, point=spec.decimal_point_needed)
+            feed = "F" + feed_word(per_minute, point=spec.decimal_point_needed)
         if spec.syntax == "conversational":
             tail = ["R0", "FMAX"] if feed is None else ["R0"] + ([feed] if feed != self._feed else [])
         else:
@@ -133,9 +212,10 @@ class ProgramWriter:
         self._blocks.append(" ".join([word, *words, *tail]))
 
     def dwell(self, seconds: float) -> None:
-        """A dwell of ``seconds`` (>= 0) in the dialect's own words and unit."""
+        """A dwell of ``seconds`` (0 to :data:`MAX_DWELL_S`) in the dialect's own words and unit."""
         spec = self.spec
         seconds = check_number("seconds", seconds, nonnegative=True)
+        seconds = check_number("seconds", seconds, high=MAX_DWELL_S)
         if spec.syntax == "conversational":
             self._blocks += ["CYCL DEF 9.0 DWELL TIME", f"CYCL DEF 9.1 DWELL {decimal(seconds, spec.dwell_places)}"]
             return
