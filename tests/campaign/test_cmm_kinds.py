@@ -70,20 +70,40 @@ def test_the_report_has_the_cmm_section(campaign, tmp_path):
 
 
 @pytest.mark.parametrize(("old", "new", "words", "line"), [
-    ("uncertainty_um = 0.3", "uncertainty_um = -0.3", "uncertainty_um must be a non-negative number", 18),
+    ("uncertainty_um = 0.3", "uncertainty_um = -0.3", "uncertainty_um must be 0 to 10000, not -0.3", 18),
+    ("uncertainty_um = 0.3", "uncertainty_um = 1e300", "uncertainty_um must be 0 to 10000, not 1e+300", 18),
+    ("cmm_e0_a_um = 1.8", "cmm_e0_a_um = 1e300", "tolerances: cmm_e0_a_um must be above 0 and at most 10000", 18),
+    ("cmm_e0_k = 300", "cmm_e0_k = 0.01", "tolerances: cmm_e0_k must be 1 to 1e+06, not 0.01", 18),
+    ("pform_um = 1.7, psize_um = 1.0 }", "pform_um = 1e300, psize_um = 1.0 }", "pform_um must be above 0 and at most 10000",
+     26),
+    ('file = "sphere_single.csv"\ndiameter_mm = 25.00018\nuncertainty_um = 0.1',
+     'file = "sphere_single.csv"\ndiameter_mm = 25.00018\nuncertainty_um = 1e300', "uncertainty_um must be 0 to 10000", 26),
     ("cmm_e0_a_um = 1.8, ", "", "cmm_e0_k and cmm_e0_b_um need cmm_e0_a_um", 18),
     ("cmm_e0_k = 300,", "cmm_e0_k = 300, cmm_e0_b_um = 1.0,", "cmm_e0_b_um (the cap B, 1 um) must not be below", 18),
     ('file = "sphere_single.csv"\ndiameter_mm = 25.00018', 'file = "sphere_single.csv"\ndiameter_mm = -25',
      "diameter_mm must be a positive number", 26),
     ("tolerances = { pform_um = 1.7, psize_um = 1.0 }", "tolerances = { ploc_um = 1.0 }", "needs points of several styli", 26),
     ('id = "probing-single"\n', 'id = "probing-single"\nfoot_mm = 3\n', "unknown key 'foot_mm'", 29),
+    # E150's MPE stated for a file without E150 values (the rows with a ram offset taken out below)
+    ("cmm_e150_k = 250,", "cmm_e150_k = 250,", "tolerances: cmm_e150_a_um is given, but the measurements hold no E150 value", 18),
 ])
 def test_bad_options_name_campaign_toml_and_the_line(campaign, examples, old, new, words, line):
     toml = campaign / "campaign.toml"
     text = (examples / "cmm" / "campaign.toml").read_text()
     assert old in text
     toml.write_text(text.replace(old, new, 1))
+    if "E150" in words:
+        e0 = campaign / "e0_gauge_blocks.csv"
+        e0.write_text("".join(row for row in e0.read_text().splitlines(keepends=True) if not row.rstrip().endswith(",150")))
     with pytest.raises(AxiscalError) as caught:
         run_campaign(campaign)
     assert words in caught.value.message and caught.value.path == str(toml)
     assert caught.value.line == line
+
+
+def test_a_sphere_given_in_another_unit_names_diameter_mm_and_the_points_file(campaign):
+    toml = campaign / "campaign.toml"
+    toml.write_text(toml.read_text().replace("diameter_mm = 25.00018", "diameter_mm = 2500", 1))
+    with pytest.raises(AxiscalError) as caught:
+        run_campaign(campaign)
+    assert "(diameter_mm 2500 mm)" in caught.value.message and caught.value.path.endswith("sphere_single.csv")

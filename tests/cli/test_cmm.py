@@ -51,6 +51,17 @@ def test_probing_json_of_five_styli(run_cli, examples, tmp_path):
     (["probing", "{ex}/cmm/sphere_single.csv", "--diameter-mm", "-25"], "--diameter-mm must be a positive number of millimetres"),
     (["probing", "{ex}/cmm/sphere_single.csv", "--diameter-mm", "25", "--ploc-mpe-um", "1"], "several styli"),
     (["probing", "{ex}/cmm/no_such.csv", "--diameter-mm", "25"], "no_such.csv"),
+    # limits bounded as a budget file's (they gave verdicts)
+    (["acceptance", "{ex}/cmm/e0_gauge_blocks.csv", "--mpe-a-um", "1e300"],
+     "--mpe-a-um must be above 0 and at most 10000 micrometres, not 1e+300"),
+    (["acceptance", "{ex}/cmm/e0_gauge_blocks.csv", "--mpe-a-um", "2", "--mpe-k", "0.5"], "--mpe-k must be 1 to 1e+06"),
+    (["acceptance", "{ex}/cmm/e0_gauge_blocks.csv", "--uncertainty-um", "1e300"], "--uncertainty-um must be 0 to 10000"),
+    (["probing", "{ex}/cmm/sphere_single.csv", "--diameter-mm", "25", "--pform-mpe-um", "1e300"],
+     "--pform-mpe-um must be above 0 and at most 10000"),
+    (["probing", "{ex}/cmm/sphere_single.csv", "--diameter-mm", "25", "--uncertainty-um", "1e300"],
+     "--uncertainty-um must be 0 to 10000"),
+    # points that cannot lie on the calibrated sphere (it gave 'PSize -2474999 um, verdict: pass')
+    (["probing", "{ex}/cmm/sphere_single.csv", "--diameter-mm", "2500"], "not on the calibrated one (--diameter-mm 2500 mm)"),
 ])
 def test_mistakes_are_one_line(run_cli, examples, argv, words):
     status, out, err = run_cli("cmm", *[a.format(ex=examples) for a in argv])
@@ -63,3 +74,29 @@ def test_a_bad_row_names_file_and_line(run_cli, tmp_path):
     path.write_text("position,length,nominal_mm,measured_mm,repeat\n1,L1,100,100.001,1\n1,L1,100,abc,2\n")
     status, _, err = run_cli("cmm", "acceptance", path)
     assert status == 2 and f"{path}:3:" in err
+
+
+def test_an_e150_mpe_without_e150_values_is_refused(run_cli, examples, tmp_path):
+    """--e150-mpe-a-um on a file without E150 rows was ignored (verdict pass, no E150 line)."""
+    path = tmp_path / "e0.csv"
+    rows = (examples / "cmm" / "e0_gauge_blocks.csv").read_text().splitlines(keepends=True)
+    path.write_text("".join(row for row in rows if not row.rstrip().endswith(",150")))
+    status, out, err = run_cli("cmm", "acceptance", path, "--e150-mpe-a-um", "2.2")
+    assert status == 2 and out == "" and err.count("\n") == 1
+    assert err.startswith(f"axiscal: error: {path}: --e150-mpe-a-um is given, but the measurements hold no E150 value")
+
+
+@pytest.mark.parametrize("column", ["measured_mm", "nominal_mm"])
+def test_values_in_another_unit_are_refused_naming_the_line(run_cli, examples, tmp_path, column):
+    """measured_mm in um gave 'E0 largest |E| 699302399.520 um, verdict: fail' (exit 0); nominals in metres likewise."""
+    lines = (examples / "cmm" / "e0_gauge_blocks.csv").read_text().splitlines()
+    header = lines[0].split(",")
+    k = header.index(column)
+    cells = lines[4].split(",")
+    cells[k] = f"{float(cells[k]) * (1000 if column == 'measured_mm' else 0.001):.9g}"
+    lines[4] = ",".join(cells)
+    path = tmp_path / "e0.csv"
+    path.write_text("\n".join(lines) + "\n")
+    status, out, err = run_cli("cmm", "acceptance", path, "--mpe-a-um", "1.8")
+    assert status == 2 and out == "" and err.count("\n") == 1
+    assert err.startswith(f"axiscal: error: {path}:5: the measured length") and "times the nominal" in err

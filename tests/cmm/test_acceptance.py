@@ -141,3 +141,48 @@ def test_the_warnings_of_a_short_test():
     r = length_acceptance(HAND)
     assert "7 positions x 5 lengths x 3 repeats" in r.warnings[0]
     assert r.verdict == "not assessed"
+
+
+@pytest.mark.parametrize(("nominal_mm", "measured_mm"), [(100.0, 100001.2), (0.1, 100.0012), (100.0, 125.0)])
+def test_a_measured_length_in_another_unit_is_refused_naming_its_line(tmp_path, nominal_mm, measured_mm):
+    """An error of indication is micrometres: a value in um under measured_mm, a nominal in metres or another gauge
+    is refused (it gave 'E0 largest |E| 699302399.520 um, verdict: fail' before)."""
+    path = tmp_path / "e0.csv"
+    path.write_text("position,length,nominal_mm,measured_mm,repeat\n1,L1,100,100.001,1\n"
+                    f"1,L2,{nominal_mm},{measured_mm},1\n")
+    with pytest.raises(AxiscalError, match="times the nominal") as caught:
+        read_length_measurements(path)
+    assert caught.value.line == 3 and caught.value.path == str(path)
+    with pytest.raises(AxiscalError, match="another unit"):
+        _measurements([("1", "L1", 100.0, 1e4 * 1e3, 1)])
+
+
+def test_a_close_error_is_read():
+    """Ten per cent of the nominal is the bound: a gross but plausible error still reads."""
+    m = _measurements([("1", "L1", 100.0, 9.9e3, 1)])
+    assert m.error_m[0] == pytest.approx(9.9 * MM)
+
+
+@pytest.mark.parametrize(("stated", "words"), [
+    (dict(mpe_150=Mpe(2.5 * UM)), "mpe_150 is given, but the measurements hold no E150 value"),
+    (dict(r0_mpl_m=1 * UM), "r0_mpl_m is given, but the measurements hold no E0 value"),
+    (dict(mpe=Mpe(2.5 * UM)), "mpe is given, but the measurements hold no E0 value"),
+])
+def test_a_limit_of_a_test_without_values_is_refused(stated, words):
+    only = _measurements([("1", "L1", 100.0, 1.0, 1)], offset_mm=0.0 if "150" in words else 150.0)
+    with pytest.raises(AxiscalError, match=words):
+        length_acceptance(only, **stated)
+
+
+@pytest.mark.parametrize(("call", "words"), [
+    (lambda: Mpe(1e300), "a_m must be at most 0.01"),
+    (lambda: Mpe(1e-6, b_m=1.0), "b_m must be at most 0.01"),
+    (lambda: Mpe(1e-6, k=0.5), r"k must be between 1 and 1e\+06"),
+    (lambda: length_acceptance(HAND, uncertainty_m=1e300), "uncertainty_m must be at most 0.01"),
+    (lambda: length_acceptance(HAND, uncertainty_per_m=1.0), "uncertainty_per_m must be at most 0.01"),
+    (lambda: length_acceptance(HAND, r0_mpl_m=1e300), "r0_mpl_m must be at most 0.01"),
+])
+def test_limits_beyond_ten_millimetres_are_refused(call, words):
+    with pytest.raises(AxiscalError, match=words):
+        call()
+    assert length_acceptance(HAND, mpe=Mpe(10e-3), uncertainty_m=10e-3).verdict == "inconclusive"

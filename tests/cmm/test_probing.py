@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.optimize import least_squares
 
-from axiscal.cmm import SpherePoints, evaluate_probing, fit_sphere, probing_test, read_sphere_points
+from axiscal.cmm import SpherePoints, evaluate_probing, fit_sphere, fit_spread, probing_test, read_sphere_points
 from axiscal.errors import AxiscalError
 
 UM, MM = 1e-6, 1e-3
@@ -171,3 +171,78 @@ def test_the_simulated_styli_are_recovered_from_the_example(examples):
         assert np.abs(found - np.array(offset_mm)).max() < 0.2e-3, name
     # the simulated probe reads 0.2 um large in radius: the size error is near +0.4 um
     assert r.figures_m["psize"] / UM == pytest.approx(0.4, abs=0.15)
+
+
+def _on_sphere(directions, seed=0, noise_m=0.3 * UM):
+    rng = np.random.default_rng(seed)
+    return CENTRE + RADIUS * np.asarray(directions) + rng.normal(0, noise_m, np.shape(directions))
+
+
+def _cap(half_angle_deg):
+    """25 points on a cap about the pole: the pole, 8 at half the angle, 16 at the angle."""
+    out = [(0.0, 0.0, 1.0)]
+    for polar, count in ((half_angle_deg / 2, 8), (half_angle_deg, 16)):
+        for k in range(count):
+            a, t = 2 * np.pi * k / count, np.radians(polar)
+            out.append((np.sin(t) * np.cos(a), np.sin(t) * np.sin(a), np.cos(t)))
+    return np.array(out)
+
+
+def _circle(elevation_deg):
+    a, e = np.linspace(0, 2 * np.pi, 25, endpoint=False), np.radians(elevation_deg)
+    return np.column_stack([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.full(25, np.sin(e))])
+
+
+def test_the_spread_of_the_standards_pattern_and_of_a_whole_sphere():
+    """sqrt of the largest diagonal term of (J^T J)^-1: the pattern of ISO 10360-5 0.546, the six poles 1/sqrt(2)."""
+    points = _on_sphere(pattern(), noise_m=0.0)
+    assert fit_spread(points, fit_sphere(points)) == pytest.approx(0.5462, abs=1e-4)
+    six = np.vstack([np.eye(3), -np.eye(3)])
+    assert fit_spread(six, fit_sphere(six)) == pytest.approx(np.sqrt(0.5), abs=1e-12)
+    # it depends on the directions only: not on the size, the place or the noise of the points
+    moved = 3.0 * _on_sphere(pattern(), seed=5) + 0.1
+    assert fit_spread(moved, fit_sphere(moved)) == pytest.approx(0.5462, abs=1e-3)
+
+
+@pytest.mark.parametrize(("directions", "refused"), [
+    (_circle(0.0), True), (_circle(20.0), True), (_cap(10.0), True), (_cap(30.0), True),
+    (_cap(45.0), False), (_cap(90.0), False), (pattern((1.0, 1.0, 0.0)), False),
+])
+def test_points_on_too_little_of_the_sphere_are_refused(directions, refused):
+    """A great circle with 0.3 um of noise gave PSize 1703 um and a 10-degree cap -14 um, printed as figures."""
+    points = SpherePoints(_on_sphere(directions), ("1",) * len(directions))
+    if refused:
+        with pytest.raises(AxiscalError, match="stylus 1: the points cover too little of the sphere"):
+            probing_test(points, calibrated_diameter_m=2 * RADIUS)
+    else:
+        r = probing_test(points, calibrated_diameter_m=2 * RADIUS)
+        assert abs(r.figures_m["psize"]) < 3 * UM
+
+
+def test_one_stylus_on_a_circle_is_named_in_the_multi_stylus_test(tmp_path):
+    good = _on_sphere(pattern(), seed=1)
+    bad = _on_sphere(_circle(0.0), seed=2)
+    path = tmp_path / "s.csv"
+    rows = [f"{s},{x / MM},{y / MM},{z / MM}" for s, block in (("A", good), ("B", bad)) for x, y, z in block]
+    path.write_text("stylus,x_mm,y_mm,z_mm\n" + "\n".join(rows) + "\n")
+    with pytest.raises(AxiscalError, match="stylus B: the points cover too little") as caught:
+        evaluate_probing(path, calibrated_diameter_m=2 * RADIUS)
+    assert caught.value.path == str(path)
+
+
+@pytest.mark.parametrize("diameter_mm", [2500.0, 2.5, 25.0 * 1.12, 25.0 * 0.88])
+def test_points_that_cannot_lie_on_the_calibrated_sphere_are_refused(examples, diameter_mm):
+    """--diameter-mm 2500 for a 25 mm sphere gave 'PSize -2474999 um, verdict: pass'."""
+    with pytest.raises(AxiscalError, match=r"the points lie on a sphere 25\.\d+ mm across, not on the calibrated one"):
+        evaluate_probing(examples / "cmm" / "sphere_single.csv", calibrated_diameter_m=diameter_mm * MM)
+    near = evaluate_probing(examples / "cmm" / "sphere_single.csv", calibrated_diameter_m=25.0 * 1.09 * MM)
+    assert near.figures_m["psize"] == pytest.approx(-0.09 * 25 * MM, abs=5 * UM)
+
+
+@pytest.mark.parametrize(("options", "words"), [
+    (dict(mpe_m={"pform": 1e300}), r"mpe_m\['pform'\] must be at most 0.01"),
+    (dict(uncertainty_m=1e300), "uncertainty_m must be at most 0.01"),
+])
+def test_limits_beyond_ten_millimetres_are_refused(examples, options, words):
+    with pytest.raises(AxiscalError, match=words):
+        evaluate_probing(examples / "cmm" / "sphere_single.csv", calibrated_diameter_m=25 * MM, **options)

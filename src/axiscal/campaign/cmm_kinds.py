@@ -4,6 +4,7 @@ The maker's MPE are the test's tolerances: ``cmm_e0_a_um``, ``cmm_e0_k``, ``cmm_
 min(A + L/K, B)), the same for E150, ``cmm_r0_um`` (R0,MPL); ``pform_um``, ``psize_um``,
 ``pform_ms_um``, ``psize_ms_um``, ``ploc_um`` for the probing figures. Each value is decided by the
 campaign's rule with the test's own uncertainty (``uncertainty_um``, ``uncertainty_um_per_m``).
+Limits and uncertainties in um are at most 10000 and K is 1 to 1000000, as the command's flags.
 """
 
 from __future__ import annotations
@@ -21,11 +22,35 @@ def _located(campaign: Campaign, spec: TestSpec, message: str) -> AxiscalError:
     return AxiscalError(f"{spec.id}: {message}", path=campaign.folder / "campaign.toml", line=spec.line)
 
 
-def _nonnegative(campaign: Campaign, spec: TestSpec, *keys: str) -> None:
+def _bounded(campaign: Campaign, spec: TestSpec, *keys: str) -> None:
+    """Refuse an uncertainty (an option) that is negative or beyond 10000 um, or a tolerance of the test out of its range."""
+    from axiscal.cmm.mpe import K_RANGE, LIMIT_M
+
+    high = LIMIT_M / UM
     for key in keys:
         value = spec.options.get(key)
-        if value is not None and value < 0:
-            raise _located(campaign, spec, f"{key} must be a non-negative number, not {value:g}")
+        if value is not None and not 0 <= value <= high:
+            raise _located(campaign, spec, f"{key} must be 0 to {high:g}, not {value:g}")
+    for key, value in spec.tolerances.items():
+        if key.endswith("_k") and not K_RANGE[0] <= value <= K_RANGE[1]:
+            raise _located(campaign, spec, f"tolerances: {key} must be {K_RANGE[0]:g} to {K_RANGE[1]:g}, not {value:g}")
+        if key.endswith("_um") and not 0 < value <= high:
+            raise _located(campaign, spec, f"tolerances: {key} must be above 0 and at most {high:g}, not {value:g}")
+
+
+def _evaluated(campaign: Campaign, spec: TestSpec, call, names: dict[str, str]):
+    """``call()``; a refusal that opens with a library argument (``mpe_150 is given ...``) names the test's key at the
+    test's line; one that names it in brackets (``(calibrated_diameter_m 2500 mm)``) names the key where it stands."""
+    try:
+        return call()
+    except AxiscalError as exc:
+        head, sep, rest = exc.message.partition(" ")
+        if head in names:
+            raise _located(campaign, spec, names[head] + sep + rest) from None
+        for name, key in names.items():
+            if f"({name} " in exc.message:
+                raise AxiscalError(exc.message.replace(f"({name} ", f"({key} "), path=exc.path, line=exc.line) from None
+        raise
 
 
 def _stated_mpe(campaign: Campaign, spec: TestSpec, test: str):
@@ -48,13 +73,14 @@ def _cmm_acceptance(campaign: Campaign, spec: TestSpec) -> TestResult:
     from axiscal.cmm.plot import plot_acceptance
 
     path = spec.options["file"]
-    _nonnegative(campaign, spec, "uncertainty_um", "uncertainty_um_per_m")
+    _bounded(campaign, spec, "uncertainty_um", "uncertainty_um_per_m")
     mpe, mpe_150 = _stated_mpe(campaign, spec, "e0"), _stated_mpe(campaign, spec, "e150")
     r0 = spec.tolerances.get("cmm_r0_um")
-    result = evaluate_acceptance(path, mpe=mpe, mpe_150=mpe_150, r0_mpl_m=None if r0 is None else r0 * UM,
-                                 uncertainty_m=spec.options.get("uncertainty_um", 0.0) * UM,
-                                 uncertainty_per_m=spec.options.get("uncertainty_um_per_m", 0.0) * UM,
-                                 rule=campaign.decision_rule)
+    result = _evaluated(campaign, spec, lambda: evaluate_acceptance(
+        path, mpe=mpe, mpe_150=mpe_150, r0_mpl_m=None if r0 is None else r0 * UM,
+        uncertainty_m=spec.options.get("uncertainty_um", 0.0) * UM,
+        uncertainty_per_m=spec.options.get("uncertainty_um_per_m", 0.0) * UM, rule=campaign.decision_rule),
+        {"mpe": "tolerances: cmm_e0_a_um", "mpe_150": "tolerances: cmm_e150_a_um", "r0_mpl_m": "tolerances: cmm_r0_um"})
     figures = result.payload()
     checks, table = [], []
     for test in ("E0", "E150"):
@@ -99,13 +125,15 @@ def _cmm_probing(campaign: Campaign, spec: TestSpec) -> TestResult:
     from axiscal.cmm.probing import evaluate_probing
 
     path = spec.options["file"]
-    _nonnegative(campaign, spec, "uncertainty_um")
+    _bounded(campaign, spec, "uncertainty_um")
     if spec.options["diameter_mm"] <= 0:
         raise _located(campaign, spec, f"diameter_mm must be a positive number, not {spec.options['diameter_mm']:g}")
     mpe = {key.removesuffix("_um"): value * UM for key, value in spec.tolerances.items()}
     try:
-        result = evaluate_probing(path, calibrated_diameter_m=spec.options["diameter_mm"] * MM, mpe_m=mpe,
-                                  uncertainty_m=spec.options.get("uncertainty_um", 0.0) * UM, rule=campaign.decision_rule)
+        result = _evaluated(campaign, spec, lambda: evaluate_probing(
+            path, calibrated_diameter_m=spec.options["diameter_mm"] * MM, mpe_m=mpe,
+            uncertainty_m=spec.options.get("uncertainty_um", 0.0) * UM, rule=campaign.decision_rule),
+            {"calibrated_diameter_m": "diameter_mm"})
     except AxiscalError as exc:
         if "several styli" in exc.message:
             raise _located(campaign, spec, exc.message.replace("MPE", "tolerance")) from None

@@ -21,19 +21,36 @@ def cmm_group() -> None:
     """Coordinate measuring machines: ISO 10360 length and probing tests, squareness compensation (paper 004)."""
 
 
-def _positive(values: dict[str, float | None], *, zero: bool = False) -> None:
-    """Refuse a flag in um (or K) that is not positive (or, with ``zero``, negative), naming the flag."""
+def _bounded(values: dict[str, float | None], *, zero: bool = False) -> None:
+    """Refuse a flag that is not positive (or, with ``zero``, negative), or beyond its range, naming the flag.
+
+    A limit or an uncertainty in um (or um per metre) is at most 10000 (:data:`axiscal.cmm.mpe.LIMIT_M`), as
+    a budget file's; K is 1 to 1000000 (:data:`axiscal.cmm.mpe.K_RANGE`); a diameter in mm has no bound here.
+    """
+    from axiscal.cmm.mpe import K_RANGE, LIMIT_M
+
     for flag, value in values.items():
-        if value is not None and (value < 0 or value == 0 and not zero):
-            unit = {"-k": "", "-mm": " of millimetres", "-per-m": " of micrometres per metre"}.get(
-                "-" + flag.rsplit("-", 1)[-1] if not flag.endswith("-per-m") else "-per-m", " of micrometres")
+        if value is None:
+            continue
+        if flag.endswith("-k"):
+            low, high, unit = K_RANGE[0], K_RANGE[1], ""
+        elif flag.endswith("-mm"):
+            low, high, unit = 0.0, None, " of millimetres"
+        else:
+            low, high, unit = 0.0, LIMIT_M / UM, " of micrometres per metre" if flag.endswith("-per-m") else " of micrometres"
+        if low > 0 and not low <= value <= high:
+            raise AxiscalError(f"{flag} must be {low:g} to {high:g}, not {value:g}")
+        if value < 0 or value == 0 and not zero:
             raise AxiscalError(f"{flag} must be a {'non-negative' if zero else 'positive'} number{unit}, not {value:g}")
+        if high is not None and value > high:
+            span = f"0 to {high:g}" if zero else f"above 0 and at most {high:g}"
+            raise AxiscalError(f"{flag} must be {span}{unit.replace(' of ', ' ')}, not {value:g}")
 
 
 def _mpe(prefix: str, a_um: float | None, k: float | None, b_um: float | None):
     from axiscal.cmm.mpe import Mpe
 
-    _positive({f"--{prefix}-a-um": a_um, f"--{prefix}-k": k, f"--{prefix}-b-um": b_um})
+    _bounded({f"--{prefix}-a-um": a_um, f"--{prefix}-k": k, f"--{prefix}-b-um": b_um})
     if a_um is None:
         for flag, value in ((f"--{prefix}-k", k), (f"--{prefix}-b-um", b_um)):
             if value is not None:
@@ -65,11 +82,12 @@ def _mpe(prefix: str, a_um: float | None, k: float | None, b_um: float | None):
 def acceptance_command(measurements, mpe_a_um, mpe_k, mpe_b_um, e150_mpe_a_um, e150_mpe_k, e150_mpe_b_um, r0_mpl_um,
                        uncertainty_um, uncertainty_um_per_m, decision_rule, as_json, plot_path):
     """ISO 10360-2 length test of a CMM: E0, E150 and R0 from MEASUREMENTS (CSV: position, length, nominal_mm, measured_mm, repeat[, ram_offset_mm])."""
-    _positive({"--r0-mpl-um": r0_mpl_um})
-    _positive({"--uncertainty-um": uncertainty_um, "--uncertainty-um-per-m": uncertainty_um_per_m}, zero=True)
+    _bounded({"--r0-mpl-um": r0_mpl_um})
+    _bounded({"--uncertainty-um": uncertainty_um, "--uncertainty-um-per-m": uncertainty_um_per_m}, zero=True)
     mpe = _mpe("mpe", mpe_a_um, mpe_k, mpe_b_um)
     mpe_150 = _mpe("e150-mpe", e150_mpe_a_um, e150_mpe_k, e150_mpe_b_um)
-    flags = {"r0_mpl_m": "--r0-mpl-um", "uncertainty_m": "--uncertainty-um", "uncertainty_per_m": "--uncertainty-um-per-m"}
+    flags = {"r0_mpl_m": "--r0-mpl-um", "uncertainty_m": "--uncertainty-um", "uncertainty_per_m": "--uncertainty-um-per-m",
+             "mpe": "--mpe-a-um", "mpe_150": "--e150-mpe-a-um"}
     with flags_named(flags):
         from axiscal.cmm.acceptance import evaluate_acceptance
 
@@ -112,8 +130,8 @@ def probing_command(points, diameter_mm, pform_mpe_um, psize_mpe_um, pform_ms_mp
     """ISO 10360-5 probing test: form, size (and, with several styli, location) from POINTS on a sphere (CSV: [stylus,] x_mm, y_mm, z_mm)."""
     given = {"pform": pform_mpe_um, "psize": psize_mpe_um, "pform_ms": pform_ms_mpe_um, "psize_ms": psize_ms_mpe_um,
              "ploc": ploc_mpe_um}
-    _positive({"--diameter-mm": diameter_mm, **{_PROBING_MPE[k]: v for k, v in given.items()}})
-    _positive({"--uncertainty-um": uncertainty_um}, zero=True)
+    _bounded({"--diameter-mm": diameter_mm, **{_PROBING_MPE[k]: v for k, v in given.items()}})
+    _bounded({"--uncertainty-um": uncertainty_um}, zero=True)
     mpe_m = {k: v * UM for k, v in given.items() if v is not None}
     flags = {"calibrated_diameter_m": "--diameter-mm", "uncertainty_m": "--uncertainty-um",
              **{f"mpe_m['{k}']": flag for k, flag in _PROBING_MPE.items()}}

@@ -12,20 +12,24 @@ from axiscal.cmm.acceptance import (
     length_acceptance,
     read_length_measurements,
 )
-from axiscal.cmm.mpe import Mpe
+from axiscal.cmm.mpe import K_RANGE, LIMIT_M, Mpe
 from axiscal.cmm.plot import plot_acceptance, plot_probing
 from axiscal.cmm.probing import (
     PROBING_FIGURES,
+    SPREAD_LIMIT,
     ProbingResult,
     SphereFit,
     SpherePoints,
     evaluate_probing,
     fit_sphere,
+    fit_spread,
     probing_test,
     read_sphere_points,
 )
 
 __all__ = [
+    "LIMIT_M",
+    "K_RANGE",
     "Mpe",
     "RAM_OFFSET_M",
     "LengthMeasurements",
@@ -38,6 +42,8 @@ __all__ = [
     "PROBING_FIGURES",
     "SphereFit",
     "fit_sphere",
+    "SPREAD_LIMIT",
+    "fit_spread",
     "SpherePoints",
     "read_sphere_points",
     "ProbingResult",

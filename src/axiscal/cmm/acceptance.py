@@ -14,7 +14,9 @@ when any value or R0 fails, and is inconclusive otherwise. Under the simple rule
 
 The file: one row per measurement, ``position`` (a label), ``length`` (a label of the gauge or
 step), ``nominal_mm`` (its calibrated length), ``measured_mm``, ``repeat`` (1, 2, 3), and
-optionally ``ram_offset_mm`` (0 for E0, 150 for E150).
+optionally ``ram_offset_mm`` (0 for E0, 150 for E150). A measured length more than 10 % from its
+nominal is refused (an error of indication is micrometres: such a value is in another unit, or of
+another gauge), as is an MPE or R0,MPL stated for a test the file has no value of.
 """
 
 from __future__ import annotations
@@ -25,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from axiscal.cmm.mpe import Mpe
+from axiscal.cmm.mpe import LIMIT_M, Mpe
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_choice, check_instance, check_number, check_path, render_checked
 from axiscal.io.tabular import read_csv
@@ -48,6 +50,8 @@ __all__ = [
 RAM_OFFSET_M = 150 * MM
 #: ISO 10360-2:2009 6.3: seven positions, five lengths, three repeats
 _POSITIONS, _LENGTHS, _REPEATS = 7, 5, 3
+#: a measured length this far from its nominal (a fraction of it) is in another unit or of another gauge
+_PLAUSIBLE = 0.1
 
 
 @dataclass(frozen=True)
@@ -112,6 +116,14 @@ class LengthMeasurements:
         if not isinstance(self.lines, tuple) or self.lines and len(self.lines) != n:
             raise AxiscalError("lines must be a tuple of one file line per measurement (or empty)")
         object.__setattr__(self, "path", str(self.path))
+        far = np.flatnonzero(np.abs(measured - nominal) > _PLAUSIBLE * nominal)
+        if far.size:
+            k = int(far[0])
+            raise AxiscalError(
+                f"the measured length {measured[k] / MM:.6g} mm is {measured[k] / nominal[k]:.4g} times the nominal "
+                f"{nominal[k] / MM:.6g} mm: an error of indication is micrometres, so one of the two is in another unit "
+                "(both are mm) or of another gauge",
+                path=None if self.path == "<data>" else self.path, line=self.lines[k] if self.lines else None)
         object.__setattr__(self, "nominal_m", nominal)
         object.__setattr__(self, "measured_m", measured)
         object.__setattr__(self, "repeat", repeat.astype(int))
@@ -143,8 +155,8 @@ def read_length_measurements(path: str | Path) -> LengthMeasurements:
     ------
     AxiscalError
         A missing file or column, a cell that is not a number, a nominal length that is not
-        positive, a repeat that is not a whole number from 1, the same measurement given twice;
-        each naming the file and line.
+        positive, a measured length more than 10 % from its nominal (another unit), a repeat that is
+        not a whole number from 1, the same measurement given twice; each naming the file and line.
 
     Examples
     --------
@@ -436,15 +448,20 @@ def length_acceptance(
     measurements : LengthMeasurements
         What :func:`read_length_measurements` returns.
     mpe : Mpe, optional, keyword-only
-        E0,MPE. Without it the errors are given and not assessed.
+        E0,MPE. Without it the errors are given and not assessed; with it the measurements must
+        hold E0 values.
     mpe_150 : Mpe, optional, keyword-only
-        E150,MPE (stated apart from E0's); without it E150 is given and not assessed.
+        E150,MPE (stated apart from E0's); without it E150 is given and not assessed; with it the
+        measurements must hold E150 values (a ram offset above 0).
     r0_mpl_m : float, optional, keyword-only
-        R0,MPL, metres (> 0).
+        R0,MPL, metres (> 0, at most :data:`axiscal.cmm.mpe.LIMIT_M`); the measurements must hold
+        E0 values.
     uncertainty_m : float, keyword-only
-        U0, the expanded test uncertainty (k = 2) at zero length, metres (>= 0).
+        U0, the expanded test uncertainty (k = 2) at zero length, metres (0 to
+        :data:`axiscal.cmm.mpe.LIMIT_M`).
     uncertainty_per_m : float, keyword-only
-        Its growth with length, metres per metre (>= 0): ``U(L) = U0 + L * uncertainty_per_m``.
+        Its growth with length, metres per metre (0 to :data:`axiscal.cmm.mpe.LIMIT_M`):
+        ``U(L) = U0 + L * uncertainty_per_m``.
     rule : {"guard-band", "simple"}, keyword-only
         The decision rule (:mod:`axiscal.uncertainty.decision`).
 
@@ -455,7 +472,8 @@ def length_acceptance(
     Raises
     ------
     AxiscalError
-        Arguments of the wrong kind or out of range.
+        Arguments of the wrong kind or out of range, an MPE or R0,MPL of a test the measurements
+        hold no value of.
 
     Examples
     --------
@@ -477,9 +495,10 @@ def _options(mpe, mpe_150, r0_mpl_m, uncertainty_m, uncertainty_per_m, rule) -> 
     if mpe_150 is not None:
         check_instance("mpe_150", mpe_150, Mpe, what="an Mpe")
     if r0_mpl_m is not None:
-        r0_mpl_m = check_number("r0_mpl_m", r0_mpl_m, positive=True)
-    uncertainty_m = check_number("uncertainty_m", uncertainty_m, nonnegative=True)
-    uncertainty_per_m = check_number("uncertainty_per_m", uncertainty_per_m, unit="metres per metre", nonnegative=True)
+        r0_mpl_m = check_number("r0_mpl_m", r0_mpl_m, positive=True, high=LIMIT_M)
+    uncertainty_m = check_number("uncertainty_m", uncertainty_m, nonnegative=True, high=LIMIT_M)
+    uncertainty_per_m = check_number("uncertainty_per_m", uncertainty_per_m, unit="metres per metre", nonnegative=True,
+                                     high=LIMIT_M)
     check_choice("decision rule", rule, DECISION_RULES)
     return dict(mpe=mpe, mpe_150=mpe_150, r0_mpl_m=r0_mpl_m, uncertainty_m=uncertainty_m,
                 uncertainty_per_m=uncertainty_per_m, rule=rule)
@@ -488,6 +507,12 @@ def _options(mpe, mpe_150, r0_mpl_m, uncertainty_m, uncertainty_per_m, rule) -> 
 def _acceptance(m: LengthMeasurements, *, mpe, mpe_150, r0_mpl_m, uncertainty_m, uncertainty_per_m, rule) -> AcceptanceResult:
     n = len(m.position)
     test = tuple("E150" if offset > 0 else "E0" for offset in m.ram_offset_m)
+    where = None if m.path == "<data>" else m.path
+    for name, stated, which in (("mpe", mpe, "E0"), ("r0_mpl_m", r0_mpl_m, "E0"), ("mpe_150", mpe_150, "E150")):
+        if stated is not None and which not in test:
+            rows = "a row with ram_offset_mm above 0" if which == "E150" else "a row with ram_offset_mm 0 or none"
+            raise AxiscalError(f"{name} is given, but the measurements hold no {which} value ({rows}): "
+                               f"{which} cannot be assessed", path=where)
     U = uncertainty_m + m.nominal_m * uncertainty_per_m
     mpe_m = np.full(n, np.nan)
     for name, stated in (("E0", mpe), ("E150", mpe_150)):

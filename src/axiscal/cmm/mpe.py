@@ -4,6 +4,10 @@ A length measurement error E0 (and E150, with the 150 mm ram offset) is stated i
 ``±(A + L/K)``, ``±min(A + L/K, B)`` or ``±B``, with A and B in micrometres, the length L in
 millimetres and K a dimensionless number, so that ``L/K`` reads in micrometres: ``1.5 + L/333`` is
 3.0 um at L = 500 mm. In SI the slope is ``1 / (1000 K)`` metres per metre.
+
+A limit of a CMM test (A and B of an MPE, R0,MPL, a probing MPE, the test uncertainty) is at most
+:data:`LIMIT_M` (10 mm, 10000 um), and K is from 1 to a million (L/K from 1 um per mm down): a
+larger value is a typing or unit mistake that would turn every verdict into a pass.
 """
 
 from __future__ import annotations
@@ -17,7 +21,12 @@ from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_number
 from axiscal.units import MM, UM
 
-__all__ = ["Mpe"]
+__all__ = ["LIMIT_M", "K_RANGE", "Mpe"]
+
+#: the largest limit (A, B, R0,MPL, a probing MPE) or test uncertainty a CMM test takes, metres
+LIMIT_M = 10e-3
+#: the range of K (L in mm over K reads in um): 1 um per mm at most
+K_RANGE = (1.0, 1e6)
 
 
 @dataclass(frozen=True)
@@ -27,16 +36,16 @@ class Mpe:
     Parameters
     ----------
     a_m : float
-        A, metres (> 0). Alone (no K, no B) it is the constant form ``±A``.
+        A, metres (> 0, at most :data:`LIMIT_M`). Alone (no K, no B) it is the constant form ``±A``.
     k : float or None
-        K, dimensionless (> 0): the length term is L/K with L in mm read as um.
+        K, dimensionless (:data:`K_RANGE`): the length term is L/K with L in mm read as um.
     b_m : float or None
-        B, the cap, metres (> 0, not below A).
+        B, the cap, metres (> 0, not below A, at most :data:`LIMIT_M`).
 
     Raises
     ------
     AxiscalError
-        A non-positive or non-finite A, K or B, or B below A.
+        A non-positive or non-finite A, K or B, one beyond its range, or B below A.
 
     Examples
     --------
@@ -52,11 +61,11 @@ class Mpe:
     b_m: float | None = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "a_m", check_number("a_m", self.a_m, positive=True))
+        object.__setattr__(self, "a_m", check_number("a_m", self.a_m, positive=True, high=LIMIT_M))
         if self.k is not None:
-            object.__setattr__(self, "k", check_number("k", self.k, unit="", positive=True))
+            object.__setattr__(self, "k", check_number("k", self.k, unit="", low=K_RANGE[0], high=K_RANGE[1]))
         if self.b_m is not None:
-            b = check_number("b_m", self.b_m, positive=True)
+            b = check_number("b_m", self.b_m, positive=True, high=LIMIT_M)
             if b < self.a_m:
                 raise AxiscalError(f"b_m (the cap B, {b / UM:g} um) must not be below a_m (A, {self.a_m / UM:g} um)")
             object.__setattr__(self, "b_m", b)

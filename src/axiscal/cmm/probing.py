@@ -13,10 +13,27 @@ coordinates of their centres. The single-stylus figures are those of the first s
 
 The file: ``x_mm, y_mm, z_mm`` of each probed point (the centre of the stylus tip, corrected for
 its radius as the CMM software reports it), and ``stylus`` (a label) when there are several.
+
+Points that cannot give these figures are refused, not evaluated:
+
+- points bunched on too little of the sphere (a circle, a small cap). The least-squares sphere's
+  centre and radius then follow the probing scatter many times over: with ``u`` the unit
+  directions from the centre to the points and ``J = [u, 1]`` the fit's Jacobian, the standard
+  deviation of each parameter is ``sqrt(diag((J^T J)^-1))`` times the scatter of the points
+  (the Gauss-Markov covariance). ISO 10360-5's pattern (25 points over a hemisphere: the pole,
+  rings at 22.5, 45, 67.5 and 90 degrees from it) gives 0.55 at most; 25 points on a 45-degree
+  cap 1.8, on a 30-degree cap 4.0, on a 10-degree cap 35, on a circle 10^6 and more. Above
+  :data:`SPREAD_LIMIT` (3) the size alone may be off by six times the points' scatter, more than
+  the form (the range of 25 points is some four times their scatter): the size and the location
+  mean nothing against their MPE, so the test is refused naming the stylus, rather than printed
+  with a warning beside a verdict, which would be read past.
+- a fitted diameter more than 10 % from the calibrated one: the points were not probed on that
+  sphere (a diameter in another unit, points not corrected for the stylus tip).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -25,6 +42,7 @@ from typing import Any
 import numpy as np
 
 from axiscal.cmm.acceptance import combined_verdict
+from axiscal.cmm.mpe import LIMIT_M
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_choice, check_instance, check_mapping, check_number, check_path
 from axiscal.io.arguments import render_checked
@@ -35,6 +53,8 @@ from axiscal.units import MM, UM
 
 __all__ = [
     "PROBING_FIGURES",
+    "SPREAD_LIMIT",
+    "fit_spread",
     "SphereFit",
     "fit_sphere",
     "SpherePoints",
@@ -54,6 +74,11 @@ PROBING_FIGURES: dict[str, str] = {
 }
 _POINTS = 25
 _LIMIT_M = 1e3  # no probed coordinate is a kilometre away
+#: the largest standard deviation of the fitted centre's coordinates and radius per unit of the points' scatter
+#: (:func:`fit_spread`) a probing test takes; ISO 10360-5's pattern gives 0.55
+SPREAD_LIMIT = 3.0
+#: a fitted diameter this far from the calibrated one (a fraction of it) was not probed on that sphere
+_PLAUSIBLE = 0.1
 
 
 @dataclass(frozen=True)
@@ -150,6 +175,58 @@ def _fit(points: np.ndarray) -> SphereFit:
     d = q - centre
     residual = (np.sqrt(np.sum(d * d, axis=1)) - radius) * scale
     return SphereFit(centre * scale + origin, abs(radius) * scale, residual)
+
+
+def fit_spread(points_m: Any, fit: SphereFit) -> float:
+    """How far the fitted sphere follows the points' scatter: the largest standard deviation of its parameters per unit.
+
+    With ``u`` the unit directions from the fitted centre to the points and ``J = [u, 1]`` the
+    Jacobian of the geometric residuals in the centre and the radius, the covariance of the
+    parameters is ``s^2 (J^T J)^-1`` for points scattered by ``s`` about the sphere (Gauss-Markov).
+    The result is the square root of the largest diagonal term of ``(J^T J)^-1``: how many times
+    the scatter of the points the worst-determined parameter (a coordinate of the centre or the
+    radius) may be off. Dimensionless; it depends only on how the points spread over the sphere.
+
+    Parameters
+    ----------
+    points_m : array_like, shape (n, 3)
+        The points the sphere was fitted to, metres.
+    fit : SphereFit
+        Their sphere (:func:`fit_sphere`).
+
+    Returns
+    -------
+    float
+        0.55 for ISO 10360-5's 25 points over a hemisphere, about 0.4 for points spread over the
+        whole sphere, growing without bound as the points close onto a circle.
+
+    Raises
+    ------
+    AxiscalError
+        Points not of shape (n, 3) or not finite, fewer than 4, or a fit of the wrong kind.
+
+    Examples
+    --------
+    >>> points = [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]]
+    >>> round(fit_spread(points, fit_sphere(points)), 4)
+    0.7071
+    """
+    points = check_array("points_m", points_m, ndim=2, last=3, min_len=4, limit=_LIMIT_M)
+    check_instance("fit", fit, SphereFit, what="a SphereFit (fit_sphere)")
+    return _spread(points, fit)
+
+
+def _spread(points: np.ndarray, fit: SphereFit) -> float:
+    d = points - fit.centre_m
+    distance = np.sqrt(np.sum(d * d, axis=1))
+    if np.any(distance == 0):
+        return math.inf
+    jacobian = np.column_stack([d / distance[:, None], np.ones(len(d))])
+    singular = np.linalg.svd(jacobian, compute_uv=False)
+    if not singular[-1] > 1e-12 * singular[0]:
+        return math.inf
+    covariance = np.linalg.inv(jacobian.T @ jacobian)
+    return float(np.sqrt(np.max(np.diag(covariance))))
 
 
 @dataclass(frozen=True)
@@ -337,11 +414,13 @@ def probing_test(
     points : SpherePoints
         What :func:`read_sphere_points` returns.
     calibrated_diameter_m : float, keyword-only
-        The test sphere's calibrated diameter, metres (> 0).
+        The test sphere's calibrated diameter, metres (> 0); each stylus's sphere must come within
+        10 % of it.
     mpe_m : mapping, optional, keyword-only
-        Figure key (``"pform"``, ``"psize"``, ``"pform_ms"``, ``"psize_ms"``, ``"ploc"``) -> MPE, metres (> 0).
+        Figure key (``"pform"``, ``"psize"``, ``"pform_ms"``, ``"psize_ms"``, ``"ploc"``) -> MPE, metres (> 0,
+        at most :data:`axiscal.cmm.mpe.LIMIT_M`).
     uncertainty_m : float, keyword-only
-        Expanded test uncertainty (k = 2) of each figure, metres (>= 0).
+        Expanded test uncertainty (k = 2) of each figure, metres (0 to :data:`axiscal.cmm.mpe.LIMIT_M`).
     rule : {"guard-band", "simple"}, keyword-only
         The decision rule (:mod:`axiscal.uncertainty.decision`).
 
@@ -352,7 +431,9 @@ def probing_test(
     Raises
     ------
     AxiscalError
-        Arguments of the wrong kind or out of range, an MPE of a figure the data cannot give.
+        Arguments of the wrong kind or out of range, an MPE of a figure the data cannot give, a
+        stylus's points spread over too little of the sphere (:func:`fit_spread` above
+        :data:`SPREAD_LIMIT`), a stylus's sphere more than 10 % from the calibrated diameter.
 
     Examples
     --------
@@ -373,8 +454,8 @@ def _options(calibrated_diameter_m, mpe_m, uncertainty_m, rule) -> dict[str, Any
         check_mapping("mpe_m", mpe_m, what="a mapping of figure keys to MPE in metres")
         for key, value in mpe_m.items():
             check_choice("mpe_m figure", key, PROBING_FIGURES)
-            limits[key] = check_number(f"mpe_m['{key}']", value, unit="metres", positive=True)
-    uncertainty_m = check_number("uncertainty_m", uncertainty_m, nonnegative=True)
+            limits[key] = check_number(f"mpe_m['{key}']", value, unit="metres", positive=True, high=LIMIT_M)
+    uncertainty_m = check_number("uncertainty_m", uncertainty_m, nonnegative=True, high=LIMIT_M)
     check_choice("decision rule", rule, DECISION_RULES)
     return dict(calibrated_diameter_m=calibrated_diameter_m, mpe_m=limits, uncertainty_m=uncertainty_m, rule=rule)
 
@@ -382,12 +463,26 @@ def _options(calibrated_diameter_m, mpe_m, uncertainty_m, rule) -> dict[str, Any
 def _probing(points: SpherePoints, *, calibrated_diameter_m, mpe_m, uncertainty_m, rule) -> ProbingResult:
     styli = points.styli
     labels = np.array(points.stylus)
+    where = None if points.path == "<data>" else points.path
     fits = {}
     for s in styli:
+        mine = points.points_m[labels == s]
         try:
-            fits[s] = _fit(points.points_m[labels == s])
+            fits[s] = _fit(mine)
         except AxiscalError as exc:
-            raise AxiscalError(f"stylus {s}: {exc.message}", path=None if points.path == "<data>" else points.path) from None
+            raise AxiscalError(f"stylus {s}: {exc.message}", path=where) from None
+        spread = _spread(mine, fits[s])
+        if spread > SPREAD_LIMIT:
+            raise AxiscalError(
+                f"stylus {s}: the points cover too little of the sphere to fit it: its centre and diameter may be off by "
+                f"{spread:.3g} times the points' scatter (ISO 10360-5's 25 points over a hemisphere: 0.55; at most "
+                f"{SPREAD_LIMIT:g} is taken); probe the standard's pattern", path=where)
+        diameter = fits[s].diameter_m
+        if abs(diameter - calibrated_diameter_m) > _PLAUSIBLE * calibrated_diameter_m:
+            raise AxiscalError(
+                f"stylus {s}: the points lie on a sphere {diameter / MM:.6g} mm across, not on the calibrated one "
+                f"(calibrated_diameter_m {calibrated_diameter_m / MM:.6g} mm): is the diameter in mm, are the points "
+                "the tip's centres corrected for its radius?", path=where)
     counts = [int(np.sum(labels == s)) for s in styli]
     warnings = []
     if any(c != _POINTS for c in counts):
