@@ -57,6 +57,11 @@ def test_the_three_kinds_of_line_are_read(tmp_path):
     ("foot_mm = -1\n" + line(), 1, "foot_mm must be positive"),
     (HEADER + line(body="foot_mm = 0\nangle_urad = [1, 2]"), 6, "foot_mm must be positive"),
     ("title = 3\n" + line(), 1, "title must be a string in quotes, not 3"),
+    # a position repeated was refused at deviation_um without naming it
+    (HEADER + line(body="position_mm = [0, 100, 100, 200]\ndeviation_um = [0, 1, 2, 0]"), 6,
+     "line 'a': position_mm: position 100 mm is given twice (station 2 and station 3)"),
+    (HEADER + line(body="position_mm = [0, 100, 90, 200]\ndeviation_um = [0, 1, 2, 0]"), 6,
+     "line 'a': position_mm: the positions must increase: 90 mm after 100 mm (station 3)"),
 ])
 def test_mistakes_are_refused_naming_the_line(tmp_path, text, line_no, words):
     path = write(tmp_path, text)
@@ -67,6 +72,18 @@ def test_mistakes_are_refused_naming_the_line(tmp_path, text, line_no, words):
         assert caught.value.path == str(path) and caught.value.line == line_no
     elif words != "not found":
         assert caught.value.path is not None
+
+
+@pytest.mark.parametrize(("rows", "words"), [
+    ("0,0\n100,1\n100,2\n200,0\n", "line 'a': position 100 mm is given twice (line 3 and line 4)"),
+    ("0,0\n100,1\n90,2\n200,0\n", "line 'a': the positions must increase: 90 mm after 100 mm (line 4)"),
+])
+def test_a_profile_file_with_a_position_repeated_names_its_line_and_the_position(tmp_path, rows, words):
+    profile = write(tmp_path, "position_mm,deviation_um\n" + rows, "a.csv")
+    path = write(tmp_path, HEADER + line(body='profile = "a.csv"'))
+    with pytest.raises(AxiscalError) as caught:
+        read_flatness_lines(path)
+    assert caught.value.message == words and caught.value.path == str(profile) and caught.value.line == 4
 
 
 def test_moodys_example_in_micrometres(examples):

@@ -67,6 +67,22 @@ def _show(value: Any) -> str:
     return text if len(text) <= 40 else text[:37] + "..."
 
 
+def _unordered(position_mm: np.ndarray, where) -> tuple[int, str] | None:
+    """The first station whose position repeats one before it or falls back, and the problem in words; None when they increase.
+
+    ``where(k)`` says where station ``k`` stands (``station 3``, ``line 4``).
+    """
+    back = np.flatnonzero(np.diff(position_mm) <= 0)
+    if back.size == 0:
+        return None
+    k = int(back[0]) + 1
+    value = float(position_mm[k])
+    first = np.flatnonzero(position_mm[:k] == value)
+    if first.size:
+        return k, f"position {value:g} mm is given twice ({where(int(first[0]))} and {where(k)})"
+    return k, f"the positions must increase: {value:g} mm after {float(position_mm[k - 1]):g} mm ({where(k)})"
+
+
 def read_flatness_lines(path: str | Path) -> FlatnessLines:
     """Read a flatness lines file (TOML): ``[[lines]]`` with their ends and readings or profiles.
 
@@ -84,7 +100,8 @@ def read_flatness_lines(path: str | Path) -> FlatnessLines:
     AxiscalError
         A missing or malformed file, an unknown key, a value of the wrong type, a line with no
         readings or with two kinds of readings, a level line without a foot spacing, a profile file
-        that is missing, bad or outside the folder; naming the file, the line and the key.
+        that is missing, bad or outside the folder, a profile position given twice or falling back;
+        naming the file, the line and the key (for a profile file, its line).
 
     Examples
     --------
@@ -134,7 +151,10 @@ def read_flatness_lines(path: str | Path) -> FlatnessLines:
                     warnings.append(f"line {name!r}: {angles.size} steps of {foot:g} mm make {span / MM:g} mm on a line"
                                     f" {line.length_m / MM:g} mm long; the rises are taken over {foot:g} mm")
             elif kind == "profile":
-                profile = read_profile(confined_path(path.parent, raw["profile"]), increasing=True)
+                profile = read_profile(confined_path(path.parent, raw["profile"]))
+                bad = _unordered(profile.position_m / MM, lambda k: f"line {profile.lines[k]}")
+                if bad is not None:
+                    raise AxiscalError(f"line {name!r}: {bad[1]}", path=profile.path, line=profile.lines[bad[0]])
                 line = FlatnessLine(name, start, end, profile.position_m, profile.deviation_m, gravity)
             else:
                 if "position_mm" not in raw:
@@ -142,6 +162,9 @@ def read_flatness_lines(path: str | Path) -> FlatnessLines:
                 if len(raw["position_mm"]) != len(raw["deviation_um"]):
                     raise fail(f"line {name!r}: {len(raw['position_mm'])} positions and {len(raw['deviation_um'])} deviations",
                                "deviation_um")
+                bad = _unordered(np.array(raw["position_mm"], float), lambda k: f"station {k + 1}")
+                if bad is not None:
+                    raise fail(f"line {name!r}: position_mm: {bad[1]}", "position_mm")
                 line = FlatnessLine(name, start, end, np.array(raw["position_mm"], float) * MM,
                                     np.array(raw["deviation_um"], float) * UM, gravity)
         except AxiscalError as exc:
