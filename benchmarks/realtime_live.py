@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.live.pipeline import MS, Pipeline
+from axiscal.live.priority import raise_priority, restore_priority
 from axiscal.live.recorder import Recorder, read_record
 from axiscal.live.sources import Backoff, SimSource, TcpSource
 from axiscal.live.state import LiveState, result_columns
@@ -90,14 +91,32 @@ def reader(port: int, seconds: float) -> None:
     print(received, flush=True)
 
 
-def run(kind: str, rate: float, seconds: float, *, dashboard: bool = False) -> dict:
+def normal_priority() -> None:
+    """In a child: drop the priority the loop's thread passed on (the sender and the browser are other programs)."""
+    os.sched_setscheduler(0, os.SCHED_OTHER, os.sched_param(0))
+    os.setpriority(os.PRIO_PROCESS, 0, 0)
+
+
+def run(kind: str, rate: float, seconds: float, *, dashboard: bool = False, raise_to_realtime: bool = True) -> dict:
+    priority = raise_priority() if raise_to_realtime else None  # as axiscal live does, before any thread starts
+    try:
+        return _run(kind, rate, seconds, dashboard=dashboard)
+    finally:
+        if priority is not None:
+            restore_priority(priority)
+
+
+def _run(kind: str, rate: float, seconds: float, *, dashboard: bool) -> dict:
     module = VirtualModule(seed=0)
     system = module.measurement_system()
     expected = int(rate * seconds)
     child = None
     if kind == "tcp":
         child = subprocess.Popen(
-            [sys.executable, __file__, "--sender", "--rate", str(rate), "--seconds", str(seconds)], stdout=subprocess.PIPE, text=True
+            [sys.executable, __file__, "--sender", "--rate", str(rate), "--seconds", str(seconds)],
+            stdout=subprocess.PIPE,
+            text=True,
+            preexec_fn=normal_priority,
         )
         port = int(child.stdout.readline())
         source = TcpSource("127.0.0.1", port, system.channels, backoff=Backoff(initial_s=0.01, maximum_s=0.1))
@@ -114,7 +133,10 @@ def run(kind: str, rate: float, seconds: float, *, dashboard: bool = False) -> d
 
             server = LiveServer(create_app(state, update_hz=10.0), port=0).start()
             client = subprocess.Popen(
-                [sys.executable, __file__, "--reader", str(server.port), "--seconds", str(seconds + 1.0)], stdout=subprocess.PIPE, text=True
+                [sys.executable, __file__, "--reader", str(server.port), "--seconds", str(seconds + 1.0)],
+                stdout=subprocess.PIPE,
+                text=True,
+                preexec_fn=normal_priority,
             )
         if child is not None:
             while len(source.read(0.05)) == 0 and source.status.connections == 0:
@@ -155,7 +177,7 @@ def run(kind: str, rate: float, seconds: float, *, dashboard: bool = False) -> d
 
 def busy_processes(count: int) -> list[subprocess.Popen]:
     """``count`` processes that each keep a core busy (``yes > /dev/null``), started at normal priority."""
-    return [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(count)]
+    return [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL, preexec_fn=normal_priority) for _ in range(count)]
 
 
 KINDS = {"tcp": ("tcp", False), "dashboard": ("tcp", True), "sim": ("sim", False)}
@@ -168,6 +190,7 @@ def main() -> None:
     parser.add_argument("--runs", type=int, default=1, help="runs of each kind (the summary gives the worst)")
     parser.add_argument("--busy", type=int, default=0, help="processes keeping a core busy each during the runs")
     parser.add_argument("--only", default="tcp,dashboard,sim", help="kinds of run, comma-separated: tcp, dashboard, sim")
+    parser.add_argument("--normal-priority", action="store_true", help="run the loop at normal priority (as without the rights to raise it)")
     parser.add_argument("--sender", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--reader", type=int, help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -185,6 +208,12 @@ def main() -> None:
         f"live latency at {args.rate:.0f} Hz for {args.seconds:g} s per run, {args.runs} run(s) of each kind, "
         f"{args.busy} busy process(es) (delay: time stamp -> written to the record)"
     )
+    if args.normal_priority:
+        print("priority: normal (--normal-priority)")
+    else:
+        priority = raise_priority()
+        restore_priority(priority)
+        print(priority.text)
     print(
         f"{'run':<18} {'sent':>7} {'recorded':>8} {'lost':>5} {'t_s exact':>9} {'batches':>7} {'p50 ms':>7} {'p99 ms':>7} "
         f"{'p99.9 ms':>8} {'max ms':>7}  load average"
@@ -196,7 +225,7 @@ def main() -> None:
             hogs = busy_processes(args.busy)
             try:
                 time.sleep(0.2 if hogs else 0.0)
-                r = run(kind, args.rate, args.seconds, dashboard=dashboard)
+                r = run(kind, args.rate, args.seconds, dashboard=dashboard, raise_to_realtime=not args.normal_priority)
             finally:
                 for hog in hogs:
                     hog.kill()

@@ -138,6 +138,8 @@ class Pipeline:
         self.batches = 0
         self._latency = np.empty(latency_capacity)
         self._latency_count = 0
+        #: the loop's scheduling priority in words (:mod:`axiscal.live.priority`), shown on the dashboard
+        self.priority = ""
 
     def process(self, batch: FrameBatch) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         """Process one batch.
@@ -258,6 +260,7 @@ class Pipeline:
             "record": None
             if self.recorder is None
             else {"path": str(self.recorder.path), "written": self.recorder.frames_written, "acknowledged": self.recorder.frames_acknowledged},
+            "priority": self.priority,
             "latency_ms": None if not len(delays) else {"p50": round(float(np.percentile(delays, 50)), 3), "p99": round(float(np.percentile(delays, 99)), 3)},
         }
 

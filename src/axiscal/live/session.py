@@ -22,6 +22,7 @@ from axiscal.io.arguments import check_count, check_number, check_path, is_real
 from axiscal.io.arguments import check_instance
 from axiscal.io.jsonio import sidecar_path
 from axiscal.live.pipeline import Pipeline, RunSummary, _check_run
+from axiscal.live.priority import Priority, raise_priority, restore_priority
 from axiscal.live.recorder import Recorder
 from axiscal.live.sources import MAX_RATE_HZ, open_source, parse_source, rtx_parts
 from axiscal.live.state import UPDATE_HZ_RANGE, LiveState, result_columns
@@ -200,6 +201,17 @@ class LiveSession:
         Address the dashboard listens on (default loopback; ``0.0.0.0`` exposes it to the network).
     allowed_hosts : sequence of str
         Host names the dashboard answers besides the loopback names (DNS-rebinding guard).
+    realtime : bool
+        Raise the calling thread's scheduling priority for the run (:mod:`axiscal.live.priority`:
+        real-time where the system allows it, else a lower nice value; :attr:`priority` says which
+        and why), so frames are recorded on time while other work keeps the cores busy. Threads
+        the session starts inherit it; :meth:`close` restores it. A replay without ``pace`` runs
+        as fast as it can and so is never raised.
+
+    Attributes
+    ----------
+    priority : Priority or None
+        What the run's thread was given (None when not raised).
 
     Raises
     ------
@@ -227,9 +239,10 @@ class LiveSession:
         force: bool = False,
         bind: str = "127.0.0.1",
         allowed_hosts: Sequence[str] = (),
+        realtime: bool = True,
     ):
         _check(rate_hz, duration_s, port, update_hz, load_kg, path, seed)
-        for name, flag in (("pace", pace), ("server", server), ("force", force)):
+        for name, flag in (("pace", pace), ("server", server), ("force", force), ("realtime", realtime)):
             check_instance(name, flag, bool)
         if isinstance(allowed_hosts, str) or not isinstance(allowed_hosts, (tuple, list, set, frozenset)):
             raise AxiscalError(f"allowed_hosts must be a sequence of host names, not {allowed_hosts!r}")
@@ -244,6 +257,8 @@ class LiveSession:
         self.state = LiveState(self.system)
         self.recorder: Recorder | None = None
         self.server = None
+        # before any thread starts (they inherit it); a replay as fast as possible is a batch job, never raised
+        self.priority: Priority | None = raise_priority() if realtime and (pace or kind in ("sim", "tcp", "serial")) else None
         try:
             if server:  # before the record: a port in use leaves no record file behind
                 from axiscal.live.server import LiveServer, create_app
@@ -268,6 +283,7 @@ class LiveSession:
                     overwrite=force,
                 )
             self.pipeline = Pipeline(self.system, self.source, recorder=self.recorder, state=self.state)
+            self.pipeline.priority = "" if self.priority is None else self.priority.text
         except BaseException:
             self.close()
             raise
@@ -328,6 +344,9 @@ class LiveSession:
         if self.recorder is not None:
             self.recorder.close()
         self.source.close()
+        if self.priority is not None:
+            restore_priority(self.priority)
+            self.priority = None
 
     def __enter__(self) -> "LiveSession":
         return self
