@@ -52,6 +52,12 @@ def test_summary_line_on_stdout(run_cli, tmp_path):
     assert re.search(r"^done .*frames \d+ .*faults 0", out)
 
 
+def test_the_priority_the_loop_got_is_said_on_stderr(run_cli):
+    status, out, err = run_cli("live", "--no-server", "--duration", "0.2", "--rate", "500")
+    assert status == 0
+    assert re.search(r"^priority: (real-time|nice -?\d+|normal)", err, re.M), err
+
+
 def test_a_record_replays_to_the_same_results(run_cli, recorded, tmp_path):
     again = tmp_path / "again.csv"
     status, out, err = run_cli("live", "--no-server", "--source", f"replay:{recorded}", "--no-pace", "--record", str(again))

@@ -92,6 +92,8 @@ def live(
     try:
         if session.url is not None:
             click.echo(f"dashboard: {session.url}", err=True)
+        if session.priority is not None:
+            click.echo(session.priority.text, err=True)
         if previous_term is not None:
             signal.signal(signal.SIGTERM, lambda *_: stop.set())
         on_terminal = sys.stderr.isatty()
