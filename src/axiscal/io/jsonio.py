@@ -118,9 +118,13 @@ def read_json(path: str | Path) -> Any:
     """
     from axiscal.io.tabular import read_text
 
+    from axiscal.io.schema import check_nesting, nesting_error
+
     text = read_text(path)
     try:
-        return json.loads(text)
+        return check_nesting(json.loads(text), text, path=path)
+    except RecursionError:  # json parses nested arrays and objects recursively
+        raise nesting_error(text, path=path) from None
     except json.JSONDecodeError as exc:
         raise AxiscalError(f"malformed JSON: {exc.msg}", path=path, line=exc.lineno) from None
 

@@ -16,7 +16,11 @@ from typing import Any
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import is_real
 
-__all__ = ["TomlLines", "finite_number", "confined_path"]
+__all__ = ["TomlLines", "finite_number", "confined_path", "MAX_NESTING", "nesting_error", "check_nesting", "check_key_depth"]
+
+#: how deep tables, arrays and dotted keys may nest in a file read by hand-written formats (the
+#: deepest format nests a few levels; deeper than this, readers and validators would recurse without end)
+MAX_NESTING = 50
 
 
 class TomlLines:
@@ -135,3 +139,107 @@ def confined_path(base: str | Path, name: str) -> Path:
     if not resolved.is_relative_to(base):
         raise AxiscalError(f"'{name}' leaves the folder of the file that names it ({base})")
     return resolved
+
+
+def _deep_line(text: str) -> int | None:
+    """The first line whose arrays, inline tables and dotted key alone nest deeper than :data:`MAX_NESTING`, else None."""
+    depth = 0
+    for number, line in enumerate(re.split(r"\r\n|\r|\n", text), start=1):
+        key = line.split("=", 1)[0] if "=" in line else line if line.lstrip().startswith("[") and depth == 0 else ""
+        dots = key.count(".")
+        if depth + dots > MAX_NESTING:
+            return number
+        for bracket in line.translate(_NOT_BRACKETS):
+            depth += (bracket in "[{") - (bracket in "]}")
+            if depth + dots > MAX_NESTING:
+                return number
+    return None
+
+
+_NOT_BRACKETS = {c: None for c in range(128) if chr(c) not in "[]{}"}
+
+
+def check_key_depth(text: str, *, path: str | Path | None = None) -> None:
+    """Refuse a TOML text with a dotted key or table name of more than :data:`MAX_NESTING` parts, before it is parsed.
+
+    Python's TOML parser takes time growing with the square of a dotted key's length (a 5,000-part
+    key: seconds), so such a key is refused by its text alone.
+
+    Parameters
+    ----------
+    text : str
+        The TOML text.
+    path : str or Path, optional, keyword-only
+        The file, named in the error.
+
+    Raises
+    ------
+    AxiscalError
+        Naming the line of the first such key.
+    """
+    for number, line in enumerate(re.split(r"\r\n|\r|\n", text), start=1):
+        key = line.split("=", 1)[0]
+        if key.count(".") <= MAX_NESTING:
+            continue
+        key = _QUOTED.sub("q", key).strip()
+        if ("=" in line or key.startswith("[")) and _DOTTED.fullmatch(key.strip("[] \t")) and key.count(".") > MAX_NESTING:
+            raise AxiscalError(f"nested more than {MAX_NESTING} levels deep (arrays, tables or dotted keys inside each"
+                               " other)", path=path, line=number)
+
+
+_QUOTED = re.compile(r"\"(?:[^\"\\]|\\.)*\"|'[^']*'")
+#: a dotted key: bare or quoted parts (quotes replaced by ``q``) joined by dots (prose with dot leaders is not one)
+_DOTTED = re.compile(r"[A-Za-z0-9_\-]+(?:[ \t]*\.[ \t]*[A-Za-z0-9_\-]+)*")
+
+
+def nesting_error(text: str, *, path: str | Path | None = None) -> AxiscalError:
+    """The error for a text nested deeper than :data:`MAX_NESTING`, naming the line where it goes too deep (when found).
+
+    Parameters
+    ----------
+    text : str
+        The file's text.
+    path : str or Path, optional, keyword-only
+        The file, named in the error.
+
+    Returns
+    -------
+    AxiscalError
+    """
+    return AxiscalError(f"nested more than {MAX_NESTING} levels deep (arrays, tables or dotted keys inside each other)",
+                        path=path, line=_deep_line(text))
+
+
+def check_nesting(data: Any, text: str, *, path: str | Path | None = None) -> Any:
+    """``data`` (parsed TOML or JSON) when its tables and arrays nest at most :data:`MAX_NESTING` deep.
+
+    Parameters
+    ----------
+    data : object
+        The parsed file: dicts, lists and plain values.
+    text : str
+        The file's text (to find the line of an error).
+    path : str or Path, optional, keyword-only
+        The file, named in the error.
+
+    Returns
+    -------
+    object
+        ``data`` itself.
+
+    Raises
+    ------
+    AxiscalError
+        For deeper nesting (a 5,000-deep dotted key parses, but every reader after it would
+        recurse without end), naming the line where it goes too deep.
+    """
+    pending = [(data, 0)]
+    while pending:
+        value, depth = pending.pop()
+        items = value.values() if isinstance(value, dict) else value if isinstance(value, list) else ()
+        for item in items:
+            if isinstance(item, (dict, list)):
+                if depth + 1 > MAX_NESTING:
+                    raise nesting_error(text, path=path)
+                pending.append((item, depth + 1))
+    return data
