@@ -86,9 +86,14 @@ def parse_toml(text: str, *, path: str | Path | None = None) -> dict:
     """
     import tomllib
 
+    from axiscal.io.schema import check_key_depth, check_nesting, nesting_error
+
     check_instance("text", text, str, what="the TOML text (a str)")
+    check_key_depth(text, path=path)
     try:
-        return tomllib.loads(text)
+        return check_nesting(tomllib.loads(text), text, path=path)
+    except RecursionError:  # tomllib parses nested arrays and inline tables recursively
+        raise nesting_error(text, path=path) from None
     except tomllib.TOMLDecodeError as exc:
         # Python 3.11 has no lineno attribute: the line is only in the message
         found = re.search(r"\(at line (\d+)", str(exc))
