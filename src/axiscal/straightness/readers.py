@@ -19,7 +19,7 @@ from axiscal.io.arguments import check_array, check_instance, check_number, chec
 from axiscal.io.atomic import write_text
 from axiscal.io.jsonio import write_sidecar
 from axiscal.io.tabular import CsvTable, read_csv
-from axiscal.straightness.separation import ProbeReadings, uneven_step
+from axiscal.straightness.probes import ProbeReadings, uneven_step
 from axiscal.units import ANGLE_UNITS, MM, UM, length_factor
 
 __all__ = [

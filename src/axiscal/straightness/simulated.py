@@ -15,7 +15,7 @@ from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_instance, check_number, check_path
 from axiscal.io.tabular import write_csv
 from axiscal.straightness.readers import Profile, _text_and_metadata, _write_data, read_profile
-from axiscal.straightness.separation import ProbeReadings, simulate_readings
+from axiscal.straightness.probes import ProbeReadings, simulate_readings
 from axiscal.units import MM, UM
 
 __all__ = ["MAX_READINGS", "SimulatedReadings", "simulate_probe_readings"]
