@@ -34,6 +34,17 @@ def test_a_plan_that_goes_backwards_is_named_by_its_end():
     assert caught.value.fields == {"end_mm": "the end must lie beyond the start"}
 
 
+def test_a_dwell_the_stop_detector_cannot_use_is_refused_saying_the_least():
+    # 0.5 s (the capture's window, with no time to settle) ran the whole program, then found no stop at all
+    for dwell_s in (0.5, 0.69):
+        with pytest.raises(FormErrors) as caught:
+            checked("plan", PLAN | {"dwell_s": dwell_s})
+        assert set(caught.value.fields) == {"dwell_s"}
+        assert caught.value.fields["dwell_s"].startswith("the least dwell is 0.7 s: the stop detector needs the axis"
+                                                         " still for a whole 0.5 s window after it settles")
+    assert checked("plan", PLAN | {"dwell_s": 0.7}).dwell_s == 0.7
+
+
 JSON = hs.recursive(hs.none() | hs.booleans() | hs.floats(allow_nan=True) | hs.integers() | hs.text(max_size=5),
                     lambda inner: hs.lists(inner, max_size=3) | hs.dictionaries(hs.text(max_size=5), inner, max_size=3),
                     max_leaves=10)

@@ -96,3 +96,40 @@ def test_a_run_starts_once(plan_csv, tmp_path):
         run.start()
     run.abort()
     run.wait(10)
+
+
+def test_a_dwell_too_short_for_the_stop_detector_stops_the_run_at_its_first_target(tmp_path):
+    # 0.5 s: the capture's window with no time to settle; the program is 5 runs (about 80 s of the machine's clock)
+    write_plan(plan_test(0.0, 0.15, 5, runs=5, overrun_m=0.005, seed=1), tmp_path / "plan_x.csv", dwell_s=0.5)
+    output = tmp_path / "positioning_x.csv"
+    run = PlanRun(tmp_path / "plan_x.csv", output, speed=200.0, dwell_s=0.5).start()
+    assert run.wait(60) == "failed"
+    assert run.message.startswith("step 2 (target 0.000 mm, run 1, +): no stop over its 0.5 s dwell: the reading did not"
+                                  " hold within 1 µm for a whole 0.5 s window (the least dwell is 0.7 s)"), run.message
+    assert "no stop was taken before it" in run.message
+    last_s = run.samples_since(0)[0][-1]
+    assert last_s < 5.0 < 70.0 < run._end_s  # stopped when it happened, not at the program's end
+    assert run.snapshot()["sim_time_s"] < 5.0  # and the page shows the machine's clock stopped there
+    assert not run.snapshot()["resumable"] and not partial_path(output).exists() and not output.exists()
+
+
+def test_a_step_that_cannot_be_taken_stops_the_run_there_and_resume_completes_it(plan_csv, tmp_path):
+    whole = PlanRun(plan_csv, tmp_path / "whole" / "positioning_x.csv", speed=SPEED).start()
+    assert whole.wait(30) == "done"
+    output = tmp_path / "positioning_x.csv"
+    run = PlanRun(plan_csv, output, speed=SPEED)
+    # the machine rings through its whole dwell at the 4th target (5 um at 30 Hz): that stop never holds still
+    begin, leave = run._dwells[3, 0], run._dwells[3, 1]
+    t = run.source._t
+    during = (t >= begin) & (t <= leave)
+    run.source._values[during, 0] += 0.005 * np.sin(2 * np.pi * 30.0 * t[during])
+    assert run.start().wait(30) == "failed"
+    assert run.message == ("step 5 (target 120.912 mm, run 1, +): no stop over its 1 s dwell: the reading did not hold"
+                           " within 1 µm for a whole 0.5 s window (the machine did not settle: check the set-up, or"
+                           " lengthen the dwell); the 3 stops taken before it are kept: resume to go on")
+    assert run.samples_since(0)[0][-1] < run._dwells[4, 1]  # before the next target's dwell was over
+    assert run.snapshot()["resumable"] and len(read_csv(partial_path(output)).numeric("step")) == 3
+    again = PlanRun(plan_csv, output, speed=SPEED, resume=True)  # the ringing has stopped
+    assert again.start().wait(30) == "done", again.message
+    assert [s["step"] for s in again.stops] == [s["step"] for s in whole.stops]
+    assert np.allclose([s["deviation_um"] for s in again.stops], [s["deviation_um"] for s in whole.stops], atol=0.05)

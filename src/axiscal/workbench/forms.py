@@ -12,6 +12,8 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
+from axiscal.capture.run import CaptureSettings
+from axiscal.capture.stops import SETTLE_S, least_dwell_s
 from axiscal.errors import AxiscalError
 
 __all__ = ["FORMS", "FormErrors", "checked"]
@@ -60,7 +62,11 @@ class VisitForm(_Form):
 
 
 class PlanForm(_Form):
-    """A positioning test's plan: travel in mm, dwell in s, the program's dialect."""
+    """A positioning test's plan: travel in mm, dwell in s, the program's dialect.
+
+    The dwell is at least what the stop detector can use (:func:`~axiscal.capture.stops.least_dwell_s`
+    of the capture's window): a shorter one would run the whole program and find no stop.
+    """
 
     axis: Literal["X"] = "X"
     start_mm: float = Field(ge=0.0, le=200.0)
@@ -76,6 +82,11 @@ class PlanForm(_Form):
     def _travel(self) -> "PlanForm":
         if self.end_mm <= self.start_mm:
             raise ValueError("end_mm: the end must lie beyond the start")
+        window_s = CaptureSettings().window_s
+        least = least_dwell_s(window_s)
+        if self.dwell_s < least:
+            raise ValueError(f"dwell_s: the least dwell is {least:g} s: the stop detector needs the axis still for a"
+                             f" whole {window_s:g} s window after it settles ({SETTLE_S:g} s allowed)")
         return self
 
 

@@ -9,7 +9,8 @@ machine's clock (``speed`` times faster when asked), and the capture is
 :func:`axiscal.capture.files.capture_to_file` fed by that stream: the stops are those its
 :class:`~axiscal.capture.stops.StopDetector` finds, each written to the partial file as it is
 taken, so a connection that breaks leaves every stop before it and :meth:`PlanRun` with
-``resume=True`` goes on from the next.
+``resume=True`` goes on from the next. A step whose stop does not come (the reading never held still
+over its dwell) ends the run when its dwell is over, not at the program's end, its stops kept alike.
 
 Instrument and controller specs are those of the controller-driven run (``sim``, ``umd:PORT``,
 ``sylvac:PORT``; ``sim``, ``linuxcnc:HOST``, ``grbl:PORT`` ...). With both ``sim`` the virtual
@@ -25,7 +26,7 @@ What the rest of the workbench uses, and all that another implementation has to 
 :class:`PlanRun` -- made with the plan, the output, the specs, the compensation text and its
 controller, ``resume``, ``speed``, ``dwell_s`` and ``seed``; then ``start``, ``pause``, ``resume``,
 ``abort``, ``wait``; ``state`` (``ready``, ``running``, ``paused``, ``done``, ``aborted``,
-``broken``, ``failed``) with ``message``; ``stops`` and ``total``; ``samples_since`` (the trace);
+``broken``, ``failed``) with ``message`` and ``resumable``; ``stops`` and ``total``; ``samples_since`` (the trace);
 ``snapshot`` (what the page shows); ``result`` (the capture's files).
 """
 
@@ -47,6 +48,7 @@ from axiscal.capture.recording import ENVIRONMENT_COLUMNS
 from axiscal.capture.run import CaptureProgress, CaptureSettings, StopReading
 from axiscal.capture.sources import plan_motions
 from axiscal.capture.steps import plan_steps
+from axiscal.capture.stops import least_dwell_s
 from axiscal.capture.virtual import simulate_motions
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_instance, check_number, check_path
@@ -185,11 +187,13 @@ class _SimLaser:
     """The virtual machine's laser streamed at its clock's pace times ``speed``; pausable, and cut on request."""
 
     def __init__(self, time_s: np.ndarray, values: np.ndarray, *, start_s: float, speed: float,
-                 tap: Callable[[np.ndarray, np.ndarray], None]):
+                 tap: Callable[[np.ndarray, np.ndarray], None], watch: Callable[[float], float] | None = None):
         self.channels = _CHANNELS
         self._t = time_s
         self._values = values
         self._next = int(np.searchsorted(time_s, start_s))
+        self._first = self._next
+        self._watch = watch
         self._speed = speed
         self._tap = tap
         self._sim_at_resume = float(time_s[self._next]) if self._next < len(time_s) else 0.0
@@ -219,6 +223,11 @@ class _SimLaser:
         if self.cut:
             self.status.state = "retrying"
             raise AxiscalError("the connection to the instrument was lost: the stops taken are kept; resume to go on")
+        # the watch raises when the clock of the samples taken in so far is past its deadline, else names the
+        # deadline: a batch ends at the first sample beyond it, so the step is judged there however late the read
+        deadline = math.inf
+        if self._watch is not None:
+            deadline = self._watch(float(self._t[self._next - 1]) if self._next > self._first else -math.inf)
         if self.stopped or self.finished:
             self.finished = True
             return FrameBatch(np.empty(0), np.empty((0, len(self.channels))), np.zeros(0, bool))
@@ -229,6 +238,8 @@ class _SimLaser:
             return FrameBatch(np.empty(0), np.empty((0, len(self.channels))), np.zeros(0, bool))
         now = self.sim_now()
         stop = int(np.searchsorted(self._t, now, side="right"))
+        if math.isfinite(deadline):
+            stop = min(stop, int(np.searchsorted(self._t, deadline, side="right")) + 1)
         if stop <= self._next:
             time.sleep(min(timeout_s, 0.005))
             return FrameBatch(np.empty(0), np.empty((0, len(self.channels))), np.zeros(0, bool))
@@ -321,7 +332,8 @@ class PlanRun:
         self._trace_t: list[np.ndarray] = []
         self._trace_x: list[np.ndarray] = []
         self._trace_n = 0
-        self.source = _SimLaser(rec.time_s, values, start_s=start_s, speed=speed, tap=self._tap)
+        self._dwell_s = dwell_s
+        self.source = _SimLaser(rec.time_s, values, start_s=start_s, speed=speed, tap=self._tap, watch=self._watch)
         self._end_s = float(rec.time_s[-1])
         self._resume = resume
         self.state = "ready"
@@ -419,6 +431,29 @@ class PlanRun:
     def _on_progress(self, progress: CaptureProgress) -> None:
         self.progress = progress
 
+    def _watch(self, now_s: float) -> float:
+        """The awaited step's deadline, seconds of the machine's clock; raises once ``now_s`` is past it.
+
+        The detector gives a stop a window after the axis has left it; the clock at ``now_s`` (every
+        sample up to it taken in) past the awaited step's dwell by two windows means the step cannot
+        be taken: the run ends there, not at the program's end, the stops taken before kept in the
+        partial file for a resume.
+        """
+        taken = len(self.stops)
+        if taken >= self.total:
+            return math.inf
+        deadline = float(self._dwells[taken, 1]) + 2.0 * self.settings.window_s
+        if now_s <= deadline:
+            return deadline
+        k = int(np.flatnonzero(np.isfinite(self.steps.target_m))[taken])
+        w = self.settings
+        kept = f"the {taken} stops taken before it are kept: resume to go on" if taken else "no stop was taken before it"
+        least = least_dwell_s(w.window_s)
+        why = (f"the least dwell is {least:g} s" if self._dwell_s < least else
+               "the machine did not settle: check the set-up, or lengthen the dwell")
+        raise AxiscalError(f"{self.steps.describe(k)}: no stop over its {self._dwell_s:g} s dwell: the reading did not hold"
+                           f" within {w.stability_m / UM:g} µm for a whole {w.window_s:g} s window ({why}); {kept}")
+
     def _run(self) -> None:
         try:
             self.result = capture_to_file(self.plan_csv, self.source, self.output, resume=self._resume,
@@ -432,6 +467,8 @@ class PlanRun:
         except Exception as exc:  # the thread must report, never die silently
             self.state = "failed"
             self.message = f"the run stopped: {exc}"
+        finally:
+            self.source.pause()  # the machine's clock stops where the run ended: the page shows it there
 
     # -- what the page shows ---------------------------------------------------------------------
     def snapshot(self) -> dict[str, Any]:
@@ -441,7 +478,8 @@ class PlanRun:
         -------
         dict
             ``state``, ``message``, ``taken``, ``total``, ``remaining_s``, ``reading_mm``,
-            ``position_mm``, ``target_mm``, ``step``, ``still``, ``stops``, ``lights``.
+            ``position_mm``, ``target_mm``, ``step``, ``still``, ``stops``, ``lights``, ``run_csv``,
+            ``resumable``.
         """
         p = self.progress
         sim_now = self.source.sim_now()
@@ -460,7 +498,13 @@ class PlanRun:
             "position_mm": position, "stops": self.stops,
             "lights": {"instrument": "lost" if lost else "ok", "controller": "ok"},
             "run_csv": str(self.output) if self.state == "done" else None,
+            "resumable": self.resumable,
         }
+
+    @property
+    def resumable(self) -> bool:
+        """Whether the run has ended short (broken, aborted, failed at a step) with stops in its partial file."""
+        return self.state in ("broken", "aborted", "failed") and partial_path(self.output).is_file()
 
 
 class DevicePlanRun(PlanRun):
@@ -590,4 +634,5 @@ class DevicePlanRun(PlanRun):
             "lights": {"instrument": "lost" if lost else "ok",
                        "controller": "lost" if getattr(self._device.status, "state", "") == "lost" else "ok"},
             "run_csv": str(self.output) if self.state == "done" else None,
+            "resumable": self.resumable,
         }

@@ -251,7 +251,8 @@ function showRun(run) {
   $("#pause").disabled = run.state !== "running";
   $("#resume").disabled = run.state !== "paused";
   $("#abort").disabled = !active;
-  $("#resume-broken").hidden = !(run.state === "broken" || run.state === "aborted");
+  // a run ended short (connection lost, aborted, a step that could not be taken) goes on from its partial file
+  $("#resume-broken").hidden = !run.resumable;
   if (run.state === "idle") return;
   lights(run.lights);
   $("#progress").textContent = `${run.taken} of ${run.total} stops`;
