@@ -24,6 +24,7 @@ from axiscal.dynamics.motion import (
     StopDynamics,
     _derivatives,
     _stop_dynamics,
+    _time_problem,
     _welch,
     _welch_pieces,
 )
@@ -194,6 +195,23 @@ def _label(stops: list[StopDynamics], steps: PlanSteps, tolerance_m: float) -> l
     return out
 
 
+def _unmatched(stops: list[StopDynamics], steps: PlanSteps, tolerance_m: float, plan: Any, source: str) -> AxiscalError:
+    """The refusal of a plan none of whose steps a stop is at: the nearest pair named."""
+    gaps = np.array([[abs(s.final_m - steps.move_to_m[j]) if steps.direction[j] == s.direction else np.inf
+                      for j in range(steps.step.size)] for s in stops])
+    if not np.any(np.isfinite(gaps)):
+        nearest = "no stop is in the direction of a step"
+    else:
+        i, j = np.unravel_index(int(np.argmin(gaps)), gaps.shape)
+        nearest = (f"the nearest, the stop at {stops[i].final_m / MM:.4f} mm, is {gaps[i, j] / MM:.4g} mm from step "
+                   f"{int(steps.step[j])} ({steps.move_to_m[j] / MM:.4f} mm, {steps.direction[j]})")
+    named = str(plan) if isinstance(plan, (str, Path)) else None
+    return AxiscalError(
+        f"the plan does not fit the recording {source}: none of its {len(stops)} stops is within "
+        f"{tolerance_m / MM:g} mm of a step's position in its direction; {nearest}. Is it the plan the program ran?",
+        path=named)
+
+
 def axis_dynamics(
     recording: Recording,
     plan: PositioningTestPlan | PlanSteps | str | Path | None = None,
@@ -218,8 +236,10 @@ def axis_dynamics(
     Raises
     ------
     AxiscalError
-        For a recording with a missing reading (NaN), a window the recording cannot hold, or a
-        plan :func:`axiscal.capture.steps.plan_steps` refuses.
+        For a recording with a missing reading (NaN), two samples at one time, a gap longer than the
+        differentiator's window, samples too sparse for an even grid (each naming the sample's line),
+        a window the recording cannot hold, a plan :func:`axiscal.capture.steps.plan_steps` refuses,
+        or a plan none of whose steps any stop of the recording is at.
 
     Examples
     --------
@@ -237,6 +257,14 @@ def axis_dynamics(
     if recording.time_s.size < 8:
         raise AxiscalError(f"{recording.time_s.size} samples: a recording for the dynamics needs at least 8",
                            path=recording.source)
+    if np.any(np.diff(recording.time_s) < 0):
+        k = int(np.flatnonzero(np.diff(recording.time_s) < 0)[0]) + 1
+        raise AxiscalError("the time goes back", path=recording.source, line=recording.line_of(k))
+    problem = _time_problem(recording.time_s, settings.window_s, settings.polyorder)
+    if problem is not None:
+        k, words = problem
+        raise AxiscalError(words if recording.locate is not None else f"sample {k}: {words}", path=recording.source,
+                           line=recording.line_of(k))
     try:
         d = _derivatives(recording.time_s, recording.reading_m, settings.window_s, settings.polyorder)
     except AxiscalError as exc:
@@ -270,6 +298,8 @@ def axis_dynamics(
         group_start = i + 1
     if steps is not None:
         stops = _label(stops, steps, settings.tolerance_m)
+        if stops and all(s.step is None for s in stops):
+            raise _unmatched(stops, steps, settings.tolerance_m, plan, recording.source)
     # the spectrum where the axis rests (its moves would hide its vibration), else of the whole recording
     pieces = [d.reading_m[a:b] for a, b in (np.searchsorted(d.time_s, [s.arrival_s, s.departure_s]) for s in stops) if b - a >= 8]
     spectrum = (_welch_pieces(pieces, step, settings.segment_s, "stops") if pieces
@@ -304,8 +334,13 @@ def dynamics_from_file(
     Raises
     ------
     AxiscalError
-        As :func:`read_recording` and :func:`axis_dynamics`.
+        As :func:`read_recording` and :func:`axis_dynamics`; a channel that is a sensor's column
+        (an air or material temperature, the pressure, the humidity), not a length.
     """
     if settings is not None:
         check_instance("settings", settings, DynamicsSettings)
-    return axis_dynamics(read_recording(path, unit=unit, channel=channel), plan, settings=settings)
+    recording = read_recording(path, unit=unit, channel=channel)
+    if channel is not None and channel in recording.channels:
+        raise AxiscalError(f"the channel {channel} is a sensor's column, not the laser's reading: give the column of the "
+                           "reading, a length", path=recording.source)
+    return axis_dynamics(recording, plan, settings=settings)

@@ -24,7 +24,10 @@ the axis moves and stops. From it:
   whole recording where there is no stop).
 
 Samples not evenly spaced (a live record's jitter) are first interpolated onto an even grid at the
-median interval; the result says so.
+median interval; the result says so. Two samples at one time, a gap longer than the
+differentiator's window (its derivatives there would be those of the straight line drawn across
+it) and a grid more than twice as long as the samples (most of it made up) are refused before
+anything is allocated.
 """
 
 from __future__ import annotations
@@ -228,6 +231,53 @@ def _bandwidth(window: int, polyorder: int, rate_hz: float) -> float:
     return float((f0 + (1 / math.sqrt(2) - g0) * (f1 - f0) / (g1 - g0)) * rate_hz)
 
 
+#: the even grid may hold at most this many times the samples recorded
+_GRID_LIMIT = 2
+
+
+def _window_samples(window_s: float, polyorder: int, step: float) -> int:
+    """The differentiator's window in samples: odd, at least ``polyorder + 2``."""
+    return max(int(round(window_s / step)) // 2 * 2 + 1, (polyorder + 2) // 2 * 2 + 1)
+
+
+def _time_problem(t: np.ndarray, window_s: float | None = None, polyorder: int = 3) -> tuple[int, str] | None:
+    """The first sample whose time the differentiator or the spectrum cannot use, and why; None when all are usable.
+
+    Parameters
+    ----------
+    t : ndarray, shape (n,), seconds
+        Sample times, not going back (at least 2).
+    window_s : float, optional
+        The differentiator's window: a gap longer than it is refused (no gap bound without it).
+    polyorder : int
+        Its degree.
+
+    Returns
+    -------
+    (int, str) or None
+        The index of the sample at fault and the problem, in words that name the times.
+    """
+    dt = np.diff(t)
+    same = np.flatnonzero(dt == 0)
+    if same.size:
+        k = int(same[0]) + 1
+        return k, f"the time {t[k]:g} s is given twice: two samples at one time"
+    step = float(np.median(dt))
+    if window_s is not None:
+        span = _window_samples(window_s, polyorder, step) * step
+        gap = np.flatnonzero(dt > span)
+        if gap.size:
+            k = int(gap[0]) + 1
+            return k, (f"the time jumps from {t[k - 1]:g} s to {t[k]:g} s: a gap of {dt[k - 1]:g} s, longer than the "
+                       f"differentiator's window ({span:g} s), would be differentiated as a straight line")
+    count = (t[-1] - t[0]) / step + 1
+    if count > _GRID_LIMIT * t.size:
+        k = int(np.argmax(dt)) + 1
+        return k, (f"the samples span {t[-1] - t[0]:g} s at {step:g} s apart ({count:.3g} samples of an even grid for "
+                   f"{t.size} recorded; the largest gap, {dt[k - 1]:g} s, ends here): most of it would be made up")
+    return None
+
+
 def _even(time_s: np.ndarray, reading_m: np.ndarray) -> tuple[np.ndarray, np.ndarray, float, bool]:
     dt = np.diff(time_s)
     step = float(np.median(dt))
@@ -261,7 +311,8 @@ def derivatives(time_s: Any, reading_m: Any, *, window_s: float = 0.02, polyorde
     Raises
     ------
     AxiscalError
-        For arrays of different lengths, times that go back, or a window longer than the recording.
+        For arrays of different lengths, times that go back, two samples at one time, a gap longer
+        than the window, samples too sparse for an even grid, or a window longer than the recording.
     """
     t = check_array("time_s", time_s, ndim=1, min_len=2, unit="s")
     x = check_array("reading_m", reading_m, ndim=1, unit="m")
@@ -271,6 +322,9 @@ def derivatives(time_s: Any, reading_m: Any, *, window_s: float = 0.02, polyorde
         raise AxiscalError("time_s must not go back")
     window_s = check_number("window_s", window_s, positive=True, unit="s")
     polyorder = check_count("polyorder", polyorder, minimum=3, maximum=7)
+    problem = _time_problem(t, window_s, polyorder)
+    if problem is not None:
+        raise AxiscalError(f"time_s[{problem[0]}]: {problem[1]}")
     return _derivatives(t, x, window_s, polyorder)
 
 
@@ -279,7 +333,7 @@ def _derivatives(t: np.ndarray, x: np.ndarray, window_s: float, polyorder: int) 
 
     t, x, step, resampled = _even(t, x)
     # an odd number of samples, at least polyorder + 2 (the window used is in the result, with its bandwidth)
-    window = max(int(round(window_s / step)) // 2 * 2 + 1, (polyorder + 2) // 2 * 2 + 1)
+    window = _window_samples(window_s, polyorder, step)
     if window > x.size:
         raise AxiscalError(f"window_s ({window_s:g} s) is longer than the recording ({x.size} samples)")
     out = [savgol_filter(x, window, polyorder, deriv=k, delta=step, mode="interp") for k in range(4)]
@@ -304,13 +358,19 @@ def welch_spectrum(time_s: Any, reading_m: Any, *, segment_s: float = 1.0) -> Sp
     Raises
     ------
     AxiscalError
-        For arrays of different lengths, fewer than 8 samples, or a segment that is not positive.
+        For arrays of different lengths, fewer than 8 samples, times that go back, two samples at
+        one time, samples too sparse for an even grid, or a segment that is not positive.
     """
     t = check_array("time_s", time_s, ndim=1, min_len=8, unit="s")
     x = check_array("reading_m", reading_m, ndim=1, unit="m")
     if x.size != t.size:
         raise AxiscalError(f"reading_m must hold one reading per time ({t.size}), not {x.size}")
+    if np.any(np.diff(t) < 0):
+        raise AxiscalError("time_s must not go back")
     segment_s = check_number("segment_s", segment_s, positive=True, unit="s")
+    problem = _time_problem(t)
+    if problem is not None:
+        raise AxiscalError(f"time_s[{problem[0]}]: {problem[1]}")
     t, x, step, _ = _even(t, x)
     return _welch(x, step, segment_s)
 
