@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import shutil
 from pathlib import Path
@@ -23,8 +25,30 @@ def campaign(tmp_path):
     return folder
 
 
-def test_report_writes_the_page_and_results(run_cli, campaign):
-    status, out, err = run_cli("report", campaign)
+@pytest.fixture(scope="module")
+def reported(tmp_path_factory):
+    """``axiscal report`` of a copy of the campaign, run once for the tests that read what it wrote:
+    (status, stdout, stderr, the campaign folder)."""
+    from axiscal.cli.main import main
+
+    folder = tmp_path_factory.mktemp("reported") / "campaign"
+    shutil.copytree(VMC850, folder)
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        status = main(["report", str(folder)])
+    return status, out.getvalue(), err.getvalue(), folder
+
+
+@pytest.fixture(scope="module")
+def figures(tmp_path_factory):
+    """Each test's figures as run_campaign gives them, run once for the tests that hold them against the commands."""
+    folder = tmp_path_factory.mktemp("figures") / "campaign"
+    shutil.copytree(VMC850, folder)
+    return {t.id: t.figures for t in run_campaign(folder).tests}
+
+
+def test_report_writes_the_page_and_results(reported):
+    status, out, err, campaign = reported
     assert status == 0, err
     folder = campaign / "report"
     assert (folder / "report.html").is_file() and (folder / "results.json").is_file()
@@ -44,18 +68,17 @@ def test_report_writes_the_page_and_results(run_cli, campaign):
     assert results["campaign"]["machine"]["name"] == "VMC 850"
 
 
-def test_positioning_figures_equal_the_positioning_command(run_cli, campaign):
-    results = run_campaign(campaign)
-    status, out, _ = run_cli("positioning", campaign / "positioning_x.csv", "--json")
+def test_positioning_figures_equal_the_positioning_command(run_cli, figures):
+    status, out, _ = run_cli("positioning", VMC850 / "positioning_x.csv", "--json")
     assert status == 0
     single = json.loads(out)
-    figures = results.tests[0].figures
+    figures = figures["positioning-X-1"]
     for key in ("A", "A_up", "A_down", "B", "B_mean", "E", "E_up", "E_down", "M", "R", "R_up", "R_down"):
         assert figures[key] == pytest.approx(single[key], rel=1e-12, abs=1e-12), key
 
 
-def test_straightness_and_squareness_equal_their_commands(run_cli, campaign):
-    results = {t.id: t.figures for t in run_campaign(campaign).tests}
+def test_straightness_and_squareness_equal_their_commands(run_cli, figures, campaign):
+    results = figures
     _, out, _ = run_cli("straightness", campaign / "straightness_x.csv", "--json")
     assert results["straightness-X-1"]["straightness_um"] == pytest.approx(json.loads(out)["straightness_um"], rel=1e-12)
     _, out, _ = run_cli("separate", campaign / "probes_x.csv", "--spacing-mm", "15", "-o", campaign / "sep.csv")
@@ -76,8 +99,9 @@ def test_a_bad_campaign_writes_nothing(run_cli, campaign):
     assert not (campaign / "report").exists()
 
 
-def test_a_failed_run_keeps_the_previous_report(run_cli, campaign, monkeypatch):
-    assert run_cli("report", campaign)[0] == 0
+def test_a_failed_run_keeps_the_previous_report(run_cli, campaign, reported, monkeypatch):
+    assert reported[0] == 0
+    shutil.copytree(reported[3] / "report", campaign / "report")  # the report this command wrote before
     before = (campaign / "report" / "results.json").read_text()
 
     import axiscal.report.writer as writer
@@ -92,9 +116,9 @@ def test_a_failed_run_keeps_the_previous_report(run_cli, campaign, monkeypatch):
     assert sorted(p.name for p in campaign.iterdir() if p.name.startswith(".")) == []
 
 
-def test_compare_shows_the_change(run_cli, campaign, tmp_path):
-    assert run_cli("report", campaign, "-o", tmp_path / "before")[0] == 0
-    status, _, err = run_cli("report", campaign, "--compare", tmp_path / "before" / "results.json")
+def test_compare_shows_the_change(run_cli, campaign, reported):
+    assert reported[0] == 0  # the same campaign reported before
+    status, _, err = run_cli("report", campaign, "--compare", reported[3] / "report" / "results.json")
     assert status == 0, err
     html = (campaign / "report" / "report.html").read_text()
     assert "Compared with" in html and "+0.000" in html
@@ -123,8 +147,8 @@ def test_typst_text_cannot_inject_markup():
     assert typst_string("a\nb") == '"a b"'
 
 
-def test_compensation_files_are_what_compensate_writes(run_cli, campaign):
-    status, out, _ = run_cli("report", campaign)
+def test_compensation_files_are_what_compensate_writes(run_cli, reported):
+    status, _, _, campaign = reported
     assert status == 0
     results = json.loads((campaign / "report" / "results.json").read_text())
     assert results["compensation"] == [
@@ -136,9 +160,9 @@ def test_compensation_files_are_what_compensate_writes(run_cli, campaign):
     assert (campaign / "report" / "compensation" / "X.comp").read_text() == table
 
 
-def test_ballbar_figures_equal_the_ballbar_command(run_cli, campaign):
-    results = {t.id: t.figures for t in run_campaign(campaign).tests}
-    status, out, _ = run_cli("ballbar", campaign / "ballbar_xy.csv", "--radius-mm", "100", "--plane", "XY",
+def test_ballbar_figures_equal_the_ballbar_command(run_cli, figures):
+    results = figures
+    status, out, _ = run_cli("ballbar", VMC850 / "ballbar_xy.csv", "--radius-mm", "100", "--plane", "XY",
                              "--feed-mm-min", "1000", "--json")
     assert status == 0
     single = json.loads(out)
