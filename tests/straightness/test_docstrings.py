@@ -9,11 +9,20 @@ import pytest
 
 MODULES = [
     "axiscal.straightness.files",
+    "axiscal.straightness.readers",
+    "axiscal.straightness.probes",
+    "axiscal.straightness.sequential",
+    "axiscal.straightness.frequency",
+    "axiscal.straightness.error_analysis",
     "axiscal.straightness.reference",
     "axiscal.straightness.report",
     "axiscal.straightness.separation",
     "axiscal.squareness.cmm",
+    "axiscal.squareness.cmm_squareness",
+    "axiscal.squareness.gauge_blocks",
     "axiscal.squareness.evaluation",
+    "axiscal.squareness.signs",
+    "axiscal.squareness.prism",
     "axiscal.squareness.pentaprism",
 ]
 

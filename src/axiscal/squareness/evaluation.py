@@ -7,14 +7,9 @@ by autocollimator and wedge (eq 22). Paper 004 (Li et al.): the prism's deviatio
 PSD set-up, r = a / L (eq 1). ISO 230-1 names and signs of the squareness terms: EC0Y (XY plane),
 EB0Z (XZ), EA0Z (YZ).
 
-Sign conventions (docs/squareness.md has the picture)
--------------------------------------------------------
-* ``"included-angle"`` (the default): squareness = included angle between the positive directions
-  of the two axes minus 90 degrees; positive when the axes open wider than a right angle (paper
-  002 eqs 1 and 21; paper 004's values read the same way, see :mod:`axiscal.squareness.cmm`).
-* ``"iso"``: the ISO 230-1 rotation of the second axis about the third axis by the right-hand rule:
-  ``EC0Y = +s`` (XY), ``EB0Z = -s`` (XZ), ``EA0Z = +s`` (YZ), with ``s`` the included-angle value.
-  The XZ sign flips because turning +Z about +Y moves it towards +X, closing the angle.
+The sign conventions (``"included-angle"``, the default, and ``"iso"``) are stated once in
+:mod:`axiscal.squareness.signs`; the prism's deviation by reversal and by wedge and the PSD's
+resolution are :mod:`axiscal.squareness.prism`. Their names are importable from here too.
 
 Runs
 ----
@@ -48,6 +43,15 @@ from axiscal.io.arguments import check_instance, check_number, check_path
 from axiscal.straightness.files import Profile, read_profile
 from axiscal.straightness.reference import ReferenceLine, reference_line
 from axiscal.straightness.report import render_report
+from axiscal.squareness.prism import ReversalResult, prism_deviation_from_wedge, prism_reversal, psd_angular_resolution
+from axiscal.squareness.signs import (
+    CONVENTIONS,
+    _plane,
+    included_angle_from_iso,
+    iso_from_included_angle,
+    iso_term,
+    squareness_name,
+)
 from axiscal.units import ARCSEC, UM
 
 __all__ = [
@@ -69,135 +73,10 @@ __all__ = [
     "squareness_from_files",
 ]
 
-#: plane -> (first axis, second axis, ISO 230-1 term, sign of the ISO term against the included-angle value)
-CONVENTIONS = ("included-angle", "iso")
 #: Beyond this the two "axes" are not two crossing axes (lines parallel or nearly so), rad.
 _MAX_SQUARENESS = math.pi / 4.0
 #: A pentaprism off 90 degrees by this much or more is not a pentaprism (a unit slip, most likely), rad.
 _MAX_PRISM_DEVIATION = math.pi / 180.0
-
-
-def _plane(plane: str) -> tuple[str, str, str, int]:
-    try:
-        return PLANES[plane.upper()]
-    except (KeyError, AttributeError):
-        raise AxiscalError(f"unknown plane '{plane}'; use one of {', '.join(PLANES)}") from None
-
-
-def iso_term(plane: str) -> str:
-    """ISO 230-1 name of the squareness of ``plane``: XY -> EC0Y, XZ -> EB0Z, YZ -> EA0Z.
-
-    Parameters
-    ----------
-    plane : {"XY", "XZ", "YZ"}
-        The plane (any case).
-
-    Returns
-    -------
-    str
-
-    Raises
-    ------
-    AxiscalError
-        An unknown plane.
-
-    Examples
-    --------
-    >>> iso_term("xz")
-    'EB0Z'
-    """
-    return _plane(plane)[2]
-
-
-def squareness_name(plane: str, convention: str) -> str:
-    """The name a squareness figure is shown under, saying its sign convention (docs/conventions.md).
-
-    One figure, one sign: the verdict table, the report's section, the plot and the text name the
-    judged squareness alike, so that its sign is read one way everywhere.
-
-    Parameters
-    ----------
-    plane : {"XY", "XZ", "YZ"}
-        The plane (any case).
-    convention : {"included-angle", "iso"}
-        ``"iso"``: the ISO 230-1 term (right-hand rule); ``"included-angle"``: the included angle
-        of the positive axis directions minus 90 degrees.
-
-    Returns
-    -------
-    str
-        ``"EB0Z (ISO 230-1)"`` or ``"XZ included angle - 90 deg"``.
-
-    Raises
-    ------
-    AxiscalError
-        An unknown plane or convention.
-
-    Examples
-    --------
-    >>> squareness_name("xz", "iso"), squareness_name("XY", "included-angle")
-    ('EB0Z (ISO 230-1)', 'XY included angle - 90 deg')
-    """
-    first, second, term, _ = _plane(plane)
-    if convention not in CONVENTIONS:
-        raise AxiscalError(f"convention must be one of {', '.join(CONVENTIONS)}, not {convention!r}")
-    return f"{term} (ISO 230-1)" if convention == "iso" else f"{first}{second} included angle - 90 deg"
-
-
-def iso_from_included_angle(squareness_rad: float, *, plane: str) -> float:
-    """ISO 230-1 squareness term from the included-angle value (included angle - 90 deg), rad.
-
-    ``EC0Y = s_XY``, ``EB0Z = -s_XZ``, ``EA0Z = s_YZ``.
-
-    Parameters
-    ----------
-    squareness_rad : float
-        The value, radians.
-    plane : {"XY", "XZ", "YZ"}, keyword-only
-
-    Returns
-    -------
-    float
-        Radians.
-
-    Raises
-    ------
-    AxiscalError
-        An unknown plane.
-
-    Examples
-    --------
-    >>> iso_from_included_angle(1e-5, plane="XZ")
-    -1e-05
-    """
-    return _plane(plane)[3] * check_number("squareness_rad", squareness_rad)
-
-
-def included_angle_from_iso(iso_value_rad: float, *, plane: str) -> float:
-    """Included angle minus 90 deg from the ISO 230-1 term of ``plane``, rad (the inverse).
-
-    Parameters
-    ----------
-    iso_value_rad : float
-        The value, radians.
-    plane : {"XY", "XZ", "YZ"}, keyword-only
-
-    Returns
-    -------
-    float
-        Radians.
-
-    Raises
-    ------
-    AxiscalError
-        An unknown plane.
-
-    Examples
-    --------
-    >>> included_angle_from_iso(1e-5, plane="XZ")
-    -1e-05
-    """
-    return _plane(plane)[3] * check_number("iso_value_rad", iso_value_rad)
 
 
 @dataclass(frozen=True)
@@ -379,126 +258,6 @@ def squareness(
         lines[0].slope, lines[1].slope, plane=plane, prism_deviation_rad=prism_deviation_rad, convention=convention
     )
     return replace(result, first_line=lines[0], second_line=lines[1])
-
-
-@dataclass(frozen=True)
-class ReversalResult:
-    """Paper 004's prism reversal (eqs 2-5).
-
-    Attributes
-    ----------
-    prism_deviation_rad : float
-        ``alpha_p = (alpha_1 + alpha_2) / 2``, the prism's deviation from 90 degrees, radians.
-    squareness_rad : float
-        ``alpha_0 = (alpha_2 - alpha_1) / 2``, the squareness of the two stages, radians.
-    """
-
-    prism_deviation_rad: float
-    squareness_rad: float
-
-
-def prism_reversal(alpha1_rad: float, alpha2_rad: float) -> ReversalResult:
-    """Prism deviation and squareness from a measurement and its reversal (paper 004 eqs 2-5).
-
-    With the laser on one side, ``alpha_1 = alpha_p - alpha_0`` (eq 2); with laser and prism turned
-    round, ``alpha_2 = alpha_0 + alpha_p`` (eq 3). The paper's eqs (4)-(5) are missing from the
-    text; solving 2-3 gives ``alpha_0 = (alpha_2 - alpha_1) / 2`` and ``alpha_p = (alpha_1 + alpha_2) / 2``.
-    Each ``alpha_i = delta_d_i / L_0`` (spot travel over stage travel).
-
-    Parameters
-    ----------
-    alpha1_rad, alpha2_rad : float
-        The angles of the first and the reversed measurement, radians.
-
-    Returns
-    -------
-    ReversalResult
-
-    Raises
-    ------
-    AxiscalError
-        An angle that is not finite.
-
-    Examples
-    --------
-    >>> result = prism_reversal(3e-5, 5e-5)
-    >>> round(result.prism_deviation_rad, 9), round(result.squareness_rad, 9)
-    (4e-05, 1e-05)
-    """
-    alpha1_rad = check_number("alpha1_rad", alpha1_rad, unit="radians")
-    alpha2_rad = check_number("alpha2_rad", alpha2_rad, unit="radians")
-    return ReversalResult(
-        prism_deviation_rad=(alpha1_rad + alpha2_rad) / 2.0, squareness_rad=(alpha2_rad - alpha1_rad) / 2.0
-    )
-
-
-def prism_deviation_from_wedge(alpha1_rad: float, alpha2_rad: float) -> float:
-    """Magnitude of a pentaprism's deviation from 90 deg by autocollimator and wedge (paper 002 eq 22).
-
-    ``|D| = |alpha_1 - alpha_2| / 4``: ``alpha_1`` is the angle between the autocollimator's beam
-    and the beam back from the wedge, ``alpha_2`` that between the autocollimator's transmitted
-    beam and the beam back from the mirror, radians. The method gives the size of the error only;
-    its sign must come from the set-up (or from a reversal, :func:`prism_reversal`).
-
-    Parameters
-    ----------
-    alpha1_rad, alpha2_rad : float
-        The two autocollimator angles, radians.
-
-    Returns
-    -------
-    float
-        ``|D|``, radians.
-
-    Raises
-    ------
-    AxiscalError
-        An angle that is not finite.
-
-    Examples
-    --------
-    >>> prism_deviation_from_wedge(5e-5, 1e-5)
-    1e-05
-    """
-    alpha1_rad = check_number("alpha1_rad", alpha1_rad, unit="radians")
-    alpha2_rad = check_number("alpha2_rad", alpha2_rad, unit="radians")
-    return abs(alpha1_rad - alpha2_rad) / 4.0
-
-
-def psd_angular_resolution(linear_resolution_m: float, travel_m: float) -> float:
-    """Angular resolution ``r = a / L`` of a PSD squareness set-up (paper 004 eq 1), radians.
-
-    Parameters
-    ----------
-    linear_resolution_m : float
-        Linear resolution ``a`` of the PSD, metres.
-    travel_m : float
-        Travel ``L`` of the stage over which the spot is followed, metres.
-
-    Notes
-    -----
-    0.3 um over 18 mm is 16.7 urad = 3.4 arcsec = 0.057 arcmin; the paper's "0.06 arcsec" is arc
-    minutes (a unit slip in the paper), and so is its "0.001 arcsec" for 1000 mm.
-
-    Returns
-    -------
-    float
-        ``a / L``, radians.
-
-    Raises
-    ------
-    AxiscalError
-        A resolution or travel that is not a positive length.
-
-    Examples
-    --------
-    >>> from axiscal.units import UM, MM
-    >>> round(psd_angular_resolution(0.3 * UM, 18 * MM), 7)
-    1.67e-05
-    """
-    linear_resolution_m = check_number("linear_resolution_m", linear_resolution_m, positive=True, unit="metres")
-    travel_m = check_number("travel_m", travel_m, positive=True, unit="metres")
-    return linear_resolution_m / travel_m
 
 
 #: reference lines :func:`squareness_from_files` fits to a run
