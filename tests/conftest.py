@@ -37,18 +37,25 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 ONE_AT_A_TIME = {
     "tests/devices/test_linuxcnc.py": "linuxcnc",  # one LinuxCNC per machine: rtapi_app, HAL's shared memory, TCP 5007
 }
+# Test files whose module-scoped fixtures are costly (a campaign reported, a server started): all their
+# tests go to one worker, so the fixture is built once and not once on each worker.
+ONE_WORKER = {
+    "tests/campaign/test_compare.py": "compare",  # two campaigns reported against their scaled copies: ~40 s
+    "tests/campaign/test_report.py": "report",  # the vmc850 campaign reported and run once
+}
 
 
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config, log):
-    """xdist's loadgroup scheduling, each group of :data:`ONE_AT_A_TIME` one unit of work."""
+    """xdist's loadgroup scheduling, each group of :data:`ONE_AT_A_TIME` and :data:`ONE_WORKER` one unit of work."""
     if config.getvalue("dist") != "loadgroup":
         return None
     from xdist.scheduler import LoadGroupScheduling
 
     class Scheduling(LoadGroupScheduling):
         def _split_scope(self, nodeid: str) -> str:
-            group = ONE_AT_A_TIME.get(nodeid.split("::", 1)[0])
+            path = nodeid.split("::", 1)[0]
+            group = ONE_AT_A_TIME.get(path) or ONE_WORKER.get(path)
             return f"@{group}" if group else super()._split_scope(nodeid)
 
     return Scheduling(config, log)
