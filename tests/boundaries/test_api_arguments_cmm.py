@@ -33,13 +33,16 @@ def _points():
 
 
 bad(C, "Mpe", "a_m", lambda: cm.Mpe(NAN), lambda: cm.Mpe(-1e-6), lambda: cm.Mpe("1"))
-bad(C, "Mpe", "k", lambda: cm.Mpe(1e-6, k=0.0), lambda: cm.Mpe(1e-6, k=INF))
+bad(C, "Mpe", "k", lambda: cm.Mpe(1e-6, k=0.0), lambda: cm.Mpe(1e-6, k=INF), lambda: cm.Mpe(1e-6, k=0.5))
+bad(C, "Mpe", "at most 0.01", lambda: cm.Mpe(1e300), lambda: cm.Mpe(1e-6, b_m=1.0))
 bad(C, "Mpe", "b_m", lambda: cm.Mpe(2e-6, b_m=1e-6), lambda: cm.Mpe(1e-6, b_m=NAN))
 bad(C, "Mpe.at", "length_m", lambda: MPE.at([NAN]), lambda: MPE.at("abc"))
 bad(C, "LengthMeasurements", "position", lambda: _m(position="12"), lambda: _m(position=("1", "")))
 bad(C, "LengthMeasurements", "nominal_m", lambda: _m(nominal_m=[0.1, -0.1]), lambda: _m(nominal_m=[0.1, NAN]))
 bad(C, "LengthMeasurements", "measured_m", lambda: _m(measured_m=[0.1]), lambda: _m(measured_m=None))
 bad(C, "LengthMeasurements", "repeat", lambda: _m(repeat=[1, 1.5]), lambda: _m(repeat=[0, 1]))
+bad(C, "LengthMeasurements", "times the nominal", lambda: _m(measured_m=[0.1, 100.0]), lambda: _m(nominal_m=[0.1, 1e-4]))
+bad(C, "length_acceptance", "hold no E150 value", lambda: cm.length_acceptance(_m(), mpe_150=MPE))
 bad(C, "LengthMeasurements", "ram_offset_m", lambda: _m(ram_offset_m=[0.0, -0.15]))
 bad(C, "LengthMeasurements", "at least one", lambda: _m(position=(), length=(), nominal_m=[], measured_m=[], repeat=[],
                                                        ram_offset_m=[]))
@@ -64,6 +67,9 @@ bad(C, "fit_sphere", "points_m", lambda: cm.fit_sphere(SIX[:3]), lambda: cm.fit_
     lambda: cm.fit_sphere([[NAN, 0, 0]] * 5), lambda: cm.fit_sphere("points"), lambda: cm.fit_sphere(SIX * 1e6))
 bad(C, "fit_sphere", "one plane", lambda: cm.fit_sphere(SIX[:4]))
 bad(C, "fit_sphere", "same point", lambda: cm.fit_sphere(np.zeros((5, 3))))
+bad(C, "fit_spread", "points_m", lambda: cm.fit_spread(SIX[:3], cm.fit_sphere(SIX)), lambda: cm.fit_spread([[NAN, 0, 0]] * 6,
+    cm.fit_sphere(SIX)))
+bad(C, "fit_spread", "fit", lambda: cm.fit_spread(SIX, None), lambda: cm.fit_spread(SIX, 0.01))
 bad(C, "SpherePoints", "stylus", lambda: cm.SpherePoints(SIX, ("1",) * 5), lambda: cm.SpherePoints(SIX, "111111"))
 bad(C, "SpherePoints", "points_m", lambda: cm.SpherePoints(SIX[:2], ("1",) * 2))
 bad(C, "read_sphere_points", "path", lambda: cm.read_sphere_points(3.5))
@@ -76,7 +82,12 @@ bad(C, "probing_test", "mpe_m", lambda: cm.probing_test(_points(), calibrated_di
     lambda: cm.probing_test(_points(), calibrated_diameter_m=0.02, mpe_m=[1e-6]))
 bad(C, "probing_test", "figure", lambda: cm.probing_test(_points(), calibrated_diameter_m=0.02, mpe_m={"pround": 1e-6}))
 bad(C, "probing_test", "several styli", lambda: cm.probing_test(_points(), calibrated_diameter_m=0.02, mpe_m={"ploc": 1e-6}))
-bad(C, "probing_test", "uncertainty_m", lambda: cm.probing_test(_points(), calibrated_diameter_m=0.02, uncertainty_m=-1.0))
+bad(C, "probing_test", "uncertainty_m", lambda: cm.probing_test(_points(), calibrated_diameter_m=0.02, uncertainty_m=-1.0),
+    lambda: cm.probing_test(_points(), calibrated_diameter_m=0.02, uncertainty_m=1e300))
+bad(C, "probing_test", "cover too little", lambda: cm.probing_test(
+    cm.SpherePoints(0.01 * np.c_[np.cos(np.arange(8.0)), np.sin(np.arange(8.0)), 1e-4 * np.cos(3 * np.arange(8.0))], ("1",) * 8),
+    calibrated_diameter_m=0.02))
+bad(C, "probing_test", "calibrated one", lambda: cm.probing_test(_points(), calibrated_diameter_m=2.0))
 bad(C, "probing_test", "decision rule", lambda: cm.probing_test(_points(), calibrated_diameter_m=0.02, rule=None))
 bad(C, "evaluate_probing", "calibrated_diameter_m", lambda: cm.evaluate_probing(SPHERE, calibrated_diameter_m="25"))
 bad(C, "evaluate_probing", "path", lambda: cm.evaluate_probing(None, calibrated_diameter_m=0.025))
