@@ -253,10 +253,12 @@ def test_bad_instrument_specs_are_one_line(spec, pattern):
 
 
 def test_umd_options_are_checked():
-    for options, pattern in ((InstrumentOptions(optics_multiplier=3), "optics multiplier"), (InstrumentOptions(channel="4"), "channel"),
-                             (InstrumentOptions(wavelength_m=1.0), "wavelength")):
+    # the options themselves when they are made (before a simulator is started on them), the channel when opened
+    for options, pattern in (({"optics_multiplier": 3}, "optics_multiplier"), ({"wavelength_m": 1.0}, "wavelength")):
         with pytest.raises(AxiscalError, match=pattern):
-            open_instrument("sim:umd", options, position=lambda t: 0.0)
+            InstrumentOptions(**options)
+    with pytest.raises(AxiscalError, match="channel"):
+        open_instrument("sim:umd", InstrumentOptions(channel="4"), position=lambda t: 0.0)
 
 
 def test_a_pty_closed_by_the_device_ends_the_source():

@@ -7,7 +7,9 @@ the move-done report). Where that window does not hold still (its peak to peak a
 the window slides on, sample by sample, until it does, for at most ``max(10 window, 5 s)`` more; then the
 run stops naming the step. A window that holds a fault of the instrument's stream (a sequence gap, a line
 that is no reading) refuses its step; a fault outside every window is reported and the run goes on.
-The deviation is ``(reading - offset) - target``, the air channels averaged over the same window: the
+The deviation is ``(reading - offset) - target``, the air channels averaged over the same window; a reading
+farther than the settings' tolerance from its target stops the run naming the step (as a capture refuses a
+stop elsewhere): it is not the axis at that target but the wrong unit, scale or offset. The
 result is a :class:`~axiscal.capture.run.Capture`, written to files exactly as ``axiscal capture`` writes it.
 
 Before the first move every position of the plan is checked against the controller's soft limits
@@ -27,9 +29,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from axiscal.capture.run import Capture, CaptureProgress, CaptureSettings, StopReading
-from axiscal.capture.steps import PlanSteps
+from axiscal.capture.steps import PlanSteps, _mm
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_instance, type_name
+from axiscal.io.gcode.writer import MAX_FEED_MM_MIN
 from axiscal.units import MM, UM
 
 __all__ = ["DriveSettings", "InstrumentReader", "planned_moves", "drive_plan"]
@@ -51,7 +54,7 @@ class DriveSettings:
     axis : str
         The axis moved (``X``).
     feed_m_per_s : float, m/s
-        Feed of every move (default 1000 mm/min).
+        Feed of every move (default 1000 mm/min; at most 100 000 mm/min).
     dwell_s : float, seconds
         Dwell after each move-done report (default 1 s); the value is the mean of its last window.
     """
@@ -63,8 +66,10 @@ class DriveSettings:
     def __post_init__(self) -> None:
         if not isinstance(self.axis, str) or len(self.axis.strip()) != 1 or not self.axis.strip().isalpha():
             raise AxiscalError(f"axis must be one axis letter (X, Y, Z ...), not {self.axis!r}")
-        if not (isinstance(self.feed_m_per_s, float) and math.isfinite(self.feed_m_per_s) and self.feed_m_per_s > 0):
-            raise AxiscalError(f"feed must be a positive speed, not {self.feed_m_per_s!r} m/s")
+        if not (isinstance(self.feed_m_per_s, float) and math.isfinite(self.feed_m_per_s)
+                and 0 < self.feed_m_per_s <= MAX_FEED_MM_MIN * MM / 60.0):
+            raise AxiscalError(f"feed must be a positive speed of at most {MAX_FEED_MM_MIN:.0f} mm/min (what a control's F word"
+                               f" holds), not {self.feed_m_per_s!r} m/s")
         if not (isinstance(self.dwell_s, float) and math.isfinite(self.dwell_s) and 0 < self.dwell_s <= 3600):
             raise AxiscalError(f"dwell must be a time between 0 and 3600 s, not {self.dwell_s!r}")
 
@@ -151,6 +156,24 @@ class InstrumentReader:
             if self.error is not None:
                 raise self.error
             return self.count > count
+
+    def wait_until(self, when_s: float, timeout_s: float) -> bool:
+        """Wait until a sample taken at ``when_s`` or later (the computer's monotonic clock) has arrived.
+
+        The instrument's time is put on the computer's clock by :attr:`clock_offset_s`; False at the
+        timeout or when the source ended first.
+        """
+        deadline = time.monotonic() + timeout_s
+        with self._arrived:
+            while True:
+                if self.error is not None:
+                    raise self.error
+                if self._t and self._t[-1].size and float(self._t[-1][-1]) + self.clock_offset_s >= when_s:
+                    return True
+                remaining = deadline - time.monotonic()
+                if remaining <= 0 or getattr(self.source, "finished", False):
+                    return False
+                self._arrived.wait(min(remaining, 0.1))
 
     def since(self, count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Time, reading (metres), environment and no-reading flags of the samples after the first ``count``."""
@@ -247,7 +270,8 @@ def drive_plan(
     AxiscalError
         One line naming the step for a move beyond the soft limits (before anything moves), a
         controller that is not ready, refuses a move or stops answering, a reading that does not hold
-        still, or a fault inside a window; the readings taken before are kept (``on_stop``).
+        still or is not within the tolerance of its target, or a fault inside a window; the readings
+        taken before are kept (``on_stop``).
     """
     check_instance("steps", steps, PlanSteps)
     _check_device("controller", controller, ("check_ready", "limits", "move_to", "stop"), "a controller")
@@ -299,6 +323,12 @@ def drive_plan(
                 ptp = float(np.ptp(xs)) if xs.size else math.inf
                 if xs.size >= 2 and ptp <= settings.stability_m:
                     mean = float(np.mean(xs))
+                    position = mean - settings.offset_m
+                    if not abs(position - float(steps.target_m[k])) <= settings.tolerance_m:
+                        raise AxiscalError(f"{steps.describe(k)}: the instrument reads {_mm(position, 4)} mm there (less"
+                                           f" offset_m {settings.offset_m / MM:g} mm), not within tolerance_m"
+                                           f" {settings.tolerance_m / MM:g} mm of the target: check the instrument's unit"
+                                           " and scale and the reading at the datum; the steps before are kept")
                     channels = {}
                     for j, name in enumerate(environment):
                         values = env[inside, j]

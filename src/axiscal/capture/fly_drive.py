@@ -2,7 +2,9 @@
 
 Each pass of the plan (every run, each way) is one move from the overrun before its first target to past
 its last, at the feed asked; meanwhile the instrument's reading (on its own clock) and the controller's
-position (asked as fast as it answers, on the computer's clock) are recorded. The instrument's clock is
+position (asked as fast as it answers, on the computer's clock) are recorded, from the axis standing before
+the first pass until the instrument's samples (late by the link and the computer's load) reach past the end of
+the last, so the recording covers every pass it evaluates. The instrument's clock is
 put on the computer's by the batch that arrived soonest after its last sample (its time of arrival less
 its last sample's time, the smallest over the run); what delay is left between the streams is estimated
 from the forward and backward passes and removed by :func:`axiscal.capture.on_the_fly.on_the_fly`, which
@@ -28,6 +30,11 @@ from axiscal.io.tabular import write_csv
 from axiscal.units import MM
 
 __all__ = ["pass_moves", "fly_plan", "FlyFiles"]
+
+#: the axis is recorded standing this long before the first pass and after the last, seconds
+_STILL_S = 0.2
+#: the longest the instrument's samples may lag behind the motion (a loaded computer, a slow link), seconds
+_LATE_S = 5.0
 
 
 def pass_moves(steps: PlanSteps) -> list[tuple[int, float]]:
@@ -163,17 +170,20 @@ def fly_plan(
     controller.check_ready(axis)
     t0 = time.monotonic()
     reader = InstrumentReader(source, environment=environment).start()
+    description = str(getattr(getattr(source, "status", None), "description", "the instrument"))
     try:
         controller.move_to(axis, moves[0][1], drive.feed_m_per_s)
         with _PositionRecorder(controller, axis, t0) as positions:
-            time.sleep(0.2)
+            # the passes begin once the instrument's samples cover the axis standing at the start
+            _cover(reader, time.monotonic() + _STILL_S, description, "the start of the first pass")
             for n, (_, x) in enumerate(moves[1:], start=1):
                 controller.move_to(axis, x, drive.feed_m_per_s)
                 if positions.error is not None:
                     raise AxiscalError(f"{controller.description} stopped answering its position: {positions.error}")
                 if progress is not None:
                     progress(n, len(moves) - 1)
-            time.sleep(0.2)
+            # the recording ends once the instrument's samples (late by the link and the load) reach past the motion
+            _cover(reader, time.monotonic() + _STILL_S, description, "the end of the last pass")
         if reader.error is not None:
             raise reader.error
     except KeyboardInterrupt:
@@ -194,6 +204,13 @@ def fly_plan(
     write_csv(recording_csv, _recording_columns(recording), fmt={"time_s": "{:.6f}", "reading_mm": "{:.7f}"})
     result, run_csv, sidecar = on_the_fly_to_file(steps, recording, output, window_s=window_s, offset_m=offset_m)
     return FlyFiles(result, run_csv, sidecar, recording_csv)
+
+
+def _cover(reader: InstrumentReader, when_s: float, description: str, what: str) -> None:
+    """Wait until the instrument's samples reach ``when_s`` (monotonic clock), else refuse naming ``what``."""
+    if not reader.wait_until(when_s, _STILL_S + _LATE_S):
+        raise AxiscalError(f"{description}'s samples did not reach {what} within {_LATE_S:g} s (a stream that stopped or"
+                           " fell behind): nothing was captured; run it again")
 
 
 def _recording_columns(recording: FlyRecording) -> dict[str, np.ndarray]:

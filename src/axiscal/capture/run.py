@@ -39,6 +39,14 @@ __all__ = [
     "capture_run",
 ]
 
+#: the bounds of a capture's settings: a stop holds within 1 mm, for at most an hour, within 100 mm of its target,
+#: and an instrument reads within 100 m of its datum
+MAX_STABILITY_M = 1e-3
+MAX_WINDOW_S = 3600.0
+MAX_TOLERANCE_M = 0.1
+MAX_OFFSET_M = 100.0
+
+
 @dataclass(frozen=True)
 class CaptureSettings:
     """How stops are found and matched (SI units).
@@ -46,13 +54,15 @@ class CaptureSettings:
     Attributes
     ----------
     stability_m : float, metres
-        Largest peak to peak of the reading over the window for a stop (default 1 um).
+        Largest peak to peak of the reading over the window for a stop (default 1 um; at most 1 mm).
     window_s : float, seconds
-        How long the reading must hold still; the value is the mean over the stop's last window (0.5 s).
+        How long the reading must hold still; the value is the mean over the stop's last window
+        (0.5 s; at most an hour).
     tolerance_m : float, metres
-        How far from the plan's target a stop may be (0.5 mm).
+        How far from the plan's target a reading may be (0.5 mm; at most 100 mm): a reading
+        farther off is not the axis at that target (the wrong unit, scale or offset).
     offset_m : float, metres
-        The reading at the datum, subtracted from every reading (0).
+        The reading at the datum, subtracted from every reading (0; within 100 m).
     """
 
     stability_m: float = 1e-6
@@ -61,10 +71,10 @@ class CaptureSettings:
     offset_m: float = 0.0
 
     def __post_init__(self) -> None:
-        check_number("stability_m", self.stability_m, positive=True, unit="m")
-        check_number("window_s", self.window_s, positive=True, unit="s")
-        check_number("tolerance_m", self.tolerance_m, positive=True, unit="m")
-        check_number("offset_m", self.offset_m, unit="m")
+        check_number("stability_m", self.stability_m, positive=True, high=MAX_STABILITY_M)
+        check_number("window_s", self.window_s, positive=True, high=MAX_WINDOW_S)
+        check_number("tolerance_m", self.tolerance_m, positive=True, high=MAX_TOLERANCE_M)
+        check_number("offset_m", self.offset_m, low=-MAX_OFFSET_M, high=MAX_OFFSET_M)
 
     def as_dict(self) -> dict[str, float]:
         """The settings in the units of the command line's flags."""

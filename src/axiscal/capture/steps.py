@@ -1,7 +1,9 @@
 """The plan's steps a capture walks, and which stop belongs to which step.
 
 A plan (:func:`axiscal.positioning.plan.plan_test`, or its cycle CSV as ``axiscal plan`` writes
-it: ``step, run, direction, target_mm, move_to_mm``) lists every commanded move in order. A step
+it: ``step, run, direction, target_mm, move_to_mm``) lists every commanded move in order; a
+row with a target is reached in its direction from the row before (a row that says otherwise
+is refused, naming it: it would be driven one way and labelled the other). A step
 with a target needs one stop there; an overrun step (no target) is passed over. The steps are
 walked in order, each stop of the axis taken in turn:
 
@@ -93,6 +95,24 @@ class PlanSteps:
         return f"step {int(self.step[k])} ({where}, run {int(self.run[k])}, {self.direction[k]})"
 
 
+def _contrary_direction(move_to: np.ndarray, target: np.ndarray, directions: np.ndarray) -> tuple[int, str] | None:
+    """The first step with a target whose direction is not the one the axis reaches it in (and that one), or None.
+
+    The axis reaches step k moving from step k - 1's position to its own: ``+`` upwards, ``-``
+    downwards. A step where the axis does not move keeps the direction of the move before it; the
+    first step's is not known (the axis stands wherever it stood). An overrun step's direction is
+    the side of the target it goes to (the pilgrim cycle's ``-`` overrun below the next target is
+    reached moving up): only the steps read are held to it.
+    """
+    came = None
+    for k in range(1, move_to.size):
+        if move_to[k] != move_to[k - 1]:
+            came = "+" if move_to[k] > move_to[k - 1] else "-"
+        if came is not None and np.isfinite(target[k]) and directions[k] != came:
+            return k, came
+    return None
+
+
 def plan_steps(plan: PositioningTestPlan | str | Path) -> PlanSteps:
     """The steps of a plan object or of a plan's cycle CSV (with its JSON sidecar's seed, if there is one).
 
@@ -108,8 +128,9 @@ def plan_steps(plan: PositioningTestPlan | str | Path) -> PlanSteps:
     Raises
     ------
     AxiscalError
-        Naming the file and line: a missing column, a direction that is not ``+``/``-``, step
-        numbers that do not increase, a target that is not where its move ends, or no target at all.
+        Naming the file and line: a missing column, a direction that is not ``+``/``-`` or is not
+        the one the axis reaches the step in (from the step before), step numbers that do not
+        increase, a target that is not where its move ends, or no target at all.
     """
     if isinstance(plan, PlanSteps):
         return plan
@@ -146,6 +167,12 @@ def plan_steps(plan: PositioningTestPlan | str | Path) -> PlanSteps:
                            path=table.path, line=table.line_of(int(off[0])))
     if not np.isfinite(target).any():
         raise AxiscalError("the plan has no step with a target: nothing to capture", path=table.path)
+    contrary = _contrary_direction(move_to, target, np.array(directions))
+    if contrary is not None:
+        k, came = contrary
+        raise AxiscalError(f"step {int(step[k])} (target {_mm(target[k], 3)} mm, run {int(run[k])}, {directions[k]}): the axis reaches it"
+                           f" {_APPROACH[came]}, from {_mm(move_to[k - 1], 3)} mm: its direction must be {came}",
+                           path=table.path, line=table.line_of(k))
     seed = None
     side = sidecar_path(plan)
     if side.is_file():

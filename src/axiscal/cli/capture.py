@@ -7,7 +7,7 @@ import math
 import click
 
 from axiscal.cli.choices import CONTROLLERS, DIALECT_NAMES, READING_UNITS
-from axiscal.cli.common import FINITE, echo_json, flags_named
+from axiscal.cli.common import FINITE, echo_json, finite, flags_named
 from axiscal.errors import AxiscalError
 from axiscal.units import MM, UM
 
@@ -72,24 +72,24 @@ def _dashboard(steps, source, port: int):
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="The positioning run CSV to write.")
 @click.option("--unit", type=click.Choice(READING_UNITS), default=None, help="Unit of the readings (a column name ending in _mm ... says it; an .rtx file needs it).")
 @click.option("--channel", default=None, help="The column or channel holding the laser reading [the only length column; reading_mm for a source].")
-@click.option("--stability-um", type=FINITE, default=None, help="Peak to peak of the reading over the window for a stop [1.0; a gauge: two counts of its resolution].")
-@click.option("--window-s", type=FINITE, default=0.5, show_default=True, help="How long the reading must hold still; the value is the mean over the stop's last window.")
-@click.option("--tolerance-mm", type=FINITE, default=0.5, show_default=True, help="How far from the plan's target a stop may be.")
-@click.option("--offset-mm", type=FINITE, default=0.0, show_default=True, help="The reading at the datum, when the laser was not zeroed there.")
+@click.option("--stability-um", type=finite(0.0, 1000.0, min_open=True), default=None, help="Peak to peak of the reading over the window for a stop [1.0; a gauge: two counts of its resolution].")
+@click.option("--window-s", type=finite(0.0, 3600.0, min_open=True), default=0.5, show_default=True, help="How long the reading must hold still; the value is the mean over the stop's last window.")
+@click.option("--tolerance-mm", type=finite(0.0, 100.0, min_open=True), default=0.5, show_default=True, help="How far from the plan's target a stop may be.")
+@click.option("--offset-mm", type=finite(-100_000.0, 100_000.0), default=0.0, show_default=True, help="The reading at the datum, when the laser was not zeroed there.")
 @click.option("--resume", is_flag=True, help="Continue the partial capture OUTPUT.partial with this recording or stream.")
 @click.option("--rate-hz", type=FINITE, default=1000.0, show_default=True, help="Sample rate of the sim source.")
-@click.option("--seed", type=int, default=0, show_default=True, help="Noise seed of the sim source.")
+@click.option("--seed", type=click.IntRange(0, 2**63 - 1), default=0, show_default=True, help="Noise seed of the sim source.")
 @click.option("--timeout-s", type=FINITE, default=None, help="Stop reading a live source after this many seconds.")
 @click.option("--dashboard", is_flag=True, help="With --source: show the plan, the target awaited and the stops taken on a live page.")
 @click.option("--port", type=int, default=8765, show_default=True, help="Port of the --dashboard page on 127.0.0.1 (0: any free port).")
 @click.option("--json", "as_json", is_flag=True, help="Print the stops taken as JSON.")
-@click.option("--wavelength-nm", type=FINITE, default=632.991372, show_default=True, help="µMD: the laser's vacuum wavelength.")
+@click.option("--wavelength-nm", type=finite(100.0, 20_000.0), default=632.991372, show_default=True, help="µMD: the laser's vacuum wavelength.")
 @click.option("--optics-multiplier", type=click.Choice(["1", "2", "4"]), default="1", show_default=True,
               help="µMD: 1 linear retroreflector, 2 plane mirror, 4 high-resolution plane mirror.")
 @click.option("--umd-version", type=click.Choice(["1", "2"]), default=None, help="µMD: 1 or 2 [told by the stream's firmware code].")
 @click.option("--material-temperature-code", type=click.Choice(["4"]), default=None,
               help="µMD: the LowSpeed code that carries a material temperature (4).")
-@click.option("--counts-per-mm", type=FINITE, default=None, help="TouchDRO: the scale's counts per millimetre.")
+@click.option("--counts-per-mm", type=finite(0.0, 1e6, min_open=True), default=None, help="TouchDRO: the scale's counts per millimetre.")
 def capture_command(plan_csv, recording, source_spec, output, unit, channel, stability_um, window_s, tolerance_mm, offset_mm,
                     resume, rate_hz, seed, timeout_s, dashboard, port, as_json, wavelength_nm, optics_multiplier, umd_version,
                     material_temperature_code, counts_per_mm):

@@ -6,7 +6,7 @@ import math
 
 import click
 
-from axiscal.cli.common import FINITE, echo_json, flags_named
+from axiscal.cli.common import echo_json, finite, flags_named
 from axiscal.errors import AxiscalError
 from axiscal.units import MM, UM
 
@@ -15,24 +15,34 @@ __all__ = ["run_command", "cycle_command", "instrument_options"]
 _FLAGS = {"stability_m": "--stability-um", "window_s": "--window-s", "offset_m": "--offset-mm", "dwell_s": "--dwell-s",
           "feed_m_per_s": "--feed-mm-min", "axis": "--axis", "wavelength_m": "--wavelength-nm", "rate_hz": "--rate-hz",
           "channel": "--channel", "optics_multiplier": "--optics-multiplier", "counts_per_mm": "--counts-per-mm",
-          "unit": "--unit", "umd_version": "--umd-version", "resume=True": "--resume", "tolerance_e_um": "--tolerance-e-um"}
+          "unit": "--unit", "umd_version": "--umd-version", "resume=True": "--resume", "tolerance_e_um": "--tolerance-e-um",
+          "tolerance_m": "--tolerance-mm", "seed": "--seed"}
+
+# the flags' bounds, in their own units (the library's are the same in SI)
+_FEED = finite(0.0, 100_000.0, min_open=True)
+_DWELL = finite(0.0, 3600.0, min_open=True)
+_WINDOW = finite(0.0, 3600.0, min_open=True)
+_STABILITY = finite(0.0, 1000.0, min_open=True)
+_OFFSET = finite(-100_000.0, 100_000.0)
+_TOLERANCE = finite(0.0, 100.0, min_open=True)
+_SEED = click.IntRange(0, 2**63 - 1)
 
 
 def instrument_options(function):
     """The instrument flags shared by ``run``, ``cycle`` (and the device sources of ``capture``)."""
     for option in reversed((
-        click.option("--wavelength-nm", type=FINITE, default=632.991372, show_default=True,
+        click.option("--wavelength-nm", type=finite(100.0, 20_000.0), default=632.991372, show_default=True,
                      help="µMD: the laser's vacuum wavelength."),
         click.option("--optics-multiplier", type=click.Choice(["1", "2", "4"]), default="1", show_default=True,
                      help="µMD: 1 linear retroreflector, 2 plane mirror, 4 high-resolution plane mirror."),
         click.option("--channel", default=None, help="µMD and Attocube: 1|2|3 [1]; TouchDRO: X|Y|Z|W [X]."),
-        click.option("--rate-hz", type=FINITE, default=None, help="µMD: sample rate when the stream does not say it (code 8)."),
+        click.option("--rate-hz", type=finite(0.0, 1e6, min_open=True), default=None, help="µMD: sample rate when the stream does not say it (code 8)."),
         click.option("--umd-version", type=click.Choice(["1", "2"]), default=None,
                      help="µMD: 1 (firmware up to v60) or 2 (2.x) [told by the stream's firmware code]."),
         click.option("--material-temperature-code", type=click.Choice(["4"]), default=None,
                      help="µMD: the LowSpeed code that carries a material temperature (4)."),
         click.option("--unit", type=click.Choice(["mm", "in"]), default="mm", show_default=True, help="Sylvac: the display unit."),
-        click.option("--counts-per-mm", type=FINITE, default=None, help="TouchDRO: the scale's counts per millimetre."),
+        click.option("--counts-per-mm", type=finite(0.0, 1e6, min_open=True), default=None, help="TouchDRO: the scale's counts per millimetre."),
     )):
         function = option(function)
     return function
@@ -100,26 +110,29 @@ def _progress_line(console):
               help="umd:PORT[@BAUD] | sylvac:PORT | mahr:PORT[@BAUD] | touchdro:PORT[@BAUD] | attocube:HOST[:PORT] | sim[:KIND]")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="The positioning run CSV to write (not needed with --dry-run).")
 @click.option("--axis", default="X", show_default=True, help="The axis driven (absolute moves of this axis only).")
-@click.option("--feed-mm-min", type=FINITE, default=1000.0, show_default=True, help="Feed of every move.")
-@click.option("--dwell-s", type=FINITE, default=1.0, show_default=True, help="Dwell after the controller reports the move done.")
-@click.option("--window-s", type=FINITE, default=0.5, show_default=True, help="The value is the mean over the last window of the dwell.")
-@click.option("--stability-um", type=FINITE, default=None, help="Peak to peak allowed over the window [1.0; a gauge: two counts].")
-@click.option("--offset-mm", type=FINITE, default=0.0, show_default=True, help="The reading at the datum, when it was not zeroed there.")
+@click.option("--feed-mm-min", type=_FEED, default=1000.0, show_default=True, help="Feed of every move.")
+@click.option("--dwell-s", type=_DWELL, default=1.0, show_default=True, help="Dwell after the controller reports the move done.")
+@click.option("--window-s", type=_WINDOW, default=0.5, show_default=True, help="The value is the mean over the last window of the dwell.")
+@click.option("--stability-um", type=_STABILITY, default=None, help="Peak to peak allowed over the window [1.0; a gauge: two counts].")
+@click.option("--offset-mm", type=_OFFSET, default=0.0, show_default=True, help="The reading at the datum, when it was not zeroed there.")
+@click.option("--tolerance-mm", type=_TOLERANCE, default=0.5, show_default=True,
+              help="How far from its target a reading may be: one farther off stops the run (the wrong unit, scale or offset).")
 @click.option("--ini", type=click.Path(dir_okay=False), default=None, help="LinuxCNC: the machine's INI file (its soft limits).")
 @click.option("--resume", is_flag=True, help="Continue OUTPUT.partial: drive to where the first missing step's approach begins, go on.")
 @click.option("--dry-run", is_flag=True, help="Print the moves and check them against the soft limits; move nothing.")
 @click.option("--on-the-fly", "on_the_fly", is_flag=True,
               help="Drive each pass through the targets without stopping; record the reading and the controller's position;"
                    " each target's reading where the axis passes it (OUTPUT.recording.csv holds both streams).")
-@click.option("--seed", type=int, default=0, show_default=True, help="Noise seed of a simulated instrument.")
+@click.option("--seed", type=_SEED, default=0, show_default=True, help="Noise seed of a simulated instrument.")
 @click.option("--json", "as_json", is_flag=True, help="Print the steps taken as JSON.")
 @instrument_options
-def run_command(plan_csv, controller_spec, source_spec, output, axis, feed_mm_min, dwell_s, window_s, stability_um, offset_mm, ini,
-                resume, dry_run, on_the_fly, seed, as_json, **instrument):
+def run_command(plan_csv, controller_spec, source_spec, output, axis, feed_mm_min, dwell_s, window_s, stability_um, offset_mm,
+                tolerance_mm, ini, resume, dry_run, on_the_fly, seed, as_json, **instrument):
     """Drive PLAN_CSV's steps on a controller and read the instrument at every target: the run `capture` writes.
 
     Each step is an absolute move of --axis; once the controller reports it done the reading is taken
-    as the mean over the last --window-s of --dwell-s (sliding on until it holds within --stability-um).
+    as the mean over the last --window-s of --dwell-s (sliding on until it holds within --stability-um);
+    a reading farther than --tolerance-mm from its target stops the run, as `capture` refuses a stop elsewhere.
     The axis must be homed (run never homes). Ctrl-C stops the machine and keeps OUTPUT.partial.
     """
     from axiscal.capture.connected import dry_run as plan_dry_run
@@ -134,9 +147,9 @@ def run_command(plan_csv, controller_spec, source_spec, output, axis, feed_mm_mi
     if output is None and not (dry_run and not resume):
         raise AxiscalError("give -o/--output: the run CSV to write (only a --dry-run without --resume does without)")
     if dry_run:
-        from axiscal.devices.controllers import open_controller
-
         from axiscal.capture.connected import sim_machine
+        from axiscal.devices.controller import move_words
+        from axiscal.devices.controllers import open_controller
 
         controller = open_controller(controller_spec, ini=ini, sim=lambda: sim_machine(axis=axis).controller())
         try:
@@ -155,7 +168,7 @@ def run_command(plan_csv, controller_spec, source_spec, output, axis, feed_mm_mi
                        "limits_mm": None if result.limits is None else [v / MM for v in result.limits]})
         else:
             for step, position, reading in result.moves:
-                click.echo(f"step {step}: G1 {drive.axis}{position / MM:.4f} F{feed_mm_min:g}" + ("  (reading)" if reading else ""))
+                click.echo(f"step {step}: G1 {move_words(drive.axis, position, drive.feed_m_per_s)}" + ("  (reading)" if reading else ""))
         limits = "not told by the controller" if result.limits is None else \
             f"{result.limits[0] / MM:g} .. {result.limits[1] / MM:g} mm"
         click.echo(f"axiscal: note: {len(result.moves)} moves within the soft limits ({limits}); nothing moved", err=True)
@@ -188,7 +201,7 @@ def run_command(plan_csv, controller_spec, source_spec, output, axis, feed_mm_mi
     try:
         with flags_named(_FLAGS):
             settings = CaptureSettings(stability_m=default_stability_m(source, None if stability_um is None else stability_um * UM),
-                                       window_s=window_s, offset_m=offset_mm * MM)
+                                       window_s=window_s, offset_m=offset_mm * MM, tolerance_m=tolerance_mm * MM)
         console = Console(stderr=True)
         live, show = _progress_line(console)
         notes: list[str] = []
@@ -224,14 +237,14 @@ def run_command(plan_csv, controller_spec, source_spec, output, axis, feed_mm_mi
 @click.option("--restart-command", default=None,
               help="A command that restarts the controller with the compensation loaded and homes it (else the cycle says what to do and waits).")
 @click.option("--axis", default="X", show_default=True)
-@click.option("--feed-mm-min", type=FINITE, default=1000.0, show_default=True)
-@click.option("--dwell-s", type=FINITE, default=1.0, show_default=True)
-@click.option("--window-s", type=FINITE, default=0.5, show_default=True)
-@click.option("--stability-um", type=FINITE, default=None)
-@click.option("--offset-mm", type=FINITE, default=0.0, show_default=True)
+@click.option("--feed-mm-min", type=_FEED, default=1000.0, show_default=True)
+@click.option("--dwell-s", type=_DWELL, default=1.0, show_default=True)
+@click.option("--window-s", type=_WINDOW, default=0.5, show_default=True)
+@click.option("--stability-um", type=_STABILITY, default=None)
+@click.option("--offset-mm", type=_OFFSET, default=0.0, show_default=True)
 @click.option("--ini", type=click.Path(dir_okay=False), default=None, help="LinuxCNC: the machine's INI file.")
-@click.option("--tolerance-e-um", type=FINITE, default=None, help="ISO 230-2's E tolerance both reports hold the runs against [none: not assessed].")
-@click.option("--seed", type=int, default=0, show_default=True)
+@click.option("--tolerance-e-um", type=finite(0.0, 1e6, min_open=True), default=None, help="ISO 230-2's E tolerance both reports hold the runs against [none: not assessed].")
+@click.option("--seed", type=_SEED, default=0, show_default=True)
 @click.option("--json", "as_json", is_flag=True, help="Print both verdicts and E, as found and as left, as JSON.")
 @instrument_options
 def cycle_command(plan_csv, controller_spec, source_spec, fmt, output_dir, restart_command, axis, feed_mm_min, dwell_s, window_s,

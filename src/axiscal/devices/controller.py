@@ -25,10 +25,44 @@ from dataclasses import dataclass
 
 from axiscal.errors import AxiscalError
 
-__all__ = ["SILENCE_S", "Controller", "ControllerStatus", "Heartbeat"]
+__all__ = ["SILENCE_S", "Controller", "ControllerStatus", "Heartbeat", "move_words"]
 
 #: longest silence of a controller before a run stops, seconds (the run has stopped within 2 s of its last answer)
 SILENCE_S = 1.5
+
+
+def move_words(axis: str, position_m: float, feed_m_per_s: float, *, places: int = 4, feed_places: int = 1) -> str:
+    """The words of an absolute move as a control reads them: ``X12.3456 F1000``, bounded, never an exponent.
+
+    Parameters
+    ----------
+    axis : str
+        The axis letter.
+    position_m : float, metres
+        Within +/-99999.999 mm (:data:`axiscal.io.gcode.writer.MAX_POSITION_MM`).
+    feed_m_per_s : float, m/s
+        At most 100 000 mm/min (:data:`axiscal.io.gcode.writer.MAX_FEED_MM_MIN`).
+    places, feed_places : int, keyword-only
+        Decimals of the position (mm) and of the feed (mm/min) the controller is sent.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    AxiscalError
+        For a position or a feed a control's word cannot hold (nothing is sent).
+
+    Examples
+    --------
+    >>> move_words("X", 0.0123456, 1000 / 60e3)
+    'X12.3456 F1000'
+    """
+    from axiscal.io.gcode.writer import feed_word, position_word
+
+    return (f"{axis}{position_word(f'the {axis} position in mm', position_m * 1e3, places)}"
+            f" F{feed_word(feed_m_per_s * 60e3, feed_places)}")
 
 
 @dataclass

@@ -16,7 +16,7 @@ from __future__ import annotations
 import re
 import time
 
-from axiscal.devices.controller import SILENCE_S, Controller
+from axiscal.devices.controller import SILENCE_S, Controller, move_words
 from axiscal.devices.lines import LineChannel
 from axiscal.errors import AxiscalError
 
@@ -210,8 +210,9 @@ class GrblController(Controller):
 
     def move_to(self, axis: str, position_m: float, feed_m_per_s: float) -> None:
         axis = axis.upper()
+        words = move_words(axis, position_m, feed_m_per_s)  # refused before anything is sent
         self.status.state = "moving"
-        self._command(f"G21 G90 G1 {axis}{position_m * 1e3:.4f} F{feed_m_per_s * 60e3:.1f}",
+        self._command(f"G21 G90 G1 {words}",
                       during=f"the move to {axis} {position_m * 1e3:.4f} mm")
         self._command("G4 P0.01", during=f"the move to {axis} {position_m * 1e3:.4f} mm")  # ok once the planner is empty
         self.status.state = "idle"

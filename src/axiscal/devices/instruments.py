@@ -21,8 +21,14 @@ from dataclasses import dataclass
 
 from axiscal.devices.links import SerialFraming, SerialLink, TcpLink, parse_port
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_number
 
 __all__ = ["INSTRUMENT_KINDS", "InstrumentOptions", "is_instrument_spec", "open_instrument", "default_stability_m"]
+
+#: the finest scale read: 1 nm a count
+MAX_COUNTS_PER_MM = 1e6
+#: a simulator's noise seed: a whole number NumPy's generator takes
+MAX_SEED = 2**63 - 1
 
 #: the instruments axiscal reads itself
 INSTRUMENT_KINDS = ("umd", "sylvac", "mahr", "touchdro", "attocube")
@@ -60,6 +66,18 @@ class InstrumentOptions:
     material_temperature_code: int | None = None
     unit: str = "mm"
     counts_per_mm: float | None = None
+
+    def __post_init__(self) -> None:
+        # checked here, before a simulator is started on them (a thread that would die on a zero wavelength)
+        check_number("wavelength_m", self.wavelength_m, low=100e-9, high=20e-6)
+        if self.optics_multiplier not in (1, 2, 4) or isinstance(self.optics_multiplier, bool):
+            raise AxiscalError(f"optics_multiplier must be 1, 2 or 4, not {self.optics_multiplier!r}")
+        if self.rate_hz is not None:
+            check_number("rate_hz", self.rate_hz, positive=True, high=1e6)
+        if self.unit not in ("mm", "in"):
+            raise AxiscalError(f"unit must be mm or in, not {self.unit!r}")
+        if self.counts_per_mm is not None:
+            check_number("counts_per_mm", self.counts_per_mm, positive=True, high=MAX_COUNTS_PER_MM, unit="counts per mm")
 
 
 def is_instrument_spec(spec: str) -> bool:
@@ -215,7 +233,7 @@ def open_instrument(spec: str, options: InstrumentOptions | None = None, *,
     position : callable, optional, keyword-only
         For ``sim:KIND``: metres along the axis at time t, seconds (the simulated machine).
     seed : int, keyword-only
-        Noise seed of a simulator.
+        Noise seed of a simulator (0 to 2**63 - 1).
     pace : bool, keyword-only
         A simulator follows the clock (default) or streams as fast as read.
 
@@ -234,6 +252,7 @@ def open_instrument(spec: str, options: InstrumentOptions | None = None, *,
     options = InstrumentOptions() if options is None else options
     if not isinstance(options, InstrumentOptions):
         raise AxiscalError(f"options must be InstrumentOptions, not {type(options).__name__}")
+    seed = check_count("seed", seed, minimum=0, maximum=MAX_SEED)
     if not isinstance(spec, str):
         raise AxiscalError(f"spec must be an instrument such as 'umd:/dev/ttyACM0', not {type(spec).__name__}")
     kind, sep, argument = spec.partition(":")

@@ -24,7 +24,7 @@ import socket
 import time
 import urllib.parse
 
-from axiscal.devices.controller import SILENCE_S, Controller, Heartbeat
+from axiscal.devices.controller import SILENCE_S, Controller, Heartbeat, move_words
 from axiscal.devices.links import close_now, recv_before
 from axiscal.errors import AxiscalError
 
@@ -114,7 +114,7 @@ class _ToolheadController(Controller):
 
     def move_to(self, axis: str, position_m: float, feed_m_per_s: float) -> None:
         axis = axis.upper()
-        script = f"G90\nG1 {axis}{position_m * 1e3:.4f} F{feed_m_per_s * 60e3:.1f}\nM400"
+        script = f"G90\nG1 {move_words(axis, position_m, feed_m_per_s)}\nM400"
         self.status.state = "moving"
         with Heartbeat(lambda: self.position(axis), lambda reason: self._abandon(), period_s=0.2) as beat:
             try:
@@ -185,18 +185,24 @@ class MoonrakerController(_ToolheadController):
     """
 
     def __init__(self, url: str):
-        parts = urllib.parse.urlsplit(url if "://" in url else f"http://{url}")
-        if parts.scheme not in ("http", "https") or not parts.hostname:
-            raise AxiscalError(f"moonraker:URL needs an http:// address, not {url!r}")
-        self.host, self.port = parts.hostname, parts.port or 7125
+        try:
+            parts = urllib.parse.urlsplit(url if "://" in url else f"http://{url}")
+            port = parts.port  # a port that is no number, or beyond 65535, raises here
+        except ValueError:
+            parts, port = None, None
+        host = parts.hostname if parts is not None else None
+        if parts is None or parts.scheme not in ("http", "https") or not host or port == 0 \
+                or any(not c.isprintable() or c.isspace() or c in "/\\?#@%" for c in host):
+            raise AxiscalError(f"moonraker:URL needs an http:// address (http://HOST[:PORT], port 1-65535), not {url!r}")
+        self.host, self.port = host, port or 7125
         self.https = parts.scheme == "https"
         self.description = f"Moonraker at {parts.scheme}://{self.host}:{self.port}"
         super().__init__()
         self._main_conn: http.client.HTTPConnection | None = None
         try:
             self._query(timeout_s=SILENCE_S)
-        except OSError as exc:
-            raise AxiscalError(f"cannot reach {self.description}: {exc.strerror or exc}") from None
+        except (OSError, ValueError) as exc:  # ValueError: an address http.client will not send (InvalidURL)
+            raise AxiscalError(f"cannot reach {self.description}: {getattr(exc, 'strerror', None) or exc}") from None
 
     def _connection(self, timeout_s: float | None) -> http.client.HTTPConnection:
         kind = http.client.HTTPSConnection if self.https else http.client.HTTPConnection

@@ -24,7 +24,7 @@ import threading
 import time
 from pathlib import Path
 
-from axiscal.devices.controller import SILENCE_S, Controller, Heartbeat
+from axiscal.devices.controller import SILENCE_S, Controller, Heartbeat, move_words
 from axiscal.devices.links import close_now, recv_before
 from axiscal.errors import AxiscalError
 
@@ -236,7 +236,7 @@ class LinuxcncController(Controller):
 
     def move_to(self, axis: str, position_m: float, feed_m_per_s: float) -> None:
         axis = axis.upper()
-        command = f"set mdi G21 G90 G1 {axis}{position_m * 1e3:.6f} F{feed_m_per_s * 60e3:.3f}"
+        command = f"set mdi G21 G90 G1 {move_words(axis, position_m, feed_m_per_s, places=6, feed_places=3)}"
         self.status.state = "moving"
 
         def fail(reason: str) -> None:

@@ -14,7 +14,7 @@ from __future__ import annotations
 import re
 import time
 
-from axiscal.devices.controller import SILENCE_S, Controller
+from axiscal.devices.controller import SILENCE_S, Controller, move_words
 from axiscal.devices.lines import LineChannel
 from axiscal.errors import AxiscalError
 
@@ -94,10 +94,11 @@ class MarlinController(Controller):
 
     def move_to(self, axis: str, position_m: float, feed_m_per_s: float) -> None:
         axis = axis.upper()
+        words = move_words(axis, position_m, feed_m_per_s)  # refused before anything is sent
         during = f"the move to {axis} {position_m * 1e3:.4f} mm"
         self.status.state = "moving"
         self._command("G90", during=during)
-        self._command(f"G1 {axis}{position_m * 1e3:.4f} F{feed_m_per_s * 60e3:.1f}", during=during)
+        self._command(f"G1 {words}", during=during)
         self._command("M400", during=during)
         self.status.state = "idle"
         self.status.position_m = position_m

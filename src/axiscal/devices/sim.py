@@ -15,7 +15,7 @@ import threading
 import time
 from collections.abc import Callable
 
-from axiscal.devices.controller import Controller
+from axiscal.devices.controller import Controller, move_words
 from axiscal.errors import AxiscalError
 
 __all__ = ["SimController"]
@@ -137,6 +137,7 @@ class SimController(Controller):
             return self._commanded_at(time.monotonic())[0]
 
     def move_to(self, axis: str, position_m: float, feed_m_per_s: float) -> None:
+        move_words(axis, position_m, feed_m_per_s)  # what a real controller would be sent: bounded alike
         low, high = self.travel_m
         if not low <= position_m <= high:
             raise AxiscalError(f"{self.description} refused the move to {axis} {position_m * 1e3:.4f} mm: beyond its soft"
