@@ -34,6 +34,25 @@ def given_options(**values: Any) -> dict[str, Any]:
             if ctx.get_parameter_source(name) == click.core.ParameterSource.COMMANDLINE}
 
 
+#: a flag's unit (its name's end), the library argument's (its name's end), the factor from the flag's to the
+#: argument's, and the flag's unit as a message says it
+_FLAG_UNITS = (
+    ("-mm-min", "_m_per_s", 1e-3 / 60.0, "mm/min"), ("-mm-s", "_m_s", 1e-3, "mm/s"), ("-um", "_m", 1e-6, "um"),
+    ("-mm", "_m", 1e-3, "mm"), ("-nm", "_m", 1e-9, "nm"), ("-ms", "_s", 1e-3, "ms"),
+)
+#: how a library message speaks of the argument's unit
+_SI_WORDS = r"(metres per second|metres|seconds|m/s|m|s)"
+
+
+def _in_flag_unit(rest: str, key: str, flag: str) -> str:
+    """``must be ... of metres, not 1e-06`` of ``key`` said in ``flag``'s unit: ``must be ... of um, not 1``."""
+    for flag_end, key_end, factor, words in _FLAG_UNITS:
+        if flag.endswith(flag_end) and key.endswith(key_end) and rest.startswith("must be "):
+            rest = re.sub(r"(?<![\w.])[-+]?\d+(\.\d*)?([eE][-+]?\d+)?(?![\w.])", lambda m: f"{float(m.group(0)) / factor:g}", rest)
+            return re.sub(rf"(?<![\w/]){_SI_WORDS}(?=,|$)", words, rest)
+    return rest
+
+
 @contextmanager
 def flags_named(flags: Mapping[str, str]):
     """Within the block, an AxiscalError that names a library argument names the command-line flag instead.
@@ -47,7 +66,7 @@ def flags_named(flags: Mapping[str, str]):
         yield
     except AxiscalError as exc:
         head, sep, rest = exc.message.partition(" ")
-        message = flags[head] + sep + rest if head in flags else exc.message
+        message = flags[head] + sep + _in_flag_unit(rest, head, flags[head]) if head in flags else exc.message
         for key in sorted((k for k in flags if not k.isalpha()), key=len, reverse=True):
             message = re.sub(rf"(?<![\w-]){re.escape(key)}(?![\w-])", lambda _, k=key: flags[k], message)
         if message != exc.message:
