@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import math
+import time
 import warnings
 
 import pytest
 
+from axiscal.errors import AxiscalError
 from axiscal.workbench import Workbench, create_workbench_app
 
 with warnings.catch_warnings():  # Starlette's notice that its test client will move to httpx2
@@ -42,3 +44,32 @@ def test_the_as_left_run_with_the_table_loaded(tmp_path, controller):
     assert answer.status_code == 200
     checks = {c["figure"]: c for c in answer.json()["tests"][0]["checks"]}
     assert checks["A"]["value"] is None and checks["E"]["value"] > 0  # NaN is sent as null
+
+
+def test_before_after_says_what_it_waits_for_until_the_as_left_run_has_ended(tmp_path):
+    bench = Workbench(tmp_path / "data", db=str(tmp_path / "h.sqlite"), speed=80.0)
+    bench.new_visit(VISIT)
+    bench.make_plan(PLAN)
+    bench.connect({"instrument": "sim", "controller": "sim"})
+    bench.start_run("as-found")
+    assert bench.run.wait(30) == "done"
+    with pytest.raises(AxiscalError, match=r"^Before / after waits for the as-left run: make the table first"):
+        bench.before_after()
+    bench.compensate()
+    with pytest.raises(AxiscalError, match=r"^Before / after waits for the as-left run: run as left with the table loaded"):
+        bench.before_after()
+    bench.speed = 2.0  # the as-left run takes some seconds: asked while it goes on
+    bench.start_run("as-left")
+    with pytest.raises(AxiscalError, match=r"^Before / after waits for the as-left run to end \(\d+ of 10 stops taken,"
+                                           r" (running|ready)\): it is shown as soon as the run has ended$"):
+        bench.before_after()
+    while not bench.run.stops:
+        time.sleep(0.02)
+    bench.run.abort()
+    assert bench.run.wait(30) == "aborted" and bench.run.resumable
+    with pytest.raises(AxiscalError, match=r"ended short \(\d+ of 10 stops, aborted\): resume it \(Run\)$"):
+        bench.before_after()
+    bench.speed = 80.0
+    bench.start_run("as-left", resume=True)
+    assert bench.run.wait(30) == "done"
+    assert len(bench.before_after()["changes"]) == 4

@@ -137,12 +137,19 @@ def test_a_whole_visit_on_the_virtual_machine(browser_page, workbench):
     page.wait_for_selector("#comp-download:not([hidden])")
     assert count(page, "#comp-plot polyline") == 4
     assert page.locator("#comp-text").text_content().strip()
+    bench.speed = 4.0  # slow enough (about 9 s) to ask for Before / after while the as-left run goes on
     page.click("#run-as-left")
     page.wait_for_selector("#run-phase:has-text('as-left')")
-    page.wait_for_selector("#run-state[data-state=done]", timeout=60_000)
+    page.wait_for_selector("#run-state[data-state=running]")
     page.get_by_role("button", name="7 Compensate").click()
     page.click("#before-after")
-    page.wait_for_selector("#changes tbody tr")
+    page.wait_for_selector("#ba-status[data-state=waiting]")
+    assert "waits for the as-left run to end" in page.locator("#ba-status").text_content()
+    assert count(page, "#changes tbody tr") == 0
+    bench.speed = SPEED
+    # as soon as the run has ended the table is filled, not asked for again
+    page.wait_for_selector("#ba-status[data-state=done]", timeout=60_000)
+    assert bench.run.state == "done" and bench.phase == "as-left"
     changes = page.locator("#changes tbody tr")
     assert changes.count() == 4
     before, after = (float(changes.first.locator("td").nth(i).text_content().split()[0]) for i in (2, 3))

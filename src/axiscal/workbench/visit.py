@@ -86,6 +86,9 @@ class Workbench:
         # the server's warm-up and the page's first request both read the history: the first reading
         # of a new SQLite file makes it, and two at once would find it half made ("database is locked")
         self._history_lock = threading.Lock()
+        # the page evaluates a run that has just ended (Results, Before / after) while a click may ask again:
+        # their plots are drawn one at a time (matplotlib's pyplot is not thread-safe)
+        self._plot_lock = threading.Lock()
 
     def check_history(self) -> None:
         """Open the history database as the page's first reading will: one line if it cannot be used.
@@ -159,7 +162,8 @@ class Workbench:
 
         with tempfile.TemporaryDirectory(prefix="axiscal-trend-") as folder:
             path = Path(folder) / "trend.svg"
-            figure_trend(label, figure, url=self.db, plot=path)
+            with self._plot_lock:
+                figure_trend(label, figure, url=self.db, plot=path)
             return path.read_text(encoding="utf-8")
 
     # -- 2. new visit ------------------------------------------------------------------------------
@@ -278,7 +282,8 @@ class Workbench:
         campaign = load_campaign(self._phase_folder(phase))
         out = []
         for spec in campaign.tests:
-            result = run_test(campaign, spec)
+            with self._plot_lock:
+                result = run_test(campaign, spec)
             out.append({
                 "id": result.id, "verdict": result.verdict, "method": result.method,
                 "checks": [{"figure": c.figure, "value": c.value, "U": c.U, "limit": c.limit, "unit": c.unit,
@@ -326,13 +331,40 @@ class Workbench:
         text = render_template("workbench/campaign.toml.j2", filters={"toml": _toml}, keep_trailing_newline=True, **form)
         write_text(folder / "as-left" / "campaign.toml", text)
 
+    def _as_left_run(self) -> Path:
+        """The as-left run's file, or what Before / after waits for, in one line."""
+        folder = self._visit_folder()
+        name = f"positioning_{(self.plan.axis if self.plan is not None else 'X').lower()}.csv"
+        run = self.run
+        if self.phase == "as-left" and run is not None and run.state in ("ready", "running", "paused"):
+            raise AxiscalError(f"Before / after waits for the as-left run to end ({len(run.stops)} of {run.total} stops"
+                               f" taken, {run.state}): it is shown as soon as the run has ended")
+        output = folder / "as-left" / name
+        if output.is_file():
+            return output
+        if self.phase == "as-left" and run is not None and run.state in ("broken", "aborted", "failed"):
+            raise AxiscalError(f"Before / after waits for the as-left run, which ended short ({len(run.stops)} of"
+                               f" {run.total} stops, {run.state}): resume it (Run)")
+        if self.compensation is None:
+            raise AxiscalError("Before / after waits for the as-left run: make the table first (Compensate), then run"
+                               " as left with it loaded")
+        raise AxiscalError("Before / after waits for the as-left run: run as left with the table loaded (Compensate)")
+
     def before_after(self) -> dict[str, Any]:
-        """The as-left campaign run against the as-found one: the overlays and the change of each figure."""
+        """The as-left campaign run against the as-found one: the overlays and the change of each figure.
+
+        Raises
+        ------
+        AxiscalError
+            Saying what it waits for: the as-left run going on, ended short, or not yet run.
+        """
         from axiscal.campaign import load_campaign, results_payload, run_campaign
 
         folder = self._visit_folder()
-        before = results_payload(run_campaign(load_campaign(folder)))
-        after = run_campaign(load_campaign(folder / "as-left"), compare=before)
+        self._as_left_run()
+        with self._plot_lock:
+            before = results_payload(run_campaign(load_campaign(folder)))
+            after = run_campaign(load_campaign(folder / "as-left"), compare=before)
         previous = {t["id"]: t["figures"] for t in before["tests"]}
         rows = []
         for test in after.tests:
@@ -350,11 +382,12 @@ class Workbench:
 
         folder = self._visit_folder()
         links = []
-        found = report_campaign(folder, pdf=pdf, history=True, db=self.db)
-        links += self._links(found, "as-found")
-        if (folder / "as-left" / "positioning_x.csv").is_file():
-            left = report_campaign(folder / "as-left", compare=found.results, pdf=pdf, history=True, db=self.db)
-            links += self._links(left, "as-left")
+        with self._plot_lock:
+            found = report_campaign(folder, pdf=pdf, history=True, db=self.db)
+            links += self._links(found, "as-found")
+            if (folder / "as-left" / "positioning_x.csv").is_file():
+                left = report_campaign(folder / "as-left", compare=found.results, pdf=pdf, history=True, db=self.db)
+                links += self._links(left, "as-left")
         return {"files": links, "verdict": found.results_data.verdict}
 
     def _links(self, files: Any, phase: str) -> list[dict[str, str]]:

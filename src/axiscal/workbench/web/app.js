@@ -239,8 +239,11 @@ $("#resume-broken").addEventListener("click", () => startRun($("#phase").value, 
 for (const action of ["pause", "resume", "abort"]) $("#" + action).addEventListener("click", () => call("POST", "/api/run/" + action).catch(() => {}));
 
 function showRun(run) {
-  // a test that has just ended is evaluated at once: its figures wait in Results
-  if (run.state === "done" && (view.runState === "running" || view.runState === "paused")) showResults(run.phase).catch(() => {});
+  // a test that has just ended is evaluated at once: its figures wait in Results (and, as left, in Before / after)
+  if (run.state === "done" && (view.runState === "running" || view.runState === "paused")) {
+    const evaluated = showResults(run.phase).catch(() => {});
+    if (run.phase === "as-left") evaluated.then(beforeAfter);
+  }
   view.runState = run.state;
   $("#run-state").textContent = run.state;
   $("#run-state").dataset.state = run.state;
@@ -329,17 +332,28 @@ $("#compensate").addEventListener("click", async () => {
   $("#run-as-left").disabled = false;
 });
 $("#run-as-left").addEventListener("click", () => { $("#phase").value = "as-left"; show("run"); startRun("as-left", false); });
-$("#before-after").addEventListener("click", async () => {
-  const data = await call("GET", "/api/before-after");
-  const body = $("#changes tbody"); body.replaceChildren();
-  for (const c of data.changes) {
-    const tr = body.insertRow();
-    const u = unit(c.unit);
-    for (const v of [c.test, c.figure, `${fmt(c.before, 2)} ${u}`, `${fmt(c.after, 2)} ${u}`, `${fmt(c.limit, 2)} ${u}`, c.result]) tr.insertCell().textContent = v;
-  }
-  const plots = $("#ba-plots"); plots.replaceChildren();
-  for (const p of data.plots) { const div = document.createElement("div"); div.className = "plot"; div.innerHTML = p.svg; plots.appendChild(div); }
-});
+// before / after: filled as soon as the as-left run has ended, or on request; while it is evaluated, or when it
+// cannot be yet, the line beside the table says what it waits for
+async function beforeAfter() {
+  const status = $("#ba-status"), button = $("#before-after");
+  status.textContent = "Evaluating the as-found and the as-left runs …"; status.dataset.state = "busy";
+  button.disabled = true;
+  try {
+    const data = await call("GET", "/api/before-after");
+    const body = $("#changes tbody"); body.replaceChildren();
+    for (const c of data.changes) {
+      const tr = body.insertRow();
+      const u = unit(c.unit);
+      for (const v of [c.test, c.figure, `${fmt(c.before, 2)} ${u}`, `${fmt(c.after, 2)} ${u}`, `${fmt(c.limit, 2)} ${u}`, c.result]) tr.insertCell().textContent = v;
+    }
+    const plots = $("#ba-plots"); plots.replaceChildren();
+    for (const p of data.plots) { const div = document.createElement("div"); div.className = "plot"; div.innerHTML = p.svg; plots.appendChild(div); }
+    status.textContent = `As found against as left: ${data.changes.length} figures.`; status.dataset.state = "done";
+  } catch (e) {
+    status.textContent = e.message; status.dataset.state = "waiting";
+  } finally { button.disabled = false; }
+}
+$("#before-after").addEventListener("click", beforeAfter);
 
 // ---- 8. finish ------------------------------------------------------------------------------------
 $("#finish").addEventListener("click", async () => {
