@@ -50,7 +50,11 @@ bad(C, "StepMatcher", "tolerance_m", lambda: ca.StepMatcher(STEPS, tolerance_m=0
 bad(C, "StepMatcher", "start", lambda: ca.StepMatcher(STEPS, tolerance_m=1e-3, offset_m=0.0, start=-1))
 bad(C, "CaptureSettings", "stability_m", lambda: ca.CaptureSettings(stability_m=0.0))
 bad(C, "CaptureSettings", "window_s", lambda: ca.CaptureSettings(window_s=NAN))
-bad(C, "CaptureSettings", "offset_m", lambda: ca.CaptureSettings(offset_m=INF), lambda: ca.CaptureSettings(offset_m="0"))
+bad(C, "CaptureSettings", "offset_m", lambda: ca.CaptureSettings(offset_m=INF), lambda: ca.CaptureSettings(offset_m="0"),
+    lambda: ca.CaptureSettings(offset_m=1e300))
+bad(C, "CaptureSettings", "window_s", lambda: ca.CaptureSettings(window_s=1e300))  # an OverflowError in the run's wait
+bad(C, "CaptureSettings", "stability_m", lambda: ca.CaptureSettings(stability_m=1e300))
+bad(C, "CaptureSettings", "tolerance_m", lambda: ca.CaptureSettings(tolerance_m=1e300), lambda: ca.CaptureSettings(tolerance_m=0.0))
 bad(C, "capture", "settings", lambda: ca.capture(PLAN, RECORDING, settings={"window_s": 0.5}))
 bad(C, "capture", "recording", lambda: ca.capture(PLAN, 5), lambda: ca.capture(PLAN, None))
 bad(C, "capture", "plan", lambda: ca.capture(None, RECORDING))
@@ -92,7 +96,8 @@ class _Source:
 
 SIM_CONTROLLER = ca.sim_machine().controller()
 bad(C, "DriveSettings", "axis", lambda: ca.DriveSettings(axis="XY"), lambda: ca.DriveSettings(axis=3))
-bad(C, "DriveSettings", "feed", lambda: ca.DriveSettings(feed_m_per_s=0.0), lambda: ca.DriveSettings(feed_m_per_s=NAN))
+bad(C, "DriveSettings", "feed", lambda: ca.DriveSettings(feed_m_per_s=0.0), lambda: ca.DriveSettings(feed_m_per_s=NAN),
+    lambda: ca.DriveSettings(feed_m_per_s=1e300), lambda: ca.DriveSettings(feed_m_per_s=1e6 / 60e3))
 bad(C, "DriveSettings", "dwell", lambda: ca.DriveSettings(dwell_s=-1.0), lambda: ca.DriveSettings(dwell_s=1e300))
 bad(C, "InstrumentReader", "source", lambda: ca.InstrumentReader(None), lambda: ca.InstrumentReader("umd:/dev/ttyACM0"))
 bad(C, "planned_moves", "steps", lambda: ca.planned_moves(None))
