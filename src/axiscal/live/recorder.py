@@ -38,6 +38,7 @@ from axiscal.io.arguments import check_mapping, check_number, check_path
 from axiscal.io.arguments import check_instance
 from axiscal.io.jsonio import read_json, sidecar_path, write_sidecar
 from axiscal.live.protocol import _checked_channels
+from axiscal.live.record_text import FIXED, GENERAL, INTEGER, format_rows
 from axiscal.measurement.faults import fault_legend
 from axiscal.measurement.offline import RECORD_KIND, numeric_columns, read_frames_table
 
@@ -96,6 +97,10 @@ class Recorder:
         self.columns = ("t_s",) + self.channels + ("fault",) + self.result_columns
         self.sync_interval_s = float(sync_interval_s)
         self._row_format = ",".join(["%.9f"] + ["%.15g"] * len(self.channels) + ["%d"] + ["%.9g"] * len(self.result_columns)) + "\n"
+        # the same columns for the compiled writer (live/record_text.py), compiled or loaded now, not on the first batch
+        self._kinds = np.array([FIXED] + [GENERAL] * len(self.channels) + [INTEGER] + [GENERAL] * len(self.result_columns), dtype=np.int64)
+        self._digits = np.array([9] + [15] * len(self.channels) + [0] + [9] * len(self.result_columns), dtype=np.int64)
+        format_rows(np.zeros((1, len(self._kinds))), self._kinds, self._digits)
         try:
             self._fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_APPEND | (os.O_TRUNC if overwrite else os.O_EXCL), 0o644)
         except FileExistsError:
@@ -149,9 +154,10 @@ class Recorder:
             return
         nan = np.full(n, np.nan)
         table = np.column_stack([t_s, values, fault] + [results.get(name, nan) for name in self.result_columns])
-        fmt = self._row_format
-        text = "".join([fmt % row for row in map(tuple, table.tolist())])
-        data = text.encode("ascii")
+        data = format_rows(table, self._kinds, self._digits)
+        if data is None:  # a time stamp or fault too large for the compiled writer: Python's formatting
+            fmt = self._row_format
+            data = "".join([fmt % row for row in map(tuple, table.tolist())]).encode("ascii")
         with self._lock:
             if self._closed.is_set():
                 raise AxiscalError("the record file is closed", path=self.path)
