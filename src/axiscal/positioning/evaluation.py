@@ -8,6 +8,10 @@ runs. See docs/positioning.md for every symbol, the sign convention and how the 
 
 Deviation convention (ISO 230-2): ``x_ij = P_ij - P_i``, actual position reached minus target.
 The API is in metres; files and JSON carry micrometres in their names.
+
+This module is the top of the positioning estimators: the run (:mod:`axiscal.positioning.run`), the
+statistics per target (:mod:`axiscal.positioning.statistics`) and VDI/DGQ 3441
+(:mod:`axiscal.positioning.vdi3441`) sit below it, and their names are importable from here.
 """
 
 from __future__ import annotations
@@ -17,8 +21,18 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_array, check_choice, check_instance
-from axiscal.units import MM, UM
+from axiscal.io.arguments import check_choice, check_instance
+from axiscal.positioning.run import TURN, PositioningRun, covers_circle, paper003_table4_run, require_finite
+from axiscal.positioning.statistics import (
+    LONG_AXIS_M,
+    NO_S_WARNING,
+    ONE_DIRECTION_WARNING,
+    TargetStatistics,
+    _readonly,
+    _warnings,
+    target_statistics,
+)
+from axiscal.positioning.vdi3441 import VDI_SYMBOLS, Vdi3441Result, vdi3441
 
 __all__ = [
     "ISO_EDITIONS",
@@ -43,161 +57,13 @@ __all__ = [
     "require_finite",
 ]
 
-#: one revolution, radians
-TURN = 2.0 * np.pi
-
-# largest magnitude of a target or deviation a run holds (metres or radians): beyond it a value
-# has no physical meaning and the figures would overflow
-_LIMIT = 1e6
 
 #: ISO 230-2 editions this module evaluates, and their coverage factor k
 ISO_EDITIONS: dict[str, int] = {"2014": 2, "2006": 2, "1997": 2, "1988": 3}
 
-#: travel above which ISO 230-2 tests with one run each way (no R, no A), metres
-LONG_AXIS_M = 2.0
 
 #: ISO 230-2 figures that need both directions: NaN (null, "n/a") for a unidirectional test
 BIDIRECTIONAL_SYMBOLS = ("A", "B", "B_mean", "E", "M", "R")
-
-ONE_DIRECTION_WARNING = (
-    "one-direction test ({direction} only): the reversal value B and the bidirectional figures A, E, M and R"
-    " do not apply (n/a)"
-)
-
-NO_S_WARNING = (
-    "only one run per direction: the standard uncertainty s cannot be estimated, "
-    "so s, the repeatabilities R and the accuracies A are not given (NaN / null)"
-)
-
-
-@dataclass(frozen=True)
-class PositioningRun:
-    """Deviations of a positioning test, checked and arranged per target.
-
-    A bidirectional test holds both arrays; a unidirectional test (ISO 230-2 figures for one
-    direction only) holds one of them and None for the other. A rotary axis (``rotary=True``)
-    holds its targets and deviations in radians, a linear axis in metres.
-
-    Attributes
-    ----------
-    targets : ndarray, shape (m,), metres (radians for a rotary axis)
-        Target positions P_i, strictly increasing.
-    deviations_up : ndarray, shape (m, n), metres (radians), or None
-        ``x_ij`` for the approach in the positive direction (run j = 0..n-1); None for a test in
-        the - direction only.
-    deviations_down : ndarray, shape (m, n), metres (radians), or None
-        ``x_ij`` for the approach in the negative direction; None for a test in the + direction only.
-    source : str
-        Where the data came from (a file name), for messages.
-    rotary : bool
-        True for a rotary axis: targets and deviations in radians.
-
-    Raises
-    ------
-    AxiscalError
-        Fewer than 2 targets, arrays of the wrong shape, unequal run counts per direction, no
-        direction at all, a non-finite value, or targets that do not strictly increase.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> PositioningRun(np.array([0.0, 0.1]), np.zeros((2, 5)), np.zeros((2, 5))).runs
-    5
-    >>> PositioningRun(np.array([0.0, 0.1]), np.zeros((2, 3)), None).directions
-    ('+',)
-    """
-
-    targets: np.ndarray
-    deviations_up: np.ndarray | None
-    deviations_down: np.ndarray | None
-    source: str = "<data>"
-    rotary: bool = False
-
-    def __post_init__(self) -> None:
-        check_instance("source", self.source, str)
-        check_instance("rotary", self.rotary, (bool, np.bool_))
-        targets = np.array(check_array("targets", self.targets, finite=False, unit=""), dtype=float)
-        if self.deviations_up is None and self.deviations_down is None:
-            raise AxiscalError(f"{self.source}: no deviations in either direction")
-        up = None if self.deviations_up is None else np.array(
-            check_array("deviations_up", self.deviations_up, finite=False, unit=""), dtype=float)
-        down = None if self.deviations_down is None else np.array(
-            check_array("deviations_down", self.deviations_down, finite=False, unit=""), dtype=float)
-        given = [a for a in (up, down) if a is not None]
-        if targets.ndim != 1 or targets.size < 2:
-            raise AxiscalError(f"{self.source}: at least 2 target positions are needed, got {targets.size}")
-        if any(a.ndim != 2 or a.shape[0] != targets.size for a in given):
-            shapes = " and ".join(str(a.shape) for a in given)
-            raise AxiscalError(
-                f"{self.source}: deviations must have shape (targets, runs) = ({targets.size}, n) for each direction,"
-                f" got {shapes}"
-            )
-        if up is not None and down is not None and up.shape[1] != down.shape[1]:
-            raise AxiscalError(
-                f"{self.source}: unequal run counts: {up.shape[1]} runs in + direction, {down.shape[1]} in - direction"
-            )
-        if given[0].shape[1] < 1:
-            raise AxiscalError(f"{self.source}: no runs")
-        if not (np.all(np.isfinite(targets)) and all(np.all(np.isfinite(a)) for a in given)):
-            raise AxiscalError(f"{self.source}: targets and deviations must be finite numbers (found NaN or infinity)")
-        for name, value in (("targets", targets), ("deviations_up", up), ("deviations_down", down)):
-            if value is not None and value.size and np.abs(value).max() > _LIMIT:
-                raise AxiscalError(
-                    f"{self.source}: {name} holds {np.abs(value).max():g}, beyond any physical value (more than {_LIMIT:g})"
-                )
-        if np.any(np.diff(targets) <= 0):
-            raise AxiscalError(f"{self.source}: target positions must be strictly increasing")
-        for name, value in (("targets", targets), ("deviations_up", up), ("deviations_down", down)):
-            if value is not None:
-                value.setflags(write=False)
-            object.__setattr__(self, name, value)
-
-    @property
-    def runs(self) -> int:
-        """Number of runs n in each direction."""
-        present = self.deviations_up if self.deviations_up is not None else self.deviations_down
-        return int(present.shape[1])
-
-    @property
-    def directions(self) -> tuple[str, ...]:
-        """The directions tested: ``("+", "-")``, ``("+",)`` or ``("-",)``."""
-        return tuple(d for d, a in (("+", self.deviations_up), ("-", self.deviations_down)) if a is not None)
-
-    @property
-    def bidirectional(self) -> bool:
-        """True when both directions were tested."""
-        return len(self.directions) == 2
-
-
-@dataclass(frozen=True)
-class TargetStatistics:
-    """Per-target estimators shared by every standard (ISO 230-2, 3.2-3.3), metres.
-
-    Attributes
-    ----------
-    targets : ndarray, shape (m,), metres
-        Target positions P_i.
-    mean_up, mean_down : ndarray, shape (m,), metres
-        Mean unidirectional positional deviations x̄_i↑, x̄_i↓.
-    s_up, s_down : ndarray, shape (m,), metres
-        Estimators of the unidirectional standard uncertainty s_i↑, s_i↓ (n - 1 in the
-        denominator); NaN when there is one run per direction.
-    mean : ndarray, shape (m,), metres
-        Mean bidirectional positional deviation x̄_i = (x̄_i↑ + x̄_i↓) / 2.
-    reversal : ndarray, shape (m,), metres
-        Reversal value B_i = x̄_i↑ - x̄_i↓.
-    runs : int
-        Number of runs n in each direction.
-    """
-
-    targets: np.ndarray
-    mean_up: np.ndarray
-    mean_down: np.ndarray
-    s_up: np.ndarray
-    s_down: np.ndarray
-    mean: np.ndarray
-    reversal: np.ndarray
-    runs: int
 
 
 @dataclass(frozen=True)
@@ -263,166 +129,6 @@ class Iso230Result:
 
 
 ISO_SYMBOLS = ("A", "A_up", "A_down", "B", "B_mean", "E", "E_up", "E_down", "M", "R", "R_up", "R_down", "S_up", "S_down")
-VDI_SYMBOLS = ("P", "Pa", "Ps_max", "Ps_mean", "U_max", "U_mean")
-
-
-@dataclass(frozen=True)
-class Vdi3441Result:
-    """VDI/DGQ 3441 figures of one axis (metres) and the per-target values they come from.
-
-    Per target (shape (m,)): reversal span ``U_j = |mean_up - mean_down|``, mean standard
-    deviation ``s_mean_j = (s_up + s_down) / 2`` and positional scatter ``Ps_j = 6 s_mean_j``.
-    Axis: ``Pa`` = range of the bidirectional means, ``P`` = max(mean + (U + Ps)/2) -
-    min(mean - (U + Ps)/2), ``Ps_max``, ``Ps_mean``, ``U_max``, ``U_mean``.
-
-    Attributes
-    ----------
-    stats : TargetStatistics
-        Per-target means, s and B_i, metres.
-    reversal_span, s_mean, scatter : ndarray, shape (m,), metres
-        U_j, s_mean_j and Ps_j.
-    P, Pa, Ps_max, Ps_mean, U_max, U_mean : float, metres
-        The axis figures (:data:`VDI_SYMBOLS`).
-    warnings : tuple of str
-        What the reader should know (e.g. one run: no s).
-    """
-
-    stats: TargetStatistics
-    reversal_span: np.ndarray
-    s_mean: np.ndarray
-    scatter: np.ndarray
-    P: float
-    Pa: float
-    Ps_max: float
-    Ps_mean: float
-    U_max: float
-    U_mean: float
-    warnings: tuple[str, ...] = field(default=())
-
-    @property
-    def standard(self) -> str:
-        """``"vdi3441"``."""
-        return "vdi3441"
-
-    def figures(self) -> dict[str, float]:
-        """The axis figures by their symbol (:data:`VDI_SYMBOLS`), metres."""
-        return {name: getattr(self, name) for name in VDI_SYMBOLS}
-
-
-def _readonly(*arrays: np.ndarray) -> None:
-    for a in arrays:
-        a.setflags(write=False)
-
-
-def target_statistics(run: PositioningRun) -> TargetStatistics:
-    """Unidirectional means, s (n - 1 in the denominator), bidirectional mean and B_i per target.
-
-    ISO 230-2 mean unidirectional and bidirectional positional deviations, reversal value
-    ``B_i = mean_up - mean_down`` and the estimator of the unidirectional standard uncertainty
-    ``s_i`` (n - 1 in the denominator). With one run s is NaN; for a unidirectional test the
-    values of the direction not tested, the bidirectional mean and B_i are NaN.
-
-    Parameters
-    ----------
-    run : PositioningRun
-        Deviations per target, metres, shape (m, n) per direction.
-
-    Returns
-    -------
-    TargetStatistics
-        Arrays of shape (m,), metres (read-only).
-
-    Examples
-    --------
-    >>> from axiscal.units import UM
-    >>> st = target_statistics(paper003_table4_run())
-    >>> (st.mean_up / UM).round(3).tolist(), (st.s_up / UM).round(3).tolist()
-    ([0.733, 1.6], [0.643, 0.458])
-    """
-    check_instance("run", run, PositioningRun)
-    missing = np.full((run.targets.size, run.runs), np.nan)
-    up = missing if run.deviations_up is None else run.deviations_up
-    down = missing if run.deviations_down is None else run.deviations_down
-    mean_up = up.mean(axis=1)
-    mean_down = down.mean(axis=1)
-    if run.runs >= 2:
-        s_up = up.std(axis=1, ddof=1)
-        s_down = down.std(axis=1, ddof=1)
-    else:
-        s_up = np.full(run.targets.size, np.nan)
-        s_down = np.full(run.targets.size, np.nan)
-    mean = 0.5 * (mean_up + mean_down)
-    reversal = mean_up - mean_down
-    _readonly(mean_up, mean_down, s_up, s_down, mean, reversal)
-    return TargetStatistics(run.targets, mean_up, mean_down, s_up, s_down, mean, reversal, run.runs)
-
-
-def _warnings(run: PositioningRun) -> tuple[str, ...]:
-    notes = []
-    if not run.bidirectional:
-        notes.append(ONE_DIRECTION_WARNING.format(direction=run.directions[0]))
-    if run.runs >= 2:
-        return tuple(notes)
-    if not run.rotary and run.targets[-1] - run.targets[0] > LONG_AXIS_M:
-        return (NO_S_WARNING + " (one run each way is what ISO 230-2 asks for on axes longer than 2000 mm)", *notes)
-    return (NO_S_WARNING, *notes)
-
-
-def require_finite(**values: float | None) -> None:
-    """Refuse a NaN or infinite number given for an option, naming the option by its keyword.
-
-    Parameters
-    ----------
-    **values : float or None
-        Keyword -> value; None (an option not given) and non-numbers are passed over.
-
-    Returns
-    -------
-    None
-        When every number is finite.
-
-    Raises
-    ------
-    AxiscalError
-        ``"<keyword> must be a finite number, got nan"`` for the first value that is not finite.
-
-    Examples
-    --------
-    >>> require_finite(start_m=0.0, end_m=None)
-    >>> require_finite(end_m=float("inf"))
-    Traceback (most recent call last):
-    axiscal.errors.AxiscalError: end_m must be a finite number, got inf
-    """
-    for name, value in values.items():
-        if isinstance(value, (int, float, np.floating)) and not isinstance(value, bool) and not np.isfinite(value):
-            raise AxiscalError(f"{name} must be a finite number, got {value}")
-
-
-def covers_circle(targets: np.ndarray) -> bool:
-    """Whether the targets of a rotary axis (radians, in [0, 2 pi), increasing) go round the circle.
-
-    The circle counts as covered when the gap from the last target round to the first is no
-    more than twice the largest spacing between neighbouring targets (0, 30, ..., 330 deg covers
-    it; 0..90 deg does not).
-
-    Parameters
-    ----------
-    targets : ndarray, shape (m,), radians
-        Target positions, increasing, within one turn.
-
-    Returns
-    -------
-    bool
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> covers_circle(np.radians(np.arange(0, 360, 30))), covers_circle(np.radians([0, 45, 90]))
-    (True, False)
-    """
-    targets = check_array("targets_rad", targets, ndim=1, min_len=2)
-    wrap = targets[0] + TURN - targets[-1]
-    return bool(wrap <= 2.0 * float(np.diff(targets).max()) * (1 + 1e-9))
 
 
 def _spread(*arrays: np.ndarray) -> float:
@@ -500,62 +206,6 @@ def iso230_2(run: PositioningRun, *, edition: str = "2014") -> Iso230Result:
     )
 
 
-def vdi3441(run: PositioningRun) -> Vdi3441Result:
-    """Evaluate a bidirectional positioning test to VDI/DGQ 3441.
-
-    ``U_j = |mean_up_j - mean_down_j|``, ``s_mean_j = (s_up_j + s_down_j) / 2``,
-    ``Ps_j = 6 s_mean_j``, ``Pa = max mean_j - min mean_j`` (bidirectional means),
-    ``P = max(mean_j + (U_j + Ps_j) / 2) - min(mean_j - (U_j + Ps_j) / 2)``.
-
-    Parameters
-    ----------
-    run : PositioningRun
-        Deviations per target, metres.
-
-    Returns
-    -------
-    Vdi3441Result
-        Axis figures in metres; with one run the scatter and P are NaN (with a warning).
-
-    Raises
-    ------
-    AxiscalError
-        For a unidirectional test: VDI/DGQ 3441 defines its figures from both directions.
-
-    Examples
-    --------
-    >>> from axiscal.units import UM
-    >>> result = vdi3441(paper003_table4_run())
-    >>> round(result.Pa / UM, 3), round(result.P / UM, 3)
-    (0.683, 9.767)
-    """
-    check_instance("run", run, PositioningRun)
-    if not run.bidirectional:
-        raise AxiscalError(
-            f"{run.source}: VDI/DGQ 3441 evaluates a bidirectional test; this one goes in the {run.directions[0]}"
-            " direction only (evaluate it to ISO 230-2)"
-        )
-    st = target_statistics(run)
-    u = np.abs(st.reversal)
-    s_mean = 0.5 * (st.s_up + st.s_down)
-    ps = 6.0 * s_mean
-    half = 0.5 * (u + ps)
-    _readonly(u, s_mean, ps)
-    return Vdi3441Result(
-        stats=st,
-        reversal_span=u,
-        s_mean=s_mean,
-        scatter=ps,
-        P=float((st.mean + half).max() - (st.mean - half).min()),
-        Pa=float(np.ptp(st.mean)),
-        Ps_max=float(ps.max()),
-        Ps_mean=float(ps.mean()),
-        U_max=float(u.max()),
-        U_mean=float(u.mean()),
-        warnings=_warnings(run),
-    )
-
-
 #: names accepted by :func:`axiscal.positioning.report.evaluate_positioning_file` and ``--standard``
 STANDARDS = ("iso230-2:2014", "iso230-2:2006", "iso230-2:1997", "iso230-2:1988", "jis-b6192", "vdi3441")
 
@@ -591,25 +241,3 @@ def iso_edition(standard: str) -> str:
     if standard.startswith(prefix) and standard[len(prefix):] in ISO_EDITIONS:
         return standard[len(prefix):]
     raise AxiscalError(f"unknown standard '{standard}'; use one of {', '.join(STANDARDS)}")
-
-
-def paper003_table4_run() -> PositioningRun:
-    """The three runs at two targets printed in paper 003, Table 4, as a run to try the estimators on.
-
-    Targets 0 and 20 mm; per target the column marked "up" is the + approach, the one marked
-    "down" the - approach (three runs each). See docs/positioning.md for how the table reads.
-
-    Returns
-    -------
-    PositioningRun
-        Shape (2, 3) per direction, metres; ``source`` is "paper 003, Table 4".
-
-    Examples
-    --------
-    >>> from axiscal.units import UM
-    >>> round(float(iso230_2(paper003_table4_run()).repeatability[0]) / UM, 3)  # R_1 as printed
-    8.451
-    """
-    up = np.array([[0.0, 1.2, 1.0], [1.7, 2.0, 1.1]]) * UM
-    down = np.array([[3.6, -0.2, 3.3], [4.1, 1.9, 2.2]]) * UM
-    return PositioningRun(np.array([0.0, 20.0]) * MM, up, down, source="paper 003, Table 4")
