@@ -19,6 +19,10 @@ _URAD = ANGLE_UNITS["urad"]
 _DEG = ANGLE_UNITS["deg"]
 
 
+#: the longest artefact name a figure's title shows whole (a longer one is cut: the figure keeps its size)
+_TITLE_NAME = 60
+
+
 def plot_residuals(result, name: str, path: str | Path) -> Path:
     """The residuals of artefact ``name`` in reading order, um.
 
@@ -42,7 +46,8 @@ def plot_residuals(result, name: str, path: str | Path) -> Path:
     ax.axhline(0.0, color="0.5", lw=0.8)
     ax.set_xlabel("reading")
     ax.set_ylabel("residual / µm")
-    ax.set_title(f"{name} ({result.kinds[name]})")
+    shown = name if len(name) <= _TITLE_NAME else name[:_TITLE_NAME - 3] + "..."
+    ax.set_title(f"{shown} ({result.kinds[name]})")
     fig.tight_layout()
     return save_figure(fig, path)
 

@@ -6,9 +6,9 @@ from __future__ import annotations
 from typing import Annotated, Literal, Union
 
 from annotated_types import Ge, Len
-from pydantic import Discriminator, Field, Tag, TypeAdapter
+from pydantic import Discriminator, Field, Strict, StringConstraints, Tag, TypeAdapter
 
-from axiscal.io.formats.base import FileName, FormatModel, Name, Number, Positive, Vector3
+from axiscal.io.formats.base import FileName, FormatModel, Number, Positive, Vector3
 
 __all__ = [
     "ArtefactCommon",
@@ -24,6 +24,10 @@ __all__ = [
 ]
 
 
+#: an artefact's name: it titles its figures and names their files, so it stays short
+ArtefactName = Annotated[str, Strict(), StringConstraints(pattern=r"\S", max_length=100)]
+
+
 class ArtefactCommon(FormatModel):
     """What every artefact file has.
 
@@ -37,7 +41,7 @@ class ArtefactCommon(FormatModel):
         The readings (CSV) beside the file.
     """
 
-    name: Name | None = Field(None, description="the artefact's name (default: the file name)")
+    name: ArtefactName | None = Field(None, description="the artefact's name (default: the file name), at most 100 characters")
     tool_mm: Vector3 | None = Field(None, description="probe or ball in the tool frame, mm (default 0)")
     measured: FileName = Field(description="the readings (CSV) beside this file")
 

@@ -255,6 +255,20 @@ def _show(value: Any) -> str:
     return text if len(text) <= 40 else text[:37] + "..."
 
 
+#: the longest key a message quotes whole; a longer one is cut, with its length said
+_LONGEST_SHOWN = 40
+
+
+def _shown_name(name: str) -> str:
+    """A key as a message quotes it: whole up to 40 characters, else its start and its length."""
+    return name if len(name) <= _LONGEST_SHOWN else f"{name[:_LONGEST_SHOWN - 3]}... ({len(name)} characters)"
+
+
+def _shown_path(loc: tuple[Any, ...]) -> str:
+    """:func:`key_path` with every key as :func:`_shown_name` quotes it."""
+    return key_path(tuple(_shown_name(part) if isinstance(part, str) else part for part in loc))
+
+
 def _expected(error: dict[str, Any]) -> str:
     """What a pydantic error says was expected, in the words of the formats pages."""
     kind, ctx = error["type"], error.get("ctx", {})
@@ -280,6 +294,8 @@ def _expected(error: dict[str, Any]) -> str:
         return expected if expected.count(" or ") == 1 and "," not in expected else f"one of {expected}"
     if kind == "string_pattern_mismatch":
         return "a text that is not empty"
+    if kind == "string_too_long":
+        return f"a text of at most {ctx.get('max_length')} characters"
     if kind == "union_tag_invalid":
         return f"one of {ctx.get('expected_tags')}"
     return error["msg"][0].lower() + error["msg"][1:]
@@ -289,9 +305,9 @@ def _label(loc: tuple[Any, ...]) -> str:
     """``[table] key`` for a key in a table, ``key`` at the top level: the words of the formats pages."""
     strings = [i for i, part in enumerate(loc) if isinstance(part, str)]
     if not strings:
-        return key_path(loc)
+        return _shown_path(loc)
     last = strings[-1]
-    table, key = key_path(loc[:last]), key_path(loc[last:])
+    table, key = _shown_path(loc[:last]), _shown_path(loc[last:])
     return f"[{table}] {key}" if table else key
 
 
@@ -345,25 +361,25 @@ def _message(model: type[BaseModel], error: dict[str, Any], data: Any = None) ->
     if kind == "extra_forbidden":
         name = str(loc[-1])
         valid = [f.alias or n for n, f in parent_model.model_fields.items()] if parent_model is not None else []
-        near = difflib.get_close_matches(name, valid, n=1, cutoff=0.6)
+        near = difflib.get_close_matches(name, valid, n=1, cutoff=0.6) if len(name) <= _LONGEST_SHOWN else []
         hint = f"; did you mean '{near[0]}'?" if near else ""
-        parent = key_path(loc[:-1])
+        parent = _shown_path(loc[:-1])
         inside = f" in [{parent}]" if parent else ""
-        return f"unknown key '{name}'{inside}{hint} (known: {', '.join(valid)})"
+        return f"unknown key '{_shown_name(name)}'{inside}{hint} (known: {', '.join(valid)})"
     if "[key]" in loc:  # a key of a table that is not of the kind the table's keys are
-        parent = key_path(loc[: loc.index("[key]") - 1])
+        parent = _shown_path(loc[: loc.index("[key]") - 1])
         return f"[{parent}] key {_show(loc[loc.index('[key]') - 1])} must be {_expected(error)}"
     if kind == "invalid_key":
         return f"unknown key {_show(error['input'])}: keys are texts"
     if kind == "missing":
-        parent = key_path(loc[:-1])
+        parent = _shown_path(loc[:-1])
         tag = _tag_of(parent_model) if parent_model is not None else None
         if tag is not None and parent:
             return f"[{parent}]: a {tag} test needs '{loc[-1]}'"
         return f"[{parent}] needs '{loc[-1]}'" if parent else f"needs [{loc[-1]}]" if parent_model is not None and _is_table(
             parent_model, str(loc[-1])) else f"needs '{loc[-1]}'"
     if kind == "union_tag_not_found":
-        return f"[{key_path(loc)}] needs '{ctx['discriminator'].strip(chr(39))}'"
+        return f"[{_shown_path(loc)}] needs '{ctx['discriminator'].strip(chr(39))}'"
     if kind == "union_tag_invalid":
         tag = ctx["discriminator"].strip("'")
         tags = [t.strip(" '") for t in str(ctx.get("expected_tags", "")).split(",")]
