@@ -91,14 +91,24 @@ def test_the_report_has_their_section_and_results_json_their_entries(campaign, t
 
 
 @pytest.mark.parametrize(("old", "new", "words", "line"), [
-    ("period_mm = 5.0", "period_mm = -5.0", "period_m", 21),
+    ("period_mm = 5.0", "period_mm = -5.0", "period_mm must be a positive number of millimetres, not -5", 25),
+    ("period_mm = 5.0", "period_mm = 500.0", "period_mm (500 mm) must lie between", None),
     ('plan = "fly_plan.csv"\n', "", "needs 'plan'", 27),
-    ('plan = "plan_x.csv"\n', 'plan = "plan_x.csv"\nband_um = 0\n', "band_m", 15),
+    ('plan = "plan_x.csv"\n', 'plan = "plan_x.csv"\nband_um = 0\n', "band_um must be a positive number of micrometres, not 0", 20),
+    ('plan = "plan_x.csv"\n', 'plan = "plan_x.csv"\nchannel = "deviation_um"\nwindow_ms = -20\n',
+     "window_ms must be a positive number of milliseconds, not -20", 21),
+    ('plan = "fly_plan.csv"\n', 'plan = "fly_plan.csv"\ndelay_ms = 1e6\n', "delay_ms must be -10000 to 10000 milliseconds, not 1e+06", 32),
 ])
-def test_bad_options_name_campaign_toml_and_the_line(campaign, old, new, words, line):
+def test_bad_options_name_the_files_key_and_its_line(campaign, old, new, words, line):
+    # the file's keys in the file's units, at the key's own line (not the library's window_s, band_m,
+    # delay_s, period_m, nor the [[tests]] header's line)
     toml = campaign / "campaign.toml"
     toml.write_text(CAMPAIGN.replace(old, new))
     with pytest.raises(AxiscalError) as caught:
         run_campaign(campaign)
-    assert words in caught.value.message and caught.value.path == str(toml)
+    assert words in caught.value.message, caught.value.message
+    # an option refused against the data names the data file (the period against the run's targets)
+    assert caught.value.path == str(toml if line is not None else campaign / "step_cycle_run.csv")
+    assert not any(name in caught.value.message.replace(key, "") for name, key in
+                   [("window_s", "window_ms"), ("band_m", "band_um"), ("delay_s", "delay_ms"), ("period_m", "period_mm")])
     assert caught.value.line == line

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Callable
 from typing import Any
 
@@ -15,14 +16,54 @@ from axiscal.units import MM, UM
 __all__: list[str] = []
 
 
+#: the library's argument (SI) -> the campaign key it is given by: (key, its unit, low, high; None: above low)
+_KEYS = {
+    "window_s": ("window_ms", "milliseconds", 0.0, None),
+    "band_m": ("band_um", "micrometres", 0.0, None),
+    "period_m": ("period_mm", "millimetres", 0.0, None),
+    "delay_s": ("delay_ms", "milliseconds", -10_000.0, 10_000.0),
+}
+
+
+def _key_line(campaign: Campaign, spec: TestSpec, key: str) -> int:
+    """The line of ``key`` in the test's ``[[tests]]`` entry of campaign.toml, else the entry's line."""
+    from axiscal.io.schema import TomlLines
+    from axiscal.io.tabular import read_text
+
+    lines = TomlLines(read_text(campaign.folder / "campaign.toml"))
+    index = next((i for (table, i), line in lines.tables.items() if table == "tests" and line == spec.line), None)
+    found = None if index is None else lines.of("tests", index, key)
+    return spec.line if found is None or found < spec.line else found
+
+
+def _check_options(campaign: Campaign, spec: TestSpec) -> None:
+    """The test's numeric options in the file's units and ranges, refused naming the key and its line."""
+    for key, unit, low, high in _KEYS.values():
+        value = spec.options.get(key)
+        if value is None:
+            continue
+        inside = math.isfinite(value) and (value > low if high is None else low <= value <= high)
+        if not inside:
+            bound = f"a positive number of {unit}" if high is None else f"{low:g} to {high:g} {unit}"
+            raise AxiscalError(f"{key} must be {bound}, not {value:g}", path=campaign.folder / "campaign.toml",
+                               line=_key_line(campaign, spec, key))
+
+
 def _located(campaign: Campaign, spec: TestSpec, call: Callable[[], Any]) -> Any:
-    """``call()``, an option the library refuses (no file named) naming campaign.toml and the test's line."""
+    """``call()`` after the options' own checks; an option the library refuses (no file named) named as the file
+    writes it (``window_ms``, not the library's ``window_s``), at its line in campaign.toml."""
+    _check_options(campaign, spec)
     try:
         return call()
     except AxiscalError as exc:
-        if exc.path is not None:
-            raise
-        raise exc.located(path=campaign.folder / "campaign.toml", line=spec.line) from None
+        named = [(si, key) for si, (key, *_) in _KEYS.items() if key in spec.options and re.search(rf"\b{si}\b", exc.message)]
+        message = exc.message
+        for si, key in named:
+            message = re.sub(rf"\b{si}\b", key, message)
+        if exc.path is not None:  # about a data file: its place stays
+            raise AxiscalError(message, path=exc.path, line=exc.line) from None
+        line = _key_line(campaign, spec, named[0][1]) if named else spec.line
+        raise AxiscalError(message, path=campaign.folder / "campaign.toml", line=line) from None
 
 
 def _dynamics(campaign: Campaign, spec: TestSpec) -> TestResult:
