@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import datetime as _dt
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -118,6 +118,11 @@ class Campaign:
         The uncertainty budget (``uncertainty = "budget.toml"`` or an ``[uncertainty]`` table).
     decision_rule : str
         ``"simple"`` (default) or ``"guard-band"`` (ISO 14253-1), from ``[uncertainty] decision_rule``.
+    laboratory, certificate : dict
+        The ``[laboratory]`` and ``[certificate]`` tables as written (dates as ISO strings); empty
+        when the campaign states none (a plain report).
+    signatories : tuple of dict
+        The ``[[signatory]]`` entries, ``{"name", "role"}``, the first the main signer.
 
     Made by :func:`load_campaign` (or :func:`read_campaign`) from the validated campaign.toml
     (:class:`axiscal.io.formats.CampaignFile`); nothing here is checked again.
@@ -134,6 +139,9 @@ class Campaign:
     budget: Any = None
     decision_rule: str = "simple"
     compensation: dict[str, Path] | None = None
+    laboratory: dict[str, Any] = field(default_factory=dict)
+    certificate: dict[str, Any] = field(default_factory=dict)
+    signatories: tuple[dict[str, Any], ...] = ()
 
 
 def load_campaign(folder: str | Path) -> Campaign:
@@ -224,7 +232,10 @@ def read_campaign(folder: Path) -> Campaign:
         if ids.index(test_id) != index:
             raise fail(f"two tests have the id '{test_id}'", "tests", index, "id")
     return Campaign(folder, campaign, machine, instrument, tolerances, tuple(tests), model, controller,
-                    budget=budget, decision_rule=rule, compensation=compensation)
+                    budget=budget, decision_rule=rule, compensation=compensation,
+                    laboratory=_plain(checked.laboratory.given()) if checked.laboratory is not None else {},
+                    certificate=_plain(checked.certificate.given()) if checked.certificate is not None else {},
+                    signatories=tuple(_plain(s.given()) for s in checked.signatory or ()))
 
 
 def _plain(table: Mapping[str, Any]) -> dict[str, Any]:

@@ -197,6 +197,9 @@ class CampaignResults:
         The volumetric section when the campaign names a machine model.
     decision_rule : str
         How figures were held against tolerances: ``"simple"`` or ``"guard-band"``.
+    issuer : dict
+        What a calibration certificate adds, when the campaign states it: ``laboratory``,
+        ``certificate`` (tables as written) and ``signatories`` (a list); empty otherwise.
     """
 
     campaign: dict[str, Any]
@@ -206,6 +209,7 @@ class CampaignResults:
     warnings: list[str] = field(default_factory=list)
     model: dict[str, Any] = field(default_factory=dict)
     decision_rule: str = "simple"
+    issuer: dict[str, Any] = field(default_factory=dict)
 
     @property
     def verdict(self) -> str:
@@ -359,7 +363,8 @@ def results_payload(results: CampaignResults) -> dict[str, Any]:
     return {
         "schema": SCHEMA,
         "software": {"name": "axiscal", "version": __version__},
-        "campaign": {"campaign": results.campaign, "machine": results.machine, "instrument": results.instrument},
+        "campaign": {"campaign": results.campaign, "machine": results.machine, "instrument": results.instrument,
+                     **{k: v for k, v in results.issuer.items() if v}},
         "verdict": results.verdict,
         "decision_rule": results.decision_rule,
         "tests": tests,

@@ -471,5 +471,8 @@ def run_campaign(
                                    compensation=campaign.compensation, controller=campaign.controller)
     if progress is not None and total:
         progress(total, total, campaign.tests[-1])
+    issuer = {"laboratory": campaign.laboratory, "certificate": campaign.certificate,
+              "signatories": [dict(s) for s in campaign.signatories]}
     return CampaignResults(campaign.campaign, campaign.machine, campaign.instrument, results, model=model,
-                           decision_rule=campaign.decision_rule, warnings=list(model.get("warnings", [])))
+                           decision_rule=campaign.decision_rule, warnings=list(model.get("warnings", [])),
+                           issuer={k: v for k, v in issuer.items() if v})

@@ -39,6 +39,7 @@ COMMANDS: dict[str, tuple[str, str | None]] = {
     "cmm": ("axiscal.cli.cmm:cmm_group", "Coordinate measuring machines: ISO 10360 length and probing tests, squareness compensation (paper 004)."),
     "compensate": ("axiscal.cli.compensate:compensate_command", "Write a compensation table for the controller from the mean deviations of RUN_CSV (a linear or rotary axis)."),
     "cycle": ("axiscal.cli.run:cycle_command", "The closed cycle on a controller: as found -> compensation -> (restart with it) -> as left -> compared report."),
+    "dcc": ("axiscal.cli.dcc:dcc_group", "Digital Calibration Certificates: sign, verify, show."),
     "demo": ("axiscal.cli.demo:demo_command", "Simulate a whole calibration campaign of paper 000's XZ module and report it."),
     "dynamics": ("axiscal.cli.dynamics:dynamics_command", "Dynamics of an axis from a timebase RECORDING: velocity, acceleration, jerk, spectrum, settling at each stop."),
     "diagonal": ("axiscal.cli.volumetric:diagonal_command", "Diagonal displacement test predicted by the model (ISO 230-6), and compared with an interferometer (paper 000 eq 13: E_BD before the model, E_AD after)."),

@@ -40,16 +40,20 @@ def _progress(enabled: bool):
 @click.command("report")
 @click.argument("campaign_dir", type=click.Path(file_okay=True, dir_okay=True))
 @click.option("-o", "--output", "out_dir", type=click.Path(file_okay=False), help="Report folder [CAMPAIGN_DIR/report].")
-@click.option("--compare", type=click.Path(dir_okay=False), help="results.json of another campaign (e.g. before compensation): drawn behind every plot, and each figure "
-                   "before, after and its change in the verdict table.")
+@click.option("--compare", type=click.Path(dir_okay=False), help="results.json of another campaign (e.g. before compensation), or the dcc.xml of its certificate: drawn "
+                   "behind every plot, and each figure before, after and its change in the verdict table.")
 @click.option("--pdf", is_flag=True, help="Also write report.pdf.")
 @click.option("--exit-code", is_flag=True,
               help="Exit with status 1 when the verdict is fail, or inconclusive under a guard-band rule (for scripts and CI).")
 @click.option("--history", "history", is_flag=True,
               help="Also store the campaign in the calibration history and add the machine's trends to the report.")
 @click.option("--db", help="With --history: the database URL or SQLite file [$AXISCAL_DB, else the user's data folder].")
+@click.option("--certificate", is_flag=True,
+              help="Also write the calibration certificate (ISO/IEC 17025): certificate.html, certificate.pdf (PDF/A-3b, "
+                   "the DCC attached) and dcc.xml. Needs [laboratory], [certificate] and [[signatory]] in campaign.toml.")
+@click.option("--dcc", is_flag=True, help="Also write dcc.xml, the Digital Calibration Certificate (PTB's XML, schema 3.2.0).")
 def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, pdf: bool, exit_code: bool,
-                   history: bool, db: str | None) -> None:
+                   history: bool, db: str | None, certificate: bool, dcc: bool) -> None:
     """Run every test of CAMPAIGN_DIR (campaign.toml) and write report.html, results.json and the compensation files."""
     from axiscal.report.writer import report_campaign
 
@@ -57,7 +61,7 @@ def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, 
         raise AxiscalError("--db applies only with --history")
     with _progress(sys.stderr.isatty()) as progress:
         files = report_campaign(campaign_dir, out_dir, compare=compare, pdf=pdf, progress=progress,
-                                history=history, db=db)
+                                history=history, db=db, certificate=certificate, dcc=dcc)
     verdict = files.results_data.verdict
     click.echo(f"{verdict.upper()}: {len(files.results_data.tests)} tests; report {files.html}")
     click.echo(f"results {files.results}")
@@ -65,6 +69,10 @@ def report_command(campaign_dir: str, out_dir: str | None, compare: str | None, 
         click.echo(f"compensation {path}")
     if files.pdf is not None:
         click.echo(f"pdf {files.pdf}")
+    for path in files.certificate:
+        click.echo(f"certificate {path}")
+    if files.dcc is not None:
+        click.echo(f"dcc {files.dcc}")
     if files.history is not None:
         stored = files.history
         count = stored["campaigns"]

@@ -34,6 +34,7 @@ __all__ = [
     "verdict_rows",
     "sections",
     "report_facts",
+    "page_context",
 ]
 
 _SECTION_ORDER = ("positioning", "straightness", "separation", "squareness", "ballbar", "diagonal", "sixdof")
@@ -66,7 +67,9 @@ def template_environment():
         autoescape=jinja2.select_autoescape(("html", "html.j2")),
         trim_blocks=True,
         lstrip_blocks=True,
+        extensions=["jinja2.ext.i18n"],
     )
+    env.install_null_translations(newstyle=True)  # English; a certificate installs its language's catalog
     env.globals["fmt"] = format_number
     env.filters["unit"] = lambda unit: display_unit(unit) if isinstance(unit, str) else unit
     return env
@@ -369,17 +372,20 @@ def sections(tests: list[TestResult]) -> list[dict[str, Any]]:
 # and serial do
 _FACT_LABELS = {
     ("machine", "name"): "Machine",
+    ("machine", "manufacturer"): "Manufacturer",
+    ("machine", "condition"): "Condition as received",
     ("machine", "model"): "Machine model",
     ("machine", "controller"): "Controller",
     ("machine", "compensation"): "Compensation loaded",
     ("campaign", "date"): "Date",
     ("campaign", "operator"): "Operator",
     ("campaign", "customer"): "Customer",
+    ("campaign", "customer_address"): "Customer's address",
     ("instrument", "name"): "Instrument",
     ("instrument", "vacuum_wavelength_nm"): "Vacuum wavelength",
     ("campaign", "notes"): "Notes",
 }
-_JOINED = {("machine", "name"): ("serial",), ("instrument", "name"): ("serial", "certificate", "calibrated")}
+_JOINED = {("machine", "name"): ("serial",), ("instrument", "name"): ("serial", "certificate", "calibrated", "calibrated_by")}
 _SHOWN_ELSEWHERE = {("campaign", "title")}  # the report's heading
 
 
@@ -472,14 +478,23 @@ def render_html(
         check_mapping("volumetric", volumetric, what="the volumetric section (a mapping)")
     if generated is not None and not isinstance(generated, str):
         raise AxiscalError(f"generated must be a str (when the report was made), not {type_name(generated)}")
-    before = previous_figures(compare)
+    return template_environment().get_template("report/report.html.j2").render(
+        **page_context(results, compare=compare, volumetric=volumetric, generated=generated, history=history))
+
+
+def page_context(results: CampaignResults, *, compare: Mapping[str, Any] | None = None,
+                 volumetric: Mapping[str, Any] | None = None, generated: str | None = None,
+                 history: Mapping[str, Any] | None = None) -> dict[str, Any]:
+    """The names the report page's template reads (the certificate's template too, which extends it).
+
+    The arguments are those of :func:`render_html`, checked there.
+    """
     label = compare_label(compare)
-    rows = verdict_rows(results, before, before_uncertainty=previous_uncertainty(compare))
+    rows = verdict_rows(results, previous_figures(compare), before_uncertainty=previous_uncertainty(compare))
     payload = results_payload(results)
     methods = sorted({t.method for t in results.tests if t.method})
     methods.append(decision_statement(results.decision_rule))
-    env = template_environment()
-    return env.get_template("report/report.html.j2").render(
+    return dict(
         version=__version__,
         generated=generated or _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         campaign=results.campaign,

@@ -73,7 +73,8 @@ def typst_text(value: Any) -> str:
 
 
 def write_pdf(
-    results: CampaignResults, path: str | Path, *, compare: Mapping[str, Any] | None = None, generated: str | None = None
+    results: CampaignResults, path: str | Path, *, compare: Mapping[str, Any] | None = None, generated: str | None = None,
+    certificate_language: str | None = None, dcc: bytes | None = None,
 ) -> Path:
     """Typeset the report of ``results`` as a PDF.
 
@@ -86,6 +87,13 @@ def write_pdf(
         Another campaign's results.json, as for the HTML page.
     generated : str, keyword-only
         When the report was made (default: now, UTC).
+    certificate_language : str, keyword-only
+        Typeset the calibration certificate in this language (ISO 639-1) instead of the report:
+        the certificate layer, its number and "page n of N" on every page, PDF/A-3b, dated by its
+        issue date (the same file on every re-run). The campaign must carry the certificate's fields.
+    dcc : bytes, keyword-only
+        With ``certificate_language``: the DCC, attached to the PDF as ``dcc.xml`` (an associated
+        file of relationship Data), so one file holds the certificate for people and for programs.
 
     Returns
     -------
@@ -108,7 +116,14 @@ def write_pdf(
     except ImportError:  # pragma: no cover - typst is a dependency
         raise AxiscalError("the PDF needs the typst package: pip install typst") from None
     path = Path(path)
-    env = template_environment()
+    if dcc is not None and certificate_language is None:
+        raise AxiscalError("dcc (the attachment) applies only to a certificate: give certificate_language")
+    if certificate_language is not None:
+        from axiscal.report.certificate import certificate_context, certificate_environment, localised_rows
+
+        env = certificate_environment(certificate_language)
+    else:
+        env = template_environment()
     env.filters["t"] = typst_text
     env.filters["s"] = typst_string
     with tempfile.TemporaryDirectory(prefix="axiscal-pdf-") as folder:
@@ -138,7 +153,21 @@ def write_pdf(
                 (root / name).write_text(plot.svg, encoding="utf-8")
                 files.append({"file": name, "title": plot.title})
             volumetric = {"method": results.model.get("method", ""), "plots": files}
-        source = env.get_template("report/report.typ.j2").render(
+        extra: dict[str, Any] = {}
+        options: dict[str, Any] = {}
+        if certificate_language is not None:
+            issued = _dt.date.fromisoformat(results.issuer["certificate"]["issue_date"])
+            rows = localised_rows(rows, certificate_language)
+            extra = {"cert": certificate_context(results, certificate_language),
+                     "attach": "dcc.xml" if dcc is not None else None}
+            options = {"pdf_standards": "a-3b",
+                       "timestamp": _dt.datetime(issued.year, issued.month, issued.day, tzinfo=_dt.timezone.utc)}
+            generated = generated or issued.isoformat()
+            if dcc is not None:
+                (root / "dcc.xml").write_bytes(dcc)
+        template = "report/certificate.typ.j2" if certificate_language is not None else "report/report.typ.j2"
+        source = env.get_template(template).render(
+            **extra,
             version=__version__,
             generated=generated or _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
             campaign=results.campaign,
@@ -157,7 +186,7 @@ def write_pdf(
         main = root / "report.typ"
         main.write_text(source, encoding="utf-8")
         try:
-            typst.compile(str(main), output=str(root / "report.pdf"), root=str(root))
+            typst.compile(str(main), output=str(root / "report.pdf"), root=str(root), **options)
         except Exception as exc:  # typst raises its own error types; the message says what failed
             raise AxiscalError(f"typesetting the PDF failed: {' '.join(str(exc).split())[:300]}", path=path) from None
         path.write_bytes((root / "report.pdf").read_bytes())

@@ -21,7 +21,7 @@ from axiscal.io.folders import atomic_folder
 from axiscal.io.jsonio import dumps, read_json
 from axiscal.report.html import check_compare, render_html
 
-__all__ = ["ReportFiles", "write_report", "report_campaign"]
+__all__ = ["ReportFiles", "write_report", "report_campaign", "read_compared"]
 
 
 @dataclass(frozen=True)
@@ -36,6 +36,10 @@ class ReportFiles:
         ``report.html`` and ``results.json``.
     pdf : Path or None
         ``report.pdf`` when asked for.
+    certificate : tuple of Path
+        With a certificate: ``certificate.html`` and ``certificate.pdf`` (PDF/A-3b, the DCC attached).
+    dcc : Path or None
+        ``dcc.xml``, the Digital Calibration Certificate, when asked for (and with a certificate).
     compensation : tuple of Path
         The compensation files.
     results_data : CampaignResults
@@ -52,6 +56,8 @@ class ReportFiles:
     compensation: tuple[Path, ...]
     results_data: CampaignResults
     history: Mapping[str, Any] | None = None
+    certificate: tuple[Path, ...] = ()
+    dcc: Path | None = None
 
 
 def write_report(
@@ -62,6 +68,8 @@ def write_report(
     pdf: bool = False,
     extra_files: Mapping[str, str] | None = None,
     history: Mapping[str, Any] | None = None,
+    certificate: bool = False,
+    dcc: bool = False,
 ) -> ReportFiles:
     """Write the report folder of ``results`` atomically.
 
@@ -78,6 +86,12 @@ def write_report(
         Relative path -> text of further files (the compensation tables).
     history : mapping, keyword-only
         The history section (:func:`~axiscal.report.history.history_section`).
+    certificate : bool, keyword-only
+        Also write the calibration certificate (:mod:`axiscal.report.certificate`) in its main
+        language: ``certificate.html``, ``certificate.pdf`` (PDF/A-3b with the DCC attached) and
+        ``dcc.xml``.
+    dcc : bool, keyword-only
+        Also write ``dcc.xml``, the Digital Calibration Certificate (:mod:`axiscal.report.dcc`).
 
     Returns
     -------
@@ -87,13 +101,21 @@ def write_report(
     ------
     AxiscalError
         When the folder cannot be written; nothing is left half-written. For arguments of the
-        wrong kind, or an extra file whose name leaves the folder.
+        wrong kind, or an extra file whose name leaves the folder. With ``certificate`` or
+        ``dcc``: for a campaign that lacks a certificate's fields (one line listing them all;
+        nothing is written).
     """
     check_instance("results", results, CampaignResults)
     out_dir = check_path("out_dir", out_dir)
     if compare is not None:
         check_compare(compare)
     check_instance("pdf", pdf, bool)
+    check_instance("certificate", certificate, bool)
+    check_instance("dcc", dcc, bool)
+    if certificate or dcc:
+        from axiscal.report.certificate import check_certificate
+
+        check_certificate(results)
     if extra_files is not None:
         check_mapping("extra_files", extra_files, what="a mapping of relative file names to texts")
         for name, text in extra_files.items():
@@ -117,11 +139,28 @@ def write_report(
 
             write_pdf(results, staging / "report.pdf", compare=compare)
             pdf_path = out_dir / "report.pdf"
-        return written, pdf_path
+        made: list[str] = []
+        if certificate or dcc:
+            from axiscal.report.dcc import dcc_xml
 
-    written, pdf_path = atomic_folder(out_dir, fill)
+            xml = dcc_xml(results)
+            (staging / "dcc.xml").write_bytes(xml)
+            if certificate:
+                from axiscal.report.certificate import render_certificate_html
+                from axiscal.report.pdf import write_pdf
+
+                language = results.issuer["certificate"].get("languages", ["en"])[0]
+                (staging / "certificate.html").write_text(
+                    render_certificate_html(results, language=language, compare=compare), encoding="utf-8")
+                write_pdf(results, staging / "certificate.pdf", compare=compare, certificate_language=language, dcc=xml)
+                made = ["certificate.html", "certificate.pdf"]
+        return written, pdf_path, made
+
+    written, pdf_path, made = atomic_folder(out_dir, fill)
     return ReportFiles(out_dir, out_dir / "report.html", out_dir / "results.json", pdf_path, tuple(written), results,
-                       history=None if history is None else dict(history))
+                       history=None if history is None else dict(history),
+                       certificate=tuple(out_dir / name for name in made),
+                       dcc=out_dir / "dcc.xml" if certificate or dcc else None)
 
 
 def report_campaign(
@@ -134,6 +173,8 @@ def report_campaign(
     history: bool = False,
     db: str | None = None,
     recorded_as: str | Path | None = None,
+    certificate: bool = False,
+    dcc: bool = False,
 ) -> ReportFiles:
     """Run a campaign and write its report: what ``axiscal report`` does.
 
@@ -157,6 +198,9 @@ def report_campaign(
         The report folder the history records as the campaign's source (default: the folder
         written), for a report built in one place and moved to another (a fleet's reports are
         built beside their destination).
+    certificate, dcc : bool, keyword-only
+        Also write the calibration certificate and the DCC (see :func:`write_report`); the campaign
+        must state the certificate's fields, else nothing is written.
 
     Returns
     -------
@@ -177,9 +221,11 @@ def report_campaign(
     if out_dir is not None:
         check_path("out_dir", out_dir)
     if compare is not None:
-        check_path("compare", compare)
+        compare = check_path("compare", compare)
     check_instance("pdf", pdf, bool)
     check_instance("history", history, bool)
+    check_instance("certificate", certificate, bool)
+    check_instance("dcc", dcc, bool)
     if db is not None and not history:
         raise AxiscalError("db applies only with history=True")
     if recorded_as is not None:
@@ -189,15 +235,17 @@ def report_campaign(
     campaign: Campaign = read_campaign(campaign_dir)
     other = None
     if compare is not None:
-        other = read_json(compare)
-        if not isinstance(other, dict) or other.get("schema") != "axiscal-results/1":
-            raise AxiscalError("not an axiscal results.json (schema axiscal-results/1)", path=compare)
+        other = read_compared(compare)
     try:
         results = run_campaign(campaign, progress=progress, compare=other)
     except AxiscalError as exc:
         if other is not None and exc.path is None and "compared results.json" in exc.message:
             raise exc.located(path=compare) from None  # a series of the other campaign that cannot be drawn
         raise
+    if certificate or dcc:
+        from axiscal.report.certificate import check_certificate
+
+        check_certificate(results, campaign.folder / "campaign.toml")  # before anything is written
     target = Path(out_dir) if out_dir is not None else campaign.folder / "report"
     files = {entry["file"]: entry["text"] for t in results.tests for entry in t.compensation if "text" in entry}
     section = None
@@ -205,4 +253,33 @@ def report_campaign(
         from axiscal.report.history import history_section
 
         section = history_section(results, url=db, source=str((recorded_as or target) / "results.json"))
-    return write_report(results, target, compare=other, pdf=pdf, extra_files=files, history=section)
+    return write_report(results, target, compare=other, pdf=pdf, extra_files=files, history=section,
+                        certificate=certificate, dcc=dcc)
+
+
+def read_compared(path: Path) -> dict[str, Any]:
+    """An earlier visit's figures to compare with: its results.json, or the DCC of its certificate.
+
+    Parameters
+    ----------
+    path : Path
+        ``results.json`` (schema axiscal-results/1) or ``dcc.xml`` written by axiscal.
+
+    Returns
+    -------
+    dict
+        A results.json object.
+
+    Raises
+    ------
+    AxiscalError
+        For a file that is neither.
+    """
+    if path.suffix.lower() == ".xml":
+        from axiscal.report.dcc import read_dcc
+
+        return read_dcc(path)
+    other = read_json(path)
+    if not isinstance(other, dict) or other.get("schema") != "axiscal-results/1":
+        raise AxiscalError("not an axiscal results.json (schema axiscal-results/1) nor a dcc.xml", path=path)
+    return other

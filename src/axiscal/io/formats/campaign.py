@@ -26,6 +26,11 @@ __all__ = [
     "CampaignTable",
     "MachineTable",
     "InstrumentTable",
+    "LOCATIONS",
+    "LANGUAGES",
+    "LaboratoryTable",
+    "CertificateTable",
+    "SignatoryTable",
     "PositioningTolerances",
     "Tolerances",
     "UncertaintyTable",
@@ -153,6 +158,7 @@ class CampaignTable(FormatModel):
     date: Date = Field(description="the day of the measurement, a TOML date (2026-11-20)")
     operator: Text = Field(description="who measured")
     customer: Text | None = Field(None, description="for whom")
+    customer_address: Text | None = Field(None, description="the customer's address, as the certificate prints it")
     notes: Text | None = Field(None, description="anything else, printed in the report")
 
 
@@ -170,6 +176,8 @@ class MachineTable(FormatModel):
 
     name: Text = Field(description="the machine's name")
     serial: Text | None = Field(None, description="serial number")
+    manufacturer: Text | None = Field(None, description="who made the machine")
+    condition: Text | None = Field(None, description="the machine's condition as received, in a few words")
     model: FileName | None = Field(None, description="machine description (TOML) in the campaign folder")
     controller: Literal[CONTROLLERS] | None = Field(None, description="the controller whose files `compensation` names")  # type: ignore[valid-type]
     compensation: dict[str, FileName] | None = Field(
@@ -190,7 +198,83 @@ class InstrumentTable(FormatModel):
     serial: Text | None = Field(None, description="serial number")
     certificate: Text | None = Field(None, description="calibration certificate")
     calibrated: Date | None = Field(None, description="date of its calibration")
+    calibrated_by: Text | None = Field(None, description="the laboratory or institute that calibrated it")
     vacuum_wavelength_nm: Number | None = Field(None, description="laser vacuum wavelength, nm")
+
+
+#: where the calibration was performed, as the DCC names it (``performanceLocation``)
+LOCATIONS = ("laboratory", "customer", "laboratoryBranch", "customerBranch", "other")
+#: the languages a certificate can be written in (ISO 639-1), each with a full translation
+LANGUAGES = ("en", "de")
+
+
+class LaboratoryTable(FormatModel):
+    """``[laboratory]``: the laboratory that issues the certificate.
+
+    Attributes
+    ----------
+    name, address : str
+    country : str
+        ISO 3166-1 alpha-2 code (``DE``).
+    accreditation : str or None
+        The accreditation body and number as printed (``D-K-00000-01-00``).
+    """
+
+    name: Text = Field(description="the laboratory's name")
+    address: Text = Field(description="its address, one line")
+    country: Annotated[str, Strict(), StringConstraints(pattern=r"^[A-Z]{2}$")] = Field(
+        description="ISO 3166-1 alpha-2 country code (DE)")
+    accreditation: Text | None = Field(None, description="accreditation body and number, as printed")
+
+
+class CertificateTable(FormatModel):
+    """``[certificate]``: the certificate's number, dates, place and languages.
+
+    Attributes
+    ----------
+    number : str
+        Identifies every page and the DCC (``uniqueIdentifier``).
+    issue_date : datetime.date
+        Fixed, so every re-run makes the same certificate.
+    location : str
+        One of :data:`LOCATIONS`: where the work was done.
+    languages : list of str
+        ISO 639-1 codes of :data:`LANGUAGES`, the first the certificate's main language.
+    replaces : str or None
+        The number of an earlier certificate this one replaces.
+    tolerance_source : str or None
+        Where the limits of ``[tolerances]`` come from (the customer's order, the maker's acceptance
+        specification ...), printed with the conformity statement.
+    deviations : str or None
+        Any deviation from the stated methods (default: none).
+    """
+
+    number: Text = Field(description="the certificate number, on every page")
+    issue_date: Date = Field(description="the day of issue, a TOML date (fixed: the same certificate on every re-run)")
+    location: Literal[LOCATIONS] = Field(description="where the calibration was performed")  # type: ignore[valid-type]
+    languages: Annotated[list[Literal[LANGUAGES]], Field(min_length=1, max_length=len(LANGUAGES))] = Field(  # type: ignore[valid-type]
+        ["en"], description="languages of the certificate, the first its main language")
+    replaces: Text | None = Field(None, description="the number of the certificate this one replaces")
+    tolerance_source: Text | None = Field(None, description="where the tolerances come from")
+    deviations: Text | None = Field(None, description="any deviation from the methods, as the certificate states it")
+
+    @model_validator(mode="after")
+    def _languages_once(self) -> "CertificateTable":
+        if len(set(self.languages)) != len(self.languages):
+            raise ValueError("languages: each language once")
+        return self
+
+
+class SignatoryTable(FormatModel):
+    """``[[signatory]]``: a person who authorises the certificate (the first is the main signer).
+
+    Attributes
+    ----------
+    name, role : str
+    """
+
+    name: Text = Field(description="the person's name")
+    role: Text = Field(description="the person's function")
 
 
 PositioningTolerances = create_model(
@@ -320,3 +404,7 @@ class CampaignFile(FormatModel):
         Discriminator(_file_or_table),
     ] | None = Field(None, description="a budget file name or an [uncertainty] table")
     tests: Annotated[list[TestEntry], Field(min_length=1)] = Field(description="the tests, [[tests]]")
+    laboratory: LaboratoryTable | None = Field(None, description="the issuing laboratory (for a certificate)")
+    certificate: CertificateTable | None = Field(None, description="the certificate's number and dates")
+    signatory: Annotated[list[SignatoryTable], Field(min_length=1)] | None = Field(
+        None, description="who authorises the certificate, [[signatory]]")
