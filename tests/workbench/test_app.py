@@ -93,7 +93,7 @@ def test_steps_out_of_order_say_what_comes_first(client):
 def test_the_stream_sends_the_run_state(client):
     with client.websocket_connect("ws://127.0.0.1:8770/ws") as socket:
         message = socket.receive_json()
-    assert message["run"] == {"state": "idle", "phase": "as-found"} and message["trace"]["t_s"] == []
+    assert message["run"] == {"state": "idle", "phase": "as-found", "resumable": False} and message["trace"]["t_s"] == []
 
 
 def test_two_first_readings_of_a_new_history_at_once_both_list_its_machines(tmp_path):

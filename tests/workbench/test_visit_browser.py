@@ -173,3 +173,64 @@ def test_a_whole_visit_on_the_virtual_machine(browser_page, workbench):
     assert not browser_page.errors, browser_page.errors
     external = [u for u in browser_page.requests if not u.startswith(workbench.server.url.rstrip("/"))]
     assert external == []
+
+
+def test_the_visit_survives_a_reload_a_restart_and_a_second_tab(browser_page, chromium, tmp_path):
+    db = str(tmp_path / "history.sqlite")
+    server = serve_workbench(tmp_path / "data", db=db, port=0, speed=SPEED)
+    try:
+        page = browser_page.page
+        page.goto(server.url)
+        page.get_by_role("button", name="2 New visit").click()
+        for name, value in {"title": "Acceptance", "operator": "J. Doe", "machine": "VMC 1", "serial": "S1",
+                            "date": "2026-11-26"}.items():
+            page.fill(f"#visit-form [name={name}]", value)
+        page.click("#visit-form button[type=submit]")
+        page.wait_for_selector("#visit-saved:not([hidden])")
+        page.get_by_role("button", name="3 Plan").click()
+        page.fill("#plan-form [name=runs]", "2")
+        page.click("#plan-form button[type=submit]")
+        page.wait_for_selector("#plan-table tbody tr")
+        steps = count(page, "#plan-table tbody tr")
+        with page.expect_response("**/api/step"):  # the step the page is at, kept
+            page.get_by_role("button", name="4 Connect").click()
+
+        # a reload: the visit, its plan and the step it was at
+        page.reload()
+        page.wait_for_selector("#step-connect:not([hidden])")
+        assert page.locator("#visit-name").text_content() == "vmc-1-2026-11-26"
+        assert count(page, "#plan-table tbody tr") == steps and page.input_value("#plan-form [name=runs]") == "2"
+
+        # a second tab on the same visit follows it read-only: its changes are refused, the visit is not touched
+        other = chromium.new_context(viewport={"width": 1366, "height": 768}).new_page()
+        try:
+            other.goto(server.url)
+            other.wait_for_selector("#readonly:not([hidden])")
+            assert other.locator("#visit-name").text_content() == "vmc-1-2026-11-26"
+            other.get_by_role("button", name="3 Plan").click()
+            other.fill("#plan-form [name=runs]", "3")
+            other.click("#plan-form button[type=submit]")
+            other.wait_for_selector("#error:not([hidden])")
+            assert "open in another tab" in other.locator("#error").text_content()
+        finally:
+            other.context.close()
+        assert server.bench.plan.runs == 2 and server.bench.saved.step == "connect"
+    finally:
+        server.stop()
+
+    # a server restart: the page, reloaded, is at the same step of the same visit; connect and run go on
+    server = serve_workbench(tmp_path / "data", db=db, port=0, speed=SPEED)
+    try:
+        page.goto(server.url)
+        page.wait_for_selector("#step-connect:not([hidden])")
+        assert page.locator("#visit-name").text_content() == "vmc-1-2026-11-26"
+        assert count(page, "#plan-table tbody tr") == steps
+        page.click("#connect-form button[type=submit]")
+        page.wait_for_selector("#light-instrument[data-state=ok]")
+        page.get_by_role("button", name="5 Run").click()
+        page.click("#start")
+        page.wait_for_selector("#run-state[data-state=done]", timeout=60_000)
+        assert page.locator("#progress").text_content() == "20 of 20 stops"
+        assert not browser_page.errors, browser_page.errors
+    finally:
+        server.stop()

@@ -24,10 +24,12 @@ from axiscal.workbench.runner import (
 )
 from axiscal.workbench.visit import (
     PHASES,
+    OpenElsewhere,
     Workbench,
 )
 from axiscal.workbench.app import (
     MAX_BODY,
+    TAB_HEADER,
     TOKEN_COOKIE,
     WEB,
     create_workbench_app,
@@ -50,8 +52,10 @@ __all__ = [
     "PlanRun",
     "connect",
     "PHASES",
+    "OpenElsewhere",
     "Workbench",
     "MAX_BODY",
+    "TAB_HEADER",
     "TOKEN_COOKIE",
     "WEB",
     "create_workbench_app",

@@ -38,9 +38,9 @@ from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_number
 from axiscal.live.server import LOOPBACK_HOSTS, request_allowed
 from axiscal.workbench.forms import FormErrors
-from axiscal.workbench.visit import Workbench
+from axiscal.workbench.visit import OpenElsewhere, Workbench
 
-__all__ = ["WEB", "MAX_BODY", "TOKEN_COOKIE", "create_workbench_app", "new_token"]
+__all__ = ["WEB", "MAX_BODY", "TOKEN_COOKIE", "TAB_HEADER", "create_workbench_app", "new_token"]
 
 WEB = Path(__file__).parent / "web"
 #: largest request body taken, bytes
@@ -125,12 +125,26 @@ def _json_safe(value: Any) -> Any:
     return value
 
 
-def _answer(call, *args, **kwargs):
+#: the header that carries the page's tab id (a call without it, from a script, is no tab's)
+TAB_HEADER = "x-axiscal-tab"
+
+
+def _tab(request: Any) -> str | None:
+    tab = request.headers.get(TAB_HEADER) or request.query_params.get("tab")
+    return tab[:64] if tab else None
+
+
+def _answer(call, *args, claim: Any = None, **kwargs):
+    """``call`` in a worker thread, answered as JSON; ``claim`` (a request) first asks that its tab may change the visit."""
     async def run() -> Response:
         try:
+            if claim is not None:
+                claim.app.state.bench.claim(_tab(claim))
             return JSONResponse(_json_safe(await run_in_threadpool(call, *args, **kwargs)))
         except FormErrors as exc:
             return JSONResponse({"error": str(exc), "fields": exc.fields}, status_code=422)
+        except OpenElsewhere as exc:
+            return JSONResponse({"error": str(exc), "readonly": True}, status_code=409)
         except AxiscalError as exc:
             return JSONResponse({"error": str(exc)}, status_code=400)
     return run()
@@ -205,13 +219,29 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
         return Response(svg, media_type="image/svg+xml")
 
     async def visit(request: Request) -> Response:
-        return await _answer(bench.new_visit, await _body(request))
+        return await _answer(bench.new_visit, await _body(request), claim=request)
+
+    async def state(request: Request) -> Response:
+        return await _answer(bench.state, _tab(request))
+
+    async def visits(request: Request) -> Response:
+        return await _answer(bench.unfinished)
+
+    async def open_visit(request: Request) -> Response:
+        body = await _body(request)
+        return await _answer(bench.open_visit, body.get("folder") if isinstance(body, dict) else None, claim=request)
+
+    async def step(request: Request) -> Response:
+        body = await _body(request)
+        if not bench._may_act(_tab(request)):  # a tab that follows the visit does not move it
+            return JSONResponse({"step": None, "readonly": True})
+        return await _answer(bench.set_step, body.get("step") if isinstance(body, dict) else None)
 
     async def plan(request: Request) -> Response:
-        return await _answer(bench.make_plan, await _body(request))
+        return await _answer(bench.make_plan, await _body(request), claim=request)
 
     async def connection(request: Request) -> Response:
-        return await _answer(bench.connect, await _body(request))
+        return await _answer(bench.connect, await _body(request), claim=request)
 
     async def run(request: Request) -> Response:
         if request.method == "GET":
@@ -219,22 +249,23 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
         body = await _body(request) or {}
         if not isinstance(body, dict):
             return JSONResponse({"error": "send the run's phase as a JSON object"}, status_code=400)
-        return await _answer(bench.start_run, body.get("phase", "as-found"), resume=body.get("resume") is True)
+        return await _answer(bench.start_run, body.get("phase", "as-found"), resume=body.get("resume") is True,
+                             claim=request)
 
     async def control(request: Request) -> Response:
-        return await _answer(bench.control, request.path_params["action"])
+        return await _answer(bench.control, request.path_params["action"], claim=request)
 
     async def results(request: Request) -> Response:
         return await _answer(bench.results, request.query_params.get("phase", "as-found"))
 
     async def compensate(request: Request) -> Response:
-        return await _answer(bench.compensate)
+        return await _answer(bench.compensate, claim=request)
 
     async def before_after(request: Request) -> Response:
         return await _answer(bench.before_after)
 
     async def finish(request: Request) -> Response:
-        return await _answer(bench.finish)
+        return await _answer(bench.finish, claim=request)
 
     async def files(request: Request) -> Response:
         try:
@@ -247,6 +278,17 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
 
     async def stream(websocket: WebSocket) -> None:
         await websocket.accept()
+        tab = websocket.query_params.get("tab")
+        tab = tab[:64] if tab else None
+        if tab is not None:
+            bench.attach(tab)
+        try:
+            await _stream(websocket)
+        finally:
+            if tab is not None:
+                bench.detach(tab)
+
+    async def _stream(websocket: WebSocket) -> None:
         current, cursor = None, 0
         loop = asyncio.get_running_loop()
         due = loop.time()
@@ -278,6 +320,10 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
             Route("/api/machine", machine),
             Route("/api/trend", trend),
             Route("/api/visit", visit, methods=["POST"]),
+            Route("/api/state", state),
+            Route("/api/visits", visits),
+            Route("/api/visit/open", open_visit, methods=["POST"]),
+            Route("/api/step", step, methods=["POST"]),
             Route("/api/plan", plan, methods=["POST"]),
             Route("/api/connect", connection, methods=["POST"]),
             Route("/api/run", run, methods=["GET", "POST"]),

@@ -31,11 +31,17 @@ from axiscal.units import MM, UM
 from axiscal.io.arguments import check_number
 from axiscal.workbench.forms import PlanForm, VisitForm, checked
 from axiscal.workbench.runner import PlanRun, connect
+from axiscal.workbench.saved import (STEPS, SavedVisit, open_folder, read_saved, remember_open, unfinished_visits,
+                                     write_saved)
 
-__all__ = ["PHASES", "Workbench"]
+__all__ = ["PHASES", "OpenElsewhere", "Workbench"]
 
 #: the two runs of a visit: before and after the compensation
 PHASES = ("as-found", "as-left")
+
+
+class OpenElsewhere(AxiscalError):
+    """The visit is held by another tab whose page is open: this one follows it read-only."""
 
 
 def _toml(text: str) -> str:
@@ -89,6 +95,17 @@ class Workbench:
         # the page evaluates a run that has just ended (Results, Before / after) while a click may ask again:
         # their plots are drawn one at a time (matplotlib's pyplot is not thread-safe)
         self._plot_lock = threading.Lock()
+        self.saved: SavedVisit | None = None
+        # the tab that holds the visit (the page sends its id), and the tabs whose stream is open
+        self.owner: str | None = None
+        self._tabs: dict[str, int] = {}
+        self.notice = ""
+        try:  # the visit that was open when the workbench stopped is open again, at the step it was at
+            folder = open_folder(self.data)
+            if folder is not None:
+                self._restore(folder)
+        except AxiscalError as exc:
+            self.notice = f"the visit that was open is not opened again: {exc}"
 
     def check_history(self) -> None:
         """Open the history database as the page's first reading will: one line if it cannot be used.
@@ -177,6 +194,9 @@ class Workbench:
         with self._lock:
             self.folder, self.visit, self.plan, self.run, self.compensation = folder, form, None, None, None
             self.phase = "as-found"
+            self.saved = SavedVisit(form.model_dump(mode="json"), step="visit")
+            self._save()
+            remember_open(self.data, folder)
         return {"folder": self._rel(folder), "campaign": self._rel(folder / "campaign.toml"), "text": text}
 
     def _visit_folder(self) -> Path:
@@ -209,15 +229,27 @@ class Workbench:
         write_plan(plan, csv_path, gcode_path=program, axis=form.axis, dwell_s=form.dwell_s, dialect=form.dialect)
         with self._lock:
             self.plan = form
-        from axiscal.capture.steps import plan_steps
+            self.saved.plan = form.model_dump(mode="json")
+            self._save()
+        return self._plan_view()
 
+    def _plan_view(self) -> dict[str, Any]:
+        """The plan's table and program, as the page shows them, read from the visit's files."""
+        from axiscal.capture.steps import plan_steps
+        from axiscal.io.gcode import dialect as find_dialect
+
+        form, folder = self.plan, self._visit_folder()
+        name = form.axis.lower()
+        csv_path = folder / f"plan_{name}.csv"
+        program = folder / f"{name}{find_dialect(form.dialect).extension}"
         steps = plan_steps(csv_path)
         rows = [{"step": int(steps.step[k]), "run": int(steps.run[k]), "direction": str(steps.direction[k]),
                  "target_mm": None if not np.isfinite(steps.target_m[k]) else float(steps.target_m[k] / MM),
                  "move_to_mm": float(steps.move_to_m[k] / MM)} for k in range(steps.step.size)]
+        targets = np.unique(np.round(steps.target_m[np.isfinite(steps.target_m)] / UM) * UM)
         return {"plan_csv": self._rel(csv_path), "program": self._rel(program),
                 "program_text": program.read_text(encoding="utf-8"), "steps": rows,
-                "targets_mm": [float(t / MM) for t in plan.targets], "readings": int(steps.readings)}
+                "targets_mm": [float(t / MM) for t in targets], "readings": int(steps.readings)}
 
     # -- 4. connect --------------------------------------------------------------------------------
     def connect(self, data: Any) -> dict[str, Any]:
@@ -225,6 +257,10 @@ class Workbench:
         form = checked("connect", data)
         c = connect(form.instrument, form.controller)
         self.connection = c
+        if self.saved is not None:
+            with self._lock:
+                self.saved.connection = {"instrument": form.instrument, "controller": form.controller}
+                self._save()
         return {"instrument": c.instrument, "controller": c.controller,
                 "lights": {"instrument": c.instrument_state, "controller": c.controller_state},
                 "description": c.description, "reading_mm": c.reading_m / MM, "position_mm": c.position_m / MM}
@@ -253,6 +289,8 @@ class Workbench:
                       dwell_s=self.plan.dwell_s, seed=0 if phase == "as-found" else 1)
         with self._lock:
             self.run, self.phase = run, phase
+            self.saved.phase = phase
+            self._save()
         run.start()
         return self.run_state()
 
@@ -268,7 +306,14 @@ class Workbench:
     def run_state(self) -> dict[str, Any]:
         """The run going on (or the last), as the page shows it."""
         if self.run is None:
-            return {"state": "idle", "phase": self.phase}
+            # a run ended short before the workbench stopped: its partial file is there to resume
+            resumable = False
+            if self.plan is not None and self.folder is not None:
+                from axiscal.capture.files import partial_path
+
+                output = self._phase_folder(self.phase) / f"positioning_{self.plan.axis.lower()}.csv"
+                resumable = partial_path(output).is_file()
+            return {"state": "idle", "phase": self.phase, "resumable": resumable}
         snap = self.run.snapshot()
         if snap["run_csv"]:
             snap["run_csv"] = self._rel(Path(snap["run_csv"]))
@@ -319,11 +364,15 @@ class Workbench:
                     / UM).tolist() for d in directions}
         path = folder / "compensation" / COMPENSATION_FILES[controller].format(axis=axis)
         write_text(path, result.text)
-        self.compensation = {"text": result.text, "file": self._rel(path)}
-        return {"controller": controller, "file": self._rel(path), "text": result.text, "description": result.description,
-                "largest_residual_um": result.largest_residual_m / UM, "targets_mm": (x / MM).tolist(),
-                "measured_um": {"+": (curve.up / UM).tolist(), "-": (curve.down / UM).tolist()},
-                "residual_um": left}
+        answer = {"controller": controller, "file": self._rel(path), "text": result.text, "description": result.description,
+                  "largest_residual_um": result.largest_residual_m / UM, "targets_mm": (x / MM).tolist(),
+                  "measured_um": {"+": (curve.up / UM).tolist(), "-": (curve.down / UM).tolist()},
+                  "residual_um": left}
+        with self._lock:
+            self.compensation = answer
+            self.saved.compensation = answer
+            self._save()
+        return answer
 
     def _write_as_left_campaign(self) -> None:
         folder = self._visit_folder()
@@ -388,7 +437,11 @@ class Workbench:
             if (folder / "as-left" / "positioning_x.csv").is_file():
                 left = report_campaign(folder / "as-left", compare=found.results, pdf=pdf, history=True, db=self.db)
                 links += self._links(left, "as-left")
-        return {"files": links, "verdict": found.results_data.verdict}
+        answer = {"files": links, "verdict": found.results_data.verdict}
+        with self._lock:
+            self.saved.finished = answer
+            self._save()
+        return answer
 
     def _links(self, files: Any, phase: str) -> list[dict[str, str]]:
         out = []
@@ -397,6 +450,115 @@ class Workbench:
             if path is not None and Path(path).is_file():
                 out.append({"phase": phase, "kind": name, "path": self._rel(Path(path))})
         return out
+
+    # -- the visit kept: reload, restart, another tab ------------------------------------------------
+    def _save(self) -> None:
+        """Write the open visit's ``workbench.json`` (the caller holds the lock)."""
+        if self.saved is not None and self.folder is not None:
+            write_saved(self.folder, self.saved)
+
+    def _restore(self, folder: Path) -> None:
+        """Open the visit kept in ``folder`` at the step it was at (its devices are connected again by hand)."""
+        saved = read_saved(folder)
+        visit = checked("visit", saved.visit)
+        plan = checked("plan", saved.plan) if saved.plan is not None else None
+        if plan is not None and not (folder / f"plan_{plan.axis.lower()}.csv").is_file():
+            plan = None
+        with self._lock:
+            same = folder == self.folder
+            if not same and self.run is not None and self.run.state in ("running", "paused"):
+                raise AxiscalError("a run is going on: pause, abort or wait for it before opening another visit")
+            self.folder, self.visit, self.plan, self.saved = folder, visit, plan, saved
+            self.compensation, self.phase = saved.compensation, saved.phase
+            if not same:
+                self.run, self.connection = None, None
+
+    def open_visit(self, name: Any) -> dict[str, Any]:
+        """Continue an unfinished visit of the data folder, named by its folder; the page's state."""
+        if not isinstance(name, str) or not name or "/" in name or "\\" in name or name.startswith("."):
+            raise AxiscalError(f"name a visit's folder of the data folder, not {name!r}")
+        folder = self.data / name
+        self._restore(folder)
+        with self._lock:
+            remember_open(self.data, folder)
+        return self.state()
+
+    def set_step(self, step: Any) -> dict[str, Any]:
+        """Remember the step the page is at, so that it is opened there again."""
+        if step not in STEPS:
+            raise AxiscalError(f"step must be one of {', '.join(STEPS)}, not {step!r}")
+        with self._lock:
+            if self.saved is not None and self.saved.step != step:
+                self.saved.step = step
+                self._save()
+        return {"step": step}
+
+    def state(self, tab: str | None = None) -> dict[str, Any]:
+        """What the page needs to show the open visit again: its forms, plan, connection, compensation, step.
+
+        Parameters
+        ----------
+        tab : str, optional
+            The asking tab's id: ``readonly`` says whether another tab holds the visit.
+        """
+        readonly = not self._may_act(tab)
+        if self.saved is None or self.folder is None:
+            return {"open": False, "notice": self.notice, "readonly": readonly, "unfinished": self.unfinished()}
+        c = self.connection
+        return {
+            "open": True, "notice": self.notice, "readonly": readonly, "folder": self._rel(self.folder),
+            "step": self.saved.step, "phase": self.phase, "visit": self.saved.visit, "plan_form": self.saved.plan,
+            "plan": None if self.plan is None else self._plan_view(),
+            "connection": self.saved.connection,
+            "connected": None if c is None else {"lights": {"instrument": c.instrument_state, "controller": c.controller_state},
+                                                 "description": c.description},
+            "compensation": self.compensation, "finished": self.saved.finished,
+            "runs": {phase: (self._phase_folder(phase) / f"positioning_{(self.plan.axis if self.plan else 'X').lower()}.csv").is_file()
+                     for phase in PHASES},
+        }
+
+    def unfinished(self) -> list[dict[str, Any]]:
+        """The data folder's visits not yet finished, each with the step it was left at."""
+        return unfinished_visits(self.data)
+
+    def _may_act(self, tab: str | None) -> bool:
+        owner = self.owner
+        return tab is None or owner is None or owner == tab or self._tabs.get(owner, 0) == 0
+
+    def claim(self, tab: str | None) -> None:
+        """Let the tab ``tab`` change the visit: the one that holds it, or any while no other tab is open on it.
+
+        Parameters
+        ----------
+        tab : str or None
+            The page's tab id (a call without one, from a script, is not a tab's and is let through).
+
+        Raises
+        ------
+        OpenElsewhere
+            When another tab holds the visit and its page is still open.
+        """
+        if tab is None:
+            return
+        with self._lock:
+            if not self._may_act(tab):
+                raise OpenElsewhere("the visit is open in another tab: this one follows it read-only (close the other"
+                                    " tab to work here)")
+            self.owner = tab
+
+    def attach(self, tab: str) -> None:
+        """A tab's stream opened (its page is open)."""
+        with self._lock:
+            self._tabs[tab] = self._tabs.get(tab, 0) + 1
+
+    def detach(self, tab: str) -> None:
+        """A tab's stream closed (its page was closed or reloaded)."""
+        with self._lock:
+            left = self._tabs.get(tab, 0) - 1
+            if left > 0:
+                self._tabs[tab] = left
+            else:
+                self._tabs.pop(tab, None)
 
     # -- files -------------------------------------------------------------------------------------
     def file(self, relative: str) -> Path:

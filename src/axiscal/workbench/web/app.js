@@ -7,7 +7,16 @@ const UNITS = { um: "µm", arcsec: "″", mm: "mm" };
 const unit = (name) => UNITS[name] || name;
 const fmt = (value, digits) => (value === null || value === undefined || !Number.isFinite(value) ? "—" : value.toFixed(digits));
 
-const view = { plan: null, trace: { t: [], x: [] }, lastDraw: 0, runState: "idle", samples: 0 };
+const view = { plan: null, trace: { t: [], x: [] }, lastDraw: 0, runState: "idle", samples: 0, restoring: false };
+
+// this tab's id, kept over a reload of the tab (not shared with another tab): the visit is held by one tab at a time
+const TAB = sessionStorage.getItem("axiscal-tab") || `${Date.now().toString(36)}-${Math.random().toString(36).slice(2, 10)}`;
+sessionStorage.setItem("axiscal-tab", TAB);
+
+function readonly(on) {
+  $("#readonly").hidden = !on;
+  document.body.dataset.readonly = on ? "true" : "false";
+}
 
 // ---- navigation ---------------------------------------------------------------------------------
 function show(step) {
@@ -15,17 +24,19 @@ function show(step) {
   document.querySelectorAll("nav button").forEach((b) => {
     if (b.dataset.step === step) b.setAttribute("aria-current", "page"); else b.removeAttribute("aria-current");
   });
-  if (step === "machines") loadMachines();
+  if (step === "machines") { loadMachines(); loadUnfinished(); }
+  if (!view.restoring) call("POST", "/api/step", { step }).catch(() => {});  // opened here again after a reload
 }
 document.querySelectorAll("nav button").forEach((b) => b.addEventListener("click", () => show(b.dataset.step)));
 
 // ---- calls --------------------------------------------------------------------------------------
 async function call(method, url, body) {
-  const options = { method, headers: {} };
+  const options = { method, headers: { "x-axiscal-tab": TAB } };
   if (body !== undefined) { options.headers["content-type"] = "application/json"; options.body = JSON.stringify(body); }
   const response = await fetch(url, options);
   const data = await response.json();
   const error = $("#error");
+  if (response.status === 409 && data.readonly) readonly(true);
   if (!response.ok) {
     error.textContent = data.fields ? "Please correct the fields marked." : data.error;
     error.hidden = false;
@@ -165,6 +176,22 @@ async function loadMachines() {
   }
 }
 
+async function loadUnfinished() {
+  let rows;
+  try { rows = await call("GET", "/api/visits"); } catch (e) { return; }
+  const body = $("#unfinished tbody"); body.replaceChildren();
+  $("#unfinished-block").hidden = rows.length === 0;
+  for (const v of rows) {
+    const tr = body.insertRow();
+    const machine = v.serial ? `${v.machine} (${v.serial})` : v.machine;
+    for (const c of [machine, v.date, v.title, v.problem || v.step]) tr.insertCell().textContent = c;
+    const go = document.createElement("button"); go.textContent = "Continue";
+    go.addEventListener("click", async () => { try { restore(await call("POST", "/api/visit/open", { folder: v.folder })); } catch (e) { /* shown */ } });
+    if (v.problem) go.disabled = true;
+    tr.insertCell().appendChild(go);
+  }
+}
+
 async function openMachine(name) {
   const m = await call("GET", "/api/machine?name=" + encodeURIComponent(name));
   $("#machine-detail").hidden = false;
@@ -195,21 +222,24 @@ $("#visit-form").addEventListener("submit", (event) => {
     $("#visit-saved").hidden = false;
     $("#visit-saved").textContent = `Written: ${data.campaign}`;
     $("#visit-name").textContent = data.folder;
+    view.plan = null;
   });
 });
 
 $("#plan-form").addEventListener("submit", (event) => {
   event.preventDefault();
-  submit(event.target, "/api/plan", (data) => {
-    view.plan = data;
-    $("#plan-readings").textContent = data.readings;
-    const body = $("#plan-table tbody"); body.replaceChildren();
-    for (const s of data.steps) { const tr = body.insertRow(); for (const v of [s.step, s.run, s.direction, fmt(s.target_mm, 4), fmt(s.move_to_mm, 4)]) tr.insertCell().textContent = v; }
-    $("#program").textContent = data.program_text;
-    const link = $("#program-download"); link.href = "/files/" + data.program + "?download=1"; link.hidden = false;
-    link.textContent = "download " + data.program.split("/").pop();
-  });
+  submit(event.target, "/api/plan", showPlan);
 });
+
+function showPlan(data) {
+  view.plan = data;
+  $("#plan-readings").textContent = data.readings;
+  const body = $("#plan-table tbody"); body.replaceChildren();
+  for (const s of data.steps) { const tr = body.insertRow(); for (const v of [s.step, s.run, s.direction, fmt(s.target_mm, 4), fmt(s.move_to_mm, 4)]) tr.insertCell().textContent = v; }
+  $("#program").textContent = data.program_text;
+  const link = $("#program-download"); link.href = "/files/" + data.program + "?download=1"; link.hidden = false;
+  link.textContent = "download " + data.program.split("/").pop();
+}
 
 function lights(states) {
   for (const name of ["instrument", "controller"]) {
@@ -279,7 +309,7 @@ function showRun(run) {
 }
 
 function stream() {
-  const socket = new WebSocket(`ws://${location.host}/ws`);
+  const socket = new WebSocket(`ws://${location.host}/ws?tab=${encodeURIComponent(TAB)}`);
   socket.onmessage = (event) => {
     const message = JSON.parse(event.data);
     if (message.reset) view.trace = { t: [], x: [] };
@@ -322,15 +352,16 @@ async function showResults(phase) {
 }
 
 // ---- 7. compensate --------------------------------------------------------------------------------
-$("#compensate").addEventListener("click", async () => {
-  const data = await call("POST", "/api/compensate");
+$("#compensate").addEventListener("click", async () => showCompensation(await call("POST", "/api/compensate")));
+
+function showCompensation(data) {
   $("#comp-description").textContent = `${data.description}; largest residual at the targets ${fmt(data.largest_residual_um, 2)} µm`;
   $("#comp-text").textContent = data.text;
   const link = $("#comp-download"); link.href = "/files/" + data.file + "?download=1"; link.hidden = false;
   link.textContent = "download " + data.file.split("/").pop();
   drawCompensation(data);
   $("#run-as-left").disabled = false;
-});
+}
 $("#run-as-left").addEventListener("click", () => { $("#phase").value = "as-left"; show("run"); startRun("as-left", false); });
 // before / after: filled as soon as the as-left run has ended, or on request; while it is evaluated, or when it
 // cannot be yet, the line beside the table says what it waits for
@@ -359,15 +390,52 @@ $("#before-after").addEventListener("click", beforeAfter);
 $("#finish").addEventListener("click", async () => {
   $("#finish").disabled = true;
   try {
-    const data = await call("POST", "/api/finish");
-    $("#finish-verdict").textContent = `Verdict as found: ${data.verdict.toUpperCase()}. Stored in the history.`;
-    const list = $("#report-links"); list.replaceChildren();
-    for (const f of data.files) {
-      const li = document.createElement("li"), a = document.createElement("a");
-      a.href = "/files/" + f.path; a.textContent = `${f.phase} ${f.kind}: ${f.path}`; a.target = "_blank";
-      li.appendChild(a); list.appendChild(li);
-    }
+    showFinished(await call("POST", "/api/finish"));
   } finally { $("#finish").disabled = false; }
 });
 
-show("machines");
+function showFinished(data) {
+  $("#finish-verdict").textContent = `Verdict as found: ${data.verdict.toUpperCase()}. Stored in the history.`;
+  const list = $("#report-links"); list.replaceChildren();
+  for (const f of data.files) {
+    const li = document.createElement("li"), a = document.createElement("a");
+    a.href = "/files/" + f.path; a.textContent = `${f.phase} ${f.kind}: ${f.path}`; a.target = "_blank";
+    li.appendChild(a); list.appendChild(li);
+  }
+}
+
+// ---- the visit that was open: after a reload, a closed tab or a server restart, shown at the step it was at ----
+function fill(form, values) {
+  for (const [name, value] of Object.entries(values || {})) {
+    const element = form.elements[name];
+    if (!element || value === null || value === undefined) continue;
+    if (element instanceof RadioNodeList || element.type === "checkbox") {
+      const boxes = element instanceof RadioNodeList ? [...element] : [element];
+      for (const box of boxes) box.checked = Array.isArray(value) && value.includes(box.value);
+    } else element.value = value;
+  }
+}
+
+function restore(state) {
+  readonly(state.readonly);
+  if (state.notice) { $("#error").textContent = state.notice; $("#error").hidden = false; }
+  if (!state.open) { show("machines"); return; }
+  view.restoring = true;
+  $("#visit-name").textContent = state.folder;
+  fill($("#visit-form"), state.visit);
+  $("#visit-saved").hidden = false; $("#visit-saved").textContent = `Written: ${state.folder}/campaign.toml`;
+  fill($("#plan-form"), state.plan_form);
+  if (state.plan) showPlan(state.plan); else { view.plan = null; $("#plan-table tbody").replaceChildren(); $("#program").textContent = ""; }
+  fill($("#connect-form"), state.connection);
+  if (state.connected) { lights(state.connected.lights); $("#connect-description").textContent = state.connected.description; }
+  else lights({ instrument: "off", controller: "off" });
+  $("#phase").value = state.phase;
+  if (state.compensation) showCompensation(state.compensation);
+  if (state.finished) showFinished(state.finished);
+  if (state.runs["as-found"]) showResults(state.runs["as-left"] ? "as-left" : "as-found").catch(() => {});
+  if (state.runs["as-left"]) beforeAfter();
+  show(state.step);
+  view.restoring = false;
+}
+
+call("GET", "/api/state").then(restore).catch(() => show("machines"));
