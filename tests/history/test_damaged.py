@@ -152,3 +152,20 @@ def test_a_new_database_is_refused_by_readers_and_checked_whole_once_written(db_
         integrity_problems(db_url)
     add_results(results_files, url=db_url)
     assert integrity_problems(db_url) == [] and len(list_campaigns(url=db_url)) == 7
+
+
+def test_check_never_sends_the_user_to_itself(run_cli, healthy, tmp_path):
+    # a file cut short: `history check` says what is wrong and what to do, not "`axiscal history check` lists
+    # the problems"; the other commands still point to it where it has more to say
+    data = healthy.read_bytes()
+    for size in (50, PAGE + 100, len(data) - 1):
+        db = tmp_path / f"cut_{size}.sqlite"
+        db.write_bytes(data[:size])
+        status, out, err = run_cli("history", "check", "--db", db)
+        if status == 1:  # read at all: the problems listed
+            assert "history check" not in out and out.splitlines()[-1].endswith("restore the database from a backup")
+            continue
+        assert status == 2 and err.count("\n") == 1 and "history check" not in err, err
+        assert "restore it from a backup" in err or "not an SQLite database" in err, err
+    status, out, err = run_cli("history", "check", "--db", tmp_path / f"cut_{len(data) - 1}.sqlite")
+    assert status == 2 and "truncated" in err and "history check" not in err, err

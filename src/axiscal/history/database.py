@@ -152,8 +152,8 @@ def _failure(exc: BaseException, url: str) -> AxiscalError:
         if "file is not a database" in text:
             return AxiscalError("not an SQLite database (file is not a database)", path=where)
         if "malformed" in text or "corrupt" in text:
-            return AxiscalError(f"the history database is damaged ({text}): `axiscal history check` lists the "
-                                "problems; restore it from a backup", path=where)
+            return AxiscalError(f"the history database is damaged ({text}): {CHECK_HINT}restore it from a backup",
+                                path=where)
         return AxiscalError(f"cannot use the history database: {text}", path=where)
     return AxiscalError(f"cannot reach the history database {shown_url(url)}: {text}")
 
@@ -190,6 +190,10 @@ def _file_uri(file: Path, mode: str) -> str:
     return f"file:{quote(str(file.resolve()))}?mode={mode}"
 
 
+#: where a command that met a damaged database sends the user (never said by ``history check`` itself)
+CHECK_HINT = "`axiscal history check` lists the problems; "
+
+
 def _refuse_unusable(file: Path, *, readonly: bool) -> bool:
     """Refuse a missing (when read-only) or empty SQLite file, or a folder; True when the file exists."""
     if not file.exists():
@@ -214,8 +218,7 @@ def _refuse_unusable(file: Path, *, readonly: bool) -> bool:
     page = 65536 if page == 1 else page
     if size < 100 or page < 512 or size % page:
         raise AxiscalError(f"the history database is damaged (truncated: {size} bytes, not whole pages of "
-                           f"{page or 'its'} bytes): `axiscal history check` lists the problems; restore it from "
-                           "a backup", path=file)
+                           f"{page or 'its'} bytes): restore it from a backup", path=file)
     return True
 
 
@@ -241,8 +244,8 @@ def _quick_check(file: Path) -> None:
     if rows != ["ok"]:
         more = f" and {len(rows) - 1} more problems" if len(rows) > 1 else ""
         first = " ".join(str(rows[0]).split()) if rows else "no answer"
-        raise AxiscalError(f"the history database is damaged ({first}{more}): `axiscal history check` lists the "
-                           "problems; restore it from a backup", path=file)
+        raise AxiscalError(f"the history database is damaged ({first}{more}): {CHECK_HINT}restore it from a backup",
+                           path=file)
 
 
 def _sqlite_setup(engine: Any) -> None:

@@ -12,7 +12,16 @@ from __future__ import annotations
 import sqlite3
 
 from axiscal.errors import AxiscalError
-from axiscal.history.database import _engine, _failure, _script, _text, resolve_url, shown_url, sqlite_file
+from axiscal.history.database import (
+    CHECK_HINT,
+    _engine,
+    _failure,
+    _script,
+    _text,
+    resolve_url,
+    shown_url,
+    sqlite_file,
+)
 
 __all__ = ["integrity_problems"]
 
@@ -38,11 +47,18 @@ def integrity_problems(url: str | None = None) -> list[str]:
         For a database that cannot be checked at all: a missing or empty SQLite file, a file that
         is not a database, or a server that cannot be reached.
     """
+    try:
+        return _problems(resolve_url(url))
+    except AxiscalError as exc:  # said by this command: it does not send the user to itself
+        raise AxiscalError(exc.message.replace(CHECK_HINT, ""), path=exc.path, line=exc.line) from None
+
+
+def _problems(url: str) -> list[str]:
+    """:func:`integrity_problems` of a resolved URL."""
     from alembic.runtime.migration import MigrationContext
     from sqlalchemy import inspect, text
     from sqlalchemy.exc import SQLAlchemyError
 
-    url = resolve_url(url)
     engine = _engine(url, migrate=False, readonly=True, quick_check=False, schema=False)
     problems: list[str] = []
     try:
