@@ -154,3 +154,12 @@ def test_a_written_ssfk_list_reads_back_whole(interval_m, bilateral):
     assert (back.interval, back.bilateral, back.axis, back.axis_number) == (table.interval, bilateral, "X", 1)
     with pytest.raises(AxiscalError, match=r"^x\.lis: the list has no kw\.ssfk\.table\[10\]\.pos$"):
         parse_twincat_table(table.text().replace("kw.ssfk.table[10].pos", "# gone"), source="x.lis")
+
+
+def test_the_volcomp_list_declares_the_chain_and_refuses_one_number_twice():
+    text = volcomp_list_text(["v.csv"], workpiece_axes=1, chain="XYZ")
+    assert [line.split() for line in text.splitlines()][:3] == [["chain", "XYZ"], ["workpiece_axes", "1"], ["X", "1"]]
+    with pytest.raises(AxiscalError, match=r"^axes X and Z are both given logical axis number 1$"):
+        volcomp_list_text(["v.csv"], axis_numbers={"X": 1, "Y": 2, "Z": 1})
+    with pytest.raises(AxiscalError, match=r"^chain must name each numbered axis \(X, Y, Z\) once, not 'XXZ'$"):
+        volcomp_list_text(["v.csv"], chain="XXZ")
