@@ -95,9 +95,9 @@ def test_the_report_has_their_sections_and_results_json_their_entries(campaign, 
 
 
 @pytest.mark.parametrize(("old", "new", "words", "line"), [
-    ("foot_mm = 100", "foot_mm = -100", "foot_mm must be a positive number", 15),
+    ("foot_mm = 100", "foot_mm = -100", "foot_mm must be a positive number", 20),  # the key's line, not [[tests]]'s
     ('file = "union_jack_levels.toml"', 'file = "union_jack_levels.toml"\nevaluation = "best"', "evaluation", 25),
-    ("max_lag_h = 3", "max_lag_h = -3", "max_lag_h must be a non-negative number", 26),
+    ("max_lag_h = 3", "max_lag_h = -3", "max_lag_h must be a non-negative number", 29),
     ('kind = "thermal_drift"\n', 'kind = "thermal_drift"\nfoot_mm = 3\n', "unknown key 'foot_mm'", 33),
 ])
 def test_bad_options_name_campaign_toml_and_the_line(campaign, old, new, words, line):

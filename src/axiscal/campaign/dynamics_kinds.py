@@ -8,6 +8,7 @@ from collections.abc import Callable
 from typing import Any
 
 from axiscal.campaign.config import Campaign, TestSpec
+from axiscal.campaign.keys import key_line
 from axiscal.campaign.results import Figure, Plot, TestResult, check_figures
 from axiscal.campaign.svg import relative_name, svg_of
 from axiscal.errors import AxiscalError
@@ -25,17 +26,6 @@ _KEYS = {
 }
 
 
-def _key_line(campaign: Campaign, spec: TestSpec, key: str) -> int:
-    """The line of ``key`` in the test's ``[[tests]]`` entry of campaign.toml, else the entry's line."""
-    from axiscal.io.schema import TomlLines
-    from axiscal.io.tabular import read_text
-
-    lines = TomlLines(read_text(campaign.folder / "campaign.toml"))
-    index = next((i for (table, i), line in lines.tables.items() if table == "tests" and line == spec.line), None)
-    found = None if index is None else lines.of("tests", index, key)
-    return spec.line if found is None or found < spec.line else found
-
-
 def _check_options(campaign: Campaign, spec: TestSpec) -> None:
     """The test's numeric options in the file's units and ranges, refused naming the key and its line."""
     for key, unit, low, high in _KEYS.values():
@@ -46,7 +36,7 @@ def _check_options(campaign: Campaign, spec: TestSpec) -> None:
         if not inside:
             bound = f"a positive number of {unit}" if high is None else f"{low:g} to {high:g} {unit}"
             raise AxiscalError(f"{key} must be {bound}, not {value:g}", path=campaign.folder / "campaign.toml",
-                               line=_key_line(campaign, spec, key))
+                               line=key_line(campaign, spec, key))
 
 
 def _located(campaign: Campaign, spec: TestSpec, call: Callable[[], Any]) -> Any:
@@ -62,7 +52,7 @@ def _located(campaign: Campaign, spec: TestSpec, call: Callable[[], Any]) -> Any
             message = re.sub(rf"\b{si}\b", key, message)
         if exc.path is not None:  # about a data file: its place stays
             raise AxiscalError(message, path=exc.path, line=exc.line) from None
-        line = _key_line(campaign, spec, named[0][1]) if named else spec.line
+        line = key_line(campaign, spec, named[0][1]) if named else spec.line
         raise AxiscalError(message, path=campaign.folder / "campaign.toml", line=line) from None
 
 

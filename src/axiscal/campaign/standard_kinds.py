@@ -6,6 +6,7 @@ from collections.abc import Callable
 from typing import Any
 
 from axiscal.campaign.config import Campaign, TestSpec
+from axiscal.campaign.keys import key_line
 from axiscal.campaign.results import Figure, Plot, TestResult, check_figures
 from axiscal.campaign.svg import relative_name, svg_of
 from axiscal.errors import AxiscalError
@@ -20,7 +21,7 @@ def _options_refused(campaign: Campaign, spec: TestSpec, call: Callable[[], Any]
         value = spec.options.get(key)
         if value is not None and (value < 0 or low == "positive" and value == 0):
             raise AxiscalError(f"{spec.id}: {key} must be a {low} number, not {value:g}",
-                               path=campaign.folder / "campaign.toml", line=spec.line)
+                               path=campaign.folder / "campaign.toml", line=key_line(campaign, spec, key))
     try:
         return call()
     except AxiscalError as exc:
