@@ -34,3 +34,50 @@ def test_an_overlay_that_is_not_a_mapping_is_refused():
 def test_the_legend_label_defaults_to_before():
     assert overlay_label({}) == overlay_label({"label": "  "}) == overlay_label({"label": 5}) == OVERLAY_LABEL == "before"
     assert overlay_label({"label": "as found"}) == "as found"
+
+
+def _axes():
+    from axiscal.io.figures import pyplot
+
+    fig, ax = pyplot().subplots()
+    return fig, ax
+
+
+def test_set_up_axes_labels_titles_grids_and_draws_the_zero_line_and_legend():
+    from axiscal.io.figures import LEGEND_FONT_SIZE, pyplot, set_up_axes
+
+    fig, ax = _axes()
+    ax.plot([0.0, 1.0], [1.0, -1.0], label="run 1")
+    assert set_up_axes(ax, xlabel="position / mm", ylabel="deviation / µm", title="E0: pass", title_size=9, grid=True,
+                       legend=True, zero_line=True) is ax
+    assert (ax.get_xlabel(), ax.get_ylabel(), ax.get_title()) == ("position / mm", "deviation / µm", "E0: pass")
+    assert ax.title.get_fontsize() == 9
+    assert all(line.get_visible() for line in ax.get_xgridlines())
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["run 1"]
+    assert ax.get_legend().get_texts()[0].get_fontsize() == LEGEND_FONT_SIZE
+    assert any(list(line.get_ydata()) == [0.0, 0.0] for line in ax.get_lines())
+    pyplot().close(fig)
+
+
+def test_set_up_axes_takes_legend_options_over_the_default_size():
+    from axiscal.io.figures import pyplot, set_up_axes
+
+    fig, ax = _axes()
+    ax.plot([0.0, 1.0], [0.0, 1.0], label="a")
+    ax.plot([0.0, 1.0], [1.0, 0.0], label="b")
+    set_up_axes(ax, legend=True, legend_options={"fontsize": 7, "ncol": 2})
+    assert ax.get_legend().get_texts()[0].get_fontsize() == 7
+    assert ax.get_legend()._ncols == 2
+    pyplot().close(fig)
+
+
+def test_set_up_axes_leaves_out_what_is_not_asked_and_a_legend_of_nothing(recwarn):
+    from axiscal.io.figures import pyplot, set_up_axes
+
+    fig, ax = _axes()
+    ax.plot([0.0, 1.0], [0.0, 1.0])
+    set_up_axes(ax, legend=True)
+    assert ax.get_legend() is None and ax.get_xlabel() == "" and ax.get_title() == ""
+    assert not ax.get_lines()[1:]
+    assert not [w for w in recwarn if "legend" in str(w.message).lower()]
+    pyplot().close(fig)

@@ -4,6 +4,8 @@ Plot modules of every room call :func:`pyplot` when a plot is asked for, so impo
 never imports matplotlib. A plot that draws another campaign's series behind its own (an
 *overlay*, as ``axiscal report --compare`` asks) reads them with :func:`overlay_series` and draws
 them in :data:`OVERLAY_STYLE`, so every kind of plot shows the compared campaign the same way.
+Every plot labels and dresses its axes through :func:`set_up_axes` (labels, title, a light grid,
+a legend, a zero line), so the figures of every room look alike.
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ from axiscal.io.atomic import atomic_write
 
 __all__ = [
     "FIGURE_FORMATS", "OVERLAY_LABEL", "OVERLAY_STYLE", "check_figure_path", "pyplot", "save_figure", "overlay_label",
-    "overlay_series",
+    "overlay_series", "GRID_STYLE", "ZERO_LINE_STYLE", "LEGEND_FONT_SIZE", "set_up_axes",
 ]
 
 #: file suffixes a figure can be written as
@@ -31,6 +33,75 @@ FIGURE_FORMATS = ("png", "svg", "pdf", "jpg", "jpeg", "eps", "ps", "tif", "tiff"
 OVERLAY_STYLE = {"color": "#8e7cc3", "linestyle": (0, (4, 2)), "linewidth": 1.2}
 #: the legend's name of an overlay that does not say its own
 OVERLAY_LABEL = "before"
+
+#: the light grid of every plot that has one
+GRID_STYLE = {"alpha": 0.3}
+#: the line at zero of every plot of deviations about zero
+ZERO_LINE_STYLE = {"color": "gray", "lw": 0.5}
+#: the legend's font size, points, unless a plot asks for another
+LEGEND_FONT_SIZE = 8
+
+
+def set_up_axes(
+    ax: Any,
+    *,
+    xlabel: str | None = None,
+    ylabel: str | None = None,
+    title: str | None = None,
+    title_size: float | None = None,
+    grid: bool = False,
+    legend: bool = False,
+    legend_options: Mapping[str, Any] | None = None,
+    zero_line: bool = False,
+) -> Any:
+    """Label and dress one matplotlib axes the way every plot of axiscal does.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes, its lines already drawn.
+    xlabel, ylabel, title : str, optional, keyword-only
+        Axis labels (with their unit, ``"position / mm"``) and the title; None leaves one unset.
+    title_size : float, optional, keyword-only
+        The title's font size, points (default: matplotlib's).
+    grid : bool, keyword-only
+        Draw the light grid (:data:`GRID_STYLE`); default False.
+    legend : bool, keyword-only
+        Draw a legend of the labelled lines (none when no line has a label); default False.
+    legend_options : mapping, optional, keyword-only
+        Options of ``Axes.legend`` over the default font size :data:`LEGEND_FONT_SIZE`
+        (``{"ncol": 3, "loc": "upper left"}``).
+    zero_line : bool, keyword-only
+        Draw a horizontal line at zero (:data:`ZERO_LINE_STYLE`); default False.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
+
+    Examples
+    --------
+    >>> fig, ax = pyplot().subplots()
+    >>> _ = ax.plot([0, 1], [0, 2], label="run")
+    >>> set_up_axes(ax, xlabel="position / mm", ylabel="deviation / µm", grid=True, legend=True) is ax
+    True
+    >>> ax.get_legend().get_texts()[0].get_text(), ax.get_xlabel()
+    ('run', 'position / mm')
+    >>> pyplot().close(fig)
+    """
+    if zero_line:
+        ax.axhline(0.0, **ZERO_LINE_STYLE)
+    if xlabel is not None:
+        ax.set_xlabel(xlabel)
+    if ylabel is not None:
+        ax.set_ylabel(ylabel)
+    if title is not None:
+        ax.set_title(title, **({} if title_size is None else {"fontsize": title_size}))
+    if grid:
+        ax.grid(True, **GRID_STYLE)
+    if legend and ax.get_legend_handles_labels()[0]:
+        ax.legend(**{"fontsize": LEGEND_FONT_SIZE, **(legend_options or {})})
+    return ax
 
 
 def overlay_label(overlay: Mapping[str, Any]) -> str:
