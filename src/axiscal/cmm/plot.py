@@ -13,7 +13,7 @@ import numpy as np
 from axiscal.cmm.acceptance import AcceptanceResult
 from axiscal.cmm.probing import ProbingResult
 from axiscal.io.arguments import check_instance, check_path
-from axiscal.io.figures import pyplot, save_figure
+from axiscal.io.figures import pyplot, save_figure, set_up_axes
 from axiscal.units import MM, UM
 
 __all__ = ["plot_acceptance", "plot_probing"]
@@ -70,12 +70,9 @@ def plot_acceptance(path: str | Path, result: AcceptanceResult) -> Path:
                 ax.plot(length, -(mpe - U), "k--", lw=0.8)
                 ax.plot(length, mpe + U, "k:", lw=0.8, label="MPE + U (non-conformance proven outside)")
                 ax.plot(length, -(mpe + U), "k:", lw=0.8)
-        ax.axhline(0.0, color="gray", lw=0.5)
-        ax.set_xlabel("calibrated length / mm")
-        ax.set_ylabel(f"{test} (measured - calibrated) / µm")
-        ax.set_title(f"{test}: {result.verdict_of(test)}")
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7, ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.16))
+        set_up_axes(ax, xlabel="calibrated length / mm", ylabel=f"{test} (measured - calibrated) / µm",
+                    title=f"{test}: {result.verdict_of(test)}", grid=True, zero_line=True, legend=True,
+                    legend_options={"fontsize": 7, "ncol": 3, "loc": "upper center", "bbox_to_anchor": (0.5, -0.16)})
     fig.tight_layout()
     return save_figure(fig, path)
 
@@ -113,11 +110,8 @@ def plot_probing(path: str | Path, result: ProbingResult) -> Path:
         top.plot(index, fit.residual_m / UM, _MARKERS[j % len(_MARKERS)] + "-", ms=4, lw=0.6,
                  label=f"stylus {stylus}: form {fit.form_m / UM:.3f} µm")
         start += fit.residual_m.size
-    top.axhline(0.0, color="gray", lw=0.5)
-    top.set_ylabel("radial deviation / µm")
-    top.set_title("each stylus's least-squares sphere")
-    top.grid(True, alpha=0.3)
-    top.legend(fontsize=7)
+    set_up_axes(top, ylabel="radial deviation / µm", title="each stylus's least-squares sphere", grid=True,
+                zero_line=True, legend=True, legend_options={"fontsize": 7})
     if result.composite is not None:
         bottom = axes[1][0]
         residual = result.composite.residual_m / UM
@@ -125,11 +119,9 @@ def plot_probing(path: str | Path, result: ProbingResult) -> Path:
             sel = np.flatnonzero(labels == stylus)
             bottom.plot(np.arange(sel.size) + sum(f.residual_m.size for f in list(result.fits.values())[:j]),
                         residual[sel], _MARKERS[j % len(_MARKERS)], ms=4, label=f"stylus {stylus}")
-        bottom.axhline(0.0, color="gray", lw=0.5)
-        bottom.set_title(f"the styli's common sphere: form {result.composite.form_m / UM:.3f} µm")
-        bottom.set_ylabel("radial deviation / µm")
-        bottom.grid(True, alpha=0.3)
-        bottom.legend(fontsize=7, ncol=5)
+        set_up_axes(bottom, ylabel="radial deviation / µm",
+                    title=f"the styli's common sphere: form {result.composite.form_m / UM:.3f} µm", grid=True,
+                    zero_line=True, legend=True, legend_options={"fontsize": 7, "ncol": 5})
     axes[-1][0].set_xlabel("point")
     fig.tight_layout()
     return save_figure(fig, path)
