@@ -13,7 +13,7 @@ import numpy as np
 from axiscal.dynamics.analysis import AxisDynamics
 from axiscal.dynamics.periodic import PeriodicError
 from axiscal.io.arguments import check_instance, check_path
-from axiscal.io.figures import pyplot, save_figure
+from axiscal.io.figures import pyplot, save_figure, set_up_axes
 from axiscal.units import MM, UM
 
 __all__ = ["plot_dynamics", "plot_periodic"]
@@ -51,18 +51,16 @@ def plot_dynamics(path: str | Path, result: AxisDynamics) -> Path:
     for stop in result.stops:
         axes[0].axvspan(stop.arrival_s, stop.arrival_s + (stop.settling_s if np.isfinite(stop.settling_s) else 0.0),
                         color="tab:orange", alpha=0.4, lw=0)
-    axes[0].set_ylabel("position / mm")
-    axes[0].set_title(f"Savitzky-Golay {d.window_s * 1e3:.3g} ms, degree {d.polyorder}, bandwidth {d.bandwidth_hz:.3g} Hz;"
-                      " settling shaded", fontsize=9)
+    set_up_axes(axes[0], ylabel="position / mm", title_size=9,
+                title=f"Savitzky-Golay {d.window_s * 1e3:.3g} ms, degree {d.polyorder}, bandwidth {d.bandwidth_hz:.3g} Hz;"
+                " settling shaded")
     axes[1].plot(t, d.velocity_m_s[::every] / MM, lw=0.8)
-    axes[1].set_ylabel("velocity / (mm/s)")
+    set_up_axes(axes[1], ylabel="velocity / (mm/s)")
     axes[2].plot(t, d.acceleration_m_s2[::every], lw=0.8)
-    axes[2].set_ylabel("acceleration / (m/s^2)")
-    axes[2].set_xlabel("time / s")
+    set_up_axes(axes[2], xlabel="time / s", ylabel="acceleration / (m/s^2)")
     axes[3].loglog(s.frequency_hz[1:], s.density_m_rthz[1:] / UM, lw=0.8)
-    axes[3].set_xlabel("frequency / Hz")
-    axes[3].set_ylabel("µm/√Hz")
-    axes[3].set_title(f"Welch, segments {s.segment_s:.3g} s; peak {s.peak_hz:.3g} Hz", fontsize=9)
+    set_up_axes(axes[3], xlabel="frequency / Hz", ylabel="µm/√Hz", title_size=9,
+                title=f"Welch, segments {s.segment_s:.3g} s; peak {s.peak_hz:.3g} Hz")
     return save_figure(fig, path)
 
 
@@ -97,13 +95,9 @@ def plot_periodic(path: str | Path, result: PeriodicError) -> Path:
         top.plot(dense / MM, c.fitted(dense) / UM, "-", color=line.get_color(), lw=0.8)
         bottom.plot(c.periods_m / MM, c.amplitudes_m / UM, color=line.get_color(), lw=0.8, label=label)
     main = result.main
-    top.set_title(f"periodic error {2 * main.amplitude_m / UM:.3g} µm peak to peak, period {main.period_m / MM:.4g} mm"
-                  f" (spectrum: {main.spectrum_period_m / MM:.4g} mm)", fontsize=9)
-    top.set_xlabel("target / mm")
-    top.set_ylabel("deviation / µm")
-    top.legend(fontsize=8)
-    bottom.set_xlabel("period / mm")
-    bottom.set_ylabel("amplitude / µm")
-    bottom.legend(fontsize=8)
+    set_up_axes(top, xlabel="target / mm", ylabel="deviation / µm", legend=True, title_size=9,
+                title=f"periodic error {2 * main.amplitude_m / UM:.3g} µm peak to peak, period {main.period_m / MM:.4g} mm"
+                f" (spectrum: {main.spectrum_period_m / MM:.4g} mm)")
+    set_up_axes(bottom, xlabel="period / mm", ylabel="amplitude / µm", legend=True)
     fig.tight_layout()
     return save_figure(fig, path)
