@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.io.arguments import check_instance, check_path
-from axiscal.io.figures import pyplot, save_figure
+from axiscal.io.figures import pyplot, save_figure, set_up_axes
 from axiscal.levels.files import LevelEvaluation
 from axiscal.units import MM, UM, URAD
 
@@ -50,13 +50,11 @@ def plot_levels(path: str | Path, evaluation: LevelEvaluation) -> Path:
     top.plot(x / MM, fit / UM, "-", label=f"{line.reference} line")
     for bound in (residual.min(), residual.max()):
         top.plot(x / MM, (fit + bound) / UM, "--", color="gray", lw=0.8)
-    top.set_ylabel("deviation / µm")
-    top.set_title(f"straightness {line.straightness_m / UM:.3f} µm, angular error {profile.angular_error_rad / URAD:.2f} µrad")
-    top.legend(fontsize=8)
+    set_up_axes(top, ylabel="deviation / µm", legend=True,
+                title=f"straightness {line.straightness_m / UM:.3f} µm, angular error {profile.angular_error_rad / URAD:.2f} µrad")
     middle = profile.reading_position_m + 0.5 * profile.foot_m
     bottom.step(middle / MM, profile.angle_rad / URAD, where="mid")
     bottom.axhline(float(np.mean(profile.angle_rad)) / URAD, ls="--", color="gray", lw=0.8)
-    bottom.set_ylabel("reading / urad")
-    bottom.set_xlabel("position / mm")
+    set_up_axes(bottom, xlabel="position / mm", ylabel="reading / urad")
     fig.tight_layout()
     return save_figure(fig, path)

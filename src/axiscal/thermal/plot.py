@@ -12,7 +12,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_path
-from axiscal.io.figures import pyplot, save_figure
+from axiscal.io.figures import pyplot, save_figure, set_up_axes
 from axiscal.thermal.files import HOUR, DriftEvaluation, EtveEvaluation, ThermalRun
 from axiscal.units import UM, URAD
 
@@ -54,17 +54,14 @@ def plot_thermal(path: str | Path, run: ThermalRun, *, title: str = "") -> Path:
     for name, d in run.displacements.items():
         if name in "XYZ":
             top.plot(hours, d / UM, label=name)
-    top.set_ylabel("displacement / µm")
     tilts = {k: v for k, v in run.displacements.items() if k in "AB"}
     if tilts:
         right = top.twinx()
         for name, d in tilts.items():
             right.plot(hours, d / URAD, "--", label=f"{name} (urad)")
-        right.set_ylabel("tilt / urad")
-        right.legend(fontsize=8, loc="lower right")
-    top.legend(fontsize=8, loc="upper left")
-    top.grid(True, alpha=0.3)
-    top.set_title(title, fontsize=10)
+        set_up_axes(right, ylabel="tilt / urad", legend=True, legend_options={"loc": "lower right"})
+    set_up_axes(top, ylabel="displacement / µm", title=title, title_size=10, grid=True, legend=True,
+                legend_options={"loc": "upper left"})
     if run.running is not None:
         on = np.asarray(run.running) == 1
         for ax in axes[:, 0]:
@@ -74,10 +71,8 @@ def plot_thermal(path: str | Path, run: ThermalRun, *, title: str = "") -> Path:
         bottom = axes[1, 0]
         for place, temperature in run.temperatures_c.items():
             bottom.plot(hours, temperature, label=place)
-        bottom.set_ylabel("temperature / degC")
-        bottom.legend(fontsize=8, ncol=3)
-        bottom.grid(True, alpha=0.3)
-    axes[-1, 0].set_xlabel("time / h")
+        set_up_axes(bottom, ylabel="temperature / degC", grid=True, legend=True, legend_options={"ncol": 3})
+    set_up_axes(axes[-1, 0], xlabel="time / h")
     fig.tight_layout()
     return save_figure(fig, path)
 
