@@ -247,3 +247,34 @@ def test_the_history_keeps_the_worst_frame_of_each_slot_however_the_batches_fall
     for k in faulty:  # every faulty frame's slot is a gap on the chart
         slot = int(np.floor(batch.t_s[k] / 0.05))
         assert np.isnan(kept[slot][1])
+
+
+def test_the_state_folds_batches_together_and_shows_them_all_when_read(module, system):
+    """update() only keeps a batch: the summaries take them at once, when FOLD_S has passed or a reader asks."""
+    batch, results = _processed_frames(module, system, 30)
+    state = LiveState(system)
+    for k in range(3):
+        part = slice(10 * k, 10 * (k + 1))
+        state.update(FrameBatch(batch.t_s[part], batch.values[part], batch.malformed[part]), results["fault"][part], {n: v[part] for n, v in results.items()})
+    assert state.frames == 0  # kept, not folded yet
+    snapshot = state.snapshot()
+    assert snapshot["frames"] == 30 == state.frames and snapshot["t_s"] == pytest.approx(batch.t_s[-1])
+    whole = LiveState(system)
+    whole.update(batch, results["fault"], results)
+    assert whole.snapshot()["axes"] == snapshot["axes"] and whole.snapshot()["history"] == snapshot["history"]
+
+
+def test_a_clock_that_goes_back_between_kept_batches_starts_the_history_afresh(module, system):
+    batch, results = _processed_frames(module, system, 200)
+    state = LiveState(system, history_s=2.0, history_points=200)
+    state.update(batch, results["fault"], results)
+    again = slice(0, 50)  # a new connection: its clock starts at 0 again, before the first batch was folded
+    state.update(FrameBatch(batch.t_s[again], batch.values[again], batch.malformed[again]), results["fault"][again], {n: v[again] for n, v in results.items()})
+    history = state.snapshot()["history"]["t_s"]
+    assert max(history) < 0.05 and state.frames == 250
+
+
+def _processed_frames(module, system, n):
+    frames, _ = module.frames(np.arange(n) / 1000.0)
+    batch = FrameBatch.from_frames(frames, system.channels)
+    return batch, to_display(system.process(batch.frames(system.channels)))

@@ -343,3 +343,21 @@ def test_an_rtx_capture_replays_as_the_reading_of_one_channel(tmp_path, system):
         parse_source(f"rtx:{path}:nm")
     with pytest.raises(AxiscalError, match="rtx capture not found"):
         open_source("rtx:/no/such.rtx:mm:x_scale_mm", system.channels)
+
+
+def test_sim_source_computes_its_frames_ahead_not_once_a_read(module, system):
+    """One ``VirtualModule.frames`` call makes AHEAD_S of stream: a call costs about the same for 1 frame as for 200."""
+    from axiscal.live.playback import AHEAD_S
+
+    calls = []
+
+    class Counting:
+        def frames(self, t, *, path):
+            calls.append(len(t))
+            return module.frames(t, path=path)
+
+    source = SimSource(Counting(), system.channels, rate_hz=2000.0)
+    batch = _drain(source, frames=400)
+    np.testing.assert_array_equal(batch.t_s[:400], np.arange(400) / 2000.0)  # every frame once, in order, on time
+    assert sum(calls) >= len(batch) and all(n >= AHEAD_S * 2000.0 for n in calls)
+    assert len(calls) <= len(batch) / (AHEAD_S * 2000.0) + 1
