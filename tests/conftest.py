@@ -180,3 +180,29 @@ def browser_page(chromium):
         yield shown
     finally:
         context.close()
+
+
+#: the published DCC schemas (PTB's dcc.xsd 3.2.0 and D-SI 2.1.0), beside the project, never copied into it
+DCC_SCHEMAS = Path(__file__).resolve().parents[2] / "shared" / "dcc" / "schema"
+
+
+@pytest.fixture(scope="session")
+def dcc_schema():
+    """PTB's DCC schema 3.2.0 built offline (xmlschema), to validate every DCC the suite writes.
+
+    The schema imports D-SI and the W3C xmldsig schema by URL: both are mapped to local files (D-SI from
+    ../shared/dcc, xmldsig from the copy xmlschema ships) and nothing is fetched (``allow="local"``). Skipped,
+    saying why, where ../shared/dcc is absent (a user's clone has no ../shared).
+    """
+    if not (DCC_SCHEMAS / "dcc-3.2.0" / "dcc.xsd").is_file():
+        pytest.skip(f"the published DCC schema is not at {DCC_SCHEMAS} (../shared/dcc, beside the project)")
+    import xmlschema
+
+    xmldsig = Path(xmlschema.__file__).parent / "schemas" / "DSIG" / "xmldsig-core-schema.xsd"
+    local = {
+        "https://ptb.de/si/v2.1.0/SI_Format.xsd": str(DCC_SCHEMAS / "d-si-2.1.0" / "SI_Format.xsd"),
+        "https://www.w3.org/TR/xmldsig-core/xmldsig-core-schema.xsd": str(xmldsig),
+        "http://www.w3.org/TR/xmldsig-core/xmldsig-core-schema.xsd": str(xmldsig),
+    }
+    return xmlschema.XMLSchema10(str(DCC_SCHEMAS / "dcc-3.2.0" / "dcc.xsd"), uri_mapper=lambda url: local.get(url, url),
+                                 allow="local")

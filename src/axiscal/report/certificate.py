@@ -167,7 +167,7 @@ def figure_rows(results: CampaignResults, gettext: Callable[[str], str] = str) -
             if U is None:
                 if isinstance(figure.value, (int,)) and not isinstance(figure.value, bool) or figure.unit in ("", None):
                     why = _A_COUNT if isinstance(figure.value, int) else _NOT_BUDGETED
-                elif test.kind in _NO_U:
+                elif test.kind in _NO_U and not test.uncertainty:
                     why = _NO_U[test.kind]
                 else:
                     why = _NOT_BUDGETED if budget else _NO_BUDGET

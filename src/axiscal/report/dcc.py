@@ -54,7 +54,6 @@ ET.register_namespace("xsi", _XSI)
 _SUFFIX_UNITS = (
     ("_um_per_m", r"\micro\metre\metre\tothe{-1}"),
     ("_um_per_k", r"\micro\metre\kelvin\tothe{-1}"),
-    ("_um_per_year", r"\micro\metre\year\tothe{-1}"),
     ("_mm_min", r"\milli\metre\minute\tothe{-1}"),
     ("_mm_s", r"\milli\metre\second\tothe{-1}"),
     ("_per_k", r"\kelvin\tothe{-1}"),
