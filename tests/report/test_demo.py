@@ -109,20 +109,21 @@ def test_the_numbers_tell_paper_000_s_story(demo):
 def test_console_text(demo):
     lines = demo.text().splitlines()
     found = demo.folder / "as-found"
-    assert lines[:6] == [
+    assert lines[:7] == [
         f"campaign      {found / 'campaign' / 'campaign.toml'}",
         f"report        {found / 'report' / 'report.html'}",
         f"results       {found / 'report' / 'results.json'}",
         f"compensation  {found / 'report' / 'compensation'}",
         f"as left       {demo.folder / 'as-left' / 'report' / 'report.html'}",
+        f"certificate   {demo.folder / 'as-left' / 'report' / 'certificate.pdf'} (its DCC: dcc.xml)",
         f"summary       {demo.folder / 'summary.json'}",
     ]
-    assert lines[6] == "AS FOUND FAIL: 10 tests, 2 pass, 5 fail, 3 not assessed"
-    assert lines[7] == "AS LEFT PASS: the 2 positioning tests again with the compensation loaded"
-    assert lines[8].startswith("  positioning-X-1: E ") and lines[9].startswith("  positioning-Z-1: E ")
-    assert lines[10] == "  diagonal check, offline model (taken unloaded): 67.5 -> 0.02 um, 2 kg: 56.4 -> 11.08 um"
-    assert lines[11] == "  paper 000 experiment, live 6-DOF measurement: 67.5 -> 0.60 um, 2 kg: 56.4 -> 0.60 um"
-    assert len(lines) == 12
+    assert lines[7] == "AS FOUND FAIL: 10 tests, 2 pass, 5 fail, 3 not assessed"
+    assert lines[8] == "AS LEFT PASS: the 2 positioning tests again with the compensation loaded"
+    assert lines[9].startswith("  positioning-X-1: E ") and lines[10].startswith("  positioning-Z-1: E ")
+    assert lines[11] == "  diagonal check, offline model (taken unloaded): 67.5 -> 0.02 um, 2 kg: 56.4 -> 11.08 um"
+    assert lines[12] == "  paper 000 experiment, live 6-DOF measurement: 67.5 -> 0.60 um, 2 kg: 56.4 -> 0.60 um"
+    assert len(lines) == 13
 
 
 def test_the_shipped_example_is_the_simulated_campaign(examples, tmp_path, same_text_to_precision):

@@ -50,6 +50,9 @@ DEMO_FILES = (
     "as-left/campaign/campaign.toml",
     "as-left/report/report.html",
     "as-left/report/results.json",
+    "as-left/report/certificate.html",
+    "as-left/report/certificate.pdf",
+    "as-left/report/dcc.xml",
     "summary.json",
 )
 #: the virtual machine's axes in the demo: each with its reversal (the model holds no reversal)
@@ -194,7 +197,7 @@ class DemoResult:
         dict of str to Path
             ``"campaign"``, ``"report"``, ``"results"``, ``"compensation"`` (a folder) of the
             as-found campaign, ``"as_left_campaign"``, ``"as_left_report"``, ``"as_left_results"``,
-            and ``"summary"``.
+            ``"certificate"`` (the as-left certificate's PDF), ``"dcc"`` and ``"summary"``.
         """
         return {
             "campaign": self.campaign.toml,
@@ -204,6 +207,8 @@ class DemoResult:
             "as_left_campaign": self.as_left.toml,
             "as_left_report": self.as_left_report.html,
             "as_left_results": self.as_left_report.results,
+            "certificate": self.as_left_report.folder / "certificate.pdf",
+            "dcc": self.as_left_report.dcc,
             "summary": self.folder / "summary.json",
         }
 
@@ -304,7 +309,9 @@ def run_demo(output_dir: str | Path = "axiscal-demo", *, seed: int = 0) -> DemoR
     campaign = write_as_found_campaign(folder / "as-found" / "campaign", seed=seed)
     report = report_campaign(campaign.folder, folder / "as-found" / "report")
     as_left = write_as_left_campaign(folder / "as-left" / "campaign", report.folder / "compensation", seed=seed)
-    as_left_report = report_campaign(as_left.folder, folder / "as-left" / "report", compare=report.results)
+    # the as-left report is the visit's calibration certificate, with its DCC
+    as_left_report = report_campaign(as_left.folder, folder / "as-left" / "report", compare=report.results,
+                                     certificate=True)
     summary = _summary(report, as_left_report)
     write_json(folder / "summary.json", summary)
     return DemoResult(folder, campaign, report, as_left, as_left_report, summary)
