@@ -164,6 +164,8 @@ class ControlState:
         self.moved = False
         self.motions: list[Motion] = []
         self.blocks: list[Block] = []
+        #: what a conversational program's blocks keep for the ones after them (its name, a dwell's cycle)
+        self.frame: dict = {}
         self._view: Mapping[str, float] = _EMPTY
         self._offsets: tuple[tuple, Mapping[str, float]] = ((), _EMPTY)
         self._shift_version = 0

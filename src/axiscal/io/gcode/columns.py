@@ -16,7 +16,7 @@ import numpy as np
 
 from axiscal.io.gcode.blocks import Block
 
-__all__ = ["ProgramColumns", "KINDS", "MOTION_WORDS", "program_columns"]
+__all__ = ["ProgramColumns", "KINDS", "MOTION_WORDS", "program_columns", "joined"]
 
 #: the motion kinds by their code in :attr:`ProgramColumns.kind` (0: the line moves nothing)
 KINDS = ("", "rapid", "feed", "arc", "dwell")
@@ -45,9 +45,18 @@ class ProgramColumns:
     feed_word : list of (str or None)
         The F number written in each line read in bulk; None for the others.
     bulk_row : numpy.ndarray of int64, shape (n,)
-        For a line read in bulk, its row among those lines; -1 for the others.
+        For a line read in bulk, 0 or more (its row among those lines); -1 for the others.
+    has_e : numpy.ndarray of bool, shape (n,)
+        Whether a line that moves has an E word written on it.
+    number_at : numpy.ndarray of int32, shape (n, 2)
+        Where the block number's digits start and stop in a line read in bulk (0, 0: none; the
+        others' is their Block's).
     general : dict of int to Block
         The Block of every line read block by block, by line index.
+    first_line : int
+        The 0-based number of the first line in the whole program (a program read in pieces).
+    motion_word_before : int
+        Code in :data:`MOTION_WORDS` of the last motion word written before the first line, -1 for none.
     motion_line : numpy.ndarray of int64, shape (m,)
         The line index of every motion, in order.
     end_m, start_m : numpy.ndarray, shape (m, len(axes))
@@ -67,6 +76,8 @@ class ProgramColumns:
     motion_word: np.ndarray
     feed_word: list
     bulk_row: np.ndarray
+    has_e: np.ndarray
+    number_at: np.ndarray
     general: dict[int, Block]
     motion_line: np.ndarray
     end_m: np.ndarray
@@ -74,10 +85,71 @@ class ProgramColumns:
     start_m: np.ndarray
     start_known: np.ndarray
     offset_m: np.ndarray
+    first_line: int = 0
+    motion_word_before: int = -1
+
+    def tail(self, line: int) -> "ProgramColumns":
+        """The columns of the lines from index ``line`` on."""
+        rows = int(np.searchsorted(self.motion_line, line))
+        written = np.flatnonzero(self.motion_word[:line] >= 0)
+        before = int(self.motion_word[written[-1]]) if written.size else self.motion_word_before
+        return ProgramColumns(
+            axes=self.axes, kind=self.kind[line:], absolute=self.absolute[line:],
+            extruder_relative=self.extruder_relative[line:], metres_per_unit=self.metres_per_unit[line:],
+            motion_word=self.motion_word[line:], feed_word=self.feed_word[line:], bulk_row=self.bulk_row[line:],
+            has_e=self.has_e[line:], number_at=self.number_at[line:],
+            general={i - line: block for i, block in self.general.items() if i >= line},
+            motion_line=self.motion_line[rows:] - line, end_m=self.end_m[rows:], known=self.known[rows:],
+            start_m=self.start_m[rows:], start_known=self.start_known[rows:], offset_m=self.offset_m[rows:],
+            first_line=self.first_line + line, motion_word_before=before)
+
+    def widened(self, axes: tuple[str, ...]) -> "ProgramColumns":
+        """The same columns over ``axes`` (a superset of :attr:`axes`, in the dialect's order)."""
+        if axes == self.axes:
+            return self
+        where = [axes.index(k) for k in self.axes]
+        m = self.motion_line.size
+
+        def spread(values, fill):
+            out = np.full((m, len(axes)), fill, dtype=values.dtype)
+            out[:, where] = values
+            return out
+
+        return ProgramColumns(**{**self.__dict__, "axes": axes, "end_m": spread(self.end_m, np.nan),
+                                 "known": spread(self.known, False), "start_m": spread(self.start_m, np.nan),
+                                 "start_known": spread(self.start_known, False), "offset_m": spread(self.offset_m, 0.0)})
 
 
-def program_columns(program) -> ProgramColumns:
+def joined(first: ProgramColumns, second: ProgramColumns, axes: tuple[str, ...]) -> ProgramColumns:
+    """The columns of ``first``'s lines followed by ``second``'s, over ``axes`` (both theirs, in order)."""
+    a, b = first.widened(axes), second.widened(axes)
+    n = a.kind.size
+    return ProgramColumns(
+        axes=axes, kind=np.concatenate([a.kind, b.kind]), absolute=np.concatenate([a.absolute, b.absolute]),
+        extruder_relative=np.concatenate([a.extruder_relative, b.extruder_relative]),
+        metres_per_unit=np.concatenate([a.metres_per_unit, b.metres_per_unit]),
+        motion_word=np.concatenate([a.motion_word, b.motion_word]), feed_word=a.feed_word + b.feed_word,
+        bulk_row=np.concatenate([a.bulk_row, b.bulk_row]), has_e=np.concatenate([a.has_e, b.has_e]),
+        number_at=np.concatenate([a.number_at, b.number_at]),
+        general={**a.general, **{i + n: block for i, block in b.general.items()}},
+        motion_line=np.concatenate([a.motion_line, b.motion_line + n]), end_m=np.concatenate([a.end_m, b.end_m]),
+        known=np.concatenate([a.known, b.known]), start_m=np.concatenate([a.start_m, b.start_m]),
+        start_known=np.concatenate([a.start_known, b.start_known]), offset_m=np.concatenate([a.offset_m, b.offset_m]),
+        first_line=a.first_line, motion_word_before=a.motion_word_before)
+
+
+def program_columns(program, *, axes_before: tuple[str, ...] = (), start_m=None, motion_word_before: int = -1) -> ProgramColumns:
     """The columns of ``program`` (a :class:`~axiscal.io.gcode.reader.Program`).
+
+    Parameters
+    ----------
+    program : Program
+    axes_before : tuple of str, keyword-only
+        Axes the lines before ``program`` moved (a program read in pieces): columns of theirs too.
+    start_m : Mapping[str, float], optional, keyword-only
+        Where the axes stand before the first line (a program read in pieces); default: nowhere known.
+    motion_word_before : int, keyword-only
+        Code of the motion word last written before the first line, -1 for none.
 
     Returns
     -------
@@ -85,10 +157,12 @@ def program_columns(program) -> ProgramColumns:
     """
     spec = program.dialect
     n = len(program.lines)
+    first_line = program.first_line
     blocks = program.general_blocks()
     bulk = program.bulk()
     scan = bulk.bulk.scan if bulk is not None else None
     seen = set(scan.axes) if scan is not None else set()
+    seen.update(axes_before)
     for block in blocks:
         if block.motion is not None:
             seen.update(block.motion.end_m)
@@ -102,10 +176,12 @@ def program_columns(program) -> ProgramColumns:
     motion_word = np.full(n, -1, dtype=np.int8)
     feed_word: list = [None] * n
     bulk_row = np.full(n, -1, dtype=np.int64)
+    has_e = np.zeros(n, dtype=bool)
+    number_at = np.zeros((n, 2), dtype=np.int32)
     general: dict[int, Block] = {}
     g_line, g_end, g_known, g_offset = [], [], [], []
     for block in blocks:
-        i = block.line - 1
+        i = block.line - 1 - first_line
         general[i] = block
         motion = block.motion
         absolute[i] = block.absolute
@@ -124,6 +200,7 @@ def program_columns(program) -> ProgramColumns:
             for letter, shift in block.offset_m.items():
                 if letter in where:
                     offset[where[letter]] = shift
+            has_e[i] = any(letter == "E" for letter, _ in block.words)
             g_line.append(i)
             g_end.append(end)
             g_known.append(known)
@@ -136,6 +213,8 @@ def program_columns(program) -> ProgramColumns:
         runs = bulk.bulk.runs
         i = bulk.lines
         bulk_row[i] = np.arange(i.size)
+        has_e[i] = scan.has_e[i]
+        number_at[i] = scan.number_at[i]
         kind[i] = bulk.kinds()
         run = bulk.run_of
         per_unit[i] = np.array([r[3] for r in runs])[run]
@@ -168,10 +247,18 @@ def program_columns(program) -> ProgramColumns:
     end_m = np.concatenate(ends)[order]
     known_m = np.concatenate(knowns)[order]
     offset_m = np.concatenate(offsets)[order]
-    start_m = np.vstack([np.full((min(1, motion_line.size), a), np.nan), end_m[:-1]])
-    start_known = np.vstack([np.zeros((min(1, motion_line.size), a), dtype=bool), known_m[:-1]])
+    first_start = np.full((min(1, motion_line.size), a), np.nan)
+    first_known = np.zeros((min(1, motion_line.size), a), dtype=bool)
+    if start_m and motion_line.size:
+        for letter, position in start_m.items():
+            if letter in where:
+                first_start[0, where[letter]] = position
+                first_known[0, where[letter]] = True
+    start = np.vstack([first_start, end_m[:-1]])
+    start_known = np.vstack([first_known, known_m[:-1]])
     return ProgramColumns(
         axes=axes, kind=kind, absolute=absolute, extruder_relative=extruder_relative, metres_per_unit=per_unit,
-        motion_word=motion_word, feed_word=feed_word, bulk_row=bulk_row, general=general, motion_line=motion_line,
-        end_m=end_m, known=known_m, start_m=start_m, start_known=start_known, offset_m=offset_m,
+        motion_word=motion_word, feed_word=feed_word, bulk_row=bulk_row, has_e=has_e, number_at=number_at,
+        general=general, motion_line=motion_line, end_m=end_m, known=known_m, start_m=start, start_known=start_known,
+        offset_m=offset_m, first_line=first_line, motion_word_before=motion_word_before,
     )

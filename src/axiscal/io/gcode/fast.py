@@ -29,7 +29,7 @@ import numpy as np
 
 from axiscal.io.gcode.blocks import ROTARY, Block, ControlState, Motion
 
-__all__ = ["BulkScan", "Bulk", "walk"]
+__all__ = ["BulkScan", "Bulk", "walk", "plain_words"]
 
 _DEG = math.pi / 180.0
 _MOTION_CODE = {"G0": 0, "G1": 1}
@@ -46,6 +46,11 @@ class BulkScan:
         Its lines (:func:`~axiscal.io.gcode.reader.split_lines`).
     axes : tuple of str
         The dialect's axis letters.
+    numbered : bool, keyword-only
+        Whether a first word N is the block number (the RS-274 dialects; a printer has none).
+    need_point : bool, keyword-only
+        Whether an axis number without a decimal point counts increments (FANUC): such a line is
+        read block by block.
 
     Attributes
     ----------
@@ -64,9 +69,12 @@ class BulkScan:
         The F number, NaN where none.
     has_e : numpy.ndarray of bool
         Whether the line has an E word.
+    number_at : numpy.ndarray of int32, shape (len(lines), 2)
+        Where the block number's digits start and stop in the line (0, 0: no block number).
     """
 
-    def __init__(self, text: str, lines: list[str], axes: tuple[str, ...]):
+    def __init__(self, text: str, lines: list[str], axes: tuple[str, ...], *, numbered: bool = False,
+                 need_point: bool = False):
         from axiscal.io.gcode import scan_kernel  # numba takes a moment to load: only for programs read in bulk
 
         letters = ("G",) + tuple(axes) + ("F",)
@@ -75,9 +83,10 @@ class BulkScan:
             rank[ord(letter)] = rank[ord(letter.lower())] = r
         data = np.frombuffer(text.encode("utf-8", errors="replace"), dtype=np.uint8)
         count = len(lines)
-        status, g, feed, value, present = scan_kernel.scan(data, rank, len(axes), count, scan_kernel._POW10)
+        status, g, feed, value, present, number_at = scan_kernel.scan(data, rank, len(axes), count, scan_kernel._POW10,
+                                                                      numbered, need_point)
         for line in np.flatnonzero(status == scan_kernel.LONG).tolist():  # a number of more than 15 digits: float()
-            for letter, raw in _words(lines[line]):
+            for letter, raw in plain_words(lines[line]):
                 if letter in axes:
                     value[line, axes.index(letter)] = float(raw)
         self.plain = status != scan_kernel.OTHER
@@ -88,23 +97,30 @@ class BulkScan:
         self.value = value[:, used]
         self.present = present[:, used]
         self.has_e = self.present[:, self.axes.index("E")] if "E" in self.axes else np.zeros(count, dtype=bool)
+        self.number_at = number_at
         self._lines = lines
+
+    def number(self, line: int) -> str:
+        """The block number of the plain line ``line`` as written (``N120``), or ""."""
+        start, stop = self.number_at[line]
+        return f"N{self._lines[line][start:stop]}" if stop > start else ""
 
     def words(self, lines: np.ndarray) -> list[tuple[tuple[str, str], ...]]:
         """The words (letter, number as written) of the plain lines ``lines`` (0-based)."""
-        return [_words(self._lines[line]) for line in lines.tolist()]
+        return [plain_words(self._lines[line]) for line in lines.tolist()]
 
     def raw(self, lines: np.ndarray, letter: str) -> list[str | None]:
         """The number written with ``letter`` on each of the plain lines ``lines``, or None."""
-        return [dict(_words(self._lines[line])).get(letter) for line in lines.tolist()]
+        return [dict(plain_words(self._lines[line])).get(letter) for line in lines.tolist()]
 
 
 _WORD = re.compile(r"([A-Za-z])[ \t]*([+-]?(?:\d+\.?\d*|\.\d+))")
 
 
-def _words(line: str) -> tuple[tuple[str, str], ...]:
-    """The words of a plain line: (letter upper-cased, number as written)."""
-    return tuple((letter.upper(), raw) for letter, raw in _WORD.findall(line))
+def plain_words(line: str) -> tuple[tuple[str, str], ...]:
+    """The words of a plain line (one :class:`BulkScan` found plain): (letter upper-cased, number as
+    written), its block number left out."""
+    return tuple((letter.upper(), raw) for letter, raw in _WORD.findall(line) if letter not in "Nn")
 
 
 class Bulk:
@@ -116,9 +132,10 @@ class Bulk:
     state : ControlState
     """
 
-    def __init__(self, scan: BulkScan, state: ControlState):
+    def __init__(self, scan: BulkScan, state: ControlState, first_line: int = 0):
         self.scan = scan
         self.state = state
+        self.first_line = first_line
         self.lines = np.zeros(0, dtype=np.int64)
         #: per run: (first line, stop line, start position, metres per unit, offsets, motion, feed, extruder relative)
         self.runs: list[tuple] = []
@@ -259,6 +276,7 @@ class _Taken:
         keys: list[str] = []
         offsets_view = previous = None
         run = -1
+        first = self.bulk.first_line
         for i, line in enumerate(self.lines.tolist()):
             if self.run_of[i] != run:
                 run = self.run_of[i]
@@ -276,17 +294,20 @@ class _Taken:
                 offsets_view = MappingProxyType({k: offsets[k] for k in keys})
             end = MappingProxyType({k: (float(self.end[i, axes.index(k)]) if k in axes else start[k]) for k in keys})
             kind = "feed" if kinds[i] == 2 else "rapid"
-            motion = Motion(line + 1, kind, end, float(self.feed[i]) if kind == "feed" else None, 0.0, previous)
+            motion = Motion(first + line + 1, kind, end, float(self.feed[i]) if kind == "feed" else None, 0.0, previous)
             previous = end
             word = next((f"G{int(raw)}" for letter, raw in written if letter == "G"), None)
-            out.append(Block(line + 1, texts[line], motion, written, "", "", word, True, per_unit, offsets_view,
-                             extruder_relative))
+            out.append(Block(first + line + 1, texts[line], motion, written, scan.number(line), "", word, True, per_unit,
+                             offsets_view, extruder_relative))
         return out
 
 
-def walk(lines: list[str], state: ControlState, scan: BulkScan, run_block) -> Bulk:
-    """Read ``lines``: the runs of plain lines the state allows in bulk, every other line with ``run_block``."""
-    bulk = Bulk(scan, state)
+def walk(lines: list[str], state: ControlState, scan: BulkScan, run_block, *, first_line: int = 0) -> Bulk:
+    """Read ``lines``: the runs of plain lines the state allows in bulk, every other line with ``run_block``.
+
+    ``first_line`` is the 0-based number of ``lines[0]`` in the whole program (a program read in pieces).
+    """
+    bulk = Bulk(scan, state, first_line)
     n = len(lines)
     plain = scan.plain
     others = np.flatnonzero(~plain).tolist() + [n]
@@ -297,7 +318,7 @@ def walk(lines: list[str], state: ControlState, scan: BulkScan, run_block) -> Bu
         while i < j:
             allowed = bulk.allowed()
             if allowed is None:
-                state.line = i + 1
+                state.line = first_line + i + 1
                 run_block(lines[i], state)
                 i += 1
                 continue
@@ -311,11 +332,11 @@ def walk(lines: list[str], state: ControlState, scan: BulkScan, run_block) -> Bu
                 bulk._take(i, k)
                 i = k
             if i < j:  # a plain line the state does not take
-                state.line = i + 1
+                state.line = first_line + i + 1
                 run_block(lines[i], state)
                 i += 1
         if j < n:
-            state.line = j + 1
+            state.line = first_line + j + 1
             run_block(lines[j], state)
         i = j + 1
     return bulk

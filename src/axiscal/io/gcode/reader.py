@@ -70,10 +70,15 @@ class Program:
         The line end the text uses ("\\n", "\\r\\n" or "\\r").
     lines : list of str
         The lines of the text, without their ends.
+    first_line : int
+        The 0-based number of ``lines[0]`` in the whole program: 0 unless the program is read in
+        pieces (:mod:`axiscal.io.gcode.stream`); blocks and motions carry the whole program's lines.
     """
 
-    def __init__(self, dialect: Dialect, lines: list[str], general: list[Block], taken: Bulk | None, line_end: str):
+    def __init__(self, dialect: Dialect, lines: list[str], general: list[Block], taken: Bulk | None, line_end: str,
+                 first_line: int = 0):
         self.dialect = dialect
+        self.first_line = first_line
         self.lines = lines
         self.line_end = line_end
         self._general = general
@@ -135,6 +140,16 @@ def read_program(
         As :func:`program_motions`.
     """
     check_instance("text", text, str)
+    state = control_state(dialect, source, work_offset_m)
+    lines = split_lines(text)
+    taken = read_lines(lines, text, state)
+    check_end(state, len(lines))
+    ending = _LINE_END.search(text)
+    return Program(state.spec, lines, state.blocks, taken, ending.group(0) if ending else "\n")
+
+
+def control_state(dialect: str | Dialect, source: str | None, work_offset_m: Mapping[str, float] | None) -> ControlState:
+    """The control's state at the start of a program, the arguments of :func:`read_program` checked."""
     spec = find_dialect(dialect)
     if source is not None:
         check_instance("source", source, str)
@@ -145,26 +160,37 @@ def read_program(
             if letter not in spec.axes:
                 raise AxiscalError(f"work_offset_m names {letter!r}, not an axis of {spec.controller} ({', '.join(spec.axes)})")
             offsets[letter] = check_number(f"work_offset_m[{letter!r}]", value)
-    state = ControlState(spec, source, offsets)
-    lines = split_lines(text)
-    taken = None
+    return ControlState(spec, source, offsets)
+
+
+def read_lines(lines: list[str], text: str, state: ControlState, *, first_line: int = 0) -> Bulk | None:
+    """Run ``lines`` (of ``text``; ``lines[0]`` is the program's line ``first_line + 1``) on ``state``.
+
+    The blocks read one by one are appended to ``state.blocks``; the runs of plain lines read in
+    bulk are returned (None when the lines are read block by block).
+    """
+    spec = state.spec
     if spec.syntax == "conversational":
-        frame: dict = {}
-        for number, line in enumerate(lines, start=1):
+        for number, line in enumerate(lines, start=first_line + 1):
             state.line = number
-            run_conversational_block(line, state, frame)
-    elif spec.decimal_point_needed or not _BULK or len(lines) < _BULK_FROM:
-        for number, line in enumerate(lines, start=1):
+            run_conversational_block(line, state, state.frame)
+        return None
+    if not _BULK or len(lines) < _BULK_FROM:
+        for number, line in enumerate(lines, start=first_line + 1):
             state.line = number
             run_block(line, state)
-    else:
-        taken = walk(lines, state, BulkScan(text, lines, spec.axes), run_block)
-    state.line = max(len(lines), 1)
+        return None
+    scan = BulkScan(text, lines, spec.axes, numbered=spec.syntax == "rs274", need_point=spec.decimal_point_needed)
+    return walk(lines, state, scan, run_block, first_line=first_line)
+
+
+def check_end(state: ControlState, lines: int) -> None:
+    """Refuse a program of ``lines`` lines, all run on ``state``, without the end its dialect needs."""
+    spec = state.spec
+    state.line = max(lines, 1)
     if spec.end_required and not state.ended:
         ends = ", ".join(spec.end_words) + (" or a closing %" if spec.percent and spec.name == "linuxcnc" else "")
         raise state.fail(f"the program has no end ({ends})")
-    ending = _LINE_END.search(text)
-    return Program(spec, lines, state.blocks, taken, ending.group(0) if ending else "\n")
 
 
 #: whether plain straight moves are read in bulk (False: every line block by block, as a reference)

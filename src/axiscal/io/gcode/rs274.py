@@ -119,7 +119,7 @@ def run_block(text: str, state: ControlState) -> None:
         return
     if stripped.startswith("/"):
         raise state.fail("a block skipped at the operator's switch ('/') is not followed")
-    if spec.name == "fanuc" and not state.motions and re.fullmatch(r"[Oo]\d{1,5}(\s*\(.*\))?", stripped):
+    if spec.name == "fanuc" and not (state.motions or state.moved) and re.fullmatch(r"[Oo]\d{1,5}(\s*\(.*\))?", stripped):
         state.record(text, None, (), "", "", None)
         return
     code, comment = _strip_comments(stripped, spec.comments, state)
