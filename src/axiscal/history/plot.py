@@ -13,7 +13,7 @@ import numpy as np
 
 from axiscal.history.trend import Trend, date_of, years
 from axiscal.io.arguments import check_instance
-from axiscal.io.figures import check_figure_path, pyplot, save_figure
+from axiscal.io.figures import check_figure_path, pyplot, save_figure, set_up_axes
 
 __all__ = ["plot_trend"]
 
@@ -59,10 +59,9 @@ def plot_trend(trend: Trend, path: str | Path) -> Path:
     if trend.crossing_date is not None and trend.crossing_date <= dates[-1]:
         ax.axvline(trend.crossing_date, color="tab:red", linewidth=1, label=f"crossing {trend.crossing_date}")
     ax.axvline(trend.next_date, color="tab:green", linewidth=1, label=f"next calibration {trend.next_date}")
-    ax.set_xlabel("date")
-    ax.set_ylabel(f"{trend.figure} / {trend.unit}" if trend.unit else trend.figure)
-    ax.set_title(f"{trend.machine}: {trend.figure}", fontsize=10)
-    ax.legend(fontsize=7, loc="best")
+    set_up_axes(ax, xlabel="date", ylabel=f"{trend.figure} / {trend.unit}" if trend.unit else trend.figure,
+                title=f"{trend.machine}: {trend.figure}", title_size=10, legend=True,
+                legend_options={"fontsize": 7, "loc": "best"})
     ax.set_xlim(_dt.date.fromordinal(dates[0].toordinal() - 15), dates[-1])
     fig.autofmt_xdate()
     fig.tight_layout()

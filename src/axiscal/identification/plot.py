@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.conventions import ROTARY_LETTERS, component_names
-from axiscal.io.figures import pyplot, save_figure
+from axiscal.io.figures import pyplot, save_figure, set_up_axes
 from axiscal.units import ANGLE_UNITS, MM, UM
 
 __all__ = ["plot_residuals", "plot_motions"]
@@ -43,11 +43,8 @@ def plot_residuals(result, name: str, path: str | Path) -> Path:
     fig, ax = plt.subplots(figsize=(8, 3))
     r = result.residuals[name] / UM
     ax.plot(np.arange(1, r.size + 1), r, ".", ms=3)
-    ax.axhline(0.0, color="0.5", lw=0.8)
-    ax.set_xlabel("reading")
-    ax.set_ylabel("residual / µm")
     shown = name if len(name) <= _TITLE_NAME else name[:_TITLE_NAME - 3] + "..."
-    ax.set_title(f"{shown} ({result.kinds[name]})")
+    set_up_axes(ax, xlabel="reading", ylabel="residual / µm", title=f"{shown} ({result.kinds[name]})", zero_line=True)
     fig.tight_layout()
     return save_figure(fig, path)
 
@@ -82,9 +79,7 @@ def plot_motions(result, letter: str, path: str | Path) -> Path:
         if np.all(np.isfinite(band)):
             ax.fill_between(x, (value - 2 * band) / factor, (value + 2 * band) / factor, color=line.get_color(), alpha=0.2)
     for ax, unit in zip(axes, ("µm", "µrad")):
-        ax.set_xlabel(f"{letter} / {'deg' if rotary else 'mm'}")
-        ax.set_ylabel(f"error / {unit}")
-        ax.legend(fontsize=8)
+        set_up_axes(ax, xlabel=f"{letter} / {'deg' if rotary else 'mm'}", ylabel=f"error / {unit}", legend=True)
     fig.suptitle(f"Axis {letter}: identified error motions (bands ± 2u, k = 2)")
     fig.tight_layout()
     return save_figure(fig, path)

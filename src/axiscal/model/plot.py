@@ -14,7 +14,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_instance, check_mapping, check_path
-from axiscal.io.figures import OVERLAY_STYLE, overlay_label, overlay_series, pyplot, save_figure
+from axiscal.io.figures import OVERLAY_STYLE, overlay_label, overlay_series, pyplot, save_figure, set_up_axes
 from axiscal.model.machine import AXIS_UNITS, Machine
 from axiscal.units import ANGLE_UNITS, MM, UM
 
@@ -59,12 +59,9 @@ def plot_error_tables(machine: Machine, path: str | Path) -> None:
             target = axes[row, 0] if k < 3 else axes[row, 1]
             scale = 1.0 / UM if k < 3 else 1.0 / _URAD
             target.plot(q_mm, table.values[k] * scale, marker=".", label=f"{name}")
-        axes[row, 0].set_ylabel("translation error / µm")
-        axes[row, 1].set_ylabel("rotation error / urad")
-        for ax in axes[row]:
-            ax.set_xlabel(f"{letter} position / {unit}")
-            ax.grid(True, alpha=0.3)
-            ax.legend(fontsize=8, ncol=3)
+        for ax, ylabel in zip(axes[row], ("translation error / µm", "rotation error / urad")):
+            set_up_axes(ax, xlabel=f"{letter} position / {unit}", ylabel=ylabel, grid=True, legend=True,
+                        legend_options={"ncol": 3})
     fig.suptitle(f"Error motions: {machine.name or machine.chain}")
     fig.tight_layout()
     save_figure(fig, path, dpi=120)
@@ -155,8 +152,7 @@ def plot_volumetric(
                 ax.set_title(f"arrows: e{a.lower()}, e{b.lower()}")
             else:
                 ax.set_title("tool point position error" if len(names) == 3 else "tool axis orientation error")
-            ax.set_xlabel(f"{a} / {unit_a}")
-            ax.set_ylabel(f"{b} / {unit_b}")
+            set_up_axes(ax, xlabel=f"{a} / {unit_a}", ylabel=f"{b} / {unit_b}")
         elif len(moving) == 1:
             (a,) = moving
             fa, unit_a = AXIS_UNITS[a]
@@ -165,10 +161,8 @@ def plot_volumetric(
             for i, name in enumerate(names):
                 ax.plot(qa[order], values[order, i], label=name)
             ax.plot(qa[order], magnitude[order], "k", label=label.split(" /")[0])
-            ax.set_xlabel(f"{a} / {unit_a}")
-            ax.set_ylabel(label.replace("|e|", "error").replace("|(ei, ej)|", "orientation error"))
-            ax.legend()
-            ax.grid(True, alpha=0.3)
+            set_up_axes(ax, xlabel=f"{a} / {unit_a}", ylabel=label.replace("|e|", "error").replace("|(ei, ej)|", "orientation error"),
+                        grid=True, legend=True)
         else:
             # points that are no grid (or one point): where they are, coloured by |e|
             keys = moving + [k for k in positions_m if k not in moving]
@@ -176,9 +170,7 @@ def plot_volumetric(
             (fa, unit_a), (fb, unit_b) = AXIS_UNITS[a], AXIS_UNITS[b]
             sc = ax.scatter(positions_m[a] / fa, positions_m[b] / fb, c=magnitude, cmap="viridis")
             fig.colorbar(sc, ax=ax, label=label)
-            ax.set_xlabel(f"{a} / {unit_a}")
-            ax.set_ylabel(f"{b} / {unit_b}")
-            ax.grid(True, alpha=0.3)
+            set_up_axes(ax, xlabel=f"{a} / {unit_a}", ylabel=f"{b} / {unit_b}", grid=True)
     fig.suptitle(title or "Volumetric error")
     fig.tight_layout()
     save_figure(fig, path, dpi=120)
@@ -206,10 +198,9 @@ def _slices(plt: Any, positions_m: dict[str, np.ndarray], moving: list[str], mag
         order = np.lexsort((qb[at], qa[at]))
         grid = magnitude_um[at][order].reshape(ua.size, ub.size)
         mesh = ax.pcolormesh(ua, ub, grid.T, shading="auto", cmap="viridis", vmin=low, vmax=high)
-        ax.set_title(f"{c} = {level:g} {unit_c}")
-        ax.set_xlabel(f"{a} / {unit_a}")
+        set_up_axes(ax, xlabel=f"{a} / {unit_a}", title=f"{c} = {level:g} {unit_c}")
         ax.set_aspect("equal")
-    axes[0][0].set_ylabel(f"{b} / {unit_b}")
+    set_up_axes(axes[0][0], ylabel=f"{b} / {unit_b}")
     fig.colorbar(mesh, ax=list(axes[0]), label="|e| / µm")
     fig.suptitle(title or "Volumetric error")
     save_figure(fig, path, dpi=120)
@@ -276,12 +267,8 @@ def plot_diagonal(
     if result.error_before_m is not None and result.error_after_m is not None:
         ax.plot(nominal_mm, result.error_before_m / UM, "o-", label=f"E_BD = measured - nominal (P-V {result.range_before_m / UM:.1f} µm)")
         ax.plot(nominal_mm, result.error_after_m / UM, "s-", label=f"E_AD = measured - predicted (P-V {result.range_after_m / UM:.1f} µm)")
-    ax.axhline(0.0, color="grey", lw=0.8)
-    ax.set_xlabel("nominal displacement along the diagonal / mm")
-    ax.set_ylabel("error, actual - nominal / µm")
-    ax.set_title(title)
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=9)
+    set_up_axes(ax, xlabel="nominal displacement along the diagonal / mm", ylabel="error, actual - nominal / µm", title=title,
+                grid=True, zero_line=True, legend=True, legend_options={"fontsize": 9})
     fig.tight_layout()
     save_figure(fig, path, dpi=120)
 
@@ -320,11 +307,8 @@ def plot_diagonal_experiment(result, path: str | Path) -> None:
     ax.plot(diagonal_mm, -result.before_m / UM, "o-", label=f"before the model, E_BD (max {result.before_max_m / UM:.1f} µm)")
     ax.plot(diagonal_mm, -result.scales_only_m / UM, "^--", label=f"scales only (max {result.scales_only_max_m / UM:.1f} µm)")
     ax.plot(diagonal_mm, -result.after_m / UM, "s-", label=f"after the model, E_AD (max {result.after_max_m / UM:.2f} µm)")
-    ax.axhline(0.0, color="0.6", lw=0.8)
-    ax.set_xlabel("position along the XZ diagonal (mm)")
-    ax.set_ylabel("diagonal error, actual - nominal (µm)")
-    ax.set_title(f"Virtual XZ module, {result.load_kg:g} kg on Z: diagonal vs laser (paper 000 eq 13)")
-    ax.legend(loc="best", fontsize=8)
-    ax.grid(True, alpha=0.3)
+    set_up_axes(ax, xlabel="position along the XZ diagonal / mm", ylabel="diagonal error, actual - nominal / µm",
+                title=f"Virtual XZ module, {result.load_kg:g} kg on Z: diagonal vs laser (paper 000 eq 13)", grid=True,
+                zero_line=True, legend=True, legend_options={"loc": "best"})
     fig.tight_layout()
     save_figure(fig, path, dpi=120)

@@ -17,7 +17,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_instance, check_mapping, check_path
-from axiscal.io.figures import overlay_label, pyplot, save_figure
+from axiscal.io.figures import overlay_label, pyplot, save_figure, set_up_axes
 from axiscal.positioning.evaluation import Iso230Result, PositioningRun, Vdi3441Result
 from axiscal.units import ARCSEC, DEG, MM, UM
 
@@ -151,16 +151,15 @@ def plot_positioning(
                 drawn.append((x_over, y_over, color, f"{overlay_label(overlay)}: mean x̄{arrow}"))
         _draw_overlay(ax, drawn, [d.ravel() / factor for d, _, _, _, _ in lines], unit)
     ax.plot([], [], ".", color="0.5", label="single runs")
-    ax.axhline(0.0, color="0.6", linewidth=0.6)
-    ax.set_xlabel(f"target position / {'degree' if run.rotary else 'mm'}")
-    ax.set_ylabel(f"positional deviation (actual − target) / {'arcsec' if run.rotary else 'µm'}")
-    ax.grid(True, alpha=0.3)
     # the legend stays clear of the footnote (lower left) and of an overlay's inset (upper right)
-    ax.legend(fontsize=8, loc="upper left", framealpha=0.85)
+    set_up_axes(ax, xlabel=f"target position / {'degree' if run.rotary else 'mm'}",
+                ylabel=f"positional deviation (actual − target) / {'arcsec' if run.rotary else 'µm'}", grid=True,
+                zero_line=True, legend=True, legend_options={"loc": "upper left", "framealpha": 0.85})
     way = "each way" if run.bidirectional else f"{run.directions[0]} only"
     runs = f"{run.runs} run{'s' if run.runs != 1 else ''} {way}"
     coverage = f", k = {k}" if isinstance(result, Iso230Result) else ""
-    ax.set_title(title or f"{Path(run.source).name}: {result.standard}{coverage}, {run.targets.size} targets, {runs}", fontsize=11)
+    set_up_axes(ax, title=title or f"{Path(run.source).name}: {result.standard}{coverage}, {run.targets.size} targets, {runs}",
+                title_size=11)
     notes = []
     if not has_s:
         notes.append("one run per direction: s cannot be estimated, so no ±ks bands, R, A or S")
@@ -196,9 +195,8 @@ def _draw_overlay(ax, drawn: list, current: list, unit: str) -> None:
         for x_over, y_over, color, label in drawn:
             ax.plot([], [], linestyle=(0, (4, 2)), color=color, linewidth=1.4, label=f"{label} (inset)")
             inset.plot(x_over, y_over, linestyle=(0, (4, 2)), color=color, linewidth=1.4)
-        inset.set_title(f"{drawn[0][3].split(':')[0]}, own scale / {unit}", fontsize=7)
+        set_up_axes(inset, title=f"{drawn[0][3].split(':')[0]}, own scale / {unit}", title_size=7, grid=True)
         inset.tick_params(labelsize=6)
-        inset.grid(True, alpha=0.3)
         return
     for x_over, y_over, color, label in drawn:
         ax.plot(x_over, y_over, linestyle=(0, (4, 2)), color=color, linewidth=1.4, label=label)

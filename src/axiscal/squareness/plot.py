@@ -17,7 +17,7 @@ from axiscal.conventions import PLANES
 from axiscal.instruments.optics import PentaprismSensitivity
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_instance, check_mapping, check_path
-from axiscal.io.figures import OVERLAY_STYLE, overlay_label, overlay_series, pyplot, save_figure
+from axiscal.io.figures import OVERLAY_STYLE, overlay_label, overlay_series, pyplot, save_figure, set_up_axes
 from axiscal.units import ARCMIN, ARCSEC, MM, UM
 
 if TYPE_CHECKING:  # the result type only annotates: its module imports this one to plot
@@ -108,11 +108,8 @@ def plot_squareness(
         ax.plot(position / MM, deviation / UM, "o", ms=4, label="measured")
         ends = np.array([position.min(), position.max()])
         ax.plot(ends / MM, (line.slope * ends + line.intercept_m) / UM, "-", label=f"{line.reference} line")
-        ax.set_xlabel(f"{moving} position / mm")
-        ax.set_ylabel(f"deviation along {across} / µm")
-        ax.set_title(f"{moving} run: slope {line.slope:+.3e} ({math.atan(line.slope) / ARCSEC:+.2f} arcsec)")
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8)
+        set_up_axes(ax, xlabel=f"{moving} position / mm", ylabel=f"deviation along {across} / µm", grid=True, legend=True,
+                    title=f"{moving} run: slope {line.slope:+.3e} ({math.atan(line.slope) / ARCSEC:+.2f} arcsec)")
     # the judged figure under the name and sign the report's tables give it (docs/conventions.md)
     fig.suptitle(
         f"{a}{b} squareness: {result.name} = {result.squareness_rad / ARCSEC:+.2f} arcsec"
@@ -148,20 +145,16 @@ def plot_pentaprism(path: str | Path, table: PentaprismSensitivity) -> Path:
     rotation_arcmin = table.rotation_rad / ARCMIN
     for k, ax in enumerate(axes[:3]):
         ax.plot(rotation_arcmin, table.change_rad[k] / ARCSEC, "-o", ms=3, label="ray trace")
-        ax.set_title(f"({'abc'[k]}) rotation about {'XYZ'[k]}")
-        ax.set_xlabel("rotation / arcmin")
-        ax.grid(True, alpha=0.3)
+        set_up_axes(ax, xlabel="rotation / arcmin", title=f"({'abc'[k]}) rotation about {'XYZ'[k]}", grid=True)
     fine = np.linspace(table.rotation_rad.min(), table.rotation_rad.max(), 200)
     axes[2].plot(fine / ARCMIN, -(fine**2) / ARCSEC, "--", color="tab:red", label="eq (12): -gamma^2 (rad)")
-    axes[2].legend(fontsize=8, loc="lower center")
+    set_up_axes(axes[2], legend=True, legend_options={"loc": "lower center"})
     for k, marker in enumerate("os^"):
         # falling marker sizes keep all three visible where they coincide (all zero)
         axes[3].plot(table.translation_m / MM, table.translation_change_rad[k] / ARCSEC, marker + "-", ms=8 - 2 * k,
                      label=f"along {'XYZ'[k]}")
-    axes[3].set_title("(d) translation: no effect")
-    axes[3].set_xlabel("shift / mm")
-    axes[3].grid(True, alpha=0.3)
-    axes[3].legend(fontsize=8, loc="lower center")
-    axes[0].set_ylabel("angle between beams - 90 deg / arcsec")
+    set_up_axes(axes[3], xlabel="shift / mm", title="(d) translation: no effect", grid=True, legend=True,
+                legend_options={"loc": "lower center"})
+    set_up_axes(axes[0], ylabel="angle between beams - 90 deg / arcsec")
     fig.suptitle(f"pentaprism of paper 002, index {table.index:g}: incident beam [-1, 0, 0]")
     return save_figure(fig, path, dpi=110)

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from axiscal.io.arguments import check_array, check_choice, check_instance, check_mapping, check_path
-from axiscal.io.figures import OVERLAY_STYLE, overlay_label, overlay_series, pyplot, save_figure
+from axiscal.io.figures import OVERLAY_STYLE, overlay_label, overlay_series, pyplot, save_figure, set_up_axes
 from axiscal.straightness.reference import REFERENCES, ReferenceLine, reference_line
 from axiscal.straightness.separation import Separation
 from axiscal.units import ANGLE_UNITS, MM, UM
@@ -87,16 +87,12 @@ def plot_straightness(
     top.plot(x / MM, fit / UM, "-", label=f"{line.reference} line")
     for bound in (residual.min(), residual.max()):
         top.plot(x / MM, (fit + bound) / UM, "--", color="gray", lw=0.8)
-    top.set_ylabel("deviation / µm")
-    top.set_title(f"straightness {line.straightness_m / UM:.4f} µm ({line.reference})")
-    top.legend(fontsize=8)
+    set_up_axes(top, ylabel="deviation / µm", title=f"straightness {line.straightness_m / UM:.4f} µm ({line.reference})",
+                legend=True)
     bottom.plot(x / MM, residual[order] / UM, "o-", ms=3, label="about the line")
-    if before is not None:
-        bottom.legend(fontsize=8)
     for bound in (residual.min(), residual.max()):
         bottom.axhline(bound / UM, ls="--", color="gray", lw=0.8)
-    bottom.set_ylabel("about the line / µm")
-    bottom.set_xlabel("position / mm")
+    set_up_axes(bottom, xlabel="position / mm", ylabel="about the line / µm", legend=before is not None)
     fig.tight_layout()
     return save_figure(fig, path, dpi=120)
 
@@ -179,18 +175,16 @@ def plot_separation(path: str | Path, result: Separation, *, overlay: Mapping[st
                     label=f"{before['label']}: motion S")
     ax.plot(x / MM, profile / UM, marker, ms=3, label=f"profile R (straightness {profile_straightness / UM:.3f} µm)")
     ax.plot(x / MM, motion / UM, marker, ms=3, label=f"motion S (straightness {motion_straightness / UM:.3f} µm)")
-    ax.set_ylabel("deviation / µm")
     ax.text(0.01, 0.01, f"straightness: width of the zone about each curve's own {reference} line (ISO 230-1)",
             transform=ax.transAxes, fontsize=7, va="bottom", color="0.3")
-    ax.set_title(f"error separation: {result.method} (R and S less R's least-squares line)")
-    ax.legend(fontsize=8)
+    set_up_axes(ax, ylabel="deviation / µm", title=f"error separation: {result.method} (R and S less R's least-squares line)",
+                legend=True)
     if has_yaw:
         yaw = axes[1, 0]
         if before is not None and before["yaw"] is not None:
             yaw.plot(before["x"], before["yaw"], **OVERLAY_STYLE, label=f"{before['label']}: yaw")
         yaw.plot(x / MM, result.yaw_rad / URAD, marker, ms=3, color="C2", label="yaw (up to a constant)")
-        yaw.set_ylabel("yaw / urad")
-        yaw.legend(fontsize=8)
-    axes[-1, 0].set_xlabel("position along the workpiece / mm")
+        set_up_axes(yaw, ylabel="yaw / urad", legend=True)
+    set_up_axes(axes[-1, 0], xlabel="position along the workpiece / mm")
     fig.tight_layout()
     return save_figure(fig, path, dpi=120)

@@ -13,7 +13,7 @@ import numpy as np
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_array, check_mapping
-from axiscal.io.figures import check_figure_path, pyplot, save_figure
+from axiscal.io.figures import check_figure_path, pyplot, save_figure, set_up_axes
 from axiscal.io.arguments import check_instance
 from axiscal.uncertainty.volumetric import VolumetricUncertainty
 from axiscal.units import MM, UM
@@ -81,10 +81,8 @@ def plot_volumetric_uncertainty(
         else:
             ax.errorbar(x, e_um, yerr=np.vstack([e_um - low, high - e_um]).clip(min=0.0), fmt="o", markersize=3,
                         elinewidth=0.8, capsize=2, alpha=0.6, color="tab:blue", ecolor="tab:gray", label=f"|e| and its {label}")
-        ax.set_xlabel(f"{letter} position / mm")
-        ax.grid(True, alpha=0.3)
-    axes[0, 0].set_ylabel("|e| / µm")
-    axes[0, 0].legend(fontsize=8, loc="best")
+        set_up_axes(ax, xlabel=f"{letter} position / mm", grid=True)
+    set_up_axes(axes[0, 0], ylabel="|e| / µm", legend=True, legend_options={"loc": "best"})
     fig.suptitle(title or "Volumetric error with its coverage interval", fontsize=11)
     fig.tight_layout()
     save_figure(fig, path, dpi=120)
