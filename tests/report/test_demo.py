@@ -161,3 +161,13 @@ def test_the_as_left_volumetric_section_is_the_compensated_machine_s(demo):
     assert "with the linuxcnc compensation loaded (X: X.comp, Z: Z.comp): what is left" in html
     assert "Change of the volumetric error since the compared campaign" in html
     assert "Compensation loaded" in html and "X X.comp, Z Z.comp" in html
+
+
+def test_the_demo_s_certificate_and_its_dcc(demo, dcc_schema):
+    import pypdf
+
+    dcc = demo.as_left_report.dcc
+    assert list(dcc_schema.iter_errors(str(dcc))) == []
+    reader = pypdf.PdfReader(demo.folder / "as-left" / "report" / "certificate.pdf")
+    assert reader.attachments["dcc.xml"] == [dcc.read_bytes()]
+    assert all("AX-2026-0042" in page.extract_text() for page in reader.pages)
