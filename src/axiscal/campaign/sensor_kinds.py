@@ -82,7 +82,7 @@ def _sixdof_diagonal(campaign: Campaign, spec: TestSpec) -> TestResult:
 
 
 def _plot_sensor_diagonal(result, path: Path) -> None:
-    from axiscal.io.figures import pyplot, save_figure
+    from axiscal.io.figures import pyplot, save_figure, set_up_axes
 
     plt = pyplot()
     along = np.hypot(result.x_m, result.z_m) / MM
@@ -90,16 +90,13 @@ def _plot_sensor_diagonal(result, path: Path) -> None:
     ax.plot(along, result.before_m / UM, "o-", label="E_BD: before the model")
     ax.plot(along, result.scales_only_m / UM, "s--", label="scales alone")
     ax.plot(along, result.after_m / UM, "k^-", label="E_AD: with the measured spatial error")
-    ax.set_xlabel("nominal displacement along the diagonal / mm")
-    ax.set_ylabel("error / µm")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    set_up_axes(ax, xlabel="nominal displacement along the diagonal / mm", ylabel="error / µm", grid=True, legend=True)
     fig.tight_layout()
     save_figure(fig, path)
 
 
 def _plot_recording(result, path: Path) -> None:
-    from axiscal.io.figures import pyplot, save_figure
+    from axiscal.io.figures import pyplot, save_figure, set_up_axes
 
     plt = pyplot()
     r = result.results
@@ -112,9 +109,6 @@ def _plot_recording(result, path: Path) -> None:
     bad = ~good
     if bad.any():
         ax.plot(r["t_s"][bad], np.zeros(int(bad.sum())), "rx", label="faulty frame")
-    ax.set_xlabel("time / s")
-    ax.set_ylabel("error / µm")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, ncol=5)
+    set_up_axes(ax, xlabel="time / s", ylabel="error / µm", grid=True, legend=True, legend_options={"ncol": 5})
     fig.tight_layout()
     save_figure(fig, path)

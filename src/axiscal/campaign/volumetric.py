@@ -164,7 +164,7 @@ def plot_volume(machine: Machine, path: str | Path, *, count: int = GRID_POINTS)
         For a ``machine`` that is not a :class:`~axiscal.model.Machine`, a path without a figure
         suffix, a ``count`` below 2.
     """
-    from axiscal.io.figures import check_figure_path, pyplot, save_figure
+    from axiscal.io.figures import check_figure_path, pyplot, save_figure, set_up_axes
 
     check_instance("machine", machine, Machine)
     check_figure_path(path)
@@ -184,10 +184,7 @@ def plot_volume(machine: Machine, path: str | Path, *, count: int = GRID_POINTS)
         for i, name in enumerate(("ex", "ey", "ez")):
             ax.plot(x, error[:, i] / UM, label=name)
         ax.plot(x, magnitude, "k", label="|e|")
-        ax.set_xlabel(f"{a} / mm")
-        ax.set_ylabel("error / µm")
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8)
+        set_up_axes(ax, xlabel=f"{a} / mm", ylabel="error / µm", grid=True, legend=True)
     else:
         a, b = letters[:2]
         if len(letters) == 2:
@@ -318,7 +315,7 @@ def plot_volume_change(now: Mapping[str, Any], before: Mapping[str, Any], path: 
         For a map that is not one, maps on different grids (see :func:`same_grid`), a path
         without a figure suffix, a label that is not text.
     """
-    from axiscal.io.figures import check_figure_path, pyplot, save_figure
+    from axiscal.io.figures import check_figure_path, pyplot, save_figure, set_up_axes
 
     letters, grid, e_now, c_now = _map_arrays("now", now)
     _, _, e_before, c_before = _map_arrays("before", before)
@@ -336,11 +333,7 @@ def plot_volume_change(now: Mapping[str, Any], before: Mapping[str, Any], path: 
             if key in c_now and key in c_before:
                 ax.plot(grid[a], c_now[key] - c_before[key], label=f"{key} now − {key} {label}")
         ax.plot(grid[a], change, "k", label=f"|e| now − |e| {label}")
-        ax.axhline(0.0, color="0.6", linewidth=0.6)
-        ax.set_xlabel(f"{a} / mm")
-        ax.set_ylabel("change / µm")
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8)
+        set_up_axes(ax, xlabel=f"{a} / mm", ylabel="change / µm", grid=True, zero_line=True, legend=True)
     else:
         a, b = letters[:2]
         if len(letters) == 2:
