@@ -22,6 +22,7 @@ The delay is measured by the pipeline right after the batch's ``os.write`` to th
 from __future__ import annotations
 
 import argparse
+import gc
 import json
 import os
 import socket
@@ -143,8 +144,12 @@ def _run(kind: str, rate: float, seconds: float, *, dashboard: bool) -> dict:
                 pass
             source.clock_offset_s = float(child.stdout.readline())
         deadline = time.monotonic() + seconds + 10.0
-        while pipeline.frames < expected and time.monotonic() < deadline:
-            pipeline.step(0.02)
+        gc.freeze()  # as Pipeline.run does
+        try:
+            while pipeline.frames < expected and time.monotonic() < deadline:
+                pipeline.step(0.02)
+        finally:
+            gc.unfreeze()
         summary = pipeline.summary(seconds)
         delays = pipeline.latencies_s() / MS
         received = 0

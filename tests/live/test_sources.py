@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import fcntl
+import gc
 import os
 import socket
 import struct
@@ -361,3 +362,26 @@ def test_sim_source_computes_its_frames_ahead_not_once_a_read(module, system):
     np.testing.assert_array_equal(batch.t_s[:400], np.arange(400) / 2000.0)  # every frame once, in order, on time
     assert sum(calls) >= len(batch) and all(n >= AHEAD_S * 2000.0 for n in calls)
     assert len(calls) <= len(batch) / (AHEAD_S * 2000.0) + 1
+
+
+def test_the_pipeline_reads_the_source_at_most_once_a_batch_interval(module, system):
+    """Frames that arrive within batch_interval_s of the last read make one batch (each batch costs a fixed time)."""
+    source = SimSource(module, system.channels, rate_hz=5000.0)
+    reads = []
+    read = source.read
+
+    def timed(timeout_s):
+        start = time.monotonic()
+        batch = read(timeout_s)
+        if len(batch):
+            reads.append(start)
+        return batch
+
+    source.read = timed
+    pipeline = Pipeline(system, source, batch_interval_s=0.01)
+    pipeline.run(duration_s=0.3)
+    assert pipeline.batches >= 5 and (reads[-1] - reads[0]) / (len(reads) - 1) >= 0.0099  # the cadence; one read may catch up
+    assert pipeline.frames >= 0.1 * 5000 and gc.get_freeze_count() == 0  # the collector's frozen objects are given back
+    for bad in (-0.001, 0.2, float("nan")):
+        with pytest.raises(AxiscalError, match="batch_interval_s"):
+            Pipeline(system, source, batch_interval_s=bad)
