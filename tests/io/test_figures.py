@@ -81,3 +81,13 @@ def test_set_up_axes_leaves_out_what_is_not_asked_and_a_legend_of_nothing(recwar
     assert not ax.get_lines()[1:]
     assert not [w for w in recwarn if "legend" in str(w.message).lower()]
     pyplot().close(fig)
+
+
+def test_every_plot_draws_its_grid_through_set_up_axes():
+    import re
+    from pathlib import Path
+
+    package = Path(__file__).resolve().parents[2] / "src" / "axiscal"
+    own = [f"{p.relative_to(package)}:{n}" for p in sorted(package.rglob("*.py")) if p.name != "figures.py"
+           for n, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1) if re.search(r"\.grid\(", line)]
+    assert own == []
