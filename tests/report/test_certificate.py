@@ -11,6 +11,8 @@ import socket
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from axiscal.errors import AxiscalError
 from axiscal.report import report_campaign
@@ -385,3 +387,36 @@ def test_numbers_read_back_are_the_numbers_written():
         assert re.fullmatch(r"[-+]?((\d*\.\d+)|(\d+\.\d*)|(\d+\.?))([Ee][-+]?\d+)?", text)  # D-SI's decimalType
         assert (int(text) if isinstance(value, int) else float(text)) == value
     assert math.isclose(float(_number(1 / 3)), 1 / 3, rel_tol=0)
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(data=st.data())
+def test_a_damaged_dcc_reads_cleanly_or_is_refused_in_one_line(written, tmp_path_factory, data):
+    """Every damage to a DCC: a clean refusal (AxiscalError) or a correct parse, never another exception."""
+    blob = bytearray(written.dcc.read_bytes())
+    kind = data.draw(st.sampled_from(["cut", "flip", "value", "key", "rows"]))
+    if kind == "cut":
+        blob = blob[: data.draw(st.integers(0, len(blob)))]
+    elif kind == "flip":
+        for _ in range(data.draw(st.integers(1, 8))):
+            blob[data.draw(st.integers(0, len(blob) - 1))] = data.draw(st.integers(0, 255))
+    elif kind == "value":
+        text = blob.decode()
+        junk = data.draw(st.sampled_from(["nan", "1e999", "", "x", "1,5", "--1", "0x10", "1e-99999"]))
+        text = re.sub(r"<si:value>[^<]*</si:value>", f"<si:value>{junk}</si:value>", text,
+                      count=data.draw(st.integers(1, 3)))
+        blob = bytearray(text.encode())
+    elif kind == "key":
+        text = blob.decode()
+        blob = bytearray(text.replace('axiscal_figure:E"', data.draw(st.sampled_from(
+            ['axiscal_figure:E/x"', 'axiscal_figure:"', 'axiscal_figure:targets"', 'axiscal_figure:#3"']))).encode())
+    else:
+        blob = bytearray(blob.decode().replace("/#0", "/#7").encode())
+    path = tmp_path_factory.mktemp("damaged") / "dcc.xml"
+    path.write_bytes(bytes(blob))
+    try:
+        read = read_dcc(path)
+    except AxiscalError as exc:
+        assert "\n" not in str(exc) and len(str(exc)) < 600
+    else:
+        assert read["schema"] == "axiscal-results/1" and isinstance(read["tests"], list)

@@ -413,7 +413,7 @@ def read_dcc(path: str | Path) -> dict[str, Any]:
     path = Path(path)
     try:
         root = ET.parse(path).getroot()
-    except (ET.ParseError, OSError) as exc:
+    except (ET.ParseError, OSError, ValueError) as exc:
         raise AxiscalError(f"not a readable XML file: {exc}", path=path) from None
     if root.tag != _q("dcc:digitalCalibrationCertificate"):
         raise AxiscalError("not a Digital Calibration Certificate (root dcc:digitalCalibrationCertificate)", path=path)
@@ -436,14 +436,21 @@ def read_dcc(path: str | Path) -> dict[str, Any]:
                 continue
             keys = [part if part.startswith(_ROW) else unquote(part) for part in qref[len(FIGURE_REF):].split("/")]
             value, U = _quantity_value(quantity, path)
-            _place(figures, keys, value)
+            try:
+                _place(figures, keys, value)
+            except ValueError as exc:
+                raise AxiscalError(str(exc), path=path) from None
             if U is not None and len(keys) == 1:
                 uncertainty[keys[0]] = U
         test_id = ref[len(TEST_REF):]
+        try:
+            figures = _lists(figures)
+        except KeyError as exc:
+            raise AxiscalError(f"test '{test_id[:80]}': row {exc} of a table of figures is missing", path=path) from None
         if test_id == "volumetric":
-            volumetric = _lists(figures)
+            volumetric = figures
             continue
-        entry: dict[str, Any] = {"id": test_id, "figures": _lists(figures)}
+        entry: dict[str, Any] = {"id": test_id, "figures": figures}
         if uncertainty:
             entry["uncertainty"] = {"k": COVERAGE_FACTOR, **uncertainty}
         tests.append(entry)
@@ -460,6 +467,14 @@ def read_dcc(path: str | Path) -> dict[str, Any]:
 
 
 def _quantity_value(quantity: ET.Element, path: Path) -> tuple[Any, float | None]:
+    try:
+        return _read_quantity(quantity, path)
+    except (ValueError, TypeError):
+        raise AxiscalError(f"figure '{quantity.get('refType', '')[len(FIGURE_REF):][:80]}': its value is not a number "
+                           "as D-SI writes one", path=path) from None
+
+
+def _read_quantity(quantity: ET.Element, path: Path) -> tuple[Any, float | None]:
     import json
 
     real = quantity.find(_q("si:real"))
@@ -475,7 +490,7 @@ def _quantity_value(quantity: ET.Element, path: Path) -> tuple[Any, float | None
     content = quantity.findtext(f"{_q('dcc:noQuantity')}/{_q('dcc:content')}")
     try:
         return json.loads(content or "null"), None
-    except ValueError:
+    except (ValueError, RecursionError):
         raise AxiscalError(f"a figure's text is not the JSON value axiscal writes: {content[:80]!r}", path=path) from None
 
 
@@ -484,6 +499,8 @@ def _place(target: dict[str, Any], keys: list[str], value: Any) -> None:
     here = target
     for key in keys[:-1]:
         here = here.setdefault(key, {})
+        if not isinstance(here, dict):
+            raise ValueError(f"figure '{'/'.join(keys)}' lies under a figure that is a value")
     here[keys[-1]] = value
 
 
