@@ -1,20 +1,23 @@
-"""Whole-process time of ``axiscal precompensate`` on 10^5 and 10^6-line part programs, against an older revision.
+"""Whole-process time and peak memory of ``axiscal precompensate`` on 10^6 and 10^7-line part programs.
 
 Run from the repository root::
 
-    .venv/bin/python benchmarks/precompensate.py [--lines 100000 1000000] [--runs 5] [--baseline REV]
+    .venv/bin/python benchmarks/precompensate.py [--lines 1000000 10000000] [--runs 3] [--baseline REV]
+        [--numbered] [--dialect fanuc]
     .venv/bin/python benchmarks/precompensate.py --stages [--lines 100000] [--runs 5]
 
-Makes seeded LinuxCNC programs like a CAM system's finishing pass (short feed moves of 0.2 to 2 mm
-wandering over the XFYZ example's travel, an arc in every 200 blocks, a few comments) and times
-``axiscal precompensate`` as a whole process (start-up, reading, the model's inverse, the path
-checks, writing) ``--runs`` times for each size, printing the median, for this tree and, in the same
-run and alternating with it, for the source of ``--baseline`` (default: the last revision that read
-every line block by block and kept a Block object per line) unpacked from git into a temporary
-folder. The two outputs are compared: the same program must come out, to the byte. The baseline
-needs git and this repository's history; ``--baseline none`` times this tree alone. ``--stages``
-times, in one process, the reading of the program in bulk and block by block, and the model's
-inverse of its points compiled and in NumPy.
+Makes seeded programs like a CAM system's finishing pass (short feed moves of 0.2 to 2 mm wandering
+over the XFYZ example's travel, an arc every 200 blocks, a comment every 500, a G0 retract and a new
+feed every 1000; ``--numbered``: a block number on every block; ``--dialect fanuc``: FANUC's
+words, every number with its point) and times ``axiscal precompensate`` as a whole process
+(start-up, reading, the model's inverse, the path checks, writing) ``--runs`` times for each size,
+printing the median time and the peak resident memory (``wait4``'s ``ru_maxrss``) with the load
+average seen during the runs. Up to ``--baseline-up-to`` lines (2 x 10^6), the source of
+``--baseline`` (default: the last revision that held the whole program in memory) is run too,
+unpacked from git into a temporary folder, alternating with this tree, and the two outputs are
+compared: the same program must come out, to the byte. ``--baseline none`` times this tree alone.
+``--stages`` times, in one process, the reading of the program in bulk and block by block, and the
+model's inverse of its points compiled and in NumPy.
 """
 
 from __future__ import annotations
@@ -36,18 +39,34 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 MACHINE = ROOT / "examples" / "xfyz_machine" / "machine.toml"
-#: the last revision that read every line of a program block by block (Block objects for every line,
-#: the text written one number at a time); its inverse already ran compiled
-BASELINE = "487f78a"
+#: the last revision that held the whole program in memory (read in bulk, rewritten at once)
+BASELINE = "fb977f6"
 
 
-def part_program(lines: int, seed: int = 1) -> str:
-    """A finishing pass of ``lines`` blocks inside X 100..700, Y 100..400, Z 100..300 mm."""
+def program_lines(lines: int, seed: int = 1, *, numbered: bool = False, dialect: str = "linuxcnc"):
+    """The lines of a finishing pass of about ``lines`` blocks inside X 100..700, Y 100..400, Z 100..300 mm.
+
+    Short feed moves, an arc every 200 blocks, a comment every 500, a G0 retract and a new feed
+    every 1000; ``numbered``: a block number on every block (N10, N20, ...); FANUC: G00/G01, every
+    number with its decimal point, the tape's % and program number.
+    """
     rng = np.random.default_rng(seed)
-    out = ["%", "(finishing pass)", "G21 G90 G94 G17", "G0 X400 Y250 Z200", "G1 F1500"]
+    fanuc = dialect == "fanuc"
+    g0, g1, g2 = ("G00", "G01", "G02") if fanuc else ("G0", "G1", "G2")
+    head = ["%", "O0001", "(finishing pass)", "G21", "G90 G94 G17"] if fanuc else ["%", "(finishing pass)", "G21 G90 G94 G17"]
+    count = 0
+
+    def block(text: str) -> str:
+        nonlocal count
+        count += 1
+        return f"N{10 * count} {text}" if numbered and not text.startswith(("%", "(", "O")) else text
+
+    for line in head + [f"{g0} X400. Y250. Z200.", f"{g1} F1500."]:
+        yield block(line)
     x, y, z = 400.0, 250.0, 200.0
     heading = 0.0
-    while len(out) < lines - 2:
+    written = len(head) + 2
+    while written < lines - 2:
         heading += rng.normal(0.0, 0.4)
         step = rng.uniform(0.2, 2.0)
         nx, ny = x + step * math.cos(heading), y + step * math.sin(heading)
@@ -55,16 +74,40 @@ def part_program(lines: int, seed: int = 1) -> str:
             heading += math.pi
             continue
         z = min(300.0, max(100.0, z + rng.normal(0.0, 0.05)))
-        if len(out) % 200 == 0:
+        if written % 200 == 0:
             # a half circle of radius `step` / 2 to the next point, by its radius
-            out.append(f"G2 X{nx:.4f} Y{ny:.4f} R{step / 2 + 1e-4:.4f}")
-        elif len(out) % 500 == 0:
-            out.append(f"G1 X{nx:.4f} Y{ny:.4f} Z{z:.4f} (row {len(out)})")
+            yield block(f"{g2} X{nx:.4f} Y{ny:.4f} R{step / 2 + 1e-4:.4f}")
+            yield block(g1)
+            written += 1
+        elif written % 1000 == 500:
+            yield block(f"{g0} Z{z + 5:.4f}")
+            yield block(f"{g1} X{nx:.4f} Y{ny:.4f} Z{z:.4f} F{rng.choice([900, 1200, 1500])}.")
+            written += 1
+        elif written % 500 == 0:
+            yield block(f"X{nx:.4f} Y{ny:.4f} Z{z:.4f} (row {written})")
         else:
-            out.append(f"G1 X{nx:.4f} Y{ny:.4f} Z{z:.4f}")
+            yield block(f"X{nx:.4f} Y{ny:.4f} Z{z:.4f}")
+        written += 1
         x, y = nx, ny
-    out += ["M2", "%"]
-    return "\n".join(out) + "\n"
+    yield block("M30" if fanuc else "M2")
+    yield "%"
+
+
+def part_program(lines: int, seed: int = 1, *, numbered: bool = False, dialect: str = "linuxcnc") -> str:
+    """:func:`program_lines` as one text."""
+    return "\n".join(program_lines(lines, seed, numbered=numbered, dialect=dialect)) + "\n"
+
+
+def write_part_program(path: Path, lines: int, *, numbered: bool = False, dialect: str = "linuxcnc") -> None:
+    """:func:`part_program` written to ``path`` a block of lines at a time."""
+    with open(path, "w") as out:
+        batch = []
+        for line in program_lines(lines, numbered=numbered, dialect=dialect):
+            batch.append(line)
+            if len(batch) == 100_000:
+                out.write("\n".join(batch) + "\n")
+                batch = []
+        out.write("\n".join(batch) + "\n")
 
 
 def unpack(revision: str, folder: Path) -> Path:
@@ -76,13 +119,20 @@ def unpack(revision: str, folder: Path) -> Path:
     return folder / "src"
 
 
-def run(source: Path, program: Path, output: Path) -> float:
-    """Seconds of one whole ``axiscal precompensate`` process run on ``source``."""
+def run(source: Path, program: Path, output: Path, dialect: str = "linuxcnc") -> tuple[float, float]:
+    """Seconds and peak resident memory (MB) of one whole ``axiscal precompensate`` process run on ``source``."""
     env = dict(os.environ, PYTHONPATH=str(source))
     start = time.perf_counter()
-    subprocess.run([sys.executable, "-m", "axiscal.cli.main", "precompensate", str(program), "--machine", str(MACHINE),
-                    "--dialect", "linuxcnc", "-o", str(output)], check=True, capture_output=True, env=env)
-    return time.perf_counter() - start
+    child = subprocess.Popen([sys.executable, "-m", "axiscal.cli.main", "precompensate", str(program), "--machine",
+                              str(MACHINE), "--dialect", dialect, "-o", str(output)], env=env,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    _, status, usage = os.wait4(child.pid, 0)
+    seconds = time.perf_counter() - start
+    child.returncode = os.waitstatus_to_exitcode(status)
+    if child.returncode:
+        raise SystemExit(f"precompensate failed: {child.stderr.read().decode()}")
+    child.stderr.close()
+    return seconds, usage.ru_maxrss / 1024.0
 
 
 def stages(lines: int, runs: int) -> None:
@@ -124,9 +174,13 @@ def stages(lines: int, runs: int) -> None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--lines", type=int, nargs="+", default=[100_000, 1_000_000])
-    parser.add_argument("--runs", type=int, default=5)
+    parser.add_argument("--lines", type=int, nargs="+", default=[1_000_000, 10_000_000])
+    parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--baseline", default=BASELINE, help="git revision timed alongside ('none': this tree alone)")
+    parser.add_argument("--baseline-up-to", type=int, default=2_000_000,
+                        help="largest program the baseline is run on (it holds the whole program in memory)")
+    parser.add_argument("--numbered", action="store_true", help="a block number on every block")
+    parser.add_argument("--dialect", default="linuxcnc", choices=["linuxcnc", "fanuc"])
     parser.add_argument("--stages", action="store_true", help="time the reading and the inverse in this process instead")
     args = parser.parse_args()
     if args.stages:
@@ -140,21 +194,28 @@ def main() -> None:
         if args.baseline != "none":
             paths[f"baseline {args.baseline}"] = unpack(args.baseline, folder / "baseline")
         print(f"axiscal precompensate, whole process (start-up, read, solve, check, write), median of {args.runs};"
-              f" {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at the start")
+              f" {args.dialect}{', numbered blocks' if args.numbered else ''}; {os.cpu_count()} cores")
         for lines in args.lines:
             program = folder / f"part_{lines}.ngc"
-            program.write_text(part_program(lines))
-            for label, source in paths.items():  # a first run of each: numba's cache written, files read once
-                run(source, program, folder / f"{label.split()[0]}.ngc")
-            times: dict[str, list[float]] = {label: [] for label in paths}
+            write_part_program(program, lines, numbered=args.numbered, dialect=args.dialect)
+            size = program.stat().st_size / 1e6
+            here = {label: source for label, source in paths.items() if label == "this tree" or lines <= args.baseline_up_to}
+            for label, source in here.items():  # a first run of each: numba's cache written, files read once
+                run(source, program, folder / f"{label.split()[0]}.ngc", args.dialect)
+            results: dict[str, list[tuple[float, float]]] = {label: [] for label in here}
+            load = []
             for _ in range(args.runs):
-                for label, source in paths.items():
-                    times[label].append(run(source, program, folder / f"{label.split()[0]}.ngc"))
-            same = len(paths) == 1 or filecmp.cmp(folder / "this.ngc", folder / "baseline.ngc", shallow=False)
-            for label, values in times.items():
-                print(f"  {lines:>9,} lines, {label:<18}: {statistics.median(values):6.2f} s"
-                      f" (runs {', '.join(f'{v:.2f}' for v in values)})")
-            print(f"  {lines:>9,} lines: outputs {'identical' if same else 'DIFFER'}")
+                for label, source in here.items():
+                    load.append(os.getloadavg()[0])
+                    results[label].append(run(source, program, folder / f"{label.split()[0]}.ngc", args.dialect))
+            same = len(here) == 1 or filecmp.cmp(folder / "this.ngc", folder / "baseline.ngc", shallow=False)
+            for label, values in results.items():
+                seconds = statistics.median(v[0] for v in values)
+                print(f"  {lines:>10,} lines ({size:.0f} MB), {label:<18}: {seconds:6.2f} s, {lines / seconds:9,.0f} lines/s,"
+                      f" peak {max(v[1] for v in values):6.0f} MB (runs {', '.join(f'{v[0]:.2f}' for v in values)})")
+            print(f"  {lines:>10,} lines: load average {min(load):.1f} to {max(load):.1f} during the runs"
+                  + ("" if len(here) == 1 else f"; outputs {'identical' if same else 'DIFFER'}"))
+            program.unlink()
 
 
 if __name__ == "__main__":

@@ -135,3 +135,36 @@ def test_a_plain_line_is_parsed_as_float_parses_it():
         program = reader.read_program(f"G21 G90\nG1 X0 F600\nG1 X{n}\nM2\n", dialect="linuxcnc")
         assert program.motions[-1].end_m["X"] == float(n) * 1e-3
         assert program.columns.end_m[-1, 0] == float(n) * 1e-3
+
+
+@pytest.mark.parametrize("dialect", ["linuxcnc", "sinumerik", "fanuc", "marlin"])
+@pytest.mark.parametrize("seed", range(3))
+def test_numbered_blocks_and_fanuc_read_the_same_in_bulk_and_block_by_block(dialect, seed):
+    """Block numbers on most lines (N10, n20, N 30, N-4, N1.5) and FANUC's numbers with and without
+    their point: the plain ones read in bulk, the rest block by block, the same blocks either way."""
+    rng = np.random.default_rng(100 + seed)
+    start = {"linuxcnc": ["G21 G90 G94", "G0 X0 Y0 Z0 A0", "G1 F600"], "sinumerik": ["G71 G90", "G0 X0 Y0 Z0 A0", "G1 F600"],
+             "fanuc": ["%", "O0001", "G21", "G90 G94", "G00 X0. Y0. Z0. A0.", "G01 F600."],
+             "marlin": ["G21", "G90", "G1 X0 Y0 Z0 F600"]}[dialect]
+    like = "marlin" if dialect == "marlin" else "linuxcnc"
+    lines = list(start)
+    for k in range(400):
+        line = _line(rng, like)
+        if dialect == "fanuc" and rng.random() < 0.8:
+            line = line.replace("G92.1", "G92 X0")
+            line = " ".join(word + "." if word[:1] in "XYZA" and "." not in word and word[1:].lstrip("-").isdigit()
+                            else word for word in line.split(" "))
+        if rng.random() < 0.6:
+            line = rng.choice([f"N{10 * k} ", f"n{k}", f"N {k} ", "N-4 ", "N1.5 "]) + line
+        lines.append(line)
+    ending = {"linuxcnc": ["M2"], "sinumerik": ["M30"], "fanuc": ["M30", "%"]}.get(dialect, [])
+    for _ in range(300):
+        text = "\n".join(lines + ending) + "\n"
+        _same(text, dialect)
+        read = _read(text, dialect, False)
+        if not isinstance(read, tuple):
+            break
+        del lines[read[2] - 1]
+    assert not isinstance(read, tuple) and len(read.motions) > 100
+    if dialect != "marlin":
+        assert any(block.number for block in read.blocks)

@@ -28,10 +28,10 @@ from axiscal.precompensation.isg import (
 from axiscal.precompensation.points import PrecompensatedPoints, precompensate_points
 from axiscal.precompensation.program import (
     Precompensation,
-    precompensate_file,
     precompensate_program,
     rewrite_program,
 )
+from axiscal.precompensation.streaming import PrecompensationSummary, precompensate_file, precompensate_stream
 
 __all__ = [
     "GRID_COLUMNS",
@@ -49,6 +49,8 @@ __all__ = [
     "precompensate_points",
     "Precompensation",
     "precompensate_file",
+    "precompensate_stream",
+    "PrecompensationSummary",
     "precompensate_program",
     "rewrite_program",
 ]

@@ -22,24 +22,21 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
 from axiscal.conventions import AXIS_INDEX
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_instance, check_number, check_path
-from axiscal.io.atomic import remove_stale_temporaries, write_text
-from axiscal.io.gcode import PLANE_AXES, Program, dialect as find_dialect, read_program
-from axiscal.io.tabular import read_text
+from axiscal.io.arguments import check_number
+from axiscal.io.gcode import PLANE_AXES, dialect as find_dialect, read_program
 from axiscal.model.machine import Machine
 from axiscal.precompensation.kept import kept_as_written as _keep
 from axiscal.precompensation.points import CommandError, machine_with_tool, solve_commands
-from axiscal.precompensation.text import PLACES, program_text
+from axiscal.precompensation.text import PLACES, header_at, header_line, program_lines
 from axiscal.units import UM
 from axiscal.version import __version__
 
-__all__ = ["Precompensation", "precompensate_program", "rewrite_program", "precompensate_file", "PLACES"]
+__all__ = ["Precompensation", "precompensate_program", "rewrite_program", "rewrite_window", "PLACES"]
 
 _MM = 1e-3
 _MAX_ROUNDS = 40
@@ -92,11 +89,19 @@ class Precompensation:
 class _Pieces:
     """The straight pieces the program's moves are followed by: programmed ends, commands, checks."""
 
+    FIELDS = ("move", "p0", "p1", "rot", "t0", "t1", "limit", "check", "command", "exact")
+
     def __init__(self, move, p0, p1, rot, t0, t1, limit, check):
         self.move, self.p0, self.p1, self.rot = move, p0, p1, rot
         self.t0, self.t1, self.limit, self.check = t0, t1, limit, check
         self.command = np.empty_like(p1)
         self.exact = np.empty_like(p1)
+
+    def prepend(self, first: dict) -> None:
+        """Put ``first`` (the FIELDS of move 0's pieces, settled before) in place of move 0's pieces."""
+        rest = self.move != 0
+        for name in self.FIELDS:
+            setattr(self, name, np.concatenate([first[name], getattr(self, name)[rest]]))
 
     def split(self, counts: np.ndarray) -> np.ndarray:
         """Cut piece i into ``counts[i]`` equal pieces; return the mask of the new inner ends."""
@@ -131,6 +136,38 @@ def rewrite_program(
     Precompensation
         The program written anew, with the counts, the largest correction and the largest residual.
     """
+    setup = _setup(machine, dialect, max_segment_m, tolerance_m, tool_m, source)
+    program = read_program(text, dialect=setup.spec, source=source, work_offset_m=work_offset_m)
+    window = rewrite_window(setup, program.columns, program.lines, program.line_end, None, final=True)
+    out = window.lines
+    at = header_at(setup.spec, out)
+    out.insert(at, header_line(setup.spec, setup.header))
+    lines = program.line_end.join(out) + (program.line_end if text.endswith(("\n", "\r")) else "")
+    return Precompensation(
+        text=lines, lines_in=len(program.lines), lines_out=_count_lines(lines), moves=window.moves,
+        rewritten=window.rewritten, largest_correction_m=window.largest_correction_m,
+        largest_residual_m=window.largest_residual_m, tolerance_m=setup.tolerance_m, max_segment_m=setup.max_segment_m,
+        machine=setup.model.name or setup.model.chain, dialect=setup.spec.name,
+    )
+
+
+@dataclass(frozen=True)
+class Setup:
+    """What a rewriting keeps from start to end: the dialect, the model with its tool, the settings."""
+
+    spec: object
+    model: Machine
+    linear: list
+    rotary: list
+    reach: list
+    tolerance_m: float
+    max_segment_m: float
+    source: str | None
+    header: str
+
+
+def _setup(machine, dialect, max_segment_m, tolerance_m, tool_m, source) -> Setup:
+    """The arguments of :func:`rewrite_program` checked, the model loaded with its tool."""
     spec = find_dialect(dialect)
     if spec.syntax == "conversational":
         raise AxiscalError(f"{spec.controller} programs are not pre-compensated; use a word dialect"
@@ -147,21 +184,106 @@ def rewrite_program(
     linear = [k for k in model.letters if k not in model.rotary]
     if rotary and len(linear) != 3:
         raise AxiscalError(f"a machine with rotary axes is pre-compensated with three linear axes, not chain '{model.chain}'")
-    program = read_program(text, dialect=spec, source=source, work_offset_m=work_offset_m)
-    moves = _Moves(program, model, linear, rotary, source)
-    pieces = _build_pieces(moves, linear, rotary, tolerance_m, max_segment_m, source)
     reach = [AXIS_INDEX[k] for k in linear] if not rotary else [0, 1, 2]
-    _solve(model, pieces, np.ones(pieces.p1.shape[0], dtype=bool), program, moves, linear, rotary, source)
-    verbatim, residual = _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, max_segment_m, source)
     header = (f"axiscal {__version__} precompensate: machine {model.name or model.chain} ({model.chain}),"
               f" tolerance {tolerance_m / UM:g} um, segments up to {max_segment_m / _MM:g} mm")
-    lines, rewritten = program_text(program, moves, pieces, verbatim, linear, rotary, text, header)
-    corrections = np.linalg.norm(pieces.exact - pieces.p1, axis=1) if pieces.p1.size else np.zeros(1)
-    return Precompensation(
-        text=lines, lines_in=len(program.lines), lines_out=_count_lines(lines), moves=len(moves.index), rewritten=rewritten,
-        largest_correction_m=float(corrections.max(initial=0.0)), largest_residual_m=float(residual),
-        tolerance_m=tolerance_m, max_segment_m=max_segment_m, machine=model.name or model.chain, dialect=spec.name,
-    )
+    return Setup(spec, model, linear, rotary, reach, tolerance_m, max_segment_m, source, header)
+
+
+@dataclass(frozen=True)
+class Settled:
+    """The last move written of a part of the program: the context the next part is rewritten in.
+
+    Its pieces (as :class:`_Pieces` rows) and whether it was kept as written; ``first_line`` is the
+    program's first move's line (named when the path cannot be held).
+    """
+
+    pieces: dict
+    kept: bool
+    first_line: int
+
+
+@dataclass(frozen=True)
+class Window:
+    """Lines of a part of a program, rewritten: what of it is final, and what the next part needs.
+
+    Attributes
+    ----------
+    lines : list of str
+        The output of the input lines ``[written_from, written_to)`` (a line cut into pieces holds
+        them joined by the program's line end).
+    written_to : int
+        Index of the first input line not written (the part's length when all is).
+    settled : Settled or None
+        The last move written, for the next part (None: no move yet).
+    settled_line : int
+        Index of that move's line: the next part starts there.
+    moves, rewritten : int
+        Moves written, and those written anew.
+    largest_correction_m, largest_residual_m : float
+        As :class:`Precompensation`, over the part.
+    """
+
+    lines: list
+    written_to: int
+    settled: Settled | None
+    settled_line: int
+    moves: int
+    rewritten: int
+    largest_correction_m: float
+    largest_residual_m: float
+
+
+def rewrite_window(setup: Setup, columns, lines: list[str], line_end: str, settled: Settled | None, *,
+                   final: bool, written_from: int = 0) -> Window | None:
+    """Rewrite the lines ``lines`` (with their ``columns``), the moves before them ``settled``.
+
+    When ``settled`` is given, ``lines[0]`` is its move's line (written already, with the lines up to
+    ``written_from``). Unless ``final``, the moves are written up to the last one whose command and
+    decision stayed as first found while the path was settled (the moves after it may still depend
+    on it as the whole program's rewriting would); None when no move is such (read more lines).
+    """
+    model, linear, rotary, source = setup.model, setup.linear, setup.rotary, setup.source
+    moves = _Moves(columns, model, linear, rotary, source)
+    first_line = settled.first_line if settled is not None else (int(moves.line[0]) if len(moves) else 0)
+    pieces = _build_pieces(moves, linear, rotary, setup.tolerance_m, setup.max_segment_m, source, settled is not None)
+    todo = np.ones(pieces.p1.shape[0], dtype=bool)
+    if settled is not None:
+        pieces.prepend(settled.pieces)
+        todo = pieces.move != 0
+    _solve(model, pieces, todo, moves, linear, rotary, source)
+    verbatim, residual, moved = _settle(model, pieces, moves, linear, rotary, setup.reach, setup.tolerance_m,
+                                        setup.max_segment_m, source, None if settled is None else settled.kept, first_line)
+    m = len(moves)
+    start = 0 if settled is None else 1
+    if final:
+        stop = m
+    else:
+        steady = np.flatnonzero(~moved[start:]) + start
+        if not steady.size:
+            if m > start:
+                return None
+            stop = m
+        else:
+            stop = int(steady[-1]) + 1
+    written_to = int(moves.index[stop]) if stop < m else len(lines)
+    output = np.zeros(m, dtype=bool)
+    output[start:stop] = True
+    out, rewritten = program_lines(setup.spec, lines, moves, pieces, verbatim, output, linear, rotary, line_end)
+    mine = np.isin(pieces.move, np.arange(start, stop))
+    corrections = np.linalg.norm(pieces.exact[mine] - pieces.p1[mine], axis=1) if mine.any() else np.zeros(1)
+    last = stop - 1
+    if last >= start:
+        rows = pieces.move == last
+        keep = {name: getattr(pieces, name)[rows] for name in _Pieces.FIELDS}
+        keep["move"] = np.zeros(int(rows.sum()), dtype=np.int64)
+        settled_next = Settled(keep, bool(verbatim[last]), first_line)
+        settled_line = int(moves.index[last])
+    else:
+        settled_next = settled
+        settled_line = 0
+    return Window(out[written_from:written_to], written_to, settled_next, settled_line, stop - start, rewritten,
+                  float(corrections.max(initial=0.0)), float(residual))
 
 
 def _fail(message: str, source: str | None, line: int) -> AxiscalError:
@@ -171,8 +293,7 @@ def _fail(message: str, source: str | None, line: int) -> AxiscalError:
 class _Moves:
     """The program's moves (line indices) with what each line says about its frame, per move, as columns."""
 
-    def __init__(self, program: Program, model: Machine, linear, rotary, source):
-        columns = program.columns
+    def __init__(self, columns, model: Machine, linear, rotary, source):
         self.columns = columns
         kind = columns.kind
         moving = (kind[columns.motion_line] >= 1) & (kind[columns.motion_line] <= 3)
@@ -180,7 +301,7 @@ class _Moves:
         index = columns.motion_line[rows]
         self.index = index
         self.rows = rows
-        self.line = index + 1
+        self.line = index + 1 + columns.first_line
         axes = columns.axes
         allowed = set(model.letters) | {"E"}
         known = columns.known[rows]
@@ -246,8 +367,11 @@ def _axis_columns(values: np.ndarray, axes: tuple[str, ...], letters) -> np.ndar
     return out
 
 
-def _build_pieces(moves: _Moves, linear, rotary, tolerance_m, max_segment_m, source) -> _Pieces:
-    """One piece per straight move, chords for each arc; rapid moves and the first move: their end only."""
+def _build_pieces(moves: _Moves, linear, rotary, tolerance_m, max_segment_m, source, settled: bool = False) -> _Pieces:
+    """One piece per straight move, chords for each arc; rapid moves and the first move: their end only.
+
+    ``settled``: the first move is the last of the part written before (its pieces are put in after).
+    """
     m = len(moves)
     end = moves.end
     rot = moves.rot
@@ -258,7 +382,7 @@ def _build_pieces(moves: _Moves, linear, rotary, tolerance_m, max_segment_m, sou
         _check_finite(moves, np.column_stack(extruder[:2]), "EE", source)
     path = moves.kind != 1
     if m:
-        path[0] = False
+        path[0] = False  # the program's first move, or the one settled before
     start = np.where(path[:, None], np.vstack([end[:1], end[:-1]]), end)
     counts = np.ones(m, dtype=np.int64)
     chords: dict[int, np.ndarray] = {}
@@ -328,7 +452,7 @@ def _units(moves: _Moves, pieces: _Pieces):
     return moves.offset[pieces.move], moves.per_unit[pieces.move]
 
 
-def _solve(model, pieces: _Pieces, which: np.ndarray, program, moves, linear, rotary, source) -> None:
+def _solve(model, pieces: _Pieces, which: np.ndarray, moves, linear, rotary, source) -> None:
     """Pre-compensated commands of the pieces' ends where ``which``, rounded as they will be written."""
     if not which.any():
         return
@@ -346,11 +470,19 @@ def _solve(model, pieces: _Pieces, which: np.ndarray, program, moves, linear, ro
     pieces.command[which] = np.round((command - offset[which]) * scale) / scale + offset[which]
 
 
-def _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, max_segment_m, source):
-    """Decide which moves are kept as written and cut pieces until every sampled path is in tolerance."""
+def _settle(model, pieces, moves, linear, rotary, reach, tolerance_m, max_segment_m, source, first_kept, first_line):
+    """Decide which moves are kept as written and cut pieces until every sampled path is in tolerance.
+
+    Returns the decisions, the largest residual, and per move whether its last command or its
+    decision changed after they were first found (``first_kept``: move 0 settled before, not checked
+    again).
+    """
     offset, per_unit = _units(moves, pieces)
-    verbatim = _keep(program, moves, pieces, per_unit)
+    verbatim = _keep(moves, pieces, per_unit, first_kept=first_kept)
+    moved = np.zeros(len(moves), dtype=bool)
     dirty = np.ones(pieces.p1.shape[0], dtype=bool)
+    if first_kept is not None:
+        dirty &= pieces.move != 0
     worst = 0.0
     for _ in range(_MAX_ROUNDS):
         out = np.where(verbatim[pieces.move][:, None], pieces.p1, pieces.command)
@@ -384,11 +516,13 @@ def _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, m
             if ok.size:
                 worst = max(worst, float(ok.max()))
         if not failing.any():
-            return verbatim, worst
+            return verbatim, worst, moved
         flips = np.unique(pieces.move[failing & verbatim[pieces.move]])
         if flips.size:
+            before = verbatim.copy()
             verbatim[flips] = False
-            verbatim = _keep(program, moves, pieces, per_unit, forced=verbatim)
+            verbatim = _keep(moves, pieces, per_unit, forced=verbatim, first_kept=first_kept)
+            moved |= verbatim != before
         cut = failing & ~np.isin(pieces.move, flips)
         tiny = cut & (np.linalg.norm(pieces.p1 - pieces.p0, axis=1) < 1e-6)
         if tiny.any():
@@ -404,16 +538,21 @@ def _settle(model, pieces, program, moves, linear, rotary, reach, tolerance_m, m
                 raise _too_many(wanted.sum(), length, max_segment_m, source, moves.line[pieces.move[np.argmax(wanted)]])
             counts = wanted.astype(np.int64)
             inner = pieces.split(counts)
-            _solve(model, pieces, inner, program, moves, linear, rotary, source)
+            _solve(model, pieces, inner, moves, linear, rotary, source)
             offset, per_unit = _units(moves, pieces)
             old_out = old_out[np.repeat(np.arange(counts.size), counts)]
             changed_piece = np.repeat(cut, counts)
         else:
             changed_piece = np.zeros(pieces.p1.shape[0], dtype=bool)
         new_out = np.where(verbatim[pieces.move][:, None], pieces.p1, pieces.command)
-        changed = changed_piece | np.any(new_out != old_out, axis=1)
+        shifted = np.any(new_out != old_out, axis=1)
+        ends = np.r_[pieces.move[1:] != pieces.move[:-1], True]
+        moved[pieces.move[shifted & ends]] = True
+        # a move written anew because its path failed is checked again, even where its commands
+        # round to the programmed points (its output then unchanged, its path still failing)
+        changed = changed_piece | shifted | np.isin(pieces.move, flips)
         dirty = changed | np.concatenate([[False], changed[:-1]])
-    raise _fail("the path could not be held within the tolerance", source, moves.line[0])
+    raise _fail("the path could not be held within the tolerance", source, first_line)
 
 
 def _too_many(count: float, length: np.ndarray, max_segment_m: float, source, line: int) -> AxiscalError:
@@ -495,54 +634,6 @@ def precompensate_program(
     """
     return rewrite_program(text, machine, dialect=dialect, max_segment_m=max_segment_m, tolerance_m=tolerance_m,
                            tool_m=tool_m, work_offset_m=work_offset_m, source=source).text
-
-
-def precompensate_file(
-    program_path: str | Path,
-    machine: Machine | str | Path,
-    output_path: str | Path,
-    *,
-    dialect: str,
-    max_segment_m: float = 2e-3,
-    tolerance_m: float = 0.5e-6,
-    tool_m: tuple[float, float, float] | None = None,
-    work_offset_m: Mapping[str, float] | None = None,
-) -> Precompensation:
-    """Pre-compensate the program in ``program_path`` and write it atomically to ``output_path``.
-
-    The output is the old file or the new one, whole, whatever stops the run; the temporary files
-    that earlier runs of the same output left when they were killed are removed.
-
-    Parameters
-    ----------
-    program_path, output_path : str or Path
-        The program read and the program written.
-    machine : Machine, str or Path
-        The machine model or its description file.
-    dialect, max_segment_m, tolerance_m, tool_m, work_offset_m : keyword-only
-        See :func:`precompensate_program`.
-
-    Returns
-    -------
-    Precompensation
-        What was written and the summary (lines, largest correction, largest residual).
-
-    Raises
-    ------
-    AxiscalError
-        As :func:`precompensate_program`, naming ``program_path``; a file that cannot be read or written.
-    """
-    program_path = check_path("program_path", program_path)
-    output_path = check_path("output_path", output_path)
-    if isinstance(machine, Path):
-        machine = str(machine)
-    check_instance("machine", machine, (Machine, str))
-    text = read_text(program_path)
-    result = rewrite_program(text, machine, dialect=dialect, max_segment_m=max_segment_m, tolerance_m=tolerance_m,
-                             tool_m=tool_m, work_offset_m=work_offset_m, source=str(program_path))
-    remove_stale_temporaries(output_path)  # what runs of this output killed before their end left beside it
-    write_text(output_path, result.text)
-    return result
 
 
 def _count_lines(text: str) -> int:

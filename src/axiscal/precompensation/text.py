@@ -10,9 +10,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from axiscal.io.gcode import Program, decimal
+from axiscal.io.gcode import decimal
+from axiscal.io.gcode.fast import plain_words
 
-__all__ = ["PLACES", "program_text"]
+__all__ = ["PLACES", "program_lines", "header_at", "header_line"]
 
 #: decimals written for a position, per program unit (0.1 um either way)
 PLACES = {"mm": 4, "inch": 6}
@@ -25,36 +26,30 @@ def _sanitize_comment(text: str, style: str) -> str:
     return f"({text.replace('(', '[').replace(')', ']')})" if style == "paren" else f"; {text}"
 
 
-def program_text(program: Program, moves, pieces, verbatim, linear, rotary, text: str, header: str) -> tuple[str, int]:
-    """The output program's text and the number of moves written anew.
+def program_lines(spec, lines: list[str], moves, pieces, verbatim, output, linear, rotary, end: str) -> tuple[list[str], int]:
+    """The output lines of ``lines`` (one str per input line; a move cut into pieces is several lines
+    joined by ``end``), no header, and the number of moves written anew.
 
     ``moves`` and ``pieces`` are the rewriting's moves and pieces (:mod:`axiscal.precompensation.program`);
-    ``verbatim`` says per move whether it is written as it was.
+    ``verbatim`` says per move whether it is written as it was, ``output`` whether its line is wanted.
     """
-    spec = program.dialect
     columns = moves.columns
-    end = program.line_end
     n = pieces.move.size
     first = np.r_[0, np.flatnonzero(np.diff(pieces.move)) + 1] if n else np.zeros(0, dtype=np.int64)
     stop = np.r_[first[1:], n] if n else np.zeros(0, dtype=np.int64)
     out_at = np.where(verbatim[pieces.move][:, None], pieces.p1, pieces.command)
-    rewritten = np.flatnonzero(~verbatim)
-    rows = np.flatnonzero(~verbatim[pieces.move])  # the pieces written anew (the others' text is the program's)
+    rewritten = np.flatnonzero(~verbatim & output)
+    rows = np.flatnonzero(np.repeat(~verbatim & output, np.diff(np.r_[first, n])))  # the pieces written anew
     at_row = np.full(n, -1, dtype=np.int64)
     at_row[rows] = np.arange(rows.size)
     rapid = (moves.kind == 1) & (not spec.rapid_at_feed)
     bulk_row = columns.bulk_row[moves.index]
-    scan = program.bulk().bulk.scan if program.bulk() is not None else None
-    has_e = np.zeros(len(moves), dtype=bool)
-    if "E" in columns.axes:
-        has_e[bulk_row >= 0] = scan.has_e[moves.index[bulk_row >= 0]] if scan is not None else False
-        for number in np.flatnonzero(bulk_row < 0).tolist():
-            has_e[number] = any(letter == "E" for letter, _ in columns.general[int(moves.index[number])].words)
+    has_e = columns.has_e[moves.index] if "E" in columns.axes else np.zeros(len(moves), dtype=bool)
     piece_text = _piece_rows(moves, pieces, rows, out_at, linear, rapid, spec, has_e) if rows.size else []
-    out = list(program.lines)
+    out = list(lines)
     bulk = rewritten[bulk_row[rewritten] >= 0]
     if bulk.size:
-        _bulk_text(out, scan, moves, bulk, first, stop, at_row, piece_text, rotary, end)
+        _bulk_text(out, lines, moves, bulk, first, stop, at_row, piece_text, rotary, end)
     for number in rewritten[bulk_row[rewritten] < 0].tolist():
         index = int(moves.index[number])
         block = columns.general[index]
@@ -81,11 +76,21 @@ def program_text(program: Program, moves, pieces, verbatim, linear, rotary, text
                 if k >= 0:
                     last = stop[k] - 1
                     out[index] = _shifted(block, spec, out_at[last] - pieces.p1[last], linear, out[index])
+    return out, int(rewritten.size)
+
+
+def header_at(spec, lines: list[str]) -> int:
+    """Where the header comment goes among ``lines``: after the tape's '%' and a FANUC program number."""
     at = 0
-    while at < len(out) and (out[at].strip() == "%" or (spec.name == "fanuc" and out[at].strip()[:1] in "Oo" and out[at].strip())):
+    while at < len(lines) and (lines[at].strip() == "%" or (spec.name == "fanuc" and lines[at].strip()[:1] in "Oo"
+                                                            and lines[at].strip())):
         at += 1
-    out.insert(at, _sanitize_comment(header, spec.comment_style))
-    return end.join(out) + (end if text.endswith(("\n", "\r")) else ""), int(rewritten.size)
+    return at
+
+
+def header_line(spec, header: str) -> str:
+    """The header comment in the dialect's comment syntax."""
+    return _sanitize_comment(header, spec.comment_style)
 
 
 def _piece_rows(moves, pieces, rows, out_at, linear, rapid, spec, has_e) -> list[str]:
@@ -180,36 +185,43 @@ def _rows(fields) -> list[str]:
     return chars[valid].tobytes().decode("ascii").split("\n")[:-1]
 
 
-def _bulk_text(out, scan, moves, numbers, first, stop, at_row, piece_text, rotary, end) -> None:
-    """Write the moves ``numbers`` read in bulk (G0/G1, axis words, F): the pieces' text, the rotary
-    words and F as written on the first."""
+def _bulk_text(out, texts, moves, numbers, first, stop, at_row, piece_text, rotary, end) -> None:
+    """Write the moves ``numbers`` read in bulk (block number, G0/G1, axis words, F): the block number,
+    the pieces' text, the rotary words and F as written on the first."""
     columns = moves.columns
     lines = moves.index[numbers]
     head = np.asarray(at_row[first[numbers]])
     single = stop[numbers] - first[numbers] == 1
     extra: dict[int, list[str]] = {}
-    for letter in rotary:
-        if letter in scan.axes:
-            for j, raw in enumerate(scan.raw(lines, letter)):
-                if raw is not None:
-                    extra.setdefault(j, []).append(f"{letter}{raw}")
+    if rotary:
+        for j, line in enumerate(lines.tolist()):
+            written = dict(plain_words(texts[line]))
+            for letter in rotary:
+                if letter in written:
+                    extra.setdefault(j, []).append(f"{letter}{written[letter]}")
     feeds = columns.feed_word
     for j, line in enumerate(lines.tolist()):
         raw = feeds[line]
         if raw is not None:
             extra.setdefault(j, []).append(f"F{raw}")
+    numbered = np.flatnonzero(columns.number_at[lines, 1] > 0)
     plain = single.copy()
     if extra:
         plain[list(extra)] = False
+    plain[numbered] = False
     for line, row in zip(lines[plain].tolist(), head[plain].tolist()):
         out[line] = piece_text[row]
+    at = columns.number_at
     for j in np.flatnonzero(~plain).tolist():
         number = numbers[j]
+        line = int(lines[j])
         k = first[number]
-        text = " ".join([piece_text[at_row[k]]] + extra.get(j, []))
+        start, stop_at = at[line]
+        text = " ".join(([f"N{texts[line][start:stop_at]}"] if stop_at > start else []) + [piece_text[at_row[k]]]
+                        + extra.get(j, []))
         if stop[number] > k + 1:
             text = end.join([text] + [piece_text[at_row[i]] for i in range(k + 1, stop[number])])
-        out[lines[j]] = text
+        out[line] = text
 
 
 def _extruder_counts(moves, pieces, rows) -> np.ndarray:
