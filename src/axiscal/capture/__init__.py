@@ -12,9 +12,11 @@ recording that carries the machine's position stream beside the laser's reading.
 from __future__ import annotations
 
 from axiscal.capture.stops import (
+    SETTLE_S,
     Stop,
     StopDetector,
     detect_stops,
+    least_dwell_s,
 )
 from axiscal.capture.recording import (
     ENVIRONMENT_COLUMNS,
@@ -90,9 +92,11 @@ __all__ = [
     "open_run_devices",
     "run_to_file",
     "sim_machine",
+    "SETTLE_S",
     "Stop",
     "StopDetector",
     "detect_stops",
+    "least_dwell_s",
     "ENVIRONMENT_COLUMNS",
     "READING_UNITS",
     "Recording",
