@@ -202,7 +202,7 @@ def test_a_whole_visit_in_the_workbench_on_linuxcnc(machine, tmp_path):
                      "instrument": "µMD laser", "controller": "linuxcnc", "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6,
                      "axes": ["X"]})
     # the workbench drives at the default feed (1000 mm/min): half the travel halves the moves' time
-    bench.make_plan({"start_mm": 10, "end_mm": 100, "targets": 5, "runs": 1, "overrun_mm": 5, "dwell_s": 0.5})
+    bench.make_plan({"start_mm": 10, "end_mm": 100, "targets": 5, "runs": 1, "overrun_mm": 5, "dwell_s": 0.7})
     lights = bench.connect({"instrument": f"umd:{machine.pty}", "controller": CONTROLLER})
     assert lights["lights"] == {"instrument": "ok", "controller": "ok"}
     bench.start_run("as-found")
