@@ -85,7 +85,7 @@ def test_steps_out_of_order_say_what_comes_first(client):
                                           "dwell_s": 1}).json() == {"error": "start a visit first (New visit)"}
     assert client.post("/api/run", json={"phase": "as-found"}).status_code == 400
     assert client.post("/api/run/pause").json()["error"] == "no run is going on"
-    assert client.post("/api/connect", json={"instrument": "umd:/dev/ttyUSB0"}).status_code == 400
+    assert client.post("/api/connect", json={"instrument": "umd:/dev/no-such-port"}).status_code == 422
     plan = client.post("/api/plan", json={"start_mm": 10, "end_mm": 5, "targets": 5, "runs": 1, "overrun_mm": 5, "dwell_s": 1})
     assert plan.status_code == 422 and "end_mm" in plan.json()["fields"]
 

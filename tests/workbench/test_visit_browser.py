@@ -10,7 +10,7 @@ from __future__ import annotations
 import pytest
 
 from axiscal.history import Drift, add_results, drifting_results, write_results
-from axiscal.workbench import serve_workbench
+from axiscal.workbench import serial_ports, serve_workbench
 
 SPEED = 40.0  # the virtual machine runs 40 times faster than real time
 
@@ -89,10 +89,21 @@ def test_a_whole_visit_on_the_virtual_machine(browser_page, workbench):
     download = page.request.get(workbench.server.url.rstrip("/") + href)
     assert download.ok and "attachment" in download.headers["content-disposition"] and "G4" in download.text()
 
-    # 4. connect: both lights on, the reading and the position shown
+    # 4. connect: the computer's ports listed; a spec that cannot be used named beside its field before anything
+    # is opened; then both lights on, the reading and the position shown, and what each device told
     page.get_by_role("button", name="4 Connect").click()
+    page.wait_for_function("document.querySelector('#ports-count').textContent === String("
+                           f"{len(serial_ports())})")
+    page.fill("#connect-form [name=instrument]", "umd:/dev/no-such-port")
+    page.click("#connect-form button[type=submit]")
+    page.wait_for_selector("#connect-form .field-error[data-for=instrument]:not(:empty)")
+    assert "this computer has no serial port /dev/no-such-port" in page.locator("#connect-form .field-error[data-for=instrument]").text_content()
+    page.fill("#connect-form [name=instrument]", "sim")
     page.click("#connect-form button[type=submit]")
     page.wait_for_selector("#light-instrument[data-state=ok]")
+    assert page.locator("#connect-form .field-error[data-for=instrument]").text_content() == ""
+    assert "virtual laser" in page.locator("#told-instrument").text_content()
+    assert "ready" in page.locator("#told-controller").text_content() and page.locator("#refused").is_hidden()
     assert page.get_attribute("#light-controller", "data-state") == "ok"
     assert page.locator("#live-position").text_content() == "0.0000"
 

@@ -2,8 +2,9 @@
 
 It calls the library as the command line does and computes nothing itself. :func:`serve_workbench`
 is ``axiscal workbench``; :class:`Workbench` holds the visit (each step one library call);
-:func:`create_workbench_app` is the page's Starlette app; :mod:`axiscal.workbench.runner` is the one
-adapter that runs a plan on the machine (the virtual machine, ``sim``).
+:func:`create_workbench_app` is the page's Starlette app; :mod:`axiscal.workbench.connection` checks the
+specs, lists the serial ports and connects; :mod:`axiscal.workbench.runner` is the one adapter that runs a
+plan on the machine (the virtual machine, ``sim``, or the devices of ``axiscal run``).
 """
 
 from __future__ import annotations
@@ -13,14 +14,30 @@ from axiscal.workbench.forms import (
     FormErrors,
     checked,
 )
-from axiscal.workbench.runner import (
+from axiscal.workbench.connection import (
     CONTROLLERS,
     INSTRUMENTS,
     SIM_RATE_HZ,
     Connection,
+    check_spec,
+    connect,
+    is_virtual,
+    serial_ports,
+)
+from axiscal.workbench.saved import (
+    OPEN_FILE,
+    STATE_FILE,
+    STEPS,
+    SavedVisit,
+    open_folder,
+    read_saved,
+    remember_open,
+    unfinished_visits,
+    write_saved,
+)
+from axiscal.workbench.runner import (
     DevicePlanRun,
     PlanRun,
-    connect,
 )
 from axiscal.workbench.visit import (
     PHASES,
@@ -51,6 +68,18 @@ __all__ = [
     "DevicePlanRun",
     "PlanRun",
     "connect",
+    "check_spec",
+    "is_virtual",
+    "serial_ports",
+    "OPEN_FILE",
+    "STATE_FILE",
+    "STEPS",
+    "SavedVisit",
+    "open_folder",
+    "read_saved",
+    "remember_open",
+    "unfinished_visits",
+    "write_saved",
     "PHASES",
     "OpenElsewhere",
     "Workbench",

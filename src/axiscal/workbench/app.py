@@ -237,6 +237,9 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
             return JSONResponse({"step": None, "readonly": True})
         return await _answer(bench.set_step, body.get("step") if isinstance(body, dict) else None)
 
+    async def ports(request: Request) -> Response:
+        return await _answer(bench.ports)
+
     async def plan(request: Request) -> Response:
         return await _answer(bench.make_plan, await _body(request), claim=request)
 
@@ -326,6 +329,7 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
             Route("/api/step", step, methods=["POST"]),
             Route("/api/plan", plan, methods=["POST"]),
             Route("/api/connect", connection, methods=["POST"]),
+            Route("/api/ports", ports),
             Route("/api/run", run, methods=["GET", "POST"]),
             Route("/api/run/{action}", control, methods=["POST"]),
             Route("/api/results", results),

@@ -10,11 +10,12 @@ from __future__ import annotations
 import datetime as _dt
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, field_validator, model_validator
 
 from axiscal.capture.run import CaptureSettings
 from axiscal.capture.stops import SETTLE_S, least_dwell_s
 from axiscal.errors import AxiscalError
+from axiscal.workbench.connection import check_spec
 
 __all__ = ["FORMS", "FormErrors", "checked"]
 
@@ -91,10 +92,18 @@ class PlanForm(_Form):
 
 
 class ConnectForm(_Form):
-    """The instrument and the controller, as ``axiscal run`` names them."""
+    """The instrument and the controller, as ``axiscal run`` names them: each checked before connecting."""
 
     instrument: str = Field(default="sim", min_length=1, max_length=200)
     controller: str = Field(default="sim", min_length=1, max_length=200)
+
+    @field_validator("instrument", "controller")
+    @classmethod
+    def _spec(cls, value: str, info: ValidationInfo) -> str:
+        try:
+            return check_spec(info.field_name, value)
+        except AxiscalError as exc:
+            raise ValueError(str(exc)) from None
 
 
 #: the forms of the page by name

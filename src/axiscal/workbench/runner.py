@@ -22,7 +22,8 @@ the virtual controller itself; a real controller loads it as ``axiscal cycle`` s
 ``COMP_FILE``, then a restart and homing).
 
 What the rest of the workbench uses, and all that another implementation has to give:
-:func:`connect` (a :class:`Connection`: the two lights, the reading, the position) and
+:func:`~axiscal.workbench.connection.connect` (a :class:`~axiscal.workbench.connection.Connection`: the two
+lights, the reading, the position, what the devices told) and
 :class:`PlanRun` -- made with the plan, the output, the specs, the compensation text and its
 controller, ``resume``, ``speed``, ``dwell_s`` and ``seed``; then ``start``, ``pause``, ``resume``,
 ``abort``, ``wait``; ``state`` (``ready``, ``running``, ``paused``, ``done``, ``aborted``,
@@ -55,25 +56,11 @@ from axiscal.io.arguments import check_count, check_instance, check_number, chec
 from axiscal.live.protocol import FrameBatch
 from axiscal.live.sources import SourceStatus
 from axiscal.units import MM, UM
+from axiscal.workbench.connection import SIM_RATE_HZ, check_spec, is_virtual
 
-__all__ = ["INSTRUMENTS", "CONTROLLERS", "SIM_RATE_HZ", "Connection", "connect", "PlanRun", "DevicePlanRun"]
+__all__ = ["PlanRun", "DevicePlanRun"]
 
-#: the instrument and controller kinds this adapter drives (``sim``: the virtual machine; the others: ``axiscal run``'s)
-INSTRUMENTS = ("sim", "umd", "sylvac", "mahr", "touchdro", "attocube")
-CONTROLLERS = ("sim", "linuxcnc", "grbl", "marlin", "klipper", "moonraker")
-#: samples per second of the virtual laser
-SIM_RATE_HZ = 1000.0
 _CHANNELS = ("reading_mm",) + ENVIRONMENT_COLUMNS[:3]
-
-
-def _check_spec(name: str, spec: str, known: tuple[str, ...]) -> str:
-    if not isinstance(spec, str) or not spec.strip():
-        raise AxiscalError(f"{name} must be a spec such as 'sim', not {spec!r}")
-    spec = spec.strip()
-    kind = spec.split(":", 1)[0].lower()
-    if kind not in known:
-        raise AxiscalError(f"{name} '{spec}': use one of {', '.join(known)} (as `axiscal run` takes them, docs/devices.md)")
-    return spec
 
 
 def _checked_partial(output: Path, resume: bool) -> Path:
@@ -93,94 +80,6 @@ def _partial_stops(partial: Path) -> list[dict[str, Any]]:
     table = read_csv(partial, min_rows=1)
     return [{name: float(table.numeric(name)[row]) for name in ("step", "target_mm", "deviation_um", "start_s")}
             | {"run": int(table.numeric("run")[row]), "direction": table.text("direction")[row]} for row in range(len(table))]
-
-
-def _virtual(instrument: str, controller: str) -> bool:
-    """Whether the pair is the virtual machine the workbench runs itself (both ``sim``)."""
-    return instrument.strip().lower() == "sim" and controller.strip().lower() == "sim"
-
-
-@dataclass(frozen=True)
-class Connection:
-    """The instrument and the controller a run uses, and what they say now.
-
-    Attributes
-    ----------
-    instrument, controller : str
-        Their specs (``sim``).
-    instrument_state, controller_state : str
-        ``"ok"``, ``"lost"`` or ``"off"`` (the status lights).
-    description : str
-        What is connected, one line.
-    reading_m : float, metres
-        The instrument's latest reading.
-    position_m : float, metres
-        The controller's commanded position.
-    """
-
-    instrument: str
-    controller: str
-    instrument_state: str
-    controller_state: str
-    description: str
-    reading_m: float
-    position_m: float
-
-
-def connect(instrument: str = "sim", controller: str = "sim", *, seed: int = 0) -> Connection:
-    """Open (check) the instrument and the controller and read them once.
-
-    Parameters
-    ----------
-    instrument, controller : str
-        Specs as ``axiscal run`` takes them; ``sim`` is the virtual machine (default).
-    seed : int, keyword-only
-        Seed of the virtual laser's noise.
-
-    Returns
-    -------
-    Connection
-
-    Raises
-    ------
-    AxiscalError
-        For a spec this adapter does not drive.
-    """
-    instrument = _check_spec("instrument", instrument, INSTRUMENTS)
-    controller = _check_spec("controller", controller, CONTROLLERS)
-    seed = check_count("seed", seed, minimum=0)
-    if not _virtual(instrument, controller):
-        return _connect_devices(instrument, controller, seed)
-    noise = float(np.random.default_rng([seed, 30]).normal(0.0, 20e-9))
-    return Connection(instrument, controller, "ok", "ok",
-                      f"virtual laser ({SIM_RATE_HZ:g} Hz) on the virtual XZ module's X axis", noise, 0.0)
-
-
-def _connect_devices(instrument: str, controller: str, seed: int) -> Connection:
-    """Open the devices of ``axiscal run``, read the instrument for half a second and the controller once, close."""
-    from axiscal.capture.connected import open_run_devices
-
-    made, source = open_run_devices(controller, instrument, seed=seed)
-    try:
-        end = time.monotonic() + 0.5
-        reading = math.nan
-        while time.monotonic() < end:
-            batch = source.read(0.05)
-            good = np.asarray(batch.values[:, 0])[~np.asarray(batch.malformed)] if len(batch) else np.empty(0)
-            good = good[np.isfinite(good)]
-            if good.size:
-                reading = float(good[-1]) * MM
-        try:
-            position = float(made.position("X"))
-            controller_state = "ok"
-        except (AxiscalError, OSError):
-            position, controller_state = math.nan, "lost"
-        instrument_state = "ok" if math.isfinite(reading) else "lost"
-        return Connection(instrument, controller, instrument_state, controller_state,
-                          f"{source.status.description}; {made.description}", reading, position)
-    finally:
-        source.close()
-        made.close()
 
 
 class _SimLaser:
@@ -289,7 +188,7 @@ class PlanRun:
 
     def __new__(cls, *args: Any, **kwargs: Any) -> "PlanRun":
         instrument, controller = kwargs.get("instrument", "sim"), kwargs.get("controller", "sim")
-        if cls is PlanRun and isinstance(instrument, str) and isinstance(controller, str) and not _virtual(instrument, controller):
+        if cls is PlanRun and isinstance(instrument, str) and isinstance(controller, str) and not is_virtual(instrument, controller):
             return super().__new__(DevicePlanRun)
         return super().__new__(cls)
 
@@ -299,8 +198,8 @@ class PlanRun:
         from axiscal.compensation.readback import read_compensation
         from axiscal.model.machine import load_machine
 
-        self.instrument = _check_spec("instrument", instrument, INSTRUMENTS)
-        self.controller = _check_spec("controller", controller, CONTROLLERS)
+        self.instrument = check_spec("instrument", instrument)
+        self.controller = check_spec("controller", controller)
         self.plan_csv = check_path("plan_csv", plan_csv)
         self.output = check_path("output", output)
         check_instance("resume", resume, bool)
@@ -526,8 +425,8 @@ class DevicePlanRun(PlanRun):
                  speed: float = 1.0, dwell_s: float = 1.0, seed: int = 0, settings: CaptureSettings | None = None):
         from axiscal.capture.connected import open_run_devices
 
-        self.instrument = _check_spec("instrument", instrument, INSTRUMENTS)
-        self.controller = _check_spec("controller", controller, CONTROLLERS)
+        self.instrument = check_spec("instrument", instrument)
+        self.controller = check_spec("controller", controller)
         self.plan_csv = check_path("plan_csv", plan_csv)
         self.output = check_path("output", output)
         check_instance("resume", resume, bool)

@@ -57,13 +57,27 @@ class SavedVisit:
     finished: dict[str, Any] | None = field(default=None)
 
     def as_json(self) -> dict[str, Any]:
-        """The fields as ``workbench.json`` holds them."""
+        """The fields as ``workbench.json`` holds them.
+
+        Returns
+        -------
+        dict
+        """
         return {"visit": self.visit, "plan": self.plan, "connection": self.connection, "step": self.step,
                 "phase": self.phase, "compensation": self.compensation, "finished": self.finished}
 
 
 def read_saved(folder: Path) -> SavedVisit:
     """The visit kept in ``folder/workbench.json``.
+
+    Parameters
+    ----------
+    folder : Path
+        The visit's folder.
+
+    Returns
+    -------
+    SavedVisit
 
     Raises
     ------
@@ -86,17 +100,49 @@ def read_saved(folder: Path) -> SavedVisit:
 
 
 def write_saved(folder: Path, saved: SavedVisit) -> None:
-    """Write ``folder/workbench.json`` atomically."""
+    """Write ``folder/workbench.json`` atomically.
+
+    Parameters
+    ----------
+    folder : Path
+        The visit's folder.
+    saved : SavedVisit
+
+    Returns
+    -------
+    None
+    """
     write_json(folder / STATE_FILE, saved.as_json())
 
 
 def remember_open(data: Path, folder: Path | None) -> None:
-    """Name ``folder`` (relative to the data folder) as the open visit; None: no visit open."""
+    """Name ``folder`` (relative to the data folder) as the open visit, in ``data/workbench-open.json``.
+
+    Parameters
+    ----------
+    data : Path
+        The data folder.
+    folder : Path or None
+        The visit's folder, inside ``data``; None: no visit open.
+
+    Returns
+    -------
+    None
+    """
     write_json(data / OPEN_FILE, {"folder": None if folder is None else folder.relative_to(data).as_posix()})
 
 
 def open_folder(data: Path) -> Path | None:
     """The folder of the visit that was open, or None (none named, or it is gone).
+
+    Parameters
+    ----------
+    data : Path
+        The data folder.
+
+    Returns
+    -------
+    Path or None
 
     Raises
     ------
@@ -121,6 +167,17 @@ def unfinished_visits(data: Path) -> list[dict[str, Any]]:
     """Every visit of the data folder not yet finished: folder, machine, serial, date, title, step.
 
     A folder whose ``workbench.json`` cannot be read is listed with the reason, so that it is seen.
+
+    Parameters
+    ----------
+    data : Path
+        The data folder.
+
+    Returns
+    -------
+    list of dict
+        ``folder``, ``machine``, ``serial``, ``date``, ``title``, ``step`` and ``problem`` (None, or
+        why its state cannot be read), by folder name.
     """
     out = []
     for path in sorted(data.glob(f"*/{STATE_FILE}")):

@@ -30,7 +30,8 @@ from axiscal.io.templates import render_template
 from axiscal.units import MM, UM
 from axiscal.io.arguments import check_number
 from axiscal.workbench.forms import PlanForm, VisitForm, checked
-from axiscal.workbench.runner import PlanRun, connect
+from axiscal.workbench.connection import connect, serial_ports
+from axiscal.workbench.runner import PlanRun
 from axiscal.workbench.saved import (STEPS, SavedVisit, open_folder, read_saved, remember_open, unfinished_visits,
                                      write_saved)
 
@@ -41,7 +42,13 @@ PHASES = ("as-found", "as-left")
 
 
 class OpenElsewhere(AxiscalError):
-    """The visit is held by another tab whose page is open: this one follows it read-only."""
+    """The visit is held by another tab whose page is open: this one follows it read-only.
+
+    Parameters
+    ----------
+    message : str
+        One line, as :class:`~axiscal.errors.AxiscalError` takes it.
+    """
 
 
 def _toml(text: str) -> str:
@@ -252,8 +259,12 @@ class Workbench:
                 "targets_mm": [float(t / MM) for t in targets], "readings": int(steps.readings)}
 
     # -- 4. connect --------------------------------------------------------------------------------
+    def ports(self) -> list[dict[str, Any]]:
+        """The computer's serial ports (device, description, USB ids), listed now."""
+        return serial_ports()
+
     def connect(self, data: Any) -> dict[str, Any]:
-        """Open the instrument and the controller; their lights, the reading and the position."""
+        """Check both specs, open the instrument and the controller; their lights, reading, position and what they told."""
         form = checked("connect", data)
         c = connect(form.instrument, form.controller)
         self.connection = c
@@ -263,7 +274,9 @@ class Workbench:
                 self._save()
         return {"instrument": c.instrument, "controller": c.controller,
                 "lights": {"instrument": c.instrument_state, "controller": c.controller_state},
-                "description": c.description, "reading_mm": c.reading_m / MM, "position_mm": c.position_m / MM}
+                "description": c.description, "reading_mm": c.reading_m / MM, "position_mm": c.position_m / MM,
+                "told": {"instrument": [list(t) for t in c.instrument_told], "controller": [list(t) for t in c.controller_told]},
+                "refused": c.refused}
 
     # -- 5. run ------------------------------------------------------------------------------------
     def start_run(self, phase: str = "as-found", *, resume: bool = False) -> dict[str, Any]:
@@ -273,6 +286,8 @@ class Workbench:
             raise AxiscalError("plan the test first (Plan)")
         if self.connection is None:
             raise AxiscalError("connect the instrument and the controller first (Connect)")
+        if self.connection.refused:
+            raise AxiscalError(f"the controller is not ready: {self.connection.refused}; connect again once it is")
         if self.run is not None and self.run.state in ("running", "paused"):
             raise AxiscalError("a run is going on: pause, abort or wait for it")
         compensation = None
@@ -510,8 +525,9 @@ class Workbench:
             "step": self.saved.step, "phase": self.phase, "visit": self.saved.visit, "plan_form": self.saved.plan,
             "plan": None if self.plan is None else self._plan_view(),
             "connection": self.saved.connection,
-            "connected": None if c is None else {"lights": {"instrument": c.instrument_state, "controller": c.controller_state},
-                                                 "description": c.description},
+            "connected": None if c is None else {
+                "lights": {"instrument": c.instrument_state, "controller": c.controller_state}, "description": c.description,
+                "told": {"instrument": [list(t) for t in c.instrument_told], "controller": [list(t) for t in c.controller_told]}},
             "compensation": self.compensation, "finished": self.saved.finished,
             "runs": {phase: (self._phase_folder(phase) / f"positioning_{(self.plan.axis if self.plan else 'X').lower()}.csv").is_file()
                      for phase in PHASES},

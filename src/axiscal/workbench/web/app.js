@@ -25,6 +25,7 @@ function show(step) {
     if (b.dataset.step === step) b.setAttribute("aria-current", "page"); else b.removeAttribute("aria-current");
   });
   if (step === "machines") { loadMachines(); loadUnfinished(); }
+  if (step === "connect") loadPorts();
   if (!view.restoring) call("POST", "/api/step", { step }).catch(() => {});  // opened here again after a reload
 }
 document.querySelectorAll("nav button").forEach((b) => b.addEventListener("click", () => show(b.dataset.step)));
@@ -248,16 +249,48 @@ function lights(states) {
   }
 }
 
+function showTold(id, pairs) {
+  const dl = $(id); dl.replaceChildren();
+  for (const [name, value] of pairs || []) {
+    const dt = document.createElement("dt"), dd = document.createElement("dd");
+    dt.textContent = name; dd.textContent = value; dl.append(dt, dd);
+  }
+}
+
 $("#connect-form").addEventListener("submit", async (event) => {
   event.preventDefault();
+  const form = event.target;
   try {
-    const c = await call("POST", "/api/connect", formData(event.target));
+    const c = await call("POST", "/api/connect", formData(form));
+    fieldErrors(form, {});
     lights(c.lights);
     $("#live-reading").textContent = fmt(c.reading_mm, 6);
     $("#live-position").textContent = fmt(c.position_mm, 4);
     $("#connect-description").textContent = c.description;
-  } catch (e) { lights({ instrument: "off", controller: "off" }); }
+    showTold("#told-instrument", c.told.instrument); showTold("#told-controller", c.told.controller);
+    $("#refused").hidden = !c.refused; $("#refused").textContent = c.refused ? `The controller is not ready: ${c.refused}` : "";
+  } catch (e) {
+    fieldErrors(form, e.fields);
+    lights({ instrument: "off", controller: "off" });
+  }
 });
+
+// the computer's serial ports, listed when Connect opens and on request; a port clicked fills the instrument
+async function loadPorts() {
+  let ports;
+  try { ports = await call("GET", "/api/ports"); } catch (e) { return; }
+  $("#ports-count").textContent = ports.length;
+  const body = $("#ports tbody"); body.replaceChildren();
+  const specs = $("#instrument-specs"), controllers = $("#controller-specs");
+  for (const list of [specs, controllers]) list.querySelectorAll("option[data-port]").forEach((o) => o.remove());
+  for (const p of ports) {
+    const tr = body.insertRow();
+    for (const v of [p.device, p.description, p.vid ? `${p.vid}:${p.pid}` : "", p.serial_number || ""]) tr.insertCell().textContent = v;
+    for (const kind of ["umd", "sylvac", "mahr", "touchdro"]) { const o = document.createElement("option"); o.value = `${kind}:${p.device}`; o.dataset.port = "1"; specs.appendChild(o); }
+    for (const kind of ["grbl", "marlin"]) { const o = document.createElement("option"); o.value = `${kind}:${p.device}`; o.dataset.port = "1"; controllers.appendChild(o); }
+  }
+}
+$("#ports-refresh").addEventListener("click", loadPorts);
 
 // ---- 5. run ---------------------------------------------------------------------------------------
 async function startRun(phase, resume) {
@@ -427,7 +460,10 @@ function restore(state) {
   fill($("#plan-form"), state.plan_form);
   if (state.plan) showPlan(state.plan); else { view.plan = null; $("#plan-table tbody").replaceChildren(); $("#program").textContent = ""; }
   fill($("#connect-form"), state.connection);
-  if (state.connected) { lights(state.connected.lights); $("#connect-description").textContent = state.connected.description; }
+  if (state.connected) {
+    lights(state.connected.lights); $("#connect-description").textContent = state.connected.description;
+    showTold("#told-instrument", state.connected.told.instrument); showTold("#told-controller", state.connected.told.controller);
+  }
   else lights({ instrument: "off", controller: "off" });
   $("#phase").value = state.phase;
   if (state.compensation) showCompensation(state.compensation);
