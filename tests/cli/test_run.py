@@ -55,3 +55,31 @@ def test_a_reading_not_near_its_target_stops_the_run_naming_the_step_and_the_fla
     assert status == 2 and err.count("\n") == 1, err
     assert err.startswith("axiscal: error: step 2 (target 20.000 mm, run 1, +): the instrument reads " + reads)
     assert "--offset-mm" in err and "--tolerance-mm 0.5 mm" in err and not (tmp_path / "run.csv").exists()
+
+
+def test_on_the_fly_says_the_speed_it_holds_to_and_warns_above_it(run_cli, tmp_path):
+    plan_csv = tmp_path / "plan.csv"
+    write_plan(plan_test(0.020, 0.120, 5, runs=1, overrun_m=0.015, seed=2), plan_csv)  # room to reach the feed
+    status, out, err = run_cli("run", plan_csv, "--controller", "sim", "--source", "sim:umd", "--on-the-fly",
+                               "--feed-mm-min", "8000", "-o", tmp_path / "fly.csv", "--json")
+    assert status == 0, err
+    assert "within 1 um of stop and go up to 4000 mm/min (measured on the virtual controller)" in err
+    assert "axiscal: warning: targets crossed at up to" in err and "above the 4000 mm/min" in err
+    import json
+
+    payload = json.loads(out)
+    assert payload["agreement_up_to_mm_min"] == pytest.approx(4000) and payload["warning"].startswith("targets crossed")
+
+
+def test_no_warning_below_the_speed():
+    import numpy as np
+
+    from axiscal.capture.fly_drive import FLY_SPEED_LIMIT_M_S, FlyFiles
+
+    class _Result:
+        speed_m_s = np.array([FLY_SPEED_LIMIT_M_S, -0.5 * FLY_SPEED_LIMIT_M_S])
+
+    files = FlyFiles(_Result(), None, None, None)
+    assert files.warning is None and "up to 4000 mm/min" in files.agreement
+    _Result.speed_m_s = np.array([1.01 * FLY_SPEED_LIMIT_M_S])
+    assert "4040 mm/min, above the 4000 mm/min" in files.warning

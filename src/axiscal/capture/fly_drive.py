@@ -27,12 +27,22 @@ from axiscal.capture.steps import PlanSteps, plan_steps
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_number, check_path
 from axiscal.io.tabular import write_csv
-from axiscal.units import MM
+from axiscal.units import MM, UM
 
-__all__ = ["pass_moves", "fly_plan", "FlyFiles"]
+__all__ = ["pass_moves", "fly_plan", "FlyFiles", "FLY_AGREEMENT_M", "FLY_SPEED_LIMIT_M_S"]
+
+#: how close on the fly comes to stop and go below :data:`FLY_SPEED_LIMIT_M_S`, metres
+FLY_AGREEMENT_M = 1e-6
+#: the speed of crossing a target up to which the delay estimate keeps on the fly within
+#: :data:`FLY_AGREEMENT_M` of stop and go, m/s: measured on the virtual controller by
+#: ``benchmarks/run_on_the_fly_speed.py`` (the median over 3 repeats of the largest difference over 20 crossings:
+#: 0.2 um up to 4000 mm/min, then 2.4 um at 6000, 4.8 um at 8000 and 9.1 um at 12 000 mm/min)
+FLY_SPEED_LIMIT_M_S = 4000 * MM / 60.0
 
 #: the axis is recorded standing this long before the first pass and after the last, seconds
 _STILL_S = 0.2
+#: the longest a position answer may take and still be kept (its time is known to half of it), seconds
+_SHARP_S = 0.002
 #: the longest the instrument's samples may lag behind the motion (a loaded computer, a slow link), seconds
 _LATE_S = 5.0
 
@@ -78,14 +88,38 @@ class FlyFiles:
     def __init__(self, result: OnTheFly, run_csv: Path, sidecar: Path, recording_csv: Path):
         self.result, self.run_csv, self.sidecar, self.recording_csv = result, run_csv, sidecar, recording_csv
 
+    @property
+    def fastest_m_s(self) -> float:
+        """The fastest the axis crossed a target, m/s."""
+        speeds = np.abs(self.result.speed_m_s)
+        return float(speeds.max()) if speeds.size else 0.0
+
+    @property
+    def agreement(self) -> str:
+        """The speed up to which on the fly agrees with stop and go, and whether this run stayed below it, in words."""
+        limit = FLY_SPEED_LIMIT_M_S / MM * 60
+        return (f"the delay estimate keeps on the fly within {FLY_AGREEMENT_M / UM:g} um of stop and go up to {limit:.0f} mm/min"
+                f" (measured on the virtual controller); this run crossed its targets at up to {self.fastest_m_s / MM * 60:.0f} mm/min")
+
+    @property
+    def warning(self) -> str | None:
+        """What to say when a target was crossed faster than :data:`FLY_SPEED_LIMIT_M_S` (None otherwise)."""
+        if self.fastest_m_s <= FLY_SPEED_LIMIT_M_S * (1 + 1e-9):
+            return None
+        return (f"targets crossed at up to {self.fastest_m_s / MM * 60:.0f} mm/min, above the"
+                f" {FLY_SPEED_LIMIT_M_S / MM * 60:.0f} mm/min up to which the delay estimate keeps on the fly within"
+                f" {FLY_AGREEMENT_M / UM:g} um of stop and go: the readings may be off by several um (a lower feed, or stop"
+                " and go, for a figure to trust)")
+
 
 class _PositionRecorder:
     """Asks the controller its position as fast as it answers, on a thread, with the computer's time."""
 
     def __init__(self, controller, axis: str, t0: float):
         self.controller, self.axis, self.t0 = controller, axis, t0
-        self.t: list[float] = []
-        self.x: list[float] = []
+        self._t: list[float] = []
+        self._x: list[float] = []
+        self._took: list[float] = []
         self.error: Exception | None = None
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._run, name="position-recorder", daemon=True)
@@ -99,10 +133,23 @@ class _PositionRecorder:
             except Exception as exc:  # handed to the driving thread
                 self.error = exc
                 return
-            if after - before <= 0.002:  # an answer that took longer has no sharp time: left out
-                self.t.append((before + after) / 2 - self.t0)
-                self.x.append(x)
+            self._t.append((before + after) / 2 - self.t0)
+            self._x.append(x)
+            self._took.append(after - before)
             time.sleep(0.001)
+
+    def samples(self) -> tuple[np.ndarray, np.ndarray]:
+        """Time (from ``t0``) and position of the answers whose time is sharp.
+
+        An answer is stamped at the middle of its question and its answer, so its time is known to half
+        the time it took: one that took longer than 2 ms, or than three times the answers' median (a
+        thread held up by a loaded computer: 1 ms is 17 um at 1000 mm/min), is left out.
+        """
+        took = np.array(self._took)
+        if not took.size:
+            return np.empty(0), np.empty(0)
+        sharp = took <= min(_SHARP_S, max(3.0 * float(np.median(took)), 20e-6))
+        return np.array(self._t)[sharp], np.array(self._x)[sharp]
 
     def __enter__(self) -> "_PositionRecorder":
         self._thread.start()
@@ -193,11 +240,12 @@ def fly_plan(
         reader.close()
     t, x, env, bad = reader.since(0)
     keep = ~bad & np.isfinite(x)
-    if keep.sum() < 4 or len(positions.t) < 4 or not math.isfinite(reader.clock_offset_s):
+    position_t, position_x = positions.samples()
+    if keep.sum() < 4 or position_t.size < 4 or not math.isfinite(reader.clock_offset_s):
         raise AxiscalError(f"too few readings from {source.status.description if hasattr(source, 'status') else 'the instrument'}"
-                           f" ({int(keep.sum())}) or positions ({len(positions.t)}) to capture on the fly")
+                           f" ({int(keep.sum())}) or positions ({position_t.size}) to capture on the fly")
     time_s = t[keep] + reader.clock_offset_s - t0  # the instrument's samples on the computer's clock
-    recording = FlyRecording(time_s, x[keep], np.array(positions.t), np.array(positions.x),
+    recording = FlyRecording(time_s, x[keep], position_t, position_x,
                              {n: env[keep, j] for j, n in enumerate(environment) if np.isfinite(env[keep, j]).all()},
                              source=str(getattr(getattr(source, "status", None), "description", "the instrument")))
     recording_csv = output.with_name(output.stem + ".recording.csv")

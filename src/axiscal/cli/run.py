@@ -192,10 +192,16 @@ def run_command(plan_csv, controller_spec, source_spec, output, axis, feed_mm_mi
             source.close()
             controller.close()
         if as_json:
+            from axiscal.capture.fly_drive import FLY_AGREEMENT_M, FLY_SPEED_LIMIT_M_S
+
             echo_json({"run_csv": str(flown.run_csv), "sidecar": str(flown.sidecar), "recording_csv": str(flown.recording_csv),
-                       **flown.result.payload()})
+                       **flown.result.payload(), "agreement_um": FLY_AGREEMENT_M / UM,
+                       "agreement_up_to_mm_min": FLY_SPEED_LIMIT_M_S / MM * 60, "warning": flown.warning})
         click.echo(f"axiscal: note: {len(flown.result.capture.readings)} targets read on the fly (the streams' delay"
                    f" {flown.result.delay_s * 1e3:.3f} ms, estimated), written to {flown.run_csv}", err=True)
+        click.echo(f"axiscal: note: {flown.agreement}", err=True)
+        if flown.warning is not None:
+            click.echo(f"axiscal: warning: {flown.warning}", err=True)
         return
     live = None
     try:
