@@ -160,3 +160,16 @@ def test_an_on_the_fly_recording_covers_the_last_pass_though_the_samples_come_la
         controller.close()
     deviations = np.array([r.deviation_m for r in flown.result.capture.readings])
     assert deviations.size == 10 and np.all(np.abs(deviations) < 50e-6)
+
+
+def test_an_on_the_fly_reading_not_near_its_target_is_refused_as_a_stop_is():
+    from pathlib import Path
+
+    from axiscal.capture.on_the_fly import on_the_fly
+
+    examples = Path(__file__).resolve().parents[2] / "examples" / "dynamics"
+    plan, recording = examples / "fly_plan.csv", examples / "fly_recording.csv"
+    assert on_the_fly(plan, recording).capture.readings
+    with pytest.raises(AxiscalError, match=r"step \d+ \(target .*\): the instrument reads .* not within tolerance_m 0.5 mm"):
+        on_the_fly(plan, recording, offset_m=0.1)  # a 100 mm offset wrote deviations of -100 mm
+    assert on_the_fly(plan, recording, offset_m=1e-3, tolerance_m=2e-3).capture.readings

@@ -335,6 +335,7 @@ def on_the_fly(
     window_s: float = 0.01,
     offset_m: float = 0.0,
     max_delay_s: float = 0.5,
+    tolerance_m: float = 0.5e-3,
     unit: str | None = None,
     channel: str | None = None,
 ) -> OnTheFly:
@@ -355,6 +356,9 @@ def on_the_fly(
         The reading at the datum, subtracted from every reading (default 0).
     max_delay_s : float, seconds, keyword-only
         Largest delay looked for (default 0.5 s).
+    tolerance_m : float, metres, keyword-only
+        How far from its target a reading (less the offset) may be (default 0.5 mm, as a stop of
+        :func:`~axiscal.capture.run.capture`): one farther off is the wrong unit, scale or offset.
     unit, channel : str, optional, keyword-only
         As :func:`read_fly_recording` takes them (for a file).
 
@@ -366,7 +370,8 @@ def on_the_fly(
     ------
     AxiscalError
         Naming the step (target, run and direction) the position never crosses in its
-        direction, a crossing outside the laser's recording, a target the axis comes to rest at
+        direction, a crossing outside the laser's recording, a reading not within ``tolerance_m``
+        of its target, a target the axis comes to rest at
         (crossed at less than half the median speed); and what the reader and the estimate
         refuse.
     """
@@ -378,6 +383,7 @@ def on_the_fly(
     window_s = check_number("window_s", window_s, positive=True, high=10.0, unit="s")
     offset_m = check_number("offset_m", offset_m, unit="m")
     max_delay_s = check_number("max_delay_s", max_delay_s, positive=True, high=10.0, unit="s")
+    tolerance_m = CaptureSettings(tolerance_m=tolerance_m, offset_m=offset_m).tolerance_m
     estimated = delay is None
     if estimated:
         delay = _delay(recording, max_delay_s)
@@ -399,6 +405,10 @@ def on_the_fly(
             raise AxiscalError(f"{steps.describe(int(k))}: the axis crossed the target at {when:.3f} s, outside the laser's"
                                f" recording ({t[0]:g} to {t[-1]:g} s)", path=recording.source)
         value, spread, samples = _reading_at(t, x, when, window_s)
+        if not abs(value - offset_m - target) <= tolerance_m:
+            raise AxiscalError(f"{steps.describe(int(k))}: the instrument reads {(value - offset_m) / MM:.4f} mm there (less"
+                               f" offset_m {offset_m / MM:g} mm), not within tolerance_m {tolerance_m / MM:g} mm of the target:"
+                               " check the instrument's unit and scale and the reading at the datum", path=recording.source)
         sensors = {n: float(np.interp(when, t, recording.channels[n])) for n in names}
         readings.append(StopReading(int(k), value - offset_m - target, float(when), spread, samples,
                                     {n: v for n, v in sensors.items() if math.isfinite(v)}))
@@ -411,7 +421,7 @@ def on_the_fly(
         raise AxiscalError(f"{steps.describe(k)}: the axis comes to rest at the target ({passing[stopping[0]] / MM * 60:.4g}"
                            f" mm/min, not {np.median(passing) / MM * 60:.4g}): an on-the-fly program runs past every target"
                            " without stopping (an on-the-fly plan's program does)", path=recording.source)
-    settings = CaptureSettings(window_s=window_s, offset_m=offset_m)
+    settings = CaptureSettings(window_s=window_s, offset_m=offset_m, tolerance_m=tolerance_m)
     carried = tuple(n for n in names if all(n in r.channels for r in readings))
     capture = Capture(steps, tuple(readings), settings, recording.source, carried, {})
     return OnTheFly(capture, float(delay), estimated, np.array(speeds), window_s)
