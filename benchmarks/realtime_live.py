@@ -15,6 +15,12 @@ must be exactly k / rate, k = 0, 1, 2, ...) and the delay percentiles:
 2. ``tcp + dashboard``: the same with the dashboard server running and one WebSocket client reading;
 3. ``sim``: the in-process virtual instrument at the same rate.
 
+The loop runs at the priority ``axiscal live`` gives it (:func:`axiscal.live.priority.raise_priority`:
+real-time where allowed; ``--normal-priority`` to measure without). The TCP sender stands for the
+acquisition box, which has a processor of its own: it keeps the loop's priority, so a busy core
+delays the receiving side only (``--sender-normal-priority`` shares the cores with the busy
+processes instead). The dashboard's client stands for a browser and runs at normal priority.
+
 The delay is measured by the pipeline right after the batch's ``os.write`` to the record returned
 (the frame then survives a crash of the process; ``fsync`` follows within the record's sync interval).
 """
@@ -98,16 +104,16 @@ def normal_priority() -> None:
     os.setpriority(os.PRIO_PROCESS, 0, 0)
 
 
-def run(kind: str, rate: float, seconds: float, *, dashboard: bool = False, raise_to_realtime: bool = True) -> dict:
+def run(kind: str, rate: float, seconds: float, *, dashboard: bool = False, raise_to_realtime: bool = True, sender_normal: bool = False) -> dict:
     priority = raise_priority() if raise_to_realtime else None  # as axiscal live does, before any thread starts
     try:
-        return _run(kind, rate, seconds, dashboard=dashboard)
+        return _run(kind, rate, seconds, dashboard=dashboard, sender_normal=sender_normal)
     finally:
         if priority is not None:
             restore_priority(priority)
 
 
-def _run(kind: str, rate: float, seconds: float, *, dashboard: bool) -> dict:
+def _run(kind: str, rate: float, seconds: float, *, dashboard: bool, sender_normal: bool) -> dict:
     module = VirtualModule(seed=0)
     system = module.measurement_system()
     expected = int(rate * seconds)
@@ -117,7 +123,7 @@ def _run(kind: str, rate: float, seconds: float, *, dashboard: bool) -> dict:
             [sys.executable, __file__, "--sender", "--rate", str(rate), "--seconds", str(seconds)],
             stdout=subprocess.PIPE,
             text=True,
-            preexec_fn=normal_priority,
+            preexec_fn=normal_priority if sender_normal else None,  # else it keeps the loop's priority: the box has its own processor
         )
         port = int(child.stdout.readline())
         source = TcpSource("127.0.0.1", port, system.channels, backoff=Backoff(initial_s=0.01, maximum_s=0.1))
@@ -196,6 +202,7 @@ def main() -> None:
     parser.add_argument("--busy", type=int, default=0, help="processes keeping a core busy each during the runs")
     parser.add_argument("--only", default="tcp,dashboard,sim", help="kinds of run, comma-separated: tcp, dashboard, sim")
     parser.add_argument("--normal-priority", action="store_true", help="run the loop at normal priority (as without the rights to raise it)")
+    parser.add_argument("--sender-normal-priority", action="store_true", help="the TCP sender at normal priority (default: the loop's)")
     parser.add_argument("--sender", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--reader", type=int, help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -218,7 +225,7 @@ def main() -> None:
     else:
         priority = raise_priority()
         restore_priority(priority)
-        print(priority.text)
+        print(priority.text + ("; TCP sender at normal priority" if args.sender_normal_priority else "; the TCP sender (the acquisition box) at the same"))
     print(
         f"{'run':<18} {'sent':>7} {'recorded':>8} {'lost':>5} {'t_s exact':>9} {'batches':>7} {'p50 ms':>7} {'p99 ms':>7} "
         f"{'p99.9 ms':>8} {'max ms':>7}  load average"
@@ -230,7 +237,14 @@ def main() -> None:
             hogs = busy_processes(args.busy)
             try:
                 time.sleep(0.2 if hogs else 0.0)
-                r = run(kind, args.rate, args.seconds, dashboard=dashboard, raise_to_realtime=not args.normal_priority)
+                r = run(
+                    kind,
+                    args.rate,
+                    args.seconds,
+                    dashboard=dashboard,
+                    raise_to_realtime=not args.normal_priority,
+                    sender_normal=args.sender_normal_priority,
+                )
             finally:
                 for hog in hogs:
                     hog.kill()
