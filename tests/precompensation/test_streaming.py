@@ -22,9 +22,9 @@ from axiscal.errors import AxiscalError
 from axiscal.io.gcode import reader
 from axiscal.model.machine import Axis, Machine
 from axiscal.model.tables import ErrorTable
-from axiscal.precompensation import precompensate_stream, rewrite_program
+from axiscal.precompensation import rewrite_program
 from axiscal.precompensation import streaming
-from axiscal.precompensation.streaming import rewrite_pieces
+from axiscal.precompensation.streaming import precompensate_stream, rewrite_pieces
 
 from .machines import machines
 from .test_bulk import _program
@@ -181,7 +181,7 @@ def _peak_kb(lines: int) -> int:
         import io, resource, sys
         sys.path.insert(0, "benchmarks")
         from precompensate import part_program
-        from axiscal.precompensation import precompensate_stream
+        from axiscal.precompensation.streaming import precompensate_stream
         from axiscal.precompensation import streaming
         streaming.PIECE_BYTES = 1 << 20
         data = part_program({lines}).encode()
@@ -204,3 +204,19 @@ def test_peak_memory_does_not_grow_with_the_program():
     short, long = _peak_kb(50_000), _peak_kb(200_000)
     assert long < short + 20_000, (short, long)
     assert long < 400_000
+
+
+def test_standard_input_to_standard_output(tmp_path, examples):
+    """`axiscal precompensate - -o -`: a program piped in comes out as the file-to-file run writes it."""
+    program = examples / "precompensation" / "part.ngc"
+    machine = examples / "xfyz_machine" / "machine.toml"
+    command = [sys.executable, "-m", "axiscal.cli.main", "precompensate"]
+    piped = subprocess.run(command + ["-", "--machine", str(machine), "--dialect", "linuxcnc", "-o", "-"],
+                           input=program.read_bytes(), capture_output=True, check=True)
+    subprocess.run(command + [str(program), "--machine", str(machine), "--dialect", "linuxcnc", "-o",
+                              str(tmp_path / "out.ngc")], capture_output=True, check=True)
+    assert piped.stdout == (tmp_path / "out.ngc").read_bytes()
+    assert piped.stderr.decode().count("\n") == 1
+    refused = subprocess.run(command + ["-", "--machine", str(machine), "--dialect", "linuxcnc", "-o", "-", "--json"],
+                             input=program.read_bytes(), capture_output=True)
+    assert refused.returncode == 2 and refused.stdout == b"" and b"--json" in refused.stderr

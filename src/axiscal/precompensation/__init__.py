@@ -31,7 +31,7 @@ from axiscal.precompensation.program import (
     precompensate_program,
     rewrite_program,
 )
-from axiscal.precompensation.streaming import PrecompensationSummary, precompensate_file, precompensate_stream
+from axiscal.precompensation.streaming import precompensate_file
 
 __all__ = [
     "GRID_COLUMNS",
@@ -49,8 +49,6 @@ __all__ = [
     "precompensate_points",
     "Precompensation",
     "precompensate_file",
-    "precompensate_stream",
-    "PrecompensationSummary",
     "precompensate_program",
     "rewrite_program",
 ]

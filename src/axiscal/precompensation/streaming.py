@@ -200,9 +200,9 @@ def precompensate_stream(
 
 
 def precompensate_file(
-    program: str | Path | BinaryIO,
+    program_path: str | Path | BinaryIO,
     machine: Machine | str | Path,
-    output: str | Path | BinaryIO,
+    output_path: str | Path | BinaryIO,
     *,
     dialect: str,
     max_segment_m: float = 2e-3,
@@ -211,17 +211,17 @@ def precompensate_file(
     work_offset_m: Mapping[str, float] | None = None,
     progress: Callable[[int, int], None] | None = None,
 ) -> PrecompensationSummary:
-    """Pre-compensate the program in ``program`` and write it to ``output``, in pieces.
+    """Pre-compensate the program in ``program_path`` and write it to ``output_path``, in pieces.
 
     The program is read, rewritten and written a piece at a time (:func:`precompensate_stream`), so
-    the memory taken does not grow with its length. A file ``output`` is written atomically: it is
+    the memory taken does not grow with its length. A file ``output_path`` is written atomically: it is
     the old file or the new one, whole, whatever stops the run, and the temporary files that earlier
     runs of the same output left when they were killed are removed. A binary stream (standard input,
     standard output) is read or written as the pieces come.
 
     Parameters
     ----------
-    program, output : str, Path or binary file object
+    program_path, output_path : str, Path or binary file object
         The program read and the program written.
     machine : Machine, str or Path
         The machine model or its description file.
@@ -238,34 +238,35 @@ def precompensate_file(
     Raises
     ------
     AxiscalError
-        As :func:`~axiscal.precompensation.program.precompensate_program`, naming ``program``;
+        As :func:`~axiscal.precompensation.program.precompensate_program`, naming ``program_path``;
         a file that cannot be read or written.
     """
     if isinstance(machine, Path):
         machine = str(machine)
     check_instance("machine", machine, (Machine, str))
-    reading = not isinstance(program, (str, Path))
+    reading = not isinstance(program_path, (str, Path))
     if reading:
-        _check_stream("program", program, "read")
+        _check_stream("program_path", program_path, "read")
         name = None
     else:
-        program = check_path("program", program)
-        name = str(program)
+        program_path = check_path("program_path", program_path)
+        name = str(program_path)
+    output = output_path
     if not isinstance(output, (str, Path)):
-        _check_stream("output", output, "write")
+        _check_stream("output_path", output, "write")
     else:
-        output = check_path("output", output)
+        output = check_path("output_path", output)
     settings = dict(dialect=dialect, max_segment_m=max_segment_m, tolerance_m=tolerance_m, tool_m=tool_m,
                     work_offset_m=work_offset_m, source=name, progress=progress)
     if reading:
-        reader = program
+        reader = program_path
     else:
         try:
-            reader = open(program, "rb")
+            reader = open(program_path, "rb")
         except FileNotFoundError:
-            raise AxiscalError("file not found", path=program) from None
+            raise AxiscalError("file not found", path=program_path) from None
         except OSError as exc:
-            raise AxiscalError(f"cannot read file ({exc})", path=program) from None
+            raise AxiscalError(f"cannot read file ({exc})", path=program_path) from None
     try:
         if not isinstance(output, Path):
             return precompensate_stream(reader, output, machine, **settings)
