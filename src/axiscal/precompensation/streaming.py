@@ -96,12 +96,12 @@ def rewrite_pieces(
     tool_m: tuple[float, float, float] | None = None,
     work_offset_m: Mapping[str, float] | None = None,
     source: str | None = None,
-    progress: Callable[[int], None] | None = None,
+    progress: Callable[[int, int], None] | None = None,
 ) -> PrecompensationSummary:
     """Pre-compensate the program given as pieces of whole lines ``texts``, handing its text to ``write``.
 
     ``texts`` joined is the program; ``write`` takes the output's UTF-8 bytes in order;
-    ``progress`` is called with the lines read so far after each piece. The other arguments are
+    ``progress`` is called with the bytes and lines taken so far after each piece. The other arguments are
     those of :func:`~axiscal.precompensation.program.rewrite_program`.
     """
     setup = _setup(machine, dialect, max_segment_m, tolerance_m, tool_m, source)
@@ -110,21 +110,22 @@ def rewrite_pieces(
     settled = None
     columns = lines = None
     written_from = 0
-    lines_in = moves = rewritten = 0
+    lines_in = moves = rewritten = taken = 0
     largest = residual = 0.0
     line_end = "\n"
     ending = False
     for piece in read_pieces(texts, dialect=setup.spec, source=source, work_offset_m=work_offset_m):
         line_end = piece.line_end
         lines_in += len(piece.lines)
-        if progress is not None:
-            progress(lines_in)
+        taken += piece.size
         if columns is None:
             columns, lines = piece.columns, piece.lines
         else:
             columns = joined(columns, piece.columns, piece.columns.axes)
             lines = lines + piece.lines
         window = rewrite_window(setup, columns, lines, line_end, settled, final=piece.last, written_from=written_from)
+        if progress is not None:
+            progress(taken, lines_in)
         if window is None:  # no move of these lines is settled yet: read on
             continue
         text = window.lines
@@ -178,7 +179,7 @@ def precompensate_stream(
     source : str, optional, keyword-only
         The program's name in errors.
     progress : callable, optional, keyword-only
-        Called with the bytes and the lines of the program read so far, after each piece.
+        Called with the bytes and the lines of the program rewritten so far, after each piece.
 
     Returns
     -------
@@ -191,12 +192,10 @@ def precompensate_stream(
     """
     if source is not None:
         check_instance("source", source, str)
-    done = [0]
-    texts = text_pieces(reader, piece_bytes=PIECE_BYTES, source=source, progress=lambda read: done.__setitem__(0, read))
-    lines = None if progress is None else (lambda count: progress(done[0], count))
+    texts = text_pieces(reader, piece_bytes=PIECE_BYTES, source=source)
     return rewrite_pieces(texts, writer.write, machine, dialect=dialect, max_segment_m=max_segment_m,
                           tolerance_m=tolerance_m, tool_m=tool_m, work_offset_m=work_offset_m, source=source,
-                          progress=lines)
+                          progress=progress)
 
 
 def precompensate_file(
@@ -228,7 +227,7 @@ def precompensate_file(
     dialect, max_segment_m, tolerance_m, tool_m, work_offset_m : keyword-only
         See :func:`~axiscal.precompensation.program.precompensate_program`.
     progress : callable, optional, keyword-only
-        Called with the bytes and the lines of the program read so far, after each piece.
+        Called with the bytes and the lines of the program rewritten so far, after each piece.
 
     Returns
     -------

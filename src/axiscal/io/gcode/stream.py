@@ -46,6 +46,8 @@ class ProgramPiece:
         Whether the piece is the program's last.
     ends_with_line_end : bool
         For the last piece: whether the program's text ends with a line end.
+    size : int
+        Bytes of the piece's text (UTF-8).
     """
 
     dialect: Dialect
@@ -54,6 +56,7 @@ class ProgramPiece:
     line_end: str
     last: bool
     ends_with_line_end: bool
+    size: int = 0
 
 
 def text_pieces(stream: BinaryIO, *, piece_bytes: int = 4 << 20, source: str | None = None,
@@ -164,7 +167,8 @@ def read_pieces(texts: Iterable[str], *, dialect: str | Dialect, source: str | N
         written = np.flatnonzero(columns.motion_word >= 0)
         if written.size:
             word_before = int(columns.motion_word[written[-1]])
-        yield ProgramPiece(spec, lines, columns, line_end or "\n", last, last and text.endswith(("\n", "\r")))
+        yield ProgramPiece(spec, lines, columns, line_end or "\n", last, last and text.endswith(("\n", "\r")),
+                           len(text.encode("utf-8")))
         first_line += len(lines)
         text = following
     if first_line == 0:
