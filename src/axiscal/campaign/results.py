@@ -217,6 +217,11 @@ class CampaignResults:
         return overall_verdict([t.verdict for t in self.tests])
 
     @property
+    def all_warnings(self) -> list[str]:
+        """The campaign's warnings, then each test's, prefixed with its id (results.json's ``warnings``)."""
+        return [*self.warnings, *(f"{t.id}: {w}" for t in self.tests for w in t.warnings)]
+
+    @property
     def compensation(self) -> list[dict[str, str]]:
         """Every compensation file written, over all tests."""
         return [entry for t in self.tests for entry in t.compensation]
@@ -370,5 +375,5 @@ def results_payload(results: CampaignResults) -> dict[str, Any]:
         "tests": tests,
         "compensation": [{k: v for k, v in entry.items() if k != "text"} for entry in results.compensation],
         **({"volumetric": results.model["figures"]} if results.model else {}),
-        "warnings": [*results.warnings, *(f"{t.id}: {w}" for t in results.tests for w in t.warnings)],
+        "warnings": results.all_warnings,
     }

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from axiscal.campaign.config import TABLE_KEYS
-from axiscal.campaign.results import CampaignResults, TestResult, results_payload
+from axiscal.campaign.results import CampaignResults, TestResult
 from axiscal.errors import AxiscalError
 from axiscal.squareness.evaluation import squareness_name
 from axiscal.io.arguments import check_choice, check_count, check_mapping, is_real
@@ -71,7 +71,7 @@ def template_environment():
     )
     env.install_null_translations(newstyle=True)  # English; a certificate installs its language's catalog
     env.globals["fmt"] = format_number
-    env.filters["unit"] = lambda unit: display_unit(unit) if isinstance(unit, str) else unit
+    env.filters["unit"] = lambda unit: _DISPLAY_UNITS.get(unit, unit) if isinstance(unit, str) else unit
     return env
 
 
@@ -261,6 +261,12 @@ def verdict_rows(
         check_mapping("before", before, what="a mapping of test ids to figures")
     if before_uncertainty is not None:
         check_mapping("before_uncertainty", before_uncertainty, what="a mapping of test ids to uncertainties")
+    return _verdict_rows(results, before, before_uncertainty)
+
+
+def _verdict_rows(results: CampaignResults, before: Mapping[str, Any] | None,
+                  before_uncertainty: Mapping[str, Any] | None) -> list[dict[str, str]]:
+    """:func:`verdict_rows` of checked arguments."""
     rows = []
     for test in results.tests:
         old = (before or {}).get(test.id, {})
@@ -281,7 +287,7 @@ def verdict_rows(
             change = "" if previous is None or not math.isfinite(check.value) else f"{abs(check.value) - abs(previous):+.3f}"
             rows.append({
                 "test_id": test.id, "axis": test.axis or "",
-                "figure": f"{name} / {display_unit(check.unit)}",
+                "figure": f"{name} / {_DISPLAY_UNITS.get(check.unit, check.unit)}",
                 "value": format_number(check.value), "limit": format_number(check.limit),
                 "U": "" if check.U is None else format_number(check.U),
                 "before": "" if previous is None else format_number(previous),
@@ -416,6 +422,11 @@ def report_facts(results: CampaignResults) -> list[tuple[str, str]]:
         For ``results`` that are not a CampaignResults.
     """
     check_instance("results", results, CampaignResults)
+    return _report_facts(results)
+
+
+def _report_facts(results: CampaignResults) -> list[tuple[str, str]]:
+    """:func:`report_facts` of a checked CampaignResults."""
     tables = {"campaign": results.campaign, "machine": results.machine, "instrument": results.instrument}
     joined = {(table, key) for (table, _), keys in _JOINED.items() for key in keys}
     facts: list[tuple[str, str]] = []
@@ -490,8 +501,7 @@ def page_context(results: CampaignResults, *, compare: Mapping[str, Any] | None 
     The arguments are those of :func:`render_html`, checked there.
     """
     label = compare_label(compare)
-    rows = verdict_rows(results, previous_figures(compare), before_uncertainty=previous_uncertainty(compare))
-    payload = results_payload(results)
+    rows = _verdict_rows(results, previous_figures(compare), previous_uncertainty(compare))
     methods = sorted({t.method for t in results.tests if t.method})
     methods.append(decision_statement(results.decision_rule))
     return dict(
@@ -500,12 +510,12 @@ def page_context(results: CampaignResults, *, compare: Mapping[str, Any] | None 
         campaign=results.campaign,
         machine=results.machine,
         instrument=results.instrument,
-        facts=report_facts(results),
+        facts=_report_facts(results),
         verdict=results.verdict,
         verdict_rows=rows,
         has_u=any(c.U is not None for test in results.tests for c in test.checks),
         has_u_before=any(row["before_U"] for row in rows),
-        warnings=payload["warnings"],
+        warnings=results.all_warnings,
         sections=sections(results.tests),
         volumetric=volumetric if volumetric is not None else (results.model or None),
         compensation=results.compensation,

@@ -15,7 +15,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from axiscal.campaign.results import CampaignResults, results_payload
+from axiscal.campaign.results import CampaignResults
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_path
 from axiscal.io.arguments import check_instance, type_name
@@ -176,7 +176,7 @@ def write_pdf(
             verdict=results.verdict,
             verdict_rows=rows,
             has_u_before=any(row["before_U"] for row in rows),
-            warnings=results_payload(results)["warnings"],
+            warnings=results.all_warnings,
             sections=section_list,
             volumetric=volumetric,
             compensation=results.compensation,
