@@ -118,6 +118,10 @@ def check_certificate(results: CampaignResults, campaign_file: Any = None) -> No
     campaign_file : path, optional
         campaign.toml, named in the error.
 
+    Returns
+    -------
+    None
+
     Raises
     ------
     AxiscalError

@@ -498,7 +498,16 @@ def page_context(results: CampaignResults, *, compare: Mapping[str, Any] | None 
                  history: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """The names the report page's template reads (the certificate's template too, which extends it).
 
-    The arguments are those of :func:`render_html`, checked there.
+    Parameters
+    ----------
+    results : CampaignResults
+    compare, volumetric, generated, history : keyword-only
+        As for :func:`render_html`, which checks them; this trusts its caller.
+
+    Returns
+    -------
+    dict
+        Template name -> value.
     """
     label = compare_label(compare)
     rows = _verdict_rows(results, previous_figures(compare), previous_uncertainty(compare))

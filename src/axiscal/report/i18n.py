@@ -26,7 +26,17 @@ DOMAIN = "axiscal"
 
 
 def catalog_path(language: str):
-    """The ``.po`` catalog of ``language`` among the package's templates (a Traversable)."""
+    """The ``.po`` catalog of ``language`` among the package's templates.
+
+    Parameters
+    ----------
+    language : str
+        ISO 639-1 code.
+
+    Returns
+    -------
+    importlib.resources.abc.Traversable
+    """
     return resources.files("axiscal") / "templates" / "locale" / language / "LC_MESSAGES" / f"{DOMAIN}.po"
 
 
