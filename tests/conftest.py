@@ -42,6 +42,7 @@ ONE_AT_A_TIME = {
 ONE_WORKER = {
     "tests/campaign/test_compare.py": "compare",  # two campaigns reported against their scaled copies: ~40 s
     "tests/campaign/test_report.py": "report",  # the vmc850 campaign reported and run once
+    "tests/report/test_demo.py": "demo",  # the demo job (two campaigns, their reports): ~40 s under load
 }
 
 
