@@ -61,6 +61,10 @@ def test_results_json_verdicts(demo):
     positioning = {t["id"]: t for t in results["tests"]}["positioning-X-1"]
     assert set(positioning["environment"]) == {"air temperature", "air pressure", "relative humidity"}
     assert positioning["uncertainty"]["E"] > 0  # the campaign carries a budget: U beside every figure
+    # the diagonal's measured ranges: the laser's U over the diagonal's length (190 mm * sqrt 2), more than over X's 190 mm
+    diagonal = {t["id"]: t for t in results["tests"]}["diagonal-0kg"]["uncertainty"]
+    assert diagonal["E_BD_range_um"] == diagonal["E_AD_range_um"] > positioning["uncertainty"]["E"]
+    assert "model_error_range_um" not in diagonal  # predicted by the model, not measured
 
 
 def test_the_closed_cycle_as_left_is_within_a_fifth_of_as_found(demo):

@@ -351,11 +351,31 @@ def _diagonal(campaign: Campaign, spec: TestSpec, compare: Mapping[str, Any] | N
         table += [Figure("measured error range, before the model (E_BD)", figures["E_BD_range_um"], "um"),
                   Figure("left after the model (E_AD)", figures["E_AD_range_um"], "um")]
     files = [relative_name(campaign, campaign.model)] + ([relative_name(campaign, readings)] if readings is not None else [])
+    uncertainty = _diagonal_uncertainty(campaign, figures) if readings is not None else {}
+    if uncertainty:
+        checks = [replace(c, U=uncertainty.get(c.figure)) for c in checks]
     return TestResult(
         id=spec.id, kind=spec.kind, axis=None, files=files, figures=figures, checks=checks,
         plots=[Plot(title, svg)], table=table,
         method=f"Diagonal displacement test (ISO 230-6), reading as {options.get('measure', 'projection')}",
+        uncertainty=uncertainty,
     )
+
+
+def _diagonal_uncertainty(campaign: Campaign, figures: Mapping[str, Any]) -> dict[str, float]:
+    """U (k = 2, um) of the measured ranges of a diagonal test: the laser read along the diagonal, the budget's
+    U of a positioning test's E over the diagonal's length (ISO 230-6 measures as ISO 230-2 does, along another
+    line); none without a budget. The model's range is predicted, not measured: it has none."""
+    if campaign.budget is None:
+        return {}
+    from axiscal.uncertainty.positioning import positioning_uncertainty
+
+    nominal = figures["points"].get("nominal_mm") or [0.0]
+    length_m = abs(nominal[-1] - nominal[0]) * MM
+    if length_m <= 0:
+        return {}
+    U = positioning_uncertainty(campaign.budget, length_m).U["E"] / UM
+    return {key: U for key in ("E_BD_range_um", "E_AD_range_um", "diagonal_error_um") if key in figures}
 
 
 KIND_RUNNERS: dict[str, Callable[[Campaign, TestSpec], TestResult]] = {

@@ -70,7 +70,7 @@ _NO_U = {
     "separation": _("no uncertainty budget for the probes of the error separation is stated"),
     "levels": _("no uncertainty budget for the electronic levels is stated"),
     "flatness": _("no uncertainty budget for the flatness instruments is stated"),
-    "diagonal": _("the budget covers the laser along one axis; the diagonal's set-up is not budgeted"),
+    "diagonal": _("predicted by the machine model, or measured without an uncertainty budget"),
     "sixdof_diagonal": _("the budget covers the laser along one axis; the diagonal's set-up is not budgeted"),
     "sixdof": _("6-DOF sensor readings, shown for information; not a calibration result"),
     "sensor_calibration": _("a residual of the sensors' calibration, shown as a check; not a calibration result"),
@@ -78,6 +78,7 @@ _NO_U = {
 _NO_BUDGET = _("the campaign states no uncertainty budget")
 _NOT_BUDGETED = _("not covered by the campaign's uncertainty budget")
 _A_COUNT = _("a count: exact")
+_PREDICTED = _("predicted by the machine model, not measured")
 
 _STATEMENTS = (
     _("The results relate only to the item calibrated, at the time and under the conditions of the calibration."),
@@ -136,11 +137,9 @@ def _figure_key(test: TestResult, figure: Figure) -> str | None:
     """The key of ``figure`` in the test's figures (the table shows it under a label)."""
     if figure.label in test.figures:
         return figure.label
-    for key, value in test.figures.items():
-        if value is figure.value or (isinstance(value, float) and isinstance(figure.value, float) and value == figure.value):
-            if key in test.uncertainty:
-                return key
-    return None
+    same = [key for key, value in test.figures.items() if value is figure.value
+            or (isinstance(value, float) and isinstance(figure.value, float) and value == figure.value)]
+    return next((key for key in same if key in test.uncertainty), same[0] if same else None)
 
 
 def figure_rows(results: CampaignResults, gettext: Callable[[str], str] = str) -> list[dict[str, Any]]:
@@ -171,6 +170,8 @@ def figure_rows(results: CampaignResults, gettext: Callable[[str], str] = str) -
             if U is None:
                 if isinstance(figure.value, (int,)) and not isinstance(figure.value, bool) or figure.unit in ("", None):
                     why = _A_COUNT if isinstance(figure.value, int) else _NOT_BUDGETED
+                elif test.kind == "diagonal" and key == "model_error_range_um":
+                    why = _PREDICTED
                 elif test.kind in _NO_U and not test.uncertainty:
                     why = _NO_U[test.kind]
                 else:
