@@ -120,4 +120,4 @@ def test_one_tab_holds_the_visit_and_another_follows_it_read_only(tmp_path):
             time.sleep(0.05)
         else:
             pytest.fail("the second tab never took the visit over")
-        assert bench.owner == "tab-b" and bench.saved.step == "plan"
+        assert bench.tabs.owner == "tab-b" and bench.saved.step == "plan"

@@ -39,9 +39,12 @@ from axiscal.workbench.runner import (
     DevicePlanRun,
     PlanRun,
 )
+from axiscal.workbench.tabs import (
+    OpenElsewhere,
+    Tabs,
+)
 from axiscal.workbench.visit import (
     PHASES,
-    OpenElsewhere,
     Workbench,
 )
 from axiscal.workbench.app import (
@@ -82,6 +85,7 @@ __all__ = [
     "write_saved",
     "PHASES",
     "OpenElsewhere",
+    "Tabs",
     "Workbench",
     "MAX_BODY",
     "TAB_HEADER",

@@ -38,7 +38,8 @@ from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_number
 from axiscal.live.server import LOOPBACK_HOSTS, request_allowed
 from axiscal.workbench.forms import FormErrors
-from axiscal.workbench.visit import OpenElsewhere, Workbench
+from axiscal.workbench.tabs import OpenElsewhere
+from axiscal.workbench.visit import Workbench
 
 __all__ = ["WEB", "MAX_BODY", "TOKEN_COOKIE", "TAB_HEADER", "create_workbench_app", "new_token"]
 
@@ -139,7 +140,7 @@ def _answer(call, *args, claim: Any = None, **kwargs):
     async def run() -> Response:
         try:
             if claim is not None:
-                claim.app.state.bench.claim(_tab(claim))
+                claim.app.state.bench.tabs.claim(_tab(claim))
             return JSONResponse(_json_safe(await run_in_threadpool(call, *args, **kwargs)))
         except FormErrors as exc:
             return JSONResponse({"error": str(exc), "fields": exc.fields}, status_code=422)
@@ -233,7 +234,7 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
 
     async def step(request: Request) -> Response:
         body = await _body(request)
-        if not bench._may_act(_tab(request)):  # a tab that follows the visit does not move it
+        if not bench.tabs.may_act(_tab(request)):  # a tab that follows the visit does not move it
             return JSONResponse({"step": None, "readonly": True})
         return await _answer(bench.set_step, body.get("step") if isinstance(body, dict) else None)
 
@@ -284,12 +285,12 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
         tab = websocket.query_params.get("tab")
         tab = tab[:64] if tab else None
         if tab is not None:
-            bench.attach(tab)
+            bench.tabs.attach(tab)
         try:
             await _stream(websocket)
         finally:
             if tab is not None:
-                bench.detach(tab)
+                bench.tabs.detach(tab)
 
     async def _stream(websocket: WebSocket) -> None:
         current, cursor = None, 0

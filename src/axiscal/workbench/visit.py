@@ -32,23 +32,14 @@ from axiscal.io.arguments import check_number
 from axiscal.workbench.forms import PlanForm, VisitForm, checked
 from axiscal.workbench.connection import connect, serial_ports
 from axiscal.workbench.runner import PlanRun
+from axiscal.workbench.tabs import Tabs
 from axiscal.workbench.saved import (STEPS, SavedVisit, open_folder, read_saved, remember_open, unfinished_visits,
                                      write_saved)
 
-__all__ = ["PHASES", "OpenElsewhere", "Workbench"]
+__all__ = ["PHASES", "Workbench"]
 
 #: the two runs of a visit: before and after the compensation
 PHASES = ("as-found", "as-left")
-
-
-class OpenElsewhere(AxiscalError):
-    """The visit is held by another tab whose page is open: this one follows it read-only.
-
-    Parameters
-    ----------
-    message : str
-        One line, as :class:`~axiscal.errors.AxiscalError` takes it.
-    """
 
 
 def _toml(text: str) -> str:
@@ -103,9 +94,7 @@ class Workbench:
         # their plots are drawn one at a time (matplotlib's pyplot is not thread-safe)
         self._plot_lock = threading.Lock()
         self.saved: SavedVisit | None = None
-        # the tab that holds the visit (the page sends its id), and the tabs whose stream is open
-        self.owner: str | None = None
-        self._tabs: dict[str, int] = {}
+        self.tabs = Tabs()  # which browser tab may change the visit
         self.notice = ""
         try:  # the visit that was open when the workbench stopped is open again, at the step it was at
             folder = open_folder(self.data)
@@ -516,7 +505,7 @@ class Workbench:
         tab : str, optional
             The asking tab's id: ``readonly`` says whether another tab holds the visit.
         """
-        readonly = not self._may_act(tab)
+        readonly = not self.tabs.may_act(tab)
         if self.saved is None or self.folder is None:
             return {"open": False, "notice": self.notice, "readonly": readonly, "unfinished": self.unfinished()}
         c = self.connection
@@ -536,45 +525,6 @@ class Workbench:
     def unfinished(self) -> list[dict[str, Any]]:
         """The data folder's visits not yet finished, each with the step it was left at."""
         return unfinished_visits(self.data)
-
-    def _may_act(self, tab: str | None) -> bool:
-        owner = self.owner
-        return tab is None or owner is None or owner == tab or self._tabs.get(owner, 0) == 0
-
-    def claim(self, tab: str | None) -> None:
-        """Let the tab ``tab`` change the visit: the one that holds it, or any while no other tab is open on it.
-
-        Parameters
-        ----------
-        tab : str or None
-            The page's tab id (a call without one, from a script, is not a tab's and is let through).
-
-        Raises
-        ------
-        OpenElsewhere
-            When another tab holds the visit and its page is still open.
-        """
-        if tab is None:
-            return
-        with self._lock:
-            if not self._may_act(tab):
-                raise OpenElsewhere("the visit is open in another tab: this one follows it read-only (close the other"
-                                    " tab to work here)")
-            self.owner = tab
-
-    def attach(self, tab: str) -> None:
-        """A tab's stream opened (its page is open)."""
-        with self._lock:
-            self._tabs[tab] = self._tabs.get(tab, 0) + 1
-
-    def detach(self, tab: str) -> None:
-        """A tab's stream closed (its page was closed or reloaded)."""
-        with self._lock:
-            left = self._tabs.get(tab, 0) - 1
-            if left > 0:
-                self._tabs[tab] = left
-            else:
-                self._tabs.pop(tab, None)
 
     # -- files -------------------------------------------------------------------------------------
     def file(self, relative: str) -> Path:
