@@ -11,12 +11,15 @@ into a temporary folder and prints the median of ``--runs`` wall-clock times of
 - plain ``pandas.read_csv(path)`` on the same file, run in turn with the line above (A B A B ...)
   so that the load of a shared machine touches both alike; the ratio is the median of the
   ratios of each round,
-- ``axiscal straightness FILE`` as a subprocess: start-up, reading and the fit (goal: <= 1.0 s).
+- ``axiscal straightness FILE`` as a subprocess: start-up, reading and the fit (goal: <= 1.0 s), and
+  the processor time it used (user + system, all its threads): on a shared machine the wall-clock
+  time follows the other work, the processor time much less.
 """
 
 from __future__ import annotations
 
 import argparse
+import resource
 import subprocess
 import sys
 import tempfile
@@ -57,7 +60,15 @@ def main() -> None:
         ours(path)  # warm the page cache and pandas' import
         times = interleaved({"ours": lambda: ours(path), "pandas": lambda: pd.read_csv(path)}, args.runs)
         run = [str(a) for a in command] + ["straightness", str(path)]
-        end_to_end = median(interleaved({"cli": lambda: subprocess.run(run, check=True, capture_output=True)}, args.runs)["cli"])
+        cpu: list[float] = []
+
+        def cli() -> None:
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            subprocess.run(run, check=True, capture_output=True)
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            cpu.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
+
+        end_to_end = median(interleaved({"cli": cli}, args.runs)["cli"])
     reader, plain = median(times["ours"]), median(times["pandas"])
     ratio = median_ratio(times["ours"], times["pandas"])
     print(f"profile: {args.rows} rows, {size_mb:.1f} MB; median of {args.runs} runs, reader and pandas in turn")
@@ -66,6 +77,7 @@ def main() -> None:
     print(f"| read_csv + numeric of both columns | {reader:.3f} | {ratio:.2f} x pandas, median of the rounds' ratios (goal <= 1.5) |")
     print(f"| pandas.read_csv(path) | {plain:.3f} | |")
     print(f"| axiscal straightness FILE (subprocess) | {end_to_end:.3f} | goal <= 1.0 |")
+    print(f"| its processor time (user + system) | {median(cpu):.3f} | |")
 
 
 if __name__ == "__main__":
