@@ -39,6 +39,13 @@ from axiscal.workbench.runner import (
     DevicePlanRun,
     PlanRun,
 )
+from axiscal.workbench.laboratory import (
+    LABORATORY_FILE,
+    REMEMBERED,
+    laboratory_defaults,
+    next_number,
+    remember_laboratory,
+)
 from axiscal.workbench.tabs import (
     OpenElsewhere,
     Tabs,
@@ -95,4 +102,9 @@ __all__ = [
     "new_token",
     "serve_workbench",
     "WorkbenchServer",
+    "LABORATORY_FILE",
+    "REMEMBERED",
+    "laboratory_defaults",
+    "next_number",
+    "remember_laboratory",
 ]

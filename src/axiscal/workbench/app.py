@@ -228,6 +228,9 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
     async def visits(request: Request) -> Response:
         return await _answer(bench.unfinished)
 
+    async def certificate(request: Request) -> Response:
+        return await _answer(bench.certificate_defaults)
+
     async def open_visit(request: Request) -> Response:
         body = await _body(request)
         return await _answer(bench.open_visit, body.get("folder") if isinstance(body, dict) else None, claim=request)
@@ -326,6 +329,7 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
             Route("/api/visit", visit, methods=["POST"]),
             Route("/api/state", state),
             Route("/api/visits", visits),
+            Route("/api/certificate", certificate),
             Route("/api/visit/open", open_visit, methods=["POST"]),
             Route("/api/step", step, methods=["POST"]),
             Route("/api/plan", plan, methods=["POST"]),

@@ -60,6 +60,36 @@ class VisitForm(_Form):
     R_um: float = Field(gt=0, le=10000)
     B_um: float = Field(gt=0, le=10000)
     axes: list[Literal["X"]] = Field(min_length=1, max_length=1)
+    # what makes the visit's report a calibration certificate (all optional; all of them, or none)
+    customer_address: str = Field(default="", **_TEXT)
+    manufacturer: str = Field(default="", **_TEXT)
+    condition: str = Field(default="", **_TEXT)
+    instrument_calibrated: _dt.date | None = None
+    instrument_calibrated_by: str = Field(default="", **_TEXT)
+    lab_name: str = Field(default="", **_TEXT)
+    lab_address: str = Field(default="", **_TEXT)
+    lab_country: str = Field(default="", pattern=r"^([A-Z]{2})?$")
+    lab_accreditation: str = Field(default="", **_TEXT)
+    certificate_number: str = Field(default="", **_TEXT)
+    issue_date: _dt.date | None = None
+    location: Literal["laboratory", "customer", "laboratoryBranch", "customerBranch", "other"] = "customer"
+    language: Literal["en", "de"] = "en"
+    signatory_name: str = Field(default="", **_TEXT)
+    signatory_role: str = Field(default="", **_TEXT)
+    tolerance_source: str = Field(default="", **_TEXT)
+
+    @model_validator(mode="after")
+    def _certificate_whole(self) -> "VisitForm":
+        """A certificate number asks for every field a certificate needs, each named where it is missing."""
+        if not self.certificate_number:
+            return self
+        needed = ("customer", "customer_address", "manufacturer", "condition", "instrument_serial", "certificate",
+                  "instrument_calibrated", "instrument_calibrated_by", "lab_name", "lab_address", "lab_country",
+                  "issue_date", "signatory_name", "signatory_role", "tolerance_source")
+        missing = [name for name in needed if getattr(self, name) in ("", None)]
+        if missing:
+            raise ValueError("certificate_number: a certificate also needs " + ", ".join(missing))
+        return self
 
 
 class PlanForm(_Form):

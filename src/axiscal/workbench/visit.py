@@ -31,6 +31,7 @@ from axiscal.units import MM, UM
 from axiscal.io.arguments import check_number
 from axiscal.workbench.forms import PlanForm, VisitForm, checked
 from axiscal.workbench.connection import connect, serial_ports
+from axiscal.workbench.laboratory import laboratory_defaults, remember_laboratory
 from axiscal.workbench.runner import PlanRun
 from axiscal.workbench.tabs import Tabs
 from axiscal.workbench.saved import (STEPS, SavedVisit, open_folder, read_saved, remember_open, unfinished_visits,
@@ -187,6 +188,7 @@ class Workbench:
         text = render_template("workbench/campaign.toml.j2", filters={"toml": _toml}, keep_trailing_newline=True,
                                **form.model_dump())
         write_text(folder / "campaign.toml", text)
+        remember_laboratory(self.data, form.model_dump(mode="json"))
         with self._lock:
             self.folder, self.visit, self.plan, self.run, self.compensation = folder, form, None, None, None
             self.phase = "as-found"
@@ -436,10 +438,14 @@ class Workbench:
         folder = self._visit_folder()
         links = []
         with self._plot_lock:
-            found = report_campaign(folder, pdf=pdf, history=True, db=self.db)
+            # the visit's last report is its calibration certificate, when the New visit form stated one
+            certify = bool(self.visit.certificate_number)
+            left_run = (folder / "as-left" / "positioning_x.csv").is_file()
+            found = report_campaign(folder, pdf=pdf, history=True, db=self.db, certificate=certify and not left_run)
             links += self._links(found, "as-found")
-            if (folder / "as-left" / "positioning_x.csv").is_file():
-                left = report_campaign(folder / "as-left", compare=found.results, pdf=pdf, history=True, db=self.db)
+            if left_run:
+                left = report_campaign(folder / "as-left", compare=found.results, pdf=pdf, history=True, db=self.db,
+                                       certificate=certify)
                 links += self._links(left, "as-left")
         answer = {"files": links, "verdict": found.results_data.verdict}
         with self._lock:
@@ -449,11 +455,17 @@ class Workbench:
 
     def _links(self, files: Any, phase: str) -> list[dict[str, str]]:
         out = []
-        for name in ("html", "pdf", "results"):
-            path = getattr(files, name, None)
+        named = [(name, getattr(files, name, None)) for name in ("html", "pdf", "results")]
+        named += [("certificate " + Path(path).suffix.lstrip("."), path) for path in getattr(files, "certificate", ())]
+        named.append(("dcc", getattr(files, "dcc", None)))
+        for name, path in named:
             if path is not None and Path(path).is_file():
                 out.append({"phase": phase, "kind": name, "path": self._rel(Path(path))})
         return out
+
+    def certificate_defaults(self) -> dict[str, Any]:
+        """The New visit form's certificate fields as the last visit left them, with the next number."""
+        return laboratory_defaults(self.data)
 
     # -- the visit kept: reload, restart, another tab ------------------------------------------------
     def _save(self) -> None:

@@ -217,6 +217,16 @@ async function showTrend(machine, figure) {
 
 // ---- 2. visit, 3. plan, 4. connect ----------------------------------------------------------------
 $("#visit-form").elements.date.value = new Date().toISOString().slice(0, 10);
+$("#visit-form").elements.issue_date.value = new Date().toISOString().slice(0, 10);
+// the laboratory, the signatory and the next certificate number, as the last visit with a certificate left them
+(async () => {
+  try {
+    const defaults = await call("GET", "/api/certificate");
+    const form = $("#visit-form");
+    for (const [name, value] of Object.entries(defaults)) if (form.elements[name] && !form.elements[name].value) form.elements[name].value = value;
+    for (const name of ["location", "language"]) if (defaults[name]) form.elements[name].value = defaults[name];
+  } catch (e) { /* no remembered laboratory */ }
+})();
 $("#visit-form").addEventListener("submit", (event) => {
   event.preventDefault();
   submit(event.target, "/api/visit", (data) => {
