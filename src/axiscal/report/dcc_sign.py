@@ -203,7 +203,7 @@ def verify_dcc(dcc: str | Path, cert: str | Path | None = None) -> Verification:
     if cert_pem is None:
         text = signature.findtext(f".//{{{_DS}}}X509Certificate")
         if not text:
-            raise AxiscalError("the signature carries no certificate: give the signer's with --cert", path=dcc)
+            raise AxiscalError("the signature carries no certificate: give the signer's certificate (cert)", path=dcc)
         cert_pem = "-----BEGIN CERTIFICATE-----\n" + "".join(text.split()) + "\n-----END CERTIFICATE-----\n"
     signer = _subject(cert_pem)
     try:
