@@ -12,7 +12,7 @@ import numpy as np
 
 from axiscal.capture.on_the_fly import OnTheFly
 from axiscal.io.arguments import check_instance, check_path
-from axiscal.io.figures import pyplot, save_figure
+from axiscal.io.figures import pyplot, save_figure, set_up_axes
 from axiscal.units import MM, UM
 
 __all__ = ["plot_on_the_fly"]
@@ -52,13 +52,11 @@ def plot_on_the_fly(path: str | Path, result: OnTheFly) -> Path:
         if sel.any():
             top.plot(target[sel], deviation[sel], marker, ms=4, ls="none", label=f"{d} direction")
             bottom.plot(target[sel], np.abs(result.speed_m_s[sel]) / MM * 60, marker, ms=4, ls="none")
-    top.set_ylabel("deviation (raw reading) / µm")
-    top.set_title(f"On the fly: delay {result.delay_s * 1e3:.3f} ms {'estimated' if result.delay_estimated else 'given'},"
-                  f" reading fitted over {result.window_s * 1e3:.3g} ms", fontsize=9)
-    top.legend(fontsize=8)
-    bottom.set_ylabel("speed / (mm/min)")
+    set_up_axes(top, ylabel="deviation (raw reading) / µm", title_size=9, legend=True,
+                title=f"On the fly: delay {result.delay_s * 1e3:.3f} ms {'estimated' if result.delay_estimated else 'given'},"
+                      f" reading fitted over {result.window_s * 1e3:.3g} ms")
+    set_up_axes(bottom, xlabel="target / mm", ylabel="speed / (mm/min)")
     bottom.set_ylim(0.0, 1.15 * float(np.max(np.abs(result.speed_m_s))) / MM * 60 if result.speed_m_s.size else 1.0)
     bottom.ticklabel_format(axis="y", useOffset=False, style="plain")
-    bottom.set_xlabel("target / mm")
     fig.tight_layout()
     return save_figure(fig, path)

@@ -13,7 +13,7 @@ import numpy as np
 from axiscal.errors import AxiscalError
 from axiscal.flatness.surface import FlatnessSurface
 from axiscal.io.arguments import check_instance, check_path
-from axiscal.io.figures import pyplot, save_figure
+from axiscal.io.figures import pyplot, save_figure, set_up_axes
 from axiscal.units import MM, UM
 
 __all__ = ["plot_flatness"]
@@ -68,13 +68,11 @@ def plot_flatness(path: str | Path, surface: FlatnessSurface, *, title: str = ""
         left.annotate(f"{closure.value_m / UM:.2f}", spot, xytext=(3, 3 + 8 * above), textcoords="offset points",
                       fontsize=7, color="red")
     left.set_aspect("equal")
-    left.set_xlabel("x / mm")
-    left.set_ylabel("y / mm")
-    left.set_title("heights about the least-squares plane (red: closure / µm)", fontsize=8)
+    set_up_axes(left, xlabel="x / mm", ylabel="y / mm", title="heights about the least-squares plane (red: closure / µm)",
+                title_size=8)
     right.scatter(x, y, z, s=3, color="k")
-    right.set_xlabel("x / mm")
-    right.set_ylabel("y / mm")
-    right.set_zlabel("height / µm")
+    set_up_axes(right, xlabel="x / mm", ylabel="y / mm")
+    right.set_zlabel("height / µm")  # the third axis of the 3-D view
     zone = surface.zone
     fig.suptitle(f"{title + ': ' if title else ''}flatness {zone.minimum_zone_m / UM:.3f} um (minimum zone), "
                  f"{zone.least_squares_m / UM:.3f} um (least squares), {surface.evaluation}", fontsize=10)
