@@ -27,8 +27,8 @@ from axiscal.precompensation.text import header_at, header_line
 
 __all__ = ["PrecompensationSummary", "precompensate_file", "precompensate_stream"]
 
-#: bytes of program text read at a time (about 10^5 lines of a CAM finishing pass)
-PIECE_BYTES = 3 << 20
+#: bytes of program text read at a time (about 6 x 10^4 lines of a CAM finishing pass)
+PIECE_BYTES = 2 << 20
 
 
 @dataclass(frozen=True)
