@@ -40,7 +40,7 @@ from pathlib import Path
 
 import numpy as np
 
-from axiscal.live.pipeline import MS, Pipeline
+from axiscal.live.pipeline import MS, SWITCH_INTERVAL_S, Pipeline
 from axiscal.live.priority import raise_priority, restore_priority
 from axiscal.live.recorder import Recorder, read_record
 from axiscal.live.sources import Backoff, SimSource, TcpSource
@@ -151,11 +151,14 @@ def _run(kind: str, rate: float, seconds: float, *, dashboard: bool, sender_norm
             source.clock_offset_s = float(child.stdout.readline())
         deadline = time.monotonic() + seconds + 10.0
         gc.freeze()  # as Pipeline.run does
+        switch = sys.getswitchinterval()
+        sys.setswitchinterval(min(switch, SWITCH_INTERVAL_S))
         try:
             while pipeline.frames < expected and time.monotonic() < deadline:
                 pipeline.step(0.02)
         finally:
             gc.unfreeze()
+            sys.setswitchinterval(switch)
         summary = pipeline.summary(seconds)
         delays = pipeline.latencies_s() / MS
         received = 0

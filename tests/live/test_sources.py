@@ -365,13 +365,17 @@ def test_sim_source_computes_its_frames_ahead_not_once_a_read(module, system):
 
 
 def test_the_pipeline_reads_the_source_at_most_once_a_batch_interval(module, system):
-    """Frames that arrive within batch_interval_s of the last read make one batch (each batch costs a fixed time)."""
+    """Frames that arrive within batch_interval_s of the last read make one batch (each batch costs a fixed time);
+    during the run another thread holding the interpreter lock gives it up within 0.5 ms."""
     source = SimSource(module, system.channels, rate_hz=5000.0)
     reads = []
     read = source.read
 
+    switching = []
+
     def timed(timeout_s):
         start = time.monotonic()
+        switching.append(sys.getswitchinterval())
         batch = read(timeout_s)
         if len(batch):
             reads.append(start)
@@ -382,6 +386,7 @@ def test_the_pipeline_reads_the_source_at_most_once_a_batch_interval(module, sys
     pipeline.run(duration_s=0.3)
     assert pipeline.batches >= 5 and (reads[-1] - reads[0]) / (len(reads) - 1) >= 0.0099  # the cadence; one read may catch up
     assert pipeline.frames >= 0.1 * 5000 and gc.get_freeze_count() == 0  # the collector's frozen objects are given back
+    assert max(switching) <= 0.0005 < sys.getswitchinterval()  # another thread gives the lock up fast during the run only
     for bad in (-0.001, 0.2, float("nan")):
         with pytest.raises(AxiscalError, match="batch_interval_s"):
             Pipeline(system, source, batch_interval_s=bad)

@@ -15,6 +15,7 @@ its time stamp to the moment its result was written to the record is kept in a f
 from __future__ import annotations
 
 import gc
+import sys
 import threading
 import time
 from collections.abc import Callable
@@ -34,6 +35,8 @@ from axiscal.measurement.pipeline import MeasurementSystem
 
 #: seconds per millisecond (delays are shown in ms)
 MS = 1e-3
+#: longest a thread keeps the interpreter lock while the loop waits for it, during a run, s
+SWITCH_INTERVAL_S = 0.0005
 
 __all__ = ["RunSummary", "Pipeline"]
 
@@ -323,10 +326,15 @@ class Pipeline:
         # what exists now (modules, the system, the state) is never garbage: left out of the collector's
         # full passes, which otherwise walk it all and stop the loop for 50 ms or more now and then
         gc.freeze()
+        # another thread (the dashboard's server) holding the interpreter lock gives it up within
+        # 0.5 ms when the loop asks, not 5 ms (Python's default)
+        switch = sys.getswitchinterval()
+        sys.setswitchinterval(min(switch, SWITCH_INTERVAL_S))
         try:
             self._loop(stop, start, deadline, next_report, progress, progress_interval_s)
         finally:
             gc.unfreeze()
+            sys.setswitchinterval(switch)
         self.publish_status()
         return self.summary(time.monotonic() - start)
 
