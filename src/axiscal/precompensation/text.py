@@ -208,10 +208,19 @@ def _bulk_text(out, texts, moves, numbers, first, stop, at_row, piece_text, rota
     plain = single.copy()
     if extra:
         plain[list(extra)] = False
-    plain[numbered] = False
+    at = columns.number_at
+    if numbered.size:  # a block number and one piece: the number, then the piece
+        only = np.zeros(plain.size, dtype=bool)
+        only[numbered] = plain[numbered]
+        for line, row, (start, stop_at) in zip(lines[only].tolist(), head[only].tolist(), at[lines[only]].tolist()):
+            out[line] = f"N{texts[line][start:stop_at]} {piece_text[row]}"
+        plain[numbered] = False
+        done = only
+    else:
+        done = np.zeros(plain.size, dtype=bool)
     for line, row in zip(lines[plain].tolist(), head[plain].tolist()):
         out[line] = piece_text[row]
-    at = columns.number_at
+    plain |= done
     for j in np.flatnonzero(~plain).tolist():
         number = numbers[j]
         line = int(lines[j])
