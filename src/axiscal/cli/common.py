@@ -47,7 +47,9 @@ _SI_WORDS = r"(metres per second|metres|seconds|m/s|m|s)"
 def _in_flag_unit(rest: str, key: str, flag: str) -> str:
     """``must be ... of metres, not 1e-06`` of ``key`` said in ``flag``'s unit: ``must be ... of um, not 1``."""
     for flag_end, key_end, factor, words in _FLAG_UNITS:
-        if flag.endswith(flag_end) and key.endswith(key_end) and rest.startswith("must be "):
+        # only a message in the argument's SI unit is said again in the flag's (one in the flag's unit already stays)
+        if flag.endswith(flag_end) and key.endswith(key_end) and rest.startswith("must be ") \
+                and re.search(rf"(?<![\w/]){_SI_WORDS}(?=,|$)", rest):
             rest = re.sub(r"(?<![\w.])[-+]?\d+(\.\d*)?([eE][-+]?\d+)?(?![\w.])", lambda m: f"{float(m.group(0)) / factor:g}", rest)
             return re.sub(rf"(?<![\w/]){_SI_WORDS}(?=,|$)", words, rest)
     return rest
