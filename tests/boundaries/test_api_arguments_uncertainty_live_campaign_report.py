@@ -458,6 +458,40 @@ bad(R, "closed_cycle", "controller", lambda: rp.closed_cycle(CAMPAIGN, None, "si
 bad(R, "closed_cycle", "source", lambda: rp.closed_cycle(CAMPAIGN, "sim", 5, CAMPAIGN))
 bad(R, "closed_cycle", "cycle", lambda: rp.closed_cycle(CAMPAIGN, "sim", "sim", CAMPAIGN, {"fmt": "linuxcnc"}))
 bad(R, "closed_cycle", "output_dir", lambda: rp.closed_cycle(CAMPAIGN, "sim", "sim", None))
+# the certificate and the DCC: a campaign without the certificate's fields is refused, naming them
+bad(R, "missing_certificate_fields", "results", lambda: rp.missing_certificate_fields(None), lambda: rp.missing_certificate_fields(CAMPAIGN))
+bad(R, "check_certificate", "a calibration certificate needs", lambda: rp.check_certificate(RESULTS))
+bad(R, "check_certificate", "results", lambda: rp.check_certificate(None))
+bad(R, "certificate_context", "a calibration certificate needs", lambda: rp.certificate_context(RESULTS, "en"))
+bad(R, "render_certificate_html", "a calibration certificate needs", lambda: rp.render_certificate_html(RESULTS, language="en"))
+bad(R, "figure_rows", "results", lambda: rp.figure_rows(None), lambda: rp.figure_rows(CAMPAIGN))
+bad(R, "figure_rows", "gettext", lambda: rp.figure_rows(RESULTS, "de"))
+bad(R, "localised_rows", "rows", lambda: rp.localised_rows(None, "de"), lambda: rp.localised_rows(["E"], "de"))
+bad(R, "localised_rows", "translation", lambda: rp.localised_rows([], "fr"))
+bad(R, "certificate_environment", "language", lambda: rp.certificate_environment(None), lambda: rp.certificate_environment("german"))
+bad(R, "translations", "translation", lambda: rp.translations("fr"))
+bad(R, "translations", "language", lambda: rp.translations(5), lambda: rp.translations("../de"))
+bad(R, "catalog_path", "language", lambda: rp.catalog_path(None), lambda: rp.catalog_path("../../x"))
+bad(R, "format_decimal_for", "digits", lambda: rp.format_decimal_for(1.0, -1, "de"), lambda: rp.format_decimal_for(1.0, 99, "de"))
+bad(R, "format_decimal_for", "value", lambda: rp.format_decimal_for([1.0], 3, "de"), lambda: rp.format_decimal_for(True, 3, "de"))
+bad(R, "format_decimal_for", "translation", lambda: rp.format_decimal_for(1.0, 3, "fr"))
+bad(R, "format_date_for", "value", lambda: rp.format_date_for("yesterday", "de"), lambda: rp.format_date_for(5, "en"))
+bad(R, "format_date_for", "translation", lambda: rp.format_date_for("2026-11-28", "fr"))
+bad(R, "dcc_xml", "a calibration certificate needs", lambda: rp.dcc_xml(RESULTS))
+bad(R, "dcc_xml", "results", lambda: rp.dcc_xml(None))
+bad(R, "dsi_unit", "key", lambda: rp.dsi_unit(None), lambda: rp.dsi_unit(""))
+bad(R, "dsi_unit", "unit", lambda: rp.dsi_unit("E", 5))
+bad(R, "read_dcc", "path", lambda: rp.read_dcc(None))
+bad(R, "read_dcc", "not a readable XML file", lambda: rp.read_dcc(NEVER))
+bad(R, "dcc_summary", "read", lambda: rp.dcc_summary(None), lambda: rp.dcc_summary({"tests": [{"figures": {}}]}))
+bad(R, "sign_dcc", "dcc", lambda: rp.sign_dcc(None, NEVER, NEVER, NEVER))
+bad(R, "sign_dcc", "not a readable XML file", lambda: rp.sign_dcc(NEVER, NEVER, NEVER, NEVER))
+bad(R, "sign_dcc", "passphrase", lambda: rp.sign_dcc(NEVER, NEVER, NEVER, NEVER, passphrase="secret"))
+bad(R, "verify_dcc", "dcc", lambda: rp.verify_dcc(None))
+bad(R, "verify_dcc", "cert", lambda: rp.verify_dcc(NEVER, 5))
+bad(R, "page_context", "results", lambda: rp.page_context(None))
+bad(R, "read_compared", "path", lambda: rp.read_compared(None))
+bad(R, "read_compared", "not an axiscal results.json", lambda: rp.read_compared(EXAMPLES / "positioning_run.json"))
 
 EXEMPT: dict[str, set[str]] = {
     # result records: the library fills them with what a function computed; a user reads them and
@@ -469,7 +503,7 @@ EXEMPT: dict[str, set[str]] = {
                  # made by load_campaign from the validated campaign.toml (axiscal.io.formats.CampaignFile),
                  # where every value was checked once; a user reads them and does not build them
                  "Campaign", "TestSpec"},
-    "report": {"ReportFiles", "DemoResult", "CycleResult",
+    "report": {"ReportFiles", "DemoResult", "CycleResult", "Verification",
                # functions of no arguments
                "template_environment", "builtin_example",
                # print any value (with str; None as empty): every value is a valid argument

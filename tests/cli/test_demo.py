@@ -19,7 +19,7 @@ def test_demo_writes_the_campaign_and_its_report(run_cli, tmp_path, flag):
     assert json.loads((tmp_path / "demo" / "as-found" / "report" / "results.json").read_text())["verdict"] == "fail"
     assert json.loads((tmp_path / "demo" / "as-left" / "report" / "results.json").read_text())["verdict"] == "pass"
     lines = out.splitlines()
-    assert lines[1] == f"report        {tmp_path / 'demo' / 'as-found' / 'report' / 'report.html'}" and len(lines) == 12
+    assert lines[1] == f"report        {tmp_path / 'demo' / 'as-found' / 'report' / 'report.html'}" and len(lines) == 13
 
 
 def test_demo_into_a_file_is_one_line_error(run_cli, tmp_path):

@@ -22,6 +22,7 @@ WRITES = [
     (("cmm", "compensate"), "--output", ["cmm", "compensate", "--squareness-arcmin", "8.05,27.1,-16.6", "{ex}/cmm_points.csv", "-o", "{out}/c.csv"]),
     (("compensate",), "--output", ["compensate", "{ex}/positioning_run.csv", "--format", "linuxcnc", "-o", "{out}/x.comp"]),
     (("demo",), "--output", ["demo", "-o", "{out}/demo"]),
+    (("dcc", "sign"), "--output", ["dcc", "sign", "{tmp}/dcc.xml", "--key", "{tmp}/key.pem", "--cert", "{tmp}/cert.pem", "-o", "{out}/s.xml"]),
     (("diagonal",), "--output", ["diagonal", "--machine", "{ex}/xz_module/machine.toml", "--from", "X=0,Z=0", "--to", "X=190,Z=190", "-o", "{out}/d.csv"]),
     (("diagonal",), "--plot", ["diagonal", "--machine", "{ex}/xz_module/machine.toml", "--from", "X=0,Z=0", "--to", "X=190,Z=190", "--plot", "{out}/d.png"]),
     (("experiment", "diagonal"), "--plot", ["experiment", "diagonal", "--samples", "1", "--plot", "{out}/e.png"]),
@@ -94,6 +95,8 @@ def test_a_command_makes_the_folders_of_its_output(run_cli, examples, tmp_path, 
 
         payloads = drifting_results({"positioning.X.E": Drift(5.0, 1.0, 1.0, 20.0)}, machine="M", campaigns=3)
         add_results(write_results(tmp_path / "m", payloads), url=str(tmp_path / "h.db"))
+    if path[0] == "dcc":  # a DCC and a signer's key and certificate
+        _signer(tmp_path)
     if path[0] in ("run", "cycle"):  # a short plan for the virtual controller
         from axiscal.positioning.plan import plan_test, write_plan
 
@@ -115,3 +118,23 @@ def test_a_folder_that_cannot_be_made_is_one_line(run_cli, examples, tmp_path):
     target = tmp_path / "file" / "x.txt"
     status, out, err = run_cli("compensate", examples / "positioning_run.csv", "--format", "linuxcnc", "-o", target)
     assert status == 2 and out == "" and err.startswith(f"axiscal: error: {target}: cannot write this file") and err.count("\n") == 1
+
+
+def _signer(folder: Path) -> None:
+    import datetime as dt
+
+    from cryptography import x509
+    from cryptography.hazmat.primitives import hashes, serialization
+    from cryptography.hazmat.primitives.asymmetric import ec
+    from cryptography.x509.oid import NameOID
+
+    key = ec.generate_private_key(ec.SECP256R1())
+    name = x509.Name([x509.NameAttribute(NameOID.COMMON_NAME, "Lab")])
+    start = dt.datetime(2026, 1, 1, tzinfo=dt.timezone.utc)
+    cert = (x509.CertificateBuilder().subject_name(name).issuer_name(name).public_key(key.public_key()).serial_number(1)
+            .not_valid_before(start).not_valid_after(start + dt.timedelta(days=30)).sign(key, hashes.SHA256()))
+    (folder / "key.pem").write_bytes(key.private_bytes(serialization.Encoding.PEM, serialization.PrivateFormat.PKCS8,
+                                                       serialization.NoEncryption()))
+    (folder / "cert.pem").write_bytes(cert.public_bytes(serialization.Encoding.PEM))
+    (folder / "dcc.xml").write_text("<dcc:digitalCalibrationCertificate xmlns:dcc='https://ptb.de/dcc' schemaVersion='3.2.0'>"
+                                    "<dcc:administrativeData/><dcc:measurementResults/></dcc:digitalCalibrationCertificate>")

@@ -10,7 +10,10 @@ __all__ = ["dcc_group"]
 
 @click.group("dcc")
 def dcc_group() -> None:
-    """Digital Calibration Certificates (dcc.xml, written by `axiscal report --certificate` or `--dcc`)."""
+    """Digital Calibration Certificates: sign, verify, show.
+
+    A DCC (dcc.xml) is written by `axiscal report --certificate` or `--dcc`.
+    """
 
 
 @dcc_group.command("sign")

@@ -20,6 +20,7 @@ from typing import Any
 
 from axiscal.campaign.results import CampaignResults, Figure, TestResult
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_choice, check_instance
 from axiscal.report.i18n import format_date_for, format_decimal_for, translations
 
 __all__ = [
@@ -99,7 +100,13 @@ def missing_certificate_fields(results: CampaignResults) -> list[str]:
     list of str
         ``"[laboratory] name"``, ``"[[signatory]]"``, ``"[certificate] tolerance_source"`` (when a
         conformity statement is made) ...; empty when the certificate can be written.
+
+    Raises
+    ------
+    AxiscalError
+        For ``results`` that are not a CampaignResults.
     """
+    check_instance("results", results, CampaignResults)
     tables = {"campaign": results.campaign, "machine": results.machine, "instrument": results.instrument,
               "laboratory": results.issuer.get("laboratory", {}), "certificate": results.issuer.get("certificate", {})}
     missing = [f"[{table}] {key}" for table, key in _REQUIRED if tables[table].get(key) in (None, "")]
@@ -159,6 +166,9 @@ def figure_rows(results: CampaignResults, gettext: Callable[[str], str] = str) -
         figure's unit, k = 2), ``why`` (the reason when U is None), ``limit`` and ``result`` (when
         the figure is held against a tolerance).
     """
+    check_instance("results", results, CampaignResults)
+    if not callable(gettext):
+        raise AxiscalError(f"gettext must be a function that translates a message, not {gettext!r}"[:200])
     rows = []
     budget = any(t.uncertainty for t in results.tests)
     for test in results.tests:
@@ -208,6 +218,7 @@ def certificate_context(results: CampaignResults, language: str) -> dict[str, An
         ``deviations``, ``figures`` (:func:`figure_rows` with the numbers written in the language),
         ``conditions``, ``traceability``, ``decision``, ``statements``, ``coverage``.
     """
+    check_certificate(results)
     tr = translations(language).gettext
     lab = results.issuer["laboratory"]
     cert = results.issuer["certificate"]
@@ -297,6 +308,8 @@ def localised_rows(rows: list[dict[str, str]], language: str) -> list[dict[str, 
     """
     from babel.numbers import get_decimal_symbol
 
+    if not isinstance(rows, list) or not all(isinstance(row, dict) for row in rows):
+        raise AxiscalError("rows must be the report's verdict rows (a list of dicts)")
     tr = translations(language).gettext
     point = get_decimal_symbol(language)
     out = []
@@ -352,9 +365,13 @@ def render_certificate_html(results: CampaignResults, *, language: str,
     str
         The HTML text. The page carries no history (calibration intervals stay off a certificate).
     """
-    from axiscal.report.html import page_context
+    from axiscal.report.html import check_compare, page_context
 
+    check_certificate(results)
+    env = certificate_environment(language)
+    if compare is not None:
+        check_compare(compare)
     context = page_context(results, compare=compare, generated=results.issuer["certificate"]["issue_date"])
     context["verdict_rows"] = localised_rows(context["verdict_rows"], language)
-    return certificate_environment(language).get_template("report/certificate.html.j2").render(
+    return env.get_template("report/certificate.html.j2").render(
         **context, cert=certificate_context(results, language))

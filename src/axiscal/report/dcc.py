@@ -29,6 +29,7 @@ from urllib.parse import quote, unquote
 
 from axiscal.campaign.results import SCHEMA, CampaignResults, TestResult, results_payload
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_mapping, check_path
 from axiscal.report.certificate import COVERAGE_FACTOR, COVERAGE_PROBABILITY
 from axiscal.report.i18n import translations
 from axiscal.version import __version__
@@ -93,6 +94,10 @@ def dsi_unit(key: str, unit: str | None = None) -> str:
     str
         A D-SI unit string; ``\\one`` for a count or a ratio (a key with no unit suffix).
     """
+    if not isinstance(key, str) or not key:
+        raise AxiscalError(f"key must be a figure's key (a non-empty str), not {key!r}"[:200])
+    if unit is not None and not isinstance(unit, str):
+        raise AxiscalError(f"unit must be a unit as files spell it (a str) or None, not {unit!r}"[:200])
     lowered = key.lower()
     for suffix, dsi in _BY_LENGTH:
         if lowered.endswith(suffix):
@@ -296,6 +301,9 @@ def dcc_xml(results: CampaignResults) -> bytes:
     bytes
         UTF-8 XML with its declaration.
     """
+    from axiscal.report.certificate import check_certificate
+
+    check_certificate(results)
     cert = results.issuer["certificate"]
     lab = results.issuer["laboratory"]
     languages = list(cert.get("languages", ["en"]))
@@ -410,7 +418,7 @@ def read_dcc(path: str | Path) -> dict[str, Any]:
     AxiscalError
         For a file that is not XML, not a DCC, or holds no test written by axiscal.
     """
-    path = Path(path)
+    path = check_path("path", path)
     try:
         root = ET.parse(path).getroot()
     except (ET.ParseError, OSError, ValueError) as exc:
@@ -527,6 +535,10 @@ def dcc_summary(read: Mapping[str, Any]) -> str:
     """
     from axiscal.report.html import format_number, template_environment
 
+    check_mapping("read", read, ("tests",), what="what read_dcc returns (a results.json object)")
+    if not isinstance(read["tests"], list) or not all(isinstance(t, Mapping) and "id" in t and isinstance(
+            t.get("figures"), Mapping) for t in read["tests"]):
+        raise AxiscalError("read['tests'] must be a list of tests with an id and figures, as read_dcc returns")
     tests = []
     for test in read["tests"]:
         uncertainty = test.get("uncertainty", {})

@@ -115,7 +115,12 @@ def sign_dcc(dcc: str | Path, key: str | Path, cert: str | Path, output: str | P
 
     from axiscal.io.atomic import atomic_write
 
-    dcc, output = Path(dcc), Path(output)
+    from axiscal.io.arguments import check_path
+
+    dcc, output = check_path("dcc", dcc), check_path("output", output)
+    key, cert = check_path("key", key), check_path("cert", cert)
+    if passphrase is not None and not isinstance(passphrase, bytes):
+        raise AxiscalError(f"passphrase must be bytes, not {type(passphrase).__name__}")
     root = _parse(dcc)
     if root.tag != f"{{{DCC_NS}}}digitalCalibrationCertificate":
         raise AxiscalError("not a Digital Calibration Certificate (root dcc:digitalCalibrationCertificate)", path=dcc)
@@ -194,7 +199,11 @@ def verify_dcc(dcc: str | Path, cert: str | Path | None = None) -> Verification:
     from signxml import XMLVerifier
     from signxml.exceptions import InvalidCertificate, InvalidDigest, InvalidInput, InvalidSignature
 
-    dcc = Path(dcc)
+    from axiscal.io.arguments import check_path
+
+    dcc = check_path("dcc", dcc)
+    if cert is not None:
+        cert = check_path("cert", cert)
     root = _parse(dcc)
     signature = root.find(f"{{{_DS}}}Signature")
     if signature is None:

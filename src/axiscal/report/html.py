@@ -509,6 +509,7 @@ def page_context(results: CampaignResults, *, compare: Mapping[str, Any] | None 
     dict
         Template name -> value.
     """
+    check_instance("results", results, CampaignResults)
     label = compare_label(compare)
     rows = _verdict_rows(results, previous_figures(compare), previous_uncertainty(compare))
     methods = sorted({t.method for t in results.tests if t.method})

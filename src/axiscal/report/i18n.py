@@ -14,6 +14,7 @@ import functools
 import gettext
 import io
 import math
+import re
 from importlib import resources
 from typing import Any
 
@@ -37,6 +38,8 @@ def catalog_path(language: str):
     -------
     importlib.resources.abc.Traversable
     """
+    if not isinstance(language, str) or not re.fullmatch(r"[a-z]{2}", language):
+        raise AxiscalError(f"language must be an ISO 639-1 code such as 'de', not {language!r}"[:200])
     return resources.files("axiscal") / "templates" / "locale" / language / "LC_MESSAGES" / f"{DOMAIN}.po"
 
 
@@ -61,6 +64,8 @@ def translations(language: str) -> gettext.NullTranslations:
     """
     if language == "en":
         return gettext.NullTranslations()
+    if not isinstance(language, str) or not re.fullmatch(r"[a-z]{2}", language):
+        raise AxiscalError(f"language must be an ISO 639-1 code such as 'de', not {language!r}"[:200])
     path = catalog_path(language)
     if not path.is_file():
         raise AxiscalError(f"no translation of the certificate into '{language}' (languages: en, de)")
@@ -92,10 +97,13 @@ def format_decimal_for(value: Any, digits: int, language: str) -> str:
     """
     from babel.numbers import format_decimal
 
+    translations(language)  # a language with a catalog
+    if not isinstance(digits, int) or isinstance(digits, bool) or not 0 <= digits <= 15:
+        raise AxiscalError(f"digits must be a whole number of decimals from 0 to 15, not {digits!r}"[:200])
     if value is None or isinstance(value, str):
         return "n/a" if value is None else value
-    if isinstance(value, bool):
-        return str(value)
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise AxiscalError(f"value must be a number, a text or None, not {type(value).__name__}")
     if isinstance(value, int):
         return format_decimal(value, locale=language, group_separator=False)
     value = float(value)
@@ -120,5 +128,9 @@ def format_date_for(value: str | _dt.date, language: str) -> str:
     """
     from babel.dates import format_date
 
-    day = value if isinstance(value, _dt.date) else _dt.date.fromisoformat(str(value)[:10])
+    translations(language)  # a language with a catalog
+    try:
+        day = value if isinstance(value, _dt.date) else _dt.date.fromisoformat(value[:10])
+    except (TypeError, ValueError):
+        raise AxiscalError(f"value must be a date or an ISO date (2026-11-28), not {value!r}"[:200]) from None
     return format_date(day, format="long", locale=language)

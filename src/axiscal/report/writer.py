@@ -275,6 +275,7 @@ def read_compared(path: Path) -> dict[str, Any]:
     AxiscalError
         For a file that is neither.
     """
+    path = check_path("path", path)
     if path.suffix.lower() == ".xml":
         from axiscal.report.dcc import read_dcc
 

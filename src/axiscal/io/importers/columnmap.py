@@ -24,12 +24,8 @@ __all__ = [
     "IMPORT_UNITS",
     "POSITIONING_COLUMNS",
     "ColumnMap",
-    "ImportedReadings",
     "column_map",
     "read_column_map",
-    "import_readings",
-    "positioning_csv",
-    "write_positioning_csv",
 ]
 
 #: metres per inch (exact by definition, 25.4 mm)
