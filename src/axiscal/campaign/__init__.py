@@ -42,6 +42,9 @@ from axiscal.campaign.volumetric import (
     same_grid,
     volumetric_section,
 )
+from axiscal.campaign.keys import (
+    key_line,
+)
 
 __all__ = [
     "CAMPAIGN_FILE",
@@ -76,4 +79,5 @@ __all__ = [
     "same_grid",
     "compensated_machine",
     "read_loaded_compensation",
+    "key_line",
 ]

@@ -77,6 +77,10 @@ from axiscal.capture.on_the_fly_plot import plot_on_the_fly
 from axiscal.capture.drive import DriveSettings, InstrumentReader, drive_plan, planned_moves
 from axiscal.capture.fly_drive import FlyFiles, fly_plan, pass_moves
 from axiscal.capture.connected import DryRun, SimMachine, dry_run, open_run_devices, run_to_file, sim_machine
+from axiscal.capture.fly_drive import (
+    FLY_AGREEMENT_M,
+    FLY_SPEED_LIMIT_M_S,
+)
 
 __all__ = [
     "FlyFiles",
@@ -134,4 +138,6 @@ __all__ = [
     "on_the_fly_to_file",
     "read_fly_recording",
     "plot_on_the_fly",
+    "FLY_AGREEMENT_M",
+    "FLY_SPEED_LIMIT_M_S",
 ]

@@ -32,6 +32,13 @@ from axiscal.compensation.linuxcnc import (
     parse_linuxcnc,
 )
 from axiscal.compensation.siemens import SiemensTable, siemens_table
+from axiscal.compensation.formats import (
+    MAX_CORRECTION_M,
+    MAX_CORRECTION_RAD,
+)
+from axiscal.compensation.isg import (
+    check_distinct_axis_numbers,
+)
 
 __all__ = [
     "DIRECTIONS",
@@ -62,6 +69,9 @@ __all__ = [
     "FANUC_ROTARY_INCREMENT",
     "CompensationResult",
     "compensation_table",
+    "MAX_CORRECTION_M",
+    "MAX_CORRECTION_RAD",
+    "check_distinct_axis_numbers",
 ]
 
 # firmware skew correction (axiscal.compensation.skew)

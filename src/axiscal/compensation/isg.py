@@ -299,6 +299,10 @@ def check_distinct_axis_numbers(numbers: dict[str, int]) -> None:
     numbers : dict of str to int
         Logical axis number of each axis letter.
 
+    Returns
+    -------
+    None
+
     Raises
     ------
     AxiscalError

@@ -73,7 +73,25 @@ def __getattr__(name: str):
 
         return getattr(server, name)
     raise AttributeError(f"module 'axiscal.live' has no attribute {name!r}")
-
+from axiscal.live.playback import (
+    AHEAD_S,
+)
+from axiscal.live.priority import (
+    Priority,
+    raise_priority,
+    restore_priority,
+)
+from axiscal.live.record_text import (
+    FIXED,
+    GENERAL,
+    INTEGER,
+    format_rows,
+    python_format,
+)
+from axiscal.live.state import (
+    FOLD_S,
+    FOLD_FRAMES,
+)
 
 __all__ = [
     "RunSummary",
@@ -117,4 +135,15 @@ __all__ = [
     "create_app",
     "create_board_app",
     "LiveServer",
+    "AHEAD_S",
+    "Priority",
+    "raise_priority",
+    "restore_priority",
+    "FIXED",
+    "GENERAL",
+    "INTEGER",
+    "format_rows",
+    "python_format",
+    "FOLD_S",
+    "FOLD_FRAMES",
 ]

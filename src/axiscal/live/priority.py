@@ -106,6 +106,10 @@ def restore_priority(priority: Priority) -> None:
     ----------
     priority : Priority
         What :func:`raise_priority` returned (in this thread).
+
+    Returns
+    -------
+    None
     """
     if priority.kind == "real-time" and priority.previous_policy not in (os.SCHED_FIFO, os.SCHED_RR):
         try:

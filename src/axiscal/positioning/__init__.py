@@ -55,6 +55,10 @@ from axiscal.positioning.report import (
     evaluate_positioning_file,
     render_template,
 )
+from axiscal.positioning.plan import (
+    MAX_POSITION_M,
+    MAX_OVERRUN_M,
+)
 
 __all__ = [
     "ISO_EDITIONS",
@@ -102,4 +106,6 @@ __all__ = [
     "PositioningEvaluation",
     "evaluate_positioning_file",
     "render_template",
+    "MAX_POSITION_M",
+    "MAX_OVERRUN_M",
 ]
