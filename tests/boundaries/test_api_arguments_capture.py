@@ -137,6 +137,8 @@ bad(C, "estimate_delay", "recording", lambda: ca.estimate_delay(None), lambda: c
 bad(C, "estimate_delay", "max_delay_s", lambda: ca.estimate_delay(FLY, max_delay_s=0.0), lambda: ca.estimate_delay(FLY, max_delay_s=NAN))
 bad(C, "on_the_fly", "recording", lambda: ca.on_the_fly(PLAN, None), lambda: ca.on_the_fly(PLAN, 5))
 bad(C, "on_the_fly", "plan", lambda: ca.on_the_fly(None, FLY))
+bad(C, "least_dwell_s", "window_s", lambda: ca.least_dwell_s(0.0), lambda: ca.least_dwell_s(NAN), lambda: ca.least_dwell_s("0.5"))
+bad(C, "least_dwell_s", "settle_s", lambda: ca.least_dwell_s(0.5, settle_s=-1.0), lambda: ca.least_dwell_s(0.5, settle_s=INF))
 bad(C, "on_the_fly", "window_s", lambda: ca.on_the_fly(PLAN, FLY, window_s=0.0), lambda: ca.on_the_fly(PLAN, FLY, window_s=INF))
 bad(C, "on_the_fly", "delay_s", lambda: ca.on_the_fly(PLAN, FLY, delay_s=NAN), lambda: ca.on_the_fly(PLAN, FLY, delay_s="8"))
 bad(C, "on_the_fly", "offset_m", lambda: ca.on_the_fly(PLAN, FLY, delay_s=0.0, offset_m=INF))

@@ -152,6 +152,9 @@ def is_virtual(instrument: str, controller: str) -> bool:
     -------
     bool
     """
+    for name, spec in (("instrument", instrument), ("controller", controller)):
+        if not isinstance(spec, str):
+            raise AxiscalError(f"{name} must be a device spec (a str), not {type(spec).__name__}")
     return instrument.strip().lower() == "sim" and controller.strip().lower() == "sim"
 
 

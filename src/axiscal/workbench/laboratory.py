@@ -12,6 +12,8 @@ import re
 from pathlib import Path
 from typing import Any
 
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_mapping, check_path
 from axiscal.io.atomic import write_text
 
 __all__ = ["LABORATORY_FILE", "REMEMBERED", "next_number", "remember_laboratory", "laboratory_defaults"]
@@ -41,6 +43,8 @@ def next_number(number: str) -> str:
     >>> next_number("AX-2026-0042"), next_number("K-99"), next_number("lab")
     ('AX-2026-0043', 'K-100', 'lab-2')
     """
+    if not isinstance(number, str) or not number.strip():
+        raise AxiscalError(f"number must be a certificate number (a non-empty str), not {number!r}"[:200])
     match = re.search(r"(\d+)(\D*)$", number)
     if match is None:
         return f"{number}-2"
@@ -62,6 +66,8 @@ def remember_laboratory(data: Path, form: dict[str, Any]) -> None:
     -------
     None
     """
+    data = check_path("data", data)
+    check_mapping("form", form, what="the New visit form's values (a mapping)")
     if not form.get("certificate_number"):
         return
     kept = {key: form.get(key) for key in REMEMBERED} | {"last_number": form["certificate_number"]}
@@ -81,6 +87,7 @@ def laboratory_defaults(data: Path) -> dict[str, Any]:
     dict
         Form field -> value; empty when no visit has stated a certificate (or the file is damaged).
     """
+    data = check_path("data", data)
     try:
         kept = json.loads((data / LABORATORY_FILE).read_text(encoding="utf-8"))
     except (OSError, ValueError):

@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_instance, check_path
 from axiscal.io.jsonio import read_json, write_json
 
 __all__ = ["STATE_FILE", "OPEN_FILE", "STEPS", "SavedVisit", "read_saved", "write_saved", "unfinished_visits",
@@ -84,6 +85,7 @@ def read_saved(folder: Path) -> SavedVisit:
     AxiscalError
         For a missing or malformed file, or one whose fields are not a visit's (naming the file).
     """
+    folder = check_path("folder", folder)
     path = folder / STATE_FILE
     data = read_json(path)
     if not isinstance(data, dict) or not isinstance(data.get("visit"), dict):
@@ -112,6 +114,8 @@ def write_saved(folder: Path, saved: SavedVisit) -> None:
     -------
     None
     """
+    folder = check_path("folder", folder)
+    check_instance("saved", saved, SavedVisit)
     write_json(folder / STATE_FILE, saved.as_json())
 
 
@@ -129,6 +133,8 @@ def remember_open(data: Path, folder: Path | None) -> None:
     -------
     None
     """
+    data = check_path("data", data)
+    folder = None if folder is None else check_path("folder", folder)
     write_json(data / OPEN_FILE, {"folder": None if folder is None else folder.relative_to(data).as_posix()})
 
 
@@ -149,6 +155,7 @@ def open_folder(data: Path) -> Path | None:
     AxiscalError
         For a malformed ``workbench-open.json`` or one naming a folder outside the data folder.
     """
+    data = check_path("data", data)
     path = data / OPEN_FILE
     if not path.is_file():
         return None
@@ -179,6 +186,7 @@ def unfinished_visits(data: Path) -> list[dict[str, Any]]:
         ``folder``, ``machine``, ``serial``, ``date``, ``title``, ``step`` and ``problem`` (None, or
         why its state cannot be read), by folder name.
     """
+    data = check_path("data", data)
     out = []
     for path in sorted(data.glob(f"*/{STATE_FILE}")):
         folder = path.parent
