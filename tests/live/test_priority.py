@@ -39,6 +39,8 @@ def refuse(*args):
 
 
 def test_refused_real_time_and_nice_are_said_and_nothing_changes(monkeypatch):
+    # a thread started by an earlier test of this worker may have left the process real-time: start from normal
+    monkeypatch.setattr(priority_module.os, "sched_getscheduler", lambda pid: os.SCHED_OTHER)
     monkeypatch.setattr(priority_module.os, "sched_setscheduler", refuse)
     monkeypatch.setattr(priority_module.os, "setpriority", refuse)
     got = raise_priority()
@@ -50,6 +52,7 @@ def test_refused_real_time_and_nice_are_said_and_nothing_changes(monkeypatch):
 
 def test_refused_real_time_falls_back_to_a_lower_nice_value(monkeypatch):
     asked = []
+    monkeypatch.setattr(priority_module.os, "sched_getscheduler", lambda pid: os.SCHED_OTHER)
     monkeypatch.setattr(priority_module.os, "sched_setscheduler", refuse)
     monkeypatch.setattr(priority_module.os, "getpriority", lambda *args: 0)
     monkeypatch.setattr(priority_module.os, "setpriority", lambda which, who, value: asked.append(value))
