@@ -90,7 +90,7 @@ def test_bad_arguments_are_refused(keywords):
 def test_a_live_session_raises_its_thread_and_gives_it_back_on_close():
     def work():
         before = os.sched_getscheduler(0), os.getpriority(os.PRIO_PROCESS, 0)
-        with LiveSession(server=False, rate_hz=1000.0) as session:
+        with LiveSession(server=False, rate_hz=1000.0, realtime=True) as session:
             got = session.priority
             shown = session.pipeline.priority
         return before, got, shown, (os.sched_getscheduler(0), os.getpriority(os.PRIO_PROCESS, 0))
@@ -101,9 +101,9 @@ def test_a_live_session_raises_its_thread_and_gives_it_back_on_close():
 
 
 def test_a_session_not_asked_to_raise_or_replaying_as_fast_as_possible_stays_normal(tmp_path):
-    with LiveSession(server=False, realtime=False) as session:
+    with LiveSession(server=False) as session:  # a library caller keeps its priority unless it asks
         assert session.priority is None
     with LiveSession(server=False, duration_s=0.2, record=tmp_path / "run.csv") as session:
         session.run(duration_s=0.2)
-    with LiveSession(server=False, source=f"replay:{tmp_path / 'run.csv'}", pace=False) as session:
+    with LiveSession(server=False, source=f"replay:{tmp_path / 'run.csv'}", pace=False, realtime=True) as session:
         assert session.priority is None

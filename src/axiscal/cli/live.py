@@ -86,6 +86,7 @@ def live(
             force=force,
             bind=bind,
             allowed_hosts=allowed_hosts,
+            realtime=True,
         )
     stop = threading.Event()
     previous_term = signal.getsignal(signal.SIGTERM) if threading.current_thread() is threading.main_thread() else None

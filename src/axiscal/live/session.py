@@ -202,7 +202,7 @@ class LiveSession:
     allowed_hosts : sequence of str
         Host names the dashboard answers besides the loopback names (DNS-rebinding guard).
     realtime : bool
-        Raise the calling thread's scheduling priority for the run (:mod:`axiscal.live.priority`:
+        (``axiscal live`` gives True.) Raise the calling thread's scheduling priority for the run (:mod:`axiscal.live.priority`:
         real-time where the system allows it, else a lower nice value; :attr:`priority` says which
         and why), so frames are recorded on time while other work keeps the cores busy. Threads
         the session starts inherit it; :meth:`close` restores it. A replay without ``pace`` runs
@@ -239,7 +239,7 @@ class LiveSession:
         force: bool = False,
         bind: str = "127.0.0.1",
         allowed_hosts: Sequence[str] = (),
-        realtime: bool = True,
+        realtime: bool = False,
     ):
         _check(rate_hz, duration_s, port, update_hz, load_kg, path, seed)
         for name, flag in (("pace", pace), ("server", server), ("force", force), ("realtime", realtime)):
