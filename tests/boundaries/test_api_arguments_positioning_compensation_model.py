@@ -273,6 +273,8 @@ bad(C, "screwmap_file", "path", lambda: co.screwmap_file(None, controller="mach4
 bad(C, "screwmap_file", "axis_number", lambda: co.screwmap_file(EXAMPLES / "positioning_run.csv", controller="twincat", axis_number="1"))
 ISG_TEXT = "X EXX\n0 0.001\n10 0.002\n"
 bad(C, "parse_isg_csv", "text", lambda: co.parse_isg_csv(None), lambda: co.parse_isg_csv(b"X EXX"))
+bad(C, "check_distinct_axis_numbers", "numbers", lambda: co.check_distinct_axis_numbers(None), lambda: co.check_distinct_axis_numbers([1, 2]))
+bad(C, "check_distinct_axis_numbers", "X and Y", lambda: co.check_distinct_axis_numbers({"X": 1, "Y": 1}))
 bad(C, "parse_isg_csv", "not an ISG argument", lambda: co.parse_isg_csv("Q EXX\n0 1\n"), lambda: co.parse_isg_csv("X EQX\n0 1\n"))
 bad(C, "parse_isg_csv", "2 columns", lambda: co.parse_isg_csv("X EXX\n0 1 2\n"))
 bad(C, "parse_isg_csv", "finite", lambda: co.parse_isg_csv("X EXX\n0 nan\n"), lambda: co.parse_isg_csv("X EXX\n0 1e400\n"))

@@ -259,6 +259,13 @@ bad(L, "encode_lines", "values", lambda: lv.encode_lines(np.zeros(1), np.zeros(1
 bad(L, "encode_lines", "same length", lambda: lv.encode_lines(np.zeros(2), np.zeros((3, 1))))
 bad(L, "header_line", "channels", lambda: lv.header_line(None), lambda: lv.header_line("a_mm"), lambda: lv.header_line([""]))
 bad(L, "Recorder", "path", lambda: lv.Recorder(None, CH, ()))
+bad(L, "raise_priority", "realtime_priority", lambda: lv.raise_priority(realtime_priority=0), lambda: lv.raise_priority(realtime_priority=100))
+bad(L, "raise_priority", "nice", lambda: lv.raise_priority(nice=0), lambda: lv.raise_priority(nice=21))
+bad(L, "restore_priority", "priority", lambda: lv.restore_priority(None), lambda: lv.restore_priority("real-time"))
+bad(L, "python_format", "kinds", lambda: lv.python_format([9], [3]), lambda: lv.python_format([lv.FIXED], [0]),
+    lambda: lv.python_format([lv.FIXED, lv.GENERAL], [3]), lambda: lv.python_format("x", [3]))
+bad(L, "format_rows", "table", lambda: lv.format_rows("rows", [lv.FIXED], [3]), lambda: lv.format_rows([1.0, 2.0], [lv.FIXED], [3]))
+bad(L, "format_rows", "kinds", lambda: lv.format_rows([[1.0, 2.0]], [lv.FIXED], [3]), lambda: lv.format_rows([[1.0]], [7], [3]))
 bad(L, "Recorder", "channels", lambda: lv.Recorder(NEVER + ".csv", None, ()))
 bad(L, "Recorder", "result_columns", lambda: lv.Recorder(NEVER + ".csv", CH, None), lambda: lv.Recorder(NEVER + ".csv", CH, [5]))
 bad(L, "Recorder", "sync_interval_s", lambda: lv.Recorder(NEVER + ".csv", CH, (), sync_interval_s=0.0), lambda: lv.Recorder(NEVER + ".csv", CH, (), sync_interval_s=NAN))
@@ -356,6 +363,9 @@ bad(C, "read_campaign", "no such campaign folder", lambda: ca.read_campaign(Path
 
 
 bad(C, "load_campaign", "folder", lambda: ca.load_campaign(None), lambda: ca.load_campaign(NAN))
+bad(C, "key_line", "campaign", lambda: ca.key_line(None, None, "window_ms"))
+bad(C, "key_line", "spec", lambda: ca.key_line(CAMPAIGN, None, "window_ms"))
+bad(C, "key_line", "key", lambda: ca.key_line(CAMPAIGN, CAMPAIGN.tests[0], 5))
 bad(C, "check_figures", "figures", lambda: ca.check_figures(None, {}, {}), lambda: ca.check_figures({"E": "big"}, {"E_um": 5.0}, {}))
 bad(C, "check_figures", "tolerance", lambda: ca.check_figures({"E": 1.0}, None, {}), lambda: ca.check_figures({"E": 1.0}, {"E_um": NAN}, {}),
     lambda: ca.check_figures({"E": 1.0}, {"E_um": "5"}, {}), lambda: ca.check_figures({"E": 1.0}, {"E_um": -1.0}, {}))
@@ -498,7 +508,7 @@ EXEMPT: dict[str, set[str]] = {
     # does not build them, so they take no user values to check
     "uncertainty": {"Decision", "CoverageInterval", "PositioningUncertainty", "PositioningWithUncertainty", "LineUncertainty",
                     "VolumetricUncertainty"},
-    "live": {"RunSummary", "FrameBatch", "Record", "SourceStatus", "ClientStats"},
+    "live": {"RunSummary", "FrameBatch", "Record", "SourceStatus", "ClientStats", "Priority"},
     "campaign": {"Check", "Figure", "Plot", "TestResult", "CampaignResults",
                  # made by load_campaign from the validated campaign.toml (axiscal.io.formats.CampaignFile),
                  # where every value was checked once; a user reads them and does not build them

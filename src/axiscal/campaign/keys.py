@@ -24,8 +24,13 @@ def key_line(campaign: Campaign, spec: TestSpec, key: str) -> int:
     int
         1-based line number.
     """
+    from axiscal.io.arguments import check_instance
     from axiscal.io.schema import TomlLines
     from axiscal.io.tabular import read_text
+
+    check_instance("campaign", campaign, Campaign)
+    check_instance("spec", spec, TestSpec)
+    check_instance("key", key, str)
 
     lines = TomlLines(read_text(campaign.folder / "campaign.toml"))
     index = next((i for (table, i), line in lines.tables.items() if table == "tests" and line == spec.line), None)

@@ -35,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_mapping
 from axiscal.io.arguments import check_instance, check_integer, check_path
 from axiscal.io.tabular import read_text
 from axiscal.units import MM
@@ -308,6 +309,7 @@ def check_distinct_axis_numbers(numbers: dict[str, int]) -> None:
     AxiscalError
         Naming the two axes and their number.
     """
+    check_mapping("numbers", numbers, what="a mapping of axis letters to logical axis numbers")
     seen: dict[int, str] = {}
     for letter, number in numbers.items():
         if number in seen:

@@ -111,6 +111,9 @@ def restore_priority(priority: Priority) -> None:
     -------
     None
     """
+    from axiscal.io.arguments import check_instance
+
+    check_instance("priority", priority, Priority, what="what raise_priority returned")
     if priority.kind == "real-time" and priority.previous_policy not in (os.SCHED_FIFO, os.SCHED_RR):
         try:
             os.sched_setscheduler(0, priority.previous_policy, os.sched_param(0))

@@ -32,6 +32,22 @@ _CODES = {FIXED: "f", GENERAL: "g", INTEGER: "d"}
 _EXACT = 2.0**53
 
 
+def _check_columns(kinds, digits, columns: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """``kinds`` and ``digits`` as int64 arrays of one length (``columns`` when given), of known kinds and 1-15 digits."""
+    from axiscal.errors import AxiscalError
+
+    try:
+        kinds, digits = np.asarray(kinds, dtype=np.int64), np.asarray(digits, dtype=np.int64)
+    except (TypeError, ValueError):
+        raise AxiscalError("kinds and digits must be whole numbers, one per column") from None
+    if kinds.ndim != 1 or digits.shape != kinds.shape or (columns is not None and kinds.size != columns):
+        raise AxiscalError(f"kinds and digits must hold one whole number per column, not shapes {kinds.shape} and "
+                           f"{digits.shape}")
+    if not np.isin(kinds, (FIXED, GENERAL, INTEGER)).all() or ((digits < 1) | (digits > 15))[kinds != INTEGER].any():
+        raise AxiscalError("kinds must be FIXED, GENERAL or INTEGER and digits 1 to 15")
+    return kinds, digits
+
+
 def python_format(kinds: np.ndarray, digits: np.ndarray) -> str:
     """The ``%`` format of one line for columns of these kinds and digits (what :func:`format_rows` matches).
 
@@ -45,6 +61,7 @@ def python_format(kinds: np.ndarray, digits: np.ndarray) -> str:
     str
         E.g. ``"%.9f,%.15g,%d\\n"``.
     """
+    kinds, digits = _check_columns(kinds, digits)
     return ",".join("%d" if kind == INTEGER else f"%.{int(d)}{_CODES[int(kind)]}" for kind, d in zip(kinds, digits)) + "\n"
 
 
@@ -220,7 +237,15 @@ def format_rows(table: np.ndarray, kinds: np.ndarray, digits: np.ndarray) -> byt
         ASCII lines, each ended by ``\\n``; None when a ``FIXED`` or ``INTEGER`` value is too
         large to be written exactly here (then format with :func:`python_format`).
     """
-    table = np.ascontiguousarray(table, dtype=np.float64)
+    from axiscal.errors import AxiscalError
+
+    try:
+        table = np.ascontiguousarray(table, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise AxiscalError("table must be numbers, one row per line") from None
+    if table.ndim != 2:
+        raise AxiscalError(f"table must be two-dimensional (rows, columns), not of shape {table.shape}")
+    kinds, digits = _check_columns(kinds, digits, table.shape[1])
     if not table.size:
         return b"\n" * table.shape[0]
     exact = kinds != GENERAL
