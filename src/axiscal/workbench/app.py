@@ -37,6 +37,7 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_number
 from axiscal.live.server import LOOPBACK_HOSTS, request_allowed
+from axiscal.workbench.budget import budget_defaults
 from axiscal.workbench.forms import FormErrors
 from axiscal.workbench.tabs import OpenElsewhere
 from axiscal.workbench.visit import Workbench
@@ -231,6 +232,10 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
     async def certificate(request: Request) -> Response:
         return await _answer(bench.certificate_defaults)
 
+    async def budget(request: Request) -> Response:
+        return await _answer(budget_defaults, bench.data, request.query_params.get("instrument", ""),
+                             request.query_params.get("serial", ""))
+
     async def open_visit(request: Request) -> Response:
         body = await _body(request)
         return await _answer(bench.open_visit, body.get("folder") if isinstance(body, dict) else None, claim=request)
@@ -330,6 +335,7 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
             Route("/api/state", state),
             Route("/api/visits", visits),
             Route("/api/certificate", certificate),
+            Route("/api/budget", budget),
             Route("/api/visit/open", open_visit, methods=["POST"]),
             Route("/api/step", step, methods=["POST"]),
             Route("/api/plan", plan, methods=["POST"]),

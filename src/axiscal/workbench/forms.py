@@ -15,6 +15,9 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationIn
 from axiscal.capture.run import CaptureSettings
 from axiscal.capture.stops import SETTLE_S, least_dwell_s
 from axiscal.errors import AxiscalError
+from axiscal.io.formats.budget import BUDGET_RANGES
+from axiscal.uncertainty.decision import DECISION_RULES
+from axiscal.workbench.budget import BUDGET_FIELDS
 from axiscal.workbench.connection import check_spec
 
 __all__ = ["FORMS", "FormErrors", "checked"]
@@ -38,6 +41,12 @@ class FormErrors(AxiscalError):
 
 class _Form(BaseModel):
     model_config = ConfigDict(extra="forbid", str_strip_whitespace=True, allow_inf_nan=False)
+
+
+def _budget(field: str) -> Any:
+    """A budget number of the New visit form: optional, within the budget file's range for its key."""
+    low, high = BUDGET_RANGES.get(BUDGET_FIELDS[field], (None, None))
+    return Field(default=None, ge=low, le=high)
 
 
 class VisitForm(_Form):
@@ -77,6 +86,29 @@ class VisitForm(_Form):
     signatory_name: str = Field(default="", **_TEXT)
     signatory_role: str = Field(default="", **_TEXT)
     tolerance_source: str = Field(default="", **_TEXT)
+    # the uncertainty budget (workbench.budget), in the budget file's units; none given: no budget, no U
+    length_U_ppm: float | None = _budget("length_U_ppm")
+    air_temperature_u_K: float | None = _budget("air_temperature_u_K")
+    air_pressure_u_Pa: float | None = _budget("air_pressure_u_Pa")
+    air_humidity_u_percent: float | None = _budget("air_humidity_u_percent")
+    machine_temperature_C: float | None = _budget("machine_temperature_C")
+    machine_temperature_u_K: float | None = _budget("machine_temperature_u_K")
+    expansion_per_K: float | None = _budget("expansion_per_K")
+    expansion_u_per_K: float | None = _budget("expansion_u_per_K")
+    misalignment_urad: float | None = _budget("misalignment_urad")
+    eve_um: float | None = _budget("eve_um")
+    decision_rule: Literal[tuple(DECISION_RULES)] | None = None  # type: ignore[valid-type]
+
+    @model_validator(mode="after")
+    def _budget_and_rule(self) -> "VisitForm":
+        """A budget's decision rule is simple acceptance unless chosen; without a budget there is none to choose."""
+        if any(getattr(self, name) is not None for name in BUDGET_FIELDS):
+            self.decision_rule = self.decision_rule or "simple"
+        elif self.decision_rule == "guard-band":
+            raise ValueError("decision_rule: the guard band needs the uncertainty budget (U is what it guards by)")
+        else:
+            self.decision_rule = None
+        return self
 
     @model_validator(mode="after")
     def _certificate_whole(self) -> "VisitForm":

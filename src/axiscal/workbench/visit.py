@@ -31,6 +31,7 @@ from axiscal.units import MM, UM
 from axiscal.io.arguments import check_number
 from axiscal.workbench.forms import PlanForm, VisitForm, checked
 from axiscal.workbench.connection import connect, serial_ports
+from axiscal.workbench.budget import decision_of, remember_budget, write_budget
 from axiscal.workbench.laboratory import laboratory_defaults, remember_laboratory
 from axiscal.workbench.runner import PlanRun
 from axiscal.workbench.tabs import Tabs
@@ -187,8 +188,10 @@ class Workbench:
         folder = self.data / f"{_slug(form.machine)}-{form.date.isoformat()}"
         text = render_template("workbench/campaign.toml.j2", filters={"toml": _toml}, keep_trailing_newline=True,
                                **form.model_dump())
+        write_budget(folder, form.model_dump(mode="json"))  # before campaign.toml, which names it
         write_text(folder / "campaign.toml", text)
         remember_laboratory(self.data, form.model_dump(mode="json"))
+        remember_budget(self.data, form.model_dump(mode="json"))
         with self._lock:
             self.folder, self.visit, self.plan, self.run, self.compensation = folder, form, None, None, None
             self.phase = "as-found"
@@ -341,7 +344,7 @@ class Workbench:
                             "result": c.result} for c in result.checks],
                 "plots": [{"title": p.title, "svg": p.svg} for p in result.plots], "warnings": result.warnings,
             })
-        return {"phase": phase, "tests": out}
+        return {"phase": phase, "tests": out, **decision_of(campaign)}
 
     # -- 7. compensate -----------------------------------------------------------------------------
     def compensate(self) -> dict[str, Any]:
