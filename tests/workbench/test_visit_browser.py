@@ -73,6 +73,8 @@ def test_a_whole_visit_on_the_virtual_machine(browser_page, workbench):
     assert page.locator(".field-error[data-for=A_um]").text_content() == "Input should be greater than 0"
     assert page.get_attribute("#visit-form [name=A_um]", "aria-invalid") == "true"
     page.fill("#visit-form [name=A_um]", "45")
+    page.fill("#visit-form [name=length_U_ppm]", "0.5")  # the uncertainty budget: U beside every figure in Results
+    page.fill("#visit-form [name=eve_um]", "1")
     page.click("#visit-form button[type=submit]")
     page.wait_for_selector("#visit-saved:not([hidden])")
     assert page.locator(".field-error[data-for=A_um]").text_content() == ""
@@ -140,6 +142,8 @@ def test_a_whole_visit_on_the_virtual_machine(browser_page, workbench):
     rows = page.locator("#results table.checks tbody tr")
     assert rows.count() == 4 and rows.first.locator("td").first.text_content() == "A"
     assert "µm" in rows.first.locator("td").nth(1).text_content()
+    assert all(row.locator("td").nth(2).text_content().endswith(" µm") for row in rows.all())  # U (k=2), stated
+    assert page.locator("#results-decision").text_content().startswith("Decision rule: simple acceptance")
     assert count(page, "#results .plot svg") == 1
 
     # 7. compensate: the table, its plot and file; the as-left run with it loaded; before and after

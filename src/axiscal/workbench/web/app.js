@@ -226,7 +226,22 @@ $("#visit-form").elements.issue_date.value = new Date().toISOString().slice(0, 1
     for (const [name, value] of Object.entries(defaults)) if (form.elements[name] && !form.elements[name].value) form.elements[name].value = value;
     for (const name of ["location", "language"]) if (defaults[name]) form.elements[name].value = defaults[name];
   } catch (e) { /* no remembered laboratory */ }
+  prefillBudget(false);
 })();
+// the uncertainty budget of the instrument's last visit: into an empty budget on a fresh form, over it when the instrument changes
+async function prefillBudget(over) {
+  const form = $("#visit-form"), note = $("#budget-from");
+  const names = [...$("#budget-fields").querySelectorAll("input")].map((input) => input.name);
+  let found;
+  try {
+    found = await call("GET", `/api/budget?instrument=${encodeURIComponent(form.elements.instrument.value)}&serial=${encodeURIComponent(form.elements.instrument_serial.value)}`);
+  } catch (e) { return; }
+  if (!found.fields || (!over && names.some((name) => form.elements[name].value !== ""))) { if (over) note.hidden = true; return; }
+  for (const name of names) form.elements[name].value = found.fields[name] ?? "";
+  form.elements.decision_rule.value = found.fields.decision_rule || "simple";
+  note.textContent = `Prefilled from this instrument's last visit (${found.date}).`; note.hidden = false;
+}
+for (const name of ["instrument", "instrument_serial"]) $("#visit-form").elements[name].addEventListener("change", () => prefillBudget(true));
 $("#visit-form").addEventListener("submit", (event) => {
   event.preventDefault();
   submit(event.target, "/api/visit", (data) => {
@@ -375,6 +390,10 @@ async function showResults(phase) {
   $("#results-phase").value = phase;
   const data = await call("GET", "/api/results?phase=" + phase);
   const out = $("#results"); out.replaceChildren();
+  const rule = document.createElement("p"); rule.id = "results-decision";
+  rule.textContent = `${data.decision}. ` + (data.budget ? "U (k = 2) from the visit's uncertainty budget (budget.toml)."
+    : "No uncertainty budget on the New visit form: U is not stated.");
+  out.appendChild(rule);
   for (const test of data.tests) {
     const article = document.createElement("article"); article.className = "test"; article.id = "result-" + test.id;
     const h = document.createElement("h3"); h.textContent = `${test.id}: ${test.verdict.toUpperCase()}`; h.className = "verdict-" + test.verdict;
