@@ -182,7 +182,14 @@ class GrblController(Controller):
             raise AxiscalError(f"{self.description} is {state}, not Idle: finish or reset what runs first")
         self.status.position_m = self.position(axis)
 
-    def limits(self, axis: str) -> tuple[float, float] | None:
+    def settings(self) -> dict[int, float]:
+        """grbl's ``$$`` settings as it lists them: number -> value (``{20: 1.0, 130: 200.0, ...}``).
+
+        Returns
+        -------
+        dict of int to float
+            Empty when grbl listed none within the silence allowed.
+        """
         self.io.send("$$")
         settings: dict[int, float] = {}
         deadline = time.monotonic() + SILENCE_S
@@ -195,6 +202,10 @@ class GrblController(Controller):
             m = re.match(r"^\$(\d+)=([-\d.]+)", line)
             if m:
                 settings[int(m.group(1))] = float(m.group(2))
+        return settings
+
+    def limits(self, axis: str) -> tuple[float, float] | None:
+        settings = self.settings()
         index = _AXES.index(axis.upper())
         if settings.get(20, 0) != 1 or 130 + index not in settings:
             return None

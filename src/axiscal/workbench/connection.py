@@ -254,15 +254,37 @@ def _controller_told(made: Any) -> tuple[tuple[tuple[str, str], ...], str]:
     except AxiscalError as exc:
         refused = str(exc)
     if not refused:
+        told += _grbl_settings_told(made)
         try:
             limits = made.limits(_AXIS)
         except (AxiscalError, OSError) as exc:
             limits, told = None, told + [("soft limits", f"not read: {exc}")]
         if limits is not None:
             told.append((f"soft limits {_AXIS}", f"{limits[0] / MM:g} to {limits[1] / MM:g} mm"))
-        elif not any(name == "soft limits" for name, _ in told):
+        elif not any(name == "soft limits" or name.startswith("$20") for name, _ in told):
             told.append(("soft limits", "not told (the controller refuses a move beyond its own)"))
     return tuple(told), refused
+
+
+def _grbl_settings_told(made: Any) -> list[tuple[str, str]]:
+    """grbl's ``$`` settings that bound a run on the axis: soft limits ($20), homing ($22), the axis's travel ($130...)."""
+    from axiscal.devices.grbl import GrblController
+
+    if not isinstance(made, GrblController):
+        return []
+    try:
+        settings = made.settings()
+    except (AxiscalError, OSError) as exc:
+        return [("$ settings", f"not read: {exc}")]
+    told = []
+    if 20 in settings:
+        told.append(("$20 soft limits", "on" if settings[20] == 1 else "off: grbl refuses no move beyond its travel"))
+    if 22 in settings:
+        told.append(("$22 homing cycle", "on" if settings[22] == 1 else "off: machine positions count from where grbl was switched on"))
+    travel = 130 + "XYZABC".index(_AXIS)
+    if travel in settings:
+        told.append((f"${travel} {_AXIS} max travel", f"{settings[travel]:g} mm"))
+    return told
 
 
 def _connect_devices(instrument: str, controller: str, seed: int) -> Connection:
