@@ -64,6 +64,15 @@ bad(W, "next_number", "number", lambda: wb.next_number(None), lambda: wb.next_nu
 bad(W, "remember_laboratory", "data", lambda: wb.remember_laboratory(None, {}))
 bad(W, "remember_laboratory", "form", lambda: wb.remember_laboratory(NEVER, ["lab"]))
 bad(W, "laboratory_defaults", "data", lambda: wb.laboratory_defaults(None))
+bad(W, "budget_tables", "form", lambda: wb.budget_tables(None), lambda: wb.budget_tables(["eve_um"]))
+bad(W, "write_budget", "folder", lambda: wb.write_budget(None, {}))
+bad(W, "write_budget", "form", lambda: wb.write_budget(NEVER, None))
+bad(W, "remember_budget", "data", lambda: wb.remember_budget(None, {}))
+bad(W, "remember_budget", "form", lambda: wb.remember_budget(NEVER, ["eve_um"]))
+bad(W, "budget_defaults", "data", lambda: wb.budget_defaults(None, "Laser"))
+bad(W, "budget_defaults", "instrument", lambda: wb.budget_defaults(NEVER, None))
+bad(W, "budget_defaults", "serial", lambda: wb.budget_defaults(NEVER, "Laser", 5))
+bad(W, "decision_of", "campaign", lambda: wb.decision_of(None), lambda: wb.decision_of("campaign.toml"))
 
 # result and error types: made by the room, not by a user's arguments; the visit's record and the tabs'
 # book-keeping (no user values); the computer's serial ports (no arguments)

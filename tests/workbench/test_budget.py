@@ -16,7 +16,7 @@ from axiscal.positioning import evaluate_positioning_file
 from axiscal.report import decision_statement
 from axiscal.uncertainty import figure_uncertainties, read_budget
 from axiscal.workbench import FormErrors, Workbench, checked, create_workbench_app
-from axiscal.workbench.budget import BUDGET_FIELDS, BUDGETS_FILE, budget_defaults, budget_tables, remember_budget, write_budget
+from axiscal.workbench import BUDGET_FIELDS, BUDGETS_FILE, budget_defaults, budget_tables, remember_budget, write_budget
 
 with warnings.catch_warnings():  # Starlette's notice that its test client will move to httpx2
     warnings.simplefilter("ignore")

@@ -46,6 +46,16 @@ from axiscal.workbench.laboratory import (
     next_number,
     remember_laboratory,
 )
+from axiscal.workbench.budget import (
+    BUDGET_FIELDS,
+    BUDGET_FILE,
+    BUDGETS_FILE,
+    budget_defaults,
+    budget_tables,
+    decision_of,
+    remember_budget,
+    write_budget,
+)
 from axiscal.workbench.tabs import (
     OpenElsewhere,
     Tabs,
@@ -107,4 +117,12 @@ __all__ = [
     "laboratory_defaults",
     "next_number",
     "remember_laboratory",
+    "BUDGET_FIELDS",
+    "BUDGET_FILE",
+    "BUDGETS_FILE",
+    "budget_defaults",
+    "budget_tables",
+    "decision_of",
+    "remember_budget",
+    "write_budget",
 ]
