@@ -106,16 +106,41 @@ def _piece_rows(moves, pieces, rows, out_at, linear, rapid, spec, has_e) -> list
     counts = np.where(absolute[:, None], now, now - np.rint((before - offset) * scale))
     if not np.all(np.abs(counts) < 1e15):  # beyond the digits a double holds exactly: Python's formatting
         return _piece_rows_slow(moves, pieces, rows, counts, places, linear, rapid, spec, has_e)
-    fields = [_choice(rapid[move].astype(np.int64), [spec.feed_word, spec.rapid_word])]
-    for j, letter in enumerate(linear):
-        fields.append(_literal(f" {letter}", rows.size))
-        fields.append(_fixed(counts[:, j], places))
+    codes = rapid[move].astype(np.int64)
     if has_e.any():
         e = _extruder_counts(moves, pieces, rows)
         show = has_e[move]
+    else:
+        e, show = np.zeros(rows.size), np.zeros(rows.size, dtype=bool)
+    if _COMPILED and np.all(np.abs(e) < 1e15):
+        return _compiled_rows(codes, [spec.feed_word, spec.rapid_word], linear, counts, places, show, e)
+    fields = [_choice(codes, [spec.feed_word, spec.rapid_word])]
+    for j, letter in enumerate(linear):
+        fields.append(_literal(f" {letter}", rows.size))
+        fields.append(_fixed(counts[:, j], places))
+    if show.any():
         fields.append(_literal(" E", rows.size, show))
         fields.append(_fixed(e, np.full(rows.size, 5), show))
     return _rows(fields)
+
+
+#: whether the pieces' text is written by the compiled kernel (False: in NumPy, the reference)
+_COMPILED = True
+
+
+def _compiled_rows(codes, options, linear, counts, places, show, e) -> list[str]:
+    """:func:`_piece_rows`'s text written by :func:`axiscal.precompensation.format_kernel.piece_text`."""
+    from axiscal.precompensation import format_kernel  # numba takes a moment to load
+
+    width = max(len(o) for o in options)
+    words = np.zeros((len(options), width), dtype=np.uint8)
+    for k, option in enumerate(options):
+        words[k, :len(option)] = np.frombuffer(option.encode("ascii"), dtype=np.uint8)
+    length = np.array([len(o) for o in options], dtype=np.int64)
+    letters = np.frombuffer("".join(linear).encode("ascii"), dtype=np.uint8).copy()
+    data = format_kernel.piece_text(codes, words, length, letters, np.ascontiguousarray(counts, dtype=np.float64),
+                                    places.astype(np.int64), show, np.ascontiguousarray(e, dtype=np.float64))
+    return data.tobytes().decode("ascii").split("\n")[:-1]
 
 
 def _piece_rows_slow(moves, pieces, rows, counts, places, linear, rapid, spec, has_e) -> list[str]:
