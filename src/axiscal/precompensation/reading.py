@@ -1,11 +1,12 @@
-"""A program read in pieces for its pre-compensation: the reader's pieces, their columns built in bulk.
+"""A program read in pieces for its pre-compensation: the reader's pieces, short ones read in bulk too.
 
 The same pieces as :func:`axiscal.io.gcode.stream.read_pieces` gives, to the bit: each piece's
 lines run through the reader (:func:`~axiscal.io.gcode.reader.read_lines`) with the control's
 state carried from the piece before; only the columns (:class:`~axiscal.io.gcode.columns.ProgramColumns`)
 are built here, the F numbers as written looked up on the lines that have one instead of on every
 line read in bulk (a CAM program writes its feed once in a thousand blocks: the lookup was half the
-reading's time).
+reading's time), and once a piece was read in bulk, the plain lines of every piece after it are,
+however short (the program's last piece, read block by block, took a tenth of the whole time).
 """
 
 from __future__ import annotations
@@ -17,7 +18,10 @@ import numpy as np
 
 from axiscal.io.gcode.columns import KINDS, MOTION_WORDS, ProgramColumns
 from axiscal.io.gcode.dialects import Dialect
+from axiscal.io.gcode import reader
+from axiscal.io.gcode.fast import BulkScan, walk
 from axiscal.io.gcode.reader import Program, check_end, control_state, read_lines, split_lines
+from axiscal.io.gcode.rs274 import run_block
 from axiscal.io.gcode.stream import ProgramPiece
 
 __all__ = ["read_pieces", "piece_columns"]
@@ -36,6 +40,7 @@ def read_pieces(texts: Iterable[str], *, dialect: str | Dialect, source: str | N
     line_end = None
     axes: tuple[str, ...] = ()
     word_before = -1
+    scanned = False  # whether a piece was read in bulk: the compiled scan is loaded, short pieces read in bulk too
     iterator = iter(texts)
     text = next(iterator, None)
     while text is not None:
@@ -50,7 +55,11 @@ def read_pieces(texts: Iterable[str], *, dialect: str | Dialect, source: str | N
             line_end = ending.group(0) if ending else None
         lines = split_lines(text)
         start = dict(state.position)
-        taken = read_lines(lines, text, state, first_line=first_line)
+        if scanned or len(lines) >= reader._BULK_FROM:
+            taken = _read_in_bulk(lines, text, state, first_line)
+            scanned = taken is not None
+        else:
+            taken = read_lines(lines, text, state, first_line=first_line)
         program = Program(spec, lines, state.blocks, taken, line_end or "\n", first_line)
         last = following is None
         if last:
@@ -69,6 +78,17 @@ def read_pieces(texts: Iterable[str], *, dialect: str | Dialect, source: str | N
     if first_line == 0:
         check_end(state, 0)
         yield ProgramPiece(spec, [], piece_columns(Program(spec, [], [], None, "\n")), "\n", True, False)
+
+
+def _read_in_bulk(lines: list[str], text: str, state, first_line: int):
+    """:func:`~axiscal.io.gcode.reader.read_lines` with the plain lines read in bulk however few they are
+    (the reader reads a short text block by block, as the whole program's last piece often is: the same
+    motions, slower)."""
+    spec = state.spec
+    if not reader._BULK or spec.syntax == "conversational":
+        return read_lines(lines, text, state, first_line=first_line)
+    scan = BulkScan(text, lines, spec.axes, numbered=spec.syntax == "rs274", need_point=spec.decimal_point_needed)
+    return walk(lines, state, scan, run_block, first_line=first_line)
 
 
 def piece_columns(program: Program, *, axes_before: tuple[str, ...] = (), start_m=None,

@@ -46,7 +46,8 @@ def program_lines(spec, lines: list[str], moves, pieces, verbatim, output, linea
     bulk_row = columns.bulk_row[moves.index]
     has_e = columns.has_e[moves.index] if "E" in columns.axes else np.zeros(len(moves), dtype=bool)
     piece_text = _piece_rows(moves, pieces, rows, out_at, linear, rapid, spec, has_e) if rows.size else []
-    out = list(lines)
+    out = np.array(lines, dtype=object)
+    piece_text = np.array(piece_text, dtype=object)
     bulk = rewritten[bulk_row[rewritten] >= 0]
     if bulk.size:
         _bulk_text(out, lines, moves, bulk, first, stop, at_row, piece_text, rotary, end)
@@ -66,7 +67,7 @@ def program_lines(spec, lines: list[str], moves, pieces, verbatim, output, linea
         k = first[number]
         parts = ([block.number] if block.number else []) + head + [piece_text[at_row[k]]] + rotary_words + tail
         texts = [" ".join(parts + ([block.comment] if block.comment else []))]
-        texts += [piece_text[at_row[j]] for j in range(k + 1, stop[number])]
+        texts += piece_text[at_row[k] + 1:at_row[k] + stop[number] - k].tolist()
         out[index] = end.join(texts)
     # a G92 met where the control stands at a corrected point
     if spec.set_position:
@@ -76,7 +77,7 @@ def program_lines(spec, lines: list[str], moves, pieces, verbatim, output, linea
                 if k >= 0:
                     last = stop[k] - 1
                     out[index] = _shifted(block, spec, out_at[last] - pieces.p1[last], linear, out[index])
-    return out, int(rewritten.size)
+    return out.tolist(), int(rewritten.size)
 
 
 def header_at(spec, lines: list[str]) -> int:
@@ -212,7 +213,8 @@ def _rows(fields) -> list[str]:
 
 def _bulk_text(out, texts, moves, numbers, first, stop, at_row, piece_text, rotary, end) -> None:
     """Write the moves ``numbers`` read in bulk (block number, G0/G1, axis words, F): the block number,
-    the pieces' text, the rotary words and F as written on the first."""
+    the pieces' text, the rotary words and F as written on the first. ``out`` and ``piece_text`` are
+    object arrays: the lines of one piece and no more words are put in place all at once."""
     columns = moves.columns
     lines = moves.index[numbers]
     head = np.asarray(at_row[first[numbers]])
@@ -224,37 +226,32 @@ def _bulk_text(out, texts, moves, numbers, first, stop, at_row, piece_text, rota
             for letter in rotary:
                 if letter in written:
                     extra.setdefault(j, []).append(f"{letter}{written[letter]}")
-    feeds = columns.feed_word
-    for j, line in enumerate(lines.tolist()):
-        raw = feeds[line]
-        if raw is not None:
-            extra.setdefault(j, []).append(f"F{raw}")
-    numbered = np.flatnonzero(columns.number_at[lines, 1] > 0)
+    feeds = np.array(columns.feed_word, dtype=object)[lines]
+    for j in np.flatnonzero(np.not_equal(feeds, None)).tolist():
+        extra.setdefault(j, []).append(f"F{feeds[j]}")
+    at = columns.number_at
+    numbered = at[lines, 1] > 0
     plain = single.copy()
     if extra:
         plain[list(extra)] = False
-    at = columns.number_at
-    if numbered.size:  # a block number and one piece: the number, then the piece
-        only = np.zeros(plain.size, dtype=bool)
-        only[numbered] = plain[numbered]
-        for line, row, (start, stop_at) in zip(lines[only].tolist(), head[only].tolist(), at[lines[only]].tolist()):
-            out[line] = f"N{texts[line][start:stop_at]} {piece_text[row]}"
-        plain[numbered] = False
-        done = only
-    else:
-        done = np.zeros(plain.size, dtype=bool)
-    for line, row in zip(lines[plain].tolist(), head[plain].tolist()):
-        out[line] = piece_text[row]
-    plain |= done
+    only = plain & numbered  # a block number and one piece: the number, then the piece
+    if only.any():
+        which = lines[only]
+        out[which] = np.array([f"N{texts[line][start:stop_at]} {row}" for line, row, start, stop_at
+                               in zip(which.tolist(), piece_text[head[only]].tolist(), at[which, 0].tolist(),
+                                      at[which, 1].tolist())], dtype=object)
+    alone = plain & ~numbered
+    out[lines[alone]] = piece_text[head[alone]]
     for j in np.flatnonzero(~plain).tolist():
         number = numbers[j]
         line = int(lines[j])
         k = first[number]
         start, stop_at = at[line]
-        text = " ".join(([f"N{texts[line][start:stop_at]}"] if stop_at > start else []) + [piece_text[at_row[k]]]
+        row = int(at_row[k])
+        text = " ".join(([f"N{texts[line][start:stop_at]}"] if stop_at > start else []) + [piece_text[row]]
                         + extra.get(j, []))
         if stop[number] > k + 1:
-            text = end.join([text] + [piece_text[at_row[i]] for i in range(k + 1, stop[number])])
+            text = end.join([text] + piece_text[row + 1:row + stop[number] - k].tolist())
         out[line] = text
 
 
