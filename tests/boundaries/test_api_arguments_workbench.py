@@ -73,11 +73,58 @@ bad(W, "budget_defaults", "data", lambda: wb.budget_defaults(None, "Laser"))
 bad(W, "budget_defaults", "instrument", lambda: wb.budget_defaults(NEVER, None))
 bad(W, "budget_defaults", "serial", lambda: wb.budget_defaults(NEVER, "Laser", 5))
 bad(W, "decision_of", "campaign", lambda: wb.decision_of(None), lambda: wb.decision_of("campaign.toml"))
+bad(W, "machine_axes", "path", lambda: wb.machine_axes(None))
+bad(W, "machine_axes", "file not found", lambda: wb.machine_axes(NEVER / "machine.toml"))
+bad(W, "machine_choices", "data", lambda: wb.machine_choices(5))
+bad(W, "copy_machine", "source", lambda: wb.copy_machine(None, NEVER))
+bad(W, "copy_machine", "folder", lambda: wb.copy_machine(wb.example_machine(), None))
+bad(W, "parse_travels", "LETTER=START:END", lambda: wb.parse_travels("X 0-600"))
+bad(W, "parse_travels", "name each axis", lambda: wb.parse_travels(None), lambda: wb.parse_travels(" "))
+bad(W, "parse_travels", "beyond its start", lambda: wb.parse_travels("X=5:1"))
+bad(W, "parse_travels", "given twice", lambda: wb.parse_travels("X=0:1,X=0:2"))
+bad(W, "write_new_machine", "folder", lambda: wb.write_new_machine(None, "Mill", "XFYZ", "X=0:1,Y=0:1,Z=0:1"))
+bad(W, "write_new_machine", "chain", lambda: wb.write_new_machine(NEVER, "Mill", "XYZ", "X=0:1"),
+    lambda: wb.write_new_machine(NEVER, "Mill", None, "X=0:1"))
+bad(W, "write_new_machine", "name the machine", lambda: wb.write_new_machine(NEVER, " ", "XFY", "X=0:1,Y=0:1"))
+bad(W, "write_new_machine", "Z missing", lambda: wb.write_new_machine(NEVER, "Mill", "XFYZ", "X=0:1,Y=0:1"))
+AXES = [{"axis": "X", "rotary": False, "unit": "mm", "start": 0.0, "end": 800.0}]
+bad(W, "checked_plan", "axes", lambda: wb.checked_plan({}, None), lambda: wb.checked_plan({}, [{"axis": "X"}]))
+bad(W, "checked_plan", "json object", lambda: wb.checked_plan(5, AXES))
+bad(W, "checked_plan", "beyond the travel", lambda: wb.checked_plan({"start_mm": 0, "end_mm": 900, "targets": 5, "runs": 1,
+                                                                      "overrun_mm": 1, "dwell_s": 1}, AXES))
+bad(W, "wanted_tests", "axes", lambda: wb.wanted_tests(["positioning-X"], None))
+bad(W, "wanted_tests", "tick at least one test", lambda: wb.wanted_tests([], AXES), lambda: wb.wanted_tests("X", AXES))
+bad(W, "wanted_tests", "not a test of the machine's axes", lambda: wb.wanted_tests(["positioning-Y"], AXES))
+TEST = {"id": "positioning-X", "kind": "positioning", "axis": "X", "source": "run", "label": "X", "entry": {}}
+bad(W, "state_of", "test", lambda: wb.state_of(None, NEVER), lambda: wb.state_of({"id": "x"}, NEVER))
+bad(W, "state_of", "folder", lambda: wb.state_of(TEST, None))
+bad(W, "campaign_with_tests", "text", lambda: wb.campaign_with_tests(None, [], NEVER, model=None))
+bad(W, "campaign_with_tests", "tests", lambda: wb.campaign_with_tests("", None, NEVER, model=None),
+    lambda: wb.campaign_with_tests("", [5], NEVER, model=None))
+bad(W, "campaign_with_tests", "folder", lambda: wb.campaign_with_tests("", [], None, model=None))
+bad(W, "campaign_with_tests", "model", lambda: wb.campaign_with_tests("", [], NEVER, model=5))
+bad(W, "checked_file_form", "json object", lambda: wb.checked_file_form(None))
+bad(W, "checked_file_form", "radius_mm", lambda: wb.checked_file_form({"kind": "ballbar", "file": "b.csv", "plane": "XY"}),
+    lambda: wb.checked_file_form({"kind": "ballbar", "file": "b.csv", "plane": "XY", "radius_mm": NAN}))
+bad(W, "checked_file_form", "kind", lambda: wb.checked_file_form({"kind": "scan", "file": "b.csv"}))
+bad(W, "store_upload", "folder", lambda: wb.store_upload(None, "a.csv", b"1"))
+bad(W, "store_upload", "name the uploaded file", lambda: wb.store_upload(NEVER, None, b"1"))
+bad(W, "store_upload", "empty", lambda: wb.store_upload(NEVER, "a.csv", b""), lambda: wb.store_upload(NEVER, "a.csv", "1"))
+bad(W, "store_upload", "not a file name", lambda: wb.store_upload(NEVER, "...", b"1"))
+bad(W, "data_files", "data", lambda: wb.data_files(None, None))
+bad(W, "data_files", "folder", lambda: wb.data_files(NEVER, 5))
+FORM = wb.checked_file_form({"kind": "straightness", "file": "p.csv", "axis": "X", "direction": "Y"})
+bad(W, "file_test", "data", lambda: wb.file_test(None, NEVER, FORM, set()))
+bad(W, "file_test", "form", lambda: wb.file_test(NEVER, NEVER, {"kind": "straightness"}, set()))
+bad(W, "file_test", "taken", lambda: wb.file_test(NEVER, NEVER, FORM, None))
+bad(W, "file_test", "no such file in the data folder", lambda: wb.file_test(NEVER, NEVER, FORM, set()))
 
 # result and error types: made by the room, not by a user's arguments; the visit's record and the tabs'
 # book-keeping (no user values); the computer's serial ports (no arguments)
+# the forms' models (read through checked_plan and checked_file_form, whose cases are above); the parts of Workbench
+# (no arguments of their own); the example machine (no arguments)
 EXEMPT = {W: {"Connection", "FormErrors", "WorkbenchServer", "new_token", "OpenElsewhere", "SavedVisit", "Tabs",
-              "serial_ports"}}
+              "serial_ports", "AxisPlanForm", "FileTestForm", "HistoryViews", "VisitTests", "example_machine"}}
 
 test_bad_arguments_raise_axiscal_error_naming_them, test_every_public_callable_has_a_bad_argument_case = TABLE.tests(EXEMPT)
 

@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import math
+import shutil
 import time
 import warnings
+from importlib import resources
+from pathlib import Path
 
 import pytest
 
@@ -17,14 +20,24 @@ with warnings.catch_warnings():  # Starlette's notice that its test client will 
 
 VISIT = {"title": "Visit", "date": "2026-11-26", "operator": "J. Doe", "machine": "VMC 1", "instrument": "Laser",
          "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6, "axes": ["X"]}
+XZ = Path(str(resources.files("axiscal") / "data" / "xz_module"))
 # one run each way: A and R are not defined (ISO 230-2 needs runs to scatter), E and B are
 PLAN = {"start_mm": 20, "end_mm": 170, "targets": 5, "runs": 1, "overrun_mm": 5, "dwell_s": 1}
+
+
+def _with_the_xz_module(data):
+    """The built-in XZ module (its X axis 34 um out over 190 mm) as a machine of the data folder."""
+    folder = data / "machines" / "xz"
+    folder.mkdir(parents=True)
+    for name in ("machine.toml", "x_errors.csv", "z_errors.csv"):
+        shutil.copyfile(XZ / name, folder / name)
+    return {"machine_choice": "machines/xz/machine.toml"}
 
 
 @pytest.mark.parametrize("controller", ["fanuc", "siemens", "heidenhain"])
 def test_the_as_left_run_with_the_table_loaded(tmp_path, controller):
     bench = Workbench(tmp_path / "data", db=str(tmp_path / "h.sqlite"), speed=80.0)
-    bench.new_visit(VISIT | {"controller": controller})
+    bench.new_visit(VISIT | {"controller": controller} | _with_the_xz_module(bench.data))
     bench.make_plan(PLAN)
     bench.connect({"instrument": "sim", "controller": "sim"})
     bench.start_run("as-found")

@@ -2,7 +2,9 @@
 
 It calls the library as the command line does and computes nothing itself. :func:`serve_workbench`
 is ``axiscal workbench``; :class:`Workbench` holds the visit (each step one library call);
-:func:`create_workbench_app` is the page's Starlette app; :mod:`axiscal.workbench.connection` checks the
+:func:`create_workbench_app` is the page's Starlette app; :mod:`axiscal.workbench.machines` offers and describes the visit's
+machine, :mod:`axiscal.workbench.suite` its tests and their states, :mod:`axiscal.workbench.added` the tests taken from
+files; :mod:`axiscal.workbench.connection` checks the
 specs, lists the serial ports and connects; :mod:`axiscal.workbench.runner` is the one adapter that runs a
 plan on the machine (the virtual machine, ``sim``, or the devices of ``axiscal run``).
 """
@@ -39,6 +41,31 @@ from axiscal.workbench.runner import (
     DevicePlanRun,
     PlanRun,
 )
+from axiscal.workbench.machines import (
+    MACHINE_FILE,
+    copy_machine,
+    example_machine,
+    machine_axes,
+    machine_choices,
+    parse_travels,
+    write_new_machine,
+)
+from axiscal.workbench.suite import (
+    AxisPlanForm,
+    campaign_with_tests,
+    checked_plan,
+    state_of,
+    wanted_tests,
+)
+from axiscal.workbench.added import (
+    FILE_KINDS,
+    MAX_UPLOAD,
+    FileTestForm,
+    checked_file_form,
+    data_files,
+    file_test,
+    store_upload,
+)
 from axiscal.workbench.laboratory import (
     LABORATORY_FILE,
     REMEMBERED,
@@ -59,6 +86,12 @@ from axiscal.workbench.budget import (
 from axiscal.workbench.tabs import (
     OpenElsewhere,
     Tabs,
+)
+from axiscal.workbench.history_views import (
+    HistoryViews,
+)
+from axiscal.workbench.visit_tests import (
+    VisitTests,
 )
 from axiscal.workbench.visit import (
     PHASES,
@@ -100,6 +133,27 @@ __all__ = [
     "remember_open",
     "unfinished_visits",
     "write_saved",
+    "MACHINE_FILE",
+    "copy_machine",
+    "example_machine",
+    "machine_axes",
+    "machine_choices",
+    "parse_travels",
+    "write_new_machine",
+    "AxisPlanForm",
+    "campaign_with_tests",
+    "checked_plan",
+    "state_of",
+    "wanted_tests",
+    "FILE_KINDS",
+    "MAX_UPLOAD",
+    "FileTestForm",
+    "checked_file_form",
+    "data_files",
+    "file_test",
+    "store_upload",
+    "HistoryViews",
+    "VisitTests",
     "PHASES",
     "OpenElsewhere",
     "Tabs",

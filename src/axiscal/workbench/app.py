@@ -11,7 +11,8 @@ page draws the reading without a gap however fast the instrument samples.
 Guards, as the live dashboard's: the loopback interface by default; every request's ``Host``
 must be an allowed name and its ``Origin`` (when sent) the page's own; bound to another
 address, every request must also carry the session's token (``?token=`` once, then a cookie);
-request bodies are capped at :data:`MAX_BODY`; files are served only from the data folder.
+request bodies are capped at :data:`MAX_BODY` (an instrument's file sent to ``/api/upload`` at
+:data:`~axiscal.workbench.added.MAX_UPLOAD`); files are served only from the data folder.
 """
 
 from __future__ import annotations
@@ -37,6 +38,7 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_number
 from axiscal.live.server import LOOPBACK_HOSTS, request_allowed
+from axiscal.workbench.added import MAX_UPLOAD
 from axiscal.workbench.budget import budget_defaults
 from axiscal.workbench.forms import FormErrors
 from axiscal.workbench.tabs import OpenElsewhere
@@ -92,7 +94,8 @@ class _Guard:
             await self._refuse(scope, send, 403, b"forbidden: host, origin or token not allowed\n")
             return
         length = headers.get("content-length")
-        if length is not None and (not length.isdigit() or int(length) > MAX_BODY):
+        cap = MAX_UPLOAD if scope.get("path") == "/api/upload" else MAX_BODY  # an instrument's file may be larger
+        if length is not None and (not length.isdigit() or int(length) > cap):
             await self._refuse(scope, send, 413, b"request too large\n")
             return
         received = 0
@@ -102,7 +105,7 @@ class _Guard:
             message = await receive()
             if message["type"] == "http.request":
                 received += len(message.get("body", b""))
-                if received > MAX_BODY:
+                if received > cap:
                     raise _TooLarge
             return message
 
@@ -262,16 +265,38 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
         if not isinstance(body, dict):
             return JSONResponse({"error": "send the run's phase as a JSON object"}, status_code=400)
         return await _answer(bench.start_run, body.get("phase", "as-found"), resume=body.get("resume") is True,
-                             claim=request)
+                             test=body.get("test"), repeat=body.get("repeat") is True, claim=request)
 
     async def control(request: Request) -> Response:
         return await _answer(bench.control, request.path_params["action"], claim=request)
 
     async def results(request: Request) -> Response:
-        return await _answer(bench.results, request.query_params.get("phase", "as-found"))
+        return await _answer(bench.results, request.query_params.get("phase", "as-found"), request.query_params.get("test"))
 
     async def compensate(request: Request) -> Response:
-        return await _answer(bench.compensate, claim=request)
+        body = await _body(request)
+        return await _answer(bench.compensate, body.get("axis") if isinstance(body, dict) else None, claim=request)
+
+    # the visit's machine and its tests: the machines offered, each test's state, the tests taken from files
+    async def machine_choices(request: Request) -> Response:
+        return await _answer(bench.machine_choices)
+
+    async def tests(request: Request) -> Response:
+        return await _answer(bench.tests)
+
+    async def data_files(request: Request) -> Response:
+        return await _answer(bench.data_files)
+
+    async def upload(request: Request) -> Response:
+        content = await request.body()
+        return await _answer(bench.upload, request.query_params.get("name"), content, claim=request)
+
+    async def add_test(request: Request) -> Response:
+        return await _answer(bench.add_file_test, await _body(request), claim=request)
+
+    async def remove_test(request: Request) -> Response:
+        body = await _body(request)
+        return await _answer(bench.remove_test, body.get("test") if isinstance(body, dict) else None, claim=request)
 
     async def before_after(request: Request) -> Response:
         return await _answer(bench.before_after)
@@ -347,6 +372,12 @@ def create_workbench_app(bench: Workbench, *, update_hz: float = 20.0, allowed_h
             Route("/api/compensate", compensate, methods=["POST"]),
             Route("/api/before-after", before_after),
             Route("/api/finish", finish, methods=["POST"]),
+            Route("/api/machine-choices", machine_choices),
+            Route("/api/tests", tests),
+            Route("/api/data-files", data_files),
+            Route("/api/upload", upload, methods=["POST"]),
+            Route("/api/tests/add", add_test, methods=["POST"]),
+            Route("/api/tests/remove", remove_test, methods=["POST"]),
             Route("/files/{path:path}", files),
             WebSocketRoute("/ws", stream),
             Mount("/static", StaticFiles(directory=WEB), name="static"),

@@ -2,8 +2,8 @@
 
 Everything the workbench needs to run a positioning plan goes through this module, so that the
 page never speaks to an instrument or a controller itself. Its implementation drives the virtual
-machine (``sim`` instrument and ``sim`` controller): the plan's program is run on the built-in XZ
-module's X axis (:func:`axiscal.capture.virtual.simulate_motions`, with the controller's
+machine (``sim`` instrument and ``sim`` controller): the plan's program is run on an axis of a machine
+model (the visit's; the built-in XZ module's X by default; :func:`axiscal.capture.virtual.simulate_motions`, with the controller's
 compensation loaded for an as-left run), the laser's samples are streamed at the pace of the
 machine's clock (``speed`` times faster when asked), and the capture is
 :func:`axiscal.capture.files.capture_to_file` fed by that stream: the stops are those its
@@ -61,6 +61,14 @@ from axiscal.workbench.connection import SIM_RATE_HZ, check_spec, is_virtual
 __all__ = ["PlanRun", "DevicePlanRun"]
 
 _CHANNELS = ("reading_mm",) + ENVIRONMENT_COLUMNS[:3]
+#: the machine the virtual machine runs when none is named: the built-in XZ module
+_BUILT_IN = Path(str(resources.files("axiscal") / "data" / "xz_module" / "machine.toml"))
+
+
+def _checked_axis(axis: Any) -> str:
+    if not isinstance(axis, str) or axis not in ("X", "Y", "Z"):
+        raise AxiscalError(f"axis must be a linear axis letter (X, Y or Z), not {axis!r}")
+    return axis
 
 
 def _checked_partial(output: Path, resume: bool) -> Path:
@@ -178,6 +186,10 @@ class PlanRun:
         Seed of the virtual machine's scatter and noise.
     settings : CaptureSettings, optional, keyword-only
         Stop detection and matching.
+    axis : str, keyword-only
+        The linear axis the plan moves (default X).
+    machine : str or Path, optional, keyword-only
+        The machine description the virtual machine runs (default the built-in XZ module).
 
     Raises
     ------
@@ -194,7 +206,8 @@ class PlanRun:
 
     def __init__(self, plan_csv: str | Path, output: str | Path, *, instrument: str = "sim", controller: str = "sim",
                  compensation: str | None = None, controller_kind: str = "linuxcnc", resume: bool = False,
-                 speed: float = 1.0, dwell_s: float = 1.0, seed: int = 0, settings: CaptureSettings | None = None):
+                 speed: float = 1.0, dwell_s: float = 1.0, seed: int = 0, settings: CaptureSettings | None = None,
+                 axis: str = "X", machine: str | Path | None = None):
         from axiscal.compensation.readback import read_compensation
         from axiscal.model.machine import load_machine
 
@@ -215,9 +228,10 @@ class PlanRun:
             # a FANUC table is zero at its reference position, the first target (compensation_table's default)
             reference = float(np.nanmin(self.steps.target_m)) if controller_kind == "fanuc" else 0.0
             loaded = read_compensation(compensation, controller_kind, reference_position_m=reference)
-        machine = load_machine(Path(str(resources.files("axiscal") / "data" / "xz_module" / "machine.toml")))
-        simulated = simulate_motions(plan_motions(self.steps, dwell_s=dwell_s), machine, axis="X", compensation=loaded,
-                                     rate_hz=SIM_RATE_HZ, seed=seed)
+        self.axis = _checked_axis(axis)
+        model = load_machine(_BUILT_IN if machine is None else check_path("machine", machine))
+        simulated = simulate_motions(plan_motions(self.steps, axis=self.axis, dwell_s=dwell_s), model, axis=self.axis,
+                                     compensation=loaded, rate_hz=SIM_RATE_HZ, seed=seed)
         rec = simulated.recording
         self._dwells = simulated.dwells
         values = np.column_stack([rec.reading_m / MM] + [rec.channels[n] for n in _CHANNELS[1:]])
@@ -416,14 +430,15 @@ class DevicePlanRun(PlanRun):
 
     Parameters
     ----------
-    plan_csv, output, instrument, controller, compensation, controller_kind, resume, speed, dwell_s, seed, settings :
+    plan_csv, output, instrument, controller, compensation, controller_kind, resume, speed, dwell_s, seed, settings, axis, machine :
         As :class:`PlanRun` takes them.
     """
 
     def __init__(self, plan_csv: str | Path, output: str | Path, *, instrument: str = "sim", controller: str = "sim",
                  compensation: str | None = None, controller_kind: str = "linuxcnc", resume: bool = False,
-                 speed: float = 1.0, dwell_s: float = 1.0, seed: int = 0, settings: CaptureSettings | None = None):
-        from axiscal.capture.connected import open_run_devices
+                 speed: float = 1.0, dwell_s: float = 1.0, seed: int = 0, settings: CaptureSettings | None = None,
+                 axis: str = "X", machine: str | Path | None = None):
+        from axiscal.capture.connected import open_run_devices, sim_machine
 
         self.instrument = check_spec("instrument", instrument)
         self.controller = check_spec("controller", controller)
@@ -447,7 +462,11 @@ class DevicePlanRun(PlanRun):
         self._trace_t: list[np.ndarray] = []
         self._trace_x: list[np.ndarray] = []
         self._trace_n = 0
-        self._device, self._instrument = open_run_devices(self.controller, self.instrument, seed=seed)
+        self.axis = _checked_axis(axis)
+        # the virtual controller moves the run's axis of the visit's machine (the XZ module's X when none is named)
+        virtual = self.controller.lower() == "sim"
+        moved = sim_machine(machine=None if machine is None else check_path("machine", machine), axis=self.axis) if virtual else None
+        self._device, self._instrument = open_run_devices(self.controller, self.instrument, seed=seed, machine=moved)
         original = self._instrument.read
 
         def tapped(timeout_s: float):
@@ -495,7 +514,7 @@ class DevicePlanRun(PlanRun):
 
         try:
             self.result = run_to_file(self.plan_csv, self._device, self._instrument, self.output,
-                                      drive=DriveSettings(dwell_s=float(self.dwell_s)), settings=self.settings,
+                                      drive=DriveSettings(axis=self.axis, dwell_s=float(self.dwell_s)), settings=self.settings,
                                       resume=self._resume, progress=self._on_progress, on_stop=self._on_stop,
                                       before_move=self._before_move)
             self.state = "done"

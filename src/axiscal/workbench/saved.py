@@ -47,6 +47,12 @@ class SavedVisit:
         What Compensate answered (the table's text, file, curves).
     finished : dict or None
         What Finish answered (the reports' links), once finished.
+    tests : list of dict
+        The visit's tests (:mod:`axiscal.workbench.suite`): those asked for and those added from files.
+    plans : dict
+        The plan form of each axis planned, by axis letter.
+    machine : dict or None
+        The visit's machine: its name, chain and axes with their travels.
     """
 
     visit: dict[str, Any]
@@ -56,6 +62,9 @@ class SavedVisit:
     phase: str = "as-found"
     compensation: dict[str, Any] | None = None
     finished: dict[str, Any] | None = field(default=None)
+    tests: list[dict[str, Any]] = field(default_factory=list)
+    plans: dict[str, Any] = field(default_factory=dict)
+    machine: dict[str, Any] | None = None
 
     def as_json(self) -> dict[str, Any]:
         """The fields as ``workbench.json`` holds them.
@@ -65,7 +74,8 @@ class SavedVisit:
         dict
         """
         return {"visit": self.visit, "plan": self.plan, "connection": self.connection, "step": self.step,
-                "phase": self.phase, "compensation": self.compensation, "finished": self.finished}
+                "phase": self.phase, "compensation": self.compensation, "finished": self.finished,
+                "tests": self.tests, "plans": self.plans, "machine": self.machine}
 
 
 def read_saved(folder: Path) -> SavedVisit:
@@ -93,12 +103,16 @@ def read_saved(folder: Path) -> SavedVisit:
     step, phase = data.get("step", "visit"), data.get("phase", "as-found")
     if step not in STEPS or phase not in ("as-found", "as-left"):
         raise AxiscalError(f"step {step!r} or phase {phase!r} is not the workbench's", path=path)
-    kinds = {"plan": dict, "connection": dict, "compensation": dict, "finished": dict}
+    kinds = {"plan": dict, "connection": dict, "compensation": dict, "finished": dict, "plans": dict, "machine": dict}
     for name, kind in kinds.items():
         if data.get(name) is not None and not isinstance(data[name], kind):
             raise AxiscalError(f"'{name}' must be an object or null", path=path)
+    tests = data.get("tests") or []
+    if not isinstance(tests, list) or not all(isinstance(t, dict) and isinstance(t.get("id"), str)
+                                              and isinstance(t.get("entry"), dict) for t in tests):
+        raise AxiscalError("'tests' must be a list of the visit's tests", path=path)
     return SavedVisit(data["visit"], data.get("plan"), data.get("connection"), step, phase, data.get("compensation"),
-                      data.get("finished"))
+                      data.get("finished"), tests, data.get("plans") or {}, data.get("machine"))
 
 
 def write_saved(folder: Path, saved: SavedVisit) -> None:

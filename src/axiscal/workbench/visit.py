@@ -6,18 +6,21 @@ the units people read (mm, um, s). It computes no figure itself: the history's t
 the capture, the evaluation, the compensation table and its residuals, the report and the
 comparison are the library's.
 
-The folder of a visit is ``DATA/<machine>-<date>``: ``campaign.toml``, the plan (``plan_x.csv``
-and its program), the as-found run (``positioning_x.csv``), ``compensation/``, and ``as-left/``
-with the run taken with the compensation loaded; the reports go to ``report/`` and
-``as-left/report/``. Every file is written atomically.
+The folder of a visit is ``DATA/<machine>-<date>``: ``campaign.toml``, the machine's description
+(``machine.toml`` and its error tables), each linear axis's plan (``plan_x.csv`` and its program)
+and as-found run (``positioning_x.csv``), ``files/`` with the data of the tests taken from files,
+``compensation/``, and ``as-left/`` with the runs taken with the compensation loaded; the reports
+go to ``report/`` and ``as-left/report/``. Every file is written atomically. The visit's machine and
+tests are kept by :class:`~axiscal.workbench.visit_tests.VisitTests`, the history's views by
+:class:`~axiscal.workbench.history_views.HistoryViews`, both parts of :class:`Workbench`.
 """
 
 from __future__ import annotations
 
 import json
 import re
-import tempfile
 import threading
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -29,8 +32,12 @@ from axiscal.io.atomic import write_text
 from axiscal.io.templates import render_template
 from axiscal.units import MM, UM
 from axiscal.io.arguments import check_number
-from axiscal.workbench.forms import PlanForm, VisitForm, checked
-from axiscal.workbench.connection import connect, serial_ports
+from axiscal.workbench.forms import FormErrors, PlanForm, VisitForm, checked
+from axiscal.workbench.history_views import HistoryViews
+from axiscal.workbench.suite import campaign_with_tests, checked_plan, plan_file, run_file, wanted_tests
+from axiscal.workbench.visit_tests import MACHINE_KEYS, VisitTests
+from axiscal.workbench.connection import SIM_RATE_HZ, connect, is_virtual, serial_ports
+from axiscal.workbench.machines import MACHINE_FILE, example_machine, machine_axes
 from axiscal.workbench.budget import decision_of, remember_budget, write_budget
 from axiscal.workbench.laboratory import laboratory_defaults, remember_laboratory
 from axiscal.workbench.runner import PlanRun
@@ -52,7 +59,7 @@ def _slug(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9]+", "-", text).strip("-").lower()[:60] or "visit"
 
 
-class Workbench:
+class Workbench(HistoryViews, VisitTests):
     """The visit the page works on, and the history it reads.
 
     Parameters
@@ -105,100 +112,52 @@ class Workbench:
         except AxiscalError as exc:
             self.notice = f"the visit that was open is not opened again: {exc}"
 
-    def check_history(self) -> None:
-        """Open the history database as the page's first reading will: one line if it cannot be used.
-
-        A database that does not exist yet is made (an SQLite file: the history's own tables), one of an
-        older schema brought up to date, as :func:`axiscal.history.machine_histories` does.
-
-        Raises
-        ------
-        AxiscalError
-            As the ``axiscal history`` commands: for a file that is not a database, one cut short or
-            damaged, of a newer schema, another application's tables, a folder, a URL SQLAlchemy does
-            not read or whose driver is missing, a server that cannot be reached.
-        """
-        from axiscal.history import open_engine
-
-        with self._history_lock:
-            open_engine(self.db).dispose()
-
-    # -- 1. machines -------------------------------------------------------------------------------
-    def machines(self) -> list[dict[str, Any]]:
-        """The machines of the history: last visit, verdict, next due date, trend of the first figure."""
-        from axiscal.history import machine_histories, machine_trends
-
-        out = []
-        with self._history_lock:
-            histories = machine_histories(url=self.db)
-        for history in histories:
-            trends = machine_trends(history)
-            due = min((t.next_date for t in trends), default=None)
-            first = trends[0] if trends else None
-            last = history.campaigns[-1]
-            out.append({
-                "machine": history.label, "visits": len(history.campaigns), "last_date": last.date.isoformat(),
-                "verdict": last.verdict, "next_due": None if due is None else due.isoformat(),
-                "spark_figure": None if first is None else first.figure,
-                "spark": [] if first is None else [float(v / first.tolerance) for v in first.values],
-            })
-        return out
-
-    def machine(self, label: str) -> dict[str, Any]:
-        """One machine's visits and the figures whose trend can be drawn."""
-        from axiscal.history import machine_history, machine_trends
-
-        history = machine_history(label, url=self.db)
-        trends = machine_trends(history)
-        reports = self._reports()
-        return {
-            "machine": history.label,
-            "visits": [{"id": c.id, "date": c.date.isoformat(), "title": c.title, "verdict": c.verdict,
-                        "figures": len(c.figures), "report": reports.get(c.results_sha256)}
-                       for c in reversed(history.campaigns)],
-            "trends": [{"figure": t.figure, "unit": t.unit, "next_due": t.next_date.isoformat(),
-                        "latest": float(t.values[-1]), "tolerance": t.tolerance} for t in trends],
-        }
-
-    def _reports(self) -> dict[str, str]:
-        """The reports of the data folder's visits by their results.json's SHA-256 (as the history keys them)."""
-        import hashlib
-
-        found = {}
-        for results in [*self.data.glob("*/report/results.json"), *self.data.glob("*/as-left/report/results.json")]:
-            html = results.with_name("report.html")
-            if html.is_file():
-                found[hashlib.sha256(results.read_bytes()).hexdigest()] = self._rel(html)
-        return found
-
-    def trend_svg(self, label: str, figure: str) -> str:
-        """The history's trend plot of one figure of a machine, as SVG text."""
-        from axiscal.history import figure_trend
-
-        with tempfile.TemporaryDirectory(prefix="axiscal-trend-") as folder:
-            path = Path(folder) / "trend.svg"
-            with self._plot_lock:
-                figure_trend(label, figure, url=self.db, plot=path)
-            return path.read_text(encoding="utf-8")
-
     # -- 2. new visit ------------------------------------------------------------------------------
     def new_visit(self, data: Any) -> dict[str, Any]:
-        """Check the campaign form and write ``campaign.toml`` in a new visit folder."""
-        form = checked("visit", data)
+        """Check the campaign form, the machine and the tests wanted; write the machine and ``campaign.toml``.
+
+        The machine (``machine_choice``: ``example``, a ``machine.toml`` of the data folder, or ``new``
+        with ``machine_chain`` and ``machine_travels``) is copied into the visit's folder; ``tests``
+        names the tests wanted (``positioning-X`` ...; without it, the positioning of each of ``axes``).
+        """
+        if not isinstance(data, dict):
+            checked("visit", data)  # names what the page must send
+        data = dict(data)
+        chosen = {k: data.pop(k) for k in MACHINE_KEYS if k in data}
+        data.setdefault("axes", ["X"])  # the visit's tests are its list (chosen), not the form's axes
+        fields: dict[str, str] = {}
+        form = None
+        try:
+            form = checked("visit", data)
+        except FormErrors as exc:
+            fields |= exc.fields
+        try:
+            axes = data["axes"] if isinstance(data["axes"], list) else ["X"]
+            source, described, tests = self._checked_machine_and_tests(
+                chosen, form.machine if form is not None else str(data.get("machine") or "machine"), axes)
+        except FormErrors as exc:
+            fields |= exc.fields
+        if fields:
+            raise FormErrors(fields)
         folder = self.data / f"{_slug(form.machine)}-{form.date.isoformat()}"
-        text = render_template("workbench/campaign.toml.j2", filters={"toml": _toml}, keep_trailing_newline=True,
-                               **form.model_dump())
+        described = self._set_up_machine(folder, source, form.machine)
         write_budget(folder, form.model_dump(mode="json"))  # before campaign.toml, which names it
-        write_text(folder / "campaign.toml", text)
         remember_laboratory(self.data, form.model_dump(mode="json"))
         remember_budget(self.data, form.model_dump(mode="json"))
         with self._lock:
             self.folder, self.visit, self.plan, self.run, self.compensation = folder, form, None, None, None
             self.phase = "as-found"
-            self.saved = SavedVisit(form.model_dump(mode="json"), step="visit")
+            self.saved = SavedVisit(form.model_dump(mode="json"), step="visit", tests=tests, machine=described)
             self._save()
             remember_open(self.data, folder)
-        return {"folder": self._rel(folder), "campaign": self._rel(folder / "campaign.toml"), "text": text}
+        text = self.write_campaign().read_text(encoding="utf-8")
+        return {"folder": self._rel(folder), "campaign": self._rel(folder / "campaign.toml"), "text": text,
+                "machine": described, "tests": self.tests()}
+
+    def _render_campaign(self, **overrides: Any) -> str:
+        """campaign.toml as the New visit form writes it, without its tests (the visit's list adds them)."""
+        return render_template("workbench/campaign.toml.j2", filters={"toml": _toml}, keep_trailing_newline=True,
+                               **(self.visit.model_dump() | {"axes": []} | overrides))
 
     def _visit_folder(self) -> Path:
         if self.folder is None or self.visit is None:
@@ -216,12 +175,13 @@ class Workbench:
 
     # -- 3. plan -----------------------------------------------------------------------------------
     def make_plan(self, data: Any) -> dict[str, Any]:
-        """Check the plan form, write the cycle CSV and the program; return the table and the program."""
+        """Check the plan form of an axis, write its cycle CSV and program; return the table and the program."""
         from axiscal.io.gcode import dialect as find_dialect
         from axiscal.positioning.plan import plan_test, write_plan
 
-        form = checked("plan", data)
+        form = checked_plan(data, self._axes())
         folder = self._visit_folder()
+        self._test(f"positioning-{form.axis}", run=True)
         plan = plan_test(form.start_mm * MM, form.end_mm * MM, form.targets, runs=form.runs,
                          overrun_m=form.overrun_mm * MM, seed=form.seed)
         name = form.axis.lower()
@@ -231,15 +191,23 @@ class Workbench:
         with self._lock:
             self.plan = form
             self.saved.plan = form.model_dump(mode="json")
+            self.saved.plans[form.axis] = self.saved.plan
             self._save()
         return self._plan_view()
 
-    def _plan_view(self) -> dict[str, Any]:
-        """The plan's table and program, as the page shows them, read from the visit's files."""
+    def _plan_of(self, axis: str) -> Any:
+        """The plan form of an axis planned (its files there), or None."""
+        saved = self.saved.plans.get(axis) if self.saved is not None else None
+        if saved is None or not (self._visit_folder() / plan_file(axis)).is_file():
+            return None
+        return checked_plan(saved, self._axes())
+
+    def _plan_view(self, form: Any = None) -> dict[str, Any]:
+        """The plan's table and program (the last planned, or ``form``'s), as the page shows them, read from the files."""
         from axiscal.capture.steps import plan_steps
         from axiscal.io.gcode import dialect as find_dialect
 
-        form, folder = self.plan, self._visit_folder()
+        form, folder = form or self.plan, self._visit_folder()
         name = form.axis.lower()
         csv_path = folder / f"plan_{name}.csv"
         program = folder / f"{name}{find_dialect(form.dialect).extension}"
@@ -250,7 +218,8 @@ class Workbench:
         targets = np.unique(np.round(steps.target_m[np.isfinite(steps.target_m)] / UM) * UM)
         return {"plan_csv": self._rel(csv_path), "program": self._rel(program),
                 "program_text": program.read_text(encoding="utf-8"), "steps": rows,
-                "targets_mm": [float(t / MM) for t in targets], "readings": int(steps.readings)}
+                "targets_mm": [float(t / MM) for t in targets], "readings": int(steps.readings), "axis": form.axis,
+                "form": form.model_dump(mode="json")}
 
     # -- 4. connect --------------------------------------------------------------------------------
     def ports(self) -> list[dict[str, Any]]:
@@ -261,6 +230,12 @@ class Workbench:
         """Check both specs, open the instrument and the controller; their lights, reading, position and what they told."""
         form = checked("connect", data)
         c = connect(form.instrument, form.controller)
+        if is_virtual(c.instrument, c.controller):  # the virtual machine is the visit's machine, every axis of it
+            described = machine_axes(self.machine_file()) if self.folder is None else {"name": self.visit.machine} | {
+                "axes": self._axes()}
+            travels = ", ".join(f"{a['axis']} {a['start']:g} to {a['end']:g} {a['unit']}" for a in described["axes"])
+            c = replace(c, description=f"virtual laser ({SIM_RATE_HZ:g} Hz) on the virtual {described['name']}: {travels}",
+                        controller_told=c.controller_told + (("machine", described["name"]), ("axes", travels)))
         self.connection = c
         if self.saved is not None:
             with self._lock:
@@ -273,11 +248,19 @@ class Workbench:
                 "refused": c.refused}
 
     # -- 5. run ------------------------------------------------------------------------------------
-    def start_run(self, phase: str = "as-found", *, resume: bool = False) -> dict[str, Any]:
-        """Start (or resume after a broken connection) the plan's run of a phase."""
+    def start_run(self, phase: str = "as-found", *, resume: bool = False, test: str | None = None,
+                  repeat: bool = False) -> dict[str, Any]:
+        """Start (or resume after a broken connection, or repeat afresh) the run of a test (the last planned's by default)."""
+        from axiscal.capture.files import partial_path
+
         folder = self._phase_folder(phase)
-        if self.plan is None:
+        if test is None and self.plan is None:
             raise AxiscalError("plan the test first (Plan)")
+        test = self._test(test if test is not None else f"positioning-{self.plan.axis}", run=True)
+        axis = test["axis"]
+        plan = self._plan_of(axis)
+        if plan is None:
+            raise AxiscalError(f"plan the positioning of {axis} first (Plan)")
         if self.connection is None:
             raise AxiscalError("connect the instrument and the controller first (Connect)")
         if self.connection.refused:
@@ -288,16 +271,20 @@ class Workbench:
         if phase == "as-left":
             if self.compensation is None:
                 raise AxiscalError("write the compensation table first (Compensate)")
+            if self.compensation.get("axis", "X") != axis:
+                raise AxiscalError(f"the table is for {self.compensation.get('axis', 'X')}: make {axis}'s first (Compensate)")
             compensation = self.compensation["text"]
             self._write_as_left_campaign()
-        name = self.plan.axis.lower()
-        output = folder / f"positioning_{name}.csv"
-        run = PlanRun(self._visit_folder() / f"plan_{name}.csv", output, instrument=self.connection.instrument,
+        output = folder / run_file(axis)
+        if repeat and not resume:  # the test run again from its start: a run it left short is set aside
+            partial_path(output).unlink(missing_ok=True)
+        run = PlanRun(self._visit_folder() / plan_file(axis), output, instrument=self.connection.instrument,
                       controller=self.connection.controller, compensation=compensation,
                       controller_kind=self.visit.controller, resume=resume, speed=self.speed,
-                      dwell_s=self.plan.dwell_s, seed=0 if phase == "as-found" else 1)
+                      dwell_s=plan.dwell_s, seed=0 if phase == "as-found" else 1, axis=axis, machine=self.machine_file())
+        run.test, run.phase = test["id"], phase
         with self._lock:
-            self.run, self.phase = run, phase
+            self.run, self.phase, self.plan = run, phase, plan
             self.saved.phase = phase
             self._save()
         run.start()
@@ -326,29 +313,44 @@ class Workbench:
         snap = self.run.snapshot()
         if snap["run_csv"]:
             snap["run_csv"] = self._rel(Path(snap["run_csv"]))
-        return snap | {"phase": self.phase}
+        return snap | {"phase": self.phase, "test": getattr(self.run, "test", None)}
 
     # -- 6. results --------------------------------------------------------------------------------
-    def results(self, phase: str = "as-found") -> dict[str, Any]:
-        """Evaluate the phase's test as the campaign does: figures with U against the tolerance, the plot."""
+    def results(self, phase: str = "as-found", test: str | None = None) -> dict[str, Any]:
+        """Evaluate the phase's tests (or one) as the campaign does: figures with U against the tolerance, the plots.
+
+        A test whose evaluation fails is answered with its one line (``error``), the others evaluated.
+        """
         from axiscal.campaign import load_campaign, run_test
 
+        if phase == "as-found":
+            self.write_campaign()
+        elif phase == "as-left" and (self._phase_folder(phase) / "campaign.toml").is_file():
+            self._write_as_left_campaign()
         campaign = load_campaign(self._phase_folder(phase))
         out = []
         for spec in campaign.tests:
-            with self._plot_lock:
-                result = run_test(campaign, spec)
+            if test is not None and spec.id != test:
+                continue
+            try:
+                with self._plot_lock:
+                    result = run_test(campaign, spec)
+            except AxiscalError as exc:
+                out.append({"id": spec.id, "verdict": "error", "error": str(exc).replace(f"{self.data}/", ""),
+                            "checks": [], "plots": [], "warnings": []})
+                continue
             out.append({
                 "id": result.id, "verdict": result.verdict, "method": result.method,
                 "checks": [{"figure": c.figure, "value": c.value, "U": c.U, "limit": c.limit, "unit": c.unit,
                             "result": c.result} for c in result.checks],
                 "plots": [{"title": p.title, "svg": p.svg} for p in result.plots], "warnings": result.warnings,
+                "table": [{"label": f.label, "value": f.value, "unit": f.unit} for f in result.table],
             })
         return {"phase": phase, "tests": out, **decision_of(campaign)}
 
     # -- 7. compensate -----------------------------------------------------------------------------
-    def compensate(self) -> dict[str, Any]:
-        """The controller's table from the as-found run, its file, the measured error and the residual."""
+    def compensate(self, axis: str | None = None) -> dict[str, Any]:
+        """The controller's table from an axis's as-found run (the last planned by default), its file, the curves."""
         from axiscal.campaign.runner import COMPENSATION_FILES
         from axiscal.compensation import error_curve, residuals
         from axiscal.compensation.formats import compensation_table
@@ -356,10 +358,10 @@ class Workbench:
         from axiscal.positioning.reader import read_positioning_run
 
         folder = self._visit_folder()
-        if self.plan is None:
+        if axis is None and self.plan is None:
             raise AxiscalError("plan and run the test first")
-        axis = self.plan.axis
-        run_csv = folder / f"positioning_{axis.lower()}.csv"
+        axis = self._test(f"positioning-{axis or self.plan.axis}", run=True)["axis"]
+        run_csv = folder / run_file(axis)
         if not run_csv.is_file():
             raise AxiscalError("run the as-found test first (Run)")
         controller = self.visit.controller
@@ -376,7 +378,7 @@ class Workbench:
         answer = {"controller": controller, "file": self._rel(path), "text": result.text, "description": result.description,
                   "largest_residual_um": result.largest_residual_m / UM, "targets_mm": (x / MM).tolist(),
                   "measured_um": {"+": (curve.up / UM).tolist(), "-": (curve.down / UM).tolist()},
-                  "residual_um": left}
+                  "residual_um": left, "axis": axis}
         with self._lock:
             self.compensation = answer
             self.saved.compensation = answer
@@ -385,14 +387,16 @@ class Workbench:
 
     def _write_as_left_campaign(self) -> None:
         folder = self._visit_folder()
-        form = self.visit.model_dump() | {"title": f"{self.visit.title} (as left)"}
-        text = render_template("workbench/campaign.toml.j2", filters={"toml": _toml}, keep_trailing_newline=True, **form)
-        write_text(folder / "as-left" / "campaign.toml", text)
+        text = self._render_campaign(title=f"{self.visit.title} (as left)")
+        # the axis the table corrects, and every axis run as left before
+        axis, left = (self.compensation or {}).get("axis", "X"), folder / "as-left"
+        tests = [t for t in self._tests() if t["source"] == "run" and (t["axis"] == axis or (left / run_file(t["axis"])).is_file())]
+        write_text(folder / "as-left" / "campaign.toml", campaign_with_tests(text, tests, left, model=None))
 
     def _as_left_run(self) -> Path:
         """The as-left run's file, or what Before / after waits for, in one line."""
         folder = self._visit_folder()
-        name = f"positioning_{(self.plan.axis if self.plan is not None else 'X').lower()}.csv"
+        name = run_file((self.compensation or {}).get("axis") or (self.plan.axis if self.plan is not None else "X"))
         run = self.run
         if self.phase == "as-left" and run is not None and run.state in ("ready", "running", "paused"):
             raise AxiscalError(f"Before / after waits for the as-left run to end ({len(run.stops)} of {run.total} stops"
@@ -420,6 +424,8 @@ class Workbench:
 
         folder = self._visit_folder()
         self._as_left_run()
+        self.write_campaign()
+        self._write_as_left_campaign()
         with self._plot_lock:
             before = results_payload(run_campaign(load_campaign(folder)))
             after = run_campaign(load_campaign(folder / "as-left"), compare=before)
@@ -443,7 +449,10 @@ class Workbench:
         with self._plot_lock:
             # the visit's last report is its calibration certificate, when the New visit form stated one
             certify = bool(self.visit.certificate_number)
-            left_run = (folder / "as-left" / "positioning_x.csv").is_file()
+            self.write_campaign()
+            left_run = any((folder / "as-left" / run_file(t["axis"])).is_file() for t in self._tests() if t["source"] == "run")
+            if left_run:
+                self._write_as_left_campaign()
             found = report_campaign(folder, pdf=pdf, history=True, db=self.db, certificate=certify and not left_run)
             links += self._links(found, "as-found")
             if left_run:
@@ -480,8 +489,14 @@ class Workbench:
         """Open the visit kept in ``folder`` at the step it was at (its devices are connected again by hand)."""
         saved = read_saved(folder)
         visit = checked("visit", saved.visit)
-        plan = checked("plan", saved.plan) if saved.plan is not None else None
-        if plan is not None and not (folder / f"plan_{plan.axis.lower()}.csv").is_file():
+        if saved.machine is None:  # a visit kept before it named its machine: the example's, its axes tested
+            saved.machine = machine_axes(folder / MACHINE_FILE if (folder / MACHINE_FILE).is_file() else example_machine())
+        if not saved.tests:
+            saved.tests = wanted_tests([f"positioning-{a}" for a in saved.visit.get("axes") or ["X"]], saved.machine["axes"])
+        if saved.plan is not None and not saved.plans:
+            saved.plans = {saved.plan.get("axis", "X"): saved.plan}
+        plan = checked_plan(saved.plan, saved.machine["axes"]) if saved.plan is not None else None
+        if plan is not None and not (folder / plan_file(plan.axis)).is_file():
             plan = None
         with self._lock:
             same = folder == self.folder
@@ -533,8 +548,10 @@ class Workbench:
                 "lights": {"instrument": c.instrument_state, "controller": c.controller_state}, "description": c.description,
                 "told": {"instrument": [list(t) for t in c.instrument_told], "controller": [list(t) for t in c.controller_told]}},
             "compensation": self.compensation, "finished": self.saved.finished,
-            "runs": {phase: (self._phase_folder(phase) / f"positioning_{(self.plan.axis if self.plan else 'X').lower()}.csv").is_file()
+            "runs": {phase: (self._phase_folder(phase) / run_file(self.plan.axis if self.plan else "X")).is_file()
                      for phase in PHASES},
+            "machine": self.saved.machine, "tests": self.tests(),
+            "plans": {axis: self._plan_view(plan) for axis in self.saved.plans if (plan := self._plan_of(axis)) is not None},
         }
 
     def unfinished(self) -> list[dict[str, Any]]:
