@@ -249,3 +249,104 @@ def test_the_visit_survives_a_reload_a_restart_and_a_second_tab(browser_page, ch
         assert not browser_page.errors, browser_page.errors
     finally:
         server.stop()
+
+
+def no_sideways_scroll(page) -> None:
+    """The step shown fits the 1366 px wide screen: nothing to scroll horizontally."""
+    assert page.evaluate("document.documentElement.scrollWidth") <= 1366
+
+
+def test_a_three_axis_visit_with_tests_from_files(browser_page, tmp_path):
+    """The example machine's X, Y and Z planned, run (Y run again) and evaluated, with tests from files beside them."""
+    from pathlib import Path
+
+    examples = Path(__file__).resolve().parents[2] / "examples"
+    data = tmp_path / "data"
+    (data / "instrument").mkdir(parents=True)
+    for name in ("straightness_profile.csv", "ballbar/ballbar_run.csv", "squareness_x.csv"):
+        (data / "instrument" / Path(name).name).write_bytes((examples / name).read_bytes())
+    (tmp_path / "bad.csv").write_text("position_mm,deviation_um\n0,1\n10,abc\n20,2\n")
+    server = serve_workbench(data, db=str(tmp_path / "history.sqlite"), port=0, speed=SPEED)
+    try:
+        page = browser_page.page
+        page.goto(server.url)
+
+        # 2. the visit: the example machine's three axes offered as tests, all three kept
+        page.get_by_role("button", name="2 New visit").click()
+        page.wait_for_selector("#test-boxes input[value=positioning-Z]")
+        assert page.locator("#test-boxes input:checked").count() == 3
+        for name, value in {"title": "Three axes", "operator": "J. Doe", "machine": "VMC 3", "date": "2026-11-26"}.items():
+            page.fill(f"#visit-form [name={name}]", value)
+        page.click("#visit-form button[type=submit]")
+        page.wait_for_selector("#file-block:not([hidden])")
+        no_sideways_scroll(page)
+        # tests from files: from the data folder, by upload, and a bad file refused in one line
+        page.select_option("#file-kind", "straightness")
+        page.fill("#file-form [name=file]", "instrument/straightness_profile.csv")
+        page.fill("#file-form [name=axis]", "X")
+        page.fill("#file-form [name=direction]", "Y")
+        page.click("#file-form button[type=submit]")
+        page.wait_for_selector("#file-added:has-text('Added and checked')")
+        page.select_option("#file-kind", "ballbar")
+        page.fill("#file-form [name=file]", "instrument/ballbar_run.csv")
+        page.fill("#file-form [name=radius_mm]", "100")
+        page.select_option("#file-form [name=plane]", "XY")
+        page.click("#file-form button[type=submit]")
+        page.wait_for_selector(".tests-list[data-mode=visit] tr[data-test=ballbar-XY]")
+        page.select_option("#file-kind", "straightness")
+        page.set_input_files("#file-form input[data-upload=file]", str(tmp_path / "bad.csv"))
+        page.wait_for_function("document.querySelector('#file-form [name=file]').value.endsWith('files/bad.csv')")
+        page.fill("#file-form [name=direction]", "Z")
+        page.click("#file-form button[type=submit]")
+        page.wait_for_selector("#file-added.warn-line")
+        assert page.locator("#file-added").text_content() == "vmc-3-2026-11-26/files/bad.csv:3: column 'deviation_um': 'abc' is not a number"
+        assert page.locator(".tests-list[data-mode=visit] tbody tr").count() == 5
+
+        # 3. plan: each axis chosen in the list and planned; a travel beyond the axis named beside its field
+        page.get_by_role("button", name="3 Plan").click()
+        assert page.locator(".tests-list[data-mode=plan] tbody tr").count() == 3
+        for axis in "XYZ":
+            page.locator(f".tests-list[data-mode=plan] tr[data-test=positioning-{axis}] button").click()
+            page.fill("#plan-form [name=start_mm]", "20")
+            page.fill("#plan-form [name=end_mm]", "900" if axis == "Z" else "120")
+            page.fill("#plan-form [name=runs]", "1")
+            page.click("#plan-form button[type=submit]")
+            if axis == "Z":
+                page.wait_for_selector(".field-error[data-for=end_mm]:not(:empty)")
+                assert page.locator(".field-error[data-for=end_mm]").text_content() == "beyond the travel of Z (0 to 400 mm)"
+                page.fill("#plan-form [name=end_mm]", "120")
+                page.click("#plan-form button[type=submit]")
+            page.wait_for_selector(f"#program:has-text('G1 {axis}')")
+        no_sideways_scroll(page)
+
+        # 4, 5: the virtual machine is every axis of the visit's machine; each axis run from the list, Y again
+        page.get_by_role("button", name="4 Connect").click()
+        page.click("#connect-form button[type=submit]")
+        page.wait_for_selector("#light-instrument[data-state=ok]")
+        assert "Y 0 to 500 mm" in page.locator("#connect-description").text_content()
+        page.get_by_role("button", name="5 Run").click()
+        for axis in "XYZY":
+            row = f".tests-list[data-mode=run] tr[data-test=positioning-{axis}]"
+            page.locator(f"{row} button").click()
+            page.wait_for_selector(f"{row} td.state[data-state=done]:has-text('done')", timeout=60_000)
+            page.wait_for_selector("#run-state[data-state=done]")
+            assert page.locator("#progress").text_content() == "10 of 10 stops"
+        assert page.locator(".tests-list[data-mode=run] td.state[data-state=done]").count() == 3
+        no_sideways_scroll(page)
+
+        # 6. results: every test evaluated by the campaign, those from files with their figures
+        page.get_by_role("button", name="6 Results").click()
+        page.click("#show-results")
+        page.wait_for_function("document.querySelectorAll('#results article.test').length === 5")
+        assert page.locator("#result-positioning-Z h3").text_content().startswith("Positioning of Z")
+        assert page.locator("#result-ballbar-XY table.figures tr").count() > 0
+        no_sideways_scroll(page)
+
+        # 8. finish: one report of every test
+        page.get_by_role("button", name="8 Finish").click()
+        page.click("#finish")
+        page.wait_for_selector("#report-links li", timeout=60_000)
+        assert "over 5 tests" in page.locator("#finish-verdict").text_content()
+        assert not browser_page.errors, browser_page.errors
+    finally:
+        server.stop()

@@ -459,7 +459,8 @@ class Workbench(HistoryViews, VisitTests):
                 left = report_campaign(folder / "as-left", compare=found.results, pdf=pdf, history=True, db=self.db,
                                        certificate=certify)
                 links += self._links(left, "as-left")
-        answer = {"files": links, "verdict": found.results_data.verdict}
+        answer = {"files": links, "verdict": found.results_data.verdict,
+                  "tests": [{"id": t.id, "verdict": t.verdict} for t in found.results_data.tests]}
         with self._lock:
             self.saved.finished = answer
             self._save()

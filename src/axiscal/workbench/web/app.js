@@ -7,7 +7,8 @@ const UNITS = { um: "µm", arcsec: "″", mm: "mm" };
 const unit = (name) => UNITS[name] || name;
 const fmt = (value, digits) => (value === null || value === undefined || !Number.isFinite(value) ? "—" : value.toFixed(digits));
 
-const view = { plan: null, trace: { t: [], x: [] }, lastDraw: 0, runState: "idle", samples: 0, restoring: false };
+const view = { plan: null, trace: { t: [], x: [] }, lastDraw: 0, runState: "idle", samples: 0, restoring: false,
+  tests: [], test: null, plans: {}, machine: null, choices: [], runTest: null, runAxis: null };
 
 // this tab's id, kept over a reload of the tab (not shared with another tab): the visit is held by one tab at a time
 const TAB = sessionStorage.getItem("axiscal-tab") || `${Date.now().toString(36)}-${Math.random().toString(36).slice(2, 10)}`;
@@ -31,11 +32,12 @@ function show(step) {
 document.querySelectorAll("nav button").forEach((b) => b.addEventListener("click", () => show(b.dataset.step)));
 
 // ---- calls --------------------------------------------------------------------------------------
-async function call(method, url, body) {
+async function call(method, url, body, raw) {
   const options = { method, headers: { "x-axiscal-tab": TAB } };
   if (body !== undefined) { options.headers["content-type"] = "application/json"; options.body = JSON.stringify(body); }
+  if (raw !== undefined) { options.headers["content-type"] = "application/octet-stream"; options.body = raw; }
   const response = await fetch(url, options);
-  const data = await response.json();
+  const data = response.status === 413 ? { error: "the file is too large for the workbench (16 MiB at most)" } : await response.json();
   const error = $("#error");
   if (response.status === 409 && data.readonly) readonly(true);
   if (!response.ok) {
@@ -115,7 +117,7 @@ function polyline(svg, points, cls) {
 function drawTrace(stops) {
   const svg = $("#trace"), { t, x } = view.trace;
   if (!t.length) { svg.replaceChildren(); return; }
-  const targets = view.plan ? view.plan.targets_mm : [];
+  const plan = view.plans[view.runAxis] || view.plan, targets = plan ? plan.targets_mm : [];
   const { sx, sy } = frame(svg, [t[0], t[t.length - 1]], x.concat(targets), "time (s)", "reading (mm)");
   for (const target of targets) polyline(svg, [[sx(t[0]), sy(target)], [sx(t[t.length - 1]), sy(target)]], "target");
   // one point per pixel column (its lowest and highest sample): every sample is kept, the screen shows its envelope
@@ -131,8 +133,8 @@ function drawTrace(stops) {
 }
 
 function drawDeviation(stops) {
-  const svg = $("#deviation");
-  const targets = view.plan ? view.plan.targets_mm : stops.map((s) => s.target_mm);
+  const svg = $("#deviation"), plan = view.plans[view.runAxis] || view.plan;
+  const targets = plan ? plan.targets_mm : stops.map((s) => s.target_mm);
   if (!targets.length) { svg.replaceChildren(); return; }
   const { sx, sy } = frame(svg, targets, stops.length ? stops.map((s) => s.deviation_um) : [0], "target (mm)", "deviation (µm)");
   for (const s of stops) {
@@ -249,7 +251,177 @@ $("#visit-form").addEventListener("submit", (event) => {
     $("#visit-saved").textContent = `Written: ${data.campaign}`;
     $("#visit-name").textContent = data.folder;
     view.plan = null;
+    view.machine = data.machine; view.plans = {}; view.test = null;
+    $("#plan-table tbody").replaceChildren(); $("#program").textContent = "";
+    $("#file-block").hidden = false;
+    showTests(data.tests); loadDataFiles(); loadMachineChoices();
   });
+});
+
+// ---- the visit's machine and its tests --------------------------------------------------------------
+// a call whose answer only refreshes what is shown: it leaves the line of the last mistake as it is
+async function quiet(url) {
+  const response = await fetch(url, { headers: { "x-axiscal-tab": TAB } });
+  if (!response.ok) throw new Error(url);
+  return response.json();
+}
+
+async function loadMachineChoices() {
+  try { view.choices = await quiet("/api/machine-choices"); } catch (e) { return; }
+  const select = $("#machine-choice"), keep = select.value;
+  select.replaceChildren();
+  for (const m of [...view.choices, { choice: "new", label: "a new machine: chain and travels" }]) {
+    const o = document.createElement("option"); o.value = m.choice; o.textContent = m.problem ? `${m.label}: ${m.problem}` : m.label;
+    o.disabled = Boolean(m.problem); select.appendChild(o);
+  }
+  if ([...select.options].some((o) => o.value === keep)) select.value = keep;
+  machineChosen();
+}
+
+// the axes of the machine chosen (of the chain typed, for a new one): one box for the positioning of each
+function chosenAxes() {
+  if ($("#machine-choice").value === "new") {
+    const chain = ($("#visit-form").elements.machine_chain.value || "").toUpperCase();
+    return [...new Set(chain)].filter((c) => "XYZABC".includes(c)).map((axis) => ({ axis, rotary: "ABC".includes(axis) }));
+  }
+  const chosen = (view.choices || []).find((c) => c.choice === $("#machine-choice").value);
+  return chosen ? chosen.axes : ["X", "Y", "Z"].map((axis) => ({ axis, rotary: false }));
+}
+
+function machineChosen() {
+  const isNew = $("#machine-choice").value === "new";
+  document.querySelectorAll("[data-new-machine]").forEach((label) => { label.hidden = !isNew; });
+  const boxes = $("#test-boxes"), was = new Map([...boxes.querySelectorAll("input")].map((b) => [b.value, b.checked]));
+  boxes.replaceChildren();
+  for (const a of chosenAxes()) {
+    const label = document.createElement("label"), box = document.createElement("input"), id = `positioning-${a.axis}`;
+    box.type = "checkbox"; box.name = "tests"; box.value = id; box.checked = was.has(id) ? was.get(id) : true;
+    label.className = "check";
+    label.append(box, a.rotary ? ` Rotary positioning of ${a.axis} (its run from a file)` : ` Positioning of ${a.axis}`);
+    boxes.appendChild(label);
+  }
+}
+$("#machine-choice").addEventListener("change", machineChosen);
+$("#visit-form").elements.machine_chain.addEventListener("input", machineChosen);
+loadMachineChoices();
+
+async function loadTests() {
+  try { showTests(await quiet("/api/tests")); } catch (e) { /* no visit open */ }
+}
+
+// the visit's tests, each with its state, in each step's list; the test chosen is the one Plan and Run work on
+function showTests(tests) {
+  if (tests) view.tests = tests;
+  if (!view.tests.some((t) => t.id === view.test)) {
+    const first = view.tests.find((t) => t.source === "run") || view.tests[0];
+    view.test = first ? first.id : null;
+  }
+  document.querySelectorAll(".tests-list").forEach((div) => renderTests(div, div.dataset.mode));
+  selectTest(view.test, false);
+  const select = $("#comp-axis"), keep = select.value;
+  select.replaceChildren();
+  for (const t of view.tests.filter((t) => t.source === "run" && t.state === "done")) {
+    const o = document.createElement("option"); o.value = t.axis; o.textContent = t.axis; select.appendChild(o);
+  }
+  if ([...select.options].some((o) => o.value === keep)) select.value = keep;
+}
+
+function renderTests(div, mode) {
+  div.replaceChildren();
+  if (!view.tests.length) return;
+  const table = document.createElement("table"); table.className = "tests";
+  table.createTHead().insertRow().append(...["Test", "Data", "State", ""].map((text) => { const th = document.createElement("th"); th.textContent = text; return th; }));
+  const body = table.createTBody();
+  // Plan and Run list the tests run here; the tests from files are counted below them
+  const listed = mode === "plan" || mode === "run" ? view.tests.filter((t) => t.source === "run") : view.tests;
+  for (const t of listed) {
+    const tr = body.insertRow(); tr.dataset.test = t.id;
+    tr.classList.toggle("current", t.id === view.test && mode !== "visit" && mode !== "results");
+    tr.insertCell().textContent = t.label;
+    tr.insertCell().textContent = t.source === "run" ? (t.planned ? "run here (planned)" : "run here") : (t.files.length ? t.files.join(", ") : "from a file");
+    const state = tr.insertCell(); state.className = "state"; state.dataset.state = t.state;
+    state.textContent = t.message ? `${t.state}: ${t.message}` : t.state;
+    const cell = tr.insertCell(), actions = [];
+    if (mode === "plan" && t.source === "run") actions.push(["Plan", () => selectTest(t.id, true)]);
+    if (mode === "run" && t.source === "run") {
+      actions.push([t.state === "planned" ? "Run" : "Repeat", () => { selectTest(t.id, true); startRun("as-found", false, t.id, t.state !== "planned"); }]);
+    }
+    if (mode === "results" && t.state === "done") actions.push(["Show", () => { const a = document.getElementById("result-" + t.id); if (a) a.scrollIntoView(); }]);
+    if (mode === "visit" && t.source === "file" && t.files.length) actions.push(["Remove", () => removeTest(t.id)]);
+    for (const [text, act] of actions) {
+      const button = document.createElement("button"); button.type = "button"; button.textContent = text;
+      button.disabled = t.state === "running"; button.addEventListener("click", act); cell.appendChild(button);
+    }
+  }
+  div.appendChild(table);
+  const others = view.tests.length - listed.length;
+  if (others) {
+    const note = document.createElement("p"); note.className = "muted small";
+    const done = view.tests.filter((t) => t.source !== "run" && t.state === "done").length;
+    note.textContent = `and ${others} test${others > 1 ? "s" : ""} from files (${done} with their data: New visit lists them)`;
+    div.appendChild(note);
+  }
+}
+
+function selectTest(id, chosen) {
+  view.test = id;
+  document.querySelectorAll(".tests-list[data-mode=plan] tr[data-test], .tests-list[data-mode=run] tr[data-test]")
+    .forEach((tr) => tr.classList.toggle("current", tr.dataset.test === id));
+  const t = view.tests.find((x) => x.id === id);
+  for (const where of ["#plan-test", "#run-test"]) $(where).textContent = t ? `· ${t.label}` : "";
+  if (!t || t.source !== "run") return;
+  const form = $("#plan-form"), axis = ((view.machine || {}).axes || []).find((a) => a.axis === t.axis);
+  form.elements.axis.value = t.axis;
+  $("#plan-travel").textContent = axis ? `travel of ${t.axis}: ${axis.start} to ${axis.end} mm` : "";
+  const planned = view.plans[t.axis];
+  if (planned) { fill(form, planned.form); showPlan(planned, true); }
+  else if (chosen) { view.plan = null; $("#plan-table tbody").replaceChildren(); $("#program").textContent = ""; $("#plan-readings").textContent = "0"; $("#program-download").hidden = true; }
+}
+
+async function removeTest(id) {
+  try { showTests((await call("POST", "/api/tests/remove", { test: id })).tests); } catch (e) { /* shown */ }
+}
+
+// tests from files: a file of the data folder, or one uploaded into the visit's files/
+async function loadDataFiles() {
+  let files;
+  try { files = await quiet("/api/data-files"); } catch (e) { return; }
+  const list = $("#data-files"); list.replaceChildren();
+  for (const f of files) { const o = document.createElement("option"); o.value = f; list.appendChild(o); }
+}
+
+function fileKind() {
+  const kind = $("#file-kind").value;
+  $("#file-form").querySelectorAll("[data-kinds]").forEach((label) => { label.hidden = !label.dataset.kinds.split(" ").includes(kind); });
+}
+$("#file-kind").addEventListener("change", fileKind);
+fileKind();
+
+$("#file-form").querySelectorAll("input[data-upload]").forEach((input) => input.addEventListener("change", async () => {
+  const file = input.files[0], note = $("#file-added");
+  if (!file) return;
+  try {
+    const stored = await call("POST", `/api/upload?name=${encodeURIComponent(file.name)}`, undefined, await file.arrayBuffer());
+    $("#file-form").elements[input.dataset.upload].value = stored.file;
+    note.className = "ok"; note.textContent = `Uploaded: ${stored.file}`;
+    loadDataFiles();
+  } catch (e) { note.className = "warn-line"; note.textContent = e.message; }
+}));
+
+$("#file-form").addEventListener("submit", async (event) => {
+  event.preventDefault();
+  const form = event.target, note = $("#file-added");
+  note.textContent = "Checking the file …"; note.className = "muted";
+  try {
+    const data = await call("POST", "/api/tests/add", formData(form));
+    fieldErrors(form, {});
+    showTests(data.tests);
+    const added = data.tests.find((t) => t.id === data.added);
+    note.className = "ok"; note.textContent = `Added and checked: ${added ? added.label : data.added}`;
+  } catch (e) {
+    fieldErrors(form, e.fields);
+    note.className = "warn-line"; note.textContent = e.fields ? "Please correct the fields marked." : e.message;
+  }
 });
 
 $("#plan-form").addEventListener("submit", (event) => {
@@ -257,8 +429,10 @@ $("#plan-form").addEventListener("submit", (event) => {
   submit(event.target, "/api/plan", showPlan);
 });
 
-function showPlan(data) {
+function showPlan(data, shown) {
   view.plan = data;
+  if (data.axis) view.plans[data.axis] = data;
+  if (!shown) loadTests();  // the test is planned now
   $("#plan-readings").textContent = data.readings;
   const body = $("#plan-table tbody"); body.replaceChildren();
   for (const s of data.steps) { const tr = body.insertRow(); for (const v of [s.step, s.run, s.direction, fmt(s.target_mm, 4), fmt(s.move_to_mm, 4)]) tr.insertCell().textContent = v; }
@@ -318,15 +492,20 @@ async function loadPorts() {
 $("#ports-refresh").addEventListener("click", loadPorts);
 
 // ---- 5. run ---------------------------------------------------------------------------------------
-async function startRun(phase, resume) {
+async function startRun(phase, resume, test, repeat) {
   view.trace = { t: [], x: [] };
-  try { await call("POST", "/api/run", { phase, resume }); } catch (e) { /* shown in #error */ }
+  try { await call("POST", "/api/run", { phase, resume, test: test || view.test, repeat: Boolean(repeat) }); } catch (e) { /* shown in #error */ }
 }
 $("#start").addEventListener("click", () => startRun($("#phase").value, false));
-$("#resume-broken").addEventListener("click", () => startRun($("#phase").value, true));
+$("#resume-broken").addEventListener("click", () => startRun($("#phase").value, true, view.runTest || view.test));
 for (const action of ["pause", "resume", "abort"]) $("#" + action).addEventListener("click", () => call("POST", "/api/run/" + action).catch(() => {}));
 
 function showRun(run) {
+  // a run started, ended or of another test: the tests' states change with it
+  if (run.state !== view.runState || (run.test || null) !== view.runTest) {
+    view.runTest = run.test || null; view.runAxis = run.test ? run.test.split("-").pop() : view.runAxis;
+    if (view.runState !== "idle" || run.state !== "idle") loadTests();
+  }
   // a test that has just ended is evaluated at once: its figures wait in Results (and, as left, in Before / after)
   if (run.state === "done" && (view.runState === "running" || view.runState === "paused")) {
     const evaluated = showResults(run.phase).catch(() => {});
@@ -396,8 +575,18 @@ async function showResults(phase) {
   out.appendChild(rule);
   for (const test of data.tests) {
     const article = document.createElement("article"); article.className = "test"; article.id = "result-" + test.id;
-    const h = document.createElement("h3"); h.textContent = `${test.id}: ${test.verdict.toUpperCase()}`; h.className = "verdict-" + test.verdict;
+    const named = view.tests.find((t) => t.id === test.id);
+    const h = document.createElement("h3"); h.textContent = `${named ? named.label : test.id}: ${test.verdict.toUpperCase()}`; h.className = "verdict-" + test.verdict;
     article.appendChild(h);
+    if (test.error) { const p = document.createElement("p"); p.className = "warn-line"; p.textContent = test.error; article.appendChild(p); out.appendChild(article); continue; }
+    if (!test.checks.length && test.table && test.table.length) {  // not assessed (no tolerance): its figures as the report shows them
+      const figures = document.createElement("table"); figures.className = "figures";
+      for (const f of test.table) { const tr = figures.insertRow(); tr.insertCell().textContent = f.label; tr.insertCell().textContent = typeof f.value === "number" ? `${fmt(f.value, 3)} ${unit(f.unit)}` : `${f.value} ${unit(f.unit)}`; }
+      article.appendChild(figures);
+      for (const p of test.plots) { const div = document.createElement("div"); div.className = "plot"; div.innerHTML = p.svg; article.appendChild(div); }
+      out.appendChild(article);
+      continue;
+    }
     const table = document.createElement("table"); table.className = "checks";
     table.createTHead().insertRow().append(...["Figure", "Value", "U (k=2)", "Tolerance", "Result"].map((t) => { const th = document.createElement("th"); th.textContent = t; return th; }));
     const body = table.createTBody();
@@ -414,9 +603,11 @@ async function showResults(phase) {
 }
 
 // ---- 7. compensate --------------------------------------------------------------------------------
-$("#compensate").addEventListener("click", async () => showCompensation(await call("POST", "/api/compensate")));
+$("#compensate").addEventListener("click", async () => showCompensation(await call("POST", "/api/compensate", { axis: $("#comp-axis").value || null })));
 
 function showCompensation(data) {
+  view.compensation = data;
+  if (data.axis) $("#comp-axis").value = data.axis;
   $("#comp-description").textContent = `${data.description}; largest residual at the targets ${fmt(data.largest_residual_um, 2)} µm`;
   $("#comp-text").textContent = data.text;
   const link = $("#comp-download"); link.href = "/files/" + data.file + "?download=1"; link.hidden = false;
@@ -424,7 +615,10 @@ function showCompensation(data) {
   drawCompensation(data);
   $("#run-as-left").disabled = false;
 }
-$("#run-as-left").addEventListener("click", () => { $("#phase").value = "as-left"; show("run"); startRun("as-left", false); });
+$("#run-as-left").addEventListener("click", () => {
+  $("#phase").value = "as-left"; show("run");
+  startRun("as-left", false, `positioning-${view.compensation ? view.compensation.axis : $("#comp-axis").value}`);
+});
 // before / after: filled as soon as the as-left run has ended, or on request; while it is evaluated, or when it
 // cannot be yet, the line beside the table says what it waits for
 async function beforeAfter() {
@@ -457,7 +651,8 @@ $("#finish").addEventListener("click", async () => {
 });
 
 function showFinished(data) {
-  $("#finish-verdict").textContent = `Verdict as found: ${data.verdict.toUpperCase()}. Stored in the history.`;
+  const tests = data.tests ? ` over ${data.tests.length} tests (${data.tests.map((t) => `${t.id} ${t.verdict}`).join(", ")})` : "";
+  $("#finish-verdict").textContent = `Verdict as found: ${data.verdict.toUpperCase()}${tests}. Stored in the history.`;
   const list = $("#report-links"); list.replaceChildren();
   for (const f of data.files) {
     const li = document.createElement("li"), a = document.createElement("a");
@@ -487,7 +682,11 @@ function restore(state) {
   fill($("#visit-form"), state.visit);
   $("#visit-saved").hidden = false; $("#visit-saved").textContent = `Written: ${state.folder}/campaign.toml`;
   fill($("#plan-form"), state.plan_form);
-  if (state.plan) showPlan(state.plan); else { view.plan = null; $("#plan-table tbody").replaceChildren(); $("#program").textContent = ""; }
+  view.machine = state.machine; view.plans = state.plans || {};
+  $("#file-block").hidden = false; loadDataFiles();
+  if (state.plan) showPlan(state.plan, true); else { view.plan = null; $("#plan-table tbody").replaceChildren(); $("#program").textContent = ""; }
+  if (state.plan) view.test = `positioning-${state.plan.axis}`;
+  showTests(state.tests || []);
   fill($("#connect-form"), state.connection);
   if (state.connected) {
     lights(state.connected.lights); $("#connect-description").textContent = state.connected.description;
