@@ -33,6 +33,11 @@ bad(W, "PlanRun", "speed", lambda: wb.PlanRun(PLAN, NEVER / "run.csv", speed=NAN
 bad(W, "PlanRun", "dwell_s", lambda: wb.PlanRun(PLAN, NEVER / "run.csv", dwell_s=-1.0))
 bad(W, "PlanRun", "resume", lambda: wb.PlanRun(PLAN, NEVER / "run.csv", resume="yes"))
 bad(W, "PlanRun", "nothing to resume", lambda: wb.PlanRun(PLAN, NEVER / "run.csv", resume=True))
+bad(W, "PlanRun", "axis must be a linear axis", lambda: wb.PlanRun(PLAN, NEVER / "run.csv", axis="C"),
+    lambda: wb.PlanRun(PLAN, NEVER / "run.csv", axis=None))
+bad(W, "PlanRun", "machine", lambda: wb.PlanRun(PLAN, NEVER / "run.csv", machine=5))
+bad(W, "DevicePlanRun", "axis must be a linear axis", lambda: wb.DevicePlanRun(PLAN, NEVER / "run.csv", instrument="sim:umd",
+                                                                               axis="B"))
 bad(W, "PlanRun", "use one of", lambda: wb.PlanRun(PLAN, NEVER / "run.csv", instrument="laser:/dev/ttyUSB0"))
 bad(W, "DevicePlanRun", "no serial port", lambda: wb.PlanRun(PLAN, NEVER / "run.csv", instrument="sylvac:/dev/axiscal-no-such-port"))
 bad(W, "DevicePlanRun", "nothing to resume", lambda: wb.DevicePlanRun(PLAN, NEVER / "run.csv", instrument="sim:umd", resume=True))

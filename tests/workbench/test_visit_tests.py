@@ -210,3 +210,52 @@ def test_the_example_machine_shipped_in_the_package_is_the_examples_one():
     shipped = example_machine().parent
     for name in ("machine.toml", "x_errors.csv", "y_errors.csv", "z_errors.csv"):
         assert (shipped / name).read_bytes() == (EXAMPLES / "xfyz_machine" / name).read_bytes(), name
+
+
+def test_the_visit_s_tests_and_plans_survive_a_restart_and_an_older_visit_gets_its_tests(tmp_path, bench):
+    import json
+
+    bench.new_visit(VISIT | {"tests": ["positioning-X", "positioning-Y"]})
+    bench.make_plan(plan("Y"))
+    bench.make_plan(plan("X") | {"runs": 2})
+    again = Workbench(bench.data, db=bench.db, speed=80.0)  # the workbench started again
+    state = again.state()
+    assert [t["id"] for t in state["tests"]] == ["positioning-X", "positioning-Y"]
+    assert set(state["plans"]) == {"X", "Y"} and state["plans"]["Y"]["axis"] == "Y"
+    assert state["plans"]["X"]["form"]["runs"] == 2 and state["machine"]["chain"] == "XFYZ"
+    # a visit kept before the workbench knew its tests: the positioning of its axes, on the example machine
+    saved = json.loads((bench.folder / "workbench.json").read_text())
+    for key in ("tests", "plans", "machine"):
+        saved.pop(key)
+    (bench.folder / "workbench.json").write_text(json.dumps(saved))
+    (bench.folder / "machine.toml").unlink()
+    state = Workbench(bench.data, db=bench.db).state()
+    assert [t["id"] for t in state["tests"]] == ["positioning-X"] and state["plans"]["X"]["axis"] == "X"
+
+
+def test_a_diagonal_from_a_file_is_evaluated_on_the_visit_s_machine(bench):
+    shutil.copytree(EXAMPLES / "xz_module", bench.data / "machines" / "xz")
+    shutil.copyfile(EXAMPLES / "campaign" / "diagonal_0kg.csv", bench.data / "diagonal_0kg.csv")
+    bench.new_visit(VISIT | {"machine_choice": "machines/xz/machine.toml", "tests": ["positioning-X"]})
+    bench.add_file_test({"kind": "diagonal", "file": "diagonal_0kg.csv", "from": "X=0,Z=0", "to": "X=190,Z=190"})
+    result = {t["id"]: t for t in bench.results()["tests"]}["diagonal-file"]
+    assert result["verdict"] != "error" and result["plots"]
+    with pytest.raises(AxiscalError, match="diagonal_0kg.csv"):  # the readings do not lie on this diagonal
+        bench.add_file_test({"kind": "diagonal", "file": "diagonal_0kg.csv", "from": "X=0,Z=0", "to": "X=100,Z=190"})
+
+
+def test_the_devices_run_moves_the_test_s_axis_of_the_visit_s_machine(tmp_path):
+    from axiscal.positioning.plan import plan_test, write_plan
+    from axiscal.workbench import DevicePlanRun, PlanRun, example_machine
+
+    write_plan(plan_test(0.02, 0.12, 5, runs=1, seed=1), tmp_path / "plan_y.csv", axis="Y", dwell_s=1.0)
+    run = PlanRun(tmp_path / "plan_y.csv", tmp_path / "positioning_y.csv", instrument="sim:umd", controller="sim",
+                  axis="Y", machine=example_machine())
+    try:
+        assert isinstance(run, DevicePlanRun) and run.axis == "Y" and run._device.axis == "Y"
+        assert run._device.limits("Y")[1] == pytest.approx(0.5)  # Y's travel on the example machine
+    finally:
+        run._instrument.close()
+        run._device.close()
+    with pytest.raises(AxiscalError, match="axis must be a linear axis letter"):
+        PlanRun(tmp_path / "plan_y.csv", tmp_path / "positioning_y.csv", axis="C", machine=example_machine())
