@@ -125,7 +125,7 @@ def test_a_new_machine_from_the_short_form_and_one_of_the_data_folder(bench):
     # the trunnion example put in the data folder is offered, and chosen
     shutil.copytree(EXAMPLES / "trunnion_machine", bench.data / "machines" / "trunnion")
     offered = {m["choice"]: m for m in machine_choices(bench.data)}
-    assert "example" in offered and "mill-5-2026-11-26/machine.toml" in offered
+    assert "example" in offered and offered["mill-5-2026-11-26/machine.toml"]["label"] == "earlier visit: Mill 5, 2026-11-26, CFXYZ"
     assert [a["axis"] for a in offered["machines/trunnion/machine.toml"]["axes"]] == ["A", "C", "X", "Y", "Z"]
     answer = bench.new_visit(VISIT | {"machine_choice": "machines/trunnion/machine.toml", "tests": ["positioning-Y"]})
     assert answer["machine"]["chain"] == "CAFXYZ"

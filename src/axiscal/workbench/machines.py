@@ -95,7 +95,8 @@ def machine_choices(data: Path) -> list[dict[str, Any]]:
     ----------
     data : Path
         The data folder; its ``machine.toml`` files (up to three folders down) are listed, each
-        with the folder it lies in; one the library does not read is listed with the reason.
+        with the folder it lies in (an earlier visit's with its machine, serial and date, as its
+        campaign.toml states them); one the library does not read is listed with the reason.
 
     Returns
     -------
@@ -114,8 +115,23 @@ def machine_choices(data: Path) -> list[dict[str, Any]]:
         except AxiscalError as exc:
             out.append({"choice": relative, "label": relative, "problem": str(exc), "axes": []})
             continue
-        out.append({"choice": relative, "label": f"{described['name']} ({relative})"} | described)
+        out.append({"choice": relative, "label": _visit_label(path) or f"{described['name']} ({relative})"} | described)
     return out
+
+
+def _visit_label(path: Path) -> str:
+    """``earlier visit: VMC 1 (S1), 2026-11-26, XFYZ`` for the machine of a visit's folder, else empty."""
+    campaign = path.parent / "campaign.toml"
+    if not campaign.is_file():
+        return ""
+    try:
+        text = tomllib.loads(campaign.read_text(encoding="utf-8"))
+        machine, when = text["machine"], text["campaign"]["date"]
+        chain = tomllib.loads(path.read_text(encoding="utf-8")).get("chain", "")
+    except (OSError, ValueError, KeyError, TypeError):
+        return ""
+    serial = f" ({machine['serial']})" if machine.get("serial") else ""
+    return f"earlier visit: {machine.get('name', '')}{serial}, {when}, {chain}"
 
 
 def copy_machine(source: Path, folder: Path) -> dict[str, Any]:
