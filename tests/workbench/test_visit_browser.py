@@ -325,12 +325,24 @@ def test_a_three_axis_visit_with_tests_from_files(browser_page, tmp_path):
         page.wait_for_selector("#light-instrument[data-state=ok]")
         assert "Y 0 to 500 mm" in page.locator("#connect-description").text_content()
         page.get_by_role("button", name="5 Run").click()
-        for axis in "XYZY":
+        for axis in "XYZ":
             row = f".tests-list[data-mode=run] tr[data-test=positioning-{axis}]"
             page.locator(f"{row} button").click()
             page.wait_for_selector(f"{row} td.state[data-state=done]:has-text('done')", timeout=60_000)
             page.wait_for_selector("#run-state[data-state=done]")
             assert page.locator("#progress").text_content() == "10 of 10 stops"
+        # Y again, aborted: Y failed, X and Z done; resumed from its row to its end
+        server.bench.speed = 5.0
+        row = ".tests-list[data-mode=run] tr[data-test=positioning-Y]"
+        page.locator(row).get_by_role("button", name="Repeat").click()
+        page.wait_for_function("document.querySelector('#run-state').dataset.state === 'running'"
+                               " && parseInt(document.querySelector('#progress').textContent) >= 2")
+        page.click("#abort")
+        page.wait_for_selector(f"{row} td.state[data-state=failed]")
+        assert page.locator(".tests-list[data-mode=run] td.state[data-state=done]").count() == 2
+        server.bench.speed = SPEED
+        page.locator(row).get_by_role("button", name="Resume").click()
+        page.wait_for_selector(f"{row} td.state[data-state=done]", timeout=60_000)
         assert page.locator(".tests-list[data-mode=run] td.state[data-state=done]").count() == 3
         no_sideways_scroll(page)
 

@@ -70,6 +70,7 @@ def test_a_three_axis_visit_runs_each_axis_and_repeats_one_without_losing_the_ot
     bench.run.abort()
     bench.run.wait(10)
     assert states(bench) == {"positioning-X": "done", "positioning-Y": "failed", "positioning-Z": "done"}
+    assert [t["id"] for t in bench.tests() if t["resumable"]] == ["positioning-Y"]  # its stops are kept
     with pytest.raises(AxiscalError, match="a broken run left its stops here"):
         bench.start_run("as-found", test="positioning-Y")
     bench.speed = 80.0

@@ -177,7 +177,8 @@ def state_of(test: dict[str, Any], folder: Path, run: Any = None) -> dict[str, A
     -------
     dict
         ``state``: ``running`` (its run goes on), ``failed`` (its run ended short: resume or repeat
-        it), ``done`` (its data is in the folder), else ``planned``.
+        it), ``done`` (its data is in the folder), else ``planned``; ``resumable`` when a run ended
+        short left its stops in its partial file.
     """
     from axiscal.capture.files import partial_path
 
@@ -197,9 +198,10 @@ def state_of(test: dict[str, Any], folder: Path, run: Any = None) -> dict[str, A
     elif not have:
         message = "waiting for its file (add it below)"
     planned = test["source"] == "run" and (folder / plan_file(test["axis"])).is_file()
+    resumable = test["source"] == "run" and state == "failed" and partial_path(folder / run_file(test["axis"])).is_file()
     return {"id": test["id"], "label": test["label"], "kind": test["kind"], "axis": test.get("axis"),
             "source": test["source"], "state": state, "message": message, "planned": planned,
-            "files": files if have else []}
+            "resumable": resumable, "files": files if have else []}
 
 
 def _value(value: Any) -> str:

@@ -344,6 +344,8 @@ function renderTests(div, mode) {
     const cell = tr.insertCell(), actions = [];
     if (mode === "plan" && t.source === "run") actions.push(["Plan", () => selectTest(t.id, true)]);
     if (mode === "run" && t.source === "run") {
+      // a run ended short goes on from its last stop, or starts again from its first
+      if (t.resumable) actions.push(["Resume", () => { selectTest(t.id, true); startRun("as-found", true, t.id); }]);
       actions.push([t.state === "planned" ? "Run" : "Repeat", () => { selectTest(t.id, true); startRun("as-found", false, t.id, t.state !== "planned"); }]);
     }
     if (mode === "results" && t.state === "done") actions.push(["Show", () => { const a = document.getElementById("result-" + t.id); if (a) a.scrollIntoView(); }]);
