@@ -43,6 +43,10 @@ class Pieces:
 
     def prepend(self, first: dict) -> None:
         """Put ``first`` (the FIELDS of move 0's pieces, settled before) in place of move 0's pieces."""
+        if first["move"].size == 1 and self.move.size and self.move[0] == 0 and (self.move.size == 1 or self.move[1] != 0):
+            for name in self.FIELDS:  # one piece for one: in place
+                getattr(self, name)[0] = first[name][0]
+            return
         rest = self.move != 0
         for name in self.FIELDS:
             setattr(self, name, np.concatenate([first[name], getattr(self, name)[rest]]))
@@ -80,10 +84,53 @@ def build_pieces(moves: Moves, linear, rotary, tolerance_m, max_segment_m, sourc
         path[0] = False  # the program's first move, or the one settled before
     start = np.where(path[:, None], np.vstack([end[:1], end[:-1]]), end)
     counts = np.ones(m, dtype=np.int64)
-    chords: dict[int, np.ndarray] = {}
+    arcs = np.flatnonzero((moves.kind == 3) & path)
+    shape = _arc_chords(moves, arcs, linear, tolerance_m, max_segment_m, source, m) if arcs.size else None
+    if shape is not None:
+        counts[arcs] = shape[0]
+    owner = np.repeat(np.arange(m), counts)
+    first = np.cumsum(counts) - counts
+    within = np.arange(owner.size) - first[owner]
+    p1 = end[owner].copy()
+    t1 = np.ones(owner.size)
+    limit = np.full(owner.size, tolerance_m)
+    if shape is not None:
+        # every chord's end at once, with each arc's arithmetic as one arc alone would do it
+        count, theta0, sweep, ca, cb, radius, ja, jb, jn = shape
+        arc_of = np.repeat(np.arange(arcs.size), count)
+        rows = np.repeat(first[arcs], count) + (np.arange(arc_of.size) - np.repeat(np.cumsum(count) - count, count))
+        f = (within[rows] + 1) / count[arc_of]
+        moving = arcs[arc_of]
+        points = start[moving]
+        theta = theta0[arc_of] + sweep[arc_of] * f
+        for column, centre, trig in ((ja, ca, np.cos), (jb, cb, np.sin)):
+            here = column[arc_of] >= 0
+            points[here, column[arc_of][here]] = centre[arc_of][here] + radius[arc_of][here] * trig(theta[here])
+        here = jn[arc_of] >= 0
+        j = jn[arc_of][here]
+        s0 = start[moving[here], j]
+        points[here, j] = s0 + f[here] * (end[moving[here], j] - s0)
+        last = np.cumsum(count) - 1
+        points[last] = end[arcs]
+        p1[rows] = points
+        t1[rows] = f
+        limit[rows] = 0.75 * tolerance_m
+    p0 = np.where((within == 0)[:, None], start[owner], np.vstack([p1[:1], p1[:-1]]))
+    t0 = np.where(within == 0, 0.0, np.r_[0.0, t1[:-1]])
+    return Pieces(owner, p0, p1, rot[owner], t0, t1, limit, path[owner])
+
+
+def _arc_chords(moves: Moves, arcs: np.ndarray, linear, tolerance_m, max_segment_m, source, m: int):
+    """Per arc of ``arcs`` (move numbers): its chords' count, the angle of its start, its sweep, its centre
+    and radius in its plane, and the columns of ``linear`` its plane's axes and its normal are (-1: none);
+    an arc of more chords than :data:`MAX_SAMPLES` (or all of them together) refused naming its line."""
     chord_sagitta = tolerance_m / 4.0
     pieces_total = m
-    for number in np.flatnonzero((moves.kind == 3) & path).tolist():
+    n = arcs.size
+    count = np.empty(n, dtype=np.int64)
+    values = np.empty((5, n))
+    columns = np.empty((3, n), dtype=np.int64)
+    for i, number in enumerate(arcs.tolist()):
         motion = moves.motion(number)
         a, b, normal = PLANE_AXES[motion.plane]
         ca, cb = motion.centre_m[a], motion.centre_m[b]
@@ -91,46 +138,23 @@ def build_pieces(moves: Moves, linear, rotary, tolerance_m, max_segment_m, sourc
         sweep = motion.sweep_rad
         if not (math.isfinite(radius) and math.isfinite(sweep) and radius > 0.0):
             raise fail("the arc's centre or radius is not a finite number (a number too large for the control?)",
-                        source, moves.line[number])
+                       source, moves.line[number])
         # the angle of a chord of sagitta s: 1 - cos(step / 2) = s / r, written so that it does not
         # round to nothing for a radius much larger than s
         step = min(4.0 * math.asin(math.sqrt(min(chord_sagitta / (2.0 * radius), 1.0))), max_segment_m / radius)
         chords_wanted = abs(sweep) / step if step > 0.0 else math.inf
         if chords_wanted > MAX_SAMPLES:
             raise fail(f"the arc (radius {radius / _MM:.6g} mm, {math.degrees(abs(sweep)):.6g} degrees) would be cut"
-                        f" into {chords_wanted:.3g} chords (at most {MAX_SAMPLES:.3g}): take a longer max segment"
-                        " or a larger tolerance", source, moves.line[number])
-        count = max(1, math.ceil(chords_wanted - 1e-9))
-        pieces_total += count - 1
+                       f" into {chords_wanted:.3g} chords (at most {MAX_SAMPLES:.3g}): take a longer max segment"
+                       " or a larger tolerance", source, moves.line[number])
+        count[i] = max(1, math.ceil(chords_wanted - 1e-9))
+        pieces_total += int(count[i]) - 1
         if pieces_total > MAX_SAMPLES:
             raise fail(f"the program's arcs would be cut into more than {MAX_SAMPLES:.3g} chords:"
-                        " take a longer max segment or a larger tolerance", source, moves.line[number])
-        f = np.arange(1, count + 1) / count
-        points = np.repeat(start[number][None, :], count, axis=0)
-        theta = math.atan2(motion.start_m[b] - cb, motion.start_m[a] - ca) + sweep * f
-        for letter, value in ((a, ca + radius * np.cos(theta)), (b, cb + radius * np.sin(theta))):
-            if letter in linear:
-                points[:, linear.index(letter)] = value
-        if normal in linear:
-            j = linear.index(normal)
-            points[:, j] = start[number][j] + f * (end[number][j] - start[number][j])
-        points[-1] = end[number]
-        chords[number] = points
-        counts[number] = count
-    owner = np.repeat(np.arange(m), counts)
-    first = np.cumsum(counts) - counts
-    within = np.arange(owner.size) - first[owner]
-    p1 = end[owner].copy()
-    t1 = np.ones(owner.size)
-    limit = np.full(owner.size, tolerance_m)
-    for number, points in chords.items():
-        rows = slice(first[number], first[number] + counts[number])
-        p1[rows] = points
-        t1[rows] = np.arange(1, counts[number] + 1) / counts[number]
-        limit[rows] = 0.75 * tolerance_m
-    p0 = np.where((within == 0)[:, None], start[owner], np.vstack([p1[:1], p1[:-1]]))
-    t0 = np.where(within == 0, 0.0, np.r_[0.0, t1[:-1]])
-    return Pieces(owner, p0, p1, rot[owner], t0, t1, limit, path[owner])
+                       " take a longer max segment or a larger tolerance", source, moves.line[number])
+        values[:, i] = (math.atan2(motion.start_m[b] - cb, motion.start_m[a] - ca), sweep, ca, cb, radius)
+        columns[:, i] = [linear.index(k) if k in linear else -1 for k in (a, b, normal)]
+    return (count, *values, *columns)
 
 
 def _check_finite(moves: Moves, end: np.ndarray, letters, source) -> None:
@@ -195,12 +219,8 @@ def settle(model, pieces, moves, linear, rotary, reach, tolerance_m, max_segment
             if wanted.sum() > MAX_SAMPLES:
                 raise _too_many(wanted.sum(), length, max_segment_m, source, moves.line[pieces.move[idx[np.argmax(length)]]])
             counts = wanted.astype(np.int64)
-            rep = np.repeat(np.arange(idx.size), counts)
-            owner = idx[rep]
-            t = (np.arange(owner.size) - (np.cumsum(counts) - counts)[rep] + 1) / counts[rep]
-            c_0, p_0 = np.take(start, owner, axis=0), np.take(pieces.p0, owner, axis=0)
-            c_t = c_0 + t[:, None] * (np.take(out, owner, axis=0) - c_0)
-            p_t = p_0 + t[:, None] * (np.take(pieces.p1, owner, axis=0) - p_0)
+            owner = np.repeat(idx, counts)
+            c_t, p_t = _samples(start, out, pieces.p0, pieces.p1, idx, counts)
             miss = _deviation(model, c_t, p_t, pieces.rot[owner], linear, rotary, reach)
             largest = np.maximum.reduceat(miss, np.cumsum(counts) - counts)
             bad = largest > pieces.limit[idx]
@@ -248,6 +268,27 @@ def settle(model, pieces, moves, linear, rotary, reach, tolerance_m, max_segment
         changed = changed_piece | shifted | np.isin(pieces.move, flips)
         dirty = changed | np.concatenate([[False], changed[:-1]])
     raise fail("the path could not be held within the tolerance", source, first_line)
+
+
+#: whether the samples are laid by the compiled kernel (False: in NumPy, the reference)
+_COMPILED = True
+
+
+def _samples(start, out, p0, p1, idx, counts):
+    """The commands and programmed points sampled along pieces ``idx``, ``counts`` samples each, at
+    ``t = (s + 1) / count``."""
+    if _COMPILED:
+        from axiscal.precompensation import path_kernel  # numba takes a moment to load
+
+        return path_kernel.samples(np.ascontiguousarray(start), np.ascontiguousarray(out), np.ascontiguousarray(p0),
+                                   np.ascontiguousarray(p1), idx, counts)
+    rep = np.repeat(np.arange(idx.size), counts)
+    owner = idx[rep]
+    t = (np.arange(owner.size) - (np.cumsum(counts) - counts)[rep] + 1) / counts[rep]
+    c_0, p_0 = np.take(start, owner, axis=0), np.take(p0, owner, axis=0)
+    c_t = c_0 + t[:, None] * (np.take(out, owner, axis=0) - c_0)
+    p_t = p_0 + t[:, None] * (np.take(p1, owner, axis=0) - p_0)
+    return c_t, p_t
 
 
 def _too_many(count: float, length: np.ndarray, max_segment_m: float, source, line: int) -> AxiscalError:
