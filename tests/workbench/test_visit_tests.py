@@ -260,3 +260,25 @@ def test_the_devices_run_moves_the_test_s_axis_of_the_visit_s_machine(tmp_path):
         run._device.close()
     with pytest.raises(AxiscalError, match="axis must be a linear axis letter"):
         PlanRun(tmp_path / "plan_y.csv", tmp_path / "positioning_y.csv", axis="C", machine=example_machine())
+
+
+def test_a_file_refused_says_what_the_command_says(bench, run_cli, monkeypatch):
+    _instrument_files(bench.data)
+    (bench.data / "instrument" / "export.csv").write_text("Title\nMachine: X\n\nTarget (mm);Run 1\n0,000;1,5\nten;2,0\n")
+    bench.new_visit(VISIT | {"tests": ["positioning-X"]})
+    monkeypatch.chdir(bench.data)
+    for form, command in (
+        ({"kind": "straightness", "file": "instrument/bad.csv", "axis": "X", "direction": "Y"},
+         ("straightness", "instrument/bad.csv")),
+        ({"kind": "ballbar", "file": "instrument/straightness_profile.csv", "radius_mm": 100, "plane": "XY"},
+         ("ballbar", "instrument/straightness_profile.csv", "--radius-mm", "100", "--plane", "XY")),
+        ({"kind": "columnmap", "file": "instrument/runs_per_column.toml", "second": "instrument/export.csv", "axis": "X"},
+         ("import", "map", "instrument/runs_per_column.toml", "instrument/export.csv")),
+        ({"kind": "rtx", "file": "instrument/bad.csv", "unit": "um", "axis": "X"},
+         ("import", "rtx", "instrument/bad.csv", "--unit", "um")),
+    ):
+        with pytest.raises(AxiscalError) as refused:
+            bench.add_file_test(form)
+        status, _, err = run_cli(*command)
+        assert status == 2 and err.strip() == f"axiscal: error: {refused.value}", (err, str(refused.value))
+    assert len(bench.tests()) == 1

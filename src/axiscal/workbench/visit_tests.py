@@ -163,7 +163,12 @@ class VisitTests:
         form = checked_file_form(data)
         folder = self._visit_folder()
         tests = self._tests()
-        test = file_test(self.data, folder, form, {t["id"] for t in tests})
+        try:
+            test = file_test(self.data, folder, form, {t["id"] for t in tests})
+        except FormErrors:
+            raise
+        except AxiscalError as exc:  # an importer refused the export
+            raise AxiscalError(self._as_named(exc, form, folder)) from None
         waiting = next((t for t in tests if t["source"] == "file" and not t["entry"] and test["kind"] == "positioning"
                         and t["axis"] == test["axis"]), None)
         if waiting is not None:
@@ -181,15 +186,19 @@ class VisitTests:
                 run_test(campaign, spec)
         except AxiscalError as exc:
             self.write_campaign()  # as it was, without the test
-            message = str(exc)
-            for name in (form.file, form.second):  # the file named as the form named it, not its copy in files/
-                if name:
-                    message = message.replace(str(folder / FILES_FOLDER / Path(name).name), name)
-            raise AxiscalError(message.replace(f"{self.data}/", "")) from None
+            raise AxiscalError(self._as_named(exc, form, folder)) from None
         with self._lock:
             self.saved.tests = tests
             self._save()
         return {"added": test["id"], "tests": self.tests()}
+
+    def _as_named(self, exc: AxiscalError, form: Any, folder: Path) -> str:
+        """The reader's line with each file named as the form named it (not its copy in ``files/``, not absolute)."""
+        message = str(exc)
+        for name in (form.file, form.second):
+            if name:
+                message = message.replace(str(folder / FILES_FOLDER / Path(name).name), name)
+        return message.replace(f"{self.data}/", "")
 
     def remove_test(self, test_id: Any) -> dict[str, Any]:
         """Take a test added from a file off the visit (its file stays in ``files/``); the visit's tests."""
