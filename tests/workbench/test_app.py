@@ -31,7 +31,7 @@ def test_the_page_and_its_files_are_served_from_the_package(client):
     page = client.get("/")
     assert page.status_code == 200 and "axiscal workbench" in page.text
     assert "http" not in page.text.replace("http://www.w3.org", "")  # nothing from elsewhere
-    for name in ("app.js", "style.css"):
+    for name in ("app.js", "tests.js", "style.css"):
         assert client.get(f"/static/{name}").status_code == 200
 
 
