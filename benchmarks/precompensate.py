@@ -11,9 +11,11 @@ over the XFYZ example's travel, an arc every 200 blocks, a comment every 500, a 
 feed every 1000; ``--numbered``: a block number on every block; ``--dialect fanuc``: FANUC's
 words, every number with its point) and times ``axiscal precompensate`` as a whole process
 (start-up, reading, the model's inverse, the path checks, writing) ``--runs`` times for each size,
-printing the median time and the peak resident memory (``wait4``'s ``ru_maxrss``) with the load
-average seen during the runs. Up to ``--baseline-up-to`` lines (2 x 10^6), the source of
-``--baseline`` (default: the last revision that held the whole program in memory) is run too,
+printing the median time, the median CPU time (user + system of all its threads, ``wait4``'s
+``ru_utime + ru_stime``: what a shared machine's load disturbs least) and the peak resident memory
+(``ru_maxrss``) with the load average seen during the runs. Up to ``--baseline-up-to`` lines
+(2 x 10^6), the source of ``--baseline`` (default: the last revision that held the whole program
+in memory) is run too,
 unpacked from git into a temporary folder, alternating with this tree, and the two outputs are
 compared: the same program must come out, to the byte. ``--baseline none`` times this tree alone.
 ``--stages`` times, in one process, the reading of the program in bulk and block by block, and the
@@ -119,8 +121,9 @@ def unpack(revision: str, folder: Path) -> Path:
     return folder / "src"
 
 
-def run(source: Path, program: Path, output: Path, dialect: str = "linuxcnc") -> tuple[float, float]:
-    """Seconds and peak resident memory (MB) of one whole ``axiscal precompensate`` process run on ``source``."""
+def run(source: Path, program: Path, output: Path, dialect: str = "linuxcnc") -> tuple[float, float, float]:
+    """Seconds, peak resident memory (MB) and CPU seconds (user + system, every thread) of one whole
+    ``axiscal precompensate`` process run on ``source``."""
     env = dict(os.environ, PYTHONPATH=str(source))
     start = time.perf_counter()
     child = subprocess.Popen([sys.executable, "-m", "axiscal.cli.main", "precompensate", str(program), "--machine",
@@ -132,7 +135,7 @@ def run(source: Path, program: Path, output: Path, dialect: str = "linuxcnc") ->
     if child.returncode:
         raise SystemExit(f"precompensate failed: {child.stderr.read().decode()}")
     child.stderr.close()
-    return seconds, usage.ru_maxrss / 1024.0
+    return seconds, usage.ru_maxrss / 1024.0, usage.ru_utime + usage.ru_stime
 
 
 def stages(lines: int, runs: int) -> None:
@@ -202,7 +205,7 @@ def main() -> None:
             here = {label: source for label, source in paths.items() if label == "this tree" or lines <= args.baseline_up_to}
             for label, source in here.items():  # a first run of each: numba's cache written, files read once
                 run(source, program, folder / f"{label.split()[0]}.ngc", args.dialect)
-            results: dict[str, list[tuple[float, float]]] = {label: [] for label in here}
+            results: dict[str, list[tuple[float, float, float]]] = {label: [] for label in here}
             load = []
             for _ in range(args.runs):
                 for label, source in here.items():
@@ -211,8 +214,10 @@ def main() -> None:
             same = len(here) == 1 or filecmp.cmp(folder / "this.ngc", folder / "baseline.ngc", shallow=False)
             for label, values in results.items():
                 seconds = statistics.median(v[0] for v in values)
+                cpu = statistics.median(v[2] for v in values)
                 print(f"  {lines:>10,} lines ({size:.0f} MB), {label:<18}: {seconds:6.2f} s, {lines / seconds:9,.0f} lines/s,"
-                      f" peak {max(v[1] for v in values):6.0f} MB (runs {', '.join(f'{v[0]:.2f}' for v in values)})")
+                      f" CPU {cpu:6.2f} s ({lines / cpu:,.0f} lines per CPU s), peak {max(v[1] for v in values):6.0f} MB"
+                      f" (runs {', '.join(f'{v[0]:.2f}' for v in values)})")
             print(f"  {lines:>10,} lines: load average {min(load):.1f} to {max(load):.1f} during the runs"
                   + ("" if len(here) == 1 else f"; outputs {'identical' if same else 'DIFFER'}"))
             program.unlink()

@@ -182,11 +182,13 @@ def solve(model, pieces: Pieces, which: np.ndarray, moves, linear, rotary, sourc
         piece = np.flatnonzero(which)[error.index]
         raise fail(error.message, source, moves.line[pieces.move[piece]]) from None
     command = np.column_stack([solved[k] for k in linear])
-    offset, per_unit = _units(moves, pieces)
-    places = np.where(per_unit[which] == _MM, PLACES["mm"], PLACES["inch"])
-    scale = (10.0 ** places / per_unit[which])[:, None]
-    pieces.exact[which] = command
-    pieces.command[which] = np.round((command - offset[which]) * scale) / scale + offset[which]
+    rows = np.flatnonzero(which)
+    move = pieces.move[rows]
+    offset, per_unit = moves.offset[move], moves.per_unit[move]
+    places = np.where(per_unit == _MM, PLACES["mm"], PLACES["inch"])
+    scale = (10.0 ** places / per_unit)[:, None]
+    pieces.exact[rows] = command
+    pieces.command[rows] = np.round((command - offset) * scale) / scale + offset
 
 
 def settle(model, pieces, moves, linear, rotary, reach, tolerance_m, max_segment_m, source, first_kept, first_line):

@@ -234,7 +234,7 @@ def rewrite_window(setup: Setup, columns, lines: list[str], line_end: str, settl
     output = np.zeros(m, dtype=bool)
     output[start:stop] = True
     out, rewritten = program_lines(setup.spec, lines, moves, pieces, verbatim, output, linear, rotary, line_end)
-    mine = np.isin(pieces.move, np.arange(start, stop))
+    mine = (pieces.move >= start) & (pieces.move < stop)
     corrections = np.linalg.norm(pieces.exact[mine] - pieces.p1[mine], axis=1) if mine.any() else np.zeros(1)
     last = stop - 1
     if last >= start:

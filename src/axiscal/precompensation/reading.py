@@ -180,12 +180,18 @@ def piece_columns(program: Program, *, axes_before: tuple[str, ...] = (), start_
         ends.append(end)
         knowns.append(known)
         offsets.append(offset)
-    motion_line = np.concatenate(lines)
-    order = np.argsort(motion_line, kind="stable")
-    motion_line = motion_line[order]
-    end_m = np.concatenate(ends)[order]
-    known_m = np.concatenate(knowns)[order]
-    offset_m = np.concatenate(offsets)[order]
+    # the motions in line order: each line holds one at most, read one way or the other
+    moving = np.zeros(n, dtype=bool)
+    for at in lines:
+        moving[at] = True
+    motion_line = np.flatnonzero(moving)
+    row_of = np.cumsum(moving) - 1
+    end_m = np.empty((motion_line.size, a))
+    known_m = np.empty((motion_line.size, a), dtype=bool)
+    offset_m = np.empty((motion_line.size, a))
+    for at, end, known, offset in zip(lines, ends, knowns, offsets):
+        rows = row_of[at]
+        end_m[rows], known_m[rows], offset_m[rows] = end, known, offset
     first_start = np.full((min(1, motion_line.size), a), np.nan)
     first_known = np.zeros((min(1, motion_line.size), a), dtype=bool)
     if start_m and motion_line.size:

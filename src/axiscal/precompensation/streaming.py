@@ -68,21 +68,23 @@ class _Counter:
     def line(self, text: str, end: str) -> None:
         chunk = (end + text) if self.started else text
         self.started = True
-        self._put(chunk)
+        self._put(chunk, end)
 
     def lines(self, texts: list[str], end: str) -> None:
         if texts:
             self.line(end.join(texts), end)
 
-    def _put(self, chunk: str) -> None:
+    def _put(self, chunk: str, end: str) -> None:
         if chunk:
-            self.breaks += chunk.count("\n") + chunk.count("\r") - chunk.count("\r\n")
+            # no line holds a line end of its own (the program was split there): every one is an `end`
+            # joining two lines, or the pieces of one
+            self.breaks += chunk.count(end)
             self.last = chunk[-1]
             self.write(chunk.encode("utf-8"))
 
     def close(self, end: str, ending: bool) -> int:
         if ending:
-            self._put(end)
+            self._put(end, end)
         return self.breaks + (1 if self.started and self.last not in "\n\r" else 0)
 
 
