@@ -324,6 +324,7 @@ def test_a_three_axis_visit_with_tests_from_files(browser_page, tmp_path):
         page.click("#connect-form button[type=submit]")
         page.wait_for_selector("#light-instrument[data-state=ok]")
         assert "Y 0 to 500 mm" in page.locator("#connect-description").text_content()
+        no_sideways_scroll(page)
         page.get_by_role("button", name="5 Run").click()
         for axis in "XYZ":
             row = f".tests-list[data-mode=run] tr[data-test=positioning-{axis}]"
@@ -354,11 +355,20 @@ def test_a_three_axis_visit_with_tests_from_files(browser_page, tmp_path):
         assert page.locator("#result-ballbar-XY table.figures tr").count() > 0
         no_sideways_scroll(page)
 
+        # 7. the table of the axis chosen
+        page.get_by_role("button", name="7 Compensate").click()
+        assert page.locator("#comp-axis option").all_text_contents() == ["X", "Y", "Z"]
+        page.select_option("#comp-axis", "Y")
+        page.click("#compensate")
+        page.wait_for_selector("#comp-download:has-text('Y.comp')")
+        no_sideways_scroll(page)
+
         # 8. finish: one report of every test
         page.get_by_role("button", name="8 Finish").click()
         page.click("#finish")
         page.wait_for_selector("#report-links li", timeout=60_000)
         assert "over 5 tests" in page.locator("#finish-verdict").text_content()
+        no_sideways_scroll(page)
         assert not browser_page.errors, browser_page.errors
     finally:
         server.stop()
