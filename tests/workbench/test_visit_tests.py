@@ -192,7 +192,9 @@ def test_a_file_uploaded_is_kept_in_the_visit_and_added_from_there(bench):
         content = (EXAMPLES / "straightness_profile.csv").read_bytes() + b"\n" * (70 * 1024)  # beyond a form's 64 KiB
         answer = client.post("/api/upload", params={"name": "C:\\readings\\profile x.csv"}, content=content)
         assert answer.status_code == 200 and answer.json() == {"file": "vmc-1-2026-11-26/files/profile_x.csv"}
-        assert "vmc-1-2026-11-26/files/profile_x.csv" in client.get("/api/data-files").json()
+        offered = client.get("/api/data-files").json()
+        assert offered[0] == "vmc-1-2026-11-26/files/profile_x.csv"  # the visit's own first
+        assert not [f for f in offered if f.endswith(("campaign.toml", "machine.toml", "_errors.csv"))]
         added = client.post("/api/tests/add", json={"kind": "straightness", "file": answer.json()["file"], "axis": "X",
                                                     "direction": "Z"})
         assert added.status_code == 200 and added.json()["added"] == "straightness-X"

@@ -183,17 +183,28 @@ def data_files(data: Path, folder: Path | None) -> list[str]:
     """
     data = check_path("data", data).resolve()
     folder = None if folder is None else check_path("folder", folder)
-    own = [] if folder is None else sorted((folder / FILES_FOLDER).glob("*"))
-    others = sorted(p for p in data.rglob("*") if p.suffix.lower() in (".csv", ".txt", ".toml", ".rtx"))
+    read = (".csv", ".txt", ".toml", ".rtx")
+    own = [] if folder is None else sorted(p for p in (folder / FILES_FOLDER).glob("*") if p.suffix.lower() in read)
+    others = sorted(p for p in data.rglob("*") if p.suffix.lower() in read)
     out = []
     for path in [*own, *others]:
         relative = path.relative_to(data).as_posix()
-        if not path.is_file() or relative in out or "/report/" in f"/{relative}" or path.name == "workbench.json":
+        if not path.is_file() or relative in out or _workbench_own(path, relative):
             continue
         out.append(relative)
         if len(out) >= 500:
             break
     return out
+
+
+#: what the workbench itself writes into a visit's folder: never the data of a test taken from a file
+_OWN_NAMES = ("workbench.json", "campaign.toml", "budget.toml", "machine.toml")
+
+
+def _workbench_own(path: Path, relative: str) -> bool:
+    parts = f"/{relative}"
+    return (path.name in _OWN_NAMES or "/report/" in parts or "/compensation/" in parts
+            or (path.name.startswith("plan_") and path.suffix == ".csv") or path.name.endswith("_errors.csv"))
 
 
 def _source(data: Path, relative: str, field: str) -> Path:
