@@ -200,6 +200,7 @@ def test_the_visit_survives_a_reload_a_restart_and_a_second_tab(browser_page, ch
         for name, value in {"title": "Acceptance", "operator": "J. Doe", "machine": "VMC 1", "serial": "S1",
                             "date": "2026-11-26"}.items():
             page.fill(f"#visit-form [name={name}]", value)
+        page.uncheck("#test-boxes input[value=positioning-Z]")  # X and Y only
         page.click("#visit-form button[type=submit]")
         page.wait_for_selector("#visit-saved:not([hidden])")
         page.get_by_role("button", name="3 Plan").click()
@@ -215,6 +216,8 @@ def test_the_visit_survives_a_reload_a_restart_and_a_second_tab(browser_page, ch
         page.wait_for_selector("#step-connect:not([hidden])")
         assert page.locator("#visit-name").text_content() == "vmc-1-2026-11-26"
         assert count(page, "#plan-table tbody tr") == steps and page.input_value("#plan-form [name=runs]") == "2"
+        assert count(page, ".tests-list[data-mode=plan] tbody tr") == 2  # the visit's tests, and its form as written
+        assert [b.is_checked() for b in page.locator("#test-boxes input").all()] == [True, True, False]
 
         # a second tab on the same visit follows it read-only: its changes are refused, the visit is not touched
         other = chromium.new_context(viewport={"width": 1366, "height": 768}).new_page()

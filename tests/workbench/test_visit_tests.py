@@ -226,6 +226,7 @@ def test_the_visit_s_tests_and_plans_survive_a_restart_and_an_older_visit_gets_i
     assert [t["id"] for t in state["tests"]] == ["positioning-X", "positioning-Y"]
     assert set(state["plans"]) == {"X", "Y"} and state["plans"]["Y"]["axis"] == "Y"
     assert state["plans"]["X"]["form"]["runs"] == 2 and state["machine"]["chain"] == "XFYZ"
+    assert state["machine"]["form"] == {"tests": ["positioning-X", "positioning-Y"]}  # the form as it was sent
     # a visit kept before the workbench knew its tests: the positioning of its axes, on the example machine
     saved = json.loads((bench.folder / "workbench.json").read_text())
     for key in ("tests", "plans", "machine"):

@@ -140,7 +140,7 @@ class Workbench(HistoryViews, VisitTests):
         if fields:
             raise FormErrors(fields)
         folder = self.data / f"{_slug(form.machine)}-{form.date.isoformat()}"
-        described = self._set_up_machine(folder, source, form.machine)
+        described = self._set_up_machine(folder, source, form.machine) | {"form": chosen}  # the form shown again
         write_budget(folder, form.model_dump(mode="json"))  # before campaign.toml, which names it
         remember_laboratory(self.data, form.model_dump(mode="json"))
         remember_budget(self.data, form.model_dump(mode="json"))

@@ -251,7 +251,7 @@ $("#visit-form").addEventListener("submit", (event) => {
     $("#visit-saved").textContent = `Written: ${data.campaign}`;
     $("#visit-name").textContent = data.folder;
     view.plan = null;
-    view.machine = data.machine; view.plans = {}; view.test = null;
+    view.machine = data.machine; view.plans = {}; view.test = null; view.chosen = data.machine.form;
     $("#plan-table tbody").replaceChildren(); $("#program").textContent = "";
     $("#file-block").hidden = false;
     showTests(data.tests); loadDataFiles(); loadMachineChoices();
@@ -524,6 +524,7 @@ function restore(state) {
   if (state.plan) showPlan(state.plan, true); else { view.plan = null; $("#plan-table tbody").replaceChildren(); $("#program").textContent = ""; }
   if (state.plan) view.test = `positioning-${state.plan.axis}`;
   showTests(state.tests || []);
+  view.chosen = state.machine ? state.machine.form : null; showChosen();
   fill($("#connect-form"), state.connection);
   if (state.connected) {
     lights(state.connected.lights); $("#connect-description").textContent = state.connected.description;

@@ -20,6 +20,17 @@ async function loadMachineChoices() {
   }
   if ([...select.options].some((o) => o.value === keep)) select.value = keep;
   machineChosen();
+  showChosen();
+}
+
+// the machine and the tests the open visit was written with, shown again on its form (after a reload)
+function showChosen() {
+  const chosen = view.chosen, select = $("#machine-choice"), form = $("#visit-form");
+  if (!chosen) return;
+  if ([...select.options].some((o) => o.value === chosen.machine_choice)) select.value = chosen.machine_choice;
+  for (const name of ["machine_chain", "machine_travels"]) if (chosen[name]) form.elements[name].value = chosen[name];
+  machineChosen();
+  if (Array.isArray(chosen.tests)) form.querySelectorAll("#test-boxes input").forEach((box) => { box.checked = chosen.tests.includes(box.value); });
 }
 
 // the axes of the machine chosen (of the chain typed, for a new one): one box for the positioning of each
