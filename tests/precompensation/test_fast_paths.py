@@ -120,6 +120,13 @@ def test_every_number_is_written_as_numpy_writes_it(counts, inch, extruder, rapi
     fields.append(text_module._literal(" E", n, show))
     fields.append(text_module._fixed(e, np.full(n, 5), show))
     assert fast == text_module._rows(fields)
+    # with block numbers before some rows, as the lines of one piece write them
+    numbers = [str(10 * k).zfill(k % 4) if k % 3 else "" for k in range(n)]
+    data = np.frombuffer("".join(numbers).encode("ascii"), dtype=np.uint8)
+    at = np.where([bool(x) for x in numbers], np.cumsum([len(x) for x in numbers]) - [len(x) for x in numbers], -1)
+    prefixed = text_module._compiled_rows(codes, options, ["X", "Y", "Z"], values, places, show, e,
+                                          (data, at.astype(np.int64), np.array([len(x) for x in numbers])))
+    assert prefixed == [f"N{x} {row}" if x else row for x, row in zip(numbers, fast)]
     # and as Python's formatting writes them
     for row, (x, y, z), p in zip(fast, values, places):
         assert row.split()[1:4] == [f"{k}{v / 10.0 ** p + 0.0:.{p}f}" for k, v in zip("XYZ", (x, y, z))]

@@ -8,6 +8,9 @@ by the correction there. One formatting pass per axis over all the pieces keeps 
 
 from __future__ import annotations
 
+from itertools import repeat
+from operator import is_not
+
 import numpy as np
 
 from axiscal.io.gcode import decimal
@@ -45,12 +48,14 @@ def program_lines(spec, lines: list[str], moves, pieces, verbatim, output, linea
     rapid = (moves.kind == 1) & (not spec.rapid_at_feed)
     bulk_row = columns.bulk_row[moves.index]
     has_e = columns.has_e[moves.index] if "E" in columns.axes else np.zeros(len(moves), dtype=bool)
-    piece_text = _piece_rows(moves, pieces, rows, out_at, linear, rapid, spec, has_e) if rows.size else []
+    bulk = rewritten[bulk_row[rewritten] >= 0]
+    plan = _bulk_plan(lines, moves, bulk, first, stop, at_row, rotary) if bulk.size else None
+    prefix = _numbers(lines, plan, columns.number_at, rows.size) if plan is not None and _COMPILED else None
+    piece_text = _piece_rows(moves, pieces, rows, out_at, linear, rapid, spec, has_e, prefix) if rows.size else []
     out = np.array(lines, dtype=object)
     piece_text = np.array(piece_text, dtype=object)
-    bulk = rewritten[bulk_row[rewritten] >= 0]
-    if bulk.size:
-        _bulk_text(out, lines, moves, bulk, first, stop, at_row, piece_text, rotary, end)
+    if plan is not None:
+        _bulk_text(out, lines, moves, bulk, first, stop, at_row, piece_text, end, plan, prefix is not None)
     for number in rewritten[bulk_row[rewritten] < 0].tolist():
         index = int(moves.index[number])
         block = columns.general[index]
@@ -94,9 +99,10 @@ def header_line(spec, header: str) -> str:
     return _sanitize_comment(header, spec.comment_style)
 
 
-def _piece_rows(moves, pieces, rows, out_at, linear, rapid, spec, has_e) -> list[str]:
+def _piece_rows(moves, pieces, rows, out_at, linear, rapid, spec, has_e, prefix=None) -> list[str]:
     """The text of each piece ``rows``: its motion word and its positions (and E), in the block's units
-    and distance mode, 0.1 um resolution."""
+    and distance mode, 0.1 um resolution; ``prefix`` (from :func:`_numbers`): the block numbers some rows
+    are written after, by the compiled kernel (the others leave them to :func:`_bulk_text`)."""
     move = pieces.move[rows]
     offset, per_unit = moves.offset[move], moves.per_unit[move]
     places = np.where(per_unit == _MM, PLACES["mm"], PLACES["inch"])
@@ -106,7 +112,7 @@ def _piece_rows(moves, pieces, rows, out_at, linear, rapid, spec, has_e) -> list
     absolute = moves.absolute[move]
     counts = np.where(absolute[:, None], now, now - np.rint((before - offset) * scale))
     if not np.all(np.abs(counts) < 1e15):  # beyond the digits a double holds exactly: Python's formatting
-        return _piece_rows_slow(moves, pieces, rows, counts, places, linear, rapid, spec, has_e)
+        return _piece_rows_slow(moves, pieces, rows, counts, places, linear, rapid, spec, has_e, prefix)
     codes = rapid[move].astype(np.int64)
     if has_e.any():
         e = _extruder_counts(moves, pieces, rows)
@@ -114,7 +120,9 @@ def _piece_rows(moves, pieces, rows, out_at, linear, rapid, spec, has_e) -> list
     else:
         e, show = np.zeros(rows.size), np.zeros(rows.size, dtype=bool)
     if _COMPILED and np.all(np.abs(e) < 1e15):
-        return _compiled_rows(codes, [spec.feed_word, spec.rapid_word], linear, counts, places, show, e)
+        return _compiled_rows(codes, [spec.feed_word, spec.rapid_word], linear, counts, places, show, e, prefix)
+    if prefix is not None:
+        return _piece_rows_slow(moves, pieces, rows, counts, places, linear, rapid, spec, has_e, prefix)
     fields = [_choice(codes, [spec.feed_word, spec.rapid_word])]
     for j, letter in enumerate(linear):
         fields.append(_literal(f" {letter}", rows.size))
@@ -129,7 +137,7 @@ def _piece_rows(moves, pieces, rows, out_at, linear, rapid, spec, has_e) -> list
 _COMPILED = True
 
 
-def _compiled_rows(codes, options, linear, counts, places, show, e) -> list[str]:
+def _compiled_rows(codes, options, linear, counts, places, show, e, prefix=None) -> list[str]:
     """:func:`_piece_rows`'s text written by :func:`axiscal.precompensation.format_kernel.piece_text`."""
     from axiscal.precompensation import format_kernel  # numba takes a moment to load
 
@@ -139,12 +147,14 @@ def _compiled_rows(codes, options, linear, counts, places, show, e) -> list[str]
         words[k, :len(option)] = np.frombuffer(option.encode("ascii"), dtype=np.uint8)
     length = np.array([len(o) for o in options], dtype=np.int64)
     letters = np.frombuffer("".join(linear).encode("ascii"), dtype=np.uint8).copy()
+    if prefix is None:
+        prefix = (np.zeros(0, dtype=np.uint8), np.full(codes.size, -1, dtype=np.int64), np.zeros(codes.size, dtype=np.int64))
     data = format_kernel.piece_text(codes, words, length, letters, np.ascontiguousarray(counts, dtype=np.float64),
-                                    places.astype(np.int64), show, np.ascontiguousarray(e, dtype=np.float64))
+                                    places.astype(np.int64), show, np.ascontiguousarray(e, dtype=np.float64), *prefix)
     return data.tobytes().decode("ascii").split("\n")[:-1]
 
 
-def _piece_rows_slow(moves, pieces, rows, counts, places, linear, rapid, spec, has_e) -> list[str]:
+def _piece_rows_slow(moves, pieces, rows, counts, places, linear, rapid, spec, has_e, prefix=None) -> list[str]:
     """:func:`_piece_rows` one number at a time (for positions beyond 10^15 counts)."""
     move = pieces.move[rows]
     e = _extruder_counts(moves, pieces, rows) if has_e.any() else None
@@ -152,6 +162,9 @@ def _piece_rows_slow(moves, pieces, rows, counts, places, linear, rapid, spec, h
     for i in range(rows.size):
         p = int(places[i])
         words = [spec.rapid_word if rapid[move[i]] else spec.feed_word]
+        if prefix is not None and prefix[1][i] >= 0:
+            start = int(prefix[1][i])
+            words.insert(0, "N" + prefix[0][start:start + int(prefix[2][i])].tobytes().decode("ascii"))
         words += [f"{letter}{counts[i, j] / 10.0 ** p + 0.0:.{p}f}" for j, letter in enumerate(linear)]
         if e is not None and has_e[move[i]]:
             words.append(f"E{e[i] / 1e5 + 0.0:.5f}")
@@ -211,10 +224,10 @@ def _rows(fields) -> list[str]:
     return chars[valid].tobytes().decode("ascii").split("\n")[:-1]
 
 
-def _bulk_text(out, texts, moves, numbers, first, stop, at_row, piece_text, rotary, end) -> None:
-    """Write the moves ``numbers`` read in bulk (block number, G0/G1, axis words, F): the block number,
-    the pieces' text, the rotary words and F as written on the first. ``out`` and ``piece_text`` are
-    object arrays: the lines of one piece and no more words are put in place all at once."""
+def _bulk_plan(texts, moves, numbers, first, stop, at_row, rotary):
+    """How the moves ``numbers`` read in bulk are written: their lines, their first piece's row, the words
+    (rotary, F) written after it, whether they have a block number, and which are one piece and no more
+    words (``plain``)."""
     columns = moves.columns
     lines = moves.index[numbers]
     head = np.asarray(at_row[first[numbers]])
@@ -226,21 +239,54 @@ def _bulk_text(out, texts, moves, numbers, first, stop, at_row, piece_text, rota
             for letter in rotary:
                 if letter in written:
                     extra.setdefault(j, []).append(f"{letter}{written[letter]}")
-    feeds = np.array(columns.feed_word, dtype=object)[lines]
-    for j in np.flatnonzero(np.not_equal(feeds, None)).tolist():
-        extra.setdefault(j, []).append(f"F{feeds[j]}")
-    at = columns.number_at
-    numbered = at[lines, 1] > 0
+    feed_word = columns.feed_word
+    fed = np.fromiter(map(is_not, feed_word, repeat(None)), dtype=bool, count=len(feed_word))
+    for j in np.flatnonzero(fed[lines]).tolist():
+        extra.setdefault(j, []).append(f"F{feed_word[lines[j]]}")
+    numbered = columns.number_at[lines, 1] > 0
     plain = single.copy()
     if extra:
         plain[list(extra)] = False
+    return lines, head, extra, numbered, plain
+
+
+def _numbers(texts, plan, number_at, rows: int):
+    """The block numbers of the lines of one piece and no more words, for the kernel to write before
+    their piece: (the lines' ASCII bytes, per row where its number starts in them or -1, its length);
+    None when there are none, or the lines are not ASCII."""
+    lines, head, _, numbered, plain = plan
+    only = plain & numbered
+    if not only.any():
+        return None
+    joined = "\n".join(texts)
+    if not joined.isascii():
+        return None
+    data = np.frombuffer(joined.encode("ascii"), dtype=np.uint8)
+    length = np.fromiter(map(len, texts), dtype=np.int64, count=len(texts))
+    starts = np.cumsum(length + 1) - length - 1
+    which = lines[only]
+    at = np.full(rows, -1, dtype=np.int64)
+    size = np.zeros(rows, dtype=np.int64)
+    at[head[only]] = starts[which] + number_at[which, 0]
+    size[head[only]] = number_at[which, 1] - number_at[which, 0]
+    return data, at, size
+
+
+def _bulk_text(out, texts, moves, numbers, first, stop, at_row, piece_text, end, plan, prefixed: bool) -> None:
+    """Write the moves ``numbers`` read in bulk (block number, G0/G1, axis words, F) as ``plan``
+    (:func:`_bulk_plan`) says: the block number, the pieces' text, the rotary words and F as written on
+    the first. ``out`` and ``piece_text`` are object arrays: the lines of one piece and no more words are
+    put in place all at once (``prefixed``: their rows hold their block numbers already)."""
+    columns = moves.columns
+    lines, head, extra, numbered, plain = plan
+    at = columns.number_at
     only = plain & numbered  # a block number and one piece: the number, then the piece
-    if only.any():
+    if only.any() and not prefixed:
         which = lines[only]
         out[which] = np.array([f"N{texts[line][start:stop_at]} {row}" for line, row, start, stop_at
                                in zip(which.tolist(), piece_text[head[only]].tolist(), at[which, 0].tolist(),
                                       at[which, 1].tolist())], dtype=object)
-    alone = plain & ~numbered
+    alone = plain & (~numbered | prefixed)
     out[lines[alone]] = piece_text[head[alone]]
     for j in np.flatnonzero(~plain).tolist():
         number = numbers[j]
