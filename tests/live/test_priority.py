@@ -107,3 +107,38 @@ def test_a_session_not_asked_to_raise_or_replaying_as_fast_as_possible_stays_nor
         session.run(duration_s=0.2)
     with LiveSession(server=False, source=f"replay:{tmp_path / 'run.csv'}", pace=False, realtime=True) as session:
         assert session.priority is None
+
+
+def test_the_dashboard_s_thread_goes_one_real_time_step_below_the_loop():
+    """A thread that inherited the loop's SCHED_FIFO 10 goes to 9 (the loop then takes the core from it);
+    one at a normal policy, or refused, stays as it was."""
+    from axiscal.live.priority import below_the_loop
+
+    def work():
+        got = raise_priority(realtime_priority=10)
+        if got.kind != "real-time":
+            restore_priority(got)
+            return got, None
+
+        def child():  # started after the raise: it inherits SCHED_FIFO 10
+            below_the_loop()
+            return os.sched_getscheduler(0), os.sched_getparam(0).sched_priority
+
+        seen = in_thread(child)
+        restore_priority(got)
+        return got, seen
+
+    got, seen = in_thread(work)
+    if got.kind != "real-time":
+        pytest.skip(f"this system refuses a real-time priority: {got.text}")
+    assert seen == (os.SCHED_FIFO, 9)
+
+
+def test_below_the_loop_leaves_a_normal_or_refusing_thread_alone(monkeypatch):
+    from axiscal.live.priority import below_the_loop
+
+    in_thread(below_the_loop)  # at a normal policy: nothing changes and nothing is raised
+    monkeypatch.setattr(priority_module.os, "sched_getscheduler", lambda pid: os.SCHED_FIFO)
+    monkeypatch.setattr(priority_module.os, "sched_getparam", lambda pid: os.sched_param(10))
+    monkeypatch.setattr(priority_module.os, "sched_setscheduler", refuse)
+    below_the_loop()  # refused: kept as it is, no error

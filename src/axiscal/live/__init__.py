@@ -78,6 +78,7 @@ from axiscal.live.playback import (
 )
 from axiscal.live.priority import (
     Priority,
+    below_the_loop,
     raise_priority,
     restore_priority,
 )
@@ -137,6 +138,7 @@ __all__ = [
     "LiveServer",
     "AHEAD_S",
     "Priority",
+    "below_the_loop",
     "raise_priority",
     "restore_priority",
     "FIXED",

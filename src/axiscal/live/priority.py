@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 from axiscal.io.arguments import check_count
 
-__all__ = ["Priority", "raise_priority", "restore_priority"]
+__all__ = ["Priority", "raise_priority", "restore_priority", "below_the_loop"]
 
 
 @dataclass(frozen=True)
@@ -124,3 +124,22 @@ def restore_priority(priority: Priority) -> None:
             os.setpriority(os.PRIO_PROCESS, 0, priority.previous_nice)
         except OSError:
             pass
+
+
+def below_the_loop() -> None:
+    """Put the calling thread one real-time step below the real-time priority it inherited, if any.
+
+    The dashboard's server thread calls it as it starts. Inheriting the loop's ``SCHED_FIFO`` priority, it kept
+    a core whenever it had work (a state made and sent ten times a second) and the loop, of the same priority,
+    waited for the core: real-time threads of one priority do not preempt each other. One step below, the
+    loop takes the core from it at once, while it still runs ahead of every normal process (so it is never
+    left holding the interpreter lock behind them). At a normal policy nothing changes.
+    """
+    try:
+        if os.sched_getscheduler(0) != os.SCHED_FIFO:
+            return
+        level = os.sched_getparam(0).sched_priority
+        if level > 1:
+            os.sched_setscheduler(0, os.SCHED_FIFO, os.sched_param(level - 1))
+    except OSError:  # a system that refuses: the thread keeps what it has
+        return

@@ -27,6 +27,7 @@ import math
 import socket
 import threading
 from collections.abc import Sequence
+from typing import Any
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -40,6 +41,7 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count, check_mapping, is_real
+from axiscal.live.priority import below_the_loop
 from axiscal.io.arguments import check_instance, type_name
 from axiscal.live.state import UPDATE_HZ_RANGE, LiveState
 
@@ -99,6 +101,18 @@ def request_allowed(headers: dict[str, str], allowed_hosts: tuple[str, ...] = LO
         return False
     origin = headers.get("origin")
     return origin is None or isinstance(origin, str) and origin.strip().lower() == f"http://{host.strip().lower()}"
+
+
+def _json_in_parts(value: Any) -> str:
+    """``json.dumps(value, allow_nan=False)``, the same text, made one list or scalar at a time.
+
+    One ``json.dumps`` of a whole state (19 kB) is one call into C of about 1.3 ms that holds the
+    interpreter lock throughout: the live loop, which needs the lock to record its next batch, waited
+    for it. Made a dictionary entry at a time, the lock can pass to the loop between two lists.
+    """
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{json.dumps(str(key))}: {_json_in_parts(item)}" for key, item in value.items()) + "}"
+    return json.dumps(value, allow_nan=False)
 
 
 class _GuardHosts:
@@ -178,7 +192,7 @@ class Broadcaster:
         self._changed = asyncio.Condition()
 
     def refresh(self) -> None:
-        self.text = json.dumps(self.state.snapshot() | {"version": self.version + 1, "title": self.title}, allow_nan=False)
+        self.text = _json_in_parts(self.state.snapshot() | {"version": self.version + 1, "title": self.title})
         self.version += 1
 
     async def run(self) -> None:
@@ -369,6 +383,7 @@ class LiveServer:
         self.port = port
 
     def _serve(self) -> None:
+        below_the_loop()
         self._server.run(sockets=[self._socket])
 
     @property

@@ -105,7 +105,11 @@ def _check_letter(letter: str, name: str = "letter") -> None:
 
 
 def _plain(values: np.ndarray, digits: int = 6) -> list[float | None]:
-    return [None if v != v else round(v, digits) for v in np.asarray(values, dtype=float).tolist()]
+    """The values rounded to ``digits`` decimals as a JSON-ready list (NaN -> None), in one vectorised pass."""
+    rounded = np.round(np.asarray(values, dtype=float), digits)
+    plain = rounded.astype(object)
+    plain[np.isnan(rounded)] = None
+    return plain.tolist()
 
 
 def _number(value: float) -> float | None:
@@ -303,41 +307,47 @@ class LiveState:
     def snapshot(self) -> dict[str, Any]:
         """Everything the dashboard draws, as plain JSON-ready values (NaN -> None)."""
         rate = self.measure_rate()  # folds what waits
-        with self._lock:
+        with self._lock:  # copies only: the lists are made after, so update() never waits on them
             size = len(self._history)
             count = min(self._history_next, size)
             order = (np.arange(self._history_next - count, self._history_next)) % size
             history = self._history[order]
-            axes = {}
-            for letter in self.axes:
-                edges = self._edges[letter]
-                axes[letter] = {
-                    "travel_mm": [float(edges[0]), float(edges[-1])],
-                    "position_mm": _plain(0.5 * (edges[1:] + edges[:-1]), 3),
-                    "errors": {name: _plain(self._profiles[letter][row]) for row, name in enumerate(_error_columns(letter))},
-                }
-            sensors = [
-                {
-                    "name": name,
-                    "value": _number(float(self._channel_value[i])),
-                    "state": self._channel_state[i],
-                    "low": _number(float(self._low[i])),
-                    "high": _number(float(self._high[i])),
-                    "missing": int(self._channel_missing[i]),
-                    "out_of_range": int(self._channel_range[i]),
-                }
-                for i, name in enumerate(self.channels)
-            ]
-            latest = {name: _number(value) for name, value in self._latest.items()}
-            return {
-                "t_s": _number(self._last_t),
-                "frames": self.frames,
-                "faults": self.faults,
-                "rate_hz": round(rate, 1),
-                "last_fault": self._last_fault,
-                "last_fault_text": self.describe_fault(self._last_fault),
-                "latest": latest,
-                "axes": axes,
-                "history": {"t_s": _plain(history[:, 0])} | {name: _plain(history[:, k + 1]) for k, name in enumerate(SPATIAL)},
-                "sensors": sensors,
-            } | dict(self.extra)
+            profiles = {letter: self._profiles[letter].copy() for letter in self.axes}
+            channels = (self._channel_value.copy(), list(self._channel_state), self._channel_missing.copy(),
+                        self._channel_range.copy())
+            latest = dict(self._latest)
+            last_t, frames, faults, last_fault = self._last_t, self.frames, self.faults, self._last_fault
+            extra = dict(self.extra)
+        axes = {}
+        for letter in self.axes:
+            edges = self._edges[letter]  # fixed at construction
+            axes[letter] = {
+                "travel_mm": [float(edges[0]), float(edges[-1])],
+                "position_mm": _plain(0.5 * (edges[1:] + edges[:-1]), 3),
+                "errors": {name: _plain(profiles[letter][row]) for row, name in enumerate(_error_columns(letter))},
+            }
+        value, state, missing, out_of_range = channels
+        sensors = [
+            {
+                "name": name,
+                "value": _number(float(value[i])),
+                "state": state[i],
+                "low": _number(float(self._low[i])),
+                "high": _number(float(self._high[i])),
+                "missing": int(missing[i]),
+                "out_of_range": int(out_of_range[i]),
+            }
+            for i, name in enumerate(self.channels)
+        ]
+        return {
+            "t_s": _number(last_t),
+            "frames": frames,
+            "faults": faults,
+            "rate_hz": round(rate, 1),
+            "last_fault": last_fault,
+            "last_fault_text": self.describe_fault(last_fault),
+            "latest": {name: _number(v) for name, v in latest.items()},
+            "axes": axes,
+            "history": {"t_s": _plain(history[:, 0])} | {name: _plain(history[:, k + 1]) for k, name in enumerate(SPATIAL)},
+            "sensors": sensors,
+        } | extra
