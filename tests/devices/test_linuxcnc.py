@@ -193,27 +193,84 @@ def test_not_homed_after_a_restart_is_one_line(machine, plan_csv, tmp_path):
             machine.restart(None)
 
 
-def test_a_whole_visit_in_the_workbench_on_linuxcnc(machine, tmp_path):
-    """The workbench's steps (the calls its page makes) on the real LinuxCNC: as found, table, restart, as left, report."""
-    from axiscal.workbench import Workbench
+CERTIFICATE_FIELDS = {"customer": "Example Customer GmbH", "customer_address": "2 Spindle Road, Machine Town",
+                      "manufacturer": "LinuxCNC project", "condition": "in use", "instrument_serial": "L-1",
+                      "certificate": "NMI-77", "instrument_calibrated": "2026-03-02", "instrument_calibrated_by": "an NMI",
+                      "certificate_number": "AX-2026-0101", "issue_date": "2026-11-28", "lab_name": "Example Calibration Ltd",
+                      "lab_address": "1 Metrology Way", "lab_country": "DE", "signatory_name": "J. Example",
+                      "signatory_role": "Head of calibration", "tolerance_source": "the customer's order"}
 
-    bench = Workbench(tmp_path / "data", db=str(tmp_path / "h.sqlite"))
-    bench.new_visit({"title": "Visit on LinuxCNC", "date": "2026-11-26", "operator": "J. Doe", "machine": "LinuxCNC sim",
-                     "instrument": "µMD laser", "controller": "linuxcnc", "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6,
-                     "axes": ["X"]})
-    # the workbench drives at the default feed (1000 mm/min): half the travel halves the moves' time
-    bench.make_plan({"start_mm": 10, "end_mm": 100, "targets": 5, "runs": 1, "overrun_mm": 5, "dwell_s": 0.7})
-    lights = bench.connect({"instrument": f"umd:{machine.pty}", "controller": CONTROLLER})
-    assert lights["lights"] == {"instrument": "ok", "controller": "ok"}
-    bench.start_run("as-found")
-    assert bench.run.wait(120) == "done", bench.run.message
-    table = bench.compensate()
-    machine.restart(bench.data / table["file"])  # the operator loads the table: COMP_FILE, restart, home
-    bench.start_run("as-left")
-    assert bench.run.wait(120) == "done", bench.run.message
-    machine.comp = None
-    machine.restart(None)  # the next tests find the machine as it was
-    changes = {c["figure"]: c for c in bench.before_after()["changes"]}
-    assert changes["E"]["after"] <= 0.2 * changes["E"]["before"]
-    finished = bench.finish()
-    assert finished
+
+def test_a_one_axis_visit_clicked_through_in_chromium_on_linuxcnc(machine, browser_page, tmp_path):
+    """The workbench's page in Chromium on the real LinuxCNC and the µMD laser on a pty: a visit of X with its
+    certificate's fields, planned, connected, run as found, its table loaded by a restart, run as left, the
+    before/after table, and Finish writing the certificate and its DCC."""
+    from axiscal.workbench import serve_workbench
+
+    server = serve_workbench(tmp_path / "data", db=str(tmp_path / "history.sqlite"), port=0)
+    page = browser_page.page
+    try:
+        page.goto(server.url)
+        page.get_by_role("button", name="2 New visit").click()
+        page.wait_for_selector("#test-boxes input[value=positioning-Z]")
+        for axis in "YZ":  # the harness's LinuxCNC has X only
+            page.uncheck(f"#test-boxes input[value=positioning-{axis}]")
+        fields = {"title": "Visit on LinuxCNC", "operator": "J. Doe", "machine": "LinuxCNC sim", "serial": "LC1",
+                  "date": "2026-11-26", "length_U_ppm": "0.5", "eve_um": "1"} | CERTIFICATE_FIELDS
+        for name, value in fields.items():
+            page.fill(f"#visit-form [name={name}]", value)
+        page.select_option("#visit-form [name=language]", "de")
+        page.click("#visit-form button[type=submit]")
+        page.wait_for_selector("#visit-saved:not([hidden])")
+
+        page.get_by_role("button", name="3 Plan").click()
+        page.locator(".tests-list[data-mode=plan] tr[data-test=positioning-X] button").click()
+        # within LinuxCNC's soft limits (-1 to 201 mm); the default feed (1000 mm/min) over 90 mm
+        for name, value in {"start_mm": "10", "end_mm": "100", "targets": "5", "runs": "1", "overrun_mm": "5",
+                            "dwell_s": "0.7"}.items():
+            page.fill(f"#plan-form [name={name}]", value)
+        page.click("#plan-form button[type=submit]")
+        page.wait_for_selector("#program:has-text('G1 X')")
+
+        page.get_by_role("button", name="4 Connect").click()
+        page.fill("#connect-form [name=instrument]", f"umd:{machine.pty}")
+        page.fill("#connect-form [name=controller]", CONTROLLER)
+        page.click("#connect-form button[type=submit]")
+        page.wait_for_selector("#light-controller[data-state=ok]", timeout=30_000)
+        page.wait_for_selector("#light-instrument[data-state=ok]")
+        assert "homed" in page.locator("#told-controller").text_content()
+
+        page.get_by_role("button", name="5 Run").click()
+        row = ".tests-list[data-mode=run] tr[data-test=positioning-X]"
+        page.locator(f"{row} button").click()
+        page.wait_for_selector(f"{row} td.state[data-state=done]", timeout=180_000)
+        assert page.locator("#progress").text_content() == "10 of 10 stops"
+
+        page.get_by_role("button", name="7 Compensate").click()
+        page.click("#compensate")
+        page.wait_for_selector("#comp-download:not([hidden])")
+        table = server.bench.data / page.get_attribute("#comp-download", "href").split("/files/", 1)[1].split("?", 1)[0]
+        machine.restart(table)  # the operator loads the table: COMP_FILE in the INI, LinuxCNC restarted and homed
+        page.click("#run-as-left")
+        page.wait_for_selector("#run-phase:has-text('as-left')")
+        page.wait_for_selector("#run-state[data-state=done]", timeout=180_000)
+        page.get_by_role("button", name="7 Compensate").click()
+        page.click("#before-after")
+        page.wait_for_selector("#ba-status[data-state=done]", timeout=60_000)
+        e = page.locator("#changes tbody tr", has_text="E").first
+        before, after = (float(e.locator("td").nth(i).text_content().split()[0].replace(",", ".")) for i in (2, 3))
+        assert after <= 0.2 * before
+
+        page.get_by_role("button", name="8 Finish").click()
+        page.click("#finish")
+        page.wait_for_selector("#report-links li", timeout=120_000)
+        names = page.locator("#report-links a").all_text_contents()
+        assert any("dcc" in name.lower() for name in names), names
+        dcc = next(server.bench.data.rglob("dcc.xml")).read_text(encoding="utf-8")
+        assert "<dcc:uniqueIdentifier>AX-2026-0101</dcc:uniqueIdentifier>" in dcc
+        assert any("Kalibrierschein" in p.read_text(encoding="utf-8") for p in server.bench.data.rglob("certificate.html"))
+        assert not browser_page.errors, browser_page.errors
+    finally:
+        server.stop()
+        machine.comp = None
+        machine.restart(None)  # the next tests find the machine as it was
