@@ -134,6 +134,11 @@ def below_the_loop() -> None:
     waited for the core: real-time threads of one priority do not preempt each other. One step below, the
     loop takes the core from it at once, while it still runs ahead of every normal process (so it is never
     left holding the interpreter lock behind them). At a normal policy nothing changes.
+
+    Returns
+    -------
+    None
+        A system that refuses the change leaves the thread as it was, without an error.
     """
     try:
         if os.sched_getscheduler(0) != os.SCHED_FIFO:
