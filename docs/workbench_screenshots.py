@@ -93,6 +93,12 @@ def visit(page, server) -> None:
     shot(page, "2_visit")
     page.select_option("#machine-choice", "example")  # the example machine after all: its axes have their errors
     page.fill("#visit-form [name=A_um]", "45")
+    # the laser's budget: U (k = 2) beside every figure on Results
+    for name, value in (("length_U_ppm", "0.5"), ("air_temperature_u_K", "0.1"), ("air_pressure_u_Pa", "50"),
+                        ("air_humidity_u_percent", "2"), ("machine_temperature_C", "20.3"), ("machine_temperature_u_K", "0.1"),
+                        ("expansion_per_K", "11.5e-6"), ("expansion_u_per_K", "1e-6"), ("misalignment_urad", "50"),
+                        ("eve_um", "1")):
+        page.fill(f"#visit-form [name={name}]", value)
     page.click("#visit-form button[type=submit]")
     page.wait_for_selector("#visit-saved:not([hidden])")
     add_file_test(page, {"kind": "straightness", "file": "instrument/straightness_profile.csv", "axis": "X", "direction": "Y"})
