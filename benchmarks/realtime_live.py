@@ -12,7 +12,11 @@ must be exactly k / rate, k = 0, 1, 2, ...) and the delay percentiles:
 1. ``tcp``: a separate sender process plays the virtual module's frames over the TCP line protocol
    on 127.0.0.1, each frame sent once its time stamp has passed on the shared monotonic clock
    (CLOCK_MONOTONIC is one clock for all processes on Linux);
-2. ``tcp + dashboard``: the same with the dashboard server running and one WebSocket client reading;
+2. ``tcp + dashboard``: the same with the dashboard served by a process of its own
+   (:class:`axiscal.live.dashboard.DashboardProcess`, as ``axiscal live`` serves it) and one
+   WebSocket client reading; ``dashboard-thread`` (not run unless named in ``--only``) serves it
+   from a thread of the loop's process instead (:class:`axiscal.live.server.LiveServer`), to
+   compare the two side by side;
 3. ``sim``: the in-process virtual instrument at the same rate.
 
 The loop runs at the priority ``axiscal live`` gives it (:func:`axiscal.live.priority.raise_priority`:
@@ -104,7 +108,8 @@ def normal_priority() -> None:
     os.setpriority(os.PRIO_PROCESS, 0, 0)
 
 
-def run(kind: str, rate: float, seconds: float, *, dashboard: bool = False, raise_to_realtime: bool = True, sender_normal: bool = False) -> dict:
+def run(kind: str, rate: float, seconds: float, *, dashboard: str = "", raise_to_realtime: bool = True, sender_normal: bool = False) -> dict:
+    """One run; ``dashboard`` is "" (none), "process" or "thread"."""
     priority = raise_priority() if raise_to_realtime else None  # as axiscal live does, before any thread starts
     try:
         return _run(kind, rate, seconds, dashboard=dashboard, sender_normal=sender_normal)
@@ -113,7 +118,7 @@ def run(kind: str, rate: float, seconds: float, *, dashboard: bool = False, rais
             restore_priority(priority)
 
 
-def _run(kind: str, rate: float, seconds: float, *, dashboard: bool, sender_normal: bool) -> dict:
+def _run(kind: str, rate: float, seconds: float, *, dashboard: str, sender_normal: bool) -> dict:
     module = VirtualModule(seed=0)
     system = module.measurement_system()
     expected = int(rate * seconds)
@@ -135,10 +140,15 @@ def _run(kind: str, rate: float, seconds: float, *, dashboard: bool, sender_norm
         state = LiveState(system)
         pipeline = Pipeline(system, source, recorder=recorder, state=state)
         server = client = None
-        if dashboard:
+        if dashboard == "process":
+            from axiscal.live.dashboard import DashboardProcess
+
+            server = DashboardProcess(state, port=0, update_hz=10.0).start()
+        elif dashboard == "thread":
             from axiscal.live.server import LiveServer, create_app
 
             server = LiveServer(create_app(state, update_hz=10.0), port=0).start()
+        if server is not None:
             client = subprocess.Popen(
                 [sys.executable, __file__, "--reader", str(server.port), "--seconds", str(seconds + 1.0)],
                 stdout=subprocess.PIPE,
@@ -175,7 +185,7 @@ def _run(kind: str, rate: float, seconds: float, *, dashboard: bool, sender_norm
     lost = expected - len(t)
     in_order = len(t) == expected and np.allclose(t, np.arange(expected) / rate, atol=1e-9)
     return {
-        "run": kind + (" + dashboard" if dashboard else ""),
+        "run": kind + {"": "", "process": " + dashboard", "thread": " + dash. thread"}[dashboard],
         "sent": expected,
         "recorded": len(t),
         "lost": lost,
@@ -194,7 +204,7 @@ def busy_processes(count: int) -> list[subprocess.Popen]:
     return [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL, preexec_fn=normal_priority) for _ in range(count)]
 
 
-KINDS = {"tcp": ("tcp", False), "dashboard": ("tcp", True), "sim": ("sim", False)}
+KINDS = {"tcp": ("tcp", ""), "dashboard": ("tcp", "process"), "dashboard-thread": ("tcp", "thread"), "sim": ("sim", "")}
 
 
 def main() -> None:
@@ -203,7 +213,7 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=5.0)
     parser.add_argument("--runs", type=int, default=1, help="runs of each kind (the summary gives the worst)")
     parser.add_argument("--busy", type=int, default=0, help="processes keeping a core busy each during the runs")
-    parser.add_argument("--only", default="tcp,dashboard,sim", help="kinds of run, comma-separated: tcp, dashboard, sim")
+    parser.add_argument("--only", default="tcp,dashboard,sim", help="kinds of run, comma-separated: tcp, dashboard, dashboard-thread, sim")
     parser.add_argument("--normal-priority", action="store_true", help="run the loop at normal priority (as without the rights to raise it)")
     parser.add_argument("--sender-normal-priority", action="store_true", help="the TCP sender at normal priority (default: the loop's)")
     parser.add_argument("--sender", action="store_true", help=argparse.SUPPRESS)
@@ -218,7 +228,7 @@ def main() -> None:
     kinds = [name.strip() for name in args.only.split(",") if name.strip()]
     unknown = [name for name in kinds if name not in KINDS]
     if unknown:
-        parser.error(f"unknown kind(s) {', '.join(unknown)}; use tcp, dashboard, sim")
+        parser.error(f"unknown kind(s) {', '.join(unknown)}; use {', '.join(KINDS)}")
     print(
         f"live latency at {args.rate:.0f} Hz for {args.seconds:g} s per run, {args.runs} run(s) of each kind, "
         f"{args.busy} busy process(es) (delay: time stamp -> written to the record)"

@@ -12,6 +12,7 @@ import time
 import numpy as np
 import pytest
 
+from axiscal.live.dashboard import DashboardProcess
 from axiscal.live.pipeline import Pipeline
 from axiscal.live.playback import AHEAD_S
 from axiscal.live.recorder import Recorder, read_record
@@ -75,7 +76,16 @@ def module():
     return VirtualModule(seed=0)
 
 
-def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, module, browser_page):
+SERVERS = {
+    # what axiscal live serves: the page from a process of its own, fed the batches through a pipe
+    "own process": lambda state: DashboardProcess(state, port=0, update_hz=10.0).start(),
+    # the same app from a thread of the loop's process
+    "thread": lambda state: LiveServer(create_app(state, update_hz=10.0), port=0).start(),
+}
+
+
+@pytest.mark.parametrize("serve", SERVERS.values(), ids=SERVERS.keys())
+def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, module, browser_page, serve):
     system = module.measurement_system()
     record_path = tmp_path / "live.csv"
     recorder = Recorder(record_path, system.channels, result_columns(system.axes))
@@ -85,7 +95,7 @@ def test_dashboard_in_headless_chromium_shows_the_pipeline_numbers(tmp_path, mod
     pipeline = Pipeline(system, source, recorder=recorder, state=state)
     stop = threading.Event()
     runner = threading.Thread(target=pipeline.run, kwargs={"stop": stop, "duration_s": 30.0})
-    server = LiveServer(create_app(state, update_hz=10.0), port=0).start()
+    server = serve(state)
     runner.start()
     seen: list[dict] = []
     try:

@@ -11,7 +11,10 @@ The pieces (docs/live.md has the architecture):
 - :mod:`axiscal.live.session` -- one run set up from a machine, a source, a record and a dashboard;
 - :mod:`axiscal.live.server` -- the Starlette app pushing that state over a WebSocket (imports
   starlette/uvicorn; the other modules do not, so this package loads it only when one of its
-  names is first used).
+  names is first used);
+- :mod:`axiscal.live.dashboard` -- that app served by a process of its own, fed the batches through
+  a pipe, so that it never holds the loop's interpreter lock (what a session serves; loaded, like
+  the server, when one of its names is first used).
 """
 
 from __future__ import annotations
@@ -65,6 +68,8 @@ from axiscal.live.state import (
 #: (it imports starlette and uvicorn, which the rest of the live room and the CLI do without)
 _SERVER_NAMES = ("WEB", "HOST", "LOOPBACK_HOSTS", "ClientStats", "Broadcaster", "request_allowed", "create_app",
                  "create_board_app", "LiveServer")
+#: the names of :mod:`axiscal.live.dashboard`, run as ``python -m axiscal.live.dashboard`` (so never imported here first)
+_DASHBOARD_NAMES = ("BACKLOG_BYTES", "DashboardProcess")
 
 
 def __getattr__(name: str):
@@ -72,6 +77,10 @@ def __getattr__(name: str):
         from axiscal.live import server
 
         return getattr(server, name)
+    if name in _DASHBOARD_NAMES:
+        from axiscal.live import dashboard
+
+        return getattr(dashboard, name)
     raise AttributeError(f"module 'axiscal.live' has no attribute {name!r}")
 from axiscal.live.playback import (
     AHEAD_S,
@@ -136,6 +145,8 @@ __all__ = [
     "create_app",
     "create_board_app",
     "LiveServer",
+    "BACKLOG_BYTES",
+    "DashboardProcess",
     "AHEAD_S",
     "Priority",
     "below_the_loop",

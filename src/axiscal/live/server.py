@@ -347,6 +347,14 @@ def create_board_app(snapshot, *, page: str, allowed_hosts: Sequence[str] = ()) 
     )
 
 
+def _uvicorn_server(app: Starlette, host: str, port: int) -> uvicorn.Server:
+    """The uvicorn server of a dashboard: quiet, no compression, 1 s to close its connections politely."""
+    config = uvicorn.Config(
+        app, host=host, port=port, log_level="warning", lifespan="on", ws_per_message_deflate=False, timeout_graceful_shutdown=1
+    )
+    return uvicorn.Server(config)
+
+
 class LiveServer:
     """uvicorn serving an app from a background thread, on 127.0.0.1 unless told otherwise.
 
@@ -374,10 +382,7 @@ class LiveServer:
             raise AxiscalError(f"host must be an address to listen on, not {host!r}")
         self.app = app
         self.host = host
-        config = uvicorn.Config(
-            app, host=host, port=port, log_level="warning", lifespan="on", ws_per_message_deflate=False, timeout_graceful_shutdown=1
-        )
-        self._server = uvicorn.Server(config)
+        self._server = _uvicorn_server(app, host, port)
         self._socket: socket.socket | None = None
         self._thread = threading.Thread(target=self._serve, name="axiscal-live-server", daemon=True)
         self.port = port

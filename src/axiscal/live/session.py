@@ -2,7 +2,8 @@
 
 :class:`LiveSession` checks the settings, builds the measurement system (a machine TOML or the
 built-in virtual module of paper 000), opens the source, the record (plain CSV with its JSON
-sidecar, :mod:`axiscal.live.recorder`) and the dashboard server, and runs the
+sidecar, :mod:`axiscal.live.recorder`) and the dashboard (served by a process of its own,
+:mod:`axiscal.live.dashboard`), and runs the
 :class:`~axiscal.live.pipeline.Pipeline` until the duration has passed, a replay is finished or
 it is stopped.
 """
@@ -188,7 +189,8 @@ class LiveSession:
         Record every frame and result here (plus a JSON sidecar); an existing file is refused
         unless ``force`` (:func:`check_record_target`).
     server : bool
-        Serve the dashboard.
+        Serve the dashboard (from a process of its own, :class:`~axiscal.live.dashboard.DashboardProcess`,
+        fed the batches through a pipe: ``state`` then counts frames and faults, the process folds them).
     port : int
         Dashboard port (0: any free port).
     update_hz : float
@@ -261,11 +263,10 @@ class LiveSession:
         self.priority: Priority | None = raise_priority() if realtime and (pace or kind in ("sim", "tcp", "serial")) else None
         try:
             if server:  # before the record: a port in use leaves no record file behind
-                from axiscal.live.server import LiveServer, create_app
+                from axiscal.live.dashboard import DashboardProcess
 
                 title = f"axiscal live: {self.source.status.description}"
-                app = create_app(self.state, update_hz=update_hz, title=title, allowed_hosts=allowed_hosts)
-                self.server = LiveServer(app, port=port, host=bind).start()
+                self.server = DashboardProcess(self.state, port=port, host=bind, update_hz=update_hz, title=title, allowed_hosts=allowed_hosts).start()
             if record is not None:
                 try:
                     Path(record).parent.mkdir(parents=True, exist_ok=True)

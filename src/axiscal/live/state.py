@@ -142,16 +142,24 @@ class LiveState:
         bins = check_count("bins", bins)
         history_s = check_number("history_s", history_s, positive=True)
         history_points = check_count("history_points", history_points)
-        self.channels = tuple(system.channels)
-        self.axes = tuple(system.axes)
-        limits = [system.channel_limits.get(name, (-np.inf, np.inf)) for name in self.channels]
+        channels = tuple(system.channels)
+        limits = [system.channel_limits.get(name, (-np.inf, np.inf)) for name in channels]
+        travels = {letter: tuple(end / MM for end in system.machine.travel_m(letter)) for letter in system.axes}
+        self._setup(channels, limits, travels, bins, history_s, history_points)
+
+    def _setup(self, channels, limits, travels, bins, history_s, history_points) -> None:
+        """Allocate everything from the layout (what :meth:`layout` gives); the arguments are checked."""
+        self._layout = {"channels": list(channels), "limits": [list(map(float, pair)) for pair in limits],
+                        "travels_mm": {letter: list(map(float, pair)) for letter, pair in travels.items()},
+                        "bins": bins, "history_s": history_s, "history_points": history_points}
+        self.channels = tuple(channels)
+        self.axes = tuple(travels)
         self._low = np.array([lo for lo, _ in limits], dtype=float)
         self._high = np.array([hi for _, hi in limits], dtype=float)
         self.bins = bins
         self._edges: dict[str, np.ndarray] = {}
-        for letter in self.axes:
-            start, end = system.machine.travel_m(letter)
-            self._edges[letter] = np.linspace(start / MM, end / MM, bins + 1)
+        for letter, (start_mm, end_mm) in travels.items():
+            self._edges[letter] = np.linspace(start_mm, end_mm, bins + 1)
         self._profiles = {letter: np.full((6, bins), np.nan) for letter in self.axes}
         self._history_dt = history_s / history_points
         self._history = np.full((history_points, 1 + len(SPATIAL)), np.nan)
@@ -169,10 +177,31 @@ class LiveState:
         self._last_fault = 0
         self._rate_mark = (time.monotonic(), 0)
         self.rate_hz = 0.0
-        self.extra: dict[str, Any] = {}
+        self._extra: dict[str, Any] = {}
+        self._feed = None
         self._pending: list[tuple[FrameBatch, np.ndarray, Mapping[str, np.ndarray]]] = []
         self._pending_frames = 0
         self._pending_since = 0.0
+
+    @classmethod
+    def _from_layout(cls, layout: Mapping[str, Any]) -> "LiveState":
+        """A state laid out as another's ``_layout`` says (the dashboard's process builds its own)."""
+        state = cls.__new__(cls)
+        state._setup(layout["channels"], [tuple(pair) for pair in layout["limits"]],
+                     {letter: tuple(pair) for letter, pair in layout["travels_mm"].items()},
+                     layout["bins"], layout["history_s"], layout["history_points"])
+        return state
+
+    @property
+    def extra(self) -> dict[str, Any]:
+        """Entries added to every snapshot as they are (the pipeline's source, record and delay figures)."""
+        return self._extra
+
+    @extra.setter
+    def extra(self, value: dict[str, Any]) -> None:
+        self._extra = value
+        if self._feed is not None:
+            self._feed.extra(value)
 
     def update(self, batch: FrameBatch, fault: np.ndarray, results: Mapping[str, np.ndarray]) -> None:
         """Take one processed batch (called by the pipeline thread); it is folded in with the next ones.
@@ -180,9 +209,19 @@ class LiveState:
         Batches wait, unchanged, until :data:`FOLD_S` seconds or :data:`FOLD_FRAMES` frames of them
         have come, or a reader asks (:meth:`snapshot`, :meth:`measure_rate`, :meth:`fold`): each fold
         costs the same whatever its size, and the dashboard shows ten states a second.
+
+        While a dashboard of its own process is fed from this state
+        (:class:`~axiscal.live.dashboard.DashboardProcess`), the batch is written to it instead and
+        folded there; this state then only counts the frames and faults (:meth:`measure_rate` goes
+        on; :meth:`snapshot` shows no profiles, history or sensors).
         """
         n = len(batch)
         if n == 0:
+            return
+        if self._feed is not None:
+            self.frames += n
+            self.faults += int(np.count_nonzero(fault))
+            self._feed.batch(batch, fault, results)
             return
         with self._lock:
             if not self._pending:

@@ -1,0 +1,289 @@
+"""The live dashboard served by a process of its own, fed the processed batches through a pipe.
+
+In the loop's process the dashboard's server (:mod:`axiscal.live.server`) needs the interpreter lock
+to fold the batches, make the state's JSON and send it: while it holds the lock the loop waits, and
+its frames are late. :class:`DashboardProcess` runs the same app in another Python process, with a
+:class:`~axiscal.live.state.LiveState` of its own laid out as the loop's. The loop's state, once the
+process is started, writes each batch it is given to a pipe as raw arrays (one ``os.write`` that
+never waits: a full pipe keeps the bytes in a bounded backlog, written with the next batch) and
+keeps only the frame and fault counts; the process reads the pipe, folds the batches and serves
+the page, the API and the WebSocket exactly as :func:`~axiscal.live.server.create_app` does.
+
+The process's threads run one real-time step below the loop (:func:`~axiscal.live.priority.below_the_loop`)
+when the loop is real-time. It ends when the pipe is closed: by :meth:`DashboardProcess.stop`, or
+by the end of the loop's process, however it ends.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import json
+import logging
+import math
+import os
+import select
+import socket
+import struct
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from axiscal.errors import AxiscalError
+from axiscal.io.arguments import check_count, check_instance, is_real, type_name
+from axiscal.live.protocol import FrameBatch
+from axiscal.live.state import UPDATE_HZ_RANGE, LiveState
+
+__all__ = ["BACKLOG_BYTES", "DashboardProcess"]
+
+#: bytes of batches the loop keeps for a dashboard process that reads slowly (about 3 s at 10 kHz); batches beyond are left out of the dashboard
+BACKLOG_BYTES = 8 << 20
+_NAMES, _BATCH, _EXTRA = 1, 2, 3
+_HEAD = struct.Struct("<BI")
+_COUNT = struct.Struct("<I")
+_PIPE_BYTES = 1 << 20
+_F_SETPIPE_SZ = 1031
+
+
+class _Feed:
+    """The loop's end of the pipe: messages written without ever waiting, a bounded backlog kept."""
+
+    def __init__(self, fd: int):
+        self.fd = fd
+        self.backlog = bytearray()
+        self.names: tuple[tuple[str, str], ...] = ()
+        self.left_out = 0
+        self.closed = False
+
+    def batch(self, batch: FrameBatch, fault: np.ndarray, results: Mapping[str, np.ndarray]) -> None:
+        columns = [np.asarray(column) for column in results.values()]
+        names = tuple((name, column.dtype.str) for name, column in zip(results, columns))
+        if names != self.names:
+            self._put(_NAMES, json.dumps(names).encode())
+            self.names = names
+        if len(self.backlog) > BACKLOG_BYTES:
+            self.left_out += len(batch)
+            self.flush()
+            return
+        parts = [_COUNT.pack(len(batch)), np.ascontiguousarray(batch.t_s, dtype=float).tobytes(),
+                 np.ascontiguousarray(batch.values, dtype=float).tobytes(), np.ascontiguousarray(batch.malformed, dtype=bool).tobytes(),
+                 np.ascontiguousarray(fault, dtype=np.int64).tobytes()]
+        parts.extend(np.ascontiguousarray(column).tobytes() for column in columns)
+        self._put(_BATCH, b"".join(parts))
+
+    def extra(self, value: dict[str, Any]) -> None:
+        self._put(_EXTRA, json.dumps(value).encode())
+
+    def _put(self, kind: int, payload: bytes) -> None:
+        if self.closed:
+            return
+        self.backlog += _HEAD.pack(kind, len(payload))
+        self.backlog += payload
+        self.flush()
+
+    def flush(self) -> None:
+        while self.backlog and not self.closed:
+            try:
+                written = os.write(self.fd, self.backlog)
+            except BlockingIOError:
+                return
+            except OSError:  # the process is gone: nothing more to show
+                self.closed = True
+                self.backlog.clear()
+                return
+            del self.backlog[:written]
+
+
+def _read_exactly(stream, size: int) -> bytes | None:
+    data = stream.read(size)
+    return data if len(data) == size else None
+
+
+def _read_feed(stream, state: LiveState) -> None:
+    """In the dashboard's process: fold every batch the pipe brings into ``state`` until it is closed."""
+    width = len(state.channels)
+    names: list[tuple[str, np.dtype]] = []
+    while (head := _read_exactly(stream, _HEAD.size)) is not None:
+        kind, size = _HEAD.unpack(head)
+        payload = _read_exactly(stream, size)
+        if payload is None:
+            return
+        if kind == _NAMES:
+            names = [(name, np.dtype(code)) for name, code in json.loads(payload)]
+        elif kind == _EXTRA:
+            state.extra = json.loads(payload)
+        elif kind == _BATCH:
+            (n,) = _COUNT.unpack_from(payload)
+            offset = _COUNT.size
+            arrays = []
+            for dtype, count in [(np.dtype(float), n), (np.dtype(float), n * width), (np.dtype(bool), n), (np.dtype(np.int64), n)] + [
+                (dtype, n) for _, dtype in names
+            ]:
+                arrays.append(np.frombuffer(payload, dtype=dtype, count=count, offset=offset))
+                offset += count * dtype.itemsize
+            t_s, values, malformed, fault, *columns = arrays
+            batch = FrameBatch(t_s, values.reshape(n, width), malformed)
+            state.update(batch, fault, {name: column for (name, _), column in zip(names, columns)})
+
+
+class DashboardProcess:
+    """The dashboard of ``state`` served by a process of its own, on 127.0.0.1 unless told otherwise.
+
+    Parameters
+    ----------
+    state : LiveState
+        The loop's state; from :meth:`start` to :meth:`stop` its batches go to the process.
+    port : int, keyword-only
+        TCP port; 0 picks a free one (see :attr:`port` after :meth:`start`).
+    host : str, keyword-only
+        Address to listen on (IPv4). Anything but loopback exposes the dashboard to every computer
+        that reaches this one (docs/live.md).
+    update_hz : float, keyword-only
+        Refreshes per second.
+    title : str, keyword-only
+        The page's title.
+    allowed_hosts : sequence of str, keyword-only
+        Host names allowed besides the loopback names (see :func:`~axiscal.live.server.create_app`).
+
+    Attributes
+    ----------
+    port : int
+        The port listened on.
+
+    Raises
+    ------
+    AxiscalError
+        For a ``state`` that is not a :class:`LiveState`, a ``port`` outside 0-65535, an empty
+        ``host``, an ``update_hz`` outside :data:`~axiscal.live.state.UPDATE_HZ_RANGE`, a bad host name; :meth:`start` when the port cannot be listened on or the process does not start.
+    """
+
+    def __init__(self, state: LiveState, *, port: int = 8765, host: str = "127.0.0.1", update_hz: float = 10.0,
+                 title: str = "axiscal live", allowed_hosts: Sequence[str] = ()):
+        from axiscal.live.server import _checked_hosts
+
+        check_instance("state", state, LiveState)
+        port = check_count("port", port, minimum=0, maximum=65535)
+        if not isinstance(host, str) or not host.strip():
+            raise AxiscalError(f"host must be an address to listen on, not {host!r}")
+        low, high = UPDATE_HZ_RANGE
+        if not (is_real(update_hz) and math.isfinite(update_hz) and low <= update_hz <= high):
+            raise AxiscalError(f"update_hz: the update rate must be {low:g} to {high:g} per second, not {update_hz!r}")
+        if not isinstance(title, str):
+            raise AxiscalError(f"title must be a str, not {type_name(title)}")
+        self.state = state
+        self.host = host
+        self.port = port
+        self._settings = {"update_hz": update_hz, "title": title, "allowed_hosts": list(_checked_hosts(allowed_hosts))}
+        self._process: subprocess.Popen | None = None
+        self._feed: _Feed | None = None
+
+    @property
+    def url(self) -> str:
+        """The page's address."""
+        return f"http://{'127.0.0.1' if self.host == '0.0.0.0' else self.host}:{self.port}/"
+
+    def start(self, *, timeout_s: float = 30.0) -> "DashboardProcess":
+        """Start the process; return once it listens (raise AxiscalError if it cannot)."""
+        listener = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+        listener.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            listener.bind((self.host, self.port))
+        except (OSError, OverflowError) as exc:
+            listener.close()
+            reason = getattr(exc, "strerror", None) or exc
+            raise AxiscalError(f"the dashboard cannot listen on {self.host}:{self.port} ({reason}); choose another port or host") from None
+        self.port = listener.getsockname()[1]
+        read_end, write_end = os.pipe()
+        try:
+            try:
+                fcntl.fcntl(write_end, _F_SETPIPE_SZ, _PIPE_BYTES)
+            except OSError:  # a system that keeps its pipes smaller: the backlog takes the rest
+                pass
+            settings = self._settings | {"host": self.host, "port": self.port, "socket_fd": listener.fileno(), "feed_fd": read_end,
+                                         "layout": self.state._layout}
+            self._process = subprocess.Popen(
+                [sys.executable, "-m", "axiscal.live.dashboard", json.dumps(settings)],
+                pass_fds=(listener.fileno(), read_end),
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.PIPE,
+                start_new_session=True,  # Ctrl-C is the loop's to handle: it closes the pipe, and the process ends
+            )
+        except BaseException:
+            os.close(write_end)
+            raise
+        finally:
+            os.close(read_end)
+            listener.close()
+        os.set_blocking(write_end, False)
+        self._feed = _Feed(write_end)
+        if not self._started(timeout_s):
+            self.stop()
+            raise AxiscalError(f"the dashboard server on {self.host}:{self.port} did not start")
+        self.state._feed = self._feed
+        self._feed.extra(self.state.extra)
+        return self
+
+    def _started(self, timeout_s: float) -> bool:
+        """Whether the process said it listens within ``timeout_s``."""
+        ready, _, _ = select.select([self._process.stdout], [], [], timeout_s)
+        return bool(ready) and self._process.stdout.readline().strip() == b"listening"
+
+    def stop(self, *, timeout_s: float = 5.0) -> None:
+        """Stop feeding and serving (safe to call twice): the pipe is closed, the process ends within ``timeout_s``."""
+        if self._feed is None:
+            return
+        if self.state._feed is self._feed:
+            self.state._feed = None
+        feed, self._feed = self._feed, None
+        feed.closed = True
+        os.close(feed.fd)
+        process = self._process
+        try:
+            process.wait(timeout_s)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+        process.stdout.close()
+
+    def __enter__(self) -> "DashboardProcess":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.stop()
+
+
+def _serve(settings: dict[str, Any]) -> None:
+    """The dashboard's process: build its state, read the pipe in a thread, serve until the pipe is closed."""
+    from axiscal.live.priority import below_the_loop
+    from axiscal.live.server import _uvicorn_server, create_app
+
+    below_the_loop()  # before any thread starts: they all inherit it
+    state = LiveState._from_layout(settings["layout"])
+    app = create_app(state, update_hz=settings["update_hz"], title=settings["title"], allowed_hosts=settings["allowed_hosts"])
+    server = _uvicorn_server(app, settings["host"], settings["port"])
+    listener = socket.socket(fileno=settings["socket_fd"])
+
+    def feed() -> None:
+        with open(settings["feed_fd"], "rb", buffering=_PIPE_BYTES) as stream:
+            _read_feed(stream, state)
+        logging.getLogger("uvicorn.error").setLevel(logging.CRITICAL)  # a client that stopped reading is dropped quietly
+        server.should_exit = True
+
+    def announce() -> None:
+        while not server.started and not server.should_exit:
+            time.sleep(0.01)
+        if server.started:
+            sys.stdout.write("listening\n")
+            sys.stdout.flush()
+
+    threading.Thread(target=feed, name="axiscal-dashboard-feed", daemon=True).start()
+    threading.Thread(target=announce, name="axiscal-dashboard-ready", daemon=True).start()
+    server.run(sockets=[listener])
+
+
+if __name__ == "__main__":
+    _serve(json.loads(sys.argv[1]))
