@@ -21,7 +21,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 from numba import njit
 
-from axiscal.model.chain_kernel import CHUNK, PackedChain, _carry, _interpolate, _scale
+from axiscal.model.chain_kernel import CHUNK, PackedChain, _carry, _scale
 from axiscal.model.tables import _TURN
 from axiscal.units import LENGTH_UNITS, MM
 
@@ -144,8 +144,43 @@ def _invert_points(target, sign, check, rotary, axis, forward, origin, square, o
                 link[i] = outside
                 break
             for k in range(links):
-                _interpolate(k, q[k], v, periodic, start, end, first_row, rows, inverse_step, first_bin, inverse_bin,
-                             bins, table_position, table_values, table_slopes, turn)
+                # the table's segment and arithmetic, as chain_kernel._carry_points has them (written out:
+                # called as a function of these many arrays, numba's code took five times as long)
+                x = q[k]
+                if periodic[k]:
+                    d = x - start[k]
+                    if d < 0.0 or d >= turn:  # the remainder of a value already in [0, turn) is itself
+                        d = d % turn
+                    x = start[k] + d
+                if x < start[k]:
+                    x = start[k]
+                elif x > end[k]:
+                    x = end[k]
+                base = first_row[k]
+                last = rows[k] - 2
+                if inverse_step[k] > 0.0:
+                    j = int((x - start[k]) * inverse_step[k])
+                    if j > last:
+                        j = last
+                elif first_bin[k] >= 0:  # the bin's first row, or the next one when x is past it
+                    j = bins[first_bin[k] + int((x - start[k]) * inverse_bin[k])]
+                    if x >= table_position[base + j + 1]:
+                        j += 1
+                    if j > last:
+                        j = last
+                else:  # the last row at or below x, as searchsorted(side="right") - 1
+                    lo, hi = 0, rows[k]
+                    while lo < hi:
+                        mid = (lo + hi) // 2
+                        if table_position[base + mid] <= x:
+                            lo = mid + 1
+                        else:
+                            hi = mid
+                    j = min(max(lo - 1, 0), last)
+                row = base + j
+                dq = x - table_position[row]
+                for r in range(6):
+                    v[k, r] = table_values[row, r] + table_slopes[row, r] * dq
                 if not forward[k]:
                     v[k, 6] = _scale(v[k, 3], v[k, 4], v[k, 5])
             ax, ay, az = _carry(tool[0], tool[1], tool[2], True, True, q, v, cs, rotary, axis, forward, origin, square,
