@@ -1,7 +1,7 @@
 """The pre-compensation's fast paths give what their plain references give, to the bit and to the byte.
 
-The columns built for the pieces (:mod:`axiscal.precompensation.reading`) against the reader's
-own (:func:`axiscal.io.gcode.stream.read_pieces`), and the pieces' text written by the compiled
+The pieces' columns read in bulk, short pieces after the first included (:func:`axiscal.io.gcode.stream.read_pieces`),
+against those read block by block, and the pieces' text written by the compiled
 kernel (:mod:`axiscal.precompensation.format_kernel`) against the NumPy formatting, the path's
 samples (:mod:`axiscal.precompensation.path_kernel`) and the arcs' chords laid all at once against
 their NumPy references, over seeded random programs of every word dialect (plain moves with and
@@ -20,7 +20,6 @@ from hypothesis import given, settings, strategies as st
 from axiscal.io.gcode import reader
 from axiscal.io.gcode import stream
 from axiscal.precompensation import rewrite_program, text as text_module
-from axiscal.precompensation import reading
 
 from .machines import machines
 from .test_bulk import _program
@@ -64,15 +63,39 @@ def _same_columns(mine, theirs) -> None:
 
 @settings(max_examples=30, deadline=None)
 @given(seed=st.integers(0, 10_000), dialect=st.sampled_from(DIALECTS))
-def test_the_pieces_columns_are_the_readers(seed, dialect):
+def test_the_pieces_read_in_bulk_are_the_pieces_read_block_by_block(seed, dialect):
+    """The first piece read in bulk, so every later one too however short: the columns of the pieces read
+    block by block, and the F numbers as written (looked up on the lines that have one only)."""
     pieces = _cut(_random_program(seed, dialect), seed)
-    mine = list(reading.read_pieces(pieces, dialect=dialect, source="p"))
-    theirs = list(stream.read_pieces(pieces, dialect=dialect, source="p"))
-    assert len(mine) == len(theirs)
-    for a, b in zip(mine, theirs):
+    saved = reader._BULK_FROM, reader._BULK
+    try:
+        reader._BULK_FROM = len(reader.split_lines(pieces[0]))
+        fast = list(stream.read_pieces(pieces, dialect=dialect, source="p"))
+        reader._BULK = False
+        slow = list(stream.read_pieces(pieces, dialect=dialect, source="p"))
+    finally:
+        reader._BULK_FROM, reader._BULK = saved
+    assert len(fast) == len(slow)
+    taken = 0
+    for a, b in zip(fast, slow):
         assert (a.lines, a.line_end, a.last, a.ends_with_line_end, a.size) == (b.lines, b.line_end, b.last,
                                                                                b.ends_with_line_end, b.size)
-        _same_columns(a.columns, b.columns)
+        x, y = a.columns, b.columns
+        assert (x.axes, x.first_line, x.motion_word_before) == (y.axes, y.first_line, y.motion_word_before)
+        for name in ("kind", "absolute", "extruder_relative", "metres_per_unit", "motion_word", "has_e", "motion_line",
+                     "end_m", "known", "start_m", "start_known", "offset_m"):
+            u, v = getattr(x, name), getattr(y, name)
+            assert u.dtype == v.dtype and np.array_equal(u, v, equal_nan=u.dtype.kind == "f"), name
+        bulk = np.flatnonzero(x.bulk_row >= 0)
+        taken += bulk.size
+        for line in bulk.tolist():
+            written = dict(y.general[line].words).get("F")
+            assert x.feed_word[line] == written and line not in x.general
+            start, stop = x.number_at[line]
+            assert (f"N{a.lines[line][start:stop]}" if stop > start else "") == y.general[line].number
+        assert x.general == {i: block for i, block in y.general.items() if i not in set(bulk.tolist())}
+    if dialect != "fanuc":
+        assert taken
 
 
 def _rewritten(text, machine, dialect, compiled, **settings_):

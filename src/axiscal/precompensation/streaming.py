@@ -20,10 +20,9 @@ from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_path
 from axiscal.io.atomic import atomic_write, remove_stale_temporaries
 from axiscal.io.gcode.columns import joined
-from axiscal.io.gcode.stream import text_pieces
+from axiscal.io.gcode.stream import read_pieces, text_pieces
 from axiscal.model.machine import Machine
 from axiscal.precompensation.program import _setup, rewrite_window
-from axiscal.precompensation.reading import read_pieces
 from axiscal.precompensation.text import header_at, header_line
 
 __all__ = ["PrecompensationSummary", "precompensate_file", "precompensate_stream"]

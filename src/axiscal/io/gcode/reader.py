@@ -163,11 +163,14 @@ def control_state(dialect: str | Dialect, source: str | None, work_offset_m: Map
     return ControlState(spec, source, offsets)
 
 
-def read_lines(lines: list[str], text: str, state: ControlState, *, first_line: int = 0) -> Bulk | None:
+def read_lines(lines: list[str], text: str, state: ControlState, *, first_line: int = 0,
+               short_in_bulk: bool = False) -> Bulk | None:
     """Run ``lines`` (of ``text``; ``lines[0]`` is the program's line ``first_line + 1``) on ``state``.
 
     The blocks read one by one are appended to ``state.blocks``; the runs of plain lines read in
-    bulk are returned (None when the lines are read block by block).
+    bulk are returned (None when the lines are read block by block). Fewer lines than
+    :data:`_BULK_FROM` are read block by block unless ``short_in_bulk`` (the compiled scan already
+    loaded: the same motions, sooner).
     """
     spec = state.spec
     if spec.syntax == "conversational":
@@ -175,7 +178,7 @@ def read_lines(lines: list[str], text: str, state: ControlState, *, first_line: 
             state.line = number
             run_conversational_block(line, state, state.frame)
         return None
-    if not _BULK or len(lines) < _BULK_FROM:
+    if not _BULK or (len(lines) < _BULK_FROM and not short_in_bulk):
         for number, line in enumerate(lines, start=first_line + 1):
             state.line = number
             run_block(line, state)

@@ -5,7 +5,9 @@ a given size, decoded as UTF-8; :func:`read_pieces` reads them one after another
 control's state carried from each to the next (:func:`~axiscal.io.gcode.reader.read_lines`), so a
 block and a motion read in a piece are the ones the whole program gives, numbered by the whole
 program's lines. Each piece comes with its columns (:mod:`axiscal.io.gcode.columns`), whose first
-motion starts where the piece before left the axes.
+motion starts where the piece before left the axes. Once a piece was read in bulk, the plain lines
+of every piece after it are too, however short (the program's short last piece, read block by
+block, took a tenth of a long program's time).
 """
 
 from __future__ import annotations
@@ -141,6 +143,7 @@ def read_pieces(texts: Iterable[str], *, dialect: str | Dialect, source: str | N
     line_end = None
     axes: tuple[str, ...] = ()
     word_before = -1
+    scanned = False  # a piece was read in bulk: the compiled scan is loaded, a short piece is read in bulk too
     iterator = iter(texts)
     text = next(iterator, None)
     while text is not None:
@@ -155,7 +158,8 @@ def read_pieces(texts: Iterable[str], *, dialect: str | Dialect, source: str | N
             line_end = ending.group(0) if ending else None
         lines = split_lines(text)
         start = dict(state.position)
-        taken = read_lines(lines, text, state, first_line=first_line)
+        taken = read_lines(lines, text, state, first_line=first_line, short_in_bulk=scanned)
+        scanned = scanned or taken is not None
         program = Program(spec, lines, state.blocks, taken, line_end or "\n", first_line)
         last = following is None
         if last:
