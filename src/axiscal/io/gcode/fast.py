@@ -139,29 +139,35 @@ class Bulk:
         self.lines = np.zeros(0, dtype=np.int64)
         #: per run: (first line, stop line, start position, metres per unit, offsets, motion, feed, extruder relative)
         self.runs: list[tuple] = []
+        # per line, the last line at or before it that writes each axis, an F and a G word (-1: none), so
+        # that a run's end state is looked up, not searched for (a CAM program's arcs cut it into thousands of runs)
+        written = np.column_stack([scan.present, ~np.isnan(scan.feed), scan.g >= 0])
+        rows = np.arange(written.shape[0])[:, None]
+        self._last = np.maximum.accumulate(np.where(written, rows, -1), axis=0) if written.size else written.astype(np.int64)
+        self._offsets_key: tuple | None = None
+        self._offsets: dict[str, float] = {}
 
     def _take(self, first: int, stop: int) -> None:
         """Take lines [first, stop) (0-based) in one step, and bring the state to their end."""
         state, scan = self.state, self.scan
         per_unit = state.metres_per_unit
-        offsets = {k: state.offset(k) for k in state.spec.axes}
+        key = (state._shift_version, len(state.shift))  # the offsets change only with G92 and its clearing
+        if self._offsets_key != key:
+            self._offsets_key, self._offsets = key, {k: state.offset(k) for k in state.spec.axes}
+        offsets = self._offsets
         self.runs.append((first, stop, dict(state.position), per_unit, offsets, state.motion, state.feed,
                           state.extruder_relative()))
         position = dict(state.position)
+        last = self._last[stop - 1].tolist()
+        naxes = len(scan.axes)
         for j, letter in enumerate(scan.axes):
-            column = scan.present[first:stop, j]
-            if column.any():
-                last = stop - 1 - int(np.argmax(column[::-1]))
+            if last[j] >= first:
                 scale = _DEG if letter in ROTARY else per_unit
-                position[letter] = float(scan.value[last, j] * scale + offsets[letter])
-        feeds = scan.feed[first:stop]
-        given = ~np.isnan(feeds)
-        if given.any():
-            state.feed = float(feeds[stop - first - 1 - int(np.argmax(given[::-1]))] * per_unit / 60.0)
-        motions = scan.g[first:stop]
-        written = motions >= 0
-        if written.any():
-            state.motion = "G1" if motions[stop - first - 1 - int(np.argmax(written[::-1]))] == 1 else "G0"
+                position[letter] = float(scan.value[last[j], j] * scale + offsets[letter])
+        if last[naxes] >= first:
+            state.feed = float(scan.feed[last[naxes]] * per_unit / 60.0)
+        if last[naxes + 1] >= first:
+            state.motion = "G1" if scan.g[last[naxes + 1]] == 1 else "G0"
         state.position = position
         state._view = MappingProxyType(position)
         state.moved = True
