@@ -175,6 +175,38 @@ def test_a_stream_in_small_reads_gives_the_whole_text(monkeypatch):
     _same(whole, (out.getvalue().decode(), summary))
 
 
+def test_the_read_ahead_gives_what_one_piece_after_the_other_gives_and_stops_with_the_rewriting():
+    """The next piece read on a thread: the same chunks written, the same error after the same chunks
+    (a bad line in a later piece), and the thread gone when the writer stops the rewriting."""
+    import threading
+
+    text = kept_and_bulging(np.random.default_rng(7), "linuxcnc")
+    machine = bulging()
+    cuts = _cuts(text, 5)
+    bad = cuts[:-3] + ["G1 X5 Q3\n"] + cuts[-3:]
+    for program in (cuts, bad):
+        results = []
+        for threaded in (True, False):
+            chunks: list[bytes] = []
+            try:
+                rewrite_pieces(program, chunks.append, machine, dialect="linuxcnc", source="p", threaded=threaded,
+                               **SETTINGS)
+                error = None
+            except AxiscalError as caught:
+                error = str(caught)
+            results.append((chunks, error))
+        assert results[0] == results[1] and len(results[0][0]) > 1
+    assert results[0][1].startswith("p:") and "Q" in results[0][1]
+    before = threading.active_count()
+
+    def full(chunk: bytes) -> None:
+        raise OSError("no space left on the device")
+
+    with pytest.raises(OSError):
+        rewrite_pieces(cuts, full, machine, dialect="linuxcnc", source="p", **SETTINGS)
+    assert threading.active_count() == before
+
+
 def _peak_kb(lines: int) -> int:
     """Peak resident memory (kB) of a process that pre-compensates a ``lines``-line program in pieces."""
     script = textwrap.dedent(f"""

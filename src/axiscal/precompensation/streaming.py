@@ -11,7 +11,10 @@ gives (:func:`~axiscal.precompensation.program.rewrite_program`), and the memory
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Mapping
+import queue
+import threading
+from collections.abc import Callable, Iterable, Iterator, Mapping
+from contextlib import closing
 from dataclasses import dataclass
 from pathlib import Path
 from typing import BinaryIO
@@ -20,7 +23,7 @@ from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_path
 from axiscal.io.atomic import atomic_write, remove_stale_temporaries
 from axiscal.io.gcode.columns import joined
-from axiscal.io.gcode.stream import read_pieces, text_pieces
+from axiscal.io.gcode.stream import ProgramPiece, read_pieces, text_pieces
 from axiscal.model.machine import Machine
 from axiscal.precompensation.program import _setup, rewrite_window
 from axiscal.precompensation.text import header_at, header_line
@@ -99,12 +102,15 @@ def rewrite_pieces(
     work_offset_m: Mapping[str, float] | None = None,
     source: str | None = None,
     progress: Callable[[int, int], None] | None = None,
+    threaded: bool = True,
 ) -> PrecompensationSummary:
     """Pre-compensate the program given as pieces of whole lines ``texts``, handing its text to ``write``.
 
     ``texts`` joined is the program; ``write`` takes the output's UTF-8 bytes in order;
-    ``progress`` is called with the bytes and lines taken so far after each piece. The other arguments are
-    those of :func:`~axiscal.precompensation.program.rewrite_program`.
+    ``progress`` is called with the bytes and lines taken so far after each piece; ``threaded``: the
+    next piece is read on a thread while this one is rewritten (:func:`_read_ahead`; False: one after
+    the other, the reference). The other arguments are those of
+    :func:`~axiscal.precompensation.program.rewrite_program`.
     """
     setup = _setup(machine, dialect, max_segment_m, tolerance_m, tool_m, source)
     out = _Counter(write)
@@ -116,41 +122,88 @@ def rewrite_pieces(
     largest = residual = 0.0
     line_end = "\n"
     ending = False
-    for piece in read_pieces(texts, dialect=setup.spec, source=source, work_offset_m=work_offset_m):
-        line_end = piece.line_end
-        lines_in += len(piece.lines)
-        taken += piece.size
-        if columns is None:
-            columns, lines = piece.columns, piece.lines
-        else:
-            columns = joined(columns, piece.columns, piece.columns.axes)
-            lines = lines + piece.lines
-        window = rewrite_window(setup, columns, lines, line_end, settled, final=piece.last, written_from=written_from)
-        if progress is not None:
-            progress(taken, lines_in)
-        if window is None:  # no move of these lines is settled yet: read on
-            continue
-        text = window.lines
-        if header:
-            at = header_at(setup.spec, text)
-            if at < len(text) or piece.last:
-                text = text[:at] + [header_line(setup.spec, setup.header)] + text[at:]
-                header = False
-        out.lines(text, line_end)
-        moves += window.moves
-        rewritten += window.rewritten
-        largest = max(largest, window.largest_correction_m)
-        residual = max(residual, window.largest_residual_m)
-        settled = window.settled
-        start = window.settled_line if settled is not None else window.written_to
-        columns = columns.tail(start)
-        lines = lines[start:]
-        written_from = window.written_to - start
-        ending = piece.ends_with_line_end
+    pieces = read_pieces(texts, dialect=setup.spec, source=source, work_offset_m=work_offset_m)
+    if threaded:
+        pieces = _read_ahead(pieces)
+    with closing(pieces):  # the reading thread stopped (and joined) whatever stops the rewriting
+        for piece in pieces:
+            line_end = piece.line_end
+            lines_in += len(piece.lines)
+            taken += piece.size
+            if columns is None:
+                columns, lines = piece.columns, piece.lines
+            else:
+                columns = joined(columns, piece.columns, piece.columns.axes)
+                lines = lines + piece.lines
+            window = rewrite_window(setup, columns, lines, line_end, settled, final=piece.last, written_from=written_from)
+            if progress is not None:
+                progress(taken, lines_in)
+            if window is None:  # no move of these lines is settled yet: read on
+                continue
+            text = window.lines
+            if header:
+                at = header_at(setup.spec, text)
+                if at < len(text) or piece.last:
+                    text = text[:at] + [header_line(setup.spec, setup.header)] + text[at:]
+                    header = False
+            out.lines(text, line_end)
+            moves += window.moves
+            rewritten += window.rewritten
+            largest = max(largest, window.largest_correction_m)
+            residual = max(residual, window.largest_residual_m)
+            settled = window.settled
+            start = window.settled_line if settled is not None else window.written_to
+            columns = columns.tail(start)
+            lines = lines[start:]
+            written_from = window.written_to - start
+            ending = piece.ends_with_line_end
     lines_out = out.close(line_end, ending)
     model = setup.model
     return PrecompensationSummary(lines_in, lines_out, moves, rewritten, largest, residual, setup.tolerance_m,
                                   setup.max_segment_m, model.name or model.chain, setup.spec.name)
+
+
+def _read_ahead(pieces: Iterator[ProgramPiece]) -> Iterator[ProgramPiece]:
+    """``pieces`` in order, the next one read on a thread while the caller works on this one.
+
+    The reading (the stream, the compiled scan, the columns) runs beside the rewriting wherever either
+    leaves the interpreter's lock (the compiled passes, NumPy's larger operations, the file's reads
+    and writes). At most one piece waits, so the memory is that of two pieces; what the reading
+    raises is raised here in its place, after the pieces before it; a caller that stops early stops
+    the thread after the piece it is reading.
+    """
+    slot: queue.Queue = queue.Queue(maxsize=1)
+    stop = threading.Event()
+    done = object()
+
+    def read() -> None:
+        try:
+            for piece in pieces:
+                slot.put((piece, None))
+                if stop.is_set():
+                    return
+            slot.put((done, None))
+        except BaseException as error:  # handed to the caller, raised there
+            slot.put((None, error))
+
+    thread = threading.Thread(target=read, name="axiscal-read-ahead", daemon=True)
+    thread.start()
+    try:
+        while True:
+            piece, error = slot.get()
+            if error is not None:
+                raise error
+            if piece is done:
+                return
+            yield piece
+    finally:
+        stop.set()
+        while thread.is_alive():  # free a reader waiting to put its piece, then let it end
+            try:
+                slot.get(timeout=0.05)
+            except queue.Empty:
+                pass
+        thread.join()
 
 
 def precompensate_stream(
