@@ -235,10 +235,12 @@ def test_a_one_axis_visit_clicked_through_in_chromium_on_linuxcnc(machine, brows
         page.get_by_role("button", name="4 Connect").click()
         page.fill("#connect-form [name=instrument]", f"umd:{machine.pty}")
         page.fill("#connect-form [name=controller]", CONTROLLER)
+        page.fill("#connect-form [name=ini]", str(machine.ini))  # the machine's INI: its soft limits shown
         page.click("#connect-form button[type=submit]")
         page.wait_for_selector("#light-controller[data-state=ok]", timeout=30_000)
         page.wait_for_selector("#light-instrument[data-state=ok]")
-        assert "homed" in page.locator("#told-controller").text_content()
+        told = page.locator("#told-controller").text_content()
+        assert "homed" in told and "soft limits X-1 to 201 mm (INI file)" in told
 
         page.get_by_role("button", name="5 Run").click()
         row = ".tests-list[data-mode=run] tr[data-test=positioning-X]"

@@ -38,7 +38,7 @@ def test_a_restarted_workbench_opens_the_visit_at_its_step_and_goes_on(tmp_path)
     again = _bench(tmp_path)  # the server restarted
     state = again.state()
     assert state["open"] and state["folder"] == "vmc-1-2026-11-26" and state["step"] == "compensate"
-    assert state["visit"]["machine"] == "VMC 1" and state["plan_form"]["runs"] == 1 and state["connection"] == SIM
+    assert state["visit"]["machine"] == "VMC 1" and state["plan_form"]["runs"] == 1 and state["connection"] == SIM | {"ini": ""}
     assert state["plan"]["steps"] == plan["steps"] and state["plan"]["targets_mm"] == pytest.approx(plan["targets_mm"])
     assert state["compensation"]["text"] == table["text"] and state["runs"] == {"as-found": True, "as-left": False}
     assert state["connected"] is None  # devices are connected again by hand

@@ -97,15 +97,19 @@ def test_a_whole_visit_on_the_virtual_machine(browser_page, workbench):
     page.wait_for_function("document.querySelector('#ports-count').textContent === String("
                            f"{len(serial_ports())})")
     page.fill("#connect-form [name=instrument]", "umd:/dev/no-such-port")
+    page.fill("#connect-form [name=ini]", "/no/such/mill.ini")  # LinuxCNC's INI file: checked at once
     page.click("#connect-form button[type=submit]")
     page.wait_for_selector("#connect-form .field-error[data-for=instrument]:not(:empty)")
     assert "this computer has no serial port /dev/no-such-port" in page.locator("#connect-form .field-error[data-for=instrument]").text_content()
+    assert page.locator("#connect-form .field-error[data-for=ini]").text_content() == "no INI file at /no/such/mill.ini"
     page.fill("#connect-form [name=instrument]", "sim")
+    page.fill("#connect-form [name=ini]", "")
     page.click("#connect-form button[type=submit]")
     page.wait_for_selector("#light-instrument[data-state=ok]")
     assert page.locator("#connect-form .field-error[data-for=instrument]").text_content() == ""
     assert "virtual laser" in page.locator("#told-instrument").text_content()
     assert "ready" in page.locator("#told-controller").text_content() and page.locator("#refused").is_hidden()
+    assert "soft limits X" in page.locator("#told-controller").text_content()  # each tested axis's: the travel
     assert page.get_attribute("#light-controller", "data-state") == "ok"
     assert page.locator("#live-position").text_content() == "0.0000"
 

@@ -1,14 +1,14 @@
 """Connect, as a technician does: the computer's serial ports, each spec checked before connecting, and what
-the instrument and the controller say about themselves once connected.
+the instrument and the controller say about themselves once connected, for every axis the visit moves.
 
 Specs are those of ``axiscal run`` (docs/devices.md). :func:`check_spec` reads one without opening
 anything: its kind, its port and baud rate (a serial port must be one the computer has), its host
 and port, its socket or URL. :func:`serial_ports` is pyserial's list of the computer's ports.
 :func:`connect` opens both devices, reads the instrument for half a second, asks the controller
-where the axis is, whether it is ready (homed, out of e-stop and alarm) and its soft limits, then
-closes them; :class:`Connection` carries what each told (a µMD's firmware, sample rate and counts
-per cycle; grbl's banner; LinuxCNC's linuxcncrsh version; the limits) and the line a controller
-that is not ready answered.
+where the first axis is, whether each axis is ready (homed, out of e-stop and alarm) and each one's soft
+limits (LinuxCNC's from the machine's INI file, :func:`check_ini`), then closes them; :class:`Connection`
+carries what each told (a µMD's firmware, sample rate and counts per cycle; grbl's banner; LinuxCNC's
+linuxcncrsh version; the limits of each axis) and the line a controller that is not ready answered.
 """
 
 from __future__ import annotations
@@ -26,16 +26,16 @@ from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_count
 from axiscal.units import MM
 
-__all__ = ["INSTRUMENTS", "CONTROLLERS", "SIM_RATE_HZ", "Connection", "check_spec", "connect", "serial_ports",
-           "is_virtual"]
+__all__ = ["INSTRUMENTS", "CONTROLLERS", "SIM_RATE_HZ", "Connection", "check_spec", "check_ini", "connect",
+           "serial_ports", "is_virtual"]
 
 #: the instrument and controller kinds the workbench drives (``sim``: the virtual machine; the others: ``axiscal run``'s)
 INSTRUMENTS = ("sim", "umd", "sylvac", "mahr", "touchdro", "attocube")
 CONTROLLERS = ("sim", "linuxcnc", "grbl", "marlin", "klipper", "moonraker")
 #: samples per second of the virtual laser
 SIM_RATE_HZ = 1000.0
-#: the axis the workbench measures
-_AXIS = "X"
+#: the linear axes a controller is asked about
+_LINEAR = "XYZ"
 
 
 def serial_ports() -> list[dict[str, Any]]:
@@ -158,6 +158,46 @@ def is_virtual(instrument: str, controller: str) -> bool:
     return instrument.strip().lower() == "sim" and controller.strip().lower() == "sim"
 
 
+def check_ini(ini: Any) -> Path:
+    """A LinuxCNC INI file named on the computer running the workbench, read once to check it.
+
+    Parameters
+    ----------
+    ini : str or Path
+        Its path (``~`` is the user's home; a relative path is taken from the workbench's folder).
+
+    Returns
+    -------
+    Path
+        The file, absolute.
+
+    Raises
+    ------
+    AxiscalError
+        In one line, for a file that is not there or cannot be read as an INI file.
+    """
+    from axiscal.devices.linuxcnc import ini_limits
+
+    if not isinstance(ini, (str, Path)) or not str(ini).strip():
+        raise AxiscalError(f"the INI file must be a path, not {ini!r}")
+    path = Path(str(ini).strip()).expanduser().resolve()
+    if not path.is_file():
+        raise AxiscalError(f"no INI file at {path}")
+    try:
+        for axis in _LINEAR:
+            ini_limits(path, axis)  # reads it: a file that cannot be read as an INI file is said now, not at the run
+    except AxiscalError as exc:  # configparser's reason runs over lines: said in one
+        raise AxiscalError(" ".join(str(exc).split())) from None
+    return path
+
+
+def _checked_axes(axes: Any) -> tuple[str, ...]:
+    if isinstance(axes, str) or not isinstance(axes, (list, tuple)) or not axes or any(
+            not isinstance(a, str) or a not in _LINEAR for a in axes):
+        raise AxiscalError(f"axes must be linear axis letters such as ('X', 'Z'), not {axes!r}")
+    return tuple(dict.fromkeys(axes))
+
+
 @dataclass(frozen=True)
 class Connection:
     """The instrument and the controller a run uses, and what they say now.
@@ -178,6 +218,10 @@ class Connection:
         What each said about itself (name, value), in the order told.
     refused : str
         The controller's answer when it is not ready (not homed, e-stop, alarm); empty when ready.
+    limits : tuple of (str, float, float)
+        Each axis whose soft limits the controller told: its letter and its limits, metres.
+    ini : str
+        LinuxCNC's INI file the limits were read from (empty without one).
     """
 
     instrument: str
@@ -190,9 +234,16 @@ class Connection:
     instrument_told: tuple[tuple[str, str], ...] = ()
     controller_told: tuple[tuple[str, str], ...] = ()
     refused: str = ""
+    limits: tuple[tuple[str, float, float], ...] = ()
+    ini: str = ""
+
+    def limits_of(self, axis: str) -> tuple[float, float] | None:
+        """The soft limits of ``axis`` the controller told, metres (None where it told none)."""
+        return next(((low, high) for letter, low, high in self.limits if letter == axis), None)
 
 
-def connect(instrument: str = "sim", controller: str = "sim", *, seed: int = 0) -> Connection:
+def connect(instrument: str = "sim", controller: str = "sim", *, seed: int = 0, axes: tuple[str, ...] = ("X",),
+            ini: str | Path | None = None) -> Connection:
     """Check both specs, open the instrument and the controller, read them once, and close them.
 
     Parameters
@@ -201,6 +252,10 @@ def connect(instrument: str = "sim", controller: str = "sim", *, seed: int = 0) 
         Specs as ``axiscal run`` takes them; ``sim`` is the virtual machine (default).
     seed : int, keyword-only
         Seed of a simulated laser's noise.
+    axes : tuple of str, keyword-only
+        The linear axes the visit moves: each is checked ready and its soft limits asked (default X).
+    ini : str or Path, optional, keyword-only
+        LinuxCNC's INI file (:func:`check_ini`): the soft limits of each axis (a ``linuxcnc`` controller only).
 
     Returns
     -------
@@ -209,16 +264,22 @@ def connect(instrument: str = "sim", controller: str = "sim", *, seed: int = 0) 
     Raises
     ------
     AxiscalError
-        For a spec :func:`check_spec` refuses, or a device that cannot be opened (in one line).
+        For a spec :func:`check_spec` refuses, an INI file :func:`check_ini` refuses or given to
+        another controller than LinuxCNC, or a device that cannot be opened (in one line).
     """
     instrument = check_spec("instrument", instrument)
     controller = check_spec("controller", controller)
     seed = check_count("seed", seed, minimum=0)
+    axes = _checked_axes(axes)
+    if ini is not None:
+        if not controller.lower().startswith("linuxcnc:"):
+            raise AxiscalError(f"an INI file is LinuxCNC's: the controller '{controller}' takes none")
+        ini = check_ini(ini)
     if not is_virtual(instrument, controller):
-        return _connect_devices(instrument, controller, seed)
+        return _connect_devices(instrument, controller, seed, axes, ini)
     noise = float(np.random.default_rng([seed, 30]).normal(0.0, 20e-9))
     return Connection(instrument, controller, "ok", "ok",
-                      f"virtual laser ({SIM_RATE_HZ:g} Hz) on the virtual XZ module's X axis", noise, 0.0,
+                      f"virtual laser ({SIM_RATE_HZ:g} Hz) on the virtual machine's {', '.join(axes)}", noise, 0.0,
                       (("kind", "virtual laser"), ("sample rate", f"{SIM_RATE_HZ:g} Hz")),
                       (("kind", "virtual controller"), ("ready", "yes")))
 
@@ -240,34 +301,47 @@ def _instrument_told(source: Any) -> tuple[tuple[str, str], ...]:
     return tuple(told)
 
 
-def _controller_told(made: Any) -> tuple[tuple[tuple[str, str], ...], str]:
-    """What a controller said about itself, and its refusal when it is not ready."""
+def _controller_told(made: Any, axes: tuple[str, ...],
+                     ini: Path | None) -> tuple[tuple[tuple[str, str], ...], str, tuple[tuple[str, float, float], ...]]:
+    """What a controller said about itself and each axis's soft limits, and its refusal when an axis is not ready."""
     told = [("kind", made.description)]
     if getattr(made, "banner", ""):
         told.append(("version", made.banner))
     if getattr(made.status, "message", ""):
         told.append(("version", made.status.message))
     refused = ""
-    try:
-        made.check_ready(_AXIS)
-        told.append(("ready", "yes (homed, out of e-stop and alarm)"))
-    except AxiscalError as exc:
-        refused = str(exc)
-    if not refused:
-        told += _grbl_settings_told(made)
+    for axis in axes:
         try:
-            limits = made.limits(_AXIS)
+            made.check_ready(axis)
+        except AxiscalError as exc:
+            refused = str(exc)
+            break
+    if refused:
+        return tuple(told), refused, ()
+    told.append(("ready", "yes (homed, out of e-stop and alarm)"))
+    told += _grbl_settings_told(made, axes)
+    if ini is not None:
+        told.append(("INI file", str(ini)))
+    limits, grbl_said = [], any(name.startswith("$20") for name, _ in told)
+    for axis in axes:
+        try:
+            told_limits = made.limits(axis)
         except (AxiscalError, OSError) as exc:
-            limits, told = None, told + [("soft limits", f"not read: {exc}")]
-        if limits is not None:
-            told.append((f"soft limits {_AXIS}", f"{limits[0] / MM:g} to {limits[1] / MM:g} mm"))
-        elif not any(name == "soft limits" or name.startswith("$20") for name, _ in told):
-            told.append(("soft limits", "not told (the controller refuses a move beyond its own)"))
-    return tuple(told), refused
+            told.append((f"soft limits {axis}", f"not read: {exc}"))
+            continue
+        if told_limits is not None:
+            limits.append((axis, float(told_limits[0]), float(told_limits[1])))
+            told.append((f"soft limits {axis}", f"{told_limits[0] / MM:g} to {told_limits[1] / MM:g} mm"
+                         + (" (INI file)" if ini is not None else "")))
+        elif ini is not None:
+            told.append((f"soft limits {axis}", "not in the INI file (LinuxCNC refuses a move beyond its own)"))
+    if not limits and ini is None and not grbl_said:
+        told.append(("soft limits", "not told (the controller refuses a move beyond its own)"))
+    return tuple(told), refused, tuple(limits)
 
 
-def _grbl_settings_told(made: Any) -> list[tuple[str, str]]:
-    """grbl's ``$`` settings that bound a run on the axis: soft limits ($20), homing ($22), the axis's travel ($130...)."""
+def _grbl_settings_told(made: Any, axes: tuple[str, ...]) -> list[tuple[str, str]]:
+    """grbl's ``$`` settings that bound a run: soft limits ($20), homing ($22), each axis's travel ($130...)."""
     from axiscal.devices.grbl import GrblController
 
     if not isinstance(made, GrblController):
@@ -281,17 +355,18 @@ def _grbl_settings_told(made: Any) -> list[tuple[str, str]]:
         told.append(("$20 soft limits", "on" if settings[20] == 1 else "off: grbl refuses no move beyond its travel"))
     if 22 in settings:
         told.append(("$22 homing cycle", "on" if settings[22] == 1 else "off: machine positions count from where grbl was switched on"))
-    travel = 130 + "XYZABC".index(_AXIS)
-    if travel in settings:
-        told.append((f"${travel} {_AXIS} max travel", f"{settings[travel]:g} mm"))
+    for axis in axes:
+        travel = 130 + "XYZABC".index(axis)
+        if travel in settings:
+            told.append((f"${travel} {axis} max travel", f"{settings[travel]:g} mm"))
     return told
 
 
-def _connect_devices(instrument: str, controller: str, seed: int) -> Connection:
+def _connect_devices(instrument: str, controller: str, seed: int, axes: tuple[str, ...], ini: Path | None) -> Connection:
     """Open the devices of ``axiscal run``, read the instrument for half a second and the controller once, close."""
     from axiscal.capture.connected import open_run_devices
 
-    made, source = open_run_devices(controller, instrument, seed=seed)
+    made, source = open_run_devices(controller, instrument, seed=seed, ini=ini)
     try:
         end = time.monotonic() + 0.5
         reading = math.nan
@@ -302,15 +377,15 @@ def _connect_devices(instrument: str, controller: str, seed: int) -> Connection:
             if good.size:
                 reading = float(good[-1]) * MM
         try:
-            position = float(made.position(_AXIS))
+            position = float(made.position(axes[0]))
             controller_state = "ok"
         except (AxiscalError, OSError):
             position, controller_state = math.nan, "lost"
-        controller_told, refused = _controller_told(made) if controller_state == "ok" else ((), "")
+        controller_told, refused, limits = _controller_told(made, axes, ini) if controller_state == "ok" else ((), "", ())
         instrument_state = "ok" if math.isfinite(reading) else "lost"
         return Connection(instrument, controller, instrument_state, "refused" if refused else controller_state,
                           f"{source.status.description}; {made.description}", reading, position,
-                          _instrument_told(source), controller_told, refused)
+                          _instrument_told(source), controller_told, refused, limits, "" if ini is None else str(ini))
     finally:
         source.close()
         made.close()

@@ -18,7 +18,7 @@ from axiscal.errors import AxiscalError
 from axiscal.io.formats.budget import BUDGET_RANGES
 from axiscal.uncertainty.decision import DECISION_RULES
 from axiscal.workbench.budget import BUDGET_FIELDS
-from axiscal.workbench.connection import check_spec
+from axiscal.workbench.connection import check_ini, check_spec
 
 __all__ = ["FORMS", "FormErrors", "checked"]
 
@@ -154,10 +154,14 @@ class PlanForm(_Form):
 
 
 class ConnectForm(_Form):
-    """The instrument and the controller, as ``axiscal run`` names them: each checked before connecting."""
+    """The instrument and the controller, as ``axiscal run`` names them, and LinuxCNC's INI file: each checked before connecting.
+
+    ``ini`` is a path on the computer running the workbench (empty: none); the file is read at once.
+    """
 
     instrument: str = Field(default="sim", min_length=1, max_length=200)
     controller: str = Field(default="sim", min_length=1, max_length=200)
+    ini: str = Field(default="", max_length=1000)
 
     @field_validator("instrument", "controller")
     @classmethod
@@ -166,6 +170,22 @@ class ConnectForm(_Form):
             return check_spec(info.field_name, value)
         except AxiscalError as exc:
             raise ValueError(str(exc)) from None
+
+    @field_validator("ini")
+    @classmethod
+    def _ini(cls, value: str) -> str:
+        if not value:
+            return value
+        try:
+            return str(check_ini(value))
+        except AxiscalError as exc:
+            raise ValueError(str(exc)) from None
+
+    @model_validator(mode="after")
+    def _ini_is_linuxcncs(self) -> "ConnectForm":
+        if self.ini and not self.controller.lower().startswith("linuxcnc:"):
+            raise ValueError("ini: an INI file is LinuxCNC's: name the controller linuxcnc:HOST, or leave the INI file empty")
+        return self
 
 
 #: the forms of the page by name

@@ -37,7 +37,6 @@ import math
 import threading
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -190,6 +189,8 @@ class PlanRun:
         The linear axis the plan moves (default X).
     machine : str or Path, optional, keyword-only
         The machine description the virtual machine runs (default the built-in XZ module).
+    ini : str or Path, optional, keyword-only
+        LinuxCNC's INI file: a plan beyond its soft limits is refused before any move (a LinuxCNC's run only).
 
     Raises
     ------
@@ -207,12 +208,14 @@ class PlanRun:
     def __init__(self, plan_csv: str | Path, output: str | Path, *, instrument: str = "sim", controller: str = "sim",
                  compensation: str | None = None, controller_kind: str = "linuxcnc", resume: bool = False,
                  speed: float = 1.0, dwell_s: float = 1.0, seed: int = 0, settings: CaptureSettings | None = None,
-                 axis: str = "X", machine: str | Path | None = None):
+                 axis: str = "X", machine: str | Path | None = None, ini: str | Path | None = None):
         from axiscal.compensation.readback import read_compensation
         from axiscal.model.machine import load_machine
 
         self.instrument = check_spec("instrument", instrument)
         self.controller = check_spec("controller", controller)
+        if ini is not None:
+            raise AxiscalError("an INI file is LinuxCNC's: the virtual machine takes none")
         self.plan_csv = check_path("plan_csv", plan_csv)
         self.output = check_path("output", output)
         check_instance("resume", resume, bool)
@@ -430,14 +433,14 @@ class DevicePlanRun(PlanRun):
 
     Parameters
     ----------
-    plan_csv, output, instrument, controller, compensation, controller_kind, resume, speed, dwell_s, seed, settings, axis, machine :
-        As :class:`PlanRun` takes them.
+    plan_csv, output, instrument, controller, compensation, controller_kind, resume, speed, dwell_s, seed, settings, axis, machine, ini :
+        As :class:`PlanRun` takes them; ``ini`` is given to the controller as ``axiscal run --ini`` gives it.
     """
 
     def __init__(self, plan_csv: str | Path, output: str | Path, *, instrument: str = "sim", controller: str = "sim",
                  compensation: str | None = None, controller_kind: str = "linuxcnc", resume: bool = False,
                  speed: float = 1.0, dwell_s: float = 1.0, seed: int = 0, settings: CaptureSettings | None = None,
-                 axis: str = "X", machine: str | Path | None = None):
+                 axis: str = "X", machine: str | Path | None = None, ini: str | Path | None = None):
         from axiscal.capture.connected import open_run_devices, sim_machine
 
         self.instrument = check_spec("instrument", instrument)
@@ -466,7 +469,8 @@ class DevicePlanRun(PlanRun):
         # the virtual controller moves the run's axis of the visit's machine (the XZ module's X when none is named)
         virtual = self.controller.lower() == "sim"
         moved = sim_machine(machine=None if machine is None else check_path("machine", machine), axis=self.axis) if virtual else None
-        self._device, self._instrument = open_run_devices(self.controller, self.instrument, seed=seed, machine=moved)
+        ini = None if ini is None else check_path("ini", ini)
+        self._device, self._instrument = open_run_devices(self.controller, self.instrument, seed=seed, machine=moved, ini=ini)
         original = self._instrument.read
 
         def tapped(timeout_s: float):

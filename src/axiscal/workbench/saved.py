@@ -38,7 +38,7 @@ class SavedVisit:
     plan : dict or None
         The plan form, once planned.
     connection : dict or None
-        The instrument's and the controller's specs, once connected.
+        The instrument's and the controller's specs and LinuxCNC's INI file (``ini``, empty without one), once connected.
     step : str
         The step the page was at (one of :data:`STEPS`).
     phase : str

@@ -11,8 +11,9 @@ The folder of a visit is ``DATA/<machine>-<date>``: ``campaign.toml``, the machi
 and as-found run (``positioning_x.csv``), ``files/`` with the data of the tests taken from files,
 ``compensation/``, and ``as-left/`` with the runs taken with the compensation loaded; the reports
 go to ``report/`` and ``as-left/report/``. Every file is written atomically. The visit's machine and
-tests are kept by :class:`~axiscal.workbench.visit_tests.VisitTests`, the history's views by
-:class:`~axiscal.workbench.history_views.HistoryViews`, both parts of :class:`Workbench`.
+tests are kept by :class:`~axiscal.workbench.visit_tests.VisitTests`, its connection by
+:class:`~axiscal.workbench.visit_connection.VisitConnection`, the history's views by
+:class:`~axiscal.workbench.history_views.HistoryViews`, all parts of :class:`Workbench`.
 """
 
 from __future__ import annotations
@@ -20,7 +21,6 @@ from __future__ import annotations
 import json
 import re
 import threading
-from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -35,8 +35,8 @@ from axiscal.io.arguments import check_number
 from axiscal.workbench.forms import FormErrors, PlanForm, VisitForm, checked
 from axiscal.workbench.history_views import HistoryViews
 from axiscal.workbench.suite import campaign_with_tests, checked_plan, plan_file, run_file, wanted_tests
+from axiscal.workbench.visit_connection import VisitConnection
 from axiscal.workbench.visit_tests import MACHINE_KEYS, VisitTests
-from axiscal.workbench.connection import SIM_RATE_HZ, connect, is_virtual, serial_ports
 from axiscal.workbench.machines import MACHINE_FILE, example_machine, machine_axes
 from axiscal.workbench.budget import decision_of, remember_budget, write_budget
 from axiscal.workbench.laboratory import laboratory_defaults, remember_laboratory
@@ -59,7 +59,7 @@ def _slug(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9]+", "-", text).strip("-").lower()[:60] or "visit"
 
 
-class Workbench(HistoryViews, VisitTests):
+class Workbench(HistoryViews, VisitTests, VisitConnection):
     """The visit the page works on, and the history it reads.
 
     Parameters
@@ -184,6 +184,7 @@ class Workbench(HistoryViews, VisitTests):
         self._test(f"positioning-{form.axis}", run=True)
         plan = plan_test(form.start_mm * MM, form.end_mm * MM, form.targets, runs=form.runs,
                          overrun_m=form.overrun_mm * MM, seed=form.seed)
+        self._within_told_limits(form, plan.moves)
         name = form.axis.lower()
         csv_path = folder / f"plan_{name}.csv"
         program = folder / f"{name}{find_dialect(form.dialect).extension}"
@@ -221,32 +222,6 @@ class Workbench(HistoryViews, VisitTests):
                 "targets_mm": [float(t / MM) for t in targets], "readings": int(steps.readings), "axis": form.axis,
                 "form": form.model_dump(mode="json")}
 
-    # -- 4. connect --------------------------------------------------------------------------------
-    def ports(self) -> list[dict[str, Any]]:
-        """The computer's serial ports (device, description, USB ids), listed now."""
-        return serial_ports()
-
-    def connect(self, data: Any) -> dict[str, Any]:
-        """Check both specs, open the instrument and the controller; their lights, reading, position and what they told."""
-        form = checked("connect", data)
-        c = connect(form.instrument, form.controller)
-        if is_virtual(c.instrument, c.controller):  # the virtual machine is the visit's machine, every axis of it
-            described = machine_axes(self.machine_file()) if self.folder is None else {"name": self.visit.machine} | {
-                "axes": self._axes()}
-            travels = ", ".join(f"{a['axis']} {a['start']:g} to {a['end']:g} {a['unit']}" for a in described["axes"])
-            c = replace(c, description=f"virtual laser ({SIM_RATE_HZ:g} Hz) on the virtual {described['name']}: {travels}",
-                        controller_told=c.controller_told + (("machine", described["name"]), ("axes", travels)))
-        self.connection = c
-        if self.saved is not None:
-            with self._lock:
-                self.saved.connection = {"instrument": form.instrument, "controller": form.controller}
-                self._save()
-        return {"instrument": c.instrument, "controller": c.controller,
-                "lights": {"instrument": c.instrument_state, "controller": c.controller_state},
-                "description": c.description, "reading_mm": c.reading_m / MM, "position_mm": c.position_m / MM,
-                "told": {"instrument": [list(t) for t in c.instrument_told], "controller": [list(t) for t in c.controller_told]},
-                "refused": c.refused}
-
     # -- 5. run ------------------------------------------------------------------------------------
     def start_run(self, phase: str = "as-found", *, resume: bool = False, test: str | None = None,
                   repeat: bool = False) -> dict[str, Any]:
@@ -281,7 +256,8 @@ class Workbench(HistoryViews, VisitTests):
         run = PlanRun(self._visit_folder() / plan_file(axis), output, instrument=self.connection.instrument,
                       controller=self.connection.controller, compensation=compensation,
                       controller_kind=self.visit.controller, resume=resume, speed=self.speed,
-                      dwell_s=plan.dwell_s, seed=0 if phase == "as-found" else 1, axis=axis, machine=self.machine_file())
+                      dwell_s=plan.dwell_s, seed=0 if phase == "as-found" else 1, axis=axis, machine=self.machine_file(),
+                      ini=self.connection.ini or None)
         run.test, run.phase = test["id"], phase
         with self._lock:
             self.run, self.phase, self.plan = run, phase, plan
