@@ -27,7 +27,7 @@ from axiscal.history import Drift, add_results, drifting_results, write_results
 from axiscal.workbench import SIM_RATE_HZ, serve_workbench
 
 VISIT = {"title": "Benchmark visit", "date": "2026-11-26", "operator": "bench", "machine": "VMC bench",
-         "instrument": "Laser", "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6, "axes": ["X"]}
+         "instrument": "Laser", "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6, "tests": ["positioning-X"]}
 PLAN = {"start_mm": 0, "end_mm": 150, "targets": 5, "runs": 2, "overrun_mm": 5, "dwell_s": 1, "dialect": "linuxcnc"}
 
 

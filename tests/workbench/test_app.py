@@ -13,7 +13,7 @@ with warnings.catch_warnings():  # Starlette's notice that its test client will 
 from axiscal.workbench import MAX_BODY, TOKEN_COOKIE, Workbench, create_workbench_app, new_token
 
 VISIT = {"title": "Acceptance", "date": "2026-11-26", "operator": "J. Doe", "machine": "VMC 1", "serial": "S1",
-         "instrument": "Laser", "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6, "axes": ["X"]}
+         "instrument": "Laser", "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6, "tests": ["positioning-X"]}
 
 
 @pytest.fixture

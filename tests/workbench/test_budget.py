@@ -23,7 +23,8 @@ with warnings.catch_warnings():  # Starlette's notice that its test client will 
     from starlette.testclient import TestClient
 
 VISIT = {"title": "Visit", "date": "2026-11-26", "operator": "J. Doe", "machine": "VMC 1", "serial": "S1",
-         "instrument": "Laser", "instrument_serial": "L-1", "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6, "axes": ["X"]}
+         "instrument": "Laser", "instrument_serial": "L-1", "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6}
+TESTS = {"tests": ["positioning-X"]}  # the New visit form's boxes
 BUDGET = {"length_U_ppm": 0.5, "air_temperature_u_K": 0.1, "air_pressure_u_Pa": 30.0, "air_humidity_u_percent": 5.0,
           "machine_temperature_C": 23.0, "machine_temperature_u_K": 0.2, "expansion_per_K": 11.5e-6,
           "expansion_u_per_K": 1.2e-6, "misalignment_urad": 100.0, "eve_um": 1.0}
@@ -58,7 +59,7 @@ def test_the_form_takes_the_budget_in_the_budget_files_units_and_ranges():
 
 def test_the_budget_is_written_as_the_campaigns_budget_file_and_read_by_the_library(tmp_path):
     bench = _bench(tmp_path)
-    answer = bench.new_visit(VISIT | BUDGET | {"decision_rule": "guard-band"})
+    answer = bench.new_visit(TESTS | VISIT | BUDGET | {"decision_rule": "guard-band"})
     assert '[uncertainty]\nbudget = "budget.toml"\ndecision_rule = "guard-band"' in answer["text"]
     budget = read_budget(bench.folder / "budget.toml")
     assert budget.length_U_rel == pytest.approx(0.5e-6) and budget.air_pressure_u_Pa == 30.0
@@ -71,7 +72,7 @@ def test_the_budget_is_written_as_the_campaigns_budget_file_and_read_by_the_libr
     assert campaign.budget == budget.__class__(**{**budget.__dict__, "source": campaign.budget.source})
     assert campaign.decision_rule == "guard-band"
     # the same visit written again without a budget: no budget file, no [uncertainty], no U
-    answer = bench.new_visit(VISIT)
+    answer = bench.new_visit(TESTS | VISIT)
     assert "[uncertainty]" not in answer["text"] and not (bench.folder / "budget.toml").exists()
     assert not (bench.folder / "as-left" / "budget.toml").exists()
     assert load_campaign(bench.folder).budget is None
@@ -92,8 +93,8 @@ def test_the_budget_is_remembered_per_instrument_and_prefills_its_next_visit(tmp
     bench = _bench(tmp_path)
     with _client(bench) as client:
         assert client.get("/api/budget", params={"instrument": "Laser", "serial": "L-1"}).json() == {}
-        assert client.post("/api/visit", json=VISIT | BUDGET | {"decision_rule": "guard-band"}).status_code == 200
-        assert client.post("/api/visit", json=VISIT | {"instrument_serial": "L-2", "machine": "VMC 2",
+        assert client.post("/api/visit", json=TESTS | VISIT | BUDGET | {"decision_rule": "guard-band"}).status_code == 200
+        assert client.post("/api/visit", json=TESTS | VISIT | {"instrument_serial": "L-2", "machine": "VMC 2",
                                                         "length_U_ppm": 0.2}).status_code == 200
         first = client.get("/api/budget", params={"instrument": "Laser", "serial": "L-1"}).json()
         second = client.get("/api/budget", params={"instrument": "Laser", "serial": "l-2 "}).json()
@@ -101,7 +102,7 @@ def test_the_budget_is_remembered_per_instrument_and_prefills_its_next_visit(tmp
         assert second["fields"] == {"length_U_ppm": 0.2, "decision_rule": "simple"}
         assert client.get("/api/budget", params={"instrument": "Laser", "serial": "L-3"}).json() == {}
         # a visit without a budget leaves the instrument's remembered one as it was
-        assert client.post("/api/visit", json=VISIT | {"machine": "VMC 3"}).status_code == 200
+        assert client.post("/api/visit", json=TESTS | VISIT | {"machine": "VMC 3"}).status_code == 200
         assert client.get("/api/budget", params={"instrument": "Laser", "serial": "L-1"}).json() == first
     # an instrument without a serial is remembered by its name
     remember_budget(bench.data, VISIT | {"instrument": "Old laser", "instrument_serial": "", "eve_um": 2.0})
@@ -117,7 +118,7 @@ def test_the_budget_is_remembered_per_instrument_and_prefills_its_next_visit(tmp
 
 def test_results_state_u_beside_every_figure_and_the_decision_under_the_campaigns_rule(tmp_path):
     bench = _bench(tmp_path)
-    bench.new_visit(VISIT | BUDGET | {"decision_rule": "guard-band"})
+    bench.new_visit(TESTS | VISIT | BUDGET | {"decision_rule": "guard-band"})
     bench.make_plan(PLAN)
     bench.connect(SIM)
     bench.start_run("as-found")
@@ -146,7 +147,7 @@ def test_results_state_u_beside_every_figure_and_the_decision_under_the_campaign
 
 def test_without_a_budget_results_say_u_is_not_stated_and_hold_by_simple_acceptance(tmp_path):
     bench = _bench(tmp_path)
-    bench.new_visit(VISIT)
+    bench.new_visit(TESTS | VISIT)
     bench.make_plan(PLAN | {"runs": 1})
     bench.connect(SIM)
     bench.start_run("as-found")

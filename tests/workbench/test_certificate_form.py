@@ -17,7 +17,8 @@ with warnings.catch_warnings():  # Starlette's notice that its test client will 
     from starlette.testclient import TestClient
 
 VISIT = {"title": "Visit", "date": "2026-11-26", "operator": "J. Doe", "machine": "VMC 1", "serial": "S1",
-         "instrument": "Laser", "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6, "axes": ["X"]}
+         "instrument": "Laser", "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6}
+TESTS = {"tests": ["positioning-X"]}  # the New visit form's boxes
 CERTIFICATE = {"customer": "Example Customer GmbH", "customer_address": "2 Spindle Road, Machine Town",
                "manufacturer": "Example Machines", "condition": "in use", "instrument_serial": "L-1",
                "certificate": "NMI-77", "instrument_calibrated": "2026-03-02", "instrument_calibrated_by": "an NMI",
@@ -54,7 +55,7 @@ def test_the_next_number(number, after):
 def test_the_laboratory_is_remembered_and_the_next_number_proposed(tmp_path):
     bench = _bench(tmp_path)
     assert bench.certificate_defaults() == {}
-    bench.new_visit(VISIT | CERTIFICATE)
+    bench.new_visit(TESTS | VISIT | CERTIFICATE)
     (bench.folder / "positioning_x.csv").write_text("target_mm,run,direction,deviation_um\n")  # the run to come
     campaign = load_campaign(bench.folder)
     assert campaign.laboratory["name"] == "Example Calibration Ltd" and campaign.certificate["languages"] == ["de"]
@@ -71,7 +72,7 @@ def test_the_laboratory_is_remembered_and_the_next_number_proposed(tmp_path):
 
 def test_finish_writes_the_certificate_and_its_dcc(tmp_path):
     bench = _bench(tmp_path)
-    bench.new_visit(VISIT | CERTIFICATE)
+    bench.new_visit(TESTS | VISIT | CERTIFICATE)
     bench.make_plan(PLAN)
     bench.connect(SIM)
     bench.start_run("as-found")

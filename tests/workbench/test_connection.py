@@ -98,7 +98,7 @@ def test_a_controller_that_is_not_homed_is_said_in_one_line_and_no_run_starts(tm
     monkeypatch.setattr(connected, "open_run_devices", not_homed)
     bench = Workbench(tmp_path / "data", db=str(tmp_path / "h.sqlite"))
     bench.new_visit({"title": "V", "date": "2026-11-26", "operator": "J", "machine": "M", "instrument": "Laser",
-                     "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6, "axes": ["X"]})
+                     "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6, "tests": ["positioning-X"]})
     bench.make_plan({"start_mm": 20, "end_mm": 170, "targets": 5, "runs": 1, "overrun_mm": 5, "dwell_s": 1})
     answer = bench.connect({"instrument": "sim:umd", "controller": "sim"})
     assert answer["lights"] == {"instrument": "ok", "controller": "refused"}

@@ -16,7 +16,7 @@ with warnings.catch_warnings():  # Starlette's notice that its test client will 
     from starlette.testclient import TestClient
 
 VISIT = {"title": "Visit", "date": "2026-11-26", "operator": "J. Doe", "machine": "VMC 1", "serial": "S1",
-         "instrument": "Laser", "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6, "axes": ["X"]}
+         "instrument": "Laser", "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6, "tests": ["positioning-X"]}
 PLAN = {"start_mm": 20, "end_mm": 170, "targets": 5, "runs": 1, "overrun_mm": 5, "dwell_s": 1}
 SIM = {"instrument": "sim", "controller": "sim"}
 

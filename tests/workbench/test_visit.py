@@ -19,7 +19,7 @@ with warnings.catch_warnings():  # Starlette's notice that its test client will 
     from starlette.testclient import TestClient
 
 VISIT = {"title": "Visit", "date": "2026-11-26", "operator": "J. Doe", "machine": "VMC 1", "instrument": "Laser",
-         "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6, "axes": ["X"]}
+         "A_um": 45, "E_um": 40, "R_um": 5, "B_um": 6, "tests": ["positioning-X"]}
 XZ = Path(str(resources.files("axiscal") / "data" / "xz_module"))
 # one run each way: A and R are not defined (ISO 230-2 needs runs to scatter), E and B are
 PLAN = {"start_mm": 20, "end_mm": 170, "targets": 5, "runs": 1, "overrun_mm": 5, "dwell_s": 1}

@@ -68,7 +68,6 @@ class VisitForm(_Form):
     E_um: float = Field(gt=0, le=10000)
     R_um: float = Field(gt=0, le=10000)
     B_um: float = Field(gt=0, le=10000)
-    axes: list[Literal["X"]] = Field(min_length=1, max_length=1)
     # what makes the visit's report a calibration certificate (all optional; all of them, or none)
     customer_address: str = Field(default="", **_TEXT)
     manufacturer: str = Field(default="", **_TEXT)

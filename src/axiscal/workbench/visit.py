@@ -118,13 +118,12 @@ class Workbench(HistoryViews, VisitTests, VisitConnection):
 
         The machine (``machine_choice``: ``example``, a ``machine.toml`` of the data folder, or ``new``
         with ``machine_chain`` and ``machine_travels``) is copied into the visit's folder; ``tests``
-        names the tests wanted (``positioning-X`` ...; without it, the positioning of each of ``axes``).
+        names the tests wanted (``positioning-X`` ...).
         """
         if not isinstance(data, dict):
             checked("visit", data)  # names what the page must send
         data = dict(data)
         chosen = {k: data.pop(k) for k in MACHINE_KEYS if k in data}
-        data.setdefault("axes", ["X"])  # the visit's tests are its list (chosen), not the form's axes
         fields: dict[str, str] = {}
         form = None
         try:
@@ -132,9 +131,8 @@ class Workbench(HistoryViews, VisitTests, VisitConnection):
         except FormErrors as exc:
             fields |= exc.fields
         try:
-            axes = data["axes"] if isinstance(data["axes"], list) else ["X"]
             source, described, tests = self._checked_machine_and_tests(
-                chosen, form.machine if form is not None else str(data.get("machine") or "machine"), axes)
+                chosen, form.machine if form is not None else str(data.get("machine") or "machine"))
         except FormErrors as exc:
             fields |= exc.fields
         if fields:
@@ -157,7 +155,7 @@ class Workbench(HistoryViews, VisitTests, VisitConnection):
     def _render_campaign(self, **overrides: Any) -> str:
         """campaign.toml as the New visit form writes it, without its tests (the visit's list adds them)."""
         return render_template("workbench/campaign.toml.j2", filters={"toml": _toml}, keep_trailing_newline=True,
-                               **(self.visit.model_dump() | {"axes": []} | overrides))
+                               **(self.visit.model_dump() | overrides))
 
     def _visit_folder(self) -> Path:
         if self.folder is None or self.visit is None:
@@ -465,11 +463,12 @@ class Workbench(HistoryViews, VisitTests, VisitConnection):
     def _restore(self, folder: Path) -> None:
         """Open the visit kept in ``folder`` at the step it was at (its devices are connected again by hand)."""
         saved = read_saved(folder)
+        tested = saved.visit.pop("axes", None) or ["X"]  # the axes a visit kept before it listed its tests named
         visit = checked("visit", saved.visit)
         if saved.machine is None:  # a visit kept before it named its machine: the example's, its axes tested
             saved.machine = machine_axes(folder / MACHINE_FILE if (folder / MACHINE_FILE).is_file() else example_machine())
         if not saved.tests:
-            saved.tests = wanted_tests([f"positioning-{a}" for a in saved.visit.get("axes") or ["X"]], saved.machine["axes"])
+            saved.tests = wanted_tests([f"positioning-{a}" for a in tested], saved.machine["axes"])
         if saved.plan is not None and not saved.plans:
             saved.plans = {saved.plan.get("axis", "X"): saved.plan}
         plan = checked_plan(saved.plan, saved.machine["axes"]) if saved.plan is not None else None

@@ -81,12 +81,10 @@ class VisitTests:
         except AxiscalError as exc:
             raise FormErrors({"machine_choice": str(exc)}) from None
 
-    def _checked_machine_and_tests(self, chosen: dict[str, Any], name: str,
-                                   axes: list[str]) -> tuple[Any, dict[str, Any], list[dict[str, Any]]]:
+    def _checked_machine_and_tests(self, chosen: dict[str, Any], name: str) -> tuple[Any, dict[str, Any], list[dict[str, Any]]]:
         """The machine chosen and the tests wanted, every mistake named by its field."""
         source, described = self._chosen_machine(chosen, name)
-        wanted = chosen["tests"] if "tests" in chosen else [f"positioning-{a}" for a in axes]
-        return source, described, wanted_tests(wanted, described["axes"])
+        return source, described, wanted_tests(chosen.get("tests"), described["axes"])
 
     def _set_up_machine(self, folder: Path, source: Any, name: str) -> dict[str, Any]:
         if isinstance(source, tuple):
