@@ -18,8 +18,10 @@ printing the median time, the median CPU time (user + system of all its threads,
 in memory) is run too,
 unpacked from git into a temporary folder, alternating with this tree, and the two outputs are
 compared: the same program must come out, to the byte. ``--baseline none`` times this tree alone.
-``--stages`` times, in one process, the reading of the program in bulk and block by block, and the
-model's inverse of its points compiled and in NumPy.
+``--stages`` times, in one process, the reading of the program in bulk and block by block, the
+model's inverse of its points compiled and in NumPy, and then (CPU and wall time) the program read
+in pieces alone, rewritten in pieces one piece after the other and with the next piece read ahead,
+and the model's inverse and error alone at as many points as the rewriting gives them.
 """
 
 from __future__ import annotations
@@ -173,6 +175,67 @@ def stages(lines: int, runs: int) -> None:
             times.append(time.perf_counter() - start)
         print(f"  {lines:>9,} lines, the inverse of {len(target):,} points, {label:<8}: {statistics.median(times):6.2f} s")
     kinematics._COMPILED_FROM = 65536
+    pieces(text, machine, runs)
+
+
+def pieces(text: str, machine, runs: int) -> None:
+    """CPU and wall time of the program read in pieces alone, rewritten in pieces one piece after the
+    other and with the next piece read ahead on a thread, and the model's inverse and forward error
+    alone at as many points as the rewriting gives them (counted in a first run)."""
+    import io
+
+    from axiscal.io.gcode.stream import read_pieces, text_pieces
+    from axiscal.precompensation import path, streaming
+
+    data = text.encode()
+
+    def timed(work) -> tuple[float, float]:
+        cpu, wall = time.process_time(), time.perf_counter()
+        work()
+        return time.process_time() - cpu, time.perf_counter() - wall
+
+    def read() -> None:
+        for _ in read_pieces(text_pieces(BytesIO(data), piece_bytes=streaming.PIECE_BYTES), dialect="linuxcnc"):
+            pass
+
+    def rewrite(threaded: bool) -> None:
+        streaming.rewrite_pieces(text_pieces(BytesIO(data), piece_bytes=streaming.PIECE_BYTES), io.BytesIO().write,
+                                 machine, dialect="linuxcnc", threaded=threaded)
+
+    counted = {"inverse": 0, "forward": 0}
+    solve, deviation = path.solve_commands, path._deviation
+
+    def counting_solve(model, programmed):
+        counted["inverse"] += len(next(iter(programmed.values())))
+        return solve(model, programmed)
+
+    def counting_deviation(model, command, *rest):
+        counted["forward"] += len(command)
+        return deviation(model, command, *rest)
+
+    path.solve_commands, path._deviation = counting_solve, counting_deviation
+    try:
+        rewrite(False)
+    finally:
+        path.solve_commands, path._deviation = solve, deviation
+    rng = np.random.default_rng(1)
+
+    def points(n: int) -> dict:
+        return {"X": rng.uniform(0.1, 0.7, n), "Y": rng.uniform(0.1, 0.4, n), "Z": rng.uniform(0.1, 0.3, n)}
+
+    target = machine.actual_point(points(counted["inverse"]))
+    samples = points(counted["forward"])
+    work = {
+        "read in pieces, alone": read,
+        "rewritten, one piece after the other": lambda: rewrite(False),
+        "rewritten, the next piece read ahead": lambda: rewrite(True),
+        f"the inverse alone, {counted['inverse']:,} points": lambda: machine.command_for(target, tolerance_m=1e-11),
+        f"the error alone, {counted['forward']:,} samples": lambda: machine.actual_point(samples) - machine.nominal_point(samples),
+    }
+    for label, job in work.items():
+        times = [timed(job) for _ in range(runs)]
+        print(f"  {label:<46}: CPU {statistics.median(t[0] for t in times):6.2f} s, wall"
+              f" {statistics.median(t[1] for t in times):6.2f} s; load average {os.getloadavg()[0]:.1f}")
 
 
 def main() -> None:
