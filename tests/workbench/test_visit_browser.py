@@ -298,6 +298,8 @@ def test_a_three_axis_visit_with_tests_from_files(browser_page, tmp_path):
         page.fill("#file-form [name=file]", "instrument/ballbar_run.csv")
         page.fill("#file-form [name=radius_mm]", "100")
         page.select_option("#file-form [name=plane]", "XY")
+        assert page.locator("#file-form [name=tolerance_arcsec]").is_hidden()  # a ballbar's G is in µm
+        page.fill("#file-form [name=tolerance_um]", "1000")  # its tolerance: the test is assessed (Results: PASS)
         page.click("#file-form button[type=submit]")
         page.wait_for_selector(".tests-list[data-mode=visit] tr[data-test=ballbar-XY]")
         page.select_option("#file-kind", "straightness")
@@ -359,7 +361,9 @@ def test_a_three_axis_visit_with_tests_from_files(browser_page, tmp_path):
         page.click("#show-results")
         page.wait_for_function("document.querySelectorAll('#results article.test').length === 5")
         assert page.locator("#result-positioning-Z h3").text_content().startswith("Positioning of Z")
-        assert page.locator("#result-ballbar-XY table.figures tr").count() > 0
+        assert page.locator("#result-straightness-X table.figures tr").count() > 0  # no tolerance: its figures
+        assert page.locator("#result-ballbar-XY table.checks tbody tr").count() > 0  # held against its tolerance
+        assert page.locator("#result-ballbar-XY h3").text_content().endswith(": PASS")
         no_sideways_scroll(page)
 
         # 7. the table of the axis chosen

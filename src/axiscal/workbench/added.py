@@ -12,6 +12,11 @@ checks the form, copies the data into the visit's ``files/`` (imports are writte
 axiscal's CSV by the importer the command uses) and returns the test's entry; the visit then
 evaluates it through the campaign at once (:func:`axiscal.campaign.run_test`, the readers of the
 commands), and a mistake is the one line the command would print.
+
+A test from a file may state its tolerance in the unit the test reports (:func:`tolerance_of`): µm for a
+straightness, a diagonal, a ballbar's circular deviation and a linear axis's E, arcsec for a squareness
+and a rotary axis's E. It is the test's own ``tolerances`` in campaign.toml (docs/campaign.md), so the
+campaign's evaluation and decision rule assess it.
 """
 
 from __future__ import annotations
@@ -27,7 +32,8 @@ from axiscal.errors import AxiscalError
 from axiscal.io.arguments import check_instance, check_path
 from axiscal.workbench.forms import FormErrors
 
-__all__ = ["FILE_KINDS", "MAX_UPLOAD", "FileTestForm", "checked_file_form", "store_upload", "file_test", "data_files"]
+__all__ = ["FILE_KINDS", "MAX_UPLOAD", "FileTestForm", "checked_file_form", "store_upload", "file_test", "data_files",
+           "tolerance_of"]
 
 #: where a visit keeps the files its tests were taken from
 FILES_FOLDER = "files"
@@ -62,6 +68,8 @@ class FileTestForm(BaseModel):
         A diagonal's ends (``X=0,Y=0,Z=0``); ``from_`` is sent as ``from``.
     unit : str
         The unit of an .rtx capture's samples.
+    tolerance_um, tolerance_arcsec : float or None
+        The test's tolerance in the unit it reports (:func:`tolerance_of` says which applies); none: the campaign's.
     """
 
     model_config = ConfigDict(extra="forbid", str_strip_whitespace=True, allow_inf_nan=False)
@@ -76,6 +84,8 @@ class FileTestForm(BaseModel):
     from_: str = Field(default="", alias="from", max_length=200)
     to: str = Field(default="", max_length=200)
     unit: Literal["", "nm", "um", "mm", "m", "in"] = ""
+    tolerance_um: float | None = Field(default=None, gt=0.0, le=1.0e6)
+    tolerance_arcsec: float | None = Field(default=None, gt=0.0, le=1.0e6)
 
 
 def _needs(form: FileTestForm) -> dict[str, str]:
@@ -117,7 +127,42 @@ def checked_file_form(data: Any) -> FileTestForm:
     missing = _needs(form)
     if missing:
         raise FormErrors(missing)
+    applies = tolerance_of(form.kind, form.axis)
+    for field in ("tolerance_um", "tolerance_arcsec"):
+        if getattr(form, field) is not None and (applies is None or applies[1] != field):
+            raise FormErrors({field: "this kind takes no tolerance here (campaign.toml's [tolerances] gives it)"
+                              if applies is None else f"this test's tolerance ({applies[0]}) is in"
+                              f" {_UNIT_WORDS[applies[0].rsplit('_', 1)[1]]}: give it as {applies[1]}"})
     return form
+
+
+_UNIT_WORDS = {"um": "µm", "arcsec": "arcsec"}
+#: the campaign's tolerance key (docs/campaign.md) each kind's tolerance is, in the unit the test reports
+_TOLERANCES = {"straightness": "straightness_um", "squareness": "squareness_arcsec", "diagonal": "diagonal_um",
+               "ballbar": "circular_deviation_um"}
+
+
+def tolerance_of(kind: str, axis: str = "") -> tuple[str, str] | None:
+    """The tolerance a test from a file may state: the campaign's key and the form's field (None for none).
+
+    Parameters
+    ----------
+    kind : str
+        One of :data:`FILE_KINDS`.
+    axis : str
+        The axis of a positioning run (a rotary axis A, B or C reports arcsec).
+
+    Returns
+    -------
+    tuple of (str, str) or None
+        Such as ``("straightness_um", "tolerance_um")``; a positioning run's is its E (``E_um`` or ``E_arcsec``).
+    """
+    check_instance("kind", kind, str)
+    check_instance("axis", axis, str)
+    if kind in ("positioning", "columnmap"):
+        return ("E_arcsec", "tolerance_arcsec") if axis in ("A", "B", "C") else ("E_um", "tolerance_um")
+    key = _TOLERANCES.get(kind)
+    return None if key is None else (key, f"tolerance_{key.rsplit('_', 1)[1]}")
 
 
 def _safe_name(name: Any) -> str:
@@ -293,6 +338,9 @@ def file_test(data: Path, folder: Path, form: FileTestForm, taken: set[str]) -> 
         write_rtx_csv(capture, folder / name)
         kind, entry = "dynamics", {"axis": form.axis, "file": name, "channel": f"reading_{form.unit}"}
         label = f"Dynamics of {form.axis} from {first.name}"
+    applies = tolerance_of(form.kind, form.axis)
+    if applies is not None and getattr(form, applies[1]) is not None:
+        entry["tolerances"] = {applies[0]: getattr(form, applies[1])}
     base = f"{kind}-{entry.get('axis') or entry.get('plane') or 'file'}"
     test_id, n = base, 2
     while test_id in taken:

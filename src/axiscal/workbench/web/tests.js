@@ -144,9 +144,20 @@ async function loadDataFiles() {
   for (const f of files) { const o = document.createElement("option"); o.value = f; list.appendChild(o); }
 }
 
+// the tolerance a test from a file may state, in the unit it reports (added.py's tolerance_of): none for an .rtx capture
+const TOLERANCE_OF = { straightness: ["um", "of the straightness"], squareness: ["arcsec", "of the squareness"],
+  diagonal: ["um", "of the diagonal's error"], ballbar: ["um", "of the circular deviation G"] };
+
 function fileKind() {
-  const kind = $("#file-kind").value;
-  $("#file-form").querySelectorAll("[data-kinds]").forEach((label) => { label.hidden = !label.dataset.kinds.split(" ").includes(kind); });
+  const form = $("#file-form"), kind = $("#file-kind").value;
+  form.querySelectorAll("[data-kinds]").forEach((label) => { label.hidden = !label.dataset.kinds.split(" ").includes(kind); });
+  const rotary = "ABC".includes((form.elements.axis.value || "X").toUpperCase());
+  const [unit, what] = kind === "positioning" || kind === "columnmap" ? [rotary ? "arcsec" : "um", "of E"] : TOLERANCE_OF[kind] || [];
+  form.querySelectorAll("[data-tolerance]").forEach((label) => {
+    label.hidden = label.dataset.tolerance !== unit;
+    if (label.hidden) label.querySelector("input").value = "";  // a hidden tolerance is not sent
+    label.querySelector(".tolerance-of").textContent = what || "";
+  });
 }
 
 // the listeners of the New visit form's machine and tests, and of Tests from files (app.js calls it once)
@@ -155,6 +166,7 @@ function initVisitTests() {
   $("#visit-form").elements.machine_chain.addEventListener("input", machineChosen);
   loadMachineChoices();
   $("#file-kind").addEventListener("change", fileKind);
+  $("#file-form").elements.axis.addEventListener("input", fileKind);
   fileKind();
   $("#file-form").querySelectorAll("input[data-upload]").forEach((input) => input.addEventListener("change", async () => {
     const file = input.files[0], note = $("#file-added");
