@@ -5,7 +5,8 @@ is ``axiscal workbench``; :class:`Workbench` holds the visit (each step one libr
 :func:`create_workbench_app` is the page's Starlette app; :mod:`axiscal.workbench.machines` offers and describes the visit's
 machine, :mod:`axiscal.workbench.suite` its tests and their states, :mod:`axiscal.workbench.added` the tests taken from
 files; :mod:`axiscal.workbench.connection` checks the
-specs, lists the serial ports and connects; :mod:`axiscal.workbench.runner` is the one adapter that runs a
+specs and LinuxCNC's INI file, lists the serial ports and connects (the soft limits of every axis the visit
+tests); :mod:`axiscal.workbench.runner` is the one adapter that runs a
 plan on the machine (the virtual machine, ``sim``, or the devices of ``axiscal run``).
 """
 
