@@ -349,6 +349,10 @@ bad(L, "create_board_app", "allowed_hosts", lambda: lv.create_board_app(dict, pa
 bad(L, "LiveServer", "app", lambda: lv.LiveServer(None), lambda: lv.LiveServer(STATE))
 bad(L, "LiveServer", "port", lambda: lv.LiveServer(APP, port=-1), lambda: lv.LiveServer(APP, port="80"), lambda: lv.LiveServer(APP, port=NAN))
 bad(L, "LiveServer", "host", lambda: lv.LiveServer(APP, host=None))
+bad(L, "DashboardProcess", "state", lambda: lv.DashboardProcess(None), lambda: lv.DashboardProcess(SYS))
+bad(L, "DashboardProcess", "port", lambda: lv.DashboardProcess(STATE, port=-1), lambda: lv.DashboardProcess(STATE, port="80"))
+bad(L, "DashboardProcess", "update_hz", lambda: lv.DashboardProcess(STATE, update_hz=NAN))
+bad(L, "DashboardProcess", "allowed host", lambda: lv.DashboardProcess(STATE, allowed_hosts=["a:80"]))
 
 
 # ---------------------------------------------------------------- campaign
