@@ -133,3 +133,20 @@ def test_the_visit_connects_its_axes_keeps_the_ini_and_holds_the_plan_and_the_ru
     assert bench.run.wait(30) == "failed"
     assert "beyond the soft limits of LinuxCNC at 127.0.0.1" in bench.run.message and "nothing was moved" in bench.run.message
     assert linuxcnc.moves == []
+
+
+def test_the_virtual_controller_tells_each_tested_axis_s_travel_and_the_virtual_machine_none(tmp_path):
+    """With a simulated instrument each run's virtual controller refuses a move beyond its axis's travel: those are
+    the limits told and the plan is held to them; the virtual machine (sim and sim) runs the overrun beyond them."""
+    bench = Workbench(tmp_path / "data", db=str(tmp_path / "h.sqlite"))
+    bench.new_visit(VISIT)
+    told = dict(bench.connect({"instrument": "sim:umd", "controller": "sim"})["told"]["controller"])
+    assert (told["soft limits X"], told["soft limits Y"], told["soft limits Z"]) == ("0 to 800 mm", "0 to 500 mm", "0 to 400 mm")
+    plan = {"axis": "Y", "start_mm": 0, "end_mm": 150, "targets": 5, "runs": 1, "overrun_mm": 5, "dwell_s": 1}
+    with pytest.raises(FormErrors) as beyond:
+        bench.make_plan(plan)
+    assert beyond.value.fields == {"overrun_mm": "the moves reach -5 to 155 mm, beyond the controller's soft limits of Y"
+                                                 " (0 to 500 mm, told at Connect)"}
+    told = dict(bench.connect({"instrument": "sim", "controller": "sim"})["told"]["controller"])
+    assert told["soft limits"] == "none: the virtual machine runs a plan's overrun beyond the travels too"
+    assert bench.make_plan(plan)["axis"] == "Y"

@@ -109,7 +109,7 @@ def test_a_whole_visit_on_the_virtual_machine(browser_page, workbench):
     assert page.locator("#connect-form .field-error[data-for=instrument]").text_content() == ""
     assert "virtual laser" in page.locator("#told-instrument").text_content()
     assert "ready" in page.locator("#told-controller").text_content() and page.locator("#refused").is_hidden()
-    assert "soft limits X" in page.locator("#told-controller").text_content()  # each tested axis's: the travel
+    assert "none: the virtual machine runs a plan's overrun" in page.locator("#told-controller").text_content()
     assert page.get_attribute("#light-controller", "data-state") == "ok"
     assert page.locator("#live-position").text_content() == "0.0000"
 

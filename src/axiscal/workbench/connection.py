@@ -23,7 +23,7 @@ from urllib.parse import urlparse
 import numpy as np
 
 from axiscal.errors import AxiscalError
-from axiscal.io.arguments import check_count
+from axiscal.io.arguments import check_count, check_path
 from axiscal.units import MM
 
 __all__ = ["INSTRUMENTS", "CONTROLLERS", "SIM_RATE_HZ", "Connection", "check_spec", "check_ini", "connect",
@@ -243,7 +243,7 @@ class Connection:
 
 
 def connect(instrument: str = "sim", controller: str = "sim", *, seed: int = 0, axes: tuple[str, ...] = ("X",),
-            ini: str | Path | None = None) -> Connection:
+            ini: str | Path | None = None, machine: str | Path | None = None) -> Connection:
     """Check both specs, open the instrument and the controller, read them once, and close them.
 
     Parameters
@@ -256,6 +256,9 @@ def connect(instrument: str = "sim", controller: str = "sim", *, seed: int = 0, 
         The linear axes the visit moves: each is checked ready and its soft limits asked (default X).
     ini : str or Path, optional, keyword-only
         LinuxCNC's INI file (:func:`check_ini`): the soft limits of each axis (a ``linuxcnc`` controller only).
+    machine : str or Path, optional, keyword-only
+        The machine description the virtual controller (``sim``) moves, default the built-in XZ module. It
+        moves one axis, as each run makes its own: it is asked about the first of ``axes``.
 
     Returns
     -------
@@ -271,12 +274,14 @@ def connect(instrument: str = "sim", controller: str = "sim", *, seed: int = 0, 
     controller = check_spec("controller", controller)
     seed = check_count("seed", seed, minimum=0)
     axes = _checked_axes(axes)
+    if machine is not None:
+        machine = check_path("machine", machine)
     if ini is not None:
         if not controller.lower().startswith("linuxcnc:"):
             raise AxiscalError(f"an INI file is LinuxCNC's: the controller '{controller}' takes none")
         ini = check_ini(ini)
     if not is_virtual(instrument, controller):
-        return _connect_devices(instrument, controller, seed, axes, ini)
+        return _connect_devices(instrument, controller, seed, axes, ini, machine)
     noise = float(np.random.default_rng([seed, 30]).normal(0.0, 20e-9))
     return Connection(instrument, controller, "ok", "ok",
                       f"virtual laser ({SIM_RATE_HZ:g} Hz) on the virtual machine's {', '.join(axes)}", noise, 0.0,
@@ -362,11 +367,16 @@ def _grbl_settings_told(made: Any, axes: tuple[str, ...]) -> list[tuple[str, str
     return told
 
 
-def _connect_devices(instrument: str, controller: str, seed: int, axes: tuple[str, ...], ini: Path | None) -> Connection:
+def _connect_devices(instrument: str, controller: str, seed: int, axes: tuple[str, ...], ini: Path | None,
+                     machine: Path | None) -> Connection:
     """Open the devices of ``axiscal run``, read the instrument for half a second and the controller once, close."""
-    from axiscal.capture.connected import open_run_devices
+    from axiscal.capture.connected import open_run_devices, sim_machine
 
-    made, source = open_run_devices(controller, instrument, seed=seed, ini=ini)
+    moved = None
+    if controller.lower() == "sim":  # the virtual controller moves one axis of the machine: the first asked about
+        axes = axes[:1]
+        moved = sim_machine(machine=machine, axis=axes[0])
+    made, source = open_run_devices(controller, instrument, seed=seed, ini=ini, machine=moved)
     try:
         end = time.monotonic() + 0.5
         reading = math.nan

@@ -47,20 +47,26 @@ class VisitConnection:
         return tuple(a["axis"] for a in self._axes() if not a["rotary"]) or ("X",)
 
     def connect(self, data: Any) -> dict[str, Any]:
-        """Check both specs (and LinuxCNC's INI file), open the instrument and the controller; their lights,
-        reading, position and what they told, the soft limits of each axis the visit runs a test on among them."""
+        """Check the Connect form, open the instrument and the controller, and say what they told.
+
+        Both specs and LinuxCNC's INI file are checked first; the answer has the lights, the reading,
+        the position and what each device told, with the soft limits of each axis the visit runs a test on.
+        """
         form = checked("connect", data)
         axes = self._moved_axes()
-        c = connect(form.instrument, form.controller, axes=axes, ini=form.ini or None)
+        c = connect(form.instrument, form.controller, axes=axes, ini=form.ini or None, machine=self.machine_file())
         if is_virtual(c.instrument, c.controller):  # the virtual machine is the visit's machine, every axis of it
             described = machine_axes(self.machine_file()) if self.folder is None else {"name": self.visit.machine} | {
                 "axes": self._axes()}
             travels = ", ".join(f"{a['axis']} {a['start']:g} to {a['end']:g} {a['unit']}" for a in described["axes"])
-            moved = [a for a in described["axes"] if a["axis"] in axes]  # its soft limits: the travels
             c = replace(c, description=f"virtual laser ({SIM_RATE_HZ:g} Hz) on the virtual {described['name']}: {travels}",
-                        controller_told=c.controller_told + (("machine", described["name"]), ("axes", travels)) + tuple(
-                            (f"soft limits {a['axis']}", f"{a['start']:g} to {a['end']:g} mm") for a in moved),
-                        limits=tuple((a["axis"], a["start"] * MM, a["end"] * MM) for a in moved))
+                        controller_told=c.controller_told + (("machine", described["name"]), ("axes", travels), (
+                            "soft limits", "none: the virtual machine runs a plan's overrun beyond the travels too")))
+        elif c.controller.lower() == "sim" and not c.refused:  # each run's virtual controller: its axis's travel
+            moved = [a for a in self._axes() if a["axis"] in axes]
+            c = replace(c, controller_told=tuple(t for t in c.controller_told if not t[0].startswith("soft limits")) + tuple(
+                (f"soft limits {a['axis']}", f"{a['start']:g} to {a['end']:g} mm") for a in moved),
+                limits=tuple((a["axis"], a["start"] * MM, a["end"] * MM) for a in moved))
         self.connection = c
         if self.saved is not None:
             with self._lock:
