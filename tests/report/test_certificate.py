@@ -393,6 +393,17 @@ def test_numbers_read_back_are_the_numbers_written():
     assert math.isclose(float(_number(1 / 3)), 1 / 3, rel_tol=0)
 
 
+def test_a_dcc_declaring_an_encoding_python_does_not_know_is_refused_in_one_line(written, tmp_path):
+    """A flipped byte in the declaration (``encoding="u-f-8"``, found by the mutation test below) is refused, not a LookupError."""
+    text = written.dcc.read_text(encoding="utf-8")
+    assert re.match(r"<\?xml [^>]*encoding=['\"]utf-8['\"]", text, flags=re.I)
+    path = tmp_path / "dcc.xml"
+    path.write_text(re.sub(r"encoding=['\"][^'\"]*['\"]", 'encoding="u-f-8"', text, count=1), encoding="utf-8")
+    with pytest.raises(AxiscalError, match=r"not a readable XML file: unknown encoding") as caught:
+        read_dcc(path)
+    assert "\n" not in str(caught.value)
+
+
 @settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(data=st.data())
 def test_a_damaged_dcc_reads_cleanly_or_is_refused_in_one_line(written, tmp_path_factory, data):

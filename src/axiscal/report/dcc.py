@@ -421,7 +421,7 @@ def read_dcc(path: str | Path) -> dict[str, Any]:
     path = check_path("path", path)
     try:
         root = ET.parse(path).getroot()
-    except (ET.ParseError, OSError, ValueError) as exc:
+    except (ET.ParseError, OSError, ValueError, LookupError) as exc:  # LookupError: an encoding Python does not know
         raise AxiscalError(f"not a readable XML file: {exc}", path=path) from None
     if root.tag != _q("dcc:digitalCalibrationCertificate"):
         raise AxiscalError("not a Digital Calibration Certificate (root dcc:digitalCalibrationCertificate)", path=path)
