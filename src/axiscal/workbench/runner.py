@@ -111,7 +111,7 @@ class _SimLaser:
         self.status = SourceStatus(f"sim (virtual laser, {SIM_RATE_HZ:g} Hz)", state="streaming", connections=1)
 
     def sim_now(self) -> float:
-        if self._wall_at_resume is None or self.paused:
+        if self._wall_at_resume is None or self.paused or self.stopped:
             return self._sim_at_resume
         return self._sim_at_resume + (time.monotonic() - self._wall_at_resume) * self._speed
 
@@ -157,7 +157,11 @@ class _SimLaser:
         return FrameBatch(t.copy(), values.copy(), np.zeros(t.size, bool))
 
     def close(self) -> None:
-        self.stopped = True
+        # the machine's clock stops where the run did: at the last sample taken, not wherever the wall clock
+        # (times speed) has got to by the time the run is closed (50 ms late at speed 200 is 10 s of its clock)
+        if not self.stopped:
+            self._sim_at_resume = float(self._t[self._next - 1]) if self._next > self._first else self.sim_now()
+            self.stopped = True
 
 
 class PlanRun:
