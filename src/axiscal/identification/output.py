@@ -88,17 +88,42 @@ def write_machine_folder(machine: Machine, folder: str | Path, *, comment: str =
 _AXIS_ORDER = "XYZABC"
 
 
-def _inline_svg(draw) -> str:
-    """The ``<svg>`` element of a plot drawn to a temporary ``.svg`` file, for placing in the page."""
+def _inline_svg(fig) -> str:
+    """The ``<svg>`` element of a drawn figure, for placing in the page (the figure stays open)."""
     import re
     import tempfile
 
+    from axiscal.io.figures import save_figure
+
     with tempfile.TemporaryDirectory(prefix="axiscal-identify-") as folder:
-        path = Path(folder) / "plot.svg"
-        draw(path)
+        path = save_figure(fig, Path(folder) / "plot.svg", close=False)
         text = path.read_text(encoding="utf-8")
     text = text[text.find("<svg"):]
     return re.sub(r"\s*<metadata>.*?</metadata>", "", text, count=1, flags=re.S)
+
+
+def _figures(result, png_folder: Path | None = None) -> tuple[list, list, dict]:
+    """Each figure of the page drawn once: its inline SVG and, given a folder, its PNG there.
+
+    Returns the (artefact, svg) and (axis, svg) pairs in the page's order and the PNG files by key.
+    """
+    from axiscal.identification.plot import motions_figure, residuals_figure
+    from axiscal.io.figures import pyplot, save_figure
+
+    figures = [("residuals", name, residuals_figure, f"residuals_{_slug(name)}.png") for name in result.residuals]
+    letters = sorted(result.spans, key=lambda a: (_AXIS_ORDER.find(a) % 99, a))
+    figures += [("motions", letter, motions_figure, f"motions_{letter.lower()}.png") for letter in letters]
+    pages: dict[str, list] = {"residuals": [], "motions": []}
+    files = {}
+    for kind, name, draw, png in figures:
+        fig = draw(result, name)
+        try:
+            if png_folder is not None:
+                files[f"{kind}_{name}"] = save_figure(fig, png_folder / png, close=False)
+            pages[kind].append((name, _inline_svg(fig)))
+        finally:
+            pyplot().close(fig)
+    return pages["residuals"], pages["motions"], files
 
 
 def _display(parameter: dict) -> dict:
@@ -125,20 +150,23 @@ def report_html(result, *, generated: str | None = None) -> str:
         The HTML page, its plots inline as SVG (no file beside it is needed), the machine's name and
         the date, the axes in X, Y, Z order, positions in mm, the coverage factor stated once.
     """
+    artefacts, axes, _ = _figures(result)
+    return _page(result, artefacts, axes, generated)
+
+
+def _page(result, artefacts: list, axes: list, generated: str | None) -> str:
+    """identify.html from its template, the figures' SVGs given."""
     import datetime as _dt
 
-    from axiscal.identification.plot import plot_motions, plot_residuals
-
     summary = result.summary()
-    letters = sorted(result.spans, key=lambda a: (_AXIS_ORDER.find(a) % 99, a))
     return render_template(
         "identification/identify.html.j2",
         summary=summary,
         machine=result.machine.name or "machine",
         generated=generated or _dt.datetime.now(_dt.timezone.utc).date().isoformat(),
         parameters=[_display(p) for p in summary["parameters"]],
-        artefacts=[(name, _inline_svg(lambda path, n=name: plot_residuals(result, n, path))) for name in result.residuals],
-        axes=[(letter, _inline_svg(lambda path, a=letter: plot_motions(result, a, path))) for letter in letters],
+        artefacts=artefacts,
+        axes=axes,
     )
 
 
@@ -164,8 +192,6 @@ def write_identification(result, folder: str | Path) -> dict:
     AxiscalError
         For a folder that holds something else or cannot be written; it is then as it was.
     """
-    from axiscal.identification.plot import plot_motions, plot_residuals
-
     # identify.html is self-contained (its plots inline); the PNGs stay for other documents
     folder = check_path("folder", folder)
 
@@ -173,11 +199,9 @@ def write_identification(result, folder: str | Path) -> dict:
         files = {"machine": write_machine_folder(result.machine, staging,
                                                  comment=f"identified by axiscal identify ({result.model})")}
         files["json"] = write_json(staging / "identify.json", result.summary())
-        for name in result.residuals:
-            files[f"residuals_{name}"] = plot_residuals(result, name, staging / f"residuals_{_slug(name)}.png")
-        for letter in result.spans:
-            files[f"motions_{letter}"] = plot_motions(result, letter, staging / f"motions_{letter.lower()}.png")
-        files["html"] = write_text(staging / "identify.html", report_html(result))
+        artefacts, axes, pngs = _figures(result, staging)  # each figure drawn once, for its PNG and the page
+        files.update(pngs)
+        files["html"] = write_text(staging / "identify.html", _page(result, artefacts, axes, None))
         return {key: folder / Path(path).relative_to(staging) for key, path in files.items()}
 
     return atomic_folder(folder, fill, marker="identify.json")

@@ -6,6 +6,7 @@ Translations in um, rotations in urad; bands are ± 2 standard uncertainties (k 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -13,7 +14,7 @@ from axiscal.conventions import ROTARY_LETTERS, component_names
 from axiscal.io.figures import pyplot, save_figure, set_up_axes
 from axiscal.units import ANGLE_UNITS, MM, UM
 
-__all__ = ["plot_residuals", "plot_motions"]
+__all__ = ["plot_residuals", "plot_motions", "residuals_figure", "motions_figure"]
 
 _URAD = ANGLE_UNITS["urad"]
 _DEG = ANGLE_UNITS["deg"]
@@ -39,6 +40,25 @@ def plot_residuals(result, name: str, path: str | Path) -> Path:
     -------
     Path
     """
+    return save_figure(residuals_figure(result, name), path)
+
+
+def residuals_figure(result, name: str) -> Any:
+    """The figure :func:`plot_residuals` saves, drawn and laid out but not saved: a caller that wants it in two
+    formats saves it twice (:func:`axiscal.io.figures.save_figure`) instead of drawing it twice.
+
+    Parameters
+    ----------
+    result : Identification
+        The identification.
+    name : str
+        An artefact of it.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Open: the caller saves and closes it.
+    """
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(8, 3))
     r = result.residuals[name] / UM
@@ -46,7 +66,7 @@ def plot_residuals(result, name: str, path: str | Path) -> Path:
     shown = name if len(name) <= _TITLE_NAME else name[:_TITLE_NAME - 3] + "..."
     set_up_axes(ax, xlabel="reading", ylabel="residual / µm", title=f"{shown} ({result.kinds[name]})", zero_line=True)
     fig.tight_layout()
-    return save_figure(fig, path)
+    return fig
 
 
 def plot_motions(result, letter: str, path: str | Path) -> Path:
@@ -65,6 +85,25 @@ def plot_motions(result, letter: str, path: str | Path) -> Path:
     -------
     Path
     """
+    return save_figure(motions_figure(result, letter), path)
+
+
+def motions_figure(result, letter: str) -> Any:
+    """The figure :func:`plot_motions` saves, drawn and laid out but not saved: a caller that wants it in two
+    formats saves it twice (:func:`axiscal.io.figures.save_figure`) instead of drawing it twice.
+
+    Parameters
+    ----------
+    result : Identification
+        The identification.
+    letter : str
+        An identified axis.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Open: the caller saves and closes it.
+    """
     plt = pyplot()
     a, b = result.spans[letter]
     q = np.linspace(a, b, 201)
@@ -82,4 +121,4 @@ def plot_motions(result, letter: str, path: str | Path) -> Path:
         set_up_axes(ax, xlabel=f"{letter} / {'deg' if rotary else 'mm'}", ylabel=f"error / {unit}", legend=True)
     fig.suptitle(f"Axis {letter}: identified error motions (bands ± 2u, k = 2)")
     fig.tight_layout()
-    return save_figure(fig, path)
+    return fig
