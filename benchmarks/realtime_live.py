@@ -1,6 +1,6 @@
 """Live latency: delay from a frame's time stamp to its result being in the record, at a 10 kHz source.
 
-    .venv/bin/python benchmarks/realtime_live.py [--rate 10000] [--seconds 5] [--runs 1] [--busy 0] [--only tcp,dashboard,sim]
+    .venv/bin/python benchmarks/realtime_live.py [--rate 10000] [--seconds 5] [--runs 1] [--busy 0] [--only tcp,dashboard,sim] [--state-cost]
 
 ``--busy N`` starts N processes that each keep a core busy (``yes > /dev/null``) for every run, as a
 shop-floor laptop running other work does (the machine's core count: both cores busy on two). The
@@ -27,6 +27,10 @@ processes instead). The dashboard's client stands for a browser and runs at norm
 
 The delay is measured by the pipeline right after the batch's ``os.write`` to the record returned
 (the frame then survives a crash of the process; ``fsync`` follows within the record's sync interval).
+
+``--state-cost`` instead times what handing a batch of 20 frames (2 ms at 10 kHz) to the dashboard's
+state costs the loop, at its priority and its 2 ms rhythm: kept and folded in the loop's process
+(a dashboard in a thread), or written to the pipe of a dashboard in its own process (drained by ``cat``).
 """
 
 from __future__ import annotations
@@ -199,6 +203,47 @@ def _run(kind: str, rate: float, seconds: float, *, dashboard: str, sender_norma
     }
 
 
+def state_cost(batches: int = 3000) -> None:
+    """Print what ``LiveState.update`` costs the loop per 20-frame batch: kept in the state, or written to a dashboard's pipe."""
+    from axiscal.live.dashboard import _Feed
+    from axiscal.live.protocol import FrameBatch
+    from axiscal.measurement.display import to_display
+
+    priority = raise_priority()
+    gc.freeze()
+    module = VirtualModule(seed=0)
+    system = module.measurement_system()
+    frames, _ = module.frames(np.arange(20) / 10000.0)
+    batch = FrameBatch.from_frames(frames, system.channels)
+    fault, results = Pipeline(system, None).process(batch)
+    shown = to_display(results)
+    read_end, write_end = os.pipe()
+    os.set_blocking(write_end, False)
+    drain = subprocess.Popen(["cat"], stdin=read_end, stdout=subprocess.DEVNULL)
+    os.close(read_end)
+    kept, fed = LiveState(system), LiveState(system)
+    fed._feed = _Feed(write_end)
+    print(priority.text)
+    try:
+        for label, state in (("kept and folded in the loop's process", kept), ("written to the dashboard process's pipe", fed)):
+            times = []
+            for k in range(batches):  # the clock goes on from batch to batch, as in a run
+                time.sleep(0.002)
+                shifted = FrameBatch(batch.t_s + k * 0.002, batch.values, batch.malformed)
+                start = time.perf_counter()
+                state.update(shifted, fault, shown)
+                times.append(time.perf_counter() - start)
+            us = np.array(times) / MS * 1000.0
+            print(f"{label:<42} per batch: mean {us.mean():7.1f} us  p50 {np.percentile(us, 50):7.1f}  p99 {np.percentile(us, 99):7.1f}  "
+                  f"max {us.max():7.1f} us")
+    finally:
+        fed._feed.close()
+        drain.wait(timeout=10)
+        gc.unfreeze()
+        restore_priority(priority)
+    print("load average " + " ".join(f"{value:.2f}" for value in os.getloadavg()))
+
+
 def busy_processes(count: int) -> list[subprocess.Popen]:
     """``count`` processes that each keep a core busy (``yes > /dev/null``), started at normal priority."""
     return [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL, preexec_fn=normal_priority) for _ in range(count)]
@@ -216,6 +261,7 @@ def main() -> None:
     parser.add_argument("--only", default="tcp,dashboard,sim", help="kinds of run, comma-separated: tcp, dashboard, dashboard-thread, sim")
     parser.add_argument("--normal-priority", action="store_true", help="run the loop at normal priority (as without the rights to raise it)")
     parser.add_argument("--sender-normal-priority", action="store_true", help="the TCP sender at normal priority (default: the loop's)")
+    parser.add_argument("--state-cost", action="store_true", help="time what handing a batch to the dashboard's state costs the loop, and stop")
     parser.add_argument("--sender", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--reader", type=int, help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -224,6 +270,9 @@ def main() -> None:
         return
     if args.reader:
         reader(args.reader, args.seconds)
+        return
+    if args.state_cost:
+        state_cost()
         return
     kinds = [name.strip() for name in args.only.split(",") if name.strip()]
     unknown = [name for name in kinds if name not in KINDS]
