@@ -65,7 +65,13 @@ linuxcnc:
 
 # two workers share the machine (the suite mostly waits on subprocesses, devices and browsers); the
 # LinuxCNC tests then run alone, one after another, as a real machine's timing needs
-test: lint docs chromium postgresql linuxcnc
+# numba's kernels are compiled once beside the documentation's build (tests/warm_kernels.py; nothing to do when
+# their caches are current), not by each worker and command line of the suite; should it fail, the suite compiles them
+test: lint chromium postgresql linuxcnc
+	@$(BIN)/python tests/warm_kernels.py & warm=$$!; \
+	$(MAKE) --no-print-directory docs; docs=$$?; \
+	wait $$warm || echo "tests/warm_kernels.py failed: the suite's processes compile numba's kernels themselves"; \
+	test $$docs -eq 0
 	$(BIN)/python -m pytest -q -n 2 --ignore=tests/devices/test_linuxcnc.py
 	$(BIN)/python -m pytest -q tests/devices/test_linuxcnc.py
 
