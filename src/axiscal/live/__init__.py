@@ -13,12 +13,16 @@ The pieces (docs/live.md has the architecture):
   starlette/uvicorn; the other modules do not, so this package loads it only when one of its
   names is first used);
 - :mod:`axiscal.live.dashboard` -- that app served by a process of its own, fed the batches through
-  a pipe, so that it never holds the loop's interpreter lock (what a session serves; loaded, like
-  the server, when one of its names is first used).
+  a pipe, so that it never holds the loop's interpreter lock (what a session serves; it imports
+  the server only in its own process).
 """
 
 from __future__ import annotations
 
+from axiscal.live.dashboard import (
+    BACKLOG_BYTES,
+    DashboardProcess,
+)
 from axiscal.live.pipeline import (
     Pipeline,
     RunSummary,
@@ -68,8 +72,6 @@ from axiscal.live.state import (
 #: (it imports starlette and uvicorn, which the rest of the live room and the CLI do without)
 _SERVER_NAMES = ("WEB", "HOST", "LOOPBACK_HOSTS", "ClientStats", "Broadcaster", "request_allowed", "create_app",
                  "create_board_app", "LiveServer")
-#: the names of :mod:`axiscal.live.dashboard`, run as ``python -m axiscal.live.dashboard`` (so never imported here first)
-_DASHBOARD_NAMES = ("BACKLOG_BYTES", "DashboardProcess")
 
 
 def __getattr__(name: str):
@@ -77,10 +79,6 @@ def __getattr__(name: str):
         from axiscal.live import server
 
         return getattr(server, name)
-    if name in _DASHBOARD_NAMES:
-        from axiscal.live import dashboard
-
-        return getattr(dashboard, name)
     raise AttributeError(f"module 'axiscal.live' has no attribute {name!r}")
 from axiscal.live.playback import (
     AHEAD_S,

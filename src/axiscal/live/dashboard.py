@@ -9,8 +9,9 @@ never waits: a full pipe keeps the bytes in a bounded backlog, written with the 
 keeps only the frame and fault counts; the process reads the pipe, folds the batches and serves
 the page, the API and the WebSocket exactly as :func:`~axiscal.live.server.create_app` does.
 
-The process's threads run one real-time step below the loop (:func:`~axiscal.live.priority.below_the_loop`)
-when the loop is real-time. It ends when the pipe is closed: by :meth:`DashboardProcess.stop`, or
+The process runs at normal priority whatever the loop's: at real-time priority it would take from
+the loop the real-time time the kernel allows each second (95 %), shared by every real-time thread,
+and a page drawn late costs nothing. It ends when the pipe is closed: by :meth:`DashboardProcess.stop`, or
 by the end of the loop's process, however it ends.
 """
 
@@ -29,6 +30,7 @@ import sys
 import threading
 import time
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -191,7 +193,8 @@ class DashboardProcess:
     ------
     AxiscalError
         For a ``state`` that is not a :class:`LiveState`, a ``port`` outside 0-65535, an empty
-        ``host``, an ``update_hz`` outside :data:`~axiscal.live.state.UPDATE_HZ_RANGE`, a bad host name; :meth:`start` when the port cannot be listened on or the process does not start.
+        ``host``, an ``update_hz`` outside :data:`~axiscal.live.state.UPDATE_HZ_RANGE`, a bad host
+        name; :meth:`start` when the port cannot be listened on or the process does not start.
     """
 
     def __init__(self, state: LiveState, *, port: int = 8765, host: str = "127.0.0.1", update_hz: float = 10.0,
@@ -238,8 +241,12 @@ class DashboardProcess:
                 pass
             settings = self._settings | {"host": self.host, "port": self.port, "socket_fd": listener.fileno(), "feed_fd": read_end,
                                          "layout": self.state._layout}
+            # the process imports this very axiscal, however this one was found
+            here = str(Path(__file__).resolve().parents[2])
+            env = os.environ | {"PYTHONPATH": os.pathsep.join(filter(None, (here, os.environ.get("PYTHONPATH"))))}
             self._process = subprocess.Popen(
-                [sys.executable, "-m", "axiscal.live.dashboard", json.dumps(settings)],
+                [sys.executable, "-c", _LAUNCH, json.dumps(settings)],
+                env=env,
                 pass_fds=(listener.fileno(), read_end),
                 stdin=subprocess.DEVNULL,
                 stdout=subprocess.PIPE,
@@ -288,12 +295,25 @@ class DashboardProcess:
         self.stop()
 
 
-def _serve(settings: dict[str, Any]) -> None:
+#: the process's first lines: it drops the real-time priority (or the lower nice value) the loop's
+#: thread passed on before anything else, so that neither its imports (a second or more of a core) nor
+#: its work take a core, or the real-time time the kernel allows, from the loop
+_LAUNCH = (
+    "import os, sys\n"
+    "if os.sched_getscheduler(0) in (os.SCHED_FIFO, os.SCHED_RR):\n"
+    "    os.sched_setscheduler(0, os.SCHED_OTHER, os.sched_param(0))\n"
+    "if os.getpriority(os.PRIO_PROCESS, 0) < 0:\n"
+    "    os.setpriority(os.PRIO_PROCESS, 0, 0)\n"
+    "from axiscal.live.dashboard import _serve\n"
+    "_serve(sys.argv[1])\n"
+)
+
+
+def _serve(text: str) -> None:
     """The dashboard's process: build its state, read the pipe in a thread, serve until the pipe is closed."""
-    from axiscal.live.priority import below_the_loop
     from axiscal.live.server import _uvicorn_server, create_app
 
-    below_the_loop()  # before any thread starts: they all inherit it
+    settings = json.loads(text)
     state = LiveState._from_layout(settings["layout"])
     app = create_app(state, update_hz=settings["update_hz"], title=settings["title"], allowed_hosts=settings["allowed_hosts"])
     server = _uvicorn_server(app, settings["host"], settings["port"])
@@ -311,11 +331,10 @@ def _serve(settings: dict[str, Any]) -> None:
         if server.started:
             sys.stdout.write("listening\n")
             sys.stdout.flush()
+            with open(os.devnull, "wb") as nowhere:  # nobody reads the pipe any more: nothing may wait on it
+                os.dup2(nowhere.fileno(), sys.stdout.fileno())
 
     threading.Thread(target=feed, name="axiscal-dashboard-feed", daemon=True).start()
     threading.Thread(target=announce, name="axiscal-dashboard-ready", daemon=True).start()
     server.run(sockets=[listener])
 
-
-if __name__ == "__main__":
-    _serve(json.loads(sys.argv[1]))

@@ -10,8 +10,9 @@ refuses, and :func:`raise_priority` asks for a lower nice value instead (allowed
 :attr:`Priority.text` says what was obtained and what was refused.
 
 The priority is the calling thread's (Linux schedules threads), and threads it starts afterwards
-inherit it: the live session raises it before it starts the dashboard's server and the record's
-sync thread, so none of them holds the interpreter lock while descheduled behind other work.
+inherit it: the live session raises it before it starts the record's sync thread, so that thread
+never holds the interpreter lock while descheduled behind other work. The dashboard's process
+(:mod:`axiscal.live.dashboard`) drops it as it starts.
 :func:`restore_priority` puts the thread back as it was.
 """
 
@@ -129,7 +130,8 @@ def restore_priority(priority: Priority) -> None:
 def below_the_loop() -> None:
     """Put the calling thread one real-time step below the real-time priority it inherited, if any.
 
-    The dashboard's server thread calls it as it starts. Inheriting the loop's ``SCHED_FIFO`` priority, it kept
+    A dashboard's server thread in the loop's process (:class:`~axiscal.live.server.LiveServer`) calls it as it
+    starts. Inheriting the loop's ``SCHED_FIFO`` priority, it kept
     a core whenever it had work (a state made and sent ten times a second) and the loop, of the same priority,
     waited for the core: real-time threads of one priority do not preempt each other. One step below, the
     loop takes the core from it at once, while it still runs ahead of every normal process (so it is never
