@@ -58,6 +58,8 @@ bad(W, "check_spec", "role", lambda: wb.check_spec("laser", "sim"))
 bad(W, "check_spec", "instrument", lambda: wb.check_spec("instrument", None), lambda: wb.check_spec("instrument", " "))
 bad(W, "is_virtual", "instrument", lambda: wb.is_virtual(None, "sim"))
 bad(W, "is_virtual", "controller", lambda: wb.is_virtual("sim", 5))
+bad(W, "check_ini", "the INI file must be a path", lambda: wb.check_ini(None), lambda: wb.check_ini("  "))
+bad(W, "check_ini", "no INI file at", lambda: wb.check_ini("/nonexistent/axiscal/machine.ini"))
 bad(W, "read_saved", "folder", lambda: wb.read_saved(None))
 bad(W, "write_saved", "folder", lambda: wb.write_saved(None, None))
 bad(W, "write_saved", "saved", lambda: wb.write_saved(NEVER, {"visit": {}}))
@@ -123,13 +125,16 @@ bad(W, "file_test", "data", lambda: wb.file_test(None, NEVER, FORM, set()))
 bad(W, "file_test", "form", lambda: wb.file_test(NEVER, NEVER, {"kind": "straightness"}, set()))
 bad(W, "file_test", "taken", lambda: wb.file_test(NEVER, NEVER, FORM, None))
 bad(W, "file_test", "no such file in the data folder", lambda: wb.file_test(NEVER, NEVER, FORM, set()))
+bad(W, "tolerance_of", "kind", lambda: wb.tolerance_of(None), lambda: wb.tolerance_of(5, "X"))
+bad(W, "tolerance_of", "axis", lambda: wb.tolerance_of("straightness", None))
 
 # result and error types: made by the room, not by a user's arguments; the visit's record and the tabs'
 # book-keeping (no user values); the computer's serial ports (no arguments)
 # the forms' models (read through checked_plan and checked_file_form, whose cases are above); the parts of Workbench
 # (no arguments of their own); the example machine (no arguments)
 EXEMPT = {W: {"Connection", "FormErrors", "WorkbenchServer", "new_token", "OpenElsewhere", "SavedVisit", "Tabs",
-              "serial_ports", "AxisPlanForm", "FileTestForm", "HistoryViews", "VisitTests", "example_machine"}}
+              "serial_ports", "AxisPlanForm", "FileTestForm", "HistoryViews", "VisitTests", "VisitConnection",
+              "example_machine"}}
 
 test_bad_arguments_raise_axiscal_error_naming_them, test_every_public_callable_has_a_bad_argument_case = TABLE.tests(EXEMPT)
 

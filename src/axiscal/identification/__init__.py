@@ -46,8 +46,10 @@ from axiscal.identification.parameters import (
     Term,
 )
 from axiscal.identification.plot import (
+    motions_figure,
     plot_motions,
     plot_residuals,
+    residuals_figure,
 )
 from axiscal.identification.result import (
     Combination,
@@ -96,6 +98,8 @@ __all__ = [
     "STEP",
     "plot_residuals",
     "plot_motions",
+    "residuals_figure",
+    "motions_figure",
     "Combination",
     "Undetermined",
     "Identification",

@@ -44,8 +44,10 @@ def plot_residuals(result, name: str, path: str | Path) -> Path:
 
 
 def residuals_figure(result, name: str) -> Any:
-    """The figure :func:`plot_residuals` saves, drawn and laid out but not saved: a caller that wants it in two
-    formats saves it twice (:func:`axiscal.io.figures.save_figure`) instead of drawing it twice.
+    """The figure :func:`plot_residuals` saves, drawn and laid out but not saved.
+
+    A caller that wants it in two formats saves it twice (:func:`axiscal.io.figures.save_figure`)
+    instead of drawing it twice.
 
     Parameters
     ----------
@@ -89,8 +91,10 @@ def plot_motions(result, letter: str, path: str | Path) -> Path:
 
 
 def motions_figure(result, letter: str) -> Any:
-    """The figure :func:`plot_motions` saves, drawn and laid out but not saved: a caller that wants it in two
-    formats saves it twice (:func:`axiscal.io.figures.save_figure`) instead of drawing it twice.
+    """The figure :func:`plot_motions` saves, drawn and laid out but not saved.
+
+    A caller that wants it in two formats saves it twice (:func:`axiscal.io.figures.save_figure`)
+    instead of drawing it twice.
 
     Parameters
     ----------

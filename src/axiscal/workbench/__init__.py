@@ -67,6 +67,7 @@ from axiscal.workbench.added import (
     data_files,
     file_test,
     store_upload,
+    tolerance_of,
 )
 from axiscal.workbench.laboratory import (
     LABORATORY_FILE,
@@ -94,6 +95,9 @@ from axiscal.workbench.history_views import (
 )
 from axiscal.workbench.visit_tests import (
     VisitTests,
+)
+from axiscal.workbench.visit_connection import (
+    VisitConnection,
 )
 from axiscal.workbench.visit import (
     PHASES,
@@ -155,8 +159,10 @@ __all__ = [
     "data_files",
     "file_test",
     "store_upload",
+    "tolerance_of",
     "HistoryViews",
     "VisitTests",
+    "VisitConnection",
     "PHASES",
     "OpenElsewhere",
     "Tabs",
