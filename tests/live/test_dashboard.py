@@ -163,3 +163,17 @@ def test_a_live_session_serves_its_dashboard_from_its_own_process():
     assert shown["frames"] == summary.frames == session.state.frames
     assert shown["title"].startswith("axiscal live: sim") and shown["source"]["state"] in ("streaming", "finished")
     assert shown["latency_ms"] is None or shown["latency_ms"]["p99"] >= 0
+
+
+def test_the_process_runs_at_normal_priority_whatever_the_loops(module):
+    from axiscal.live.priority import raise_priority, restore_priority
+
+    state = LiveState(module.measurement_system())
+    priority = raise_priority()  # as axiscal live does before it starts the dashboard
+    try:
+        with DashboardProcess(state, port=0).start() as dashboard:
+            pid = dashboard._process.pid
+            policy, nice = os.sched_getscheduler(pid), os.getpriority(os.PRIO_PROCESS, pid)
+    finally:
+        restore_priority(priority)
+    assert policy == os.SCHED_OTHER and nice >= 0
