@@ -237,7 +237,9 @@ def test_peak_memory_does_not_grow_with_the_program():
     under two pieces, never hold a whole window: they peak lower (305 against 325 MB)."""
     _peak_kb(40_000)  # a first run of two pieces compiles the kernels (numba's cache is cold in a fresh clone), keeping them
     short, long = _peak_kb(100_000), _peak_kb(200_000)
-    assert long < short + 20_000, (short, long)
+    # the piece read ahead on a thread makes the peak vary by up to a piece's arrays with when its allocations meet
+    # the rewriting's (20.1 MB once in a fresh clone); a program held whole would grow by some 140 MB per 10^5 lines
+    assert long < short + 40_000, (short, long)
     # the 400 MB goal for 10^7 lines is measured by benchmarks/precompensate.py; here the process's own peak
     assert long < 400_000, (short, long)
 
